@@ -1,0 +1,2 @@
+//! turntable: a particle sliding with dry friction on a rotating table
+//! (Agha, Gupta & Joseph, Am. J. Phys. 83, 126 (2015)).
