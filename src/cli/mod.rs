@@ -1,0 +1,211 @@
+//! Command-line interface: clap definitions and the headless commands. With no command the
+//! interactive explorer opens.
+
+mod io;
+mod numerics;
+
+use crate::engine::{Frame, Initial, Method, Release, Settings};
+use clap::{Args, Parser, Subcommand};
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+#[derive(Parser, Debug)]
+#[command(
+    name = "turntable",
+    version,
+    about = "A particle sliding with dry friction on a rotating table (Agha, Gupta & Joseph 2015)"
+)]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Option<Command>,
+}
+
+#[derive(Subcommand, Debug)]
+pub enum Command {
+    /// Integrate one trajectory and report how it ends.
+    Run(RunArgs),
+    /// Find the escape speed v_e(xi0, phi) (Fig. 5).
+    Escape(EscapeArgs),
+    /// Find the critical radius xi0c for release at rest in the lab (Fig. 6).
+    Critical(CriticalArgs),
+    /// CSV for Fig. 5 (v_e over phi) or Fig. 6 (final rest xi over xi0).
+    Sweep(SweepArgs),
+}
+
+/// The integrator, shared by every command.
+#[derive(Args, Debug, Clone)]
+pub struct NumericsArgs {
+    /// dp54 (adaptive), rk4, rk2 (with stick events) or rk2-raw (the paper's scheme).
+    #[arg(long, default_value = "dp54", value_parser = parse_str::<Method>)]
+    pub method: Method,
+    /// Tolerance of dp54.
+    #[arg(long)]
+    pub tol: Option<f64>,
+    /// Step of the fixed-step methods.
+    #[arg(long)]
+    pub dt: Option<f64>,
+    /// Frame the equations are integrated in (lab is cheaper far from the centre).
+    #[arg(long, default_value = "lab", value_parser = parse_str::<Frame>)]
+    pub frame: Frame,
+    /// Step budget of one run.
+    #[arg(long, default_value_t = Settings::default().max_steps)]
+    pub max_steps: u64,
+}
+
+#[derive(Args, Debug)]
+pub struct RunArgs {
+    /// Release radius xi0 (units of R_max = mu g / Omega^2).
+    #[arg(long, default_value_t = 0.5, allow_negative_numbers = true)]
+    pub xi0: f64,
+    /// Direction of the initial velocity in the table frame, from radially outward, ccw (rad).
+    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    pub phi: f64,
+    /// Initial speed relative to the table.
+    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    pub v0: f64,
+    #[arg(long, default_value = "velocity", value_parser = parse_str::<Release>)]
+    pub release: Release,
+    #[command(flatten)]
+    pub numerics: NumericsArgs,
+    /// Stop at this time if the particle has neither stuck nor escaped.
+    #[arg(long, default_value_t = 100.0, allow_negative_numbers = true)]
+    pub tau_max: f64,
+    /// Keep integrating after escape is certified, up to tau-max.
+    #[arg(long)]
+    pub follow: bool,
+    #[arg(long)]
+    pub json: bool,
+    /// Write the trajectory (one row per step) to this CSV file.
+    #[arg(long)]
+    pub trajectory: Option<PathBuf>,
+}
+
+#[derive(Args, Debug)]
+pub struct EscapeArgs {
+    #[arg(long, allow_negative_numbers = true)]
+    pub xi0: f64,
+    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    pub phi: f64,
+    /// Width of the final bracket on v0.
+    #[arg(long = "vtol", default_value_t = 1e-8, allow_negative_numbers = true)]
+    pub vtol: f64,
+    #[command(flatten)]
+    pub numerics: NumericsArgs,
+    #[arg(long)]
+    pub json: bool,
+}
+
+#[derive(Args, Debug)]
+pub struct CriticalArgs {
+    /// Width of the final bracket on xi0.
+    #[arg(long = "xtol", default_value_t = 1e-8, allow_negative_numbers = true)]
+    pub xtol: f64,
+    #[command(flatten)]
+    pub numerics: NumericsArgs,
+    #[arg(long)]
+    pub json: bool,
+}
+
+#[derive(Args, Debug)]
+pub struct SweepArgs {
+    /// fig5: v_e over phi for each --xi0; fig6: final rest xi over xi0 in [0, --xi0-max].
+    #[arg(value_parser = ["fig5", "fig6"])]
+    pub figure: String,
+    /// Release radii for fig5.
+    #[arg(long, value_delimiter = ',', default_values_t = [0.8, 0.5, 0.2, 0.001])]
+    pub xi0: Vec<f64>,
+    /// Number of angles (fig5) or radii (fig6).
+    #[arg(long, default_value_t = 72)]
+    pub points: usize,
+    #[arg(long, default_value_t = 1.0)]
+    pub xi0_max: f64,
+    #[arg(long = "vtol", default_value_t = 1e-6)]
+    pub vtol: f64,
+    #[command(flatten)]
+    pub numerics: NumericsArgs,
+    /// Write the CSV here instead of stdout.
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+}
+
+fn parse_str<T: std::str::FromStr<Err = String>>(s: &str) -> Result<T, String> {
+    s.parse()
+}
+
+/// A command's failure: bad input (exit 2) or a run that could not finish (exit 1).
+#[derive(Debug)]
+pub enum Failure {
+    Usage(String),
+    Runtime(String),
+}
+
+impl From<std::io::Error> for Failure {
+    fn from(e: std::io::Error) -> Self {
+        Failure::Runtime(e.to_string())
+    }
+}
+
+pub type CmdResult = Result<(), Failure>;
+
+impl NumericsArgs {
+    pub fn settings(&self) -> Result<Settings, Failure> {
+        let mut s = Settings {
+            method: self.method,
+            frame: self.frame,
+            max_steps: self.max_steps,
+            ..Settings::default()
+        };
+        match (self.method.adaptive(), self.tol, self.dt) {
+            (true, _, Some(_)) => {
+                return Err(Failure::Usage(
+                    "--dt applies to the fixed-step methods (rk4, rk2, rk2-raw); dp54 takes --tol"
+                        .into(),
+                ));
+            }
+            (false, Some(_), _) => {
+                return Err(Failure::Usage(format!(
+                    "--tol applies to dp54; {} takes --dt",
+                    self.method
+                )));
+            }
+            _ => {}
+        }
+        if let Some(tol) = self.tol {
+            s.tol = tol;
+        }
+        if let Some(dt) = self.dt {
+            s.dt = dt;
+        }
+        s.validate().map_err(Failure::Usage)?;
+        Ok(s)
+    }
+}
+
+pub fn check_initial(i: &Initial) -> Result<(), Failure> {
+    i.validate().map_err(Failure::Usage)
+}
+
+/// Entry point of the binary.
+pub fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        None => Err(Failure::Usage(
+            "the explorer is not built yet; try `turntable run --help`".into(),
+        )),
+        Some(Command::Run(a)) => numerics::run(a),
+        Some(Command::Escape(a)) => numerics::escape(a),
+        Some(Command::Critical(a)) => numerics::critical(a),
+        Some(Command::Sweep(a)) => numerics::sweep(a),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(Failure::Usage(m)) => {
+            eprintln!("error: {m}");
+            ExitCode::from(2)
+        }
+        Err(Failure::Runtime(m)) => {
+            eprintln!("error: {m}");
+            ExitCode::from(1)
+        }
+    }
+}

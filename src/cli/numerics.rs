@@ -1,0 +1,213 @@
+//! The headless numerical commands: run, escape, critical, sweep.
+
+use super::io::{emit, write_atomic};
+use super::{CmdResult, CriticalArgs, EscapeArgs, Failure, RunArgs, SweepArgs, check_initial};
+use crate::engine::model::wrap_angle;
+use crate::engine::solve::{critical_radius, escape_speed, sweep_escape, sweep_rest};
+use crate::engine::{Initial, Outcome, Run, State, Status};
+use serde_json::json;
+use std::fmt::Write as _;
+
+const TAU_MAX_LIMIT: f64 = 1e9;
+
+fn trajectory_row(csv: &mut String, s: &State, stuck: bool) {
+    let (q, u) = (s.q(), s.u_lab().length());
+    let _ = writeln!(
+        csv,
+        "{},{},{},{},{},{},{}",
+        s.tau,
+        s.r.x,
+        s.r.y,
+        q.x,
+        q.y,
+        u,
+        u8::from(stuck)
+    );
+}
+
+pub fn run(a: RunArgs) -> CmdResult {
+    let initial = Initial {
+        xi0: a.xi0,
+        phi: a.phi,
+        v0: a.v0,
+        release: a.release,
+    };
+    check_initial(&initial)?;
+    if !(a.tau_max.is_finite() && a.tau_max > 0.0 && a.tau_max <= TAU_MAX_LIMIT) {
+        return Err(Failure::Usage(format!(
+            "tau-max must lie in (0, {TAU_MAX_LIMIT:e}], got {}",
+            a.tau_max
+        )));
+    }
+    let settings = a.numerics.settings()?;
+    let mut run = Run::new(initial, settings).map_err(Failure::Usage)?;
+    let mut csv = a
+        .trajectory
+        .as_ref()
+        .map(|_| String::from("tau,x,y,xq,yq,u,stuck\n"));
+    if let Some(csv) = csv.as_mut() {
+        trajectory_row(csv, &run.state(), run.status != Status::Slipping);
+    }
+    let stop_on_escape = !a.follow;
+    while run.status == Status::Slipping
+        && run.tau() < a.tau_max
+        && !(stop_on_escape && run.escape.is_some())
+    {
+        run.step(a.tau_max)
+            .map_err(|e| Failure::Runtime(e.to_string()))?;
+        if let Some(csv) = csv.as_mut() {
+            trajectory_row(csv, &run.state(), run.status != Status::Slipping);
+        }
+    }
+    let outcome = run.outcome();
+    let end = match (outcome, run.escape) {
+        (Outcome::Escaped, Some(e)) if stop_on_escape => run.state_at(e.tau),
+        _ => run.state(),
+    };
+    if let (Some(path), Some(csv)) = (&a.trajectory, &csv) {
+        write_atomic(path, csv.as_bytes())?;
+    }
+    let q = end.q();
+    let angle = wrap_angle(q.y.atan2(q.x));
+    let speed = end.u_lab().length();
+    let c = run.cost;
+    if a.json {
+        let v = json!({
+            "outcome": outcome.name(),
+            "tau": end.tau,
+            "xi": q.length(),
+            "angle": angle,
+            "speed": speed,
+            "certificate": run.escape.map(|e| e.by),
+            "escape_tau": run.escape.map(|e| e.tau),
+            "steps": c.steps,
+            "rejected": c.rejected,
+            "rhs_evals": c.rhs_evals,
+            "method": settings.method.name(),
+            "frame": settings.frame.name(),
+            "tol": settings.method.adaptive().then_some(settings.tol),
+            "dt": (!settings.method.adaptive()).then_some(settings.dt),
+        });
+        emit(None, &format!("{v}\n"))?;
+    } else {
+        let how = match (outcome, run.escape) {
+            (Outcome::Stuck, _) => "stuck on the table".to_string(),
+            (Outcome::Escaped, Some(e)) => {
+                format!("escaped (certified by {:?} bound)", e.by).to_lowercase()
+            }
+            _ => "still slipping at tau-max".to_string(),
+        };
+        let text = format!(
+            "outcome  {}: {how}\ntau      {:.9}\nxi       {:.12}\nangle    {:.12} rad (table frame, from the release direction)\n|u|      {:.3e}\ncost     {} steps, {} rejected, {} rhs evaluations ({} {})\n",
+            outcome.name(),
+            end.tau,
+            q.length(),
+            angle,
+            speed,
+            c.steps,
+            c.rejected,
+            c.rhs_evals,
+            settings.method,
+            settings.accuracy_label()
+        );
+        emit(None, &text)?;
+    }
+    Ok(())
+}
+
+fn positive(name: &str, x: f64) -> Result<(), Failure> {
+    if x.is_finite() && x > 0.0 {
+        Ok(())
+    } else {
+        Err(Failure::Usage(format!(
+            "{name} must be a positive number, got {x}"
+        )))
+    }
+}
+
+pub fn escape(a: EscapeArgs) -> CmdResult {
+    check_initial(&Initial::velocity(a.xi0, a.phi, 0.0))?;
+    positive("vtol", a.vtol)?;
+    let settings = a.numerics.settings()?;
+    let t = escape_speed(a.xi0, a.phi, settings, a.vtol).map_err(Failure::Runtime)?;
+    if a.json {
+        let v = json!({
+            "xi0": a.xi0, "phi": a.phi, "v_escape": t.value,
+            "stuck_at": t.stuck_at, "escapes_at": t.escapes_at, "interval": t.interval,
+            "runs": t.runs, "rhs_evals": t.rhs_evals,
+        });
+        emit(None, &format!("{v}\n"))?;
+    } else {
+        let mut text = format!(
+            "v_escape {:.10}\nbracket  stuck at {:.10}, escapes at {:.10}\ncost     {} runs, {} rhs evaluations\n",
+            t.value, t.stuck_at, t.escapes_at, t.runs, t.rhs_evals
+        );
+        if !t.interval {
+            text.push_str("note     the escaping speeds do not form one interval here: some faster releases come to rest\n");
+        }
+        emit(None, &text)?;
+    }
+    Ok(())
+}
+
+pub fn critical(a: CriticalArgs) -> CmdResult {
+    positive("xtol", a.xtol)?;
+    let settings = a.numerics.settings()?;
+    let t = critical_radius(settings, a.xtol).map_err(Failure::Runtime)?;
+    if a.json {
+        let v = json!({
+            "xi0c": t.value, "stuck_at": t.stuck_at, "escapes_at": t.escapes_at,
+            "interval": t.interval, "runs": t.runs, "rhs_evals": t.rhs_evals,
+        });
+        emit(None, &format!("{v}\n"))?;
+    } else {
+        emit(
+            None,
+            &format!(
+                "xi0c     {:.10}\nbracket  stuck at {:.10}, escapes at {:.10}\n",
+                t.value, t.stuck_at, t.escapes_at
+            ),
+        )?;
+    }
+    Ok(())
+}
+
+pub fn sweep(a: SweepArgs) -> CmdResult {
+    positive("vtol", a.vtol)?;
+    if a.points == 0 || a.points > 100_000 {
+        return Err(Failure::Usage(format!(
+            "points must lie in 1..=100000, got {}",
+            a.points
+        )));
+    }
+    let settings = a.numerics.settings()?;
+    let mut csv = String::new();
+    if a.figure == "fig5" {
+        for &xi0 in &a.xi0 {
+            check_initial(&Initial::velocity(xi0, 0.0, 0.0))?;
+        }
+        csv.push_str("xi0,phi,v_escape\n");
+        for p in sweep_escape(&a.xi0, a.points, settings, a.vtol).map_err(Failure::Runtime)? {
+            let _ = writeln!(csv, "{},{},{}", p.xi0, p.phi, p.v_escape);
+        }
+    } else {
+        positive("xi0-max", a.xi0_max)?;
+        let xi0s: Vec<f64> = (0..a.points)
+            .map(|i| a.xi0_max * i as f64 / (a.points - 1).max(1) as f64)
+            .collect();
+        csv.push_str("xi0,outcome,xi,angle\n");
+        for p in sweep_rest(&xi0s, settings).map_err(Failure::Runtime)? {
+            let f = |x: Option<f64>| x.map_or(String::new(), |x| x.to_string());
+            let _ = writeln!(
+                csv,
+                "{},{},{},{}",
+                p.xi0,
+                p.outcome.name(),
+                f(p.xi),
+                f(p.angle)
+            );
+        }
+    }
+    emit(a.out.as_deref(), &csv)?;
+    Ok(())
+}

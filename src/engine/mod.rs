@@ -1,0 +1,11 @@
+//! The physics: pure, no UI. Equations, integrators, events, solvers and the paper's analytic
+//! approximations.
+
+pub mod method;
+pub mod model;
+pub mod run;
+pub mod solve;
+
+pub use method::{Cost, Method, Settings};
+pub use model::{Frame, Initial, Release, State};
+pub use run::{Certificate, Escape, Outcome, Run, RunError, Status};

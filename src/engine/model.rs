@@ -1,0 +1,312 @@
+//! The paper's dimensionless model: Sec. II (Eqs. 6–7) written in Cartesian form as in
+//! Sec. IV, with the conventions of `shared/CONVENTIONS.md` (Ω = 1, μg = 1, the table turns
+//! counterclockwise). Never polar inside: polar forms are singular at ξ = 0.
+
+use glam::DVec2;
+use serde::{Deserialize, Serialize};
+use std::f64::consts::PI;
+use std::fmt;
+use std::str::FromStr;
+
+/// `ẑ × a`: the table's velocity at `a`, and the Coriolis direction (Sec. II).
+pub fn zcross(a: DVec2) -> DVec2 {
+    DVec2::new(-a.y, a.x)
+}
+
+/// `a` rotated counterclockwise by `angle`: `R(τ)` takes table-frame vectors to the lab.
+pub fn rotate(a: DVec2, angle: f64) -> DVec2 {
+    DVec2::from_angle(angle).rotate(a)
+}
+
+/// Wraps an angle into (−π, π], the range rest angles are reported in (CONVENTIONS.md).
+pub fn wrap_angle(a: f64) -> f64 {
+    let w = a.rem_euclid(2.0 * PI);
+    if w > PI { w - 2.0 * PI } else { w }
+}
+
+/// Dry friction on the particle (Eq. 2): −û while slipping. At u = 0 it is the Filippov value:
+/// static friction balances the centrifugal pull `p` if it can (|p| ≤ 1, property 1 of Sec. II),
+/// otherwise it opposes it at full strength, so the particle leaves the discontinuity along `p`.
+/// `p` is the position (lab or table frame: only its length and direction matter here).
+pub fn friction(u: DVec2, p: DVec2) -> DVec2 {
+    let s = u.length();
+    if s > 0.0 {
+        -u / s
+    } else {
+        let n = p.length();
+        if n > 1.0 { -p / n } else { -p }
+    }
+}
+
+/// How a particle is released (CONVENTIONS.md; the paper's Figs. 1–5).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "kebab-case")]
+pub enum Release {
+    /// Speed `v0` in direction `φ`, both in the table frame (Figs. 3–5).
+    #[default]
+    Velocity,
+    /// At rest on the table, u0 = 0 (Sec. III B, Fig. 2).
+    TableRest,
+    /// At rest in the lab, u0 = (0, −ξ0) (Sec. III A, Figs. 1 and 6).
+    LabRest,
+}
+
+impl Release {
+    pub const ALL: [Release; 3] = [Release::Velocity, Release::TableRest, Release::LabRest];
+    pub fn name(self) -> &'static str {
+        match self {
+            Release::Velocity => "velocity",
+            Release::TableRest => "table-rest",
+            Release::LabRest => "lab-rest",
+        }
+    }
+}
+
+impl fmt::Display for Release {
+    fn fmt(&self, f: &mut fmt::Formatter) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl FromStr for Release {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        Release::ALL
+            .into_iter()
+            .find(|r| r.name() == s)
+            .ok_or_else(|| format!("unknown release mode '{s}' (velocity, table-rest, lab-rest)"))
+    }
+}
+
+/// Initial conditions as in the paper's Figs. 3–5: start at (ξ0, 0); `v0` and `φ` in the table
+/// frame, φ from the radially outward direction, counterclockwise positive.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Initial {
+    pub xi0: f64,
+    pub phi: f64,
+    pub v0: f64,
+    #[serde(default)]
+    pub release: Release,
+}
+
+impl Initial {
+    pub fn velocity(xi0: f64, phi: f64, v0: f64) -> Self {
+        Initial {
+            xi0,
+            phi,
+            v0,
+            release: Release::Velocity,
+        }
+    }
+    pub fn at_rest(xi0: f64, release: Release) -> Self {
+        Initial {
+            xi0,
+            phi: 0.0,
+            v0: 0.0,
+            release,
+        }
+    }
+
+    /// Checks the values a user may type: finite, ξ0 ≥ 0, v0 ≥ 0.
+    pub fn validate(&self) -> Result<(), String> {
+        for (name, x) in [("xi0", self.xi0), ("phi", self.phi), ("v0", self.v0)] {
+            if !x.is_finite() {
+                return Err(format!("{name} must be a finite number, got {x}"));
+            }
+        }
+        if self.xi0 < 0.0 {
+            return Err(format!("xi0 must be ≥ 0, got {}", self.xi0));
+        }
+        if self.v0 < 0.0 {
+            return Err(format!("v0 must be ≥ 0, got {}", self.v0));
+        }
+        Ok(())
+    }
+
+    /// Initial velocity relative to the table (at τ = 0 both frames coincide).
+    pub fn u0(&self) -> DVec2 {
+        match self.release {
+            Release::Velocity => DVec2::from_angle(self.phi) * self.v0,
+            Release::TableRest => DVec2::ZERO,
+            Release::LabRest => DVec2::new(0.0, -self.xi0),
+        }
+    }
+
+    pub fn state(&self) -> State {
+        let r = DVec2::new(self.xi0, 0.0);
+        State {
+            tau: 0.0,
+            r,
+            v: self.u0() + zcross(r),
+        }
+    }
+}
+
+/// The particle at time τ, in the lab frame: position `r`, velocity `v`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct State {
+    pub tau: f64,
+    pub r: DVec2,
+    pub v: DVec2,
+}
+
+impl State {
+    /// Velocity relative to the table, lab components: u = v − ẑ × r.
+    pub fn u_lab(&self) -> DVec2 {
+        self.v - zcross(self.r)
+    }
+    /// Position in the rotating frame, q = R(−τ) r.
+    pub fn q(&self) -> DVec2 {
+        rotate(self.r, -self.tau)
+    }
+    /// Relative velocity in the rotating frame.
+    pub fn u(&self) -> DVec2 {
+        rotate(self.u_lab(), -self.tau)
+    }
+    pub fn xi(&self) -> f64 {
+        self.r.length()
+    }
+    /// ξ′ = r·v/|r| (= q·u/|q|); at ξ = 0 the particle moves straight out, so ξ′ = |v|.
+    pub fn xi_dot(&self) -> f64 {
+        let xi = self.xi();
+        if xi > 0.0 {
+            self.r.dot(self.v) / xi
+        } else {
+            self.v.length()
+        }
+    }
+    /// θ′ (lab), undefined at ξ = 0.
+    pub fn theta_dot(&self) -> Option<f64> {
+        let xi2 = self.r.length_squared();
+        (xi2 > 0.0).then(|| self.r.perp_dot(self.v) / xi2)
+    }
+    /// E = ½|u|² − ½|q|²: dE/dτ = −|u| (Coriolis does no work), so E < −½ means it can never
+    /// stick again (a particle at rest at ξ ≤ 1 has E ≥ −½).
+    pub fn energy(&self) -> f64 {
+        0.5 * (self.u_lab().length_squared() - self.r.length_squared())
+    }
+    /// Lab position of a particle at rest on the table at `q` since time 0: closed-form rotation.
+    pub fn riding(q: DVec2, tau: f64) -> State {
+        let r = rotate(q, tau);
+        State {
+            tau,
+            r,
+            v: zcross(r),
+        }
+    }
+}
+
+/// The frame an integrator works in (CONVENTIONS.md, "Frames and state").
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "kebab-case")]
+pub enum Frame {
+    /// r′ = v, v′ = −û (the paper's Sec. IV system). Bounded right-hand side: cheap far out.
+    #[default]
+    Lab,
+    /// q′ = u, u′ = −2ẑ×u + q − û (Coriolis, centrifugal, friction).
+    Table,
+}
+
+impl Frame {
+    pub fn name(self) -> &'static str {
+        match self {
+            Frame::Lab => "lab",
+            Frame::Table => "table",
+        }
+    }
+}
+
+impl FromStr for Frame {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s {
+            "lab" => Ok(Frame::Lab),
+            "table" | "rotating" => Ok(Frame::Table),
+            _ => Err(format!("unknown frame '{s}' (lab, table)")),
+        }
+    }
+}
+
+/// Phase-space point of the integrator in its frame: position `p`, velocity `w`
+/// (lab: r, v; table: q, u).
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+pub struct Y {
+    pub p: DVec2,
+    pub w: DVec2,
+}
+
+impl std::ops::Add for Y {
+    type Output = Y;
+    fn add(self, o: Y) -> Y {
+        Y {
+            p: self.p + o.p,
+            w: self.w + o.w,
+        }
+    }
+}
+
+impl std::ops::Sub for Y {
+    type Output = Y;
+    fn sub(self, o: Y) -> Y {
+        Y {
+            p: self.p - o.p,
+            w: self.w - o.w,
+        }
+    }
+}
+
+impl std::ops::Mul<f64> for Y {
+    type Output = Y;
+    fn mul(self, k: f64) -> Y {
+        Y {
+            p: self.p * k,
+            w: self.w * k,
+        }
+    }
+}
+
+impl Frame {
+    /// The equations of motion while slipping, in this frame (CONVENTIONS.md).
+    pub fn rhs(self, y: Y) -> Y {
+        match self {
+            Frame::Lab => Y {
+                p: y.w,
+                w: friction(y.w - zcross(y.p), y.p),
+            },
+            Frame::Table => Y {
+                p: y.w,
+                w: -2.0 * zcross(y.w) + y.p + friction(y.w, y.p),
+            },
+        }
+    }
+    pub fn from_state(self, s: &State) -> Y {
+        match self {
+            Frame::Lab => Y { p: s.r, w: s.v },
+            Frame::Table => Y { p: s.q(), w: s.u() },
+        }
+    }
+    pub fn to_state(self, y: Y, tau: f64) -> State {
+        match self {
+            Frame::Lab => State {
+                tau,
+                r: y.p,
+                v: y.w,
+            },
+            Frame::Table => {
+                let r = rotate(y.p, tau);
+                State {
+                    tau,
+                    r,
+                    v: rotate(y.w, tau) + zcross(r),
+                }
+            }
+        }
+    }
+}
+
+/// The three forces per unit mass in the rotating frame (Sec. IV's explanation of Fig. 5):
+/// friction, Coriolis and centrifugal, in table-frame components.
+pub fn table_forces(s: &State) -> [DVec2; 3] {
+    let (q, u) = (s.q(), s.u());
+    [friction(u, q), -2.0 * zcross(u), q]
+}
