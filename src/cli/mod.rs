@@ -1,7 +1,7 @@
 //! Command-line interface: clap definitions and the headless commands. With no command the
 //! interactive explorer opens.
 
-mod io;
+pub mod io;
 mod numerics;
 
 use crate::engine::{Frame, Initial, Method, Release, Settings};

@@ -1,0 +1,109 @@
+//! Scenes: initial conditions plus integrator settings, as serde data. The paper's presets
+//! (Figs. 1–4) are built in; others load from and save to TOML files.
+
+use crate::engine::{Initial, Release, Settings};
+use serde::{Deserialize, Serialize};
+use std::f64::consts::PI;
+use std::path::Path;
+
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Scene {
+    pub name: String,
+    /// What the scene shows, one line.
+    #[serde(default)]
+    pub about: String,
+    pub initial: Initial,
+    #[serde(default)]
+    pub settings: Settings,
+}
+
+/// The paper's reference cases (CONVENTIONS.md), in the order of their keys.
+pub const PRESETS: [&str; 6] = ["A", "B", "C", "D", "fig1", "fig2"];
+
+impl Scene {
+    pub fn preset(name: &str) -> Option<Scene> {
+        let (initial, about) = match name.to_ascii_lowercase().as_str() {
+            "a" => (
+                Initial::velocity(0.5, PI, 1.0),
+                "Fig. 3 A: thrown inward, comes to rest",
+            ),
+            "b" => (
+                Initial::velocity(0.5, 0.0, 0.6),
+                "Fig. 3 B: thrown outward, comes to rest",
+            ),
+            "c" => (
+                Initial::velocity(0.5, 0.0, 0.6078),
+                "Fig. 3 C: the paper says it escapes; converged, it stops just inside xi = 1",
+            ),
+            "d" => (
+                Initial::velocity(1.1, 1.2 * PI, 1.3),
+                "Fig. 3 D: thrown from outside xi = 1, comes to rest inside",
+            ),
+            "fig1" => (
+                Initial::at_rest(500.0, Release::LabRest),
+                "Fig. 1: at rest in the lab at xi0 = 500",
+            ),
+            "fig2" => (
+                Initial::at_rest(1.1, Release::TableRest),
+                "Fig. 2: at rest on the table at xi0 = 1.1",
+            ),
+            _ => return None,
+        };
+        let name = PRESETS
+            .iter()
+            .find(|p| p.eq_ignore_ascii_case(name))?
+            .to_string();
+        Some(Scene {
+            name,
+            about: about.into(),
+            initial,
+            settings: Settings::default(),
+        })
+    }
+
+    /// The default scene: the paper's case C, where the paper's scheme and a converged run
+    /// disagree.
+    pub fn default_scene() -> Scene {
+        Scene::preset("C").expect("C is a preset")
+    }
+
+    /// A preset name, or a path to a TOML scene file. Errors name the file and the problem.
+    pub fn load(name_or_path: &str) -> Result<Scene, String> {
+        if let Some(s) = Scene::preset(name_or_path) {
+            return Ok(s);
+        }
+        if !(name_or_path.contains('/') || name_or_path.ends_with(".toml")) {
+            return Err(format!(
+                "unknown scene '{name_or_path}' (presets: {}; or a path to a .toml file)",
+                PRESETS.join(", ")
+            ));
+        }
+        let text = std::fs::read_to_string(name_or_path)
+            .map_err(|e| format!("scene file {name_or_path}: {e}"))?;
+        let scene: Scene = toml::from_str(&text).map_err(|e| {
+            let line = e.span().map_or(0, |s| {
+                text[..s.start.min(text.len())].lines().count().max(1)
+            });
+            format!("scene file {name_or_path}: line {line}: {}", e.message())
+        })?;
+        scene
+            .initial
+            .validate()
+            .map_err(|e| format!("scene file {name_or_path}: {e}"))?;
+        scene
+            .settings
+            .validate()
+            .map_err(|e| format!("scene file {name_or_path}: {e}"))?;
+        Ok(scene)
+    }
+
+    pub fn to_toml(&self) -> String {
+        toml::to_string(self).expect("a scene always serializes")
+    }
+
+    /// Writes the scene atomically.
+    pub fn save(&self, path: &Path) -> std::io::Result<()> {
+        crate::cli::io::write_atomic(path, self.to_toml().as_bytes())
+    }
+}

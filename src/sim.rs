@@ -1,0 +1,105 @@
+//! One run in time, as the explorer shows it: the run advanced tick by tick, a history of
+//! samples to step back through, and only the work the scene needs (stuck: closed-form
+//! rotation; escaped and out of view: no more steps).
+
+use crate::engine::run::{Outcome, Run, RunError, Status};
+use crate::engine::{Initial, Settings, State};
+
+/// Most samples kept; older ones are dropped first.
+pub const HISTORY: usize = 100_000;
+/// Most integration steps one tick may take, so a tiny dt at high speed cannot freeze the
+/// screen: the sample then lags behind the tick's target time.
+pub const STEPS_PER_TICK: u64 = 200_000;
+
+#[derive(Clone, Debug)]
+pub struct Sim {
+    pub run: Run,
+    /// One sample per tick, oldest first; the trail is drawn from these (lab frame).
+    pub samples: Vec<State>,
+    /// Index of the sample on screen.
+    pub cursor: usize,
+    /// Escaped and past this radius: integration stops.
+    pub view_radius: f64,
+    /// Why the run stopped early, if it did.
+    pub error: Option<RunError>,
+}
+
+impl Sim {
+    pub fn new(initial: Initial, settings: Settings, view_radius: f64) -> Result<Sim, String> {
+        let run = Run::new(initial, settings)?;
+        let s0 = run.state();
+        Ok(Sim {
+            run,
+            samples: vec![s0],
+            cursor: 0,
+            view_radius,
+            error: None,
+        })
+    }
+
+    /// The state on screen.
+    pub fn now(&self) -> State {
+        self.samples[self.cursor]
+    }
+
+    /// Samples up to the one on screen: the visible trail.
+    pub fn trail(&self) -> &[State] {
+        &self.samples[..=self.cursor]
+    }
+
+    pub fn at_latest(&self) -> bool {
+        self.cursor + 1 == self.samples.len()
+    }
+
+    /// Whether more time can pass: not once escaped and out of view, nor after an error.
+    pub fn live(&self) -> bool {
+        let s = self.samples[self.samples.len() - 1];
+        self.error.is_none() && !(self.run.escape.is_some() && s.xi() > self.view_radius)
+    }
+
+    /// The status at the sample on screen.
+    pub fn outcome_now(&self) -> Outcome {
+        let tau = self.now().tau;
+        match (self.run.status, self.run.escape) {
+            (Status::Stuck { tau: ts, .. }, _) if tau >= ts => Outcome::Stuck,
+            (_, Some(e)) if tau >= e.tau => Outcome::Escaped,
+            _ => Outcome::Running,
+        }
+    }
+
+    /// One tick forward by `dtau`: through history if the cursor is behind, else integrate.
+    pub fn advance(&mut self, dtau: f64) {
+        if !self.at_latest() {
+            self.cursor += 1;
+            return;
+        }
+        if !self.live() {
+            return;
+        }
+        let target = self.now().tau + dtau;
+        let budget = self.run.cost.steps + self.run.cost.rejected + STEPS_PER_TICK;
+        while self.run.status == Status::Slipping && self.run.tau() < target {
+            if self.run.cost.steps + self.run.cost.rejected >= budget {
+                break;
+            }
+            if let Err(e) = self.run.step(f64::INFINITY) {
+                self.error = Some(e);
+                break;
+            }
+        }
+        let t = target.min(match self.run.status {
+            Status::Stuck { .. } => f64::INFINITY,
+            Status::Slipping => self.run.tau(),
+        });
+        self.samples.push(self.run.state_at(t));
+        if self.samples.len() > HISTORY {
+            self.samples.drain(..HISTORY / 10);
+        }
+        self.cursor = self.samples.len() - 1;
+    }
+
+    /// One tick back through history.
+    pub fn back(&mut self) {
+        self.cursor = self.cursor.saturating_sub(1);
+    }
+}
