@@ -1,6 +1,7 @@
 //! The physics: pure, no UI. Equations, integrators, events, solvers and the paper's analytic
 //! approximations.
 
+pub mod approx;
 pub mod method;
 pub mod model;
 pub mod run;
