@@ -4,4 +4,6 @@
 pub mod cli;
 pub mod engine;
 pub mod scene;
+pub mod script;
 pub mod sim;
+pub mod theme;
