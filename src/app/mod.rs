@@ -107,6 +107,11 @@ impl App {
         self.dirty = true;
     }
 
+    /// The canvas geometry of the last draw (where mouse cells land in world coordinates).
+    pub fn geom_for_tests(&self) -> Option<CanvasGeom> {
+        self.geom
+    }
+
     pub fn is_playing(&self) -> bool {
         self.playing
     }

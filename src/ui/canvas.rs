@@ -148,7 +148,7 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &mut App) {
             });
             for k in 0..6 {
                 let d = rotate(DVec2::X, spin + k as f64 * std::f64::consts::PI / 3.0);
-                let (a, b) = (d * 0.08 * table_r, d * table_r);
+                let (a, b) = (d * 0.8 * table_r, d * table_r);
                 ctx.draw(&Line {
                     x1: a.x,
                     y1: a.y,

@@ -78,7 +78,7 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) {
         )));
         for (k, help) in rs {
             cols[c].push(Line::from(vec![
-                Span::styled(format!(" {k:<12}"), Style::default().fg(th.notice)),
+                Span::styled(format!(" {k:<13}"), Style::default().fg(th.notice)),
                 Span::styled(help.to_string(), Style::default().fg(th.foreground)),
             ]));
         }

@@ -40,7 +40,7 @@ pub fn status_text(sim: &Sim, th: &Theme) -> (String, ratatui::style::Color) {
         Outcome::Stuck => match sim.run.status {
             Status::Stuck { tau, q } => (
                 format!(
-                    "stuck at ξ = {} since τ = {}",
+                    "stuck at ξ = {}\n  since τ = {}",
                     num(q.length(), 5),
                     num(tau, 3)
                 ),
@@ -51,7 +51,7 @@ pub fn status_text(sim: &Sim, th: &Theme) -> (String, ratatui::style::Color) {
         Outcome::Escaped => {
             let tau = sim.run.escape.map_or(f64::NAN, |e| e.tau);
             (
-                format!("escaped, certified at τ = {}", num(tau, 3)),
+                format!("escaped, certified\n  at τ = {}", num(tau, 3)),
                 th.escaped,
             )
         }
@@ -108,10 +108,12 @@ pub fn lines(app: &App) -> Vec<Line<'static>> {
     out.push(kv("ξ′", num(s.xi_dot(), 4), th));
     out.push(kv("|u|", num(s.u().length(), 4), th));
     let (st, col) = status_text(&app.sim, th);
-    out.push(Line::from(Span::styled(
-        st,
-        Style::default().fg(col).add_modifier(Modifier::BOLD),
-    )));
+    for l in st.lines() {
+        out.push(Line::from(Span::styled(
+            l.to_string(),
+            Style::default().fg(col).add_modifier(Modifier::BOLD),
+        )));
+    }
     let c = app.sim.run.cost;
     out.push(kv(
         app.settings.method.name(),
@@ -128,7 +130,12 @@ pub fn lines(app: &App) -> Vec<Line<'static>> {
             "paper: rk2-raw dt=1e-3 ○",
             Style::default().fg(th.accent),
         )));
-        out.push(Line::from(Span::styled(st, Style::default().fg(col))));
+        for l in st.lines() {
+            out.push(Line::from(Span::styled(
+                l.to_string(),
+                Style::default().fg(col),
+            )));
+        }
         out.push(kv("  ξ", num(p.now().xi(), 5), th));
     }
     if app.forces {
