@@ -5,6 +5,7 @@ pub mod app;
 pub mod cli;
 pub mod engine;
 pub mod scene;
+pub mod script;
 pub mod sim;
 pub mod terminal;
 pub mod theme;

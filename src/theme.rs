@@ -1,90 +1,294 @@
-//! Temporary stub of the theme API (the real module comes from branch `script`).
+//! Colour themes: TOML files giving a colour to each role in the UI, so the
+//! display can suit a dark terminal, a light one, a projector, or no colour
+//! at all. Colours are `"#rrggbb"` or ratatui colour names (`"lightblue"`,
+//! `"reset"`, ...).
+
+use std::str::FromStr;
 
 use ratatui::style::Color;
+use serde::de::Error as _;
+use serde::{Deserialize, Deserializer};
 
-#[derive(Clone, Debug, PartialEq)]
+/// Names of the themes compiled into the binary.
+pub const BUILTIN: [&str; 4] = ["dark", "light", "high-contrast", "mono"];
+
+/// Every field is required and unknown fields are rejected, so a typo in a
+/// theme file is reported instead of silently falling back to a default.
+#[derive(Debug, Clone, PartialEq, Eq, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Theme {
     pub name: String,
+    #[serde(deserialize_with = "colour")]
     pub background: Color,
+    #[serde(deserialize_with = "colour")]
     pub foreground: Color,
+    /// Secondary text: labels, hints, units.
+    #[serde(deserialize_with = "colour")]
     pub muted: Color,
+    /// Headings, selection and focus.
+    #[serde(deserialize_with = "colour")]
     pub accent: Color,
+    #[serde(deserialize_with = "colour")]
     pub table_edge: Color,
+    #[serde(deserialize_with = "colour")]
     pub spokes: Color,
+    /// The circle xi = 1.
+    #[serde(deserialize_with = "colour")]
     pub limit_circle: Color,
+    #[serde(deserialize_with = "colour")]
     pub particle: Color,
+    #[serde(deserialize_with = "colour")]
     pub trail: Color,
+    /// Velocity arrow.
+    #[serde(deserialize_with = "colour")]
     pub arrow: Color,
+    /// Force arrows, one colour per force.
+    #[serde(deserialize_with = "colour")]
     pub friction: Color,
+    #[serde(deserialize_with = "colour")]
     pub coriolis: Color,
+    #[serde(deserialize_with = "colour")]
     pub centrifugal: Color,
+    /// Particle states.
+    #[serde(deserialize_with = "colour")]
     pub slipping: Color,
+    #[serde(deserialize_with = "colour")]
     pub stuck: Color,
+    #[serde(deserialize_with = "colour")]
     pub escaped: Color,
+    /// Transient messages in the status line.
+    #[serde(deserialize_with = "colour")]
     pub notice: Color,
 }
 
+fn colour<'de, D: Deserializer<'de>>(deserializer: D) -> Result<Color, D::Error> {
+    let text = String::deserialize(deserializer)?;
+    Color::from_str(&text).map_err(|_| {
+        D::Error::custom(format!(
+            "invalid colour {text:?} (use \"#rrggbb\" or a name such as \"lightblue\")"
+        ))
+    })
+}
+
 impl Theme {
+    /// A theme compiled into the binary, by name.
     pub fn builtin(name: &str) -> Option<Theme> {
-        use Color::*;
-        match name {
-            "dark" => Some(Theme {
-                name: "dark".into(),
-                background: Reset,
-                foreground: White,
-                muted: DarkGray,
-                accent: Cyan,
-                table_edge: Gray,
-                spokes: DarkGray,
-                limit_circle: Yellow,
-                particle: LightRed,
-                trail: LightBlue,
-                arrow: LightGreen,
-                friction: Red,
-                coriolis: Magenta,
-                centrifugal: Green,
-                slipping: Yellow,
-                stuck: Green,
-                escaped: Red,
-                notice: LightYellow,
-            }),
-            "mono" => Some(Theme {
-                name: "mono".into(),
-                ..Theme::all(Reset)
-            }),
-            _ => None,
-        }
+        let source = match name {
+            "dark" => include_str!("../themes/dark.toml"),
+            "light" => include_str!("../themes/light.toml"),
+            "high-contrast" => include_str!("../themes/high-contrast.toml"),
+            "mono" => include_str!("../themes/mono.toml"),
+            _ => return None,
+        };
+        Some(parse(source).expect("built-in themes are valid (checked by tests)"))
     }
-    fn all(c: Color) -> Theme {
-        Theme {
-            name: String::new(),
-            background: c,
-            foreground: c,
-            muted: c,
-            accent: c,
-            table_edge: c,
-            spokes: c,
-            limit_circle: c,
-            particle: c,
-            trail: c,
-            arrow: c,
-            friction: c,
-            coriolis: c,
-            centrifugal: c,
-            slipping: c,
-            stuck: c,
-            escaped: c,
-            notice: c,
-        }
-    }
+
+    /// A built-in name, or a path to a TOML file (anything containing `/` or
+    /// ending in `.toml`). Err is one human-readable line naming the file or
+    /// name and the problem.
     pub fn load(name_or_path: &str) -> Result<Theme, String> {
-        Theme::builtin(name_or_path).ok_or_else(|| format!("unknown theme '{name_or_path}'"))
+        if name_or_path.contains('/') || name_or_path.ends_with(".toml") {
+            let context = |problem: String| format!("theme file {name_or_path}: {problem}");
+            let text = std::fs::read_to_string(name_or_path).map_err(|e| context(e.to_string()))?;
+            return parse(&text).map_err(context);
+        }
+        Self::builtin(name_or_path).ok_or_else(|| {
+            format!(
+                "unknown theme '{name_or_path}' (built-in: {}; or a path to a .toml file)",
+                BUILTIN.join(", ")
+            )
+        })
     }
+
+    /// The theme to use: an explicit request always wins; otherwise
+    /// `no_color` (the NO_COLOR environment variable is set and non-empty,
+    /// see no-color.org) selects mono, and the default is dark.
     pub fn resolve(requested: Option<&str>, no_color: bool) -> Result<Theme, String> {
         match requested {
-            Some(r) => Theme::load(r),
-            None if no_color => Ok(Theme::builtin("mono").unwrap()),
-            None => Ok(Theme::builtin("dark").unwrap()),
+            Some(name_or_path) => Self::load(name_or_path),
+            None => Self::load(if no_color { "mono" } else { "dark" }),
         }
+    }
+}
+
+/// Parses theme TOML; errors read "line N: problem" when toml locates them,
+/// except for problems with the whole document (a missing field), where a
+/// line number would mislead.
+fn parse(text: &str) -> Result<Theme, String> {
+    toml::from_str(text).map_err(|e: toml::de::Error| {
+        let problem = e.message().trim().replace('\n', " ");
+        match e.span() {
+            Some(span) if span != (0..0) => {
+                let line = text.as_bytes()[..span.start.min(text.len())]
+                    .iter()
+                    .filter(|&&b| b == b'\n')
+                    .count()
+                    + 1;
+                format!("line {line}: {problem}")
+            }
+            _ => problem,
+        }
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Writes `text` to a temp file unique to this process and test.
+    fn temp_file(tag: &str, text: &str) -> String {
+        let path = std::env::temp_dir().join(format!(
+            "turntable-theme-test-{}-{tag}.toml",
+            std::process::id()
+        ));
+        std::fs::write(&path, text).unwrap();
+        path.to_str().unwrap().to_owned()
+    }
+
+    fn dark_source() -> &'static str {
+        include_str!("../themes/dark.toml")
+    }
+
+    /// Loads `text` from a temp file, returning the error and the path.
+    fn load_err(tag: &str, text: &str) -> (String, String) {
+        let path = temp_file(tag, text);
+        let err = Theme::load(&path).expect_err(tag);
+        std::fs::remove_file(&path).unwrap();
+        (err, path)
+    }
+
+    #[test]
+    fn every_builtin_parses_under_its_own_name() {
+        for name in BUILTIN {
+            let theme = Theme::builtin(name).unwrap();
+            assert_eq!(theme.name, name);
+            assert_eq!(Theme::load(name), Ok(theme));
+        }
+        assert_eq!(Theme::builtin("nope"), None);
+    }
+
+    #[test]
+    fn builtins_look_as_intended() {
+        let hc = Theme::builtin("high-contrast").unwrap();
+        assert_eq!(hc.background, Color::Rgb(0, 0, 0));
+        assert_eq!(hc.foreground, Color::Rgb(255, 255, 255));
+        let mono = Theme::builtin("mono").unwrap();
+        let colours = all_colours(&mono);
+        assert!(colours.iter().all(|&c| c == Color::Reset), "{mono:?}");
+    }
+
+    fn all_colours(t: &Theme) -> [Color; 17] {
+        [
+            t.background,
+            t.foreground,
+            t.muted,
+            t.accent,
+            t.table_edge,
+            t.spokes,
+            t.limit_circle,
+            t.particle,
+            t.trail,
+            t.arrow,
+            t.friction,
+            t.coriolis,
+            t.centrifugal,
+            t.slipping,
+            t.stuck,
+            t.escaped,
+            t.notice,
+        ]
+    }
+
+    #[test]
+    fn custom_file_with_names_and_hex() {
+        let text = dark_source()
+            .replace("\"#ffd166\"", "\"LightBlue\"")
+            .replace("name = \"dark\"", "name = \"mine\"");
+        let path = temp_file("custom", &text);
+        let theme = Theme::load(&path).unwrap();
+        std::fs::remove_file(&path).unwrap();
+        assert_eq!(theme.name, "mine");
+        assert_eq!(theme.particle, Color::LightBlue);
+        assert_eq!(theme.background, Color::Rgb(0x11, 0x15, 0x1c));
+    }
+
+    #[test]
+    fn bad_colour_names_file_line_and_value() {
+        let text = dark_source().replace("\"#d8dee9\"", "\"#12\"");
+        let (err, path) = load_err("bad-colour", &text);
+        assert!(
+            err.starts_with(&format!(
+                "theme file {path}: line 4: invalid colour \"#12\""
+            )),
+            "{err}"
+        );
+    }
+
+    #[test]
+    fn missing_field() {
+        let text = dark_source().replace("accent = \"#88c0d0\"\n", "");
+        let (err, path) = load_err("missing", &text);
+        assert_eq!(err, format!("theme file {path}: missing field `accent`"));
+    }
+
+    #[test]
+    fn unknown_field() {
+        let text = format!("{}sparkle = \"red\"\n", dark_source());
+        let (err, path) = load_err("unknown", &text);
+        let line = text.lines().count();
+        assert!(
+            err.starts_with(&format!(
+                "theme file {path}: line {line}: unknown field `sparkle`"
+            )),
+            "{err}"
+        );
+    }
+
+    #[test]
+    fn not_toml() {
+        let (err, path) = load_err("not-toml", "name = \"x\"\nthis is not toml\n");
+        assert!(
+            err.starts_with(&format!("theme file {path}: line 2: ")),
+            "{err}"
+        );
+        assert!(!err.contains('\n'), "{err}");
+    }
+
+    #[test]
+    fn missing_file() {
+        let path = temp_file("missing-file", "");
+        std::fs::remove_file(&path).unwrap();
+        let err = Theme::load(&path).unwrap_err();
+        assert!(err.starts_with(&format!("theme file {path}: ")), "{err}");
+    }
+
+    #[test]
+    fn unknown_name() {
+        assert_eq!(
+            Theme::load("foo").unwrap_err(),
+            "unknown theme 'foo' (built-in: dark, light, high-contrast, mono; \
+             or a path to a .toml file)"
+        );
+        // Paths are recognised by shape, never mistaken for names.
+        assert!(
+            Theme::load("dark.toml")
+                .unwrap_err()
+                .starts_with("theme file dark.toml: ")
+        );
+        assert!(
+            Theme::load("./dark")
+                .unwrap_err()
+                .starts_with("theme file ./dark: ")
+        );
+    }
+
+    #[test]
+    fn resolve_respects_no_color_only_without_a_request() {
+        let named = |n| Theme::builtin(n).unwrap();
+        assert_eq!(Theme::resolve(None, false), Ok(named("dark")));
+        assert_eq!(Theme::resolve(None, true), Ok(named("mono")));
+        assert_eq!(Theme::resolve(Some("light"), true), Ok(named("light")));
+        assert_eq!(Theme::resolve(Some("light"), false), Ok(named("light")));
+        assert!(Theme::resolve(Some("foo"), true).is_err());
     }
 }
