@@ -408,3 +408,40 @@ fn bad_scene_or_theme_exits_2_before_touching_the_terminal() {
         assert!(err.contains("nope"), "{err}");
     }
 }
+
+#[test]
+fn no_key_is_bound_twice() {
+    for (i, a) in KEYMAP.iter().enumerate() {
+        for b in &KEYMAP[i + 1..] {
+            assert!(
+                !(a.code == b.code && a.mods == b.mods),
+                "{} bound twice",
+                key_label(a)
+            );
+        }
+        assert_eq!(
+            turntable::app::keymap::lookup(&event_for(a)),
+            Some(a.action),
+            "{} does not dispatch to its own action",
+            key_label(a)
+        );
+    }
+}
+
+#[test]
+fn every_builtin_theme_renders_every_preset() {
+    for t in ["dark", "light", "high-contrast", "mono"] {
+        let theme = Theme::builtin(t).unwrap_or_else(|| panic!("theme {t}"));
+        for p in PRESETS {
+            let mut a = App::new(Scene::preset(p).unwrap(), theme.clone());
+            key(&mut a, 'c');
+            key(&mut a, 'a');
+            for _ in 0..20 {
+                a.tick();
+            }
+            let s = render(&mut a, 80, 24);
+            assert!(s.contains(&format!("scene {p}")), "{t} {p}:\n{s}");
+            a.check_invariants().unwrap();
+        }
+    }
+}
