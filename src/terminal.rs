@@ -46,7 +46,8 @@ fn setup(mouse: bool) -> io::Result<Terminal<CrosstermBackend<Stdout>>> {
 }
 
 /// Runs the explorer until quit or a terminating signal. `fps` caps the frame rate.
-pub fn run(mut app: App, fps: u32) -> io::Result<()> {
+/// Returns whether a signal (SIGTERM, SIGHUP, SIGINT) ended it.
+pub fn run(mut app: App, fps: u32) -> io::Result<bool> {
     let stop = Arc::new(AtomicBool::new(false));
     for sig in [
         signal_hook::consts::SIGTERM,
@@ -64,7 +65,7 @@ pub fn run(mut app: App, fps: u32) -> io::Result<()> {
     };
     let result = event_loop(&mut term, &mut app, fps.clamp(1, 240), &stop);
     restore();
-    result
+    result.map(|()| stop.load(Ordering::Relaxed))
 }
 
 fn event_loop(

@@ -209,7 +209,11 @@ fn explore(scene: &Option<String>, theme: &Option<String>, fps: u32, no_mouse: b
     if no_mouse {
         app.mouse = false;
     }
-    crate::terminal::run(app, fps).map_err(|e| Failure::Runtime(format!("terminal: {e}")))
+    match crate::terminal::run(app, fps) {
+        Ok(false) => Ok(()),
+        Ok(true) => Err(Failure::Runtime("ended by a signal".into())),
+        Err(e) => Err(Failure::Runtime(format!("terminal: {e}"))),
+    }
 }
 
 /// Entry point of the binary.
