@@ -1,9 +1,12 @@
 //! turntable: a particle sliding with dry friction on a rotating table
 //! (Agha, Gupta & Joseph, Am. J. Phys. 83, 126 (2015)).
 
+pub mod app;
 pub mod cli;
 pub mod engine;
 pub mod scene;
 pub mod script;
 pub mod sim;
+pub mod terminal;
 pub mod theme;
+pub mod ui;

@@ -18,6 +18,18 @@ use std::process::ExitCode;
 pub struct Cli {
     #[command(subcommand)]
     pub command: Option<Command>,
+    /// Explorer: scene to open, a preset (A, B, C, D, fig1, fig2) or a .toml file.
+    #[arg(long, value_name = "NAME|PATH")]
+    pub scene: Option<String>,
+    /// Explorer: colour theme (dark, light, high-contrast, mono) or a .toml file. NO_COLOR is respected.
+    #[arg(long, value_name = "NAME|PATH")]
+    pub theme: Option<String>,
+    /// Explorer: frame-rate cap while playing.
+    #[arg(long, default_value_t = 30, value_parser = clap::value_parser!(u32).range(1..=240))]
+    pub fps: u32,
+    /// Explorer: do not capture the mouse (M toggles it inside).
+    #[arg(long)]
+    pub no_mouse: bool,
 }
 
 #[derive(Subcommand, Debug)]
@@ -185,13 +197,30 @@ pub fn check_initial(i: &Initial) -> Result<(), Failure> {
     i.validate().map_err(Failure::Usage)
 }
 
+/// Opens the explorer. Bad scenes or themes fail before the terminal is touched.
+fn explore(scene: &Option<String>, theme: &Option<String>, fps: u32, no_mouse: bool) -> CmdResult {
+    let scene = match scene {
+        Some(s) => crate::scene::Scene::load(s).map_err(Failure::Usage)?,
+        None => crate::scene::Scene::default_scene(),
+    };
+    let no_color = std::env::var_os("NO_COLOR").is_some_and(|v| !v.is_empty());
+    let theme = crate::theme::Theme::resolve(theme.as_deref(), no_color).map_err(Failure::Usage)?;
+    let mut app = crate::app::App::new(scene, theme);
+    if no_mouse {
+        app.mouse = false;
+    }
+    match crate::terminal::run(app, fps) {
+        Ok(false) => Ok(()),
+        Ok(true) => Err(Failure::Runtime("ended by a signal".into())),
+        Err(e) => Err(Failure::Runtime(format!("terminal: {e}"))),
+    }
+}
+
 /// Entry point of the binary.
 pub fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
-        None => Err(Failure::Usage(
-            "the explorer is not built yet; try `turntable run --help`".into(),
-        )),
+        None => explore(&cli.scene, &cli.theme, cli.fps, cli.no_mouse),
         Some(Command::Run(a)) => numerics::run(a),
         Some(Command::Escape(a)) => numerics::escape(a),
         Some(Command::Critical(a)) => numerics::critical(a),

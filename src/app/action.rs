@@ -1,0 +1,39 @@
+//! Everything the user can ask for: keys and mouse map to these, `update` applies them.
+
+/// One user intent. Keys map to actions through [`super::keymap::KEYMAP`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Action {
+    Quit,
+    ToggleHelp,
+    PlayPause,
+    StepForward,
+    StepBack,
+    Faster,
+    Slower,
+    Restart,
+    ToggleFrame,
+    CycleMethod,
+    /// dt or tol × √10.
+    Loosen,
+    /// dt or tol ÷ √10.
+    Tighten,
+    /// Change ξ0 by this much.
+    Xi0(f64),
+    /// Change φ by this many radians.
+    Phi(f64),
+    /// Change v0 by this much.
+    V0(f64),
+    CycleRelease,
+    ResetScene,
+    /// Load preset `PRESETS[i]`.
+    Preset(usize),
+    ToggleCompare,
+    ToggleForces,
+    ZoomIn,
+    ZoomOut,
+    /// Pan the view by this fraction of the half-width (x right, y up).
+    Pan(f64, f64),
+    ResetView,
+    Save,
+    ToggleMouse,
+}

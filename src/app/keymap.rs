@@ -1,0 +1,162 @@
+//! The one key table: it dispatches keys and it generates the help overlay, so they cannot
+//! disagree.
+
+use super::action::Action;
+use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
+use std::f64::consts::PI;
+
+/// A key, its action, the help text and the help group it is listed under.
+#[derive(Clone, Copy, Debug)]
+pub struct Binding {
+    pub code: KeyCode,
+    pub mods: KeyModifiers,
+    pub action: Action,
+    pub help: &'static str,
+    pub group: &'static str,
+}
+
+const N: KeyModifiers = KeyModifiers::NONE;
+const S: KeyModifiers = KeyModifiers::SHIFT;
+const A: KeyModifiers = KeyModifiers::ALT;
+const C: KeyModifiers = KeyModifiers::CONTROL;
+
+const fn b(
+    code: KeyCode,
+    mods: KeyModifiers,
+    action: Action,
+    help: &'static str,
+    group: &'static str,
+) -> Binding {
+    Binding {
+        code,
+        mods,
+        action,
+        help,
+        group,
+    }
+}
+
+const fn ch(c: char) -> KeyCode {
+    KeyCode::Char(c)
+}
+
+/// Fine and coarse steps of the initial conditions.
+pub const XI0_FINE: f64 = 0.01;
+pub const XI0_COARSE: f64 = 0.1;
+pub const PHI_FINE: f64 = PI / 100.0;
+pub const PHI_COARSE: f64 = PI / 10.0;
+pub const V0_FINE: f64 = 0.001;
+pub const V0_COARSE: f64 = 0.05;
+
+/// Help groups, in the order the overlay shows them.
+pub const GROUPS: [&str; 5] = ["time", "initial conditions", "integrator", "view", "app"];
+
+#[rustfmt::skip]
+pub const KEYMAP: &[Binding] = &[
+    b(ch(' '), N, Action::PlayPause, "play / pause", "time"),
+    b(ch('.'), N, Action::StepForward, "step forward (1 tick)", "time"),
+    b(ch('l'), N, Action::StepForward, "step forward (1 tick)", "time"),
+    b(KeyCode::Right, N, Action::StepForward, "step forward (1 tick)", "time"),
+    b(ch(','), N, Action::StepBack, "step back (history)", "time"),
+    b(ch('h'), N, Action::StepBack, "step back (history)", "time"),
+    b(KeyCode::Left, N, Action::StepBack, "step back (history)", "time"),
+    b(ch(']'), N, Action::Faster, "speed ×2 / ÷2", "time"),
+    b(ch('['), N, Action::Slower, "speed ×2 / ÷2", "time"),
+    b(ch('r'), N, Action::Restart, "restart at τ = 0", "time"),
+    b(ch('x'), N, Action::Xi0(XI0_FINE), "ξ0 +/− 0.01", "initial conditions"),
+    b(ch('X'), N, Action::Xi0(-XI0_FINE), "ξ0 +/− 0.01", "initial conditions"),
+    b(ch('x'), A, Action::Xi0(XI0_COARSE), "ξ0 +/− 0.1", "initial conditions"),
+    b(ch('X'), A, Action::Xi0(-XI0_COARSE), "ξ0 +/− 0.1", "initial conditions"),
+    b(ch('p'), N, Action::Phi(PHI_FINE), "φ +/− 0.01π", "initial conditions"),
+    b(ch('P'), N, Action::Phi(-PHI_FINE), "φ +/− 0.01π", "initial conditions"),
+    b(ch('p'), A, Action::Phi(PHI_COARSE), "φ +/− 0.1π", "initial conditions"),
+    b(ch('P'), A, Action::Phi(-PHI_COARSE), "φ +/− 0.1π", "initial conditions"),
+    b(ch('v'), N, Action::V0(V0_FINE), "v0 +/− 0.001", "initial conditions"),
+    b(ch('V'), N, Action::V0(-V0_FINE), "v0 +/− 0.001", "initial conditions"),
+    b(ch('v'), A, Action::V0(V0_COARSE), "v0 +/− 0.05", "initial conditions"),
+    b(ch('V'), A, Action::V0(-V0_COARSE), "v0 +/− 0.05", "initial conditions"),
+    b(ch('R'), N, Action::CycleRelease, "release mode: v / rest", "initial conditions"),
+    b(ch('0'), N, Action::ResetScene, "reset to the scene", "initial conditions"),
+    b(ch('1'), N, Action::Preset(0), "presets A B C D fig1 fig2", "initial conditions"),
+    b(ch('2'), N, Action::Preset(1), "presets A B C D fig1 fig2", "initial conditions"),
+    b(ch('3'), N, Action::Preset(2), "presets A B C D fig1 fig2", "initial conditions"),
+    b(ch('4'), N, Action::Preset(3), "presets A B C D fig1 fig2", "initial conditions"),
+    b(ch('5'), N, Action::Preset(4), "presets A B C D fig1 fig2", "initial conditions"),
+    b(ch('6'), N, Action::Preset(5), "presets A B C D fig1 fig2", "initial conditions"),
+    b(ch('m'), N, Action::CycleMethod, "method (cycle)", "integrator"),
+    b(ch('<'), N, Action::Loosen, "dt/tol ×√10 / ÷√10", "integrator"),
+    b(ch('>'), N, Action::Tighten, "dt/tol ×√10 / ÷√10", "integrator"),
+    b(ch('c'), N, Action::ToggleCompare, "compare: paper's RK2", "integrator"),
+    b(ch('f'), N, Action::ToggleFrame, "frame lab ↔ rotating", "view"),
+    b(ch('a'), N, Action::ToggleForces, "force arrows", "view"),
+    b(ch('+'), N, Action::ZoomIn, "zoom in / out", "view"),
+    b(ch('='), N, Action::ZoomIn, "zoom in / out", "view"),
+    b(ch('-'), N, Action::ZoomOut, "zoom in / out", "view"),
+    b(ch('H'), N, Action::Pan(-0.2, 0.0), "pan", "view"),
+    b(ch('J'), N, Action::Pan(0.0, -0.2), "pan", "view"),
+    b(ch('K'), N, Action::Pan(0.0, 0.2), "pan", "view"),
+    b(ch('L'), N, Action::Pan(0.2, 0.0), "pan", "view"),
+    b(KeyCode::Left, S, Action::Pan(-0.2, 0.0), "pan (arrows)", "view"),
+    b(KeyCode::Down, S, Action::Pan(0.0, -0.2), "pan (arrows)", "view"),
+    b(KeyCode::Up, S, Action::Pan(0.0, 0.2), "pan (arrows)", "view"),
+    b(KeyCode::Right, S, Action::Pan(0.2, 0.0), "pan (arrows)", "view"),
+    b(ch('z'), N, Action::ResetView, "auto-frame (reset zoom)", "view"),
+    b(ch('?'), N, Action::ToggleHelp, "help on / off", "app"),
+    b(ch('s'), N, Action::Save, "save scene (toml)", "app"),
+    b(ch('M'), N, Action::ToggleMouse, "mouse capture on/off", "app"),
+    b(ch('q'), N, Action::Quit, "quit", "app"),
+    b(KeyCode::Esc, N, Action::Quit, "quit", "app"),
+    b(ch('c'), C, Action::Quit, "quit", "app"),
+];
+
+/// Whether `key` is this binding. Shift is ignored on characters (it is already in the
+/// character: `X`, `?`, `+`), so terminals that do or do not report it agree.
+pub fn matches(bnd: &Binding, key: &KeyEvent) -> bool {
+    match (bnd.code, key.code) {
+        (KeyCode::Char(a), KeyCode::Char(c)) => {
+            a == c && bnd.mods == (key.modifiers - KeyModifiers::SHIFT)
+        }
+        (a, c) => a == c && bnd.mods == key.modifiers,
+    }
+}
+
+/// The action bound to `key`, if any.
+pub fn lookup(key: &KeyEvent) -> Option<Action> {
+    KEYMAP.iter().find(|b| matches(b, key)).map(|b| b.action)
+}
+
+/// The key as the help shows it: `x`, `Alt-X`, `Shift-←`, `Space`, `Esc`.
+pub fn key_label(bnd: &Binding) -> String {
+    let base = match bnd.code {
+        KeyCode::Char(' ') => "Space".to_string(),
+        KeyCode::Char(c) => c.to_string(),
+        KeyCode::Left => "←".into(),
+        KeyCode::Right => "→".into(),
+        KeyCode::Up => "↑".into(),
+        KeyCode::Down => "↓".into(),
+        KeyCode::Esc => "Esc".into(),
+        other => format!("{other:?}"),
+    };
+    let mut s = String::new();
+    if bnd.mods.contains(KeyModifiers::CONTROL) {
+        s.push_str("Ctrl-");
+    }
+    if bnd.mods.contains(KeyModifiers::ALT) {
+        s.push_str("Alt-");
+    }
+    if bnd.mods.contains(KeyModifiers::SHIFT) {
+        s.push_str("Shift-");
+    }
+    s + &base
+}
+
+/// A key event that triggers `bnd`, as a terminal would send it.
+pub fn event_for(bnd: &Binding) -> KeyEvent {
+    let mut mods = bnd.mods;
+    if let KeyCode::Char(c) = bnd.code
+        && c.is_ascii_uppercase()
+    {
+        mods |= KeyModifiers::SHIFT;
+    }
+    KeyEvent::new(bnd.code, mods)
+}

@@ -1,0 +1,159 @@
+//! The explorer's state: the scene being edited, its run (and the paper's, to compare), and
+//! how it is shown. Nothing here reads the clock: time passes only through ticks.
+
+use crate::engine::{Frame, Initial, Settings, State};
+use crate::scene::Scene;
+use crate::sim::Sim;
+use crate::theme::Theme;
+use ratatui::layout::Rect;
+use std::path::PathBuf;
+
+/// Sim time per tick at speed 1 (at 30 fps: 1.5 τ per second, about a quarter turn).
+pub const TICK_DT: f64 = 0.05;
+/// Speed factor bounds (powers of two).
+pub const SPEED_RANGE: (f64, f64) = (1.0 / 64.0, 256.0);
+pub const ZOOM_RANGE: (f64, f64) = (1.0 / 64.0, 1024.0);
+/// Where `s` saves the scene.
+pub const SAVE_PATH: &str = "turntable-scene.toml";
+
+/// The canvas as last drawn: where it is on screen and which world rectangle it shows, so
+/// that mouse cells map back to table coordinates.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CanvasGeom {
+    pub area: Rect,
+    pub x: [f64; 2],
+    pub y: [f64; 2],
+    /// World length of the initial-velocity arrow per unit speed.
+    pub arrow_scale: f64,
+    /// The view frame the canvas was drawn in.
+    pub frame: Frame,
+}
+
+impl CanvasGeom {
+    /// World coordinates of the centre of a terminal cell, if it is inside the canvas.
+    pub fn to_world(&self, col: u16, row: u16) -> Option<glam::DVec2> {
+        let a = self.area;
+        if a.width == 0 || a.height == 0 || !a.contains((col, row).into()) {
+            return None;
+        }
+        let fx = (f64::from(col - a.x) + 0.5) / f64::from(a.width);
+        let fy = (f64::from(row - a.y) + 0.5) / f64::from(a.height);
+        Some(glam::DVec2::new(
+            self.x[0] + fx * (self.x[1] - self.x[0]),
+            self.y[1] - fy * (self.y[1] - self.y[0]),
+        ))
+    }
+}
+
+#[derive(Clone, Debug)]
+pub struct App {
+    /// The scene as loaded (what `0` resets to).
+    pub scene: Scene,
+    /// The initial conditions and settings being explored.
+    pub initial: Initial,
+    pub settings: Settings,
+    pub sim: Sim,
+    /// The paper's scheme from the same initial conditions, when comparing.
+    pub paper: Option<Sim>,
+    pub theme: Theme,
+    pub playing: bool,
+    pub speed: f64,
+    /// The frame the picture is drawn in (lab or rotating).
+    pub view: Frame,
+    pub forces: bool,
+    pub help: bool,
+    pub zoom: f64,
+    /// View centre offset, in units of the auto-framed half-width.
+    pub pan: glam::DVec2,
+    pub mouse: bool,
+    pub notice: Option<String>,
+    pub save_path: PathBuf,
+    pub quit: bool,
+    pub(crate) dirty: bool,
+    pub(crate) geom: Option<CanvasGeom>,
+    /// Mouse drag in progress: setting the initial velocity.
+    pub(crate) dragging: bool,
+}
+
+/// Radius past which an escaped particle is no longer integrated.
+pub fn view_radius(initial: &Initial) -> f64 {
+    3.0 * initial.xi0.max(1.5)
+}
+
+impl App {
+    pub(crate) fn build(scene: Scene, theme: Theme) -> App {
+        let initial = sanitize(scene.initial);
+        let settings = if scene.settings.validate().is_ok() {
+            scene.settings
+        } else {
+            Settings::default()
+        };
+        let sim = make_sim(initial, settings);
+        App {
+            scene,
+            initial,
+            settings,
+            sim,
+            paper: None,
+            theme,
+            playing: true,
+            speed: 1.0,
+            view: Frame::Lab,
+            forces: false,
+            help: false,
+            zoom: 1.0,
+            pan: glam::DVec2::ZERO,
+            mouse: true,
+            notice: None,
+            save_path: PathBuf::from(SAVE_PATH),
+            quit: false,
+            dirty: true,
+            geom: None,
+            dragging: false,
+        }
+    }
+
+    /// Restarts both runs at τ = 0 from the current initial conditions and settings.
+    pub fn restart(&mut self) {
+        self.initial = sanitize(self.initial);
+        self.sim = make_sim(self.initial, self.settings);
+        if self.paper.is_some() {
+            self.paper = Some(make_sim(self.initial, Settings::paper()));
+        }
+    }
+
+    /// The state on screen.
+    pub fn now(&self) -> State {
+        self.sim.now()
+    }
+
+    /// The current initial conditions and settings as a scene (what `s` saves).
+    pub fn current_scene(&self) -> Scene {
+        let changed = self.initial != self.scene.initial || self.settings != self.scene.settings;
+        Scene {
+            name: if changed {
+                format!("{} (edited)", self.scene.name.trim_end_matches(" (edited)"))
+            } else {
+                self.scene.name.clone()
+            },
+            about: self.scene.about.clone(),
+            initial: self.initial,
+            settings: self.settings,
+        }
+    }
+}
+
+/// Keeps user-edited values valid: ξ0, v0 ≥ 0 and finite; φ wrapped into (−π, π].
+pub fn sanitize(mut i: Initial) -> Initial {
+    let fin = |x: f64| if x.is_finite() { x } else { 0.0 };
+    i.xi0 = (fin(i.xi0).max(0.0) * 1e9).round() / 1e9;
+    i.v0 = (fin(i.v0).max(0.0) * 1e9).round() / 1e9;
+    i.phi = crate::engine::model::wrap_angle(fin(i.phi));
+    i
+}
+
+pub(crate) fn make_sim(initial: Initial, settings: Settings) -> Sim {
+    Sim::new(initial, settings, view_radius(&initial))
+        .or_else(|_| Sim::new(sanitize(initial), Settings::default(), 4.5))
+        .expect("sanitized initial conditions and default settings are valid")
+}

@@ -1,0 +1,177 @@
+//! The pure update: an action applied to the state. No I/O but `Save`, no clock.
+
+use super::action::Action;
+use super::state::{App, SPEED_RANGE, ZOOM_RANGE, make_sim};
+use crate::engine::method::{DT_RANGE, TOL_RANGE};
+use crate::engine::{Frame, Method, Release, Settings};
+use crate::scene::{PRESETS, Scene};
+
+pub fn update(app: &mut App, action: Action) {
+    app.dirty = true;
+    app.notice = None;
+    match action {
+        Action::Quit => {
+            if app.help {
+                app.help = false;
+            } else {
+                app.quit = true;
+            }
+        }
+        Action::ToggleHelp => app.help = !app.help,
+        Action::PlayPause => app.playing = !app.playing,
+        Action::StepForward => {
+            app.playing = false;
+            step(app);
+        }
+        Action::StepBack => {
+            app.playing = false;
+            app.sim.back();
+            if let Some(p) = app.paper.as_mut() {
+                p.back();
+            }
+        }
+        Action::Faster => app.speed = (app.speed * 2.0).min(SPEED_RANGE.1),
+        Action::Slower => app.speed = (app.speed / 2.0).max(SPEED_RANGE.0),
+        Action::Restart => app.restart(),
+        Action::ToggleFrame => {
+            app.view = match app.view {
+                Frame::Lab => Frame::Table,
+                Frame::Table => Frame::Lab,
+            }
+        }
+        Action::CycleMethod => {
+            let i = Method::ALL
+                .iter()
+                .position(|m| *m == app.settings.method)
+                .unwrap_or(0);
+            app.settings.method = Method::ALL[(i + 1) % Method::ALL.len()];
+            app.restart();
+        }
+        Action::Loosen | Action::Tighten => {
+            let k = if action == Action::Loosen {
+                10f64.sqrt()
+            } else {
+                1.0 / 10f64.sqrt()
+            };
+            let s = &mut app.settings;
+            if s.method.adaptive() {
+                s.tol = round_sig(s.tol * k).clamp(TOL_RANGE.0, TOL_RANGE.1);
+            } else {
+                s.dt = round_sig(s.dt * k).clamp(DT_RANGE.0, DT_RANGE.1);
+            }
+            app.restart();
+        }
+        Action::Xi0(d) => {
+            app.initial.xi0 += d;
+            app.restart();
+        }
+        Action::Phi(d) => {
+            app.initial.phi += d;
+            app.initial.release = Release::Velocity;
+            app.restart();
+        }
+        Action::V0(d) => {
+            app.initial.v0 += d;
+            app.initial.release = Release::Velocity;
+            app.restart();
+        }
+        Action::CycleRelease => {
+            let i = Release::ALL
+                .iter()
+                .position(|r| *r == app.initial.release)
+                .unwrap_or(0);
+            app.initial.release = Release::ALL[(i + 1) % Release::ALL.len()];
+            app.restart();
+        }
+        Action::ResetScene => {
+            app.initial = app.scene.initial;
+            app.settings = if app.scene.settings.validate().is_ok() {
+                app.scene.settings
+            } else {
+                Settings::default()
+            };
+            app.restart();
+        }
+        Action::Preset(i) => {
+            if let Some(scene) = PRESETS.get(i).and_then(|n| Scene::preset(n)) {
+                app.initial = scene.initial;
+                app.settings = scene.settings;
+                app.notice = Some(format!("preset {}: {}", scene.name, scene.about));
+                app.scene = scene;
+                app.zoom = 1.0;
+                app.pan = glam::DVec2::ZERO;
+                app.restart();
+            }
+        }
+        Action::ToggleCompare => {
+            app.paper = match app.paper {
+                Some(_) => None,
+                None => {
+                    let mut p = make_sim(app.initial, Settings::paper());
+                    // Catch up with the run on screen, tick for tick.
+                    let target = app.sim.now().tau;
+                    let dt = super::state::TICK_DT * app.speed;
+                    while p.now().tau < target - 1e-12 && p.live() {
+                        let before = p.now().tau;
+                        p.advance((target - before).min(dt.max(1e-3)));
+                        if p.now().tau <= before {
+                            break;
+                        }
+                    }
+                    Some(p)
+                }
+            }
+        }
+        Action::ToggleForces => app.forces = !app.forces,
+        Action::ZoomIn => app.zoom = (app.zoom * 1.5).min(ZOOM_RANGE.1),
+        Action::ZoomOut => app.zoom = (app.zoom / 1.5).max(ZOOM_RANGE.0),
+        Action::Pan(dx, dy) => app.pan += glam::DVec2::new(dx, dy) / app.zoom,
+        Action::ResetView => {
+            app.zoom = 1.0;
+            app.pan = glam::DVec2::ZERO;
+        }
+        Action::Save => {
+            let scene = app.current_scene();
+            app.notice = Some(match scene.save(&app.save_path) {
+                Ok(()) => format!("saved scene to {}", app.save_path.display()),
+                Err(e) => format!("could not save {}: {e}", app.save_path.display()),
+            });
+        }
+        Action::ToggleMouse => {
+            app.mouse = !app.mouse;
+            app.notice = Some(
+                if app.mouse {
+                    "mouse on: click = release point, drag = initial velocity"
+                } else {
+                    "mouse off: select text with the mouse; M turns it back on"
+                }
+                .into(),
+            );
+        }
+    }
+}
+
+/// One tick of sim time (× speed) for both runs. Marks the screen dirty only if time moved.
+pub fn step(app: &mut App) -> bool {
+    let dtau = super::state::TICK_DT * app.speed;
+    let before = (app.sim.cursor, app.sim.samples.len());
+    app.sim.advance(dtau);
+    let mut moved = before != (app.sim.cursor, app.sim.samples.len());
+    if let Some(p) = app.paper.as_mut() {
+        let b = (p.cursor, p.samples.len());
+        p.advance(dtau);
+        moved |= b != (p.cursor, p.samples.len());
+    }
+    app.dirty |= moved;
+    moved
+}
+
+/// Rounds to 12 significant digits so that ×√10 twice gives exactly ×10 on screen.
+fn round_sig(x: f64) -> f64 {
+    if x == 0.0 || !x.is_finite() {
+        return x;
+    }
+    let e = x.abs().log10().floor() as i32;
+    let m = 10f64.powi(11 - e);
+    (x * m).round() / m
+}

@@ -1,0 +1,194 @@
+//! The braille turntable: table edge, ξ = 1 circle, spokes, trail(s), particle, initial
+//! velocity and force arrows, in the lab or the rotating frame at true aspect ratio.
+
+use crate::app::{App, CanvasGeom};
+use crate::engine::model::{rotate, table_forces};
+use crate::engine::{Frame, State};
+use glam::DVec2;
+use ratatui::Frame as TuiFrame;
+use ratatui::layout::Rect;
+use ratatui::style::{Color, Style};
+use ratatui::symbols::Marker;
+use ratatui::text::Span;
+use ratatui::widgets::canvas::{Canvas, Circle, Context, Line};
+use ratatui::widgets::{Block, Borders};
+
+/// Most trail segments drawn per run (longer trails are thinned evenly).
+const MAX_SEGMENTS: usize = 3000;
+
+/// A sample's position in the frame shown: lab `r`, or `q = R(−τ) r`.
+pub fn in_frame(s: &State, frame: Frame) -> DVec2 {
+    match frame {
+        Frame::Lab => s.r,
+        Frame::Table => s.q(),
+    }
+}
+
+/// The auto-framed half-width: the table, the release point and everything the trails
+/// reached, a little beyond.
+pub fn auto_extent(app: &App) -> f64 {
+    let mut m = app.initial.xi0.max(1.0);
+    for sim in std::iter::once(&app.sim).chain(app.paper.as_ref()) {
+        for s in sim.trail() {
+            m = m.max(s.xi());
+        }
+    }
+    (m * 1.1)
+        .max(1.5)
+        .min(crate::app::state::view_radius(&app.initial) * 1.1)
+}
+
+/// World bounds of a canvas of `w`×`h` cells showing a disc of radius `r` around `c`, with
+/// cells twice as tall as wide: circles come out round.
+pub fn bounds(w: u16, h: u16, c: DVec2, r: f64) -> ([f64; 2], [f64; 2]) {
+    let (w, h) = (f64::from(w.max(1)), 2.0 * f64::from(h.max(1)));
+    let (rx, ry) = if w >= h {
+        (r * w / h, r)
+    } else {
+        (r, r * h / w)
+    };
+    ([c.x - rx, c.x + rx], [c.y - ry, c.y + ry])
+}
+
+fn arrow(ctx: &mut Context, from: DVec2, vec: DVec2, color: Color) {
+    let to = from + vec;
+    ctx.draw(&Line {
+        x1: from.x,
+        y1: from.y,
+        x2: to.x,
+        y2: to.y,
+        color,
+    });
+    let len = vec.length();
+    if len > 0.0 {
+        let back = -vec / len * (len * 0.25);
+        for a in [0.45, -0.45] {
+            let h = to + rotate(back, a);
+            ctx.draw(&Line {
+                x1: to.x,
+                y1: to.y,
+                x2: h.x,
+                y2: h.y,
+                color,
+            });
+        }
+    }
+}
+
+fn trail(ctx: &mut Context, samples: &[State], frame: Frame, color: Color) {
+    let stride = samples.len().div_ceil(MAX_SEGMENTS).max(1);
+    let mut prev: Option<DVec2> = None;
+    let n = samples.len();
+    for (i, s) in samples.iter().enumerate() {
+        if i % stride != 0 && i + 1 != n {
+            continue;
+        }
+        let p = in_frame(s, frame);
+        if let Some(a) = prev {
+            ctx.draw(&Line {
+                x1: a.x,
+                y1: a.y,
+                x2: p.x,
+                y2: p.y,
+                color,
+            });
+        }
+        prev = Some(p);
+    }
+}
+
+pub fn render(f: &mut TuiFrame, area: Rect, app: &mut App) {
+    let th = app.theme.clone();
+    let title = match app.view {
+        Frame::Lab => " lab frame ",
+        Frame::Table => " rotating frame ",
+    };
+    let block = Block::default()
+        .borders(Borders::ALL)
+        .border_style(Style::default().fg(th.muted))
+        .title(Span::styled(title, Style::default().fg(th.accent)));
+    let inner = block.inner(area);
+    let r0 = auto_extent(app);
+    let r = r0 / app.zoom;
+    let centre = app.pan * r0;
+    let (xb, yb) = bounds(inner.width, inner.height, centre, r);
+    let arrow_scale = 0.3 * r0 / app.initial.xi0.max(1.0);
+    app.geom = Some(CanvasGeom {
+        area: inner,
+        x: xb,
+        y: yb,
+        arrow_scale,
+        frame: app.view,
+    });
+    let now = app.sim.now();
+    let view = app.view;
+    let table_r = 1.5f64.max(app.initial.xi0 * 1.2);
+    let spin = if view == Frame::Lab { now.tau } else { 0.0 };
+    let u0 = app.initial.u0();
+    let v_init = match view {
+        Frame::Lab => u0 + DVec2::new(0.0, app.initial.xi0),
+        Frame::Table => u0,
+    };
+    let x0 = DVec2::new(app.initial.xi0, 0.0);
+    let sim = &app.sim;
+    let paper = app.paper.as_ref();
+    let forces = app.forces;
+    let canvas = Canvas::default()
+        .block(block)
+        .marker(Marker::Braille)
+        .background_color(th.background)
+        .x_bounds(xb)
+        .y_bounds(yb)
+        .paint(move |ctx| {
+            ctx.draw(&Circle {
+                x: 0.0,
+                y: 0.0,
+                radius: table_r,
+                color: th.table_edge,
+            });
+            for k in 0..6 {
+                let d = rotate(DVec2::X, spin + k as f64 * std::f64::consts::PI / 3.0);
+                let (a, b) = (d * 0.8 * table_r, d * table_r);
+                ctx.draw(&Line {
+                    x1: a.x,
+                    y1: a.y,
+                    x2: b.x,
+                    y2: b.y,
+                    color: th.spokes,
+                });
+            }
+            ctx.draw(&Circle {
+                x: 0.0,
+                y: 0.0,
+                radius: 1.0,
+                color: th.limit_circle,
+            });
+            ctx.layer();
+            if let Some(p) = paper {
+                trail(ctx, p.trail(), view, th.accent);
+            }
+            trail(ctx, sim.trail(), view, th.trail);
+            ctx.layer();
+            arrow(ctx, x0, v_init * arrow_scale, th.arrow);
+            if forces {
+                let at = in_frame(&now, view);
+                let turn = if view == Frame::Lab { now.tau } else { 0.0 };
+                let k = 0.12 * r;
+                let [fr, co, ce] = table_forces(&now);
+                for (v, c) in [(fr, th.friction), (co, th.coriolis), (ce, th.centrifugal)] {
+                    arrow(ctx, at, rotate(v, turn) * k, c);
+                }
+            }
+            if let Some(p) = paper {
+                let q = in_frame(&p.now(), view);
+                ctx.print(q.x, q.y, Span::styled("○", Style::default().fg(th.accent)));
+            }
+            let q = in_frame(&now, view);
+            ctx.print(
+                q.x,
+                q.y,
+                Span::styled("●", Style::default().fg(th.particle)),
+            );
+        });
+    f.render_widget(canvas, area);
+}

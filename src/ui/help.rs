@@ -1,0 +1,91 @@
+//! The help overlay, generated from `KEYMAP` (the table the keys dispatch on).
+
+use crate::app::App;
+use crate::app::keymap::{GROUPS, KEYMAP, key_label};
+use ratatui::Frame as TuiFrame;
+use ratatui::layout::{Constraint, Layout, Rect};
+use ratatui::style::{Modifier, Style};
+use ratatui::text::{Line, Span};
+use ratatui::widgets::{Block, Borders, Clear, Paragraph};
+
+/// Help rows per group: bindings with the same help text share a row, keys joined by `/`
+/// (a shared modifier written once: `Alt-x/X`, `Shift-←/↓/↑/→`).
+pub fn rows() -> Vec<(&'static str, Vec<(String, &'static str)>)> {
+    GROUPS
+        .iter()
+        .map(|g| {
+            let mut rows: Vec<(Vec<&crate::app::Binding>, &'static str)> = Vec::new();
+            for b in KEYMAP.iter().filter(|b| b.group == *g) {
+                match rows.iter_mut().find(|(_, h)| *h == b.help) {
+                    Some((keys, _)) => keys.push(b),
+                    None => rows.push((vec![b], b.help)),
+                }
+            }
+            let rows = rows
+                .into_iter()
+                .map(|(keys, help)| {
+                    let labels: Vec<String> = keys.iter().map(|b| key_label(b)).collect();
+                    let same = keys.iter().all(|b| b.mods == keys[0].mods);
+                    let prefix = labels[0]
+                        .rfind('-')
+                        .filter(|_| same && labels[0].len() > 1)
+                        .map_or("", |i| &labels[0][..=i]);
+                    let label = if !prefix.is_empty() {
+                        let tails: Vec<&str> = labels.iter().map(|l| &l[prefix.len()..]).collect();
+                        format!("{prefix}{}", tails.join("/"))
+                    } else {
+                        labels.join("/")
+                    };
+                    (label, help)
+                })
+                .collect();
+            (*g, rows)
+        })
+        .collect()
+}
+
+pub fn render(f: &mut TuiFrame, area: Rect, app: &App) {
+    let th = &app.theme;
+    let w = area.width.min(100);
+    let h = area.height;
+    let popup = Rect {
+        x: area.x + (area.width - w) / 2,
+        y: area.y,
+        width: w,
+        height: h,
+    };
+    f.render_widget(Clear, popup);
+    let block = Block::default()
+        .borders(Borders::ALL)
+        .border_style(Style::default().fg(th.accent))
+        .title(Span::styled(
+            " help — ? or Esc closes ",
+            Style::default().fg(th.accent),
+        ))
+        .style(Style::default().bg(th.background).fg(th.foreground));
+    let inner = block.inner(popup);
+    f.render_widget(block, popup);
+    let mut cols: [Vec<Line>; 2] = [Vec::new(), Vec::new()];
+    let groups = rows();
+    let total: usize = groups.iter().map(|(_, r)| r.len() + 1).sum();
+    let mut n = 0;
+    for (g, rs) in groups {
+        let c = usize::from(n >= total.div_ceil(2) && n > 0);
+        n += rs.len() + 1;
+        cols[c].push(Line::from(Span::styled(
+            g.to_string(),
+            Style::default().fg(th.accent).add_modifier(Modifier::BOLD),
+        )));
+        for (k, help) in rs {
+            cols[c].push(Line::from(vec![
+                Span::styled(format!(" {k:<13}"), Style::default().fg(th.notice)),
+                Span::styled(help.to_string(), Style::default().fg(th.foreground)),
+            ]));
+        }
+    }
+    let halves =
+        Layout::horizontal([Constraint::Percentage(50), Constraint::Percentage(50)]).split(inner);
+    let [a, b] = cols;
+    f.render_widget(Paragraph::new(a), halves[0]);
+    f.render_widget(Paragraph::new(b), halves[1]);
+}

@@ -1,0 +1,135 @@
+//! Pure rendering of the explorer's state into a ratatui frame.
+
+pub mod canvas;
+pub mod help;
+pub mod panel;
+
+use crate::app::App;
+use crate::engine::Outcome;
+use ratatui::Frame;
+use ratatui::layout::{Alignment, Constraint, Layout, Rect};
+use ratatui::style::Style;
+use ratatui::text::{Line, Span};
+use ratatui::widgets::{Paragraph, Wrap};
+
+/// Below this the explorer shows a "too small" notice instead.
+pub const MIN_SIZE: (u16, u16) = (40, 12);
+/// Width of the readout panel beside the canvas.
+pub const PANEL_W: u16 = 30;
+
+/// Draws the whole screen. Never panics, whatever the size.
+pub fn draw(frame: &mut Frame, app: &mut App) {
+    app.dirty = false;
+    let area = frame.area();
+    let th = app.theme.clone();
+    let base = Style::default().bg(th.background).fg(th.foreground);
+    if area.width < MIN_SIZE.0 || area.height < MIN_SIZE.1 {
+        app.geom = None;
+        let msg = format!(
+            "terminal too small ({}×{}): need ≥ {}×{}",
+            area.width, area.height, MIN_SIZE.0, MIN_SIZE.1
+        );
+        frame.render_widget(
+            Paragraph::new(msg)
+                .style(base)
+                .alignment(Alignment::Center)
+                .wrap(Wrap { trim: true }),
+            area,
+        );
+        return;
+    }
+    frame.render_widget(Paragraph::new("").style(base), area);
+    let [title, body, lesson, status] = Layout::vertical([
+        Constraint::Length(1),
+        Constraint::Min(1),
+        Constraint::Length(1),
+        Constraint::Length(1),
+    ])
+    .areas(area);
+    frame.render_widget(
+        Paragraph::new(Line::from(vec![
+            Span::styled(" turntable ", Style::default().fg(th.accent)),
+            Span::styled(app.scene.about.clone(), Style::default().fg(th.muted)),
+        ])),
+        title,
+    );
+    let (canvas_area, panel_area) = if body.width >= 60 {
+        let [c, p] =
+            Layout::horizontal([Constraint::Min(10), Constraint::Length(PANEL_W)]).areas(body);
+        (c, p)
+    } else {
+        let ph = (panel::lines(app).len() as u16 + 2).min(body.height / 2);
+        let [c, p] = Layout::vertical([Constraint::Min(3), Constraint::Length(ph)]).areas(body);
+        (c, p)
+    };
+    canvas::render(frame, canvas_area, app);
+    panel::render(frame, panel_area, app);
+    frame.render_widget(
+        Paragraph::new(Span::styled(
+            lesson_line(app),
+            Style::default().fg(th.notice),
+        )),
+        lesson,
+    );
+    frame.render_widget(Paragraph::new(status_line(app, status.width)), status);
+    if app.help {
+        help::render(frame, body, app);
+    }
+}
+
+/// The one-line lesson: the paper's scheme against the converged run.
+pub fn lesson_line(app: &App) -> String {
+    let Some(p) = &app.paper else {
+        return " c: compare with the paper's scheme (raw RK2, fixed dt = 1e-3, no stick event)"
+            .into();
+    };
+    let (a, b) = (app.sim.outcome_now(), p.outcome_now());
+    let name = |o: Outcome| match o {
+        Outcome::Stuck => "sticks",
+        Outcome::Escaped => "escapes",
+        Outcome::Running => "still slides",
+    };
+    if a == b {
+        format!(
+            " paper's RK2 (○) and {} (●) agree so far: both {}",
+            app.settings.method,
+            name(a)
+        )
+    } else if a == Outcome::Stuck && b == Outcome::Escaped {
+        " ● sticks; the paper's fixed-step RK2 (○) steps over the stop and escapes".into()
+    } else if a == Outcome::Stuck {
+        " ● sticks; the paper's RK2 (○) has no stop event: it dithers about |u| = 0".into()
+    } else {
+        format!(
+            " disagree: {} (●) {}, paper's RK2 (○) {}",
+            app.settings.method,
+            name(a),
+            name(b)
+        )
+    }
+}
+
+fn status_line(app: &App, width: u16) -> Line<'static> {
+    let th = &app.theme;
+    if let Some(n) = &app.notice {
+        return Line::from(Span::styled(
+            format!(" {n}"),
+            Style::default().fg(th.notice),
+        ));
+    }
+    let keys = if width >= 100 {
+        " ? help  Space play  .,  step  [] speed  f frame  m method  c compare  a forces  1-6 presets  x/p/v edit  q quit"
+    } else {
+        " ? help  Space play  ., step  f frame  m method  c compare  1-6 presets  q quit"
+    };
+    let mouse = if app.mouse { "" } else { "  [mouse off]" };
+    Line::from(vec![
+        Span::styled(keys.to_string(), Style::default().fg(th.muted)),
+        Span::styled(mouse.to_string(), Style::default().fg(th.notice)),
+    ])
+}
+
+/// A frame area as a rectangle helper for tests.
+pub fn screen(width: u16, height: u16) -> Rect {
+    Rect::new(0, 0, width, height)
+}

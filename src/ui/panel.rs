@@ -1,0 +1,174 @@
+//! Readouts: where the particle is, how the run stands, what it costs; and, when comparing,
+//! how the paper's scheme fares from the same start.
+
+use crate::app::App;
+use crate::engine::model::wrap_angle;
+use crate::engine::{Method, Outcome, Status};
+use crate::sim::Sim;
+use crate::theme::Theme;
+use ratatui::Frame as TuiFrame;
+use ratatui::layout::Rect;
+use ratatui::style::{Modifier, Style};
+use ratatui::text::{Line, Span};
+use ratatui::widgets::{Block, Borders, Paragraph};
+use std::f64::consts::PI;
+
+/// A number for a readout: never NaN or inf on screen.
+pub fn num(x: f64, prec: usize) -> String {
+    if x.is_finite() {
+        let s = format!("{x:.prec$}");
+        if s.trim_start_matches('-')
+            .chars()
+            .all(|c| c == '0' || c == '.')
+        {
+            s.trim_start_matches('-').to_string()
+        } else {
+            s
+        }
+    } else {
+        "—".into()
+    }
+}
+
+/// Status of a run at the sample on screen, and its colour.
+pub fn status_text(sim: &Sim, th: &Theme) -> (String, ratatui::style::Color) {
+    if let Some(e) = &sim.error {
+        let _ = e;
+        return ("stopped: step budget / underflow".into(), th.escaped);
+    }
+    match sim.outcome_now() {
+        Outcome::Stuck => match sim.run.status {
+            Status::Stuck { tau, q } => (
+                format!(
+                    "stuck at ξ = {}\n  since τ = {}",
+                    num(q.length(), 5),
+                    num(tau, 3)
+                ),
+                th.stuck,
+            ),
+            Status::Slipping => ("stuck".into(), th.stuck),
+        },
+        Outcome::Escaped => {
+            let tau = sim.run.escape.map_or(f64::NAN, |e| e.tau);
+            (
+                format!("escaped, certified\n  at τ = {}", num(tau, 3)),
+                th.escaped,
+            )
+        }
+        Outcome::Running => {
+            let s = sim.now();
+            if sim.run.settings.method == Method::Rk2Raw && s.u().length() < 0.01 && s.xi() <= 1.0 {
+                ("≈ at rest (raw RK2 chatters)".into(), th.slipping)
+            } else {
+                ("slipping".into(), th.slipping)
+            }
+        }
+    }
+}
+
+fn kv<'a>(k: &'a str, v: String, th: &Theme) -> Line<'a> {
+    Line::from(vec![
+        Span::styled(format!("{k:<7}"), Style::default().fg(th.muted)),
+        Span::styled(v, Style::default().fg(th.foreground)),
+    ])
+}
+
+pub fn lines(app: &App) -> Vec<Line<'static>> {
+    let th = &app.theme;
+    let s = app.sim.now();
+    let i = &app.initial;
+    let mut out: Vec<Line<'static>> = Vec::new();
+    let init = match i.release {
+        crate::engine::Release::Velocity => format!(
+            "ξ0 {} φ {}π v0 {}",
+            num(i.xi0, 3),
+            num(i.phi / PI, 2),
+            num(i.v0, 4)
+        ),
+        crate::engine::Release::TableRest => format!("ξ0 {} rest on table", num(i.xi0, 3)),
+        crate::engine::Release::LabRest => format!("ξ0 {} rest in lab", num(i.xi0, 3)),
+    };
+    out.push(Line::from(Span::styled(
+        init,
+        Style::default().fg(th.accent),
+    )));
+    out.push(kv("τ", num(s.tau, 3), th));
+    out.push(kv("ξ", num(s.xi(), 5), th));
+    let theta = if s.xi() > 0.0 {
+        num(wrap_angle(s.r.y.atan2(s.r.x)), 4)
+    } else {
+        "—".into()
+    };
+    out.push(kv("θ lab", theta, th));
+    out.push(kv(
+        "θ′",
+        s.theta_dot().map_or("—".into(), |t| num(t, 4)),
+        th,
+    ));
+    out.push(kv("ξ′", num(s.xi_dot(), 4), th));
+    out.push(kv("|u|", num(s.u().length(), 4), th));
+    let (st, col) = status_text(&app.sim, th);
+    for l in st.lines() {
+        out.push(Line::from(Span::styled(
+            l.to_string(),
+            Style::default().fg(col).add_modifier(Modifier::BOLD),
+        )));
+    }
+    let c = app.sim.run.cost;
+    out.push(kv(
+        app.settings.method.name(),
+        app.settings.accuracy_label(),
+        th,
+    ));
+    out.push(kv("steps", format!("{} rej {}", c.steps, c.rejected), th));
+    out.push(kv("RHS", format!("{}", c.rhs_evals), th));
+    let play = if app.playing { "▶" } else { "❚❚" };
+    out.push(kv("speed", format!("×{} {play}", fmt_speed(app.speed)), th));
+    if let Some(p) = &app.paper {
+        let (st, col) = status_text(p, th);
+        out.push(Line::from(Span::styled(
+            "paper: rk2-raw dt=1e-3 ○",
+            Style::default().fg(th.accent),
+        )));
+        for l in st.lines() {
+            out.push(Line::from(Span::styled(
+                l.to_string(),
+                Style::default().fg(col),
+            )));
+        }
+        out.push(kv("  ξ", num(p.now().xi(), 5), th));
+    }
+    if app.forces {
+        out.push(Line::from(vec![
+            Span::styled("friction ", Style::default().fg(th.friction)),
+            Span::styled("Coriolis ", Style::default().fg(th.coriolis)),
+            Span::styled("centrif.", Style::default().fg(th.centrifugal)),
+        ]));
+    }
+    out
+}
+
+pub fn fmt_speed(s: f64) -> String {
+    if s >= 1.0 {
+        format!("{s}")
+    } else {
+        format!("1/{}", (1.0 / s).round())
+    }
+}
+
+pub fn render(f: &mut TuiFrame, area: Rect, app: &App) {
+    let th = &app.theme;
+    let block = Block::default()
+        .borders(Borders::ALL)
+        .border_style(Style::default().fg(th.muted))
+        .title(Span::styled(
+            format!(" scene {} ", app.scene.name),
+            Style::default().fg(th.accent),
+        ));
+    f.render_widget(
+        Paragraph::new(lines(app))
+            .block(block)
+            .style(Style::default().bg(th.background)),
+        area,
+    );
+}

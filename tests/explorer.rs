@@ -1,0 +1,447 @@
+//! The explorer driven headless: keys and ticks into `App`, frames rendered on a `TestBackend`.
+
+use crossterm::event::{KeyCode, KeyEvent, KeyModifiers, MouseButton, MouseEvent, MouseEventKind};
+use ratatui::Terminal;
+use ratatui::backend::TestBackend;
+use turntable::app::keymap::{KEYMAP, event_for, key_label};
+use turntable::app::{Action, App};
+use turntable::engine::{Frame, Outcome, Run, Settings, Status};
+use turntable::scene::{PRESETS, Scene};
+use turntable::theme::Theme;
+use turntable::ui::{draw, panel::num};
+
+fn theme() -> Theme {
+    Theme::builtin("dark").expect("dark theme")
+}
+
+fn app(scene: &str) -> App {
+    App::new(Scene::preset(scene).unwrap(), theme())
+}
+
+fn render(app: &mut App, w: u16, h: u16) -> String {
+    let mut t = Terminal::new(TestBackend::new(w, h)).unwrap();
+    t.draw(|f| draw(f, app)).unwrap();
+    let buf = t.backend().buffer();
+    let mut s = String::new();
+    for y in 0..buf.area.height {
+        for x in 0..buf.area.width {
+            s.push_str(buf[(x, y)].symbol());
+        }
+        s.push('\n');
+    }
+    s
+}
+
+fn key(app: &mut App, c: char) {
+    app.handle_key(KeyEvent::new(KeyCode::Char(c), KeyModifiers::NONE));
+}
+
+/// The canvas part of a screen (left of the panel at 80 columns).
+fn canvas_part(screen: &str) -> String {
+    screen
+        .lines()
+        .skip(2)
+        .take(20)
+        .map(|l| l.chars().take(48).collect::<String>())
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+#[test]
+fn frame_toggle_redraws_the_same_trail_in_the_other_frame() {
+    let mut a = app("B");
+    for _ in 0..60 {
+        a.tick();
+    }
+    key(&mut a, ' ');
+    let n = a.sim.trail().len();
+    let lab = render(&mut a, 80, 24);
+    assert!(lab.contains("lab frame"));
+    key(&mut a, 'f');
+    assert_eq!(a.view, Frame::Table);
+    let rot = render(&mut a, 80, 24);
+    assert!(rot.contains("rotating frame"));
+    assert_eq!(a.sim.trail().len(), n, "the trail is stored once");
+    assert_ne!(canvas_part(&lab), canvas_part(&rot));
+    key(&mut a, 'f');
+    assert_eq!(canvas_part(&render(&mut a, 80, 24)), canvas_part(&lab));
+}
+
+#[test]
+fn preset_b_run_to_the_end_says_stuck_at_the_engines_xi() {
+    let mut a = app("C");
+    key(&mut a, '2');
+    assert_eq!(a.scene.name, "B");
+    for _ in 0..2000 {
+        if a.sim.outcome_now() == Outcome::Stuck {
+            break;
+        }
+        a.tick();
+    }
+    let mut run = Run::new(a.initial, Settings::default()).unwrap();
+    let (out, _) = run.finish(100.0).unwrap();
+    assert_eq!(out, Outcome::Stuck);
+    let Status::Stuck { tau, q } = run.status else {
+        panic!()
+    };
+    let Status::Stuck { tau: t2, q: q2 } = a.sim.run.status else {
+        panic!("app run not stuck: {:?}", a.sim.run.status)
+    };
+    assert!((q.length() - q2.length()).abs() < 1e-12 && (tau - t2).abs() < 1e-12);
+    let xi = num(q.length(), 5);
+    assert!(xi.starts_with("0.945"), "{xi}");
+    let screen = render(&mut a, 80, 24);
+    assert!(screen.contains(&format!("stuck at ξ = {xi}")), "{screen}");
+    assert!(
+        screen.contains(&format!("since τ = {}", num(tau, 3))),
+        "{screen}"
+    );
+}
+
+#[test]
+fn readouts_equal_the_engine_state() {
+    let mut a = app("A");
+    for _ in 0..23 {
+        a.tick();
+    }
+    let s = a.sim.now();
+    assert!((s.tau - 23.0 * turntable::app::TICK_DT).abs() < 1e-9);
+    let mut run = Run::new(a.initial, a.settings).unwrap();
+    run.run(s.tau, false).unwrap();
+    let e = run.state_at(s.tau);
+    assert!((e.r - s.r).length() < 1e-8, "{e:?} vs {s:?}");
+    let screen = render(&mut a, 80, 24);
+    for v in [
+        num(s.tau, 3),
+        num(s.xi(), 5),
+        num(s.xi_dot(), 4),
+        num(s.u().length(), 4),
+        num(s.theta_dot().unwrap(), 4),
+        format!(
+            "steps  {} rej {}",
+            a.sim.run.cost.steps, a.sim.run.cost.rejected
+        ),
+        format!("RHS    {}", a.sim.run.cost.rhs_evals),
+        "dp54   tol=1e-10".to_string(),
+    ] {
+        assert!(screen.contains(&v), "missing {v} in\n{screen}");
+    }
+}
+
+#[test]
+fn theta_dot_at_the_centre_shows_a_dash_not_nan() {
+    let mut scene = Scene::preset("B").unwrap();
+    scene.initial.xi0 = 0.0;
+    let mut a = App::new(scene, theme());
+    let screen = render(&mut a, 80, 24);
+    assert!(screen.contains("θ′     —"), "{screen}");
+    assert!(!screen.contains("NaN"));
+    a.check_invariants().unwrap();
+}
+
+/// A fresh app part-way into scene C, zoomed in (so "auto-frame" has something to undo).
+fn setup(dir: &std::path::Path) -> App {
+    let mut a = app("C");
+    a.save_path = dir.join("scene.toml");
+    for _ in 0..10 {
+        a.tick();
+    }
+    turntable::app::update(&mut a, Action::ZoomIn);
+    a
+}
+
+#[test]
+fn every_key_in_the_keymap_does_what_its_help_says() {
+    let dir = std::env::temp_dir().join(format!("turntable-keys-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for b in KEYMAP {
+        let mut a = setup(&dir);
+        let before = render(&mut a, 80, 24);
+        let (tau, init, set) = (a.sim.now().tau, a.initial, a.settings);
+        let (speed, zoom, pan) = (a.speed, a.zoom, a.pan);
+        a.handle_key(event_for(b));
+        let after = render(&mut a, 80, 24);
+        let what = format!("{} ({})", key_label(b), b.help);
+        match b.action {
+            Action::Quit => assert!(a.should_quit(), "{what}"),
+            _ => assert_ne!(before, after, "{what}: screen unchanged"),
+        }
+        let now = a.sim.now().tau;
+        let ok = match b.action {
+            Action::Quit => a.should_quit(),
+            Action::ToggleHelp => a.help && after.contains("help"),
+            Action::PlayPause => !a.is_playing() && after.contains("❚❚"),
+            Action::StepForward => now > tau && !a.is_playing(),
+            Action::StepBack => now < tau,
+            Action::Faster => a.speed == 2.0 * speed && after.contains("×2"),
+            Action::Slower => a.speed == speed / 2.0 && after.contains("×1/2"),
+            Action::Restart => now == 0.0 && a.initial == init,
+            Action::ToggleFrame => a.view == Frame::Table,
+            Action::CycleMethod => a.settings.method != set.method && now == 0.0,
+            Action::Loosen => a.settings.tol > set.tol && now == 0.0,
+            Action::Tighten => a.settings.tol < set.tol && now == 0.0,
+            Action::Xi0(d) => (a.initial.xi0 - (init.xi0 + d)).abs() < 1e-12 && now == 0.0,
+            Action::Phi(d) => {
+                let w = turntable::engine::model::wrap_angle(init.phi + d);
+                (a.initial.phi - w).abs() < 1e-12 && now == 0.0
+            }
+            Action::V0(d) => (a.initial.v0 - (init.v0 + d)).abs() < 1e-12 && now == 0.0,
+            Action::CycleRelease => a.initial.release != init.release && now == 0.0,
+            Action::ResetScene => a.initial == a.scene.initial && now == 0.0,
+            Action::Preset(i) => a.scene.name == PRESETS[i] && now == 0.0,
+            Action::ToggleCompare => a.paper.is_some() && after.contains("paper: rk2-raw"),
+            Action::ToggleForces => a.forces && after.contains("Coriolis"),
+            Action::ZoomIn => a.zoom > zoom,
+            Action::ZoomOut => a.zoom < zoom,
+            Action::Pan(dx, dy) => {
+                let d = a.pan - pan;
+                d.x * dx > 0.0 || d.y * dy > 0.0
+            }
+            Action::ResetView => a.zoom == 1.0 && a.pan == glam::DVec2::ZERO,
+            Action::Save => {
+                after.contains("saved scene")
+                    && Scene::load(a.save_path.to_str().unwrap()).unwrap().initial == a.initial
+            }
+            Action::ToggleMouse => !a.mouse_capture() && after.contains("mouse off"),
+        };
+        assert!(ok, "{what} did not do what it says");
+        a.check_invariants().unwrap();
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn esc_closes_help_before_quitting() {
+    let mut a = app("C");
+    key(&mut a, '?');
+    a.handle_key(KeyEvent::new(KeyCode::Esc, KeyModifiers::NONE));
+    assert!(!a.help && !a.should_quit());
+    a.handle_key(KeyEvent::new(KeyCode::Esc, KeyModifiers::NONE));
+    assert!(a.should_quit());
+}
+
+#[test]
+fn tiny_and_large_sizes_render_without_panic() {
+    for (w, h) in [
+        (0, 0),
+        (1, 1),
+        (10, 5),
+        (39, 11),
+        (40, 12),
+        (59, 20),
+        (80, 24),
+        (160, 48),
+    ] {
+        let mut a = app("C");
+        a.tick();
+        let s = render(&mut a, w, h);
+        if w >= 10 && h >= 5 && (w < 40 || h < 12) {
+            assert!(s.contains("small"), "{w}×{h}:\n{s}");
+        }
+        if w >= 40 && h >= 12 {
+            assert!(s.contains("τ"), "{w}×{h}:\n{s}");
+        }
+        key(&mut a, '?');
+        render(&mut a, w, h);
+    }
+}
+
+#[test]
+fn help_overlay_lists_every_binding() {
+    let mut a = app("C");
+    key(&mut a, '?');
+    let screen = render(&mut a, 160, 48);
+    let rows = turntable::ui::help::rows();
+    for (_, rs) in &rows {
+        for (label, help) in rs {
+            let line = format!("{label:<13}{help}");
+            assert!(screen.contains(&line), "missing '{line}' in\n{screen}");
+        }
+    }
+    for b in KEYMAP {
+        assert!(
+            rows.iter().any(|(g, rs)| *g == b.group
+                && rs
+                    .iter()
+                    .any(|(l, h)| *h == b.help
+                        && l.contains(key_label(b).rsplit('-').next().unwrap()))),
+            "{} not in help",
+            key_label(b)
+        );
+    }
+    // 80×24 fits it too.
+    let small = render(&mut a, 80, 24);
+    assert!(small.contains("presets A B C D fig1 fig2") && small.contains("q/Esc/Ctrl-c"));
+}
+
+#[test]
+fn scene_c_shows_the_paper_escaping_where_the_converged_run_sticks() {
+    let mut a = app("C");
+    key(&mut a, 'c');
+    for _ in 0..3 {
+        key(&mut a, ']');
+    }
+    for _ in 0..400 {
+        a.tick();
+        if a.paper.as_ref().unwrap().outcome_now() == Outcome::Escaped {
+            break;
+        }
+    }
+    let Status::Stuck { q, .. } = a.sim.run.status else {
+        panic!("converged run not stuck")
+    };
+    assert!((q.length() - 0.99717).abs() < 1e-4, "{}", q.length());
+    let esc = a.paper.as_ref().unwrap().run.escape.unwrap().tau;
+    assert!((esc - 17.3).abs() < 0.1, "{esc}");
+    let screen = render(&mut a, 80, 24);
+    assert!(screen.contains(&format!("stuck at ξ = {}", num(q.length(), 5))));
+    assert!(
+        screen.contains("escaped, certified")
+            && screen.contains(&format!("at τ = {}", num(esc, 3)))
+    );
+    assert!(
+        screen.contains("steps over the stop and escapes"),
+        "{screen}"
+    );
+}
+
+#[test]
+fn paused_and_idle_needs_no_redraw() {
+    let mut a = app("C");
+    render(&mut a, 80, 24);
+    assert!(!a.needs_redraw());
+    a.tick();
+    assert!(a.needs_redraw(), "playing: a tick changes the picture");
+    key(&mut a, ' ');
+    render(&mut a, 80, 24);
+    for _ in 0..5 {
+        a.tick();
+    }
+    assert!(!a.needs_redraw());
+}
+
+#[test]
+fn same_keys_give_the_same_screens() {
+    let keys = "c]]x.v,,fa+R";
+    let run = || {
+        let mut a = app("C");
+        let mut shots = Vec::new();
+        for c in keys.chars() {
+            key(&mut a, c);
+            a.tick();
+            a.tick();
+            shots.push(render(&mut a, 80, 24));
+        }
+        shots
+    };
+    assert_eq!(run(), run());
+}
+
+#[test]
+fn mouse_click_places_the_release_point_and_drag_sets_the_velocity() {
+    let mut a = app("B");
+    render(&mut a, 80, 24);
+    let g = a.geom_for_tests().unwrap();
+    // The cell under world point (0.8, 0).
+    let col = g.area.x + ((0.8 - g.x[0]) / (g.x[1] - g.x[0]) * f64::from(g.area.width)) as u16;
+    let row = g.area.y + ((g.y[1] - 0.0) / (g.y[1] - g.y[0]) * f64::from(g.area.height)) as u16;
+    let ev = |kind, column, row| MouseEvent {
+        kind,
+        column,
+        row,
+        modifiers: KeyModifiers::NONE,
+    };
+    a.handle_mouse(ev(MouseEventKind::Down(MouseButton::Left), col, row));
+    assert!((a.initial.xi0 - 0.8).abs() < 0.1, "{}", a.initial.xi0);
+    a.handle_mouse(ev(
+        MouseEventKind::Drag(MouseButton::Left),
+        col,
+        row.saturating_sub(3),
+    ));
+    assert!(a.initial.v0 > 0.0);
+    a.handle_mouse(ev(
+        MouseEventKind::Up(MouseButton::Left),
+        col,
+        row.saturating_sub(3),
+    ));
+    assert_eq!(a.sim.now().tau, 0.0);
+    a.check_invariants().unwrap();
+    key(&mut a, 'M');
+    let xi0 = a.initial.xi0;
+    a.handle_mouse(ev(MouseEventKind::Down(MouseButton::Left), col + 5, row));
+    assert_eq!(a.initial.xi0, xi0, "mouse off: clicks do nothing");
+}
+
+#[test]
+fn random_keys_keep_the_invariants() {
+    let mut a = app("C");
+    let mut x: u64 = 0x9E3779B97F4A7C15;
+    for i in 0..1500 {
+        x ^= x << 13;
+        x ^= x >> 7;
+        x ^= x << 17;
+        let b = &KEYMAP[(x % KEYMAP.len() as u64) as usize];
+        if matches!(b.action, Action::Quit | Action::Save | Action::ToggleHelp) {
+            a.tick();
+            continue;
+        }
+        a.handle_key(event_for(b));
+        a.tick();
+        a.check_invariants()
+            .unwrap_or_else(|e| panic!("after {i} keys ({}): {e}", key_label(b)));
+        if i % 50 == 0 {
+            let s = render(&mut a, 80, 24);
+            assert!(!s.contains("NaN") && !s.contains("inf"), "{s}");
+        }
+    }
+}
+
+#[test]
+fn bad_scene_or_theme_exits_2_before_touching_the_terminal() {
+    let bin = env!("CARGO_BIN_EXE_turntable");
+    for args in [["--scene", "nope"], ["--theme", "nope"]] {
+        let out = std::process::Command::new(bin).args(args).output().unwrap();
+        assert_eq!(out.status.code(), Some(2), "{args:?}");
+        assert!(out.stdout.is_empty(), "no escape codes on stdout");
+        let err = String::from_utf8(out.stderr).unwrap();
+        assert_eq!(err.lines().count(), 1, "{err}");
+        assert!(err.contains("nope"), "{err}");
+    }
+}
+
+#[test]
+fn no_key_is_bound_twice() {
+    for (i, a) in KEYMAP.iter().enumerate() {
+        for b in &KEYMAP[i + 1..] {
+            assert!(
+                !(a.code == b.code && a.mods == b.mods),
+                "{} bound twice",
+                key_label(a)
+            );
+        }
+        assert_eq!(
+            turntable::app::keymap::lookup(&event_for(a)),
+            Some(a.action),
+            "{} does not dispatch to its own action",
+            key_label(a)
+        );
+    }
+}
+
+#[test]
+fn every_builtin_theme_renders_every_preset() {
+    for t in ["dark", "light", "high-contrast", "mono"] {
+        let theme = Theme::builtin(t).unwrap_or_else(|| panic!("theme {t}"));
+        for p in PRESETS {
+            let mut a = App::new(Scene::preset(p).unwrap(), theme.clone());
+            key(&mut a, 'c');
+            key(&mut a, 'a');
+            for _ in 0..20 {
+                a.tick();
+            }
+            let s = render(&mut a, 80, 24);
+            assert!(s.contains(&format!("scene {p}")), "{t} {p}:\n{s}");
+            a.check_invariants().unwrap();
+        }
+    }
+}
