@@ -2,7 +2,7 @@
 //! step, the escape certificate (property 2 and the energy bound), and cost counters.
 
 use super::method::{Controller, Cost, Dense, Method, Segment, Settings, dp5_step, fixed_step};
-use super::model::{Frame, Initial, State, Y};
+use super::model::{Frame, Initial, State, Y, rotate, zcross};
 use glam::DVec2;
 use serde::Serialize;
 use std::fmt;
@@ -10,10 +10,19 @@ use std::fmt;
 /// Fraction of the predicted time to a stop that one step may cover: the stop is approached in
 /// steps that shrink geometrically, never stepped through.
 const STOP_CAP: f64 = 0.7;
-/// Below this predicted time to a stop, the stop is taken in closed form (constant
-/// deceleration): the error is O(T³) ≈ 1e-18, far below any tolerance on offer.
+/// Below this predicted time to a momentary stop outside ξ = 1, the stop is taken in closed
+/// form (constant deceleration): the error is O(T²|u|), far below any tolerance on offer.
 const SNAP_T: f64 = 1e-6;
-
+/// Near a stop the direction of u turns at a rate ~|q|/|u| that grows without bound: once a
+/// step is longer than a few |u|/|q|, explicit steps are unstable and can hover at a small
+/// |u| instead of stopping. This many such steps in a row without |u| halving mean hovering:
+/// the stop is then taken in closed form.
+const HOVER_STEPS: u32 = 50;
+/// A step is stiff once it is longer than this many |u|/|q|: the stability limit of the
+/// explicit methods on offer (RK2's is 2, RK4's 2.8, DOPRI5's 3.3).
+const STIFF: f64 = 2.0;
+/// û counts as turned onto q̂ within this cosine (about 2.6°).
+const ALIGNED: f64 = 0.999;
 /// How escape was certified (CONVENTIONS.md "Outcomes"; Sec. II, property 2).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "kebab-case")]
@@ -88,6 +97,38 @@ impl fmt::Display for RunError {
 
 impl std::error::Error for RunError {}
 
+/// The last, radial stretch to a stop inside ξ = 1 from table-frame `q` at speed `s`, `t` ahead
+/// (see [`Run::stop_ahead`]). At the next order Coriolis turns u by −2s off q̂, so friction
+/// costs I = s² − (ρ − 1)² at dI/dτ = −4ρs³ and the particle drifts back by ψ′ = −2s²/ρ;
+/// both are integrated along the leading-order solution s = X sinh(t − τ), X² = −I.
+fn radial_stop(q: DVec2, s: f64, t: f64) -> Ahead {
+    let rho = q.length();
+    let x2 = (1.0 - rho).powi(2) - s * s;
+    let x = x2.sqrt();
+    let (ch, sh2) = (t.cosh(), (2.0 * t).sinh());
+    let cubes = x * x2 * (ch.powi(3) / 3.0 - ch + 2.0 / 3.0);
+    let squares = x2 * (sh2 / 4.0 - t / 2.0);
+    let rest = 1.0 - (x2 + 4.0 * rho * cubes).sqrt();
+    let psi = -2.0 * squares / rho;
+    Ahead::Jump {
+        t,
+        q: rotate(q / rho, psi) * rest,
+        u: DVec2::ZERO,
+    }
+}
+
+/// What lies ahead of the particle: see [`Run::stop_ahead`].
+enum Ahead {
+    Clear,
+    Cap(f64),
+    /// Closed form to time `t` ahead, to table-frame position `q` and velocity `u`.
+    Jump {
+        t: f64,
+        q: DVec2,
+        u: DVec2,
+    },
+}
+
 /// A run from given initial conditions with given settings.
 #[derive(Clone, Debug)]
 pub struct Run {
@@ -100,6 +141,10 @@ pub struct Run {
     pub last: Option<Segment>,
     /// Momentary stops at ξ > 1 after which the particle slipped on.
     pub slip_restarts: u32,
+    /// Consecutive steps longer than the time |u|/|q| in which û turns, and |u| when they
+    /// began.
+    stiff_steps: u32,
+    stiff_speed: f64,
     tau: f64,
     y: Y,
     f: Y,
@@ -140,6 +185,8 @@ impl Run {
             escape: None,
             last: None,
             slip_restarts: 0,
+            stiff_steps: 0,
+            stiff_speed: 0.0,
             tau: 0.0,
             y,
             f: frame.rhs(y),
@@ -231,17 +278,13 @@ impl Run {
         let s = self.state();
         let mut cap = tau_max - self.tau;
         if self.settings.method.stick_events() {
-            // d|u|/dτ = q·û − 1 (Coriolis does no work): the time left to a stop.
-            let u = s.u_lab();
-            let speed = u.length();
-            let decel = 1.0 - s.r.dot(u) / speed.max(f64::MIN_POSITIVE);
-            if speed > 0.0 && decel > 0.0 {
-                let t_stop = speed / decel;
-                if t_stop <= SNAP_T && t_stop <= cap {
-                    self.stop(s, t_stop);
+            match self.stop_ahead(&s) {
+                Ahead::Jump { t, q, u } if t <= cap => {
+                    self.jump(t, q, u);
                     return Ok(());
                 }
-                cap = cap.min(STOP_CAP * t_stop);
+                Ahead::Cap(c) => cap = cap.min(c),
+                Ahead::Clear | Ahead::Jump { .. } => {}
             }
         }
         let seg = if self.settings.method.adaptive() {
@@ -250,6 +293,14 @@ impl Run {
             self.fixed_step(cap)
         };
         self.last = Some(seg);
+        let speed = s.u_lab().length();
+        if seg.h * s.xi() < STIFF * speed {
+            self.stiff_steps = 0;
+        } else if self.stiff_steps == 0 || speed < 0.5 * self.stiff_speed {
+            (self.stiff_steps, self.stiff_speed) = (1, speed);
+        } else {
+            self.stiff_steps += 1;
+        }
         if self.escape.is_none() && certificate(&frame.to_state(seg.y1, seg.t1())).is_some() {
             self.escape = Some(self.locate_escape(&seg));
         }
@@ -325,25 +376,116 @@ impl Run {
         self.f = f1;
     }
 
-    /// The stop `t_stop` ahead, in closed form under constant deceleration; then stuck if
-    /// ξ ≤ 1, else slipping on from u = 0 (Filippov).
-    fn stop(&mut self, s: State, t_stop: f64) {
+    /// Looks ahead for a stop. d|u|/dτ = q·û − 1 (Coriolis does no work), so a stop is
+    /// ≈ |u|/(1 − q·û) ahead: steps are capped to a fraction of that, and a stop close enough
+    /// is taken in closed form.
+    ///
+    /// Inside ξ = 1, û soon turns onto q̂ and the last stretch is radial with ρ″ = ρ − 1: from
+    /// ρ and s = |u| it stops at ρ_s = 1 − √((1 − ρ)² − s²) after atanh(s/(1 − ρ)), having
+    /// travelled at most s·atanh(s/(1 − ρ)). That end game takes over once the travel left is
+    /// below the tolerance, or once explicit steps hover (their stability limit, ~|u|/|q|,
+    /// shrinks with |u|).
+    fn stop_ahead(&self, s: &State) -> Ahead {
+        let u = s.u_lab();
+        let speed = u.length();
+        if speed == 0.0 {
+            return Ahead::Clear;
+        }
+        let rho = s.xi();
+        let decel = 1.0 - s.r.dot(u) / speed;
+        let gap = 1.0 - rho;
+        // Steps too long for û to be resolved, with û already on q̂: the radial end game is
+        // then exact to O(|u|²) and the explicit step is not.
+        let stiff = self.natural_step() * rho >= STIFF * speed;
+        let aligned = s.r.dot(u) >= ALIGNED * rho * speed;
+        let end_game = self.stiff_steps >= HOVER_STEPS || (stiff && aligned);
+        if gap > 0.0 && speed < gap {
+            let t = (speed / gap).atanh();
+            if speed * t <= self.travel_tol() || end_game {
+                return radial_stop(s.q(), speed, t);
+            }
+        } else if end_game && gap > 0.0 {
+            // Over the saddle: it reaches ξ = 1 still moving out, if I = s² − (1 − ρ)² stays
+            // positive despite the O(s³) loss dI/dτ = −4ρs³ on the way.
+            let t = (gap / speed).atanh();
+            let i = speed * speed - gap * gap;
+            if i > 8.0 * speed.powi(3) * t {
+                let q = s.q() / rho;
+                return Ahead::Jump {
+                    t,
+                    q,
+                    u: q * (i - 4.0 * speed.powi(3) * t).sqrt(),
+                };
+            }
+        } else if self.stiff_steps >= HOVER_STEPS {
+            // At the saddle ξ ≈ 1 itself: stop here and let Filippov's rule decide.
+            return Ahead::Jump {
+                t: 0.0,
+                q: s.q(),
+                u: DVec2::ZERO,
+            };
+        }
+        if decel <= 0.0 {
+            return Ahead::Clear;
+        }
+        let t = speed / decel;
+        if t <= SNAP_T {
+            // Constant deceleration over a tiny interval.
+            Ahead::Jump {
+                t,
+                q: s.q() + s.u() * (0.5 * t),
+                u: DVec2::ZERO,
+            }
+        } else {
+            Ahead::Cap(STOP_CAP * t)
+        }
+    }
+
+    /// The step the integrator would take with no stop ahead.
+    fn natural_step(&self) -> f64 {
+        if self.settings.method.adaptive() {
+            self.h
+        } else {
+            self.settings.dt
+        }
+    }
+
+    /// Distance a particle may still travel when its stop is taken in closed form.
+    fn travel_tol(&self) -> f64 {
+        if self.settings.method.adaptive() {
+            1e-3 * self.settings.tol
+        } else {
+            1e-13
+        }
+    }
+
+    /// Takes the closed-form stretch to `t` ahead, arriving at table-frame `q` with `u`. A
+    /// stop (u = 0) sticks if ξ ≤ 1, else it slips on (Filippov).
+    fn jump(&mut self, t: f64, q: DVec2, u: DVec2) {
         let frame = self.settings.frame;
-        let tau = self.tau + t_stop;
-        let q = s.q() + s.u() * (0.5 * t_stop);
-        let rest = State::riding(q, tau);
-        let y1 = frame.from_state(&rest);
+        let tau = self.tau + t;
+        let r = rotate(q, tau);
+        let to = State {
+            tau,
+            r,
+            v: rotate(u, tau) + zcross(r),
+        };
+        let y1 = frame.from_state(&to);
         let f1 = frame.rhs(y1);
         self.cost.rhs_evals += 1;
         let seg = Segment {
             t0: self.tau,
-            h: t_stop,
+            h: t,
             y0: self.y,
             y1,
             dense: Dense::Hermite { f0: self.f, f1 },
         };
         self.advance(seg, f1);
         self.last = Some(seg);
+        self.stiff_steps = 0;
+        if u != DVec2::ZERO {
+            return;
+        }
         if q.length() <= 1.0 {
             self.status = Status::Stuck { tau, q };
         } else {

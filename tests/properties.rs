@@ -1,0 +1,214 @@
+//! Sec. II's general properties 1–4 and the energy identity dE/dτ = −|u|, over seeded random
+//! initial conditions.
+
+use std::f64::consts::TAU;
+use turntable::engine::method::Dense;
+use turntable::engine::model::{Frame, Y, friction};
+use turntable::engine::{Initial, Method, Outcome, Run, Settings, Status};
+
+/// splitmix64: a tiny deterministic generator, so failures reproduce.
+struct Rng(u64);
+impl Rng {
+    fn next(&mut self) -> f64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
+    }
+    fn initial(&mut self) -> Initial {
+        Initial::velocity(1.5 * self.next(), TAU * self.next(), 2.0 * self.next())
+    }
+}
+
+/// Samples a run on a fine grid through its dense output: (τ, ξ, ξ′, θ′, slipping).
+fn sampled(i: Initial, tau_max: f64) -> (Run, Vec<(f64, f64, f64, Option<f64>)>) {
+    let mut run = Run::new(i, Settings::dp54(1e-11)).unwrap();
+    let mut out = vec![];
+    let mut t = 0.0;
+    while t <= tau_max {
+        while run.status == Status::Slipping && run.tau() < t {
+            run.step(f64::INFINITY).unwrap();
+        }
+        let s = run.state_at(t);
+        out.push((t, s.xi(), s.xi_dot(), s.theta_dot()));
+        t += 0.01;
+    }
+    (run, out)
+}
+
+#[test]
+fn property_1_at_rest_inside_xi_1_stays_at_rest() {
+    let mut rng = Rng(1);
+    for _ in 0..200 {
+        let q = glam::DVec2::from_angle(TAU * rng.next()) * rng.next();
+        // Static friction balances the centrifugal pull: no acceleration in the table frame.
+        let a = Frame::Table.rhs(Y {
+            p: q,
+            w: glam::DVec2::ZERO,
+        });
+        assert_eq!(a.w, glam::DVec2::ZERO);
+        assert_eq!(friction(glam::DVec2::ZERO, q), -q);
+        let run = Run::new(
+            Initial::at_rest(q.length(), turntable::engine::Release::TableRest),
+            Settings::default(),
+        )
+        .unwrap();
+        assert_eq!(run.outcome(), Outcome::Stuck);
+        // ... and it rides the table in closed form.
+        let s = run.state_at(7.0);
+        assert!((s.xi() - q.length()).abs() < 1e-15 && (s.u_lab().length()) < 1e-14);
+    }
+}
+
+#[test]
+fn properties_2_and_3_hold_along_random_runs() {
+    let mut rng = Rng(2);
+    for _ in 0..60 {
+        let i = rng.initial();
+        let (_, samples) = sampled(i, 8.0);
+        let mut outward = false;
+        let mut prograde = false;
+        for &(t, _, xi_dot, theta_dot) in &samples {
+            // 2: once ξ′ > 0 it never turns negative (ξ grows, or stays at a stop).
+            if outward {
+                assert!(xi_dot > -1e-9, "{i:?}: ξ′ = {xi_dot} at τ = {t}");
+            }
+            outward |= xi_dot > 1e-9;
+            // 3: once θ′ > 0 it stays positive.
+            if let Some(td) = theta_dot {
+                if prograde {
+                    assert!(td > -1e-9, "{i:?}: θ′ = {td} at τ = {t}");
+                }
+                prograde |= td > 1e-9;
+            }
+        }
+    }
+}
+
+#[test]
+fn property_4_escaping_runs_end_with_theta_dot_between_0_and_1() {
+    let mut rng = Rng(4);
+    let mut escaped = 0;
+    for _ in 0..40 {
+        let i = Initial::velocity(1.5 * rng.next(), TAU * rng.next(), 1.0 + 2.0 * rng.next());
+        let mut run = Run::new(i, Settings::dp54(1e-10)).unwrap();
+        if run.run(300.0, false).unwrap() != Outcome::Escaped {
+            continue;
+        }
+        escaped += 1;
+        let td = run.state().theta_dot().unwrap();
+        assert!((0.0..=1.0).contains(&td), "{i:?}: θ′ = {td}");
+    }
+    assert!(escaped > 20, "only {escaped} escaped");
+}
+
+/// E(τ) − E(0) = −∫|u| dτ along every dp54 run, the integral by 5-point Gauss–Legendre on each
+/// step's dense output.
+#[test]
+fn energy_identity_holds_on_every_dp54_run() {
+    const X: [f64; 5] = [
+        -0.906_179_845_938_664,
+        -0.538_469_310_105_683,
+        0.0,
+        0.538_469_310_105_683,
+        0.906_179_845_938_664,
+    ];
+    const W: [f64; 5] = [
+        0.236_926_885_056_189,
+        0.478_628_670_499_366,
+        0.568_888_888_888_889,
+        0.478_628_670_499_366,
+        0.236_926_885_056_189,
+    ];
+    let mut rng = Rng(5);
+    for tol in [1e-10, 1e-12] {
+        for _ in 0..50 {
+            let i = rng.initial();
+            let mut run = Run::new(i, Settings::dp54(tol)).unwrap();
+            let e0 = run.state().energy();
+            let mut work = 0.0;
+            while run.status == Status::Slipping && run.tau() < 20.0 {
+                run.step(20.0).unwrap();
+                let seg = run.last.unwrap();
+                let f = Frame::Lab;
+                let state = |t: f64| f.to_state(seg.at(t), t);
+                work += match seg.dense {
+                    // A stop taken in closed form: a straight stretch in the table frame.
+                    Dense::Hermite { .. } => (state(seg.t1()).q() - state(seg.t0).q()).length(),
+                    Dense::Dp5(_) => {
+                        0.5 * seg.h
+                            * (0..5)
+                                .map(|k| {
+                                    W[k] * state(seg.t0 + 0.5 * seg.h * (1.0 + X[k]))
+                                        .u_lab()
+                                        .length()
+                                })
+                                .sum::<f64>()
+                    }
+                };
+            }
+            let e1 = run.state().energy();
+            assert!(
+                (e1 - e0 + work).abs() < 1e-9,
+                "{i:?} tol {tol}: ΔE = {}, −∫|u| = {}",
+                e1 - e0,
+                -work
+            );
+        }
+    }
+}
+
+/// Every fixed-step method shows its order on a smooth stretch: the error at τ = 0.5 of case A
+/// (before any stop) falls by ≈ 2^p as the step halves.
+#[test]
+fn fixed_step_methods_show_their_order() {
+    let i = Initial::velocity(0.5, std::f64::consts::PI, 1.0);
+    let mut exact = Run::new(i, Settings::dp54(1e-14)).unwrap();
+    exact.run(0.5, false).unwrap();
+    let r = exact.state().r;
+    for (m, p) in [
+        (Method::Rk2Raw, 2.0),
+        (Method::Rk2, 2.0),
+        (Method::Rk4, 4.0),
+    ] {
+        let err = |dt: f64| {
+            let mut run = Run::new(i, Settings::fixed(m, dt)).unwrap();
+            run.run(0.5, false).unwrap();
+            (run.state().r - r).length()
+        };
+        for dt in [1e-2, 5e-3] {
+            let ratio = err(dt) / err(dt / 2.0);
+            assert!(
+                (ratio / 2f64.powf(p) - 1.0).abs() < 0.1,
+                "{m}: ratio {ratio} at dt {dt}"
+            );
+        }
+    }
+}
+
+#[test]
+fn outcomes_agree_across_frames() {
+    let mut rng = Rng(6);
+    for _ in 0..40 {
+        let i = rng.initial();
+        let lab = Run::new(i, Settings::dp54(1e-11))
+            .unwrap()
+            .finish(200.0)
+            .unwrap();
+        let table = Run::new(
+            i,
+            Settings {
+                frame: Frame::Table,
+                ..Settings::dp54(1e-11)
+            },
+        )
+        .unwrap()
+        .finish(200.0)
+        .unwrap();
+        assert_eq!(lab.0, table.0, "{i:?}");
+        if lab.0 == Outcome::Stuck {
+            assert!((lab.1.q() - table.1.q()).length() < 1e-7, "{i:?}");
+        }
+    }
+}
