@@ -105,6 +105,10 @@ pub struct Run {
     f: Y,
     h: f64,
     ctrl: Controller,
+    /// Set once a step near a stop failed to shed speed as friction does (d|u|/dτ = −decel):
+    /// the explicit scheme is at its stability limit in the stiff direction of û, where it
+    /// can stall at a small |u| forever. From then on steps are capped at |u| until the stop.
+    stiff: bool,
 }
 
 fn certificate(s: &State) -> Option<Certificate> {
@@ -145,6 +149,7 @@ impl Run {
             f: frame.rhs(y),
             h: 0.1 * settings.tol.powf(0.2),
             ctrl: Controller::default(),
+            stiff: false,
         };
         // Filippov at u = 0: at rest on the table inside ξ ≤ 1 it stays (property 1).
         if settings.method.stick_events() && s0.u_lab() == DVec2::ZERO && s0.xi() <= 1.0 {
@@ -230,6 +235,7 @@ impl Run {
         let frame = self.settings.frame;
         let s = self.state();
         let mut cap = tau_max - self.tau;
+        let mut approach = None;
         if self.settings.method.stick_events() {
             // d|u|/dτ = q·û − 1 (Coriolis does no work): the time left to a stop.
             let u = s.u_lab();
@@ -242,6 +248,12 @@ impl Run {
                     return Ok(());
                 }
                 cap = cap.min(STOP_CAP * t_stop);
+                if self.stiff {
+                    cap = cap.min(speed);
+                }
+                approach = Some((speed, decel));
+            } else {
+                self.stiff = false;
             }
         }
         let seg = if self.settings.method.adaptive() {
@@ -249,6 +261,12 @@ impl Run {
         } else {
             self.fixed_step(cap)
         };
+        if let Some((speed, decel)) = approach {
+            let after = frame.to_state(seg.y1, seg.t1()).u_lab().length();
+            if after > speed - 0.5 * decel * seg.h {
+                self.stiff = true;
+            }
+        }
         self.last = Some(seg);
         if self.escape.is_none() && certificate(&frame.to_state(seg.y1, seg.t1())).is_some() {
             self.escape = Some(self.locate_escape(&seg));

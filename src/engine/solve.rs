@@ -166,6 +166,12 @@ pub fn escape_speed(xi0: f64, phi: f64, settings: Settings, tol: f64) -> Result<
         return Err(format!("tol must be > 0, got {tol}"));
     }
     Initial::velocity(xi0, phi, 0.0).validate()?;
+    if !settings.method.stick_events() {
+        return Err(format!(
+            "the escape speed needs stick events: {} never comes to rest",
+            settings.method
+        ));
+    }
     let mut evals = 0;
     let at = |v0: f64| Initial::velocity(xi0, phi, v0);
     let scan_settings = if settings.method.adaptive() {
