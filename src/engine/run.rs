@@ -247,6 +247,20 @@ impl Run {
                     self.stop(s, t_stop);
                     return Ok(());
                 }
+                // Near a stop û locks onto ±q̂ (it relaxes at rate 1/|u|) and what is left is
+                // a nearly straight deceleration over the path |u| T / 2. The closed form misses
+                // the turn of u on the way: from the part of q across u (|q⊥|/decel of the path)
+                // and from Coriolis (~2T). dp54 takes the stop in closed form once that is well
+                // within its tolerance (the fixed-step methods keep to SNAP_T).
+                let path = 0.5 * speed * t_stop;
+                let turn = s.r.perp_dot(u).abs() / (speed * decel) + 2.0 * t_stop;
+                if self.settings.method.adaptive()
+                    && path * turn <= 0.1 * self.settings.tol
+                    && t_stop <= cap
+                {
+                    self.stop(s, t_stop);
+                    return Ok(());
+                }
                 cap = cap.min(STOP_CAP * t_stop);
                 if self.stiff {
                     cap = cap.min(speed);
@@ -265,6 +279,12 @@ impl Run {
             let after = frame.to_state(seg.y1, seg.t1()).u_lab().length();
             if after > speed - 0.5 * decel * seg.h {
                 self.stiff = true;
+            }
+            // Closing on a stop, the solution's derivatives grow like 1/|u|^k, so the step the
+            // tolerance allows shrinks in proportion to |u|: predicting that spares dp54 the
+            // rejected trial it would otherwise take at nearly every step of the approach.
+            if self.settings.method.adaptive() && speed / decel <= 4.0 * seg.h && after < speed {
+                self.h = self.h.min(seg.h * after / speed * 1.1);
             }
         }
         self.last = Some(seg);

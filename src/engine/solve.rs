@@ -297,12 +297,13 @@ fn close_in(
     mut lo: f64,
     mut hi: f64,
     mut est: f64,
-    slope: f64,
+    mut slope: f64,
     tol: f64,
     mut runs: u32,
     mut probe: impl FnMut(f64) -> Result<Probe, String>,
 ) -> Result<(f64, f64, u32), String> {
     let mut reach = 0.7 * tol;
+    let mut last_escape: Option<(f64, f64)> = None;
     for _ in 0..12 {
         if hi - lo <= tol {
             return Ok((lo, hi, runs));
@@ -317,6 +318,15 @@ fn close_in(
         let p = probe(x)?;
         if p.escapes {
             hi = x;
+            // The local slope from the last two escaping runs, when sane: at loose
+            // tolerances H bends near the saddle and the far secant's slope misleads.
+            if let (Some((x0, h0)), Some(h)) = (last_escape, p.h) {
+                let local = (h0 - h) / (x0 - x);
+                if local > 0.01 * slope && local < 100.0 * slope {
+                    slope = local;
+                }
+            }
+            last_escape = p.h.map(|h| (x, h));
             est = match p.h {
                 Some(h) if slope > 0.0 => (x - h / slope).min(x),
                 _ => 0.5 * (lo + hi),
