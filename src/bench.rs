@@ -239,6 +239,9 @@ pub struct Speed {
 #[derive(Clone, Debug, Serialize)]
 pub struct Report {
     pub config: Config,
+    /// /proc/loadavg when the bench ended: wall times on a shared machine are only as good as
+    /// the machine was idle (RHS evaluations do not depend on it).
+    pub load: Option<String>,
     pub reference: Vec<RefCheck>,
     pub rows: Vec<Row>,
     pub savings: Vec<Saving>,
@@ -812,8 +815,12 @@ pub fn run(cfg: &Config, mut progress: impl FnMut(&str)) -> Result<Report, Strin
 
     progress("speed goals");
     let speed = speed(cfg, &per_case)?;
+    let load = std::fs::read_to_string("/proc/loadavg")
+        .ok()
+        .map(|l| l.split_whitespace().take(3).collect::<Vec<_>>().join(" "));
     Ok(Report {
         config: cfg.clone(),
+        load,
         reference,
         rows,
         savings,
@@ -843,6 +850,13 @@ pub fn table(r: &Report) -> String {
         r.config.cases,
         r.config.seed
     );
+    if let Some(l) = &r.load {
+        let _ = writeln!(
+            o,
+            "load average {l} on {} cores (wall times are minima over runs; RHS counts do not depend on load)",
+            std::thread::available_parallelism().map_or(1, |n| n.get())
+        );
+    }
     let _ = writeln!(o, "\nreference and its own agreement:");
     for c in &r.reference {
         let _ = writeln!(
