@@ -2,6 +2,7 @@
 //! (Agha, Gupta & Joseph, Am. J. Phys. 83, 126 (2015)).
 
 pub mod app;
+pub mod bench;
 pub mod cli;
 pub mod engine;
 pub mod scene;

@@ -1,6 +1,7 @@
 //! Command-line interface: clap definitions and the headless commands. With no command the
 //! interactive explorer opens.
 
+mod bench;
 pub mod io;
 mod numerics;
 
@@ -42,6 +43,26 @@ pub enum Command {
     Critical(CriticalArgs),
     /// CSV for Fig. 5 (v_e over phi) or Fig. 6 (final rest xi over xi0).
     Sweep(SweepArgs),
+    /// Work–precision measurements: error against cost for every method (issue 5).
+    Bench(BenchArgs),
+}
+
+#[derive(Args, Debug)]
+pub struct BenchArgs {
+    /// A small bench that finishes in seconds (fewer settings, cases and angles).
+    #[arg(long)]
+    pub quick: bool,
+    #[arg(long)]
+    pub json: bool,
+    /// Draw error against cost (log–log) as braille charts.
+    #[arg(long)]
+    pub plot: bool,
+    /// Number of seeded random releases besides the paper's A, B and D.
+    #[arg(long)]
+    pub cases: Option<usize>,
+    /// Seed of the random releases.
+    #[arg(long)]
+    pub seed: Option<u64>,
 }
 
 /// The integrator, shared by every command.
@@ -225,6 +246,7 @@ pub fn main() -> ExitCode {
         Some(Command::Escape(a)) => numerics::escape(a),
         Some(Command::Critical(a)) => numerics::critical(a),
         Some(Command::Sweep(a)) => numerics::sweep(a),
+        Some(Command::Bench(a)) => bench::bench(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

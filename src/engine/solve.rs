@@ -77,38 +77,269 @@ fn scan(
     Ok((first, interval, runs))
 }
 
+/// `H = E + ξ − ½ = ½(|u|² − (1 − ξ)²)`: never increases (dH/dτ = −|u| + ξ′ ≤ 0, as
+/// |ξ′| ≤ |u| and dE/dτ = −|u|), and at ξ = 1 it is ½|u|² ≥ 0. So H < 0 at ξ < 1 certifies that
+/// the particle never reaches ξ = 1 again: it will stick. Near the saddle (ξ = 1, u = 0) H is
+/// nearly conserved, and its final value (−½(1 − ξ_rest)² when stuck, ½|u|² on crossing ξ = 1
+/// when escaping) is a smooth, nearly linear function of v0 through the escape speed.
+pub fn saddle_h(s: &crate::engine::State) -> f64 {
+    let gap = 1.0 - s.xi();
+    0.5 * (s.u_lab().length_squared() - gap * gap)
+}
+
+/// Outcome of one classifying run at speed v0, and the smooth measure H at its end when the
+/// run went all the way (see [`saddle_h`]).
+struct Probe {
+    escapes: bool,
+    h: Option<f64>,
+}
+
+/// Classifies the release at `initial` with `settings`. With `early`, a run stops as soon as it
+/// is certified to stick (H < 0 inside ξ < 1) and reports no H; otherwise a stuck run goes on
+/// to its stop, and H there is reported.
+fn probe(
+    initial: Initial,
+    settings: Settings,
+    early: bool,
+    evals: &mut u64,
+) -> Result<Probe, String> {
+    use super::run::Status;
+    let mut run = Run::new(initial, settings)?;
+    let result = loop {
+        if let Status::Stuck { q, .. } = run.status {
+            let gap = 1.0 - q.length();
+            break Probe {
+                escapes: false,
+                h: Some(-0.5 * gap * gap),
+            };
+        }
+        if let Some(e) = run.escape {
+            let s = run.state_at(e.tau);
+            let h = saddle_h(&s);
+            break Probe {
+                escapes: true,
+                h: (h > 0.0).then_some(h),
+            };
+        }
+        if run.tau() >= CLASSIFY_TAU {
+            // Lingering at the saddle: the threshold itself, counted as escaping.
+            break Probe {
+                escapes: true,
+                h: None,
+            };
+        }
+        if early {
+            let s = run.state();
+            if s.xi() < 1.0 && saddle_h(&s) < 0.0 {
+                break Probe {
+                    escapes: false,
+                    h: None,
+                };
+            }
+        }
+        if let Err(e) = run.step(CLASSIFY_TAU) {
+            *evals += run.cost.rhs_evals;
+            return Err(e.to_string());
+        }
+    };
+    *evals += run.cost.rhs_evals;
+    Ok(result)
+}
+
+/// Tolerance of the scan runs, which only need the outcome far from the threshold.
+const SCAN_TOL: f64 = 1e-6;
+/// A secant step this many times the target width or smaller means the estimate is good
+/// enough to try certifying it.
+const CERTIFY_STEP: f64 = 1e3;
+
 /// Escape speed v_e(ξ0, φ) (Sec. IV, Fig. 5): the least v0 for which the particle escapes,
-/// to within `tol`. A coarse scan brackets it and checks the escaping speeds form an interval;
-/// bisection on the outcome closes the bracket.
+/// to within `tol`, certified by a stuck run and an escaping run at most `tol` apart.
+///
+/// A coarse scan (at a loose tolerance, runs cut short by the stick certificate H < 0)
+/// brackets the threshold and checks the escaping speeds form an interval. Then regula falsi
+/// (Illinois) on H at the end of the run — smooth and nearly linear in v0 through the
+/// threshold, see [`saddle_h`] — closes in; once its steps are small, a pair of runs straddling
+/// the estimate by ±0.45 `tol` certifies it. Bisection on the outcome is the safeguard
+/// whenever H is unavailable or the secant makes poor progress.
 pub fn escape_speed(xi0: f64, phi: f64, settings: Settings, tol: f64) -> Result<Threshold, String> {
     if !(tol.is_finite() && tol > 0.0) {
         return Err(format!("tol must be > 0, got {tol}"));
     }
     Initial::velocity(xi0, phi, 0.0).validate()?;
+    if !settings.method.stick_events() {
+        return Err(format!(
+            "the escape speed needs stick events: {} never comes to rest",
+            settings.method
+        ));
+    }
     let mut evals = 0;
-    let mut classify = |v0: f64| -> Result<bool, String> {
-        let mut run = Run::new(Initial::velocity(xi0, phi, v0), settings)?;
-        let outcome = run.run(CLASSIFY_TAU, true).map_err(|e| e.to_string())?;
-        evals += run.cost.rhs_evals;
-        Ok(outcome != Outcome::Stuck)
+    let at = |v0: f64| Initial::velocity(xi0, phi, v0);
+    let scan_settings = if settings.method.adaptive() {
+        Settings {
+            tol: settings.tol.max(SCAN_TOL),
+            ..settings
+        }
+    } else {
+        settings
     };
     // Escape needs at most enough speed to reach ξ = 1 against full friction: a ceiling.
     let top = 2.0 * (1.0 + xi0) + 2.0;
     let grid: Vec<f64> = (0..=40).map(|i| top * i as f64 / 40.0).collect();
-    let (first, interval, scan_runs) = scan(&grid, &mut classify)?;
-    let (lo, hi, runs) = if first == 0 {
-        (0.0, 0.0, 0)
-    } else {
-        bisect(grid[first - 1], grid[first], tol, &mut classify)?
+    let (first, interval, mut runs) = scan(&grid, |v0| {
+        probe(at(v0), scan_settings, true, &mut evals).map(|p| p.escapes)
+    })?;
+    if first == 0 {
+        return Ok(Threshold {
+            value: 0.0,
+            stuck_at: 0.0,
+            escapes_at: 0.0,
+            interval,
+            runs,
+            rhs_evals: evals,
+        });
+    }
+    // The bracket, confirmed at the full settings (the scan ran looser).
+    let mut i = first;
+    let (mut lo, mut glo, mut hi, mut ghi);
+    loop {
+        runs += 2;
+        let a = probe(at(grid[i - 1]), settings, false, &mut evals)?;
+        let b = probe(at(grid[i]), settings, false, &mut evals)?;
+        match (a.escapes, b.escapes) {
+            (false, true) => {
+                (lo, glo, hi, ghi) = (grid[i - 1], a.h, grid[i], b.h);
+                break;
+            }
+            (true, _) if i > 1 => i -= 1,
+            (false, false) if i + 1 < grid.len() => i += 1,
+            _ => return Err("the escape speed could not be bracketed".into()),
+        }
+    }
+    // Secant on H through the latest two points, safeguarded by the bracket (Brent's rule:
+    // each secant step must at least halve the one before, else regula falsi or bisection).
+    let mut last2: [Option<(f64, f64)>; 2] = match (glo, ghi) {
+        (Some(a), Some(b)) => [Some((lo, a)), Some((hi, b))],
+        _ => [None, None],
     };
+    let mut prev_step = f64::INFINITY;
+    let mut certify = true;
+    while hi - lo > tol {
+        let secant = match (last2[0], last2[1]) {
+            (Some((v1, g1)), Some((v2, g2))) if certify && g1 != g2 => {
+                let c = v2 - g2 * (v2 - v1) / (g2 - g1);
+                (c > lo && c < hi && (c - v2).abs() < 0.5 * prev_step)
+                    .then_some((c, (c - v2).abs()))
+            }
+            _ => None,
+        };
+        if let Some((v, step)) = secant
+            && step <= CERTIFY_STEP * tol
+        {
+            certify = false;
+            let (Some((v1, g1)), Some((v2, g2))) = (last2[0], last2[1]) else {
+                unreachable!("a secant needs two points")
+            };
+            let slope = (g2 - g1) / (v2 - v1);
+            (lo, hi, runs) = close_in(lo, hi, v, slope, tol, runs, |x| {
+                probe(at(x), settings, true, &mut evals)
+            })?;
+            glo = None;
+            ghi = None;
+            continue;
+        }
+        let falsi = match (glo, ghi) {
+            (Some(a), Some(b)) if certify && a < 0.0 && b > 0.0 => {
+                let c = lo - a * (hi - lo) / (b - a);
+                (c > lo && c < hi).then_some(c)
+            }
+            _ => None,
+        };
+        let v = secant
+            .map(|(c, _)| c)
+            .or(falsi)
+            .unwrap_or(0.5 * (lo + hi))
+            .clamp(lo + 0.25 * tol, hi - 0.25 * tol);
+        if !(v > lo && v < hi) {
+            break;
+        }
+        prev_step = match (secant, last2[1]) {
+            (Some((_, step)), _) => step,
+            _ => f64::INFINITY,
+        };
+        runs += 1;
+        // Once certification has been tried, only outcomes are needed: bisection.
+        let p = probe(at(v), settings, !certify, &mut evals)?;
+        if let Some(g) = p.h {
+            last2 = [last2[1], Some((v, g))];
+        }
+        if p.escapes {
+            (hi, ghi) = (v, p.h);
+        } else {
+            (lo, glo) = (v, p.h);
+        }
+    }
     Ok(Threshold {
         value: 0.5 * (lo + hi),
         stuck_at: lo,
         escapes_at: hi,
         interval,
-        runs: scan_runs + runs,
+        runs,
         rhs_evals: evals,
     })
+}
+
+/// The last stage of [`escape_speed`]: from an estimate `est` of the root of H (slope `slope`
+/// in v0), runs that pass close to the saddle certify a bracket of width ≤ `tol`. Escaping runs
+/// there are the expensive ones (they crawl past the saddle), and each one's H pins the root
+/// (root ≈ v − H/slope), so an escaping run goes first, 0.7 `tol` above the estimate, and a
+/// stuck run then just inside the width. Falls back to bisection on the outcome.
+fn close_in(
+    mut lo: f64,
+    mut hi: f64,
+    mut est: f64,
+    mut slope: f64,
+    tol: f64,
+    mut runs: u32,
+    mut probe: impl FnMut(f64) -> Result<Probe, String>,
+) -> Result<(f64, f64, u32), String> {
+    let mut reach = 0.7 * tol;
+    let mut last_escape: Option<(f64, f64)> = None;
+    for _ in 0..12 {
+        if hi - lo <= tol {
+            return Ok((lo, hi, runs));
+        }
+        let x = if hi - est <= 0.94 * tol {
+            hi - 0.95 * tol
+        } else {
+            est + reach
+        };
+        let x = if x > lo && x < hi { x } else { 0.5 * (lo + hi) };
+        runs += 1;
+        let p = probe(x)?;
+        if p.escapes {
+            hi = x;
+            // The local slope from the last two escaping runs, when sane: at loose
+            // tolerances H bends near the saddle and the far secant's slope misleads.
+            if let (Some((x0, h0)), Some(h)) = (last_escape, p.h) {
+                let local = (h0 - h) / (x0 - x);
+                if local > 0.01 * slope && local < 100.0 * slope {
+                    slope = local;
+                }
+            }
+            last_escape = p.h.map(|h| (x, h));
+            est = match p.h {
+                Some(h) if slope > 0.0 => (x - h / slope).min(x),
+                _ => 0.5 * (lo + hi),
+            };
+        } else {
+            lo = x;
+            // Below the root after all: reach farther.
+            reach *= 2.0;
+            est = est.max(lo);
+        }
+    }
+    let (lo, hi, n) = bisect(lo, hi, tol, |x| probe(x).map(|p| p.escapes))?;
+    Ok((lo, hi, runs + n))
 }
 
 /// Critical radius ξ0c (Sec. IV, Fig. 6): the largest ξ0 at which a particle released at rest
@@ -137,22 +368,39 @@ pub fn critical_radius(settings: Settings, tol: f64) -> Result<Threshold, String
     })
 }
 
-/// Maps `f` over `items` on all available cores, keeping order.
+/// Maps `f` over `items` on all available cores, keeping order. Items are handed out one at a
+/// time (an atomic counter), so a few slow items (escape speeds near a saddle) do not leave a
+/// core idle as a fixed split would.
 pub fn par_map<T: Sync, R: Send>(items: &[T], f: impl Fn(&T) -> R + Sync) -> Vec<R> {
+    use std::sync::atomic::{AtomicUsize, Ordering};
     let threads = std::thread::available_parallelism()
         .map_or(1, |n| n.get())
         .min(items.len().max(1));
-    let chunk = items.len().div_ceil(threads.max(1)).max(1);
-    std::thread::scope(|scope| {
-        let handles: Vec<_> = items
-            .chunks(chunk)
-            .map(|c| scope.spawn(|| c.iter().map(&f).collect::<Vec<R>>()))
+    if threads <= 1 {
+        return items.iter().map(&f).collect();
+    }
+    let next = AtomicUsize::new(0);
+    let mut out: Vec<(usize, R)> = std::thread::scope(|scope| {
+        let handles: Vec<_> = (0..threads)
+            .map(|_| {
+                scope.spawn(|| {
+                    let mut done = Vec::new();
+                    loop {
+                        let i = next.fetch_add(1, Ordering::Relaxed);
+                        let Some(item) = items.get(i) else { break };
+                        done.push((i, f(item)));
+                    }
+                    done
+                })
+            })
             .collect();
         handles
             .into_iter()
             .flat_map(|h| h.join().expect("sweep worker panicked"))
             .collect()
-    })
+    });
+    out.sort_by_key(|(i, _)| *i);
+    out.into_iter().map(|(_, r)| r).collect()
 }
 
 /// One point of Fig. 5.

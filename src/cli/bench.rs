@@ -1,0 +1,39 @@
+//! `turntable bench`: the work–precision table, as text, JSON or braille charts.
+
+use super::io::emit;
+use super::{BenchArgs, CmdResult, Failure};
+use crate::bench::{self, Config};
+
+pub fn bench(a: BenchArgs) -> CmdResult {
+    let mut cfg = if a.quick {
+        Config::quick()
+    } else {
+        Config::full()
+    };
+    if let Some(n) = a.cases {
+        if n > 10_000 {
+            return Err(Failure::Usage(format!(
+                "cases must be at most 10000, got {n}"
+            )));
+        }
+        cfg.cases = n;
+    }
+    if let Some(s) = a.seed {
+        cfg.seed = s;
+    }
+    let report = bench::run(&cfg, |task| eprintln!("bench: {task}…")).map_err(Failure::Runtime)?;
+    let mut out = if a.json {
+        serde_json::to_string_pretty(&report).map_err(|e| Failure::Runtime(e.to_string()))? + "\n"
+    } else {
+        bench::table(&report)
+    };
+    if a.plot {
+        let tasks = ["rest", "drift τ=20", "v_e(0.5,0)"];
+        for t in tasks {
+            out.push('\n');
+            out.push_str(&bench::plot(&report, t, 64, 16));
+        }
+    }
+    emit(None, &out)?;
+    Ok(())
+}

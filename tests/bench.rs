@@ -1,0 +1,157 @@
+//! The work–precision bench: rows with finite errors, errors that shrink as the step or the
+//! tolerance tightens, the fixed-step methods' orders, and the fast escape speed against pure
+//! bisection. No test here depends on timing.
+
+use turntable::bench::{self, Config};
+use turntable::engine::solve::escape_speed;
+use turntable::engine::{Initial, Method, Outcome, Run, Settings};
+
+fn tiny() -> Config {
+    Config {
+        quick: true,
+        cases: 3,
+        seed: 7,
+        reps: 0,
+    }
+}
+
+#[test]
+fn quick_bench_rows_are_finite_and_converge() {
+    let report = bench::run(&tiny(), |_| {}).expect("bench runs");
+    assert!(!report.rows.is_empty());
+    for task in [
+        "rest",
+        "A@τ=0.5",
+        "drift τ=20",
+        "far τ=400 (rel)",
+        "v_e(0.5,0)",
+    ] {
+        assert!(
+            report.rows.iter().any(|r| r.task == task),
+            "task {task} missing"
+        );
+    }
+    for r in &report.rows {
+        assert!(
+            r.err_median.is_finite() && r.err_worst.is_finite() && r.err_median >= 0.0,
+            "{} {} {}: error {} / {}",
+            r.task,
+            r.method,
+            r.setting,
+            r.err_median,
+            r.err_worst
+        );
+        assert!(r.rhs_evals > 0);
+    }
+    // Errors shrink as dt / tol tighten (over two decades; single steps may wobble).
+    for m in ["rk2", "rk4", "dp54"] {
+        let rows: Vec<_> = report
+            .rows
+            .iter()
+            .filter(|r| r.task == "rest" && r.method == m)
+            .collect();
+        let first = rows.first().unwrap();
+        let last = rows.last().unwrap();
+        assert!(
+            last.err_median < 1e-2 * first.err_median,
+            "{m}: {} -> {}",
+            first.err_median,
+            last.err_median
+        );
+    }
+    // Stick events: no drift after the stop; the paper's raw scheme creeps.
+    let drift = |m: &str, s: &str| {
+        report
+            .rows
+            .iter()
+            .find(|r| r.task == "drift τ=20" && r.method == m && r.setting == s)
+            .unwrap()
+            .err_median
+    };
+    assert!(drift("rk2-raw", "dt=1e-3") > 1e3 * drift("rk2", "dt=1e-3"));
+    // The reference agrees with its cross-check.
+    for c in &report.reference {
+        assert!(c.agreement < 1e-6, "{}: {}", c.task, c.agreement);
+    }
+    // Every method gets the outcome right once accurate.
+    for r in report.rows.iter().filter(|r| r.task == "rest") {
+        if r.knob <= 1e-2 {
+            assert_eq!(r.wrong, 0, "{} {}", r.method, r.setting);
+        }
+    }
+    assert!(bench::table(&report).contains("rest"));
+    assert!(bench::plot(&report, "rest", 40, 10).contains('d'));
+    let json = serde_json::to_string(&report).unwrap();
+    assert!(json.contains("\"rows\""));
+}
+
+#[test]
+fn fixed_methods_show_their_order() {
+    // Case A before any stop (it stops near τ ≈ 1.4): a smooth stretch.
+    let a = Initial::velocity(0.5, std::f64::consts::PI, 1.0);
+    let mut run = Run::new(a, Settings::default()).unwrap();
+    let (outcome, end) = run.finish(100.0).unwrap();
+    assert_eq!(outcome, Outcome::Stuck);
+    assert!(end.tau > 0.6, "A stops at {}", end.tau);
+    for (m, p) in [(Method::Rk2, 2), (Method::Rk2Raw, 2), (Method::Rk4, 4)] {
+        let e1 = bench::position_error(a, m, 0.01, 0.5).unwrap();
+        let e2 = bench::position_error(a, m, 0.005, 0.5).unwrap();
+        let ratio = e1 / e2;
+        let want = 2f64.powi(p);
+        assert!(
+            (ratio / want - 1.0).abs() < 0.15,
+            "{m}: error ratio {ratio} (errors {e1:e}, {e2:e}), want ≈ {want}"
+        );
+    }
+}
+
+#[test]
+fn fast_escape_speed_matches_bisection_and_is_certified() {
+    let s = Settings::default();
+    for (xi0, phi) in [(0.5, 0.0), (0.8, 0.4), (0.2, 4.0)] {
+        let t = escape_speed(xi0, phi, s, 1e-8).unwrap();
+        assert!(t.stuck_at < t.escapes_at, "{t:?}");
+        assert!(t.escapes_at - t.stuck_at <= 1e-8, "{t:?}");
+        assert!(t.interval);
+        // The certificate itself: a run at each end, with the outcome claimed.
+        let end = |v0: f64| {
+            let mut run = Run::new(Initial::velocity(xi0, phi, v0), s).unwrap();
+            run.run(1e4, true).unwrap()
+        };
+        assert_eq!(end(t.stuck_at), Outcome::Stuck);
+        assert_eq!(end(t.escapes_at), Outcome::Escaped);
+        // Pure bisection on the outcome from the certified bracket's neighbourhood.
+        let (mut lo, mut hi) = (t.value - 1e-5, t.value + 1e-5);
+        assert_eq!(end(lo), Outcome::Stuck);
+        assert_eq!(end(hi), Outcome::Escaped);
+        while hi - lo > 1e-9 {
+            let mid = 0.5 * (lo + hi);
+            if end(mid) == Outcome::Escaped {
+                hi = mid
+            } else {
+                lo = mid
+            }
+        }
+        let v_bisect = 0.5 * (lo + hi);
+        assert!(
+            (t.value - v_bisect).abs() <= 1e-8,
+            "({xi0}, {phi}): fast {} against bisection {v_bisect}",
+            t.value
+        );
+    }
+    let t = escape_speed(0.5, 0.0, s, 1e-8).unwrap();
+    assert!((t.value - 0.607823644).abs() < 1e-8, "{}", t.value);
+}
+
+#[test]
+fn splitmix_is_deterministic() {
+    let a = bench::cases(5, 42);
+    let b = bench::cases(5, 42);
+    assert_eq!(a.len(), 8);
+    for ((_, x), (_, y)) in a.iter().zip(&b) {
+        assert_eq!(x, y);
+    }
+    for (_, x) in &a[3..] {
+        assert!((0.0..=0.9).contains(&x.xi0) && (0.0..=0.5).contains(&x.v0));
+    }
+}
