@@ -154,7 +154,7 @@ fn fig5_peaks_near_4_and_the_minimum_moves_with_xi0() {
             "xi0 {xi0}: peak at {}",
             max.phi
         );
-        let (phi, _) = easiest_angle(xi0, 72, Settings::dp54(1e-12), 1e-11, 1e-4).unwrap();
+        let (phi, _) = easiest_angle(xi0, 36, s, 1e-10, 1e-4).unwrap();
         assert!((phi - argmin).abs() < 1e-3, "xi0 {xi0}: minimum at {phi}");
     }
 }
