@@ -18,6 +18,8 @@ const SNAP_T: f64 = 1e-6;
 /// |u| instead of stopping. This many such steps in a row without |u| halving mean hovering:
 /// the stop is then taken in closed form.
 const HOVER_STEPS: u32 = 50;
+/// Hovering is a small-|u| failure: faster particles (far out, |u| ≈ ξ) are left alone.
+const HOVER_SPEED: f64 = 1e-3;
 /// A step is stiff once it is longer than this many |u|/|q|: the stability limit of the
 /// explicit methods on offer (RK2's is 2, RK4's 2.8, DOPRI5's 3.3).
 const STIFF: f64 = 2.0;
@@ -294,7 +296,7 @@ impl Run {
         };
         self.last = Some(seg);
         let speed = s.u_lab().length();
-        if seg.h * s.xi() < STIFF * speed {
+        if speed > HOVER_SPEED || seg.h * s.xi() < STIFF * speed {
             self.stiff_steps = 0;
         } else if self.stiff_steps == 0 || speed < 0.5 * self.stiff_speed {
             (self.stiff_steps, self.stiff_speed) = (1, speed);
