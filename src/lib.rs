@@ -4,6 +4,7 @@
 pub mod app;
 pub mod cli;
 pub mod engine;
+pub mod replay;
 pub mod scene;
 pub mod script;
 pub mod sim;

@@ -3,6 +3,7 @@
 
 pub mod io;
 mod numerics;
+pub mod replay;
 
 use crate::engine::{Frame, Initial, Method, Release, Settings};
 use clap::{Args, Parser, Subcommand};
@@ -30,6 +31,10 @@ pub struct Cli {
     /// Explorer: do not capture the mouse (M toggles it inside).
     #[arg(long)]
     pub no_mouse: bool,
+    /// Explorer: record the session (keys, ticks, resizes, mouse) as a key script to FILE,
+    /// written when the explorer exits; `turntable replay FILE` shows the same screens.
+    #[arg(long, value_name = "FILE")]
+    pub record: Option<PathBuf>,
 }
 
 #[derive(Subcommand, Debug)]
@@ -42,6 +47,8 @@ pub enum Command {
     Critical(CriticalArgs),
     /// CSV for Fig. 5 (v_e over phi) or Fig. 6 (final rest xi over xi0).
     Sweep(SweepArgs),
+    /// Run a key script headlessly and print its snapshots (see README, "Key scripts").
+    Replay(replay::ReplayArgs),
 }
 
 /// The integrator, shared by every command.
@@ -198,7 +205,8 @@ pub fn check_initial(i: &Initial) -> Result<(), Failure> {
 }
 
 /// Opens the explorer. Bad scenes or themes fail before the terminal is touched.
-fn explore(scene: &Option<String>, theme: &Option<String>, fps: u32, no_mouse: bool) -> CmdResult {
+fn explore(cli: &Cli) -> CmdResult {
+    let (scene, theme) = (&cli.scene, &cli.theme);
     let scene = match scene {
         Some(s) => crate::scene::Scene::load(s).map_err(Failure::Usage)?,
         None => crate::scene::Scene::default_scene(),
@@ -206,10 +214,15 @@ fn explore(scene: &Option<String>, theme: &Option<String>, fps: u32, no_mouse: b
     let no_color = std::env::var_os("NO_COLOR").is_some_and(|v| !v.is_empty());
     let theme = crate::theme::Theme::resolve(theme.as_deref(), no_color).map_err(Failure::Usage)?;
     let mut app = crate::app::App::new(scene, theme);
-    if no_mouse {
+    if cli.no_mouse {
         app.mouse = false;
     }
-    match crate::terminal::run(app, fps) {
+    let (result, recording) = crate::terminal::run(app, cli.fps, cli.record.is_some());
+    if let (Some(path), Some(script)) = (&cli.record, recording) {
+        io::write_atomic(path, script.as_bytes())
+            .map_err(|e| Failure::Runtime(format!("--record: {e}")))?;
+    }
+    match result {
         Ok(false) => Ok(()),
         Ok(true) => Err(Failure::Runtime("ended by a signal".into())),
         Err(e) => Err(Failure::Runtime(format!("terminal: {e}"))),
@@ -220,11 +233,12 @@ fn explore(scene: &Option<String>, theme: &Option<String>, fps: u32, no_mouse: b
 pub fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
-        None => explore(&cli.scene, &cli.theme, cli.fps, cli.no_mouse),
+        None => explore(&cli),
         Some(Command::Run(a)) => numerics::run(a),
         Some(Command::Escape(a)) => numerics::escape(a),
         Some(Command::Critical(a)) => numerics::critical(a),
         Some(Command::Sweep(a)) => numerics::sweep(a),
+        Some(Command::Replay(a)) => replay::run(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

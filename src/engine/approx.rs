@@ -24,7 +24,13 @@ pub fn table_rest(xi0: f64, tau: f64) -> (f64, f64, f64) {
     let h = tau / n as f64;
     let sum: f64 = (0..=n)
         .map(|i| {
-            let w = if i == 0 || i == n { 1.0 } else if i % 2 == 1 { 4.0 } else { 2.0 };
+            let w = if i == 0 || i == n {
+                1.0
+            } else if i % 2 == 1 {
+                4.0
+            } else {
+                2.0
+            };
             w * omega(h * i as f64)
         })
         .sum();
