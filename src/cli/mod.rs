@@ -213,6 +213,9 @@ fn explore(cli: &Cli) -> CmdResult {
     };
     let no_color = std::env::var_os("NO_COLOR").is_some_and(|v| !v.is_empty());
     let theme = crate::theme::Theme::resolve(theme.as_deref(), no_color).map_err(Failure::Usage)?;
+    if let Some(path) = &cli.record {
+        check_record_path(path)?;
+    }
     let mut app = crate::app::App::new(scene, theme);
     if cli.no_mouse {
         app.mouse = false;
@@ -227,6 +230,28 @@ fn explore(cli: &Cli) -> CmdResult {
         Ok(true) => Err(Failure::Runtime("ended by a signal".into())),
         Err(e) => Err(Failure::Runtime(format!("terminal: {e}"))),
     }
+}
+
+/// A `--record` file must be writable where it is named: fail before the session, not after.
+fn check_record_path(path: &std::path::Path) -> Result<(), Failure> {
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => std::path::Path::new("."),
+    };
+    if path.file_name().is_none() || path.is_dir() {
+        return Err(Failure::Usage(format!(
+            "--record {}: not a file name",
+            path.display()
+        )));
+    }
+    if !dir.is_dir() {
+        return Err(Failure::Usage(format!(
+            "--record {}: no such directory {}",
+            path.display(),
+            dir.display()
+        )));
+    }
+    Ok(())
 }
 
 /// Entry point of the binary.
