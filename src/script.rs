@@ -200,10 +200,15 @@ fn parse_line(line: &str, steps: &mut Vec<Step>, keys: &mut usize) -> Result<(),
                 "click" => MouseEventKind::Down(MouseButton::Left),
                 "drag" => MouseEventKind::Drag(MouseButton::Left),
                 "up" => MouseEventKind::Up(MouseButton::Left),
+                "scrollup" => MouseEventKind::ScrollUp,
+                "scrolldown" => MouseEventKind::ScrollDown,
                 _ => {
                     return Err((
                         action.column,
-                        format!("unknown mouse action '{}' (click, drag, up)", action.text),
+                        format!(
+                            "unknown mouse action '{}' (click, drag, up, scrollup, scrolldown)",
+                            action.text
+                        ),
                     ));
                 }
             };
@@ -398,6 +403,27 @@ impl Recorder {
         if self.ticks == MAX_TICKS {
             self.flush_ticks();
         }
+    }
+
+    /// Records a mouse event; returns false (and records nothing) for what
+    /// the format cannot express (presses and drags of buttons other than
+    /// the left one, plain moves, horizontal scrolling). Modifiers are
+    /// dropped and any button's release is written `up`: the app looks at
+    /// neither.
+    pub fn mouse(&mut self, event: &MouseEvent) -> bool {
+        let action = match event.kind {
+            MouseEventKind::Down(MouseButton::Left) => "click",
+            MouseEventKind::Drag(MouseButton::Left) => "drag",
+            MouseEventKind::Up(_) => "up",
+            MouseEventKind::ScrollUp => "scrollup",
+            MouseEventKind::ScrollDown => "scrolldown",
+            _ => return false,
+        };
+        self.flush_keys();
+        self.flush_ticks();
+        self.out
+            .push_str(&format!("mouse {action} {} {}\n", event.column, event.row));
+        true
     }
 
     /// Records a resize, clamped to [`MAX_SIZE`] so the script stays
@@ -750,5 +776,32 @@ mod tests {
             "{text}"
         );
         assert!(parse(&text).is_ok());
+    }
+
+    #[test]
+    fn recorder_writes_mouse_events() {
+        let ev = |kind, column, row| MouseEvent {
+            kind,
+            column,
+            row,
+            modifiers: KeyModifiers::NONE,
+        };
+        let events = [
+            ev(MouseEventKind::Down(MouseButton::Left), 3, 4),
+            ev(MouseEventKind::Drag(MouseButton::Left), 5, 6),
+            ev(MouseEventKind::Up(MouseButton::Left), 7, 8),
+            ev(MouseEventKind::ScrollUp, 1, 2),
+            ev(MouseEventKind::ScrollDown, 0, 0),
+        ];
+        let mut r = Recorder::new();
+        r.key(&KeyEvent::from(KeyCode::Up));
+        for e in &events {
+            assert!(r.mouse(e));
+        }
+        assert!(!r.mouse(&ev(MouseEventKind::Moved, 1, 1)));
+        assert!(!r.mouse(&ev(MouseEventKind::Down(MouseButton::Right), 1, 1)));
+        let mut expected = vec![Step::Key(KeyEvent::from(KeyCode::Up))];
+        expected.extend(events.iter().map(|e| Step::Mouse(*e)));
+        assert_eq!(parse(&r.finish()), Ok(expected));
     }
 }

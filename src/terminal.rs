@@ -3,13 +3,13 @@
 //! when paused (no redraw when idle).
 
 use crate::app::App;
-use crossterm::event::{self, DisableMouseCapture, EnableMouseCapture, Event, KeyEventKind};
+use crate::replay::Session;
+use crossterm::event::{self, DisableMouseCapture, EnableMouseCapture, Event};
 use crossterm::terminal::{
     BeginSynchronizedUpdate, EndSynchronizedUpdate, EnterAlternateScreen, LeaveAlternateScreen,
     disable_raw_mode, enable_raw_mode,
 };
 use crossterm::{cursor, execute};
-use ratatui::Terminal;
 use ratatui::backend::CrosstermBackend;
 use std::io::{self, Stdout, Write};
 use std::sync::Arc;
@@ -30,7 +30,7 @@ pub fn restore() {
     let _ = out.flush();
 }
 
-fn setup(mouse: bool) -> io::Result<Terminal<CrosstermBackend<Stdout>>> {
+fn setup(mouse: bool) -> io::Result<CrosstermBackend<Stdout>> {
     let hook = std::panic::take_hook();
     std::panic::set_hook(Box::new(move |info| {
         restore();
@@ -42,57 +42,63 @@ fn setup(mouse: bool) -> io::Result<Terminal<CrosstermBackend<Stdout>>> {
     if mouse {
         execute!(out, EnableMouseCapture)?;
     }
-    Terminal::new(CrosstermBackend::new(out))
+    Ok(CrosstermBackend::new(out))
 }
 
 /// Runs the explorer until quit or a terminating signal. `fps` caps the frame rate.
-/// Returns whether a signal (SIGTERM, SIGHUP, SIGINT) ended it.
-pub fn run(mut app: App, fps: u32) -> io::Result<bool> {
+/// Returns whether a signal (SIGTERM, SIGHUP, SIGINT) ended it, and with `record` the
+/// session as a key script (also after a signal or an error, as far as it got).
+pub fn run(app: App, fps: u32, record: bool) -> (io::Result<bool>, Option<String>) {
     let stop = Arc::new(AtomicBool::new(false));
     for sig in [
         signal_hook::consts::SIGTERM,
         signal_hook::consts::SIGHUP,
         signal_hook::consts::SIGINT,
     ] {
-        signal_hook::flag::register(sig, Arc::clone(&stop))?;
+        if let Err(e) = signal_hook::flag::register(sig, Arc::clone(&stop)) {
+            return (Err(e), None);
+        }
     }
-    let mut term = match setup(app.mouse_capture()) {
-        Ok(t) => t,
+    let mouse = app.mouse_capture();
+    let mut session = match setup(mouse).and_then(|b| Session::new(app, b, record)) {
+        Ok(s) => s,
         Err(e) => {
             restore();
-            return Err(e);
+            return (Err(e), None);
         }
     };
-    let result = event_loop(&mut term, &mut app, fps.clamp(1, 240), &stop);
+    let result = event_loop(&mut session, fps.clamp(1, 240), &stop);
     restore();
-    result.map(|()| stop.load(Ordering::Relaxed))
+    (
+        result.map(|()| stop.load(Ordering::Relaxed)),
+        session.take_recording(),
+    )
 }
 
 fn event_loop(
-    term: &mut Terminal<CrosstermBackend<Stdout>>,
-    app: &mut App,
+    session: &mut Session<CrosstermBackend<Stdout>>,
     fps: u32,
     stop: &AtomicBool,
 ) -> io::Result<()> {
     let frame = Duration::from_secs(1) / fps;
     let mut next_tick = Instant::now() + frame;
-    let mut mouse_on = app.mouse_capture();
-    while !app.should_quit() && !stop.load(Ordering::Relaxed) {
-        if app.mouse_capture() != mouse_on {
-            mouse_on = app.mouse_capture();
+    let mut mouse_on = session.app.mouse_capture();
+    while !session.app.should_quit() && !stop.load(Ordering::Relaxed) {
+        if session.app.mouse_capture() != mouse_on {
+            mouse_on = session.app.mouse_capture();
             if mouse_on {
-                execute!(term.backend_mut(), EnableMouseCapture)?;
+                execute!(session.term.backend_mut(), EnableMouseCapture)?;
             } else {
-                execute!(term.backend_mut(), DisableMouseCapture)?;
+                execute!(session.term.backend_mut(), DisableMouseCapture)?;
             }
         }
-        if app.needs_redraw() {
-            execute!(term.backend_mut(), BeginSynchronizedUpdate)?;
-            term.draw(|f| crate::ui::draw(f, app))?;
-            execute!(term.backend_mut(), EndSynchronizedUpdate)?;
+        if session.app.needs_redraw() {
+            execute!(session.term.backend_mut(), BeginSynchronizedUpdate)?;
+            session.draw()?;
+            execute!(session.term.backend_mut(), EndSynchronizedUpdate)?;
         }
         // Paused: wait for input (waking now and then only to notice signals).
-        let timeout = if app.is_playing() {
+        let timeout = if session.app.is_playing() {
             next_tick.saturating_duration_since(Instant::now())
         } else {
             Duration::from_millis(250)
@@ -101,9 +107,9 @@ fn event_loop(
             // Take everything queued before drawing again, so held keys cannot lag.
             loop {
                 match event::read()? {
-                    Event::Key(k) if k.kind != KeyEventKind::Release => app.handle_key(k),
-                    Event::Mouse(m) => app.handle_mouse(m),
-                    Event::Resize(..) => app.invalidate(),
+                    Event::Key(k) => session.key(k),
+                    Event::Mouse(m) => session.mouse(m)?,
+                    Event::Resize(w, h) => session.resized(w, h),
                     _ => {}
                 }
                 if !event::poll(Duration::ZERO)? {
@@ -111,10 +117,12 @@ fn event_loop(
                 }
             }
         }
+        // Time passes only through ticks, and a recording counts them: a replay of it
+        // needs no clock.
         let now = Instant::now();
-        if app.is_playing() {
+        if session.app.is_playing() {
             if now >= next_tick {
-                app.tick();
+                session.tick();
                 next_tick += frame;
                 if next_tick < now {
                     next_tick = now + frame;

@@ -4,6 +4,7 @@
 mod bench;
 pub mod io;
 mod numerics;
+pub mod replay;
 
 use crate::engine::{Frame, Initial, Method, Release, Settings};
 use clap::{Args, Parser, Subcommand};
@@ -31,6 +32,10 @@ pub struct Cli {
     /// Explorer: do not capture the mouse (M toggles it inside).
     #[arg(long)]
     pub no_mouse: bool,
+    /// Explorer: record the session (keys, ticks, resizes, mouse) as a key script to FILE,
+    /// written when the explorer exits; `turntable replay FILE` shows the same screens.
+    #[arg(long, value_name = "FILE")]
+    pub record: Option<PathBuf>,
 }
 
 #[derive(Subcommand, Debug)]
@@ -45,6 +50,8 @@ pub enum Command {
     Sweep(SweepArgs),
     /// Work–precision measurements: error against cost for every method (issue 5).
     Bench(BenchArgs),
+    /// Run a key script headlessly and print its snapshots (see README, "Key scripts").
+    Replay(replay::ReplayArgs),
 }
 
 #[derive(Args, Debug)]
@@ -219,34 +226,66 @@ pub fn check_initial(i: &Initial) -> Result<(), Failure> {
 }
 
 /// Opens the explorer. Bad scenes or themes fail before the terminal is touched.
-fn explore(scene: &Option<String>, theme: &Option<String>, fps: u32, no_mouse: bool) -> CmdResult {
+fn explore(cli: &Cli) -> CmdResult {
+    let (scene, theme) = (&cli.scene, &cli.theme);
     let scene = match scene {
         Some(s) => crate::scene::Scene::load(s).map_err(Failure::Usage)?,
         None => crate::scene::Scene::default_scene(),
     };
     let no_color = std::env::var_os("NO_COLOR").is_some_and(|v| !v.is_empty());
     let theme = crate::theme::Theme::resolve(theme.as_deref(), no_color).map_err(Failure::Usage)?;
+    if let Some(path) = &cli.record {
+        check_record_path(path)?;
+    }
     let mut app = crate::app::App::new(scene, theme);
-    if no_mouse {
+    if cli.no_mouse {
         app.mouse = false;
     }
-    match crate::terminal::run(app, fps) {
+    let (result, recording) = crate::terminal::run(app, cli.fps, cli.record.is_some());
+    if let (Some(path), Some(script)) = (&cli.record, recording) {
+        io::write_atomic(path, script.as_bytes())
+            .map_err(|e| Failure::Runtime(format!("--record: {e}")))?;
+    }
+    match result {
         Ok(false) => Ok(()),
         Ok(true) => Err(Failure::Runtime("ended by a signal".into())),
         Err(e) => Err(Failure::Runtime(format!("terminal: {e}"))),
     }
 }
 
+/// A `--record` file must be writable where it is named: fail before the session, not after.
+fn check_record_path(path: &std::path::Path) -> Result<(), Failure> {
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => std::path::Path::new("."),
+    };
+    if path.file_name().is_none() || path.is_dir() {
+        return Err(Failure::Usage(format!(
+            "--record {}: not a file name",
+            path.display()
+        )));
+    }
+    if !dir.is_dir() {
+        return Err(Failure::Usage(format!(
+            "--record {}: no such directory {}",
+            path.display(),
+            dir.display()
+        )));
+    }
+    Ok(())
+}
+
 /// Entry point of the binary.
 pub fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
-        None => explore(&cli.scene, &cli.theme, cli.fps, cli.no_mouse),
+        None => explore(&cli),
         Some(Command::Run(a)) => numerics::run(a),
         Some(Command::Escape(a)) => numerics::escape(a),
         Some(Command::Critical(a)) => numerics::critical(a),
         Some(Command::Sweep(a)) => numerics::sweep(a),
         Some(Command::Bench(a)) => bench::bench(a),
+        Some(Command::Replay(a)) => replay::run(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -1,0 +1,300 @@
+//! Golden screens: every `tests/replay/NAME.keys` is replayed and compared with
+//! `tests/replay/NAME.txt`. A `# replay: OPTIONS` comment in a script gives the options
+//! (`--size WxH`, `--ansi`, `--theme T`, `--scene S`), so that
+//! `turntable replay OPTIONS tests/replay/NAME.keys` prints exactly the golden.
+//!
+//! Refresh the goldens after an intended change to the screen with
+//! `UPDATE_GOLDENS=1 cargo test --release --test replay`, and review the diff.
+
+use crossterm::event::{KeyEvent, MouseButton, MouseEvent, MouseEventKind};
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+use turntable::app::{App, KEYMAP, keymap::event_for};
+use turntable::replay::{Options, Session, plain_text, replay};
+use turntable::scene::Scene;
+use turntable::script::parse;
+use turntable::theme::Theme;
+
+fn dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/replay")
+}
+
+/// The app and options a script's `# replay:` line asks for.
+fn setup(script: &str) -> (App, Options) {
+    let mut opts = Options::default();
+    let (mut scene, mut theme) = (Scene::default_scene(), Theme::builtin("dark").unwrap());
+    for line in script.lines() {
+        let Some(args) = line.strip_prefix("# replay:") else {
+            continue;
+        };
+        let mut it = args.split_whitespace();
+        while let Some(a) = it.next() {
+            match a {
+                "--ansi" => opts.ansi = true,
+                "--size" => {
+                    opts.size =
+                        turntable::cli::replay::parse_size(it.next().expect("--size WxH")).unwrap()
+                }
+                "--theme" => theme = Theme::load(it.next().expect("--theme NAME")).unwrap(),
+                "--scene" => scene = Scene::load(it.next().expect("--scene NAME")).unwrap(),
+                other => panic!("unknown replay option {other}"),
+            }
+        }
+    }
+    (App::new(scene, theme), opts)
+}
+
+fn run_script(script: &str) -> String {
+    let (app, opts) = setup(script);
+    replay(app, &parse(script).expect("script parses"), &opts)
+}
+
+/// The first few differing lines, numbered, expected against actual.
+fn line_diff(expected: &str, actual: &str) -> String {
+    let (e, a): (Vec<_>, Vec<_>) = (expected.lines().collect(), actual.lines().collect());
+    let mut out = String::new();
+    let mut shown = 0;
+    for i in 0..e.len().max(a.len()) {
+        let (x, y) = (e.get(i), a.get(i));
+        if x == y {
+            continue;
+        }
+        let show = |l: Option<&&str>| l.map_or("<missing>".to_string(), |l| format!("{l:?}"));
+        out.push_str(&format!(
+            "  line {}:\n    expected {}\n    actual   {}\n",
+            i + 1,
+            show(x),
+            show(y)
+        ));
+        shown += 1;
+        if shown == 8 {
+            out.push_str("  ...\n");
+            break;
+        }
+    }
+    if out.is_empty() && expected != actual {
+        out.push_str("  (the texts differ only in line endings)\n");
+    }
+    out
+}
+
+#[test]
+fn goldens() {
+    let update = std::env::var_os("UPDATE_GOLDENS").is_some_and(|v| !v.is_empty());
+    let mut scripts: Vec<PathBuf> = std::fs::read_dir(dir())
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|x| x == "keys"))
+        .collect();
+    scripts.sort();
+    assert!(scripts.len() >= 15, "only {} scripts", scripts.len());
+    let mut failures = Vec::new();
+    for path in &scripts {
+        let script = std::fs::read_to_string(path).unwrap();
+        let actual = run_script(&script);
+        let golden = path.with_extension("txt");
+        if update {
+            std::fs::write(&golden, &actual).unwrap();
+            continue;
+        }
+        let expected = std::fs::read_to_string(&golden).unwrap_or_default();
+        if expected != actual {
+            failures.push(format!(
+                "{} differs from {}:\n{}",
+                path.display(),
+                golden.display(),
+                line_diff(&expected, &actual)
+            ));
+        }
+    }
+    assert!(
+        failures.is_empty(),
+        "{}\nIf the change is intended: UPDATE_GOLDENS=1 cargo test --release --test replay",
+        failures.join("\n")
+    );
+    // No stale goldens.
+    for e in std::fs::read_dir(dir()).unwrap() {
+        let p = e.unwrap().path();
+        if p.extension().is_some_and(|x| x == "txt") {
+            assert!(
+                p.with_extension("keys").exists(),
+                "{} has no script",
+                p.display()
+            );
+        }
+    }
+}
+
+#[test]
+fn line_diff_names_lines() {
+    let d = line_diff("a\nb\nc\n", "a\nB\nc\nd\n");
+    assert!(
+        d.contains("line 2:\n    expected \"b\"\n    actual   \"B\""),
+        "{d}"
+    );
+    assert!(
+        d.contains("line 4:\n    expected <missing>\n    actual   \"d\""),
+        "{d}"
+    );
+    assert!(!d.contains("line 1:"));
+}
+
+#[test]
+fn the_same_script_gives_the_same_bytes() {
+    let script = std::fs::read_to_string(dir().join("theme-light.keys")).unwrap();
+    assert_eq!(run_script(&script), run_script(&script));
+}
+
+/// A tiny deterministic generator (splitmix64).
+struct Rng(u64);
+
+impl Rng {
+    fn next(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
+    fn below(&mut self, n: u64) -> u64 {
+        self.next() % n
+    }
+}
+
+/// A live session is recorded through the same `Session` the interactive loop uses (ticks
+/// only while playing, as the loop calls them); replaying the recording gives the same
+/// final screen.
+#[test]
+fn record_then_replay_gives_the_same_screen() {
+    for seed in 1..=4u64 {
+        let mut rng = Rng(seed);
+        let theme = Theme::builtin("dark").unwrap();
+        let mut app = App::new(Scene::default_scene(), theme.clone());
+        let tmp = std::env::temp_dir().join(format!("turntable-record-{}", std::process::id()));
+        app.save_path = tmp.join("scene.toml");
+        let mut s = Session::headless(app, 80, 24, true);
+        let keys: Vec<KeyEvent> = KEYMAP
+            .iter()
+            .filter(|b| !matches!(b.action, turntable::app::Action::Quit))
+            .filter(|b| !matches!(b.action, turntable::app::Action::Save))
+            .map(event_for)
+            .collect();
+        for _ in 0..400 {
+            match rng.below(20) {
+                0 => {
+                    let (w, h) = [(80, 24), (60, 16), (100, 30), (30, 8)][rng.below(4) as usize];
+                    s.term.backend_mut().resize(w, h);
+                    s.resized(w, h);
+                }
+                1..=3 => {
+                    let kind = [
+                        MouseEventKind::Down(MouseButton::Left),
+                        MouseEventKind::Drag(MouseButton::Left),
+                        MouseEventKind::Up(MouseButton::Left),
+                        MouseEventKind::ScrollUp,
+                    ][rng.below(4) as usize];
+                    let ev = MouseEvent {
+                        kind,
+                        column: rng.below(80) as u16,
+                        row: rng.below(24) as u16,
+                        modifiers: crossterm::event::KeyModifiers::NONE,
+                    };
+                    s.mouse(ev).unwrap();
+                }
+                4..=9 => s.key(keys[rng.below(keys.len() as u64) as usize]),
+                _ => {
+                    for _ in 0..rng.below(8) {
+                        if s.app.is_playing() {
+                            s.tick();
+                        }
+                    }
+                }
+            }
+            // The loop draws whenever something changed.
+            if rng.below(2) == 0 {
+                s.draw_if_needed().unwrap();
+            }
+        }
+        let live = plain_text(s.screen());
+        let tau = s.app.now().tau;
+        let script = s.take_recording().unwrap();
+        let steps = parse(&script).expect("a recording parses");
+        let fresh = App::new(Scene::default_scene(), theme);
+        let out = replay(fresh, &steps, &Options::default());
+        let (head, screen) = out.split_once('\n').unwrap();
+        assert!(head.contains(&format!("tau={tau:.3}")), "{head}");
+        assert_eq!(screen, live, "seed {seed}:\n{}", line_diff(&live, screen));
+    }
+}
+
+fn binary() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_turntable"))
+}
+
+#[test]
+fn cli_reads_stdin_and_reports_parse_errors() {
+    use std::io::Write;
+    let mut child = binary()
+        .args(["replay", "--size", "40x12", "-"])
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .spawn()
+        .unwrap();
+    child
+        .stdin
+        .take()
+        .unwrap()
+        .write_all(b"tick 3\nsnapshot a b\n")
+        .unwrap();
+    let out = child.wait_with_output().unwrap();
+    assert!(out.status.success());
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(
+        text.starts_with("--- snapshot 1: a b (40x12, tau=0.150)\n"),
+        "{text}"
+    );
+
+    let bad = std::env::temp_dir().join(format!("turntable-bad-{}.keys", std::process::id()));
+    std::fs::write(&bad, "tick 3\n\n  Right*0\n").unwrap();
+    let out = binary().arg("replay").arg(&bad).output().unwrap();
+    let _ = std::fs::remove_file(&bad);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8(out.stderr).unwrap();
+    assert_eq!(
+        err,
+        format!(
+            "error: {}: line 3, column 3: repeat count 0 is out of range 1..=100000\n",
+            bad.display()
+        )
+    );
+    assert!(out.stdout.is_empty());
+}
+
+#[test]
+fn cli_output_matches_the_golden_and_ignores_no_color() {
+    let path = dir().join("theme-mono.keys");
+    let golden = std::fs::read_to_string(path.with_extension("txt")).unwrap();
+    for no_color in ["", "1"] {
+        let out = binary()
+            .args(["replay", "--ansi", "--theme", "mono", "--size", "60x16"])
+            .arg(&path)
+            .env("NO_COLOR", no_color)
+            .output()
+            .unwrap();
+        assert!(out.status.success());
+        assert_eq!(String::from_utf8(out.stdout).unwrap(), golden);
+    }
+    // Plain text does not depend on the theme.
+    let plain = |theme: &str| {
+        let out = binary()
+            .args(["replay", "--theme", theme])
+            .arg(dir().join("preset-B.keys"))
+            .env("NO_COLOR", "1")
+            .output()
+            .unwrap();
+        String::from_utf8(out.stdout).unwrap()
+    };
+    let golden = std::fs::read_to_string(dir().join("preset-B.txt")).unwrap();
+    assert_eq!(plain("light"), golden);
+    assert_eq!(plain("mono"), golden);
+}
