@@ -73,9 +73,10 @@ fn quick_bench_rows_are_finite_and_converge() {
     for c in &report.reference {
         assert!(c.agreement < 1e-6, "{}: {}", c.task, c.agreement);
     }
-    // Every method gets the outcome right once accurate.
+    // Every method gets the outcome right once accurate: dt ≤ 1e-2, or tol ≤ 1e-6 (looser
+    // dp54 tolerances misjudge releases near the escape threshold).
     for r in report.rows.iter().filter(|r| r.task == "rest") {
-        if r.knob <= 1e-2 {
+        if r.knob <= if r.method == "dp54" { 1e-6 } else { 1e-2 } {
             assert_eq!(r.wrong, 0, "{} {}", r.method, r.setting);
         }
     }
