@@ -202,14 +202,8 @@ fn bad_values_are_refused() {
 /// on 100 seeded releases away from the escape threshold.
 #[test]
 fn outcomes_agree_across_methods() {
-    let mut z = 7u64;
-    let mut next = || {
-        z = z.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut x = z;
-        x = (x ^ (x >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        x = (x ^ (x >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        ((x ^ (x >> 31)) >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut rng = turntable::bench::SplitMix64(7);
+    let mut next = || rng.unit();
     for _ in 0..100 {
         let i = Initial::velocity(1.2 * next(), TAU * next(), 1.5 * next());
         let (a, sa) = finish(i, Settings::dp54(1e-10), 1e3);

@@ -8,24 +8,7 @@ use turntable::replay::{Session, plain_text};
 use turntable::scene::{PRESETS, Scene};
 use turntable::theme::{BUILTIN, Theme};
 
-/// splitmix64: tiny, deterministic, good enough to pick keys.
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-    fn below(&mut self, n: u64) -> u64 {
-        self.next() % n
-    }
-    fn pick<T: Copy>(&mut self, xs: &[T]) -> T {
-        xs[self.below(xs.len() as u64) as usize]
-    }
-}
+use turntable::bench::SplitMix64 as Rng;
 
 /// "NaN" or "inf" as a word (Rust's spelling of non-finite floats), anywhere on screen.
 fn non_finite(screen: &str) -> Option<&str> {

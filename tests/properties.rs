@@ -6,19 +6,10 @@ use turntable::engine::method::Dense;
 use turntable::engine::model::{Frame, Y, friction};
 use turntable::engine::{Initial, Method, Outcome, Run, Settings, Status};
 
-/// splitmix64: a tiny deterministic generator, so failures reproduce.
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn initial(&mut self) -> Initial {
-        Initial::velocity(1.5 * self.next(), TAU * self.next(), 2.0 * self.next())
-    }
+use turntable::bench::SplitMix64 as Rng;
+
+fn random_release(rng: &mut Rng) -> Initial {
+    Initial::velocity(1.5 * rng.unit(), TAU * rng.unit(), 2.0 * rng.unit())
 }
 
 /// (τ, ξ, ξ′, θ′) along a run.
@@ -44,7 +35,7 @@ fn sampled(i: Initial, tau_max: f64) -> Vec<Sample> {
 fn property_1_at_rest_inside_xi_1_stays_at_rest() {
     let mut rng = Rng(1);
     for _ in 0..200 {
-        let q = glam::DVec2::from_angle(TAU * rng.next()) * rng.next();
+        let q = glam::DVec2::from_angle(TAU * rng.unit()) * rng.unit();
         // Static friction balances the centrifugal pull: no acceleration in the table frame.
         let a = Frame::Table.rhs(Y {
             p: q,
@@ -68,7 +59,7 @@ fn property_1_at_rest_inside_xi_1_stays_at_rest() {
 fn properties_2_and_3_hold_along_random_runs() {
     let mut rng = Rng(2);
     for _ in 0..60 {
-        let i = rng.initial();
+        let i = random_release(&mut rng);
         let samples = sampled(i, 8.0);
         let mut outward = false;
         let mut prograde = false;
@@ -94,7 +85,7 @@ fn property_4_escaping_runs_end_with_theta_dot_between_0_and_1() {
     let mut rng = Rng(4);
     let mut escaped = 0;
     for _ in 0..40 {
-        let i = Initial::velocity(1.5 * rng.next(), TAU * rng.next(), 1.0 + 2.0 * rng.next());
+        let i = Initial::velocity(1.5 * rng.unit(), TAU * rng.unit(), 1.0 + 2.0 * rng.unit());
         let mut run = Run::new(i, Settings::dp54(1e-10)).unwrap();
         if run.run(300.0, false).unwrap() != Outcome::Escaped {
             continue;
@@ -127,7 +118,7 @@ fn energy_identity_holds_on_every_dp54_run() {
     let mut rng = Rng(5);
     for tol in [1e-10, 1e-12] {
         for _ in 0..50 {
-            let i = rng.initial();
+            let i = random_release(&mut rng);
             let mut run = Run::new(i, Settings::dp54(tol)).unwrap();
             let e0 = run.state().energy();
             let mut work = 0.0;
@@ -194,7 +185,7 @@ fn fixed_step_methods_show_their_order() {
 fn outcomes_agree_across_frames() {
     let mut rng = Rng(6);
     for _ in 0..40 {
-        let i = rng.initial();
+        let i = random_release(&mut rng);
         let lab = Run::new(i, Settings::dp54(1e-11))
             .unwrap()
             .finish(200.0)

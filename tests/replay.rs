@@ -145,21 +145,7 @@ fn the_same_script_gives_the_same_bytes() {
     assert_eq!(run_script(&script), run_script(&script));
 }
 
-/// A tiny deterministic generator (splitmix64).
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-    fn below(&mut self, n: u64) -> u64 {
-        self.next() % n
-    }
-}
+use turntable::bench::SplitMix64 as Rng;
 
 /// A live session is recorded through the same `Session` the interactive loop uses (ticks
 /// only while playing, as the loop calls them); replaying the recording gives the same
