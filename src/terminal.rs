@@ -50,14 +50,9 @@ fn setup(mouse: bool) -> io::Result<CrosstermBackend<Stdout>> {
 /// session as a key script (also after a signal or an error, as far as it got).
 pub fn run(app: App, fps: u32, record: bool) -> (io::Result<bool>, Option<String>) {
     let stop = Arc::new(AtomicBool::new(false));
-    for sig in [
-        signal_hook::consts::SIGTERM,
-        signal_hook::consts::SIGHUP,
-        signal_hook::consts::SIGINT,
-    ] {
-        if let Err(e) = signal_hook::flag::register(sig, Arc::clone(&stop)) {
-            return (Err(e), None);
-        }
+    let finished = Arc::new(AtomicBool::new(false));
+    if let Err(e) = watch_signals(Arc::clone(&stop), Arc::clone(&finished)) {
+        return (Err(e), None);
     }
     let mouse = app.mouse_capture();
     let mut session = match setup(mouse).and_then(|b| Session::new(app, b, record)) {
@@ -68,11 +63,33 @@ pub fn run(app: App, fps: u32, record: bool) -> (io::Result<bool>, Option<String
         }
     };
     let result = event_loop(&mut session, fps.clamp(1, 240), &stop);
+    finished.store(true, Ordering::Relaxed);
     restore();
     (
         result.map(|()| stop.load(Ordering::Relaxed)),
         session.take_recording(),
     )
+}
+
+/// A terminating signal asks the event loop to stop. If the terminal is gone (a dropped ssh
+/// connection, a killed tmux), crossterm's `poll` spins on the closed tty and never returns:
+/// then, after a grace period, this thread restores what it can and ends the process.
+fn watch_signals(stop: Arc<AtomicBool>, finished: Arc<AtomicBool>) -> io::Result<()> {
+    use signal_hook::consts::{SIGHUP, SIGINT, SIGTERM};
+    let mut signals = signal_hook::iterator::Signals::new([SIGTERM, SIGHUP, SIGINT])?;
+    std::thread::spawn(move || {
+        if signals.forever().next().is_some() {
+            stop.store(true, Ordering::Relaxed);
+            std::thread::sleep(Duration::from_millis(600));
+            if !finished.load(Ordering::Relaxed) {
+                restore();
+                // The terminal may be gone: a failed write must not panic this thread.
+                let _ = writeln!(io::stderr(), "turntable: ended by a signal");
+                std::process::exit(1);
+            }
+        }
+    });
+    Ok(())
 }
 
 fn event_loop(

@@ -8,6 +8,7 @@ pub mod replay;
 
 use crate::engine::{Frame, Initial, Method, Release, Settings};
 use clap::{Args, Parser, Subcommand};
+use std::io::Write;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -290,11 +291,11 @@ pub fn main() -> ExitCode {
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(Failure::Usage(m)) => {
-            eprintln!("error: {m}");
+            let _ = writeln!(std::io::stderr(), "error: {m}");
             ExitCode::from(2)
         }
         Err(Failure::Runtime(m)) => {
-            eprintln!("error: {m}");
+            let _ = writeln!(std::io::stderr(), "error: {m}");
             ExitCode::from(1)
         }
     }
