@@ -23,8 +23,6 @@ const HOVER_SPEED: f64 = 1e-3;
 /// A step is stiff once it is longer than this many |u|/|q|: the stability limit of the
 /// explicit methods on offer (RK2's is 2, RK4's 2.8, DOPRI5's 3.3).
 const STIFF: f64 = 2.0;
-/// û counts as turned onto q̂ within this cosine (about 2.6°).
-const ALIGNED: f64 = 0.999;
 /// How escape was certified (CONVENTIONS.md "Outcomes"; Sec. II, property 2).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "kebab-case")]
@@ -399,7 +397,9 @@ impl Run {
         // Steps too long for û to be resolved, with û already on q̂: the radial end game is
         // then exact to O(|u|²) and the explicit step is not.
         let stiff = self.natural_step() * rho >= STIFF * speed;
-        let aligned = s.r.dot(u) >= ALIGNED * rho * speed;
+        // û on q̂ to within an angle α whose share of the energy, s²(1 − cos α), the end game
+        // may neglect.
+        let aligned = speed * (speed - s.r.dot(u) / rho) <= self.travel_tol();
         let end_game = self.stiff_steps >= HOVER_STEPS || (stiff && aligned);
         if gap > 0.0 && speed < gap {
             let t = (speed / gap).atanh();
@@ -431,6 +431,10 @@ impl Run {
             return Ahead::Clear;
         }
         let t = speed / decel;
+        if stiff && !aligned && t > SNAP_T {
+            // Not yet on q̂: steps within the stability limit let û turn as it does.
+            return Ahead::Cap((STOP_CAP * t).min(speed / rho));
+        }
         if t <= SNAP_T {
             // Constant deceleration over a tiny interval.
             Ahead::Jump {
