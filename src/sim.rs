@@ -2,6 +2,7 @@
 //! samples to step back through, and only the work the scene needs (stuck: closed-form
 //! rotation; escaped and out of view: no more steps).
 
+use crate::engine::method::TOL_RANGE;
 use crate::engine::run::{Outcome, Run, RunError, Status};
 use crate::engine::{Initial, Settings, State};
 
@@ -101,5 +102,45 @@ impl Sim {
     /// One tick back through history.
     pub fn back(&mut self) {
         self.cursor = self.cursor.saturating_sub(1);
+    }
+}
+
+/// How far the state on screen is from a shadow run at a tighter setting.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ErrorEstimate {
+    pub tau: f64,
+    /// |Δr| in the lab frame.
+    pub error: f64,
+    /// The shadow run's tolerance (dp54) and its cost.
+    pub tol: f64,
+    pub rhs_evals: u64,
+}
+
+impl Sim {
+    /// An error estimate for the state on screen, from a shadow run with dp54 at a tolerance
+    /// 1000× tighter than the run's own (at most 1e-13). Computed only when asked.
+    pub fn error_estimate(&self) -> Result<ErrorEstimate, String> {
+        let own = if self.run.settings.method.adaptive() {
+            self.run.settings.tol
+        } else {
+            1e-10
+        };
+        let tol = (own * 1e-3).clamp(TOL_RANGE.0, 1e-13);
+        let now = self.now();
+        let mut shadow = Run::new(
+            self.run.initial,
+            Settings {
+                tol,
+                ..Settings::dp54(tol)
+            },
+        )?;
+        shadow.run(now.tau, false).map_err(|e| e.to_string())?;
+        let error = (shadow.state_at(now.tau).r - now.r).length();
+        Ok(ErrorEstimate {
+            tau: now.tau,
+            error,
+            tol,
+            rhs_evals: shadow.cost.rhs_evals,
+        })
     }
 }

@@ -191,6 +191,7 @@ fn every_key_in_the_keymap_does_what_its_help_says() {
             Action::Preset(i) => a.scene.name == PRESETS[i] && now == 0.0,
             Action::ToggleCompare => a.paper.is_some() && after.contains("paper: rk2-raw"),
             Action::ToggleForces => a.forces && after.contains("Coriolis"),
+            Action::EstimateError => after.contains("|Δr| ="),
             Action::ZoomIn => a.zoom > zoom,
             Action::ZoomOut => a.zoom < zoom,
             Action::Pan(dx, dy) => {
@@ -444,4 +445,26 @@ fn every_builtin_theme_renders_every_preset() {
             a.check_invariants().unwrap();
         }
     }
+}
+
+/// `e` estimates the error of the state on screen from a shadow run: tiny for the default
+/// dp54, large for the paper's raw RK2 once it has crept past the stop.
+#[test]
+fn error_estimate_tells_converged_from_creeping() {
+    let mut a = app("B");
+    assert!(a.is_playing());
+    for _ in 0..80 {
+        a.tick();
+    }
+    let e = a.sim.error_estimate().unwrap();
+    assert!(e.tau > 3.0 && e.error < 1e-9, "{e:?}");
+    key(&mut a, 'e');
+    assert!(render(&mut a, 100, 30).contains("|Δr| ="));
+    let mut raw =
+        turntable::sim::Sim::new(a.initial, turntable::engine::Settings::paper(), 10.0).unwrap();
+    for _ in 0..80 {
+        raw.advance(0.05);
+    }
+    let e = raw.error_estimate().unwrap();
+    assert!(e.error > 1e-4 && e.error < 1e-2, "{e:?}");
 }

@@ -29,6 +29,8 @@ pub enum Action {
     Preset(usize),
     ToggleCompare,
     ToggleForces,
+    /// Estimate the error of the state on screen from a shadow run at a tighter setting.
+    EstimateError,
     ZoomIn,
     ZoomOut,
     /// Pan the view by this fraction of the half-width (x right, y up).

@@ -89,6 +89,7 @@ pub const KEYMAP: &[Binding] = &[
     b(ch('c'), N, Action::ToggleCompare, "compare: paper's RK2", "integrator"),
     b(ch('f'), N, Action::ToggleFrame, "frame lab ↔ rotating", "view"),
     b(ch('a'), N, Action::ToggleForces, "force arrows", "view"),
+    b(ch('e'), N, Action::EstimateError, "error estimate (shadow)", "integrator"),
     b(ch('+'), N, Action::ZoomIn, "zoom in / out", "view"),
     b(ch('='), N, Action::ZoomIn, "zoom in / out", "view"),
     b(ch('-'), N, Action::ZoomOut, "zoom in / out", "view"),

@@ -123,6 +123,15 @@ pub fn update(app: &mut App, action: Action) {
             }
         }
         Action::ToggleForces => app.forces = !app.forces,
+        Action::EstimateError => {
+            app.notice = Some(match app.sim.error_estimate() {
+                Ok(e) => format!(
+                    "error at τ = {:.3}: |Δr| = {:.1e} against dp54 tol={:.0e} ({} RHS)",
+                    e.tau, e.error, e.tol, e.rhs_evals
+                ),
+                Err(e) => format!("no estimate: {e}"),
+            });
+        }
         Action::ZoomIn => app.zoom = (app.zoom * 1.5).min(ZOOM_RANGE.1),
         Action::ZoomOut => app.zoom = (app.zoom / 1.5).max(ZOOM_RANGE.0),
         Action::Pan(dx, dy) => app.pan += glam::DVec2::new(dx, dy) / app.zoom,

@@ -65,27 +65,30 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) {
         .style(Style::default().bg(th.background).fg(th.foreground));
     let inner = block.inner(popup);
     f.render_widget(block, popup);
-    let mut cols: [Vec<Line>; 2] = [Vec::new(), Vec::new()];
-    let groups = rows();
-    let total: usize = groups.iter().map(|(_, r)| r.len() + 1).sum();
-    let mut n = 0;
-    for (g, rs) in groups {
-        let c = usize::from(n >= total.div_ceil(2) && n > 0);
-        n += rs.len() + 1;
-        cols[c].push(Line::from(Span::styled(
+    // Two columns of equal height; a long group may run on into the second.
+    let mut lines: Vec<Line> = Vec::new();
+    let mut headers = Vec::new();
+    for (g, rs) in rows() {
+        headers.push(lines.len());
+        lines.push(Line::from(Span::styled(
             g.to_string(),
             Style::default().fg(th.accent).add_modifier(Modifier::BOLD),
         )));
         for (k, help) in rs {
-            cols[c].push(Line::from(vec![
+            lines.push(Line::from(vec![
                 Span::styled(format!(" {k:<13}"), Style::default().fg(th.notice)),
                 Span::styled(help.to_string(), Style::default().fg(th.foreground)),
             ]));
         }
     }
+    let mut half = lines.len().div_ceil(2);
+    if headers.contains(&(half - 1)) {
+        half -= 1; // no header left alone at the foot of a column
+    }
+    let b = lines.split_off(half);
+    let a = lines;
     let halves =
         Layout::horizontal([Constraint::Percentage(50), Constraint::Percentage(50)]).split(inner);
-    let [a, b] = cols;
     f.render_widget(Paragraph::new(a), halves[0]);
     f.render_widget(Paragraph::new(b), halves[1]);
 }
