@@ -38,14 +38,6 @@ impl Method {
     pub fn stick_events(self) -> bool {
         self != Method::Rk2Raw
     }
-    /// Order of accuracy on smooth stretches.
-    pub fn order(self) -> u32 {
-        match self {
-            Method::Rk2Raw | Method::Rk2 => 2,
-            Method::Rk4 => 4,
-            Method::Dp54 => 5,
-        }
-    }
 }
 
 impl fmt::Display for Method {

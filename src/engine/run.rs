@@ -1,8 +1,8 @@
 //! One integration run with its events: stick–slip (Sec. II, property 1) located inside the
 //! step, the escape certificate (property 2 and the energy bound), and cost counters.
 
-use super::method::{Controller, Cost, Dense, Method, Segment, Settings, dp5_step, fixed_step};
-use super::model::{Frame, Initial, State, Y, rotate, zcross};
+use super::method::{Controller, Cost, Dense, Segment, Settings, dp5_step, fixed_step};
+use super::model::{Initial, State, Y, rotate, zcross};
 use glam::DVec2;
 use serde::Serialize;
 use std::fmt;
@@ -507,13 +507,6 @@ impl Run {
         let tau = illinois(g, seg.t0, seg.t1(), 1e-13);
         let by = certificate(&state(tau)).unwrap_or(Certificate::Radial);
         Escape { tau, by }
-    }
-
-    pub fn method(&self) -> Method {
-        self.settings.method
-    }
-    pub fn frame(&self) -> Frame {
-        self.settings.frame
     }
 }
 

@@ -10,18 +10,6 @@ use serde::Serialize;
 /// exactly at a threshold, where the particle lingers at the saddle ξ = 1, u = 0.
 pub const CLASSIFY_TAU: f64 = 1e4;
 
-/// Whether the particle released with `initial` escapes. `None` if it neither sticks nor is
-/// certified within [`CLASSIFY_TAU`].
-pub fn escapes(initial: Initial, settings: Settings) -> Result<Option<bool>, String> {
-    let mut run = Run::new(initial, settings)?;
-    let outcome = run.run(CLASSIFY_TAU, true).map_err(|e| e.to_string())?;
-    Ok(match outcome {
-        Outcome::Escaped => Some(true),
-        Outcome::Stuck => Some(false),
-        Outcome::Running => None,
-    })
-}
-
 /// A threshold located by bisection on the outcome, with its certificate: a run on each side.
 #[derive(Clone, Copy, Debug, Serialize, PartialEq)]
 pub struct Threshold {
