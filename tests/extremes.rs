@@ -214,3 +214,48 @@ fn outcomes_agree_across_methods() {
         }
     }
 }
+
+/// The command line refuses bad input with one line on stderr and exit code 2.
+#[test]
+fn the_cli_refuses_bad_input_with_exit_code_2() {
+    let bin = env!("CARGO_BIN_EXE_turntable");
+    for args in [
+        &["run", "--xi0", "nan"][..],
+        &["run", "--v0", "-1"],
+        &["run", "--tol", "0"],
+        &["run", "--method", "rk4", "--dt", "1e9"],
+        &["run", "--method", "dp54", "--dt", "1e-3"],
+        &["run", "--tau-max", "inf"],
+        &["escape", "--xi0", "0.5", "--method", "rk2-raw"],
+        &["critical", "--xtol", "0"],
+        &["sweep", "fig5", "--points", "0"],
+    ] {
+        let out = std::process::Command::new(bin).args(args).output().unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        assert!(
+            err.starts_with("error: ") && err.lines().count() == 1,
+            "{args:?}: {err}"
+        );
+        assert!(out.stdout.is_empty(), "{args:?}");
+    }
+    // A run that cannot finish within its budget says so and exits 1.
+    let out = std::process::Command::new(bin)
+        .args([
+            "run",
+            "--v0",
+            "0.6",
+            "--method",
+            "rk2",
+            "--dt",
+            "1e-7",
+            "--max-steps",
+            "1000",
+            "--tau-max",
+            "10",
+        ])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("step budget"));
+}

@@ -115,6 +115,19 @@ pub fn run(a: RunArgs) -> CmdResult {
     Ok(())
 }
 
+/// Settings for the solvers, which classify runs by how they end: the paper's raw scheme never
+/// comes to rest, so it cannot.
+fn solver_settings(n: &super::NumericsArgs) -> Result<crate::engine::Settings, Failure> {
+    let s = n.settings()?;
+    if !s.method.stick_events() {
+        return Err(Failure::Usage(format!(
+            "{} has no stick event, so its runs never come to rest: the solvers need dp54, rk4 or rk2",
+            s.method
+        )));
+    }
+    Ok(s)
+}
+
 fn positive(name: &str, x: f64) -> Result<(), Failure> {
     if x.is_finite() && x > 0.0 {
         Ok(())
@@ -128,7 +141,7 @@ fn positive(name: &str, x: f64) -> Result<(), Failure> {
 pub fn escape(a: EscapeArgs) -> CmdResult {
     check_initial(&Initial::velocity(a.xi0, a.phi, 0.0))?;
     positive("vtol", a.vtol)?;
-    let settings = a.numerics.settings()?;
+    let settings = solver_settings(&a.numerics)?;
     let t = escape_speed(a.xi0, a.phi, settings, a.vtol).map_err(Failure::Runtime)?;
     if a.json {
         let v = json!({
@@ -152,7 +165,7 @@ pub fn escape(a: EscapeArgs) -> CmdResult {
 
 pub fn critical(a: CriticalArgs) -> CmdResult {
     positive("xtol", a.xtol)?;
-    let settings = a.numerics.settings()?;
+    let settings = solver_settings(&a.numerics)?;
     let t = critical_radius(settings, a.xtol).map_err(Failure::Runtime)?;
     if a.json {
         let v = json!({
@@ -180,7 +193,7 @@ pub fn sweep(a: SweepArgs) -> CmdResult {
             a.points
         )));
     }
-    let settings = a.numerics.settings()?;
+    let settings = solver_settings(&a.numerics)?;
     let mut csv = String::new();
     if a.figure == "fig5" {
         for &xi0 in &a.xi0 {
