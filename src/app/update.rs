@@ -40,11 +40,7 @@ pub fn update(app: &mut App, action: Action) {
             }
         }
         Action::CycleMethod => {
-            let i = Method::ALL
-                .iter()
-                .position(|m| *m == app.settings.method)
-                .unwrap_or(0);
-            app.settings.method = Method::ALL[(i + 1) % Method::ALL.len()];
+            app.settings.method = next_of(&Method::ALL, app.settings.method);
             app.restart();
         }
         Action::Loosen | Action::Tighten => {
@@ -76,11 +72,7 @@ pub fn update(app: &mut App, action: Action) {
             app.restart();
         }
         Action::CycleRelease => {
-            let i = Release::ALL
-                .iter()
-                .position(|r| *r == app.initial.release)
-                .unwrap_or(0);
-            app.initial.release = Release::ALL[(i + 1) % Release::ALL.len()];
+            app.initial.release = next_of(&Release::ALL, app.initial.release);
             app.restart();
         }
         Action::ResetScene => {
@@ -183,4 +175,10 @@ fn round_sig(x: f64) -> f64 {
     let e = x.abs().log10().floor() as i32;
     let m = 10f64.powi(11 - e);
     (x * m).round() / m
+}
+
+/// The item after `x` in `all`, wrapping round.
+fn next_of<T: Copy + PartialEq>(all: &[T], x: T) -> T {
+    let i = all.iter().position(|a| *a == x).unwrap_or(0);
+    all[(i + 1) % all.len()]
 }
