@@ -1,0 +1,86 @@
+//! The headless commands as a user runs them: JSON fields and the trajectory file.
+
+use std::process::Command;
+
+fn turntable(args: &[&str]) -> (i32, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_turntable"))
+        .args(args)
+        .output()
+        .unwrap();
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8(out.stdout).unwrap(),
+    )
+}
+
+fn field(json: &str, key: &str) -> String {
+    let v: serde_json::Value = serde_json::from_str(json).unwrap();
+    v[key].to_string()
+}
+
+#[test]
+fn run_json_and_trajectory_agree() {
+    let path = std::env::temp_dir().join(format!("turntable-traj-{}.csv", std::process::id()));
+    let p = path.to_str().unwrap();
+    let (code, out) = turntable(&[
+        "run",
+        "--xi0",
+        "0.5",
+        "--phi",
+        "0",
+        "--v0",
+        "0.6",
+        "--json",
+        "--trajectory",
+        p,
+    ]);
+    assert_eq!(code, 0);
+    assert_eq!(field(&out, "outcome"), "\"stuck\"");
+    let xi: f64 = field(&out, "xi").parse().unwrap();
+    assert!((xi - 0.9452679655).abs() < 1e-9, "{xi}");
+    let steps: usize = field(&out, "steps").parse().unwrap();
+    let csv = std::fs::read_to_string(&path).unwrap();
+    std::fs::remove_file(&path).unwrap();
+    let rows: Vec<Vec<f64>> = csv
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').map(|x| x.parse().unwrap()).collect())
+        .collect();
+    assert_eq!(csv.lines().next().unwrap(), "tau,x,y,xq,yq,u,stuck");
+    // One row per step, plus the start and the closed-form stop.
+    assert!(
+        rows.len() >= steps + 1,
+        "{} rows for {steps} steps",
+        rows.len()
+    );
+    let last = rows.last().unwrap();
+    assert_eq!((last[5], last[6]), (0.0, 1.0));
+    assert!(((last[3] * last[3] + last[4] * last[4]).sqrt() - xi).abs() < 1e-12);
+    assert!(
+        rows[..rows.len() - 1]
+            .iter()
+            .all(|r| r[6] == 0.0 && r[5] > 0.0)
+    );
+    let tau: f64 = field(&out, "tau").parse().unwrap();
+    assert_eq!(last[0], tau);
+}
+
+#[test]
+fn escape_and_critical_print_their_values() {
+    let (code, out) = turntable(&["escape", "--xi0", "0.5", "--phi", "0", "--json"]);
+    assert_eq!(code, 0);
+    let v: f64 = field(&out, "v_escape").parse().unwrap();
+    assert!((v - 0.60782364).abs() < 2e-8, "{v}");
+    let (code, out) = turntable(&["critical", "--json"]);
+    assert_eq!(code, 0);
+    let x: f64 = field(&out, "xi0c").parse().unwrap();
+    assert!((x - 0.87204386).abs() < 1e-7, "{x}");
+    let (code, out) = turntable(&["sweep", "fig6", "--points", "11"]);
+    assert_eq!(code, 0);
+    let lines: Vec<&str> = out.lines().collect();
+    assert_eq!(lines[0], "xi0,outcome,xi,angle");
+    assert!(
+        lines[9].starts_with("0.8,stuck,") && lines[10].starts_with("0.9,escaped,"),
+        "{out}"
+    );
+}
