@@ -48,11 +48,7 @@ fn run_json_and_trajectory_agree() {
         .collect();
     assert_eq!(csv.lines().next().unwrap(), "tau,x,y,xq,yq,u,stuck");
     // One row per step, plus the start and the closed-form stop.
-    assert!(
-        rows.len() >= steps + 1,
-        "{} rows for {steps} steps",
-        rows.len()
-    );
+    assert!(rows.len() > steps, "{} rows for {steps} steps", rows.len());
     let last = rows.last().unwrap();
     assert_eq!((last[5], last[6]), (0.0, 1.0));
     assert!(((last[3] * last[3] + last[4] * last[4]).sqrt() - xi).abs() < 1e-12);
