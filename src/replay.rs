@@ -156,6 +156,61 @@ impl Session<TestBackend> {
     }
 }
 
+/// `WxH`, each at most the scripts' own limit.
+pub fn parse_size(s: &str) -> Result<(u16, u16), String> {
+    let bad = || format!("bad size '{s}': expected WxH, e.g. 80x24");
+    let (w, h) = s.split_once(['x', 'X']).ok_or_else(bad)?;
+    let n = |t: &str| -> Result<u16, String> {
+        if t.is_empty() || !t.bytes().all(|b| b.is_ascii_digit()) {
+            return Err(bad());
+        }
+        match t.parse::<u16>() {
+            Ok(v) if v <= crate::script::MAX_SIZE => Ok(v),
+            _ => Err(format!(
+                "size {t} out of range 0..={}",
+                crate::script::MAX_SIZE
+            )),
+        }
+    };
+    Ok((n(w)?, n(h)?))
+}
+
+/// What a script asks for itself, in `# replay: [--size WxH] [--ansi] [--scene S] [--theme T]`
+/// comment lines (a recording names its scene this way); command-line flags take precedence.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct ScriptOptions {
+    pub size: Option<(u16, u16)>,
+    pub ansi: bool,
+    pub scene: Option<String>,
+    pub theme: Option<String>,
+}
+
+pub fn script_options(text: &str) -> Result<ScriptOptions, String> {
+    let mut o = ScriptOptions::default();
+    for (n, line) in text.lines().enumerate() {
+        let Some(args) = line.trim_start().strip_prefix("# replay:") else {
+            continue;
+        };
+        let mut it = args.split_whitespace();
+        while let Some(a) = it.next() {
+            let mut value = || {
+                it.next()
+                    .ok_or_else(|| format!("line {}: {a} needs a value", n + 1))
+            };
+            match a {
+                "--ansi" => o.ansi = true,
+                "--size" => {
+                    o.size = Some(parse_size(value()?).map_err(|e| format!("line {}: {e}", n + 1))?)
+                }
+                "--scene" => o.scene = Some(value()?.to_string()),
+                "--theme" => o.theme = Some(value()?.to_string()),
+                other => return Err(format!("line {}: unknown replay option '{other}'", n + 1)),
+            }
+        }
+    }
+    Ok(o)
+}
+
 /// How to run a script.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Options {

@@ -10,7 +10,7 @@ use crossterm::event::{KeyEvent, MouseButton, MouseEvent, MouseEventKind};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use turntable::app::{App, KEYMAP, keymap::event_for};
-use turntable::replay::{Options, Session, plain_text, replay};
+use turntable::replay::{DEFAULT_SIZE, Options, Session, plain_text, replay, script_options};
 use turntable::scene::Scene;
 use turntable::script::parse;
 use turntable::theme::Theme;
@@ -21,26 +21,15 @@ fn dir() -> PathBuf {
 
 /// The app and options a script's `# replay:` line asks for.
 fn setup(script: &str) -> (App, Options) {
-    let mut opts = Options::default();
-    let (mut scene, mut theme) = (Scene::default_scene(), Theme::builtin("dark").unwrap());
-    for line in script.lines() {
-        let Some(args) = line.strip_prefix("# replay:") else {
-            continue;
-        };
-        let mut it = args.split_whitespace();
-        while let Some(a) = it.next() {
-            match a {
-                "--ansi" => opts.ansi = true,
-                "--size" => {
-                    opts.size =
-                        turntable::cli::replay::parse_size(it.next().expect("--size WxH")).unwrap()
-                }
-                "--theme" => theme = Theme::load(it.next().expect("--theme NAME")).unwrap(),
-                "--scene" => scene = Scene::load(it.next().expect("--scene NAME")).unwrap(),
-                other => panic!("unknown replay option {other}"),
-            }
-        }
-    }
+    let own = script_options(script).unwrap();
+    let scene = own
+        .scene
+        .map_or_else(Scene::default_scene, |s| Scene::load(&s).unwrap());
+    let theme = Theme::load(own.theme.as_deref().unwrap_or("dark")).unwrap();
+    let opts = Options {
+        size: own.size.unwrap_or(DEFAULT_SIZE),
+        ansi: own.ansi,
+    };
     (App::new(scene, theme), opts)
 }
 

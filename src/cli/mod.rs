@@ -243,7 +243,12 @@ fn explore(cli: &Cli) -> CmdResult {
         app.mouse = false;
     }
     let (result, recording) = crate::terminal::run(app, cli.fps, cli.record.is_some());
-    if let (Some(path), Some(script)) = (&cli.record, recording) {
+    if let (Some(path), Some(mut script)) = (&cli.record, recording) {
+        // The recording names its scene, so that `replay FILE` alone opens the same one.
+        if let Some(s) = &cli.scene {
+            let at = script.find('\n').map_or(0, |i| i + 1);
+            script.insert_str(at, &format!("# replay: --scene {s}\n"));
+        }
         io::write_atomic(path, script.as_bytes())
             .map_err(|e| Failure::Runtime(format!("--record: {e}")))?;
     }

@@ -1,7 +1,7 @@
 //! `turntable replay SCRIPT`: a key script run headlessly, its snapshots on stdout.
 
 use super::{CmdResult, Failure};
-use crate::replay::{Options, replay};
+use crate::replay::{Options, parse_size, replay, script_options};
 use clap::Args;
 use std::io::{Read, Write};
 
@@ -10,38 +10,21 @@ pub struct ReplayArgs {
     /// The key script (`-` reads stdin).
     #[arg(value_name = "SCRIPT")]
     pub script: String,
-    /// Initial size of the off-screen terminal, WxH (a `resize` step changes it).
-    #[arg(long, value_name = "WxH", default_value = "80x24", value_parser = parse_size)]
-    pub size: (u16, u16),
+    /// Initial size of the off-screen terminal, WxH (a `resize` step changes it); default the
+    /// script's `# replay: --size` line, else 80x24.
+    #[arg(long, value_name = "WxH", value_parser = parse_size)]
+    pub size: Option<(u16, u16)>,
     /// Style the snapshots with ANSI colour escape sequences.
     #[arg(long)]
     pub ansi: bool,
-    /// Scene to open, a preset (A, B, C, D, fig1, fig2) or a .toml file.
+    /// Scene to open, a preset (A, B, C, D, fig1, fig2) or a .toml file; default the script's
+    /// `# replay: --scene` line (a recording writes one), else the explorer's default.
     #[arg(long, value_name = "NAME|PATH")]
     pub scene: Option<String>,
     /// Colour theme (dark, light, high-contrast, mono) or a .toml file; only --ansi shows it.
     /// NO_COLOR is ignored so that the output depends on the arguments alone.
     #[arg(long, value_name = "NAME|PATH")]
     pub theme: Option<String>,
-}
-
-/// `WxH`, each at most the scripts' own limit.
-pub fn parse_size(s: &str) -> Result<(u16, u16), String> {
-    let bad = || format!("bad size '{s}': expected WxH, e.g. 80x24");
-    let (w, h) = s.split_once(['x', 'X']).ok_or_else(bad)?;
-    let n = |t: &str| -> Result<u16, String> {
-        if t.is_empty() || !t.bytes().all(|b| b.is_ascii_digit()) {
-            return Err(bad());
-        }
-        match t.parse::<u16>() {
-            Ok(v) if v <= crate::script::MAX_SIZE => Ok(v),
-            _ => Err(format!(
-                "size {t} out of range 0..={}",
-                crate::script::MAX_SIZE
-            )),
-        }
-    };
-    Ok((n(w)?, n(h)?))
 }
 
 pub fn run(a: ReplayArgs) -> CmdResult {
@@ -57,20 +40,20 @@ pub fn run(a: ReplayArgs) -> CmdResult {
     };
     let steps =
         crate::script::parse(&text).map_err(|e| Failure::Usage(format!("{}: {e}", a.script)))?;
-    let scene = match &a.scene {
+    let own = script_options(&text).map_err(|e| Failure::Usage(format!("{}: {e}", a.script)))?;
+    let scene = match a.scene.as_ref().or(own.scene.as_ref()) {
         Some(s) => crate::scene::Scene::load(s).map_err(Failure::Usage)?,
         None => crate::scene::Scene::default_scene(),
     };
-    let theme = crate::theme::Theme::resolve(a.theme.as_deref(), false).map_err(Failure::Usage)?;
+    let theme = a.theme.as_ref().or(own.theme.as_ref());
+    let theme =
+        crate::theme::Theme::resolve(theme.map(String::as_str), false).map_err(Failure::Usage)?;
     let app = crate::app::App::new(scene, theme);
-    let out = replay(
-        app,
-        &steps,
-        &Options {
-            size: a.size,
-            ansi: a.ansi,
-        },
-    );
+    let opts = Options {
+        size: a.size.or(own.size).unwrap_or(crate::replay::DEFAULT_SIZE),
+        ansi: a.ansi || own.ansi,
+    };
+    let out = replay(app, &steps, &opts);
     let mut so = std::io::stdout().lock();
     so.write_all(out.as_bytes())?;
     so.flush()?;
@@ -90,5 +73,26 @@ mod tests {
         assert!(parse_size("80x").is_err());
         assert!(parse_size("-1x5").is_err());
         assert!(parse_size("1001x5").is_err());
+    }
+
+    #[test]
+    fn a_script_names_its_own_options() {
+        let o = script_options(
+            "# turntable key script\n# replay: --scene B --size 60x16\n# replay: --ansi\nx\n",
+        )
+        .unwrap();
+        assert_eq!(
+            (o.scene.as_deref(), o.size, o.ansi, o.theme),
+            (Some("B"), Some((60, 16)), true, None)
+        );
+        assert_eq!(
+            script_options("# replay: --size").unwrap_err(),
+            "line 1: --size needs a value"
+        );
+        assert!(
+            script_options("\n# replay: --fast")
+                .unwrap_err()
+                .starts_with("line 2: unknown")
+        );
     }
 }
