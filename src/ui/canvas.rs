@@ -24,15 +24,16 @@ pub fn in_frame(s: &State, frame: Frame) -> DVec2 {
     }
 }
 
-/// The auto-framed half-width: the table, the release point and everything the trails
-/// reached, a little beyond.
+/// The auto-framed half-width: the table, the release point and everything the run's trail
+/// reached, a little beyond. The paper's run beside it may widen the view by half at most, so
+/// when it escapes it is seen leaving rather than shrinking the table to a dot.
 pub fn auto_extent(app: &App) -> f64 {
-    let mut m = app.initial.xi0.max(1.0);
-    for sim in std::iter::once(&app.sim).chain(app.paper.as_ref()) {
-        for s in sim.trail() {
-            m = m.max(s.xi());
-        }
-    }
+    let reach = |sim: &crate::sim::Sim| sim.trail().iter().fold(0.0, |m: f64, s| m.max(s.xi()));
+    let own = reach(&app.sim).max(app.initial.xi0).max(1.0);
+    let m = app
+        .paper
+        .as_ref()
+        .map_or(own, |p| own.max(reach(p).min(1.5 * own)));
     (m * 1.1)
         .max(1.5)
         .min(crate::app::state::view_radius(&app.initial) * 1.1)
