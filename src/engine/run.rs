@@ -23,6 +23,7 @@ const HOVER_SPEED: f64 = 1e-3;
 /// A step is stiff once it is longer than this many |u|/|q|: the stability limit of the
 /// explicit methods on offer (RK2's is 2, RK4's 2.8, DOPRI5's 3.3).
 const STIFF: f64 = 2.0;
+
 /// How escape was certified (CONVENTIONS.md "Outcomes"; Sec. II, property 2).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "kebab-case")]
