@@ -80,3 +80,17 @@ fn escape_and_critical_print_their_values() {
         "{out}"
     );
 }
+
+/// The paper's way to measure μ (Eq. 22): from the measured Ω and critical radius r0c.
+#[test]
+fn critical_radius_measures_mu() {
+    let (code, out) = turntable(&["critical", "--omega", "3.3", "--r0c", "0.12", "--json"]);
+    assert_eq!(code, 0);
+    let mu: f64 = field(&out, "mu").parse().unwrap();
+    assert!(
+        (mu - 3.3 * 3.3 * 0.12 / (0.87204386 * 9.81)).abs() < 1e-7,
+        "{mu}"
+    );
+    let (code, _) = turntable(&["critical", "--omega", "3.3"]);
+    assert_eq!(code, 2);
+}

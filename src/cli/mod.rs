@@ -141,6 +141,16 @@ pub struct CriticalArgs {
     /// Width of the final bracket on xi0.
     #[arg(long = "xtol", default_value_t = 1e-8, allow_negative_numbers = true)]
     pub xtol: f64,
+    /// Measured: the table's angular speed Omega (rad/s). With --r0c it gives mu (Eq. 22).
+    #[arg(long, requires = "r0c", allow_negative_numbers = true)]
+    pub omega: Option<f64>,
+    /// Measured: the largest release radius (m) at which a particle placed at rest in the lab
+    /// still stays on the table.
+    #[arg(long, requires = "omega", allow_negative_numbers = true)]
+    pub r0c: Option<f64>,
+    /// Gravitational acceleration (m/s²).
+    #[arg(long, default_value_t = 9.81, allow_negative_numbers = true)]
+    pub g: f64,
     #[command(flatten)]
     pub numerics: NumericsArgs,
     #[arg(long)]

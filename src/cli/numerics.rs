@@ -165,22 +165,32 @@ pub fn escape(a: EscapeArgs) -> CmdResult {
 
 pub fn critical(a: CriticalArgs) -> CmdResult {
     positive("xtol", a.xtol)?;
+    positive("g", a.g)?;
+    if let (Some(w), Some(r)) = (a.omega, a.r0c) {
+        positive("omega", w)?;
+        positive("r0c", r)?;
+    }
     let settings = solver_settings(&a.numerics)?;
     let t = critical_radius(settings, a.xtol).map_err(Failure::Runtime)?;
+    // The paper's Eq. 22: mu = Omega² r0c / (xi0c g), friction measured by the critical radius.
+    let mu = a.omega.zip(a.r0c).map(|(w, r)| w * w * r / (t.value * a.g));
     if a.json {
         let v = json!({
             "xi0c": t.value, "stuck_at": t.stuck_at, "escapes_at": t.escapes_at,
-            "interval": t.interval, "runs": t.runs, "rhs_evals": t.rhs_evals,
+            "interval": t.interval, "runs": t.runs, "rhs_evals": t.rhs_evals, "mu": mu,
         });
         emit(None, &format!("{v}\n"))?;
     } else {
-        emit(
-            None,
-            &format!(
-                "xi0c     {:.10}\nbracket  stuck at {:.10}, escapes at {:.10}\n",
-                t.value, t.stuck_at, t.escapes_at
-            ),
-        )?;
+        let mut text = format!(
+            "xi0c     {:.10}\nbracket  stuck at {:.10}, escapes at {:.10}\n",
+            t.value, t.stuck_at, t.escapes_at
+        );
+        if let Some(mu) = mu {
+            text.push_str(&format!(
+                "mu       {mu:.6}  (Eq. 22: Omega² r0c / (xi0c g))\n"
+            ));
+        }
+        emit(None, &text)?;
     }
     Ok(())
 }
