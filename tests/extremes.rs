@@ -60,7 +60,7 @@ fn release_at_rest_on_either_side_of_xi_1() {
 
 #[test]
 fn far_from_the_centre_and_very_fast() {
-    for xi0 in [500.0, 1e6] {
+    for xi0 in [500.0, 1e6, Initial::MAX] {
         let (o, s) = finish(
             Initial::at_rest(xi0, Release::LabRest),
             Settings::default(),
@@ -182,6 +182,8 @@ fn bad_values_are_refused() {
         Initial::velocity(-1.0, 0.0, 1.0),
         Initial::velocity(0.5, f64::INFINITY, 1.0),
         Initial::velocity(0.5, 0.0, -1.0),
+        Initial::velocity(1e300, 0.0, 1.0),
+        Initial::velocity(0.5, 0.0, 1e300),
     ] {
         assert!(Run::new(i, Settings::default()).is_err(), "{i:?}");
     }

@@ -107,7 +107,11 @@ impl Initial {
         }
     }
 
-    /// Checks the values a user may type: finite, ξ0 ≥ 0, v0 ≥ 0.
+    /// Largest ξ0 and v0 accepted: far beyond any table, and small enough that squares and
+    /// energies stay finite.
+    pub const MAX: f64 = 1e12;
+
+    /// Checks the values a user may type: finite, 0 ≤ ξ0, v0 ≤ [`Initial::MAX`].
     pub fn validate(&self) -> Result<(), String> {
         for (name, x) in [("xi0", self.xi0), ("phi", self.phi), ("v0", self.v0)] {
             if !x.is_finite() {
@@ -119,6 +123,11 @@ impl Initial {
         }
         if self.v0 < 0.0 {
             return Err(format!("v0 must be ≥ 0, got {}", self.v0));
+        }
+        for (name, x) in [("xi0", self.xi0), ("v0", self.v0)] {
+            if x > Self::MAX {
+                return Err(format!("{name} must be ≤ {:e}, got {x:e}", Self::MAX));
+            }
         }
         Ok(())
     }
