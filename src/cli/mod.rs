@@ -315,3 +315,18 @@ pub fn main() -> ExitCode {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::check_record_path;
+    use std::path::Path;
+
+    #[test]
+    fn record_paths() {
+        assert!(check_record_path(Path::new("session.keys")).is_ok());
+        let tmp = std::env::temp_dir();
+        assert!(check_record_path(&tmp.join("x.keys")).is_ok());
+        assert!(check_record_path(&tmp).is_err());
+        assert!(check_record_path(&tmp.join("no-such-dir-turntable/x.keys")).is_err());
+    }
+}
