@@ -278,6 +278,33 @@ pub fn dp5_step(frame: Frame, y: Y, k1: Y, h: f64, tol: f64) -> Dp5Trial {
     }
 }
 
+/// Hairer's starting step (`hinit` of DOPRI5; Hairer, Nørsett & Wanner, Sec. II.4): an Euler
+/// probe of size h0 = 0.01·|y|/|f| measures how fast f changes, and the first step is sized so
+/// that its fifth-order error would be 0.01·tol. One right-hand-side evaluation.
+pub fn initial_step(frame: Frame, y: Y, f0: Y, tol: f64) -> f64 {
+    let norm = |v: Y| {
+        let c = |d: f64, a: f64| (d / (tol + tol * a.abs())).abs();
+        c(v.p.x, y.p.x)
+            .max(c(v.p.y, y.p.y))
+            .max(c(v.w.x, y.w.x))
+            .max(c(v.w.y, y.w.y))
+    };
+    let (d0, d1) = (norm(y), norm(f0));
+    let h0 = if d0 < 1e-5 || d1 < 1e-5 {
+        1e-6
+    } else {
+        0.01 * d0 / d1
+    };
+    let d2 = norm(frame.rhs(y + f0 * h0) - f0) / h0;
+    let d = d1.max(d2);
+    let h1 = if d <= 1e-15 {
+        (h0 * 1e-3).max(1e-6)
+    } else {
+        (0.01 / d).powf(0.2)
+    };
+    (100.0 * h0).min(h1)
+}
+
 /// Hairer's PI step-size controller (β = 0.04, safety 0.9, factor in [0.2, 10]).
 #[derive(Clone, Copy, Debug)]
 pub struct Controller {

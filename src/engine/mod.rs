@@ -6,6 +6,7 @@ pub mod method;
 pub mod model;
 pub mod run;
 pub mod solve;
+pub mod stop;
 
 pub use method::{Cost, Method, Settings};
 pub use model::{Frame, Initial, Release, State};

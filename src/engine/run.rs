@@ -1,8 +1,11 @@
 //! One integration run with its events: stick–slip (Sec. II, property 1) located inside the
 //! step, the escape certificate (property 2 and the energy bound), and cost counters.
 
-use super::method::{Controller, Cost, Dense, Segment, Settings, dp5_step, fixed_step};
+use super::method::{
+    Controller, Cost, Dense, Segment, Settings, dp5_step, fixed_step, initial_step,
+};
 use super::model::{Initial, State, Y, rotate, zcross};
+use super::stop::{frozen_stop, frozen_stop_error, radial_stop};
 use glam::DVec2;
 use serde::Serialize;
 use std::fmt;
@@ -23,6 +26,10 @@ const HOVER_SPEED: f64 = 1e-3;
 /// A step is stiff once it is longer than this many |u|/|q|: the stability limit of the
 /// explicit methods on offer (RK2's is 2, RK4's 2.8, DOPRI5's 3.3).
 const STIFF: f64 = 2.0;
+
+/// dp54 takes a stop inside ξ = 1 in closed form ([`frozen_stop`]) once that form's error
+/// bound is below this share of its tolerance.
+const FROZEN_SHARE: f64 = 0.1;
 
 /// How escape was certified (CONVENTIONS.md "Outcomes"; Sec. II, property 2).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
@@ -98,26 +105,6 @@ impl fmt::Display for RunError {
 
 impl std::error::Error for RunError {}
 
-/// The last, radial stretch to a stop inside ξ = 1 from table-frame `q` at speed `s`, `t` ahead
-/// (see [`Run::stop_ahead`]). At the next order Coriolis turns u by −2s off q̂, so friction
-/// costs I = s² − (ρ − 1)² at dI/dτ = −4ρs³ and the particle drifts back by ψ′ = −2s²/ρ;
-/// both are integrated along the leading-order solution s = X sinh(t − τ), X² = −I.
-fn radial_stop(q: DVec2, s: f64, t: f64) -> Ahead {
-    let rho = q.length();
-    let x2 = (1.0 - rho).powi(2) - s * s;
-    let x = x2.sqrt();
-    let (ch, sh2) = (t.cosh(), (2.0 * t).sinh());
-    let cubes = x * x2 * (ch.powi(3) / 3.0 - ch + 2.0 / 3.0);
-    let squares = x2 * (sh2 / 4.0 - t / 2.0);
-    let rest = 1.0 - (x2 + 4.0 * rho * cubes).sqrt();
-    let psi = -2.0 * squares / rho;
-    Ahead::Jump {
-        t,
-        q: rotate(q / rho, psi) * rest,
-        u: DVec2::ZERO,
-    }
-}
-
 /// What lies ahead of the particle: see [`Run::stop_ahead`].
 enum Ahead {
     Clear,
@@ -191,7 +178,7 @@ impl Run {
             tau: 0.0,
             y,
             f: frame.rhs(y),
-            h: 0.1 * settings.tol.powf(0.2),
+            h: 0.0,
             ctrl: Controller::default(),
         };
         // Filippov at u = 0: at rest on the table inside ξ ≤ 1 it stays (property 1).
@@ -203,6 +190,10 @@ impl Run {
         }
         if let Some(by) = certificate(&s0) {
             run.escape = Some(Escape { tau: 0.0, by });
+        }
+        if settings.method.adaptive() {
+            run.h = initial_step(frame, y, run.f, settings.tol);
+            run.cost.rhs_evals += 1;
         }
         Ok(run)
     }
@@ -278,6 +269,23 @@ impl Run {
         let frame = self.settings.frame;
         let s = self.state();
         let mut cap = tau_max - self.tau;
+        if cap <= 1e-14 * self.tau.abs().max(1.0) {
+            // τ-max to within rounding: no step could be that short.
+            self.tau = tau_max;
+            return Ok(());
+        }
+        let (q, u) = (s.q(), s.u());
+        if self.settings.method.adaptive()
+            && u != DVec2::ZERO
+            && q.length() < 1.0
+            && frozen_stop_error(q, u) <= FROZEN_SHARE * self.settings.tol
+        {
+            let (t, dq) = frozen_stop(q, u);
+            if t <= cap {
+                self.jump(t, q + dq, DVec2::ZERO);
+                return Ok(());
+            }
+        }
         if self.settings.method.stick_events() {
             match self.stop_ahead(&s) {
                 Ahead::Jump { t, q, u } if t <= cap => {
@@ -405,7 +413,11 @@ impl Run {
         if gap > 0.0 && speed < gap {
             let t = (speed / gap).atanh();
             if speed * t <= self.travel_tol() || end_game {
-                return radial_stop(s.q(), speed, t);
+                return Ahead::Jump {
+                    t,
+                    q: radial_stop(s.q(), speed, t),
+                    u: DVec2::ZERO,
+                };
             }
         } else if end_game && gap > 0.0 {
             // Over the saddle: it reaches ξ = 1 still moving out, if I = s² − (1 − ρ)² stays

@@ -1,0 +1,106 @@
+//! Closed-form end games: the last stretch to a stop inside ξ = 1 (Sec. II, property 1),
+//! where explicit steps would have to shrink without bound.
+
+use super::model::{rotate, zcross};
+use glam::DVec2;
+
+/// The last, radial stretch to a stop inside ξ = 1 from table-frame `q` at speed `s`, `t` ahead
+/// (see `Run::stop_ahead`). At the next order Coriolis turns u by −2s off q̂, so friction
+/// costs I = s² − (ρ − 1)² at dI/dτ = −4ρs³ and the particle drifts back by ψ′ = −2s²/ρ;
+/// both are integrated along the leading-order solution s = X sinh(t − τ), X² = −I.
+pub fn radial_stop(q: DVec2, s: f64, t: f64) -> DVec2 {
+    let rho = q.length();
+    let x2 = (1.0 - rho).powi(2) - s * s;
+    let x = x2.sqrt();
+    let (ch, sh2) = (t.cosh(), (2.0 * t).sinh());
+    let cubes = x * x2 * (ch.powi(3) / 3.0 - ch + 2.0 / 3.0);
+    let squares = x2 * (sh2 / 4.0 - t / 2.0);
+    let rest = 1.0 - (x2 + 4.0 * rho * cubes).sqrt();
+    let psi = -2.0 * squares / rho;
+    rotate(q / rho, psi) * rest
+}
+
+/// The stop from table-frame `q` (|q| = k < 1) at relative velocity `u`, in closed form:
+/// the time to it and the displacement on the way.
+///
+/// With q frozen and Coriolis set aside, u′ = q − û is solvable (Sec. II's equations near a
+/// stop): the angle α of û to q̂ obeys tan(α/2) ∝ e^{−kσ} in the Sundman time dτ = |u|dσ, and
+/// |u| ∝ tan(α/2)^{1/k}/sin α. Integrating gives, with a = cos²(α/2), b = sin²(α/2),
+///   T = s [a/(1−k) + b/(1+k)],
+///   Δ∥ = ½s² [a²/(1−k) − b²/(1+k)],   Δ⊥ = s² sin α [a/(2−k) + b/(2+k)].
+/// Coriolis turns u at rate 2, which, seen from u, turns q the other way: its first-order
+/// effect on T is 2k/(1−k²)·∫τ sin α dτ along the frozen solution, also in closed form. What
+/// is left is O((s/(1−k))³) in both T and Δ: see [`frozen_stop_error`].
+pub fn frozen_stop(q: DVec2, u: DVec2) -> (f64, DVec2) {
+    let s = u.length();
+    let k = q.length();
+    let e = u / s;
+    let f = if k > 0.0 { q / k } else { e };
+    let (c, sin) = (f.dot(e), f.perp_dot(e));
+    let (a, b) = (0.5 * (1.0 + c), 0.5 * (1.0 - c));
+    let t = s * (a / (1.0 - k) + b / (1.0 + k));
+    let lag = s * (a / ((1.0 - k) * (2.0 - k)) + b / ((1.0 + k) * (2.0 + k)));
+    let coriolis = 2.0 * k / (1.0 - k * k) * s * sin * (t - lag);
+    let along = 0.5 * s * s * (a * a / (1.0 - k) - b * b / (1.0 + k));
+    let across = s * s * sin * (a / (2.0 - k) + b / (2.0 + k));
+    (t + coriolis, f * along + zcross(f) * across)
+}
+
+/// A bound on the error of [`frozen_stop`] in both the stop time and the rest position,
+/// measured against converged runs over k ∈ [0, 0.95] and every α (tests below): the
+/// neglected terms are the second-order Coriolis turn and the drift of q on the way.
+pub fn frozen_stop_error(q: DVec2, u: DVec2) -> f64 {
+    0.5 * (u.length() / (1.0 - q.length())).powi(3)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::engine::{Initial, Outcome, Run, Settings};
+
+    /// The stop from (k, 0) at speed s in direction α, by a converged run.
+    fn converged(k: f64, alpha: f64, s: f64) -> (f64, DVec2) {
+        let mut run = Run::new(Initial::velocity(k, alpha, s), Settings::dp54(1e-13)).unwrap();
+        assert_eq!(run.run(10.0, true).unwrap(), Outcome::Stuck);
+        (run.tau(), run.state().q())
+    }
+
+    #[test]
+    fn frozen_stop_is_within_its_bound_for_every_direction() {
+        for k in [0.0, 0.3, 0.6, 0.8, 0.95] {
+            for alpha in [0.0, 0.7, 1.6, 2.5, -2.0, std::f64::consts::PI] {
+                for s in [0.3 * (1.0 - k), 0.03 * (1.0 - k), 0.003 * (1.0 - k)] {
+                    let (q, u) = (DVec2::new(k, 0.0), DVec2::from_angle(alpha) * s);
+                    let (t, dq) = frozen_stop(q, u);
+                    let (t_ref, q_ref) = converged(k, alpha, s);
+                    let bound = frozen_stop_error(q, u);
+                    let (et, eq) = ((t - t_ref).abs(), (q + dq - q_ref).length());
+                    assert!(
+                        et <= bound && eq <= bound,
+                        "k={k} α={alpha} s={s}: |ΔT|={et:e} |Δq|={eq:e} > {bound:e}"
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn the_coriolis_term_makes_the_stop_time_third_order() {
+        // Without it the error in T would fall 100× per 10× in s; with it, 1000×.
+        let (k, alpha) = (0.5, 1.0);
+        let err = |s: f64| {
+            let (t, _) = frozen_stop(DVec2::new(k, 0.0), DVec2::from_angle(alpha) * s);
+            (t - converged(k, alpha, s).0).abs()
+        };
+        let ratio = err(0.02) / err(0.002);
+        assert!((600.0..1700.0).contains(&ratio), "ratio {ratio}");
+    }
+
+    #[test]
+    fn frozen_stop_at_the_centre_is_a_straight_braking_line() {
+        let u = DVec2::new(0.3, -0.4);
+        let (t, dq) = frozen_stop(DVec2::ZERO, u);
+        assert!((t - 0.5).abs() < 1e-15);
+        assert!((dq - u * 0.25).length() < 1e-15);
+    }
+}
