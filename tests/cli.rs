@@ -94,3 +94,27 @@ fn critical_radius_measures_mu() {
     let (code, _) = turntable(&["critical", "--omega", "3.3"]);
     assert_eq!(code, 2);
 }
+
+#[test]
+fn run_frictionless_is_a_closed_form_line() {
+    let (code, out) = turntable(&[
+        "run",
+        "--xi0",
+        "0.5",
+        "--release",
+        "table-rest",
+        "--frictionless",
+        "--json",
+    ]);
+    assert_eq!(code, 0);
+    assert_eq!(field(&out, "outcome"), "\"escaped\"");
+    assert_eq!(field(&out, "frictionless"), "true");
+    assert_eq!(field(&out, "rhs_evals"), "0");
+    let tau: f64 = field(&out, "escape_tau").parse().unwrap();
+    assert!((tau - 3f64.sqrt()).abs() < 1e-12, "{tau}");
+    let (_, text) = turntable(&["run", "--release", "lab-rest", "--frictionless"]);
+    assert!(
+        text.contains("running") && text.contains("closed form"),
+        "{text}"
+    );
+}

@@ -187,6 +187,12 @@ fn every_key_in_the_keymap_does_what_its_help_says() {
             }
             Action::V0(d) => (a.initial.v0 - (init.v0 + d)).abs() < 1e-12 && now == 0.0,
             Action::CycleRelease => a.initial.release != init.release && now == 0.0,
+            Action::ToggleFriction => {
+                a.initial.frictionless
+                    && now == 0.0
+                    && a.sim.run.cost.rhs_evals == 0
+                    && after.contains("μ = 0  closed form")
+            }
             Action::ResetScene => a.initial == a.scene.initial && now == 0.0,
             Action::Preset(i) => a.scene.name == PRESETS[i] && now == 0.0,
             Action::ToggleCompare => a.paper.is_some() && after.contains("paper: rk2-raw"),

@@ -17,24 +17,28 @@ const A: Initial = Initial {
     phi: PI,
     v0: 1.0,
     release: turntable::engine::Release::Velocity,
+    frictionless: false,
 };
 const B: Initial = Initial {
     xi0: 0.5,
     phi: 0.0,
     v0: 0.6,
     release: turntable::engine::Release::Velocity,
+    frictionless: false,
 };
 const C: Initial = Initial {
     xi0: 0.5,
     phi: 0.0,
     v0: 0.6078,
     release: turntable::engine::Release::Velocity,
+    frictionless: false,
 };
 const D: Initial = Initial {
     xi0: 1.1,
     phi: 1.2 * PI,
     v0: 1.3,
     release: turntable::engine::Release::Velocity,
+    frictionless: false,
 };
 
 #[test]

@@ -24,6 +24,8 @@ pub enum Action {
     /// Change v0 by this much.
     V0(f64),
     CycleRelease,
+    /// μ = 0 on / off.
+    ToggleFriction,
     ResetScene,
     /// Load preset `PRESETS[i]`.
     Preset(usize),

@@ -76,6 +76,7 @@ pub const KEYMAP: &[Binding] = &[
     b(ch('v'), A, Action::V0(V0_COARSE), "v0 +/− 0.05", "initial conditions"),
     b(ch('V'), A, Action::V0(-V0_COARSE), "v0 +/− 0.05", "initial conditions"),
     b(ch('R'), N, Action::CycleRelease, "release mode: v / rest", "initial conditions"),
+    b(ch('F'), N, Action::ToggleFriction, "friction off (μ = 0) / on", "initial conditions"),
     b(ch('0'), N, Action::ResetScene, "reset to the scene", "initial conditions"),
     b(ch('1'), N, Action::Preset(0), "presets A B C D fig1 fig2", "initial conditions"),
     b(ch('2'), N, Action::Preset(1), "presets A B C D fig1 fig2", "initial conditions"),

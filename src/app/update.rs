@@ -75,6 +75,15 @@ pub fn update(app: &mut App, action: Action) {
             app.initial.release = next_of(&Release::ALL, app.initial.release);
             app.restart();
         }
+        Action::ToggleFriction => {
+            app.initial.frictionless = !app.initial.frictionless;
+            app.notice = Some(if app.initial.frictionless {
+                "μ = 0: no friction, so no force at all in the lab (closed form, no steps)".into()
+            } else {
+                "friction on: μg = 1".into()
+            });
+            app.restart();
+        }
         Action::ResetScene => {
             app.initial = app.scene.initial;
             app.settings = if app.scene.settings.validate().is_ok() {
@@ -115,6 +124,10 @@ pub fn update(app: &mut App, action: Action) {
             }
         }
         Action::ToggleForces => app.forces = !app.forces,
+        Action::EstimateError if app.initial.frictionless => {
+            app.notice =
+                Some("μ = 0 is computed in closed form: exact, no error to estimate".into());
+        }
         Action::EstimateError => {
             app.notice = Some(match app.sim.error_estimate() {
                 Ok(e) => format!(

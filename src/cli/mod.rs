@@ -106,6 +106,9 @@ pub struct RunArgs {
     pub v0: f64,
     #[arg(long, default_value = "velocity", value_parser = parse_str::<Release>)]
     pub release: Release,
+    /// mu = 0: no friction, a straight line in the lab, in closed form (no integration).
+    #[arg(long)]
+    pub frictionless: bool,
     #[command(flatten)]
     pub numerics: NumericsArgs,
     /// Stop at this time if the particle has neither stuck nor escaped.

@@ -25,12 +25,16 @@ fn trajectory_row(csv: &mut String, s: &State, stuck: bool) {
     );
 }
 
+/// Spacing in τ of the trajectory rows of a frictionless run, which takes no steps.
+const FREE_SAMPLE: f64 = 1e-2;
+
 pub fn run(a: RunArgs) -> CmdResult {
     let initial = Initial {
         xi0: a.xi0,
         phi: a.phi,
         v0: a.v0,
         release: a.release,
+        frictionless: a.frictionless,
     };
     check_initial(&initial)?;
     if !(a.tau_max.is_finite() && a.tau_max > 0.0 && a.tau_max <= TAU_MAX_LIMIT) {
@@ -53,9 +57,18 @@ pub fn run(a: RunArgs) -> CmdResult {
         && run.tau() < a.tau_max
         && !(stop_on_escape && run.escape.is_some())
     {
+        let before = run.tau();
         run.step(a.tau_max)
             .map_err(|e| Failure::Runtime(e.to_string()))?;
         if let Some(csv) = csv.as_mut() {
+            if initial.frictionless {
+                // No steps to write: sample the closed form instead.
+                let n = ((run.tau() - before) / FREE_SAMPLE).ceil().min(1e5) as usize;
+                for i in 1..n {
+                    let t = before + (run.tau() - before) * i as f64 / n as f64;
+                    trajectory_row(csv, &run.state_at(t), false);
+                }
+            }
             trajectory_row(csv, &run.state(), run.status != Status::Slipping);
         }
     }
@@ -83,6 +96,7 @@ pub fn run(a: RunArgs) -> CmdResult {
             "steps": c.steps,
             "rejected": c.rejected,
             "rhs_evals": c.rhs_evals,
+            "frictionless": initial.frictionless,
             "method": settings.method.name(),
             "frame": settings.frame.name(),
             "tol": settings.method.adaptive().then_some(settings.tol),
@@ -97,18 +111,25 @@ pub fn run(a: RunArgs) -> CmdResult {
             }
             _ => "still slipping at tau-max".to_string(),
         };
+        let cost = if initial.frictionless {
+            "closed form, 0 rhs evaluations (mu = 0: a straight line in the lab)".to_string()
+        } else {
+            format!(
+                "{} steps, {} rejected, {} rhs evaluations ({} {})",
+                c.steps,
+                c.rejected,
+                c.rhs_evals,
+                settings.method,
+                settings.accuracy_label()
+            )
+        };
         let text = format!(
-            "outcome  {}: {how}\ntau      {:.9}\nxi       {:.12}\nangle    {:.12} rad (table frame, from the release direction)\n|u|      {:.3e}\ncost     {} steps, {} rejected, {} rhs evaluations ({} {})\n",
+            "outcome  {}: {how}\ntau      {:.9}\nxi       {:.12}\nangle    {:.12} rad (table frame, from the release direction)\n|u|      {:.3e}\ncost     {cost}\n",
             outcome.name(),
             end.tau,
             q.length(),
             angle,
             speed,
-            c.steps,
-            c.rejected,
-            c.rhs_evals,
-            settings.method,
-            settings.accuracy_label()
         );
         emit(None, &text)?;
     }

@@ -185,17 +185,17 @@ impl Segment {
 
 /// A fixed step of `method` from `y` with slope `f0 = f(y)`; returns the new point.
 /// `evals` counts right-hand-side evaluations beyond `f0`.
-pub fn fixed_step(method: Method, frame: Frame, y: Y, f0: Y, h: f64, evals: &mut u64) -> Y {
+pub fn fixed_step(method: Method, rhs: impl Fn(Y) -> Y, y: Y, f0: Y, h: f64, evals: &mut u64) -> Y {
     match method {
         Method::Rk2Raw | Method::Rk2 => {
             *evals += 1;
-            y + frame.rhs(y + f0 * (0.5 * h)) * h
+            y + rhs(y + f0 * (0.5 * h)) * h
         }
         Method::Rk4 => {
             *evals += 3;
-            let k2 = frame.rhs(y + f0 * (0.5 * h));
-            let k3 = frame.rhs(y + k2 * (0.5 * h));
-            let k4 = frame.rhs(y + k3 * h);
+            let k2 = rhs(y + f0 * (0.5 * h));
+            let k3 = rhs(y + k2 * (0.5 * h));
+            let k4 = rhs(y + k3 * h);
             y + (f0 + (k2 + k3) * 2.0 + k4) * (h / 6.0)
         }
         Method::Dp54 => unreachable!("dp54 is adaptive"),
@@ -245,14 +245,14 @@ pub struct Dp5Trial {
     pub dense: Dense,
 }
 
-pub fn dp5_step(frame: Frame, y: Y, k1: Y, h: f64, tol: f64) -> Dp5Trial {
-    let k2 = frame.rhs(y + k1 * (h * A21));
-    let k3 = frame.rhs(y + (k1 * A31 + k2 * A32) * h);
-    let k4 = frame.rhs(y + (k1 * A41 + k2 * A42 + k3 * A43) * h);
-    let k5 = frame.rhs(y + (k1 * A51 + k2 * A52 + k3 * A53 + k4 * A54) * h);
-    let k6 = frame.rhs(y + (k1 * A61 + k2 * A62 + k3 * A63 + k4 * A64 + k5 * A65) * h);
+pub fn dp5_step(rhs: impl Fn(Y) -> Y, y: Y, k1: Y, h: f64, tol: f64) -> Dp5Trial {
+    let k2 = rhs(y + k1 * (h * A21));
+    let k3 = rhs(y + (k1 * A31 + k2 * A32) * h);
+    let k4 = rhs(y + (k1 * A41 + k2 * A42 + k3 * A43) * h);
+    let k5 = rhs(y + (k1 * A51 + k2 * A52 + k3 * A53 + k4 * A54) * h);
+    let k6 = rhs(y + (k1 * A61 + k2 * A62 + k3 * A63 + k4 * A64 + k5 * A65) * h);
     let y1 = y + (k1 * A71 + k3 * A73 + k4 * A74 + k5 * A75 + k6 * A76) * h;
-    let k7 = frame.rhs(y1);
+    let k7 = rhs(y1);
     let e = (k1 * E1 + k3 * E3 + k4 * E4 + k5 * E5 + k6 * E6 + k7 * E7) * h;
     // Max norm over the components, each against tol·(1 + |y|): stricter than Hairer's RMS,
     // which near the saddle ξ ≈ 1 lets the error of one component hide behind the others.
@@ -281,7 +281,7 @@ pub fn dp5_step(frame: Frame, y: Y, k1: Y, h: f64, tol: f64) -> Dp5Trial {
 /// Hairer's starting step (`hinit` of DOPRI5; Hairer, Nørsett & Wanner, Sec. II.4): an Euler
 /// probe of size h0 = 0.01·|y|/|f| measures how fast f changes, and the first step is sized so
 /// that its fifth-order error would be 0.01·tol. One right-hand-side evaluation.
-pub fn initial_step(frame: Frame, y: Y, f0: Y, tol: f64) -> f64 {
+pub fn initial_step(rhs: impl Fn(Y) -> Y, y: Y, f0: Y, tol: f64) -> f64 {
     let norm = |v: Y| {
         let c = |d: f64, a: f64| (d / (tol + tol * a.abs())).abs();
         c(v.p.x, y.p.x)
@@ -295,7 +295,7 @@ pub fn initial_step(frame: Frame, y: Y, f0: Y, tol: f64) -> f64 {
     } else {
         0.01 * d0 / d1
     };
-    let d2 = norm(frame.rhs(y + f0 * h0) - f0) / h0;
+    let d2 = norm(rhs(y + f0 * h0) - f0) / h0;
     let d = d1.max(d2);
     let h1 = if d <= 1e-15 {
         (h0 * 1e-3).max(1e-6)
@@ -303,6 +303,27 @@ pub fn initial_step(frame: Frame, y: Y, f0: Y, tol: f64) -> f64 {
         (0.01 / d).powf(0.2)
     };
     (100.0 * h0).min(h1)
+}
+
+/// Plain DOPRI5 from `y` over `[0, t_end]`, with no events: for smooth systems such as the
+/// frictionless equations ([`Frame::rhs_free`]). Returns the end point and the number of
+/// right-hand-side evaluations.
+pub fn dp54_plain(rhs: impl Fn(Y) -> Y, y: Y, t_end: f64, tol: f64) -> (Y, u64) {
+    let (mut y, mut f, mut t) = (y, rhs(y), 0.0);
+    let mut h = initial_step(&rhs, y, f, tol);
+    let mut evals = 2;
+    let mut ctrl = Controller::default();
+    while t < t_end {
+        let step = h.min(t_end - t);
+        let trial = dp5_step(&rhs, y, f, step, tol);
+        evals += 6;
+        let (hnew, accepted) = ctrl.next(step, trial.err);
+        if accepted {
+            (y, f, t) = (trial.y1, trial.f1, t + step);
+        }
+        h = hnew;
+    }
+    (y, evals)
 }
 
 /// Hairer's PI step-size controller (β = 0.04, safety 0.9, factor in [0.2, 10]).

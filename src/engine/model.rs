@@ -87,6 +87,10 @@ pub struct Initial {
     pub v0: f64,
     #[serde(default)]
     pub release: Release,
+    /// μ = 0: no friction at all. Lengths keep the unit R_max of the table with friction, so
+    /// the same ξ0 and v0 can be compared with and without it.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub frictionless: bool,
 }
 
 impl Initial {
@@ -96,6 +100,7 @@ impl Initial {
             phi,
             v0,
             release: Release::Velocity,
+            frictionless: false,
         }
     }
     pub fn at_rest(xi0: f64, release: Release) -> Self {
@@ -104,7 +109,38 @@ impl Initial {
             phi: 0.0,
             v0: 0.0,
             release,
+            frictionless: false,
         }
+    }
+
+    /// μ = 0 in closed form: nothing acts in the plane, so the particle keeps its lab velocity
+    /// and moves in a straight line (Newton's first law; the paper's Eq. 1 without friction).
+    pub fn free_state(&self, tau: f64) -> State {
+        let s0 = self.state();
+        State {
+            tau,
+            r: s0.r + s0.v * tau,
+            v: s0.v,
+        }
+    }
+
+    /// μ = 0: when escape is certified, i.e. the first τ with ξ > 1 and ξ′ ≥ 0. On a straight
+    /// line ξ′ never turns negative again once it is not, so it never comes back. `None` if
+    /// the particle is at rest in the lab, where it stays forever.
+    pub fn free_escape(&self) -> Option<f64> {
+        let s0 = self.state();
+        let (r, v) = (s0.r, s0.v);
+        let a = v.length_squared();
+        if a == 0.0 {
+            return None;
+        }
+        // Closest approach, then the way out through ξ = 1.
+        let closest = (-r.dot(v) / a).max(0.0);
+        if (r + v * closest).length() > 1.0 {
+            return Some(closest);
+        }
+        let b = r.dot(v);
+        Some((-b + (b * b - a * (r.length_squared() - 1.0)).max(0.0).sqrt()) / a)
     }
 
     /// Largest ξ0 and v0 accepted: far beyond any table, and small enough that squares and
@@ -285,6 +321,20 @@ impl Frame {
             Frame::Table => Y {
                 p: y.w,
                 w: -2.0 * zcross(y.w) + y.p + friction(y.w, y.p),
+            },
+        }
+    }
+    /// The equations of motion with μ = 0: straight lines in the lab, and in the rotating
+    /// frame the Coriolis and centrifugal terms alone.
+    pub fn rhs_free(self, y: Y) -> Y {
+        match self {
+            Frame::Lab => Y {
+                p: y.w,
+                w: DVec2::ZERO,
+            },
+            Frame::Table => Y {
+                p: y.w,
+                w: -2.0 * zcross(y.w) + y.p,
             },
         }
     }

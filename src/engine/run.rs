@@ -31,6 +31,10 @@ const STIFF: f64 = 2.0;
 /// bound is below this share of its tolerance.
 const FROZEN_SHARE: f64 = 0.1;
 
+/// How far one closed-form stride of a frictionless run reaches when no end is given: any
+/// length costs the same.
+const FREE_STRIDE: f64 = 1e3;
+
 /// How escape was certified (CONVENTIONS.md "Outcomes"; Sec. II, property 2).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "kebab-case")]
@@ -181,6 +185,11 @@ impl Run {
             h: 0.0,
             ctrl: Controller::default(),
         };
+        if initial.frictionless {
+            // Closed form throughout: nothing to evaluate.
+            run.cost.rhs_evals = 0;
+            return Ok(run);
+        }
         // Filippov at u = 0: at rest on the table inside ξ ≤ 1 it stays (property 1).
         if settings.method.stick_events() && s0.u_lab() == DVec2::ZERO && s0.xi() <= 1.0 {
             run.status = Status::Stuck {
@@ -192,7 +201,7 @@ impl Run {
             run.escape = Some(Escape { tau: 0.0, by });
         }
         if settings.method.adaptive() {
-            run.h = initial_step(frame, y, run.f, settings.tol);
+            run.h = initial_step(|y| frame.rhs(y), y, run.f, settings.tol);
             run.cost.rhs_evals += 1;
         }
         Ok(run)
@@ -213,6 +222,9 @@ impl Run {
     /// The particle at any τ not beyond the integration so far that lies in the latest step,
     /// or at any τ after a stick (closed-form rotation with the table).
     pub fn state_at(&self, tau: f64) -> State {
+        if self.initial.frictionless {
+            return self.initial.free_state(tau);
+        }
         match self.status {
             Status::Stuck { tau: ts, q } if tau >= ts => State::riding(q, tau),
             _ => match self.last {
@@ -266,6 +278,10 @@ impl Run {
                 tau: self.tau,
             });
         }
+        if self.initial.frictionless {
+            self.free_step(tau_max);
+            return Ok(());
+        }
         let frame = self.settings.frame;
         let s = self.state();
         let mut cap = tau_max - self.tau;
@@ -316,12 +332,37 @@ impl Run {
         Ok(())
     }
 
+    /// μ = 0: one closed-form stride to `tau_max` (or [`FREE_STRIDE`] on when that is
+    /// infinite), stopping at the escape certificate on the way.
+    fn free_step(&mut self, tau_max: f64) {
+        let mut end = if tau_max.is_finite() {
+            tau_max
+        } else {
+            self.tau + FREE_STRIDE
+        };
+        if self.escape.is_none()
+            && let Some(te) = self.initial.free_escape()
+            && te <= end
+        {
+            end = te.max(self.tau);
+            self.escape = Some(Escape {
+                tau: te,
+                by: Certificate::Radial,
+            });
+        }
+        let frame = self.settings.frame;
+        self.y = frame.from_state(&self.initial.free_state(end));
+        self.tau = end;
+        self.last = None;
+        self.cost.steps += 1;
+    }
+
     fn fixed_step(&mut self, cap: f64) -> Segment {
         let frame = self.settings.frame;
         let h = self.settings.dt.min(cap);
         let y1 = fixed_step(
             self.settings.method,
-            frame,
+            |y| frame.rhs(y),
             self.y,
             self.f,
             h,
@@ -348,7 +389,7 @@ impl Run {
             if h < 1e-14 * self.tau.abs().max(1.0) {
                 return Err(RunError::StepUnderflow { tau: self.tau });
             }
-            let trial = dp5_step(frame, self.y, self.f, h, self.settings.tol);
+            let trial = dp5_step(|y| frame.rhs(y), self.y, self.f, h, self.settings.tol);
             self.cost.rhs_evals += 6;
             let (hnew, accepted) = self.ctrl.next(h, trial.err);
             // A capped step says nothing about how large the next free step may be.

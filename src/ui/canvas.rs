@@ -134,6 +134,7 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &mut App) {
     let sim = &app.sim;
     let paper = app.paper.as_ref();
     let forces = app.forces;
+    let frictionless = app.initial.frictionless;
     let canvas = Canvas::default()
         .block(block)
         .marker(Marker::Braille)
@@ -175,7 +176,10 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &mut App) {
                 let at = in_frame(&now, view);
                 let turn = if view == Frame::Lab { now.tau } else { 0.0 };
                 let k = 0.12 * r;
-                let [fr, co, ce] = table_forces(&now);
+                let [mut fr, co, ce] = table_forces(&now);
+                if frictionless {
+                    fr = DVec2::ZERO;
+                }
                 for (v, c) in [(fr, th.friction), (co, th.coriolis), (ce, th.centrifugal)] {
                     arrow(ctx, at, rotate(v, turn) * k, c);
                 }

@@ -77,8 +77,12 @@ pub fn draw(frame: &mut Frame, app: &mut App) {
     }
 }
 
-/// The one-line lesson: the paper's scheme against the converged run.
+/// The one-line lesson: the paper's scheme against the converged run, or what μ = 0 means.
 pub fn lesson_line(app: &App) -> String {
+    if app.initial.frictionless {
+        return " μ = 0: a straight line in the lab, a spiral in the rotating frame (f switches)"
+            .into();
+    }
     let Some(p) = &app.paper else {
         return " c: compare with the paper's scheme (raw RK2, fixed dt = 1e-3, no stick event)"
             .into();

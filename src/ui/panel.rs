@@ -115,11 +115,15 @@ pub fn lines(app: &App) -> Vec<Line<'static>> {
         )));
     }
     let c = app.sim.run.cost;
-    out.push(kv(
-        app.settings.method.name(),
-        app.settings.accuracy_label(),
-        th,
-    ));
+    if i.frictionless {
+        out.push(kv("μ = 0", "closed form".into(), th));
+    } else {
+        out.push(kv(
+            app.settings.method.name(),
+            app.settings.accuracy_label(),
+            th,
+        ));
+    }
     out.push(kv("steps", format!("{} rej {}", c.steps, c.rejected), th));
     out.push(kv("RHS", format!("{}", c.rhs_evals), th));
     let play = if app.playing { "▶" } else { "❚❚" };

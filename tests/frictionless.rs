@@ -1,0 +1,94 @@
+//! μ = 0 (issue #5, "model only what a scene requires"): a straight line in the lab in closed
+//! form, checked against integrating the frictionless equations in the rotating frame.
+
+use glam::DVec2;
+use turntable::engine::method::dp54_plain;
+use turntable::engine::{Frame, Initial, Outcome, Release, Run, Settings};
+
+fn free(i: Initial) -> Initial {
+    Initial {
+        frictionless: true,
+        ..i
+    }
+}
+
+#[test]
+fn the_closed_form_is_what_the_rotating_frame_equations_give() {
+    for i in [
+        Initial::velocity(0.5, 0.0, 0.6078),
+        Initial::velocity(0.2, 2.5, 1.3),
+        Initial::at_rest(0.7, Release::TableRest),
+        Initial::at_rest(0.7, Release::LabRest),
+    ] {
+        let i = free(i);
+        let tau = 5.0;
+        let (y, _) = dp54_plain(
+            |y| Frame::Table.rhs_free(y),
+            Frame::Table.from_state(&i.state()),
+            tau,
+            1e-12,
+        );
+        let integrated = Frame::Table.to_state(y, tau);
+        let closed = i.free_state(tau);
+        assert!((integrated.r - closed.r).length() < 1e-9, "{i:?}");
+        assert!((integrated.v - closed.v).length() < 1e-9, "{i:?}");
+    }
+}
+
+#[test]
+fn a_free_particle_escapes_where_its_line_leaves_the_unit_circle() {
+    // At rest on the table at ξ0 = 0.5 it leaves tangentially at speed 0.5: ξ² = ¼ + ¼τ².
+    let mut run = Run::new(
+        free(Initial::at_rest(0.5, Release::TableRest)),
+        Settings::default(),
+    )
+    .unwrap();
+    let (outcome, s) = run.finish(100.0).unwrap();
+    assert_eq!(outcome, Outcome::Escaped);
+    assert!((s.tau - 3f64.sqrt()).abs() < 1e-12, "{}", s.tau);
+    assert!((s.xi() - 1.0).abs() < 1e-12);
+    assert_eq!(run.cost.rhs_evals, 0);
+    // Already outside and moving out: certified at once.
+    let mut run = Run::new(free(Initial::velocity(1.5, 0.0, 0.1)), Settings::default()).unwrap();
+    assert_eq!(run.finish(100.0).unwrap().1.tau, 0.0);
+    // Thrown inward across the centre: it escapes on the far side, after closest approach.
+    let i = free(Initial::velocity(0.8, std::f64::consts::PI, 2.0));
+    let te = i.free_escape().unwrap();
+    let s = i.free_state(te);
+    assert!(
+        (s.xi() - 1.0).abs() < 1e-12 && s.xi_dot() > 0.0 && s.r.x < 0.0,
+        "{s:?}"
+    );
+}
+
+#[test]
+fn at_rest_in_the_lab_it_stays_put_while_the_table_turns_beneath() {
+    for xi0 in [0.0, 0.7, 3.0] {
+        let i = free(Initial::at_rest(xi0, Release::LabRest));
+        assert_eq!(i.free_escape(), None);
+        let mut run = Run::new(i, Settings::default()).unwrap();
+        assert_eq!(run.run(100.0, true).unwrap(), Outcome::Running);
+        let s = run.state();
+        assert_eq!(
+            (s.tau, s.r, s.v),
+            (100.0, DVec2::new(xi0, 0.0), DVec2::ZERO)
+        );
+        // Seen from the table it circles backwards at ξ0, at relative speed ξ0.
+        assert!((s.u().length() - xi0).abs() < 1e-12);
+        assert_eq!(run.cost.rhs_evals, 0);
+    }
+}
+
+#[test]
+fn any_method_gives_the_same_closed_form() {
+    let i = free(Initial::velocity(0.3, 1.0, 0.4));
+    let ends: Vec<_> = [
+        Settings::paper(),
+        Settings::fixed(turntable::engine::Method::Rk4, 0.1),
+    ]
+    .into_iter()
+    .chain([Settings::default()])
+    .map(|s| Run::new(i, s).unwrap().finish(50.0).unwrap().1)
+    .collect();
+    assert!(ends.windows(2).all(|w| w[0] == w[1]), "{ends:?}");
+}
