@@ -261,3 +261,33 @@ fn the_cli_refuses_bad_input_with_exit_code_2() {
     assert_eq!(out.status.code(), Some(1));
     assert!(String::from_utf8_lossy(&out.stderr).contains("step budget"));
 }
+
+#[test]
+fn frictionless_at_the_extremes() {
+    for xi0 in [0.0, 1e-9, 1.0, 1e6, Initial::MAX] {
+        for v0 in [0.0, 1e-9, 1e6, Initial::MAX] {
+            for release in Release::ALL {
+                let i = Initial {
+                    frictionless: true,
+                    ..Initial {
+                        release,
+                        ..Initial::velocity(xi0, -2.0, v0)
+                    }
+                };
+                let mut run = Run::new(i, Settings::default()).unwrap();
+                let o = run.run(1e6, false).unwrap();
+                let s = run.state();
+                assert!(finite(&s) && s.tau == 1e6, "{i:?}: {s:?}");
+                // Only a particle at rest in the lab never leaves; a slow one may take longer.
+                let at_rest = i.state().v == glam::DVec2::ZERO;
+                assert_eq!(at_rest, i.free_escape().is_none(), "{i:?}");
+                let leaves = i.free_escape().is_some_and(|t| t <= 1e6);
+                assert_eq!(o == Outcome::Escaped, leaves, "{i:?}");
+                if let Some(e) = run.escape {
+                    let at = run.state_at(e.tau);
+                    assert!(finite(&at) && at.xi() >= 1.0 - 1e-9 * xi0.max(1.0), "{i:?}");
+                }
+            }
+        }
+    }
+}

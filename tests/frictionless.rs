@@ -92,3 +92,20 @@ fn any_method_gives_the_same_closed_form() {
     .collect();
     assert!(ends.windows(2).all(|w| w[0] == w[1]), "{ends:?}");
 }
+
+#[test]
+fn a_scene_file_says_frictionless_only_when_it_is() {
+    use turntable::scene::Scene;
+    let dir = std::env::temp_dir().join(format!("turntable-free-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let mut scene = Scene::default_scene();
+    assert!(!scene.to_toml().contains("frictionless"));
+    scene.initial.frictionless = true;
+    assert!(scene.to_toml().contains("frictionless = true"));
+    let path = dir.join("free.toml");
+    scene.save(&path).unwrap();
+    let back = Scene::load(path.to_str().unwrap()).unwrap();
+    assert!(back.initial.frictionless);
+    assert_eq!(back.initial, scene.initial);
+    let _ = std::fs::remove_dir_all(&dir);
+}
