@@ -15,17 +15,27 @@ use ratatui::buffer::Buffer;
 use ratatui::style::{Color, Modifier};
 use std::convert::Infallible;
 use std::fmt::Write as _;
+use std::sync::{Arc, Mutex, MutexGuard};
 use unicode_width::UnicodeWidthStr;
 
 /// Size of the off-screen terminal unless the script or `--size` says otherwise.
 pub const DEFAULT_SIZE: (u16, u16) = (80, 24);
+
+/// A recorder the terminal loop shares with its signal watcher, which saves what was recorded
+/// if the terminal dies under the explorer.
+pub type SharedRecorder = Arc<Mutex<Recorder>>;
+
+/// The recorder, whatever a panicking holder left behind.
+pub fn lock(r: &SharedRecorder) -> MutexGuard<'_, Recorder> {
+    r.lock().unwrap_or_else(|e| e.into_inner())
+}
 
 /// The app, a terminal to draw it on, and optionally a recorder of everything applied.
 /// Every event goes through here, in the interactive loop and in a replay alike.
 pub struct Session<B: Backend> {
     pub app: App,
     pub term: Terminal<B>,
-    recorder: Option<Recorder>,
+    recorder: Option<SharedRecorder>,
 }
 
 impl<B: Backend> Session<B> {
@@ -36,7 +46,7 @@ impl<B: Backend> Session<B> {
             let size = term.size()?;
             let mut r = Recorder::new();
             r.resize(size.width, size.height);
-            Some(r)
+            Some(Arc::new(Mutex::new(r)))
         } else {
             None
         };
@@ -56,8 +66,8 @@ impl<B: Backend> Session<B> {
             kind: KeyEventKind::Press,
             ..key
         };
-        if let Some(r) = &mut self.recorder {
-            r.key(&key);
+        if let Some(r) = &self.recorder {
+            lock(r).key(&key);
         }
         self.app.handle_key(key);
     }
@@ -67,8 +77,8 @@ impl<B: Backend> Session<B> {
     /// same canvas whatever else happened in between.
     pub fn mouse(&mut self, ev: MouseEvent) -> Result<(), B::Error> {
         self.draw_if_needed()?;
-        if let Some(r) = &mut self.recorder {
-            r.mouse(&ev);
+        if let Some(r) = &self.recorder {
+            lock(r).mouse(&ev);
         }
         self.app.handle_mouse(ev);
         Ok(())
@@ -76,16 +86,16 @@ impl<B: Backend> Session<B> {
 
     /// One tick of the app's clock (as the interactive loop calls it while playing).
     pub fn tick(&mut self) {
-        if let Some(r) = &mut self.recorder {
-            r.tick();
+        if let Some(r) = &self.recorder {
+            lock(r).tick();
         }
         self.app.tick();
     }
 
     /// The terminal is now `width` × `height`: recorded, and the next frame is redrawn.
     pub fn resized(&mut self, width: u16, height: u16) {
-        if let Some(r) = &mut self.recorder {
-            r.resize(width, height);
+        if let Some(r) = &self.recorder {
+            lock(r).resize(width, height);
         }
         self.app.invalidate();
     }
@@ -106,7 +116,12 @@ impl<B: Backend> Session<B> {
 
     /// The script recorded so far (None when not recording); recording stops here.
     pub fn take_recording(&mut self) -> Option<String> {
-        self.recorder.take().map(Recorder::finish)
+        self.recorder.take().map(|r| lock(&r).clone().finish())
+    }
+
+    /// The recorder, to read what was recorded from elsewhere (None when not recording).
+    pub fn recorder(&self) -> Option<SharedRecorder> {
+        self.recorder.clone()
     }
 }
 

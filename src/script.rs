@@ -365,7 +365,7 @@ pub fn key_name(key: &KeyEvent) -> Option<String> {
 
 /// Writes a key script from live events, folding runs of ticks and of
 /// identical keys so that a recorded session stays short and readable.
-#[derive(Debug, Default)]
+#[derive(Clone, Debug, Default)]
 pub struct Recorder {
     out: String,
     /// Key tokens written so far on the current line.

@@ -3,7 +3,7 @@
 //! when paused (no redraw when idle).
 
 use crate::app::App;
-use crate::replay::Session;
+use crate::replay::{Session, SharedRecorder, lock};
 use crossterm::event::{self, DisableMouseCapture, EnableMouseCapture, Event};
 use crossterm::terminal::{
     BeginSynchronizedUpdate, EndSynchronizedUpdate, EnterAlternateScreen, LeaveAlternateScreen,
@@ -12,8 +12,8 @@ use crossterm::terminal::{
 use crossterm::{cursor, execute};
 use ratatui::backend::CrosstermBackend;
 use std::io::{self, Stdout, Write};
-use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
 /// Puts the terminal back as it was. Safe to call more than once and on a dead terminal.
@@ -45,23 +45,39 @@ fn setup(mouse: bool) -> io::Result<CrosstermBackend<Stdout>> {
     Ok(CrosstermBackend::new(out))
 }
 
+/// Saves a recording: called with the script so far if the terminal dies under the explorer.
+pub type SaveRecording = Box<dyn FnOnce(String) + Send>;
+
 /// Runs the explorer until quit or a terminating signal. `fps` caps the frame rate.
 /// Returns whether a signal (SIGTERM, SIGHUP, SIGINT) ended it, and with `record` the
-/// session as a key script (also after a signal or an error, as far as it got).
-pub fn run(app: App, fps: u32, record: bool) -> (io::Result<bool>, Option<String>) {
+/// session as a key script (also after a signal or an error, as far as it got). If the
+/// terminal is gone and the process must end without returning, `record` gets that script.
+pub fn run(
+    app: App,
+    fps: u32,
+    record: Option<SaveRecording>,
+) -> (io::Result<bool>, Option<String>) {
     let stop = Arc::new(AtomicBool::new(false));
     let finished = Arc::new(AtomicBool::new(false));
-    if let Err(e) = watch_signals(Arc::clone(&stop), Arc::clone(&finished)) {
+    let recorder: Arc<Mutex<Option<SharedRecorder>>> = Arc::default();
+    let recording = record.is_some();
+    let lost = Lost {
+        finished: Arc::clone(&finished),
+        recorder: Arc::clone(&recorder),
+        save: record,
+    };
+    if let Err(e) = watch_signals(Arc::clone(&stop), lost) {
         return (Err(e), None);
     }
     let mouse = app.mouse_capture();
-    let mut session = match setup(mouse).and_then(|b| Session::new(app, b, record)) {
+    let mut session = match setup(mouse).and_then(|b| Session::new(app, b, recording)) {
         Ok(s) => s,
         Err(e) => {
             restore();
             return (Err(e), None);
         }
     };
+    *recorder.lock().unwrap_or_else(|e| e.into_inner()) = session.recorder();
     let result = event_loop(&mut session, fps.clamp(1, 240), &stop);
     finished.store(true, Ordering::Relaxed);
     restore();
@@ -71,18 +87,34 @@ pub fn run(app: App, fps: u32, record: bool) -> (io::Result<bool>, Option<String
     )
 }
 
+/// What the signal watcher needs if the event loop never comes back.
+struct Lost {
+    finished: Arc<AtomicBool>,
+    recorder: Arc<Mutex<Option<SharedRecorder>>>,
+    save: Option<SaveRecording>,
+}
+
 /// A terminating signal asks the event loop to stop. If the terminal is gone (a dropped ssh
 /// connection, a killed tmux), crossterm's `poll` spins on the closed tty and never returns:
-/// then, after a grace period, this thread restores what it can and ends the process.
-fn watch_signals(stop: Arc<AtomicBool>, finished: Arc<AtomicBool>) -> io::Result<()> {
+/// then, after a grace period, this thread restores what it can, saves the recording so far
+/// and ends the process.
+fn watch_signals(stop: Arc<AtomicBool>, lost: Lost) -> io::Result<()> {
     use signal_hook::consts::{SIGHUP, SIGINT, SIGTERM};
     let mut signals = signal_hook::iterator::Signals::new([SIGTERM, SIGHUP, SIGINT])?;
     std::thread::spawn(move || {
         if signals.forever().next().is_some() {
             stop.store(true, Ordering::Relaxed);
             std::thread::sleep(Duration::from_millis(600));
-            if !finished.load(Ordering::Relaxed) {
+            if !lost.finished.load(Ordering::Relaxed) {
                 restore();
+                let shared = lost
+                    .recorder
+                    .lock()
+                    .unwrap_or_else(|e| e.into_inner())
+                    .clone();
+                if let (Some(save), Some(r)) = (lost.save, shared) {
+                    save(lock(&r).clone().finish());
+                }
                 // The terminal may be gone: a failed write must not panic this thread.
                 let _ = writeln!(io::stderr(), "turntable: ended by a signal");
                 std::process::exit(1);

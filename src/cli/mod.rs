@@ -255,14 +255,15 @@ fn explore(cli: &Cli) -> CmdResult {
     if cli.no_mouse {
         app.mouse = false;
     }
-    let (result, recording) = crate::terminal::run(app, cli.fps, cli.record.is_some());
-    if let (Some(path), Some(mut script)) = (&cli.record, recording) {
-        // The recording names its scene, so that `replay FILE` alone opens the same one.
-        if let Some(s) = &cli.scene {
-            let at = script.find('\n').map_or(0, |i| i + 1);
-            script.insert_str(at, &format!("# replay: --scene {s}\n"));
-        }
-        io::write_atomic(path, script.as_bytes())
+    let save = cli.record.clone().map(|path| {
+        let scene = cli.scene.clone();
+        Box::new(move |script: String| {
+            let _ = save_recording(&path, scene.as_deref(), script);
+        }) as crate::terminal::SaveRecording
+    });
+    let (result, recording) = crate::terminal::run(app, cli.fps, save);
+    if let (Some(path), Some(script)) = (&cli.record, recording) {
+        save_recording(path, cli.scene.as_deref(), script)
             .map_err(|e| Failure::Runtime(format!("--record: {e}")))?;
     }
     match result {
@@ -270,6 +271,20 @@ fn explore(cli: &Cli) -> CmdResult {
         Ok(true) => Err(Failure::Runtime("ended by a signal".into())),
         Err(e) => Err(Failure::Runtime(format!("terminal: {e}"))),
     }
+}
+
+/// Writes a recorded session atomically. It names its scene, so that `replay FILE` alone
+/// opens the same one.
+fn save_recording(
+    path: &std::path::Path,
+    scene: Option<&str>,
+    mut script: String,
+) -> std::io::Result<()> {
+    if let Some(s) = scene {
+        let at = script.find('\n').map_or(0, |i| i + 1);
+        script.insert_str(at, &format!("# replay: --scene {s}\n"));
+    }
+    io::write_atomic(path, script.as_bytes())
 }
 
 /// A `--record` file must be writable where it is named: fail before the session, not after.
