@@ -1,0 +1,185 @@
+//! The speed goals of issue 5, and the work saved by modelling only what a scene requires.
+
+use super::runs::{End, cases, finish, state_at};
+use super::tasks::RestCase;
+use super::{
+    Config, ESCAPE_VTOL, FAR_TAU, FREE_TAU, REST_TAU, Saving, Setting, Speed, median, reference,
+    timed,
+};
+use crate::engine::method::dp54_plain;
+use crate::engine::solve::{escape_speed, sweep_escape};
+use crate::engine::{Frame, Initial, Method, Release, Run, Settings};
+
+pub(super) fn savings(cs: &[(String, Initial)]) -> Result<Vec<Saving>, String> {
+    let mut out = Vec::new();
+    // Stuck: closed-form rotation after the stop, against the paper's stepping to τ = 50.
+    let (mut raw, mut rk2, mut dp) = (0, 0, 0);
+    for (_, i) in cs {
+        raw += state_at(*i, Settings::paper(), 50.0)?.1;
+        rk2 += state_at(*i, Settings::fixed(Method::Rk2, 1e-3), 50.0)?.1;
+        dp += state_at(*i, Settings::default(), 50.0)?.1;
+    }
+    for (lean, lean_evals) in [
+        ("rk2 dt=1e-3, closed form after the stop", rk2),
+        ("dp54 tol=1e-10 (default), closed form after", dp),
+    ] {
+        out.push(Saving {
+            what: format!("{} cases to τ = 50: stop at the stick", cs.len()),
+            baseline: "rk2-raw dt=1e-3 stepping on".into(),
+            baseline_evals: raw,
+            lean: lean.into(),
+            lean_evals,
+            factor: raw as f64 / lean_evals as f64,
+        });
+    }
+    // Escaping: stop at the certificate instead of following it out to τ = 400.
+    let far = Initial::velocity(0.5, 0.4, 1.5);
+    let mut follow = Run::new(far, Settings::default())?;
+    follow.run(FAR_TAU, false).map_err(|e| e.to_string())?;
+    let mut stop = Run::new(far, Settings::default())?;
+    stop.run(FAR_TAU, true).map_err(|e| e.to_string())?;
+    out.push(Saving {
+        what: "far escape (0.5, 0.4, 1.5): stop at the certificate".into(),
+        baseline: "dp54 followed to τ = 400".into(),
+        baseline_evals: follow.cost.rhs_evals,
+        lean: "dp54 stopped once certified".into(),
+        lean_evals: stop.cost.rhs_evals,
+        factor: follow.cost.rhs_evals as f64 / stop.cost.rhs_evals as f64,
+    });
+    // Frame far out: ξ0 = 500 released at rest in the lab, to τ = 30 (Fig. 1).
+    let fig1 = Initial::at_rest(500.0, Release::LabRest);
+    let mut ev = [0u64; 2];
+    for (k, frame) in [Frame::Table, Frame::Lab].into_iter().enumerate() {
+        let s = Settings {
+            frame,
+            ..Settings::default()
+        };
+        ev[k] = state_at(fig1, s, 30.0)?.1;
+    }
+    out.push(Saving {
+        what: "ξ0 = 500 at rest in the lab to τ = 30 (Fig. 1): frame".into(),
+        baseline: "dp54 tol=1e-10, table frame".into(),
+        baseline_evals: ev[0],
+        lean: "dp54 tol=1e-10, lab frame".into(),
+        lean_evals: ev[1],
+        factor: ev[0] as f64 / ev[1] as f64,
+    });
+    // μ = 0: the straight line in closed form, against integrating the frictionless
+    // equations in the rotating frame (where the paper writes them) out to the view's edge.
+    let free = Initial {
+        frictionless: true,
+        ..Initial::velocity(0.5, 0.0, 0.6078)
+    };
+    let s = free.state();
+    let (y, evals) = dp54_plain(
+        |y| Frame::Table.rhs_free(y),
+        Frame::Table.from_state(&s),
+        FREE_TAU,
+        1e-10,
+    );
+    let off = (Frame::Table.to_state(y, FREE_TAU).r - free.free_state(FREE_TAU).r).length();
+    out.push(Saving {
+        what: format!("μ = 0 from C's release to τ = {FREE_TAU} (ξ ≈ 25): closed form"),
+        baseline: format!("dp54 tol=1e-10, table frame (|Δr| = {off:.0e})"),
+        baseline_evals: evals,
+        lean: "closed form: a straight line in the lab".into(),
+        lean_evals: 0,
+        factor: f64::INFINITY,
+    });
+    Ok(out)
+}
+
+pub(super) fn speed(
+    cfg: &Config,
+    per_case: &[(Setting, Vec<Option<RestCase>>)],
+) -> Result<Speed, String> {
+    let (t, escape_ms) = timed(if cfg.reps == 0 { 0 } else { cfg.reps.max(3) }, || {
+        escape_speed(0.5, 0.0, Settings::default(), ESCAPE_VTOL)
+    });
+    let t = t?;
+    let n = if cfg.quick { 24 } else { 72 };
+    let xi0s = [0.8, 0.5, 0.2, 0.001];
+    let (r, fig5_ms) = timed(cfg.reps.min(2), || {
+        sweep_escape(&xi0s, n, Settings::default(), 1e-6)
+    });
+    r?;
+    let fig5_ms_vtol_1e8 = if cfg.quick {
+        None
+    } else {
+        let (r, ms) = timed(1, || sweep_escape(&xi0s, n, Settings::default(), 1e-8));
+        r?;
+        Some(ms)
+    };
+    let (frame_ms, frame_trail) = frame_time(cfg.reps)?;
+    // The rk2 (stick events) dt = 1e-3 accuracy, and the loosest dp54 tol that matches it, on
+    // a grid of four tolerances per decade.
+    let cs = cases(cfg.cases, cfg.seed);
+    let rk2 = per_case
+        .iter()
+        .find(|(s, _)| s.settings.method == Method::Rk2 && (s.knob() / 1e-3 - 1.0).abs() < 1e-9);
+    let mut rk2_err = f64::NAN;
+    let mut matching = None;
+    if let Some((_, rk2)) = rk2 {
+        let mut e: Vec<f64> = rk2.iter().flatten().map(|c| c.err).collect();
+        rk2_err = median(&mut e);
+        let refs: Vec<Option<End>> = cs
+            .iter()
+            .map(|(_, i)| finish(*i, reference(), REST_TAU).ok())
+            .collect();
+        for k in 12..=40 {
+            let tol = 10f64.powf(-k as f64 / 4.0);
+            let mut errs = Vec::new();
+            let mut ratios = Vec::new();
+            for (((_, i), r), a) in cs.iter().zip(&refs).zip(rk2) {
+                let (Some(r), Some(a)) = (r, a) else { continue };
+                let e = finish(*i, Settings::dp54(tol), REST_TAU)?;
+                if e.outcome != r.outcome {
+                    errs.push(f64::INFINITY);
+                    continue;
+                }
+                errs.push((e.q - r.q).length());
+                ratios.push(a.evals as f64 / e.evals as f64);
+            }
+            let err = median(&mut errs);
+            if err <= rk2_err {
+                matching = Some((tol, err, median(&mut ratios)));
+                break;
+            }
+        }
+    }
+    Ok(Speed {
+        escape_ms,
+        escape_evals: t.rhs_evals,
+        escape_value: t.value,
+        fig5_angles: n,
+        fig5_vtol: 1e-6,
+        fig5_ms,
+        fig5_ms_vtol_1e8,
+        rk2_err_median: rk2_err,
+        matching_tol: matching.map(|m| m.0),
+        matching_err_median: matching.map(|m| m.1),
+        evals_ratio: matching.map(|m| m.2),
+        frame_ms,
+        frame_trail,
+    })
+}
+
+/// One frame of the explorer as it plays: a tick of simulation and a full draw of the default
+/// scene at 160×48, with the paper's run beside it, once the trail holds 20 000 samples.
+fn frame_time(reps: usize) -> Result<(f64, usize), String> {
+    use crate::app::{Action, App, update};
+    use ratatui::{Terminal, backend::TestBackend};
+    let theme = crate::theme::Theme::builtin("dark").ok_or("no dark theme")?;
+    let mut app = App::new(crate::scene::Scene::default_scene(), theme);
+    update(&mut app, Action::ToggleCompare);
+    while app.sim.samples.len() < 20_000 {
+        app.tick();
+    }
+    let mut term = Terminal::new(TestBackend::new(160, 48)).map_err(|e| e.to_string())?;
+    let (r, ms) = timed(reps.max(5), || {
+        app.tick();
+        term.draw(|f| crate::ui::draw(f, &mut app)).map(|_| ())
+    });
+    r.map_err(|e| e.to_string())?;
+    Ok((ms, app.sim.trail().len()))
+}

@@ -1,0 +1,119 @@
+//! What one measurement runs: the seeded cases, and one run to its end or to a time.
+
+use crate::engine::model::wrap_angle;
+use crate::engine::{Initial, Outcome, Run, Settings, State, Status};
+use glam::DVec2;
+use std::f64::consts::{PI, TAU};
+
+/// splitmix64 (Steele, Lea & Flood 2014): a tiny deterministic generator for the random cases.
+#[derive(Clone, Debug)]
+pub struct SplitMix64(pub u64);
+
+impl SplitMix64 {
+    pub fn next_u64(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
+    /// Uniform in [0, 1).
+    pub fn unit(&mut self) -> f64 {
+        (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64
+    }
+    /// Uniform in 0..n (n > 0).
+    pub fn below(&mut self, n: u64) -> u64 {
+        self.next_u64() % n
+    }
+    pub fn pick<T: Copy>(&mut self, xs: &[T]) -> T {
+        xs[self.below(xs.len() as u64) as usize]
+    }
+}
+
+/// A, B and D of the paper, then `n` seeded releases (ξ0 ∈ [0, 0.9], φ ∈ [0, 2π),
+/// v0 ∈ [0, 0.5]: most of them stick).
+pub fn cases(n: usize, seed: u64) -> Vec<(String, Initial)> {
+    let mut v = vec![
+        ("A".to_string(), Initial::velocity(0.5, PI, 1.0)),
+        ("B".to_string(), Initial::velocity(0.5, 0.0, 0.6)),
+        ("D".to_string(), Initial::velocity(1.1, 1.2 * PI, 1.3)),
+    ];
+    let mut rng = SplitMix64(seed);
+    for i in 0..n {
+        let xi0 = 0.9 * rng.unit();
+        let phi = TAU * rng.unit();
+        let v0 = 0.5 * rng.unit();
+        v.push((format!("r{i}"), Initial::velocity(xi0, phi, v0)));
+    }
+    v
+}
+
+/// How a run ended, where, and at what cost.
+#[derive(Clone, Copy, Debug)]
+pub struct End {
+    pub outcome: Outcome,
+    /// Stop time (stuck) or certificate time (escaped).
+    pub tau: f64,
+    /// Rest position in the table frame (stuck).
+    pub q: DVec2,
+    pub evals: u64,
+}
+
+/// Runs to the stop or the escape certificate. The paper's raw scheme has no stick event: its
+/// stop is declared at the first step with |u| ≤ dt at ξ ≤ 1 (one step's worth of friction).
+pub fn finish(initial: Initial, settings: Settings, tau_max: f64) -> Result<End, String> {
+    let mut run = Run::new(initial, settings)?;
+    if settings.method.stick_events() {
+        let (outcome, s) = run.finish(tau_max).map_err(|e| e.to_string())?;
+        return Ok(End {
+            outcome,
+            tau: s.tau,
+            q: s.q(),
+            evals: run.cost.rhs_evals,
+        });
+    }
+    loop {
+        let s = run.state();
+        if let Some(e) = run.escape {
+            return Ok(End {
+                outcome: Outcome::Escaped,
+                tau: e.tau,
+                q: run.state_at(e.tau).q(),
+                evals: run.cost.rhs_evals,
+            });
+        }
+        if s.u_lab().length() <= settings.dt && s.xi() <= 1.0 {
+            return Ok(End {
+                outcome: Outcome::Stuck,
+                tau: s.tau,
+                q: s.q(),
+                evals: run.cost.rhs_evals,
+            });
+        }
+        if s.tau >= tau_max {
+            return Ok(End {
+                outcome: Outcome::Running,
+                tau: s.tau,
+                q: s.q(),
+                evals: run.cost.rhs_evals,
+            });
+        }
+        run.step(tau_max).map_err(|e| e.to_string())?;
+    }
+}
+
+/// The lab state at exactly `tau` (no stopping at escape), and the cost.
+pub fn state_at(initial: Initial, settings: Settings, tau: f64) -> Result<(State, u64), String> {
+    let mut run = Run::new(initial, settings)?;
+    run.run(tau, false).map_err(|e| e.to_string())?;
+    let s = match run.status {
+        Status::Stuck { .. } => run.state_at(tau),
+        Status::Slipping => run.state(),
+    };
+    Ok((s, run.cost.rhs_evals))
+}
+
+/// The rest angle (table frame) of a stuck end, in (−π, π].
+pub fn rest_angle(e: &End) -> f64 {
+    wrap_angle(e.q.y.atan2(e.q.x))
+}
