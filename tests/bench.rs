@@ -80,6 +80,13 @@ fn quick_bench_rows_are_finite_and_converge() {
             assert_eq!(r.wrong, 0, "{} {}", r.method, r.setting);
         }
     }
+    // Task by task against rk2 at dt = 1e-3: dp54 is at least as accurate wherever it is
+    // listed, and on the smooth stretch (no stop to close in on) far cheaper.
+    for t in &report.ratios {
+        assert!(t.dp54_err <= t.rk2_err && t.ratio > 1.0, "{t:?}");
+    }
+    let smooth = report.ratios.iter().find(|t| t.task == "A@τ=0.5").unwrap();
+    assert!(smooth.ratio > 20.0, "{smooth:?}");
     assert!(bench::table(&report).contains("rest"));
     assert!(bench::plot(&report, "rest", 40, 10).contains('d'));
     let json = serde_json::to_string(&report).unwrap();

@@ -3,8 +3,8 @@
 use super::runs::{End, cases, finish, state_at};
 use super::tasks::RestCase;
 use super::{
-    Config, ESCAPE_VTOL, FAR_TAU, FREE_TAU, REST_TAU, Saving, Setting, Speed, median, reference,
-    timed,
+    Config, ESCAPE_VTOL, FAR_TAU, FREE_TAU, REST_TAU, Row, Saving, Setting, Speed, TaskRatio,
+    median, reference, timed,
 };
 use crate::engine::method::dp54_plain;
 use crate::engine::solve::{escape_speed, sweep_escape};
@@ -182,4 +182,32 @@ fn frame_time(reps: usize) -> Result<(f64, usize), String> {
     });
     r.map_err(|e| e.to_string())?;
     Ok((ms, app.sim.trail().len()))
+}
+
+/// For every task with an rk2 dt = 1e-3 row: the loosest dp54 row at least as accurate (median
+/// error), and how many times fewer RHS evaluations it takes (median per case).
+pub(super) fn task_ratios(rows: &[Row]) -> Vec<TaskRatio> {
+    let mut out = Vec::new();
+    for rk2 in rows
+        .iter()
+        .filter(|r| r.method == "rk2" && (r.knob / 1e-3 - 1.0).abs() < 1e-9)
+    {
+        let mut dp: Vec<&Row> = rows
+            .iter()
+            .filter(|r| r.task == rk2.task && r.method == "dp54")
+            .collect();
+        dp.sort_by(|a, b| b.knob.total_cmp(&a.knob));
+        if let Some(d) = dp.into_iter().find(|d| d.err_median <= rk2.err_median) {
+            out.push(TaskRatio {
+                task: rk2.task.clone(),
+                rk2_err: rk2.err_median,
+                rk2_evals: rk2.evals_median,
+                dp54_setting: d.setting.clone(),
+                dp54_err: d.err_median,
+                dp54_evals: d.evals_median,
+                ratio: rk2.evals_median / d.evals_median,
+            });
+        }
+    }
+    out
 }

@@ -10,7 +10,7 @@ mod tasks;
 use crate::engine::solve::escape_speed;
 use crate::engine::{Frame, Initial, Method, Outcome, Settings};
 use glam::DVec2;
-use goals::{savings, speed};
+use goals::{savings, speed, task_ratios};
 use serde::Serialize;
 use std::time::Instant;
 use tasks::{escape_rows, fig5_curve, fig5_rows, methods_for, position_rows, rest_rows};
@@ -147,6 +147,19 @@ pub struct Speed {
     pub frame_trail: usize,
 }
 
+/// dp54 against rk2 (with stick events) at dt = 1e-3 on one task: the loosest dp54 tolerance
+/// on the grid whose median error is no larger, and the ratio of median RHS evaluations.
+#[derive(Clone, Debug, Serialize)]
+pub struct TaskRatio {
+    pub task: String,
+    pub rk2_err: f64,
+    pub rk2_evals: f64,
+    pub dp54_setting: String,
+    pub dp54_err: f64,
+    pub dp54_evals: f64,
+    pub ratio: f64,
+}
+
 #[derive(Clone, Debug, Serialize)]
 pub struct Report {
     pub config: Config,
@@ -157,6 +170,7 @@ pub struct Report {
     pub rows: Vec<Row>,
     pub savings: Vec<Saving>,
     pub speed: Speed,
+    pub ratios: Vec<TaskRatio>,
 }
 
 fn median(v: &mut [f64]) -> f64 {
@@ -379,6 +393,7 @@ pub fn run(cfg: &Config, mut progress: impl FnMut(&str)) -> Result<Report, Strin
         config: cfg.clone(),
         load,
         reference,
+        ratios: task_ratios(&rows),
         rows,
         savings,
         speed,

@@ -125,6 +125,25 @@ pub fn table(r: &Report) -> String {
             );
         }
     }
+    if !r.ratios.is_empty() {
+        let _ = writeln!(
+            o,
+            "  dp54 against rk2 dt=1e-3 task by task (loosest dp54 on the grid at least as accurate; median RHS per case):"
+        );
+        for t in &r.ratios {
+            let _ = writeln!(
+                o,
+                "    {:<20} rk2 {} in {:>9.0} RHS   dp54 {:<9} {} in {:>7.0} RHS   {:>6.1}×",
+                t.task,
+                sci(t.rk2_err),
+                t.rk2_evals,
+                t.dp54_setting,
+                sci(t.dp54_err),
+                t.dp54_evals,
+                t.ratio
+            );
+        }
+    }
     let _ = writeln!(
         o,
         "  explorer frame at 160×48, {}-point trail, paper's run beside it (tick + draw): {:.2} ms   (goal ≤ 2 ms)",
