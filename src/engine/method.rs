@@ -236,6 +236,17 @@ const D5: f64 = 701980252875.0 / 199316789632.0;
 const D6: f64 = -1453857185.0 / 822651844.0;
 const D7: f64 = 69997945.0 / 29380423.0;
 
+/// The size of `e` in the max norm over the components, each against tol·(1 + |y|) at the
+/// larger of its two ends: stricter than Hairer's RMS, which near the saddle ξ ≈ 1 lets the
+/// error of one component hide behind the others.
+fn err_norm(y0: Y, y1: Y, e: Y, tol: f64) -> f64 {
+    let comp = |a: f64, b: f64, d: f64| (d / (tol + tol * a.abs().max(b.abs()))).abs();
+    comp(y0.p.x, y1.p.x, e.p.x)
+        .max(comp(y0.p.y, y1.p.y, e.p.y))
+        .max(comp(y0.w.x, y1.w.x, e.w.x))
+        .max(comp(y0.w.y, y1.w.y, e.w.y))
+}
+
 /// One DOPRI5 trial step: the new point, its slope (FSAL), the scaled error norm and the
 /// dense-output coefficients. Six new right-hand-side evaluations.
 pub struct Dp5Trial {
@@ -254,13 +265,7 @@ pub fn dp5_step(rhs: impl Fn(Y) -> Y, y: Y, k1: Y, h: f64, tol: f64) -> Dp5Trial
     let y1 = y + (k1 * A71 + k3 * A73 + k4 * A74 + k5 * A75 + k6 * A76) * h;
     let k7 = rhs(y1);
     let e = (k1 * E1 + k3 * E3 + k4 * E4 + k5 * E5 + k6 * E6 + k7 * E7) * h;
-    // Max norm over the components, each against tol·(1 + |y|): stricter than Hairer's RMS,
-    // which near the saddle ξ ≈ 1 lets the error of one component hide behind the others.
-    let comp = |a: f64, b: f64, d: f64| (d / (tol + tol * a.abs().max(b.abs()))).abs();
-    let err = comp(y.p.x, y1.p.x, e.p.x)
-        .max(comp(y.p.y, y1.p.y, e.p.y))
-        .max(comp(y.w.x, y1.w.x, e.w.x))
-        .max(comp(y.w.y, y1.w.y, e.w.y));
+    let err = err_norm(y, y1, e, tol);
     let dy = y1 - y;
     let bspl = k1 * h - dy;
     let dense = Dense::Dp5([
@@ -282,13 +287,7 @@ pub fn dp5_step(rhs: impl Fn(Y) -> Y, y: Y, k1: Y, h: f64, tol: f64) -> Dp5Trial
 /// probe of size h0 = 0.01·|y|/|f| measures how fast f changes, and the first step is sized so
 /// that its fifth-order error would be 0.01·tol. One right-hand-side evaluation.
 pub fn initial_step(rhs: impl Fn(Y) -> Y, y: Y, f0: Y, tol: f64) -> f64 {
-    let norm = |v: Y| {
-        let c = |d: f64, a: f64| (d / (tol + tol * a.abs())).abs();
-        c(v.p.x, y.p.x)
-            .max(c(v.p.y, y.p.y))
-            .max(c(v.w.x, y.w.x))
-            .max(c(v.w.y, y.w.y))
-    };
+    let norm = |v: Y| err_norm(y, y, v, tol);
     let (d0, d1) = (norm(y), norm(f0));
     let h0 = if d0 < 1e-5 || d1 < 1e-5 {
         1e-6
