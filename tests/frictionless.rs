@@ -109,3 +109,14 @@ fn a_scene_file_says_frictionless_only_when_it_is() {
     assert_eq!(back.initial, scene.initial);
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn without_friction_only_coriolis_and_centrifugal_act_on_the_table() {
+    use turntable::engine::model::table_forces;
+    let s = Initial::velocity(0.6, 1.0, 0.3).state();
+    let [fr, co, ce] = table_forces(&s, true);
+    assert_eq!(fr, DVec2::ZERO);
+    let [fr1, co1, ce1] = table_forces(&s, false);
+    assert!((fr1.length() - 1.0).abs() < 1e-15);
+    assert_eq!((co, ce), (co1, ce1));
+}

@@ -364,8 +364,13 @@ impl Frame {
 }
 
 /// The three forces per unit mass in the rotating frame (Sec. IV's explanation of Fig. 5):
-/// friction, Coriolis and centrifugal, in table-frame components.
-pub fn table_forces(s: &State) -> [DVec2; 3] {
+/// friction (none if `frictionless`), Coriolis and centrifugal, in table-frame components.
+pub fn table_forces(s: &State, frictionless: bool) -> [DVec2; 3] {
     let (q, u) = (s.q(), s.u());
-    [friction(u, q), -2.0 * zcross(u), q]
+    let fr = if frictionless {
+        DVec2::ZERO
+    } else {
+        friction(u, q)
+    };
+    [fr, -2.0 * zcross(u), q]
 }

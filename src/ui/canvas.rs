@@ -176,10 +176,7 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &mut App) {
                 let at = in_frame(&now, view);
                 let turn = if view == Frame::Lab { now.tau } else { 0.0 };
                 let k = 0.12 * r;
-                let [mut fr, co, ce] = table_forces(&now);
-                if frictionless {
-                    fr = DVec2::ZERO;
-                }
+                let [fr, co, ce] = table_forces(&now, frictionless);
                 for (v, c) in [(fr, th.friction), (co, th.coriolis), (ce, th.centrifugal)] {
                     arrow(ctx, at, rotate(v, turn) * k, c);
                 }
