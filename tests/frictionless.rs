@@ -27,7 +27,8 @@ fn the_closed_form_is_what_the_rotating_frame_equations_give() {
             Frame::Table.from_state(&i.state()),
             tau,
             1e-12,
-        );
+        )
+        .unwrap();
         let integrated = Frame::Table.to_state(y, tau);
         let closed = i.free_state(tau);
         assert!((integrated.r - closed.r).length() < 1e-9, "{i:?}");

@@ -76,7 +76,8 @@ pub(super) fn savings(cs: &[(String, Initial)]) -> Result<Vec<Saving>, String> {
         Frame::Table.from_state(&s),
         FREE_TAU,
         1e-10,
-    );
+    )
+    .ok_or("dp54 on the frictionless equations: step size underflow")?;
     let off = (Frame::Table.to_state(y, FREE_TAU).r - free.free_state(FREE_TAU).r).length();
     out.push(Saving {
         what: format!("μ = 0 from C's release to τ = {FREE_TAU} (ξ ≈ 25): closed form"),

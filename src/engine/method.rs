@@ -306,13 +306,16 @@ pub fn initial_step(rhs: impl Fn(Y) -> Y, y: Y, f0: Y, tol: f64) -> f64 {
 
 /// Plain DOPRI5 from `y` over `[0, t_end]`, with no events: for smooth systems such as the
 /// frictionless equations ([`Frame::rhs_free`]). Returns the end point and the number of
-/// right-hand-side evaluations.
-pub fn dp54_plain(rhs: impl Fn(Y) -> Y, y: Y, t_end: f64, tol: f64) -> (Y, u64) {
+/// right-hand-side evaluations, or `None` if the step size underflows.
+pub fn dp54_plain(rhs: impl Fn(Y) -> Y, y: Y, t_end: f64, tol: f64) -> Option<(Y, u64)> {
     let (mut y, mut f, mut t) = (y, rhs(y), 0.0);
     let mut h = initial_step(&rhs, y, f, tol);
     let mut evals = 2;
     let mut ctrl = Controller::default();
     while t < t_end {
+        if h < 1e-14 * t.max(1.0) {
+            return None;
+        }
         let step = h.min(t_end - t);
         let trial = dp5_step(&rhs, y, f, step, tol);
         evals += 6;
@@ -322,7 +325,7 @@ pub fn dp54_plain(rhs: impl Fn(Y) -> Y, y: Y, t_end: f64, tol: f64) -> (Y, u64) 
         }
         h = hnew;
     }
-    (y, evals)
+    Some((y, evals))
 }
 
 /// Hairer's PI step-size controller (β = 0.04, safety 0.9, factor in [0.2, 10]).
