@@ -3,7 +3,7 @@
 //! no panic, `check_invariants()` after every step, and no NaN or infinity on any screen.
 
 use crossterm::event::{KeyCode, KeyEvent, KeyModifiers, MouseButton, MouseEvent, MouseEventKind};
-use turntable::app::{App, KEYMAP, keymap::event_for};
+use turntable::app::{Action, App, KEYMAP, keymap::event_for};
 use turntable::replay::{Session, plain_text};
 use turntable::scene::{PRESETS, Scene};
 use turntable::theme::{BUILTIN, Theme};
@@ -143,4 +143,65 @@ fn non_finite_detector() {
     assert!(non_finite("τ inf").is_some());
     assert!(non_finite("information infinity").is_none());
     assert!(non_finite("ξ = 0.5").is_none());
+}
+
+/// From scenes at the bounds (ξ0 and v0 at 0 and at `Initial::MAX`, every release mode, with
+/// and without friction), every key of the keymap twice (plain and with Alt) and clicks and
+/// drags far out: edits clamp to the valid range, nothing panics.
+#[test]
+fn edits_at_the_bounds_clamp() {
+    use turntable::engine::{Initial, Release};
+    let max = Initial::MAX;
+    for (xi0, v0) in [(max, 0.0), (0.0, max), (max, max), (0.0, 0.0)] {
+        for release in [Release::Velocity, Release::TableRest, Release::LabRest] {
+            for frictionless in [false, true] {
+                let mut scene = Scene::default_scene();
+                scene.initial = Initial {
+                    xi0,
+                    v0,
+                    release,
+                    frictionless,
+                    ..scene.initial
+                };
+                let mut s = Session::headless(App::new(scene, Theme::builtin("mono").unwrap()), 80, 24, false);
+                s.app.save_path = std::env::temp_dir().join("turntable-never-written.toml");
+                for b in KEYMAP {
+                    let mut k = event_for(b);
+                    if matches!(b.action, Action::Save | Action::Quit) {
+                        continue;
+                    }
+                    for alt in [false, true] {
+                        if alt {
+                            k.modifiers |= KeyModifiers::ALT;
+                        }
+                        s.key(k);
+                        s.app.quit = false;
+                        s.tick();
+                        let i = s.app.initial;
+                        assert!(
+                            (0.0..=max).contains(&i.xi0) && (0.0..=max).contains(&i.v0),
+                            "{xi0} {v0} {release:?}: {:?} gave {i:?}",
+                            b.help
+                        );
+                    }
+                }
+                for (col, row) in [(0, 0), (79, 23), (40, 12), (2, 20)] {
+                    for kind in [
+                        MouseEventKind::Down(MouseButton::Left),
+                        MouseEventKind::Drag(MouseButton::Left),
+                        MouseEventKind::Up(MouseButton::Left),
+                    ] {
+                        let ev = MouseEvent {
+                            kind,
+                            column: col,
+                            row,
+                            modifiers: KeyModifiers::NONE,
+                        };
+                        s.mouse(ev).unwrap();
+                        s.app.check_invariants().unwrap();
+                    }
+                }
+            }
+        }
+    }
 }

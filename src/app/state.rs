@@ -143,11 +143,13 @@ impl App {
     }
 }
 
-/// Keeps user-edited values valid: ξ0, v0 ≥ 0 and finite; φ wrapped into (−π, π].
+/// Keeps user-edited values valid: ξ0, v0 finite and clamped to [0, [`Initial::MAX`]] (an
+/// edit past the bound stops there, it never panics); φ wrapped into (−π, π].
 pub fn sanitize(mut i: Initial) -> Initial {
     let fin = |x: f64| if x.is_finite() { x } else { 0.0 };
-    i.xi0 = (fin(i.xi0).max(0.0) * 1e9).round() / 1e9;
-    i.v0 = (fin(i.v0).max(0.0) * 1e9).round() / 1e9;
+    let clamp = |x: f64| ((fin(x) * 1e9).round() / 1e9).clamp(0.0, Initial::MAX);
+    i.xi0 = clamp(i.xi0);
+    i.v0 = clamp(i.v0);
     i.phi = crate::engine::model::wrap_angle(fin(i.phi));
     i
 }
