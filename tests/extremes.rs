@@ -291,3 +291,29 @@ fn frictionless_at_the_extremes() {
         }
     }
 }
+
+/// Speeds whose squares underflow stop at once (issue 11): they used to hover at |u| = 0
+/// and report `running` at τ-max, or exhaust the step budget next to ξ = 1.
+#[test]
+fn underflowing_speeds_stop() {
+    let cases = [
+        Initial::velocity(0.5, 0.0, 1e-300),
+        Initial::velocity(0.5, 2.0, 1e-170),
+        Initial::at_rest(1e-300, Release::LabRest),
+        Initial::velocity(1.0 - 1e-12, 0.0, 1e-300),
+    ];
+    for method in [Method::Dp54, Method::Rk4, Method::Rk2] {
+        for i in cases {
+            let s = Settings {
+                method,
+                ..Settings::default()
+            };
+            let mut run = Run::new(i, s).unwrap();
+            let (o, st) = run.finish(100.0).unwrap();
+            assert_eq!(o, Outcome::Stuck, "{method:?} {i:?}");
+            assert!(st.tau < 1e-149, "{method:?} {i:?}: stopped at {}", st.tau);
+            assert!((st.xi() - i.xi0).abs() < 1e-15, "{i:?}: {}", st.xi());
+            assert!(run.cost.steps <= 1, "{i:?}: {:?}", run.cost);
+        }
+    }
+}

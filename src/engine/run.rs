@@ -34,6 +34,10 @@ const FROZEN_SHARE: f64 = 0.1;
 /// How far one closed-form stride of a frictionless run reaches when no end is given: any
 /// length costs the same.
 const FREE_STRIDE: f64 = 1e3;
+/// A relative speed below this is a stop now: its square underflows (|u|² < 1e-300 loses
+/// digits, below 1e-308 it is zero, and û = u/|u| with it), so the equations can no longer
+/// tell it from rest. The stop is |u|/(1 − q·û) ≤ 1e-150 ahead, beyond what τ can resolve.
+const UNDERFLOW_SPEED: f64 = 1e-150;
 
 /// How escape was certified (CONVENTIONS.md "Outcomes"; Sec. II, property 2).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
@@ -291,6 +295,12 @@ impl Run {
             return Ok(());
         }
         let (q, u) = (s.q(), s.u());
+        let speed = u.x.hypot(u.y);
+        if self.settings.method.stick_events() && u != DVec2::ZERO && speed < UNDERFLOW_SPEED {
+            let decel = 1.0 - q.dot(u / speed);
+            self.jump(if decel > 0.0 { speed / decel } else { 0.0 }, q, DVec2::ZERO);
+            return Ok(());
+        }
         if self.settings.method.adaptive()
             && u != DVec2::ZERO
             && q.length() < 1.0
