@@ -163,7 +163,12 @@ fn edits_at_the_bounds_clamp() {
                     frictionless,
                     ..scene.initial
                 };
-                let mut s = Session::headless(App::new(scene, Theme::builtin("mono").unwrap()), 80, 24, false);
+                let mut s = Session::headless(
+                    App::new(scene, Theme::builtin("mono").unwrap()),
+                    80,
+                    24,
+                    false,
+                );
                 s.app.save_path = std::env::temp_dir().join("turntable-never-written.toml");
                 for b in KEYMAP {
                     let mut k = event_for(b);

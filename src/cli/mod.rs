@@ -49,7 +49,7 @@ pub enum Command {
     Critical(CriticalArgs),
     /// CSV for Fig. 5 (v_e over phi) or Fig. 6 (final rest xi over xi0).
     Sweep(SweepArgs),
-    /// Work–precision measurements: error against cost for every method (issue 5).
+    /// Work–precision measurements: error against cost for every method, and the speed goals.
     Bench(BenchArgs),
     /// Run a key script headlessly and print its snapshots (see README, "Key scripts").
     Replay(replay::ReplayArgs),
@@ -60,6 +60,7 @@ pub struct BenchArgs {
     /// A small bench that finishes in seconds (fewer settings, cases and angles).
     #[arg(long)]
     pub quick: bool,
+    /// Print one JSON object instead of text.
     #[arg(long)]
     pub json: bool,
     /// Draw error against cost (log–log) as braille charts.
@@ -80,10 +81,10 @@ pub struct NumericsArgs {
     #[arg(long, default_value = "dp54", value_parser = parse_str::<Method>)]
     pub method: Method,
     /// Tolerance of dp54.
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     pub tol: Option<f64>,
     /// Step of the fixed-step methods.
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     pub dt: Option<f64>,
     /// Frame the equations are integrated in (lab is cheaper far from the centre).
     #[arg(long, default_value = "lab", value_parser = parse_str::<Frame>)]
@@ -96,14 +97,16 @@ pub struct NumericsArgs {
 #[derive(Args, Debug)]
 pub struct RunArgs {
     /// Release radius xi0 (units of R_max = mu g / Omega^2).
-    #[arg(long, default_value_t = 0.5, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = 0.5, allow_hyphen_values = true)]
     pub xi0: f64,
     /// Direction of the initial velocity in the table frame, from radially outward, ccw (rad).
-    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
     pub phi: f64,
     /// Initial speed relative to the table.
-    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
     pub v0: f64,
+    /// How it is released: velocity (v0 at phi, table frame), table-rest (at rest on the
+    /// table) or lab-rest (at rest in the lab).
     #[arg(long, default_value = "velocity", value_parser = parse_str::<Release>)]
     pub release: Release,
     /// mu = 0: no friction, a straight line in the lab, in closed form (no integration).
@@ -112,11 +115,12 @@ pub struct RunArgs {
     #[command(flatten)]
     pub numerics: NumericsArgs,
     /// Stop at this time if the particle has neither stuck nor escaped.
-    #[arg(long, default_value_t = 100.0, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = 100.0, allow_hyphen_values = true)]
     pub tau_max: f64,
     /// Keep integrating after escape is certified, up to tau-max.
     #[arg(long)]
     pub follow: bool,
+    /// Print one JSON object instead of text.
     #[arg(long)]
     pub json: bool,
     /// Write the trajectory (one row per step) to this CSV file.
@@ -126,15 +130,16 @@ pub struct RunArgs {
 
 #[derive(Args, Debug)]
 pub struct EscapeArgs {
-    #[arg(long, allow_negative_numbers = true)]
+    #[arg(long, allow_hyphen_values = true)]
     pub xi0: f64,
-    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
     pub phi: f64,
     /// Width of the final bracket on v0.
-    #[arg(long = "vtol", default_value_t = 1e-8, allow_negative_numbers = true)]
+    #[arg(long = "vtol", default_value_t = 1e-8, allow_hyphen_values = true)]
     pub vtol: f64,
     #[command(flatten)]
     pub numerics: NumericsArgs,
+    /// Print one JSON object instead of text.
     #[arg(long)]
     pub json: bool,
 }
@@ -142,20 +147,21 @@ pub struct EscapeArgs {
 #[derive(Args, Debug)]
 pub struct CriticalArgs {
     /// Width of the final bracket on xi0.
-    #[arg(long = "xtol", default_value_t = 1e-8, allow_negative_numbers = true)]
+    #[arg(long = "xtol", default_value_t = 1e-8, allow_hyphen_values = true)]
     pub xtol: f64,
     /// Measured: the table's angular speed Omega (rad/s). With --r0c it gives mu (Eq. 22).
-    #[arg(long, requires = "r0c", allow_negative_numbers = true)]
+    #[arg(long, requires = "r0c", allow_hyphen_values = true)]
     pub omega: Option<f64>,
     /// Measured: the largest release radius (m) at which a particle placed at rest in the lab
     /// still stays on the table.
-    #[arg(long, requires = "omega", allow_negative_numbers = true)]
+    #[arg(long, requires = "omega", allow_hyphen_values = true)]
     pub r0c: Option<f64>,
     /// Gravitational acceleration (m/s²).
-    #[arg(long, default_value_t = 9.81, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = 9.81, allow_hyphen_values = true)]
     pub g: f64,
     #[command(flatten)]
     pub numerics: NumericsArgs,
+    /// Print one JSON object instead of text.
     #[arg(long)]
     pub json: bool,
 }
@@ -166,14 +172,16 @@ pub struct SweepArgs {
     #[arg(value_parser = ["fig5", "fig6"])]
     pub figure: String,
     /// Release radii for fig5.
-    #[arg(long, value_delimiter = ',', default_values_t = [0.8, 0.5, 0.2, 0.001])]
+    #[arg(long, value_delimiter = ',', default_values_t = [0.8, 0.5, 0.2, 0.001], allow_hyphen_values = true)]
     pub xi0: Vec<f64>,
     /// Number of angles (fig5) or radii (fig6).
     #[arg(long, default_value_t = 72)]
     pub points: usize,
-    #[arg(long, default_value_t = 1.0)]
+    /// Largest release radius for fig6.
+    #[arg(long, default_value_t = 1.0, allow_hyphen_values = true)]
     pub xi0_max: f64,
-    #[arg(long = "vtol", default_value_t = 1e-6)]
+    /// Width of the final bracket on each escape speed (fig5).
+    #[arg(long = "vtol", default_value_t = 1e-6, allow_hyphen_values = true)]
     pub vtol: f64,
     #[command(flatten)]
     pub numerics: NumericsArgs,

@@ -2,8 +2,9 @@
 
 use super::io::{emit, write_atomic};
 use super::{CmdResult, CriticalArgs, EscapeArgs, Failure, RunArgs, SweepArgs, check_initial};
-use crate::engine::model::wrap_angle;
-use crate::engine::solve::{critical_radius, escape_speed, sweep_escape, sweep_rest};
+use crate::engine::solve::{
+    Threshold, check_escape_xi0, critical_radius, escape_speed, sweep_escape, sweep_rest,
+};
 use crate::engine::{Initial, Outcome, Run, State, Status};
 use serde_json::json;
 use std::fmt::Write as _;
@@ -40,7 +41,7 @@ pub fn run(a: RunArgs) -> CmdResult {
     if !(a.tau_max.is_finite() && a.tau_max > 0.0 && a.tau_max <= TAU_MAX_LIMIT) {
         return Err(Failure::Usage(format!(
             "tau-max must lie in (0, {TAU_MAX_LIMIT:e}], got {}",
-            a.tau_max
+            Initial::show(a.tau_max)
         )));
     }
     let settings = a.numerics.settings()?;
@@ -80,13 +81,15 @@ pub fn run(a: RunArgs) -> CmdResult {
     if let (Some(path), Some(csv)) = (&a.trajectory, &csv) {
         write_atomic(path, csv.as_bytes())?;
     }
+    let doubt = crate::engine::doubt::doubt(&run, a.tau_max);
     let q = end.q();
-    let angle = wrap_angle(q.y.atan2(q.x));
+    let angle = q.y.atan2(q.x).rem_euclid(std::f64::consts::TAU);
     let speed = end.u_lab().length();
     let c = run.cost;
     if a.json {
         let v = json!({
             "outcome": outcome.name(),
+            "certain": doubt.certain,
             "tau": end.tau,
             "xi": q.length(),
             "angle": angle,
@@ -105,11 +108,11 @@ pub fn run(a: RunArgs) -> CmdResult {
         emit(None, &format!("{v}\n"))?;
     } else {
         let how = match (outcome, run.escape) {
-            (Outcome::Stuck, _) => "stuck on the table".to_string(),
+            (Outcome::Stuck, _) => "stuck: at rest on the table from tau on".to_string(),
             (Outcome::Escaped, Some(e)) => {
-                format!("escaped (certified by {:?} bound)", e.by).to_lowercase()
+                format!("escaped: tau is when {} first held", e.by.describe())
             }
-            _ => "still slipping at tau-max".to_string(),
+            _ => "running: still slipping at tau-max".to_string(),
         };
         let cost = if initial.frictionless {
             "closed form, 0 rhs evaluations (mu = 0: a straight line in the lab)".to_string()
@@ -123,9 +126,18 @@ pub fn run(a: RunArgs) -> CmdResult {
                 settings.accuracy_label()
             )
         };
+        let certain = if doubt.certain {
+            String::new()
+        } else {
+            format!(
+                "certain  no: this run's own error could change the outcome (|H| margin {:.1e}, error {:.1e} against a run 1000x tighter, which ends {})\n",
+                doubt.margin,
+                doubt.error,
+                doubt.shadow.map_or("out of budget", |o| o.name())
+            )
+        };
         let text = format!(
-            "outcome  {}: {how}\ntau      {:.9}\nxi       {:.12}\nangle    {:.12} rad (table frame, from the release direction)\n|u|      {:.3e}\ncost     {cost}\n",
-            outcome.name(),
+            "outcome  {how}\n{certain}tau      {:.9}\nxi       {:.12}\nangle    {:.12} rad in [0, 2pi) (table frame, ccw from the release direction)\n|u|      {:.3e}\ncost     {cost}\n",
             end.tau,
             q.length(),
             angle,
@@ -154,30 +166,71 @@ fn positive(name: &str, x: f64) -> Result<(), Failure> {
         Ok(())
     } else {
         Err(Failure::Usage(format!(
-            "{name} must be a positive number, got {x}"
+            "{name} must be a positive number, got {}",
+            Initial::show(x)
         )))
     }
 }
 
+/// The scan of a threshold search as runs of equal outcome: "0 to 1.2 escape; 1.35 to 2.4
+/// stick; …" (what is known where the escaping values are not one interval).
+fn scan_summary(t: &Threshold) -> String {
+    let mut parts: Vec<String> = Vec::new();
+    let mut i = 0;
+    while i < t.scan.len() {
+        let (x0, e) = t.scan[i];
+        let mut j = i;
+        while j + 1 < t.scan.len() && t.scan[j + 1].1 == e {
+            j += 1;
+        }
+        let x1 = t.scan[j].0;
+        let range = if j == i {
+            format!("{x0:.4}")
+        } else {
+            format!("{x0:.4} to {x1:.4}")
+        };
+        parts.push(format!("{range} {}", if e { "escape" } else { "stick" }));
+        i = j + 1;
+    }
+    parts.join("; ")
+}
+
 pub fn escape(a: EscapeArgs) -> CmdResult {
     check_initial(&Initial::velocity(a.xi0, a.phi, 0.0))?;
+    check_escape_xi0(a.xi0).map_err(Failure::Usage)?;
     positive("vtol", a.vtol)?;
     let settings = solver_settings(&a.numerics)?;
     let t = escape_speed(a.xi0, a.phi, settings, a.vtol).map_err(Failure::Runtime)?;
+    let phi = a.phi.rem_euclid(std::f64::consts::TAU);
     if a.json {
+        let scan: Vec<_> = t
+            .scan
+            .iter()
+            .map(|&(v0, e)| json!({"v0": v0, "outcome": if e { "escaped" } else { "stuck" }}))
+            .collect();
         let v = json!({
-            "xi0": a.xi0, "phi": a.phi, "v_escape": t.value,
+            "xi0": a.xi0, "phi": phi, "v_escape": t.value,
             "stuck_at": t.stuck_at, "escapes_at": t.escapes_at, "interval": t.interval,
-            "runs": t.runs, "rhs_evals": t.rhs_evals,
+            "scan": scan, "runs": t.runs, "rhs_evals": t.rhs_evals,
         });
         emit(None, &format!("{v}\n"))?;
     } else {
-        let mut text = format!(
-            "v_escape {:.10}\nbracket  stuck at {:.10}, escapes at {:.10}\ncost     {} runs, {} rhs evaluations\n",
-            t.value, t.stuck_at, t.escapes_at, t.runs, t.rhs_evals
-        );
+        let mut text = match t.stuck_at {
+            Some(lo) => format!(
+                "v_escape {:.10}  (the least escaping speed)\nbracket  stuck at {lo:.10}, escapes at {:.10}\n",
+                t.value, t.escapes_at
+            ),
+            None => "v_escape 0  (released at rest on the table here, it already escapes)\n".into(),
+        };
+        text.push_str(&format!(
+            "cost     {} runs, {} rhs evaluations\n",
+            t.runs, t.rhs_evals
+        ));
         if !t.interval {
-            text.push_str("note     the escaping speeds do not form one interval here: some faster releases come to rest\n");
+            text.push_str(&format!(
+                "note     the escaping speeds are not one interval: some faster releases come to rest.\n         scanned v0: {}\n",
+                scan_summary(&t)
+            ));
         }
         emit(None, &text)?;
     }
@@ -190,6 +243,15 @@ pub fn critical(a: CriticalArgs) -> CmdResult {
     if let (Some(w), Some(r)) = (a.omega, a.r0c) {
         positive("omega", w)?;
         positive("r0c", r)?;
+        let m = w * w * r / a.g;
+        if !(m.is_finite() && m > 0.0) {
+            return Err(Failure::Usage(format!(
+                "mu = omega² r0c / (xi0c g) is out of range for omega {}, r0c {}, g {}: check the units (rad/s, m, m/s²)",
+                Initial::show(w),
+                Initial::show(r),
+                Initial::show(a.g)
+            )));
+        }
     }
     let settings = solver_settings(&a.numerics)?;
     let t = critical_radius(settings, a.xtol).map_err(Failure::Runtime)?;
@@ -204,7 +266,9 @@ pub fn critical(a: CriticalArgs) -> CmdResult {
     } else {
         let mut text = format!(
             "xi0c     {:.10}\nbracket  stuck at {:.10}, escapes at {:.10}\n",
-            t.value, t.stuck_at, t.escapes_at
+            t.value,
+            t.stuck_at.unwrap_or(0.0),
+            t.escapes_at
         );
         if let Some(mu) = mu {
             text.push_str(&format!(
@@ -228,7 +292,7 @@ pub fn sweep(a: SweepArgs) -> CmdResult {
     let mut csv = String::new();
     if a.figure == "fig5" {
         for &xi0 in &a.xi0 {
-            check_initial(&Initial::velocity(xi0, 0.0, 0.0))?;
+            check_escape_xi0(xi0).map_err(Failure::Usage)?;
         }
         csv.push_str("xi0,phi,v_escape\n");
         for p in sweep_escape(&a.xi0, a.points, settings, a.vtol).map_err(Failure::Runtime)? {
@@ -236,6 +300,7 @@ pub fn sweep(a: SweepArgs) -> CmdResult {
         }
     } else {
         positive("xi0-max", a.xi0_max)?;
+        check_initial(&Initial::velocity(a.xi0_max, 0.0, 0.0))?;
         let xi0s: Vec<f64> = (0..a.points)
             .map(|i| a.xi0_max * i as f64 / (a.points - 1).max(1) as f64)
             .collect();

@@ -2,7 +2,7 @@
 //! Dormand–Prince 5(4) with PI step control and dense output (Hairer, Nørsett & Wanner,
 //! *Solving ODEs I*, II.5 and the DOPRI5 code).
 
-use super::model::{Frame, Y};
+use super::model::{Frame, Initial, Y};
 use serde::{Deserialize, Serialize};
 use std::fmt;
 use std::str::FromStr;
@@ -110,13 +110,16 @@ impl Settings {
     pub fn validate(&self) -> Result<(), String> {
         let (lo, hi) = DT_RANGE;
         if !(self.dt.is_finite() && (lo..=hi).contains(&self.dt)) {
-            return Err(format!("dt must lie in [{lo:e}, {hi}], got {}", self.dt));
+            return Err(format!(
+                "dt must lie in [{lo:e}, {hi}], got {}",
+                Initial::show(self.dt)
+            ));
         }
         let (lo, hi) = TOL_RANGE;
         if !(self.tol.is_finite() && (lo..=hi).contains(&self.tol)) {
             return Err(format!(
                 "tol must lie in [{lo:e}, {hi:e}], got {}",
-                self.tol
+                Initial::show(self.tol)
             ));
         }
         if self.max_steps == 0 {

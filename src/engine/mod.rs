@@ -2,6 +2,7 @@
 //! approximations.
 
 pub mod approx;
+pub mod doubt;
 pub mod method;
 pub mod model;
 pub mod run;

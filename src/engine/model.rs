@@ -147,18 +147,31 @@ impl Initial {
     /// energies stay finite.
     pub const MAX: f64 = 1e12;
 
+    /// A number for a message: plain where that is short, else in e-notation (1e300, not
+    /// 301 digits).
+    pub fn show(x: f64) -> String {
+        if x == 0.0 || !x.is_finite() || (1e-4..1e9).contains(&x.abs()) {
+            format!("{x}")
+        } else {
+            format!("{x:e}")
+        }
+    }
+
     /// Checks the values a user may type: finite, 0 ≤ ξ0, v0 ≤ [`Initial::MAX`].
     pub fn validate(&self) -> Result<(), String> {
         for (name, x) in [("xi0", self.xi0), ("phi", self.phi), ("v0", self.v0)] {
             if !x.is_finite() {
-                return Err(format!("{name} must be a finite number, got {x}"));
+                return Err(format!(
+                    "{name} must be a finite number, got {}",
+                    Self::show(x)
+                ));
             }
         }
         if self.xi0 < 0.0 {
-            return Err(format!("xi0 must be ≥ 0, got {}", self.xi0));
+            return Err(format!("xi0 must be ≥ 0, got {}", Self::show(self.xi0)));
         }
         if self.v0 < 0.0 {
-            return Err(format!("v0 must be ≥ 0, got {}", self.v0));
+            return Err(format!("v0 must be ≥ 0, got {}", Self::show(self.v0)));
         }
         for (name, x) in [("xi0", self.xi0), ("v0", self.v0)] {
             if x > Self::MAX {

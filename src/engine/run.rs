@@ -49,6 +49,20 @@ pub enum Certificate {
     Energy,
 }
 
+impl Certificate {
+    /// The bound in words, for messages.
+    pub fn describe(self) -> &'static str {
+        match self {
+            Certificate::Radial => {
+                "the radial certificate: xi = 1 crossed moving out, never to turn back"
+            }
+            Certificate::Energy => {
+                "the energy certificate: E < -1/2, so it can never rest inside xi = 1 again (it may not have crossed xi = 1 yet)"
+            }
+        }
+    }
+}
+
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct Escape {
     pub tau: f64,
@@ -298,7 +312,11 @@ impl Run {
         let speed = u.x.hypot(u.y);
         if self.settings.method.stick_events() && u != DVec2::ZERO && speed < UNDERFLOW_SPEED {
             let decel = 1.0 - q.dot(u / speed);
-            self.jump(if decel > 0.0 { speed / decel } else { 0.0 }, q, DVec2::ZERO);
+            self.jump(
+                if decel > 0.0 { speed / decel } else { 0.0 },
+                q,
+                DVec2::ZERO,
+            );
             return Ok(());
         }
         if self.settings.method.adaptive()
@@ -364,7 +382,6 @@ impl Run {
         self.y = frame.from_state(&self.initial.free_state(end));
         self.tau = end;
         self.last = None;
-        self.cost.steps += 1;
     }
 
     fn fixed_step(&mut self, cap: f64) -> Segment {

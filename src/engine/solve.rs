@@ -11,15 +11,19 @@ use serde::Serialize;
 pub const CLASSIFY_TAU: f64 = 1e4;
 
 /// A threshold located by bisection on the outcome, with its certificate: a run on each side.
-#[derive(Clone, Copy, Debug, Serialize, PartialEq)]
+#[derive(Clone, Debug, Serialize, PartialEq)]
 pub struct Threshold {
     /// Midpoint of the final bracket.
     pub value: f64,
-    /// Largest value seen to stick, and least seen to escape.
-    pub stuck_at: f64,
+    /// Largest value below the threshold that a run saw stick (none if the least value
+    /// scanned already escapes), and least value seen to escape.
+    pub stuck_at: Option<f64>,
     pub escapes_at: f64,
     /// Whether the scan saw the escaping set as one interval above the threshold.
     pub interval: bool,
+    /// The coarse scan: each value run and whether it escaped. Where the escaping values are
+    /// not one interval, this is what is known of them.
+    pub scan: Vec<(f64, bool)>,
     pub runs: u32,
     pub rhs_evals: u64,
 }
@@ -44,25 +48,23 @@ fn bisect(
     Ok((lo, hi, runs))
 }
 
-/// Scans `grid` for the first escaping value, then checks the rest of the grid escapes too.
+/// Runs every value of `grid`: the index of the first that escapes, whether all after it
+/// escape too, and each value's outcome.
+#[allow(clippy::type_complexity)]
 fn scan(
     grid: &[f64],
     mut escapes: impl FnMut(f64) -> Result<bool, String>,
-) -> Result<(usize, bool, u32), String> {
-    let mut first = None;
-    let mut interval = true;
-    let mut runs = 0;
-    for (i, &x) in grid.iter().enumerate() {
-        runs += 1;
-        let e = escapes(x)?;
-        match (first, e) {
-            (None, true) => first = Some(i),
-            (Some(_), false) => interval = false,
-            _ => {}
-        }
-    }
-    let first = first.ok_or("no escape found in the scanned range")?;
-    Ok((first, interval, runs))
+) -> Result<(usize, bool, Vec<(f64, bool)>), String> {
+    let outcomes = grid
+        .iter()
+        .map(|&x| escapes(x).map(|e| (x, e)))
+        .collect::<Result<Vec<_>, _>>()?;
+    let first = outcomes
+        .iter()
+        .position(|o| o.1)
+        .ok_or("no escape found in the scanned range")?;
+    let interval = outcomes[first..].iter().all(|o| o.1);
+    Ok((first, interval, outcomes))
 }
 
 /// `H = E + ξ − ½ = ½(|u|² − (1 − ξ)²)`: never increases (dH/dτ = −|u| + ξ′ ≤ 0, as
@@ -134,6 +136,28 @@ fn probe(
     Ok(result)
 }
 
+/// Escape needs at most enough speed to reach ξ = 1 against full friction: the ceiling of
+/// the scan for the escape speed at ξ0.
+fn escape_scan_top(xi0: f64) -> f64 {
+    2.0 * (1.0 + xi0) + 2.0
+}
+
+/// Largest ξ0 whose escape speed can be sought: the scan's speeds stay ≤ [`Initial::MAX`].
+pub const MAX_ESCAPE_XI0: f64 = 4e11;
+
+/// Whether [`escape_speed`] accepts `xi0` (so that a command can refuse it before any run).
+pub fn check_escape_xi0(xi0: f64) -> Result<(), String> {
+    Initial::velocity(xi0, 0.0, 0.0).validate()?;
+    if xi0 > MAX_ESCAPE_XI0 {
+        return Err(format!(
+            "xi0 must be ≤ {MAX_ESCAPE_XI0:e} for an escape speed (the scan reaches v0 = 2(1 + xi0) + 2 ≤ {:e}), got {}",
+            Initial::MAX,
+            Initial::show(xi0)
+        ));
+    }
+    Ok(())
+}
+
 /// Tolerance of the scan runs, which only need the outcome far from the threshold.
 const SCAN_TOL: f64 = 1e-6;
 /// A secant step this many times the target width or smaller means the estimate is good
@@ -170,18 +194,20 @@ pub fn escape_speed(xi0: f64, phi: f64, settings: Settings, tol: f64) -> Result<
     } else {
         settings
     };
-    // Escape needs at most enough speed to reach ξ = 1 against full friction: a ceiling.
-    let top = 2.0 * (1.0 + xi0) + 2.0;
+    check_escape_xi0(xi0)?;
+    let top = escape_scan_top(xi0);
     let grid: Vec<f64> = (0..=40).map(|i| top * i as f64 / 40.0).collect();
-    let (first, interval, mut runs) = scan(&grid, |v0| {
+    let (first, interval, scanned) = scan(&grid, |v0| {
         probe(at(v0), scan_settings, true, &mut evals).map(|p| p.escapes)
     })?;
+    let mut runs = scanned.len() as u32;
     if first == 0 {
         return Ok(Threshold {
             value: 0.0,
-            stuck_at: 0.0,
+            stuck_at: None,
             escapes_at: 0.0,
             interval,
+            scan: scanned,
             runs,
             rhs_evals: evals,
         });
@@ -268,9 +294,10 @@ pub fn escape_speed(xi0: f64, phi: f64, settings: Settings, tol: f64) -> Result<
     }
     Ok(Threshold {
         value: 0.5 * (lo + hi),
-        stuck_at: lo,
+        stuck_at: Some(lo),
         escapes_at: hi,
         interval,
+        scan: scanned,
         runs,
         rhs_evals: evals,
     })
@@ -341,17 +368,18 @@ pub fn critical_radius(settings: Settings, tol: f64) -> Result<Threshold, String
         Ok(outcome != Outcome::Stuck)
     };
     let grid: Vec<f64> = (0..=30).map(|i| 1.5 * i as f64 / 30.0).collect();
-    let (first, interval, scan_runs) = scan(&grid, &mut classify)?;
+    let (first, interval, scanned) = scan(&grid, &mut classify)?;
     if first == 0 {
         return Err("released at rest in the lab at the centre, the particle escaped".into());
     }
     let (lo, hi, runs) = bisect(grid[first - 1], grid[first], tol, &mut classify)?;
     Ok(Threshold {
         value: 0.5 * (lo + hi),
-        stuck_at: lo,
+        stuck_at: Some(lo),
         escapes_at: hi,
         interval,
-        runs: scan_runs + runs,
+        runs: scanned.len() as u32 + runs,
+        scan: scanned,
         rhs_evals: evals,
     })
 }

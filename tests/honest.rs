@@ -1,0 +1,175 @@
+//! Honest numbers (issue 11): outcomes that say when the run's own error could flip them,
+//! bad solver input refused up front, and words that say what the numbers are.
+
+use std::process::Command;
+use turntable::engine::doubt::doubt;
+use turntable::engine::{Initial, Outcome, Run, Settings};
+
+fn turntable(args: &[&str]) -> (i32, String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_turntable"))
+        .args(args)
+        .output()
+        .unwrap();
+    (
+        out.status.code().unwrap_or(-1),
+        String::from_utf8(out.stdout).unwrap(),
+        String::from_utf8(out.stderr).unwrap(),
+    )
+}
+
+fn json(args: &[&str]) -> serde_json::Value {
+    let (code, out, err) = turntable(args);
+    assert_eq!(code, 0, "{args:?}: {err}");
+    serde_json::from_str(&out).unwrap()
+}
+
+fn outcome(i: Initial, s: Settings) -> (Outcome, Run) {
+    let mut run = Run::new(i, s).unwrap();
+    let o = run.run(100.0, true).unwrap();
+    (o, run)
+}
+
+/// The escape speed at ξ0 = 0.5, φ = 0 (README; `escape --vtol 1e-10`).
+const VE: f64 = 0.607_823_64;
+
+/// Never wrong and certain: around the escape speed, a loose run whose outcome differs from a
+/// converged one (tol 1e-12) must say it is not certain.
+#[test]
+fn a_loose_run_near_the_threshold_is_never_wrong_and_certain() {
+    let mut flagged = 0;
+    let mut wrong = 0;
+    for tol in [1e-6, 1e-8] {
+        for k in -12..=12 {
+            let v0 = VE + f64::from(k) * 2e-8;
+            let i = Initial::velocity(0.5, 0.0, v0);
+            let (loose, run) = outcome(i, Settings::dp54(tol));
+            let (truth, _) = outcome(i, Settings::dp54(1e-12));
+            let d = doubt(&run, 100.0);
+            if loose != truth {
+                wrong += 1;
+                assert!(
+                    !d.certain,
+                    "tol {tol}, v0 {v0}: {loose:?} but {truth:?}: {d:?}"
+                );
+            }
+            flagged += usize::from(!d.certain);
+        }
+    }
+    // The loose runs do get some of these wrong, and the doubt covers them.
+    assert!(
+        wrong > 0 && flagged >= wrong,
+        "{wrong} wrong, {flagged} flagged"
+    );
+}
+
+#[test]
+fn ordinary_runs_are_certain() {
+    let cases = [
+        Initial::velocity(0.5, std::f64::consts::PI, 1.0),
+        Initial::velocity(0.5, 0.0, 0.6),
+        Initial::velocity(0.5, 0.0, 0.6078),
+        Initial::velocity(1.1, 1.2 * std::f64::consts::PI, 1.3),
+        Initial::velocity(0.5, 0.4, 1.5),
+    ];
+    for i in cases {
+        for s in [Settings::default(), Settings::dp54(1e-6)] {
+            let (_, run) = outcome(i, s);
+            let d = doubt(&run, 100.0);
+            assert!(d.certain, "{i:?} {s:?}: {d:?}");
+        }
+    }
+    // The paper's scheme on case C escapes where the converged run sticks: in doubt.
+    let (o, run) = outcome(Initial::velocity(0.5, 0.0, 0.6078), Settings::paper());
+    assert_eq!(o, Outcome::Escaped);
+    assert!(!doubt(&run, 100.0).certain);
+}
+
+#[test]
+fn run_json_says_whether_it_is_certain() {
+    let v = json(&["run", "--v0", "0.6078", "--json"]);
+    assert_eq!(v["certain"], true);
+    let v = json(&["run", "--v0", "0.6078236", "--tol", "1e-6", "--json"]);
+    assert_eq!(v["certain"], false);
+    let (_, text, _) = turntable(&["run", "--v0", "0.6078236", "--tol", "1e-6"]);
+    assert!(text.contains("certain  no:"), "{text}");
+}
+
+#[test]
+fn solver_bounds_are_refused_up_front() {
+    for args in [
+        &["escape", "--xi0", "5e11"][..],
+        &["sweep", "fig5", "--xi0", "1e12", "--points", "2"],
+        &["sweep", "fig6", "--xi0-max", "1e13", "--points", "2"],
+        &["critical", "--omega", "1e200", "--r0c", "1e200"],
+    ] {
+        let (code, out, err) = turntable(args);
+        assert_eq!(code, 2, "{args:?}: {out}{err}");
+        assert!(
+            err.starts_with("error: ") && err.len() < 200,
+            "{args:?}: {err}"
+        );
+    }
+    let (code, _, err) = turntable(&["run", "--xi0", "-inf"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("xi0 must be a finite number"), "{err}");
+    let (code, _, err) = turntable(&["run", "--tau-max", "1e300"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("got 1e300"), "{err}");
+}
+
+/// At ξ0 = 1.2, φ = 3.5 a release at rest on the table already escapes and some faster ones
+/// stick: no speed is named as sticking unless a run at it sticks.
+#[test]
+fn escaping_speeds_that_are_not_one_interval() {
+    let v = json(&["escape", "--xi0", "1.2", "--phi", "3.5", "--json"]);
+    assert_eq!(v["v_escape"], 0.0);
+    assert_eq!(v["stuck_at"], serde_json::Value::Null);
+    assert_eq!(v["interval"], false);
+    let scan = v["scan"].as_array().unwrap();
+    let stuck: Vec<f64> = scan
+        .iter()
+        .filter(|p| p["outcome"] == "stuck")
+        .map(|p| p["v0"].as_f64().unwrap())
+        .collect();
+    assert!(!stuck.is_empty());
+    for v0 in [stuck[0], stuck[stuck.len() - 1]] {
+        let r = json(&[
+            "run",
+            "--xi0",
+            "1.2",
+            "--phi",
+            "3.5",
+            "--v0",
+            &v0.to_string(),
+            "--json",
+        ]);
+        assert_eq!(r["outcome"], "stuck", "v0 {v0}");
+    }
+    let (_, text, _) = turntable(&["escape", "--xi0", "1.2", "--phi", "3.5"]);
+    assert!(!text.contains("stuck at 0"), "{text}");
+    assert!(text.contains("stick;") && text.contains("escape"), "{text}");
+}
+
+#[test]
+fn words_that_say_what_the_numbers_are() {
+    let (_, text, _) = turntable(&["run", "--v0", "1.5", "--phi", "0.4"]);
+    assert!(text.starts_with("outcome  escaped: tau is when the radial certificate"));
+    assert!(!text.contains("escaped: escaped"), "{text}");
+    let v = json(&["run", "--frictionless", "--v0", "1", "--json"]);
+    assert_eq!(
+        (v["steps"].as_u64(), v["rhs_evals"].as_u64()),
+        (Some(0), Some(0))
+    );
+    // Stops clockwise of the release (case A): the angle reads in [0, 2π), as the paper's.
+    let v = json(&["run", "--phi", "-0.5", "--v0", "0.3", "--json"]);
+    let a = v["angle"].as_f64().unwrap();
+    assert!(
+        (std::f64::consts::PI..std::f64::consts::TAU).contains(&a),
+        "{a}"
+    );
+    let (_, help, _) = turntable(&["run", "--help"]);
+    assert!(help.contains("lab-rest (at rest in the lab)"), "{help}");
+    assert!(help.contains("Print one JSON object"), "{help}");
+    let (_, help, _) = turntable(&["bench", "--help"]);
+    assert!(!help.contains("issue"), "{help}");
+}
