@@ -14,7 +14,6 @@ use ratatui::backend::{Backend, TestBackend};
 use ratatui::buffer::Buffer;
 use ratatui::style::{Color, Modifier};
 use std::convert::Infallible;
-use std::fmt::Write as _;
 use std::sync::{Arc, Mutex, MutexGuard};
 use unicode_width::UnicodeWidthStr;
 
@@ -206,7 +205,8 @@ pub fn script_options(text: &str) -> Result<ScriptOptions, String> {
         let Some(args) = line.trim_start().strip_prefix("# replay:") else {
             continue;
         };
-        let mut it = args.split_whitespace();
+        let words = split_words(args).map_err(|e| format!("line {}: {e}", n + 1))?;
+        let mut it = words.iter().map(String::as_str);
         while let Some(a) = it.next() {
             let mut value = || {
                 it.next()
@@ -224,6 +224,57 @@ pub fn script_options(text: &str) -> Result<ScriptOptions, String> {
         }
     }
     Ok(o)
+}
+
+/// Splits a `# replay:` line into words: blanks separate them, and a word in double quotes
+/// may hold blanks (`\\` and `\"` inside quotes stand for `\` and `"`).
+fn split_words(line: &str) -> Result<Vec<String>, String> {
+    let mut words = Vec::new();
+    let mut chars = line.chars().peekable();
+    while let Some(&c) = chars.peek() {
+        if c.is_whitespace() {
+            chars.next();
+            continue;
+        }
+        let mut w = String::new();
+        if c == '"' {
+            chars.next();
+            loop {
+                match chars.next() {
+                    Some('"') => break,
+                    Some('\\') => w.push(chars.next().ok_or("unterminated quote")?),
+                    Some(c) => w.push(c),
+                    None => return Err("unterminated quote".into()),
+                }
+            }
+        } else {
+            while let Some(&c) = chars.peek() {
+                if c.is_whitespace() {
+                    break;
+                }
+                w.push(c);
+                chars.next();
+            }
+        }
+        words.push(w);
+    }
+    Ok(words)
+}
+
+/// A word as [`split_words`] reads it back: quoted if it holds blanks, quotes or backslashes.
+pub fn quote_word(w: &str) -> String {
+    if !w.is_empty() && !w.contains(|c: char| c.is_whitespace() || c == '"' || c == '\\') {
+        return w.to_string();
+    }
+    let mut q = String::from('"');
+    for c in w.chars() {
+        if c == '"' || c == '\\' {
+            q.push('\\');
+        }
+        q.push(c);
+    }
+    q.push('"');
+    q
 }
 
 /// How to run a script.
@@ -248,8 +299,20 @@ impl Default for Options {
 /// `--- snapshot N: LABEL (WxH, tau=T)`. A quit stops the script there; a script without
 /// any snapshot gets one of its final screen.
 pub fn replay(app: App, steps: &[Step], opts: &Options) -> String {
+    let mut out = Vec::new();
+    replay_to(app, steps, opts, &mut out).expect("writing to memory cannot fail");
+    String::from_utf8(out).expect("screens are UTF-8")
+}
+
+/// Runs `steps` as [`replay`] does, writing each snapshot to `out` as it is taken, so that
+/// memory stays bounded however many there are.
+pub fn replay_to(
+    app: App,
+    steps: &[Step],
+    opts: &Options,
+    out: &mut dyn std::io::Write,
+) -> std::io::Result<()> {
     let mut s = Session::headless(app, opts.size.0, opts.size.1, false);
-    let mut out = String::new();
     let mut shots = 0;
     for step in steps {
         if s.app.should_quit() {
@@ -258,34 +321,35 @@ pub fn replay(app: App, steps: &[Step], opts: &Options) -> String {
         match step {
             Step::Snapshot(label) => {
                 shots += 1;
-                snapshot(&mut s, &mut out, shots, label.as_deref(), opts.ansi);
+                snapshot(&mut s, out, shots, label.as_deref(), opts.ansi)?;
             }
             step => s.apply(step),
         }
     }
     if shots == 0 {
-        snapshot(&mut s, &mut out, 1, Some("final"), opts.ansi);
+        snapshot(&mut s, out, 1, Some("final"), opts.ansi)?;
     }
-    out
+    out.flush()
 }
 
 fn snapshot(
     s: &mut Session<TestBackend>,
-    out: &mut String,
+    out: &mut dyn std::io::Write,
     n: usize,
     label: Option<&str>,
     ansi: bool,
-) {
+) -> std::io::Result<()> {
     let tau = s.app.now().tau;
     let buf = s.screen();
     let (w, h) = (buf.area.width, buf.area.height);
     let label = label.map(|l| format!(": {l}")).unwrap_or_default();
-    let _ = writeln!(out, "--- snapshot {n}{label} ({w}x{h}, tau={tau:.3})");
-    out.push_str(&if ansi {
+    writeln!(out, "--- snapshot {n}{label} ({w}x{h}, tau={tau:.3})")?;
+    let text = if ansi {
         ansi_text(buf)
     } else {
         plain_text(buf)
-    });
+    };
+    out.write_all(text.as_bytes())
 }
 
 /// The cells of each row that are drawn: a wide symbol hides the cells it covers.

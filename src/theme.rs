@@ -88,9 +88,12 @@ impl Theme {
     /// name and the problem.
     pub fn load(name_or_path: &str) -> Result<Theme, String> {
         if name_or_path.contains('/') || name_or_path.ends_with(".toml") {
-            let context = |problem: String| format!("theme file {name_or_path}: {problem}");
-            let text = std::fs::read_to_string(name_or_path).map_err(|e| context(e.to_string()))?;
-            return parse(&text).map_err(context);
+            let text = crate::files::read_bounded(
+                std::path::Path::new(name_or_path),
+                crate::files::READ_CAP,
+            )
+            .map_err(|e| format!("theme file {e}"))?;
+            return parse(&text).map_err(|p| format!("theme file {name_or_path}: {p}"));
         }
         Self::builtin(name_or_path).ok_or_else(|| {
             format!(
@@ -115,20 +118,7 @@ impl Theme {
 /// except for problems with the whole document (a missing field), where a
 /// line number would mislead.
 fn parse(text: &str) -> Result<Theme, String> {
-    toml::from_str(text).map_err(|e: toml::de::Error| {
-        let problem = e.message().trim().replace('\n', " ");
-        match e.span() {
-            Some(span) if span != (0..0) => {
-                let line = text.as_bytes()[..span.start.min(text.len())]
-                    .iter()
-                    .filter(|&&b| b == b'\n')
-                    .count()
-                    + 1;
-                format!("line {line}: {problem}")
-            }
-            _ => problem,
-        }
-    })
+    toml::from_str(text).map_err(|e| crate::files::toml_error(text, &e))
 }
 
 #[cfg(test)]

@@ -104,7 +104,8 @@ fn a_scene_file_says_frictionless_only_when_it_is() {
     scene.initial.frictionless = true;
     assert!(scene.to_toml().contains("frictionless = true"));
     let path = dir.join("free.toml");
-    scene.save(&path).unwrap();
+    let _ = std::fs::remove_file(&path);
+    assert_eq!(scene.save_new(&path).unwrap(), path);
     let back = Scene::load(path.to_str().unwrap()).unwrap();
     assert!(back.initial.frictionless);
     assert_eq!(back.initial, scene.initial);

@@ -68,6 +68,8 @@ pub struct App {
     pub mouse: bool,
     pub notice: Option<String>,
     pub save_path: PathBuf,
+    /// False in a headless replay: `s` then says what it would save and writes nothing.
+    pub writes_files: bool,
     pub quit: bool,
     pub(crate) dirty: bool,
     pub(crate) geom: Option<CanvasGeom>,
@@ -106,6 +108,7 @@ impl App {
             mouse: true,
             notice: None,
             save_path: PathBuf::from(SAVE_PATH),
+            writes_files: true,
             quit: false,
             dirty: true,
             geom: None,

@@ -144,10 +144,16 @@ pub fn update(app: &mut App, action: Action) {
             app.zoom = 1.0;
             app.pan = glam::DVec2::ZERO;
         }
+        Action::Save if !app.writes_files => {
+            app.notice = Some(format!(
+                "replay writes no files: s would save this scene to {} (or the next free name)",
+                app.save_path.display()
+            ));
+        }
         Action::Save => {
             let scene = app.current_scene();
-            app.notice = Some(match scene.save(&app.save_path) {
-                Ok(()) => format!("saved scene to {}", app.save_path.display()),
+            app.notice = Some(match scene.save_new(&app.save_path) {
+                Ok(p) => format!("saved scene to {}", p.display()),
                 Err(e) => format!("could not save {}: {e}", app.save_path.display()),
             });
         }

@@ -1,8 +1,8 @@
 //! `turntable bench`: the work–precision table, as text, JSON or braille charts.
 
-use super::io::emit;
 use super::{BenchArgs, CmdResult, Failure};
 use crate::bench::{self, Config};
+use crate::files::emit;
 
 pub fn bench(a: BenchArgs) -> CmdResult {
     let mut cfg = if a.quick {

@@ -2,7 +2,6 @@
 //! interactive explorer opens.
 
 mod bench;
-pub mod io;
 mod numerics;
 pub mod replay;
 
@@ -247,7 +246,8 @@ pub fn check_initial(i: &Initial) -> Result<(), Failure> {
     i.validate().map_err(Failure::Usage)
 }
 
-/// Opens the explorer. Bad scenes or themes fail before the terminal is touched.
+/// Opens the explorer. Bad scenes, themes and `--record` paths fail before the terminal is
+/// touched.
 fn explore(cli: &Cli) -> CmdResult {
     let (scene, theme) = (&cli.scene, &cli.theme);
     let scene = match scene {
@@ -256,22 +256,23 @@ fn explore(cli: &Cli) -> CmdResult {
     };
     let no_color = std::env::var_os("NO_COLOR").is_some_and(|v| !v.is_empty());
     let theme = crate::theme::Theme::resolve(theme.as_deref(), no_color).map_err(Failure::Usage)?;
+    let scene_ref = cli.scene.as_deref().map(scene_reference);
     if let Some(path) = &cli.record {
-        check_record_path(path)?;
+        check_record_path(path, [&cli.scene, &cli.theme])?;
     }
     let mut app = crate::app::App::new(scene, theme);
     if cli.no_mouse {
         app.mouse = false;
     }
     let save = cli.record.clone().map(|path| {
-        let scene = cli.scene.clone();
+        let scene = scene_ref.clone();
         Box::new(move |script: String| {
             let _ = save_recording(&path, scene.as_deref(), script);
         }) as crate::terminal::SaveRecording
     });
     let (result, recording) = crate::terminal::run(app, cli.fps, save);
     if let (Some(path), Some(script)) = (&cli.record, recording) {
-        save_recording(path, cli.scene.as_deref(), script)
+        save_recording(path, scene_ref.as_deref(), script)
             .map_err(|e| Failure::Runtime(format!("--record: {e}")))?;
     }
     match result {
@@ -279,6 +280,15 @@ fn explore(cli: &Cli) -> CmdResult {
         Ok(true) => Err(Failure::Runtime("ended by a signal".into())),
         Err(e) => Err(Failure::Runtime(format!("terminal: {e}"))),
     }
+}
+
+/// How a recording names its scene: a preset by name, a file by its absolute path, so that
+/// the recording replays from any folder.
+fn scene_reference(scene: &str) -> String {
+    if crate::scene::Scene::preset(scene).is_some() {
+        return scene.to_string();
+    }
+    std::fs::canonicalize(scene).map_or_else(|_| scene.to_string(), |p| p.display().to_string())
 }
 
 /// Writes a recorded session atomically. It names its scene, so that `replay FILE` alone
@@ -290,30 +300,28 @@ fn save_recording(
 ) -> std::io::Result<()> {
     if let Some(s) = scene {
         let at = script.find('\n').map_or(0, |i| i + 1);
-        script.insert_str(at, &format!("# replay: --scene {s}\n"));
+        let line = format!("# replay: --scene {}\n", crate::replay::quote_word(s));
+        script.insert_str(at, &line);
     }
-    io::write_atomic(path, script.as_bytes())
+    crate::files::write_atomic(path, script.as_bytes())
 }
 
-/// A `--record` file must be writable where it is named: fail before the session, not after.
-fn check_record_path(path: &std::path::Path) -> Result<(), Failure> {
-    let dir = match path.parent() {
-        Some(d) if !d.as_os_str().is_empty() => d,
-        _ => std::path::Path::new("."),
-    };
-    if path.file_name().is_none() || path.is_dir() {
-        return Err(Failure::Usage(format!(
-            "--record {}: not a file name",
-            path.display()
-        )));
+/// A `--record` file must be writable where it is named, and must not be one of the files
+/// the session reads: fail before the session, not after.
+fn check_record_path(path: &std::path::Path, inputs: [&Option<String>; 2]) -> Result<(), Failure> {
+    let usage = |e: String| Failure::Usage(format!("--record {e}"));
+    if let Ok(rec) = std::fs::canonicalize(path) {
+        for input in inputs.into_iter().flatten() {
+            if std::fs::canonicalize(input).is_ok_and(|i| i == rec) {
+                return Err(usage(format!(
+                    "{}: is the file the session reads (--scene/--theme); name another",
+                    crate::files::escape_controls(&path.display().to_string())
+                )));
+            }
+        }
     }
-    if !dir.is_dir() {
-        return Err(Failure::Usage(format!(
-            "--record {}: no such directory {}",
-            path.display(),
-            dir.display()
-        )));
-    }
+    // Opening it is the test: the temporary file is created and removed again.
+    drop(crate::files::Output::create(path).map_err(|e| usage(e.to_string()))?);
     Ok(())
 }
 
@@ -332,10 +340,12 @@ pub fn main() -> ExitCode {
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(Failure::Usage(m)) => {
+            let m = crate::files::escape_controls(&m);
             let _ = writeln!(std::io::stderr(), "error: {m}");
             ExitCode::from(2)
         }
         Err(Failure::Runtime(m)) => {
+            let m = crate::files::escape_controls(&m);
             let _ = writeln!(std::io::stderr(), "error: {m}");
             ExitCode::from(1)
         }
@@ -344,15 +354,37 @@ pub fn main() -> ExitCode {
 
 #[cfg(test)]
 mod tests {
-    use super::check_record_path;
+    use super::{check_record_path, scene_reference};
     use std::path::Path;
 
     #[test]
+    fn recordings_name_scene_files_absolutely() {
+        assert_eq!(scene_reference("B"), "B");
+        assert_eq!(
+            scene_reference("Cargo.toml"),
+            std::fs::canonicalize("Cargo.toml")
+                .unwrap()
+                .display()
+                .to_string()
+        );
+        assert!(scene_reference("./src/../Cargo.toml").starts_with('/'));
+    }
+
+    #[test]
     fn record_paths() {
-        assert!(check_record_path(Path::new("session.keys")).is_ok());
+        let none = [&None, &None];
         let tmp = std::env::temp_dir();
-        assert!(check_record_path(&tmp.join("x.keys")).is_ok());
-        assert!(check_record_path(&tmp).is_err());
-        assert!(check_record_path(&tmp.join("no-such-dir-turntable/x.keys")).is_err());
+        assert!(check_record_path(&tmp.join("x.keys"), none).is_ok());
+        assert!(!tmp.join("x.keys").exists());
+        assert!(check_record_path(&tmp, none).is_err());
+        assert!(check_record_path(&tmp.join("no-such-dir-turntable/x.keys"), none).is_err());
+        // Under a regular file: no directory to write in, even as root.
+        let file = tmp.join(format!("turntable-record-{}", std::process::id()));
+        std::fs::write(&file, "x").unwrap();
+        assert!(check_record_path(&file.join("x.keys"), none).is_err());
+        let scene = Some(file.display().to_string());
+        assert!(check_record_path(&file, [&scene, &None]).is_err());
+        assert!(check_record_path(Path::new("session.keys"), [&scene, &None]).is_ok());
+        std::fs::remove_file(&file).unwrap();
     }
 }

@@ -1,19 +1,20 @@
 //! The headless numerical commands: run, escape, critical, sweep.
 
-use super::io::{emit, write_atomic};
 use super::{CmdResult, CriticalArgs, EscapeArgs, Failure, RunArgs, SweepArgs, check_initial};
 use crate::engine::solve::{
     Threshold, check_escape_xi0, critical_radius, escape_speed, sweep_escape, sweep_rest,
 };
 use crate::engine::{Initial, Outcome, Run, State, Status};
+use crate::files::{Output, emit};
 use serde_json::json;
 use std::fmt::Write as _;
+use std::io::{BufWriter, Write as _};
 
 const TAU_MAX_LIMIT: f64 = 1e9;
 
-fn trajectory_row(csv: &mut String, s: &State, stuck: bool) {
+fn trajectory_row(csv: &mut impl std::io::Write, s: &State, stuck: bool) -> std::io::Result<()> {
     let (q, u) = (s.q(), s.u_lab().length());
-    let _ = writeln!(
+    writeln!(
         csv,
         "{},{},{},{},{},{},{}",
         s.tau,
@@ -23,7 +24,7 @@ fn trajectory_row(csv: &mut String, s: &State, stuck: bool) {
         q.y,
         u,
         u8::from(stuck)
-    );
+    )
 }
 
 /// Spacing in τ of the trajectory rows of a frictionless run, which takes no steps.
@@ -46,12 +47,18 @@ pub fn run(a: RunArgs) -> CmdResult {
     }
     let settings = a.numerics.settings()?;
     let mut run = Run::new(initial, settings).map_err(Failure::Usage)?;
-    let mut csv = a
-        .trajectory
-        .as_ref()
-        .map(|_| String::from("tau,x,y,xq,yq,u,stuck\n"));
+    // The file is opened (and a bad path refused) before any work; rows stream into it.
+    let mut csv = match &a.trajectory {
+        Some(path) => Some(BufWriter::new(
+            Output::create(path).map_err(|e| Failure::Usage(format!("--trajectory: {e}")))?,
+        )),
+        None => None,
+    };
+    let write_err = |e: std::io::Error| Failure::Runtime(format!("--trajectory: {e}"));
     if let Some(csv) = csv.as_mut() {
-        trajectory_row(csv, &run.state(), run.status != Status::Slipping);
+        csv.write_all(b"tau,x,y,xq,yq,u,stuck\n")
+            .map_err(write_err)?;
+        trajectory_row(csv, &run.state(), run.status != Status::Slipping).map_err(write_err)?;
     }
     let stop_on_escape = !a.follow;
     while run.status == Status::Slipping
@@ -67,10 +74,10 @@ pub fn run(a: RunArgs) -> CmdResult {
                 let n = ((run.tau() - before) / FREE_SAMPLE).ceil().min(1e5) as usize;
                 for i in 1..n {
                     let t = before + (run.tau() - before) * i as f64 / n as f64;
-                    trajectory_row(csv, &run.state_at(t), false);
+                    trajectory_row(csv, &run.state_at(t), false).map_err(write_err)?;
                 }
             }
-            trajectory_row(csv, &run.state(), run.status != Status::Slipping);
+            trajectory_row(csv, &run.state(), run.status != Status::Slipping).map_err(write_err)?;
         }
     }
     let outcome = run.outcome();
@@ -78,8 +85,11 @@ pub fn run(a: RunArgs) -> CmdResult {
         (Outcome::Escaped, Some(e)) if stop_on_escape => run.state_at(e.tau),
         _ => run.state(),
     };
-    if let (Some(path), Some(csv)) = (&a.trajectory, &csv) {
-        write_atomic(path, csv.as_bytes())?;
+    if let Some(csv) = csv {
+        csv.into_inner()
+            .map_err(|e| write_err(e.into_error()))?
+            .finish()
+            .map_err(write_err)?;
     }
     let doubt = crate::engine::doubt::doubt(&run, a.tau_max);
     let q = end.q();
@@ -289,6 +299,12 @@ pub fn sweep(a: SweepArgs) -> CmdResult {
         )));
     }
     let settings = solver_settings(&a.numerics)?;
+    let out = a
+        .out
+        .as_deref()
+        .map(Output::create)
+        .transpose()
+        .map_err(|e| Failure::Usage(format!("--out: {e}")))?;
     let mut csv = String::new();
     if a.figure == "fig5" {
         for &xi0 in &a.xi0 {
@@ -317,6 +333,12 @@ pub fn sweep(a: SweepArgs) -> CmdResult {
             );
         }
     }
-    emit(a.out.as_deref(), &csv)?;
+    match out {
+        Some(mut f) => {
+            f.write_all(csv.as_bytes())?;
+            f.finish()?;
+        }
+        None => emit(None, &csv)?,
+    }
     Ok(())
 }

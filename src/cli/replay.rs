@@ -1,9 +1,8 @@
 //! `turntable replay SCRIPT`: a key script run headlessly, its snapshots on stdout.
 
 use super::{CmdResult, Failure};
-use crate::replay::{Options, parse_size, replay, script_options};
+use crate::replay::{Options, parse_size, replay_to, script_options};
 use clap::Args;
-use std::io::{Read, Write};
 
 #[derive(Args, Debug)]
 pub struct ReplayArgs {
@@ -29,14 +28,11 @@ pub struct ReplayArgs {
 
 pub fn run(a: ReplayArgs) -> CmdResult {
     let text = if a.script == "-" {
-        let mut t = String::new();
-        std::io::stdin()
-            .read_to_string(&mut t)
-            .map_err(|e| Failure::Usage(format!("-: {e}")))?;
-        t
+        crate::files::read_capped(std::io::stdin().lock(), crate::files::READ_CAP)
+            .map_err(|e| Failure::Usage(format!("-: {e}")))?
     } else {
-        std::fs::read_to_string(&a.script)
-            .map_err(|e| Failure::Usage(format!("{}: {e}", a.script)))?
+        crate::files::read_bounded(std::path::Path::new(&a.script), crate::files::READ_CAP)
+            .map_err(Failure::Usage)?
     };
     let steps =
         crate::script::parse(&text).map_err(|e| Failure::Usage(format!("{}: {e}", a.script)))?;
@@ -48,15 +44,14 @@ pub fn run(a: ReplayArgs) -> CmdResult {
     let theme = a.theme.as_ref().or(own.theme.as_ref());
     let theme =
         crate::theme::Theme::resolve(theme.map(String::as_str), false).map_err(Failure::Usage)?;
-    let app = crate::app::App::new(scene, theme);
+    let mut app = crate::app::App::new(scene, theme);
+    app.writes_files = false;
     let opts = Options {
         size: a.size.or(own.size).unwrap_or(crate::replay::DEFAULT_SIZE),
         ansi: a.ansi || own.ansi,
     };
-    let out = replay(app, &steps, &opts);
-    let mut so = std::io::stdout().lock();
-    so.write_all(out.as_bytes())?;
-    so.flush()?;
+    let mut so = std::io::BufWriter::new(std::io::stdout().lock());
+    replay_to(app, &steps, &opts, &mut so)?;
     Ok(())
 }
 

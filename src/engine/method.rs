@@ -62,6 +62,7 @@ pub const TOL_RANGE: (f64, f64) = (1e-14, 1e-2);
 
 /// How a run is integrated: the user's speed/accuracy choice.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Settings {
     pub method: Method,
     /// Step of the fixed-step methods.

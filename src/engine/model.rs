@@ -81,6 +81,7 @@ impl FromStr for Release {
 /// Initial conditions as in the paper's Figs. 3–5: start at (ξ0, 0); `v0` and `φ` in the table
 /// frame, φ from the radially outward direction, counterclockwise positive.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct Initial {
     pub xi0: f64,
     pub phi: f64,
