@@ -127,10 +127,11 @@ impl Sim {
         };
         let tol = (own * 1e-3).clamp(TOL_RANGE.0, 1e-13);
         let now = self.now();
+        // Within one tick's budget, so the key never waits long.
         let mut shadow = Run::new(
             self.run.initial,
             Settings {
-                tol,
+                max_steps: STEPS_PER_TICK,
                 ..Settings::dp54(tol)
             },
         )?;

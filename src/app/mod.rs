@@ -90,6 +90,8 @@ impl App {
     pub fn tick(&mut self) {
         if self.playing {
             update::step(self);
+        } else if self.catch_up() {
+            self.dirty = true;
         }
     }
 
@@ -112,8 +114,9 @@ impl App {
         self.geom
     }
 
+    /// Whether time should tick: playing, or the paper's run still catching up.
     pub fn is_playing(&self) -> bool {
-        self.playing
+        self.playing || self.paper_lags()
     }
 
     pub fn mouse_capture(&self) -> bool {

@@ -125,6 +125,27 @@ impl App {
         }
     }
 
+    /// Brings the paper's run to the τ on screen, within one tick's step budget (so after `c`
+    /// on a long session it catches up over several ticks). Returns whether it moved.
+    pub fn catch_up(&mut self) -> bool {
+        let target = self.sim.now().tau;
+        let Some(p) = self.paper.as_mut() else {
+            return false;
+        };
+        let before = (p.cursor, p.samples.len());
+        if p.now().tau < target {
+            p.advance(target - p.now().tau);
+        }
+        before != (p.cursor, p.samples.len())
+    }
+
+    /// Whether the paper's run lags behind the one on screen (it is catching up).
+    pub fn paper_lags(&self) -> bool {
+        self.paper
+            .as_ref()
+            .is_some_and(|p| p.live() && p.now().tau < self.sim.now().tau - 1e-9)
+    }
+
     /// The state on screen.
     pub fn now(&self) -> State {
         self.sim.now()

@@ -108,20 +108,12 @@ pub fn update(app: &mut App, action: Action) {
             app.paper = match app.paper {
                 Some(_) => None,
                 None => {
-                    let mut p = make_sim(app.initial, Settings::paper());
-                    // Catch up with the run on screen, tick for tick.
-                    let target = app.sim.now().tau;
-                    let dt = super::state::TICK_DT * app.speed;
-                    while p.now().tau < target - 1e-12 && p.live() {
-                        let before = p.now().tau;
-                        p.advance((target - before).min(dt.max(1e-3)));
-                        if p.now().tau <= before {
-                            break;
-                        }
-                    }
-                    Some(p)
+                    // It catches up with the run on screen over the next ticks, within each
+                    // tick's step budget: the key itself does no integration.
+                    Some(make_sim(app.initial, Settings::paper()))
                 }
-            }
+            };
+            app.catch_up();
         }
         Action::ToggleForces => app.forces = !app.forces,
         Action::EstimateError if app.initial.frictionless => {
@@ -177,11 +169,7 @@ pub fn step(app: &mut App) -> bool {
     let before = (app.sim.cursor, app.sim.samples.len());
     app.sim.advance(dtau);
     let mut moved = before != (app.sim.cursor, app.sim.samples.len());
-    if let Some(p) = app.paper.as_mut() {
-        let b = (p.cursor, p.samples.len());
-        p.advance(dtau);
-        moved |= b != (p.cursor, p.samples.len());
-    }
+    moved |= app.catch_up();
     app.dirty |= moved;
     moved
 }
