@@ -2,6 +2,7 @@
 //! samples to step back through, and only the work the scene needs (stuck: closed-form
 //! rotation; escaped and out of view: no more steps).
 
+use crate::engine::doubt::{Doubt, doubt};
 use crate::engine::method::TOL_RANGE;
 use crate::engine::run::{Outcome, Run, RunError, Status};
 use crate::engine::{Initial, Settings, State};
@@ -23,6 +24,8 @@ pub struct Sim {
     pub view_radius: f64,
     /// Why the run stopped early, if it did.
     pub error: Option<RunError>,
+    /// Once the outcome is decided: whether the run's own error could flip it.
+    pub doubt: Option<Doubt>,
 }
 
 impl Sim {
@@ -35,6 +38,7 @@ impl Sim {
             cursor: 0,
             view_radius,
             error: None,
+            doubt: None,
         })
     }
 
@@ -86,6 +90,11 @@ impl Sim {
             if let Err(e) = self.run.step(f64::INFINITY) {
                 self.error = Some(e);
                 break;
+            }
+            if self.doubt.is_none() && self.run.outcome() != Outcome::Running {
+                // Once per run, right after the step that decided it (its dense output
+                // still covers the certificate), within one tick's budget (the shadow's).
+                self.doubt = Some(doubt(&self.run, f64::INFINITY));
             }
         }
         let t = target.min(match self.run.status {

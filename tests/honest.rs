@@ -173,3 +173,25 @@ fn words_that_say_what_the_numbers_are() {
     let (_, help, _) = turntable(&["bench", "--help"]);
     assert!(!help.contains("issue"), "{help}");
 }
+
+/// The explorer shows the same doubt in its status, and none where the outcome is sure.
+#[test]
+fn the_explorer_says_when_an_outcome_is_in_doubt() {
+    use turntable::app::App;
+    use turntable::replay::{Session, plain_text};
+    use turntable::scene::Scene;
+    use turntable::theme::Theme;
+    for (v0, tol, doubtful) in [(0.6078236, 1e-6, true), (0.6078, 1e-10, false)] {
+        let mut scene = Scene::default_scene();
+        scene.initial.v0 = v0;
+        scene.settings = Settings::dp54(tol);
+        let app = App::new(scene, Theme::builtin("mono").unwrap());
+        let mut s = Session::headless(app, 80, 24, false);
+        for _ in 0..200 {
+            s.tick();
+        }
+        let screen = plain_text(s.screen());
+        assert!(screen.contains("stuck at ξ"), "{screen}");
+        assert_eq!(screen.contains("in doubt"), doubtful, "{screen}");
+    }
+}

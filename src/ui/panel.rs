@@ -36,7 +36,7 @@ pub fn status_text(sim: &Sim, th: &Theme) -> (String, ratatui::style::Color) {
         let _ = e;
         return ("stopped: step budget / underflow".into(), th.escaped);
     }
-    match sim.outcome_now() {
+    let (text, colour) = match sim.outcome_now() {
         Outcome::Stuck => match sim.run.status {
             Status::Stuck { tau, q } => (
                 format!(
@@ -63,6 +63,13 @@ pub fn status_text(sim: &Sim, th: &Theme) -> (String, ratatui::style::Color) {
                 ("slipping".into(), th.slipping)
             }
         }
+    };
+    match sim.doubt {
+        Some(d) if !d.certain && sim.outcome_now() != Outcome::Running => (
+            format!("{text}\n  in doubt: the run's\n  error could flip it"),
+            colour,
+        ),
+        _ => (text, colour),
     }
 }
 
