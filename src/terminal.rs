@@ -4,7 +4,9 @@
 
 use crate::app::App;
 use crate::replay::{Session, SharedRecorder, lock};
-use crossterm::event::{self, DisableMouseCapture, EnableMouseCapture, Event};
+use crossterm::event::{
+    self, DisableMouseCapture, EnableMouseCapture, Event, KeyCode, KeyModifiers,
+};
 use crossterm::terminal::{
     BeginSynchronizedUpdate, EndSynchronizedUpdate, EnterAlternateScreen, LeaveAlternateScreen,
     disable_raw_mode, enable_raw_mode,
@@ -36,13 +38,67 @@ fn setup(mouse: bool) -> io::Result<CrosstermBackend<Stdout>> {
         restore();
         hook(info);
     }));
+    enter(mouse)?;
+    Ok(CrosstermBackend::new(io::stdout()))
+}
+
+/// Raw mode, the alternate screen, no cursor, and mouse capture if asked.
+fn enter(mouse: bool) -> io::Result<()> {
     enable_raw_mode()?;
     let mut out = io::stdout();
     execute!(out, EnterAlternateScreen, cursor::Hide)?;
     if mouse {
         execute!(out, EnableMouseCapture)?;
     }
-    Ok(CrosstermBackend::new(out))
+    Ok(())
+}
+
+/// Watches for the terminal hanging up (a killed tmux, a dropped ssh connection). With no
+/// controlling terminal (`setsid`) no SIGHUP comes, and crossterm's poll then spins on the
+/// dead tty and never returns: so this thread raises the SIGHUP itself, and the signal
+/// watcher restores, saves and ends as for any hang-up.
+fn watch_hangup(finished: Arc<AtomicBool>) {
+    std::thread::spawn(move || {
+        while !finished.load(Ordering::Relaxed) {
+            if hung_up() {
+                // SAFETY: a signal to this process, which handles SIGHUP.
+                unsafe { libc::kill(libc::getpid(), libc::SIGHUP) };
+                return;
+            }
+            std::thread::sleep(Duration::from_millis(200));
+        }
+    });
+}
+
+/// Whether the terminal on stdin has hung up.
+fn hung_up() -> bool {
+    let mut fd = libc::pollfd {
+        fd: libc::STDIN_FILENO,
+        events: libc::POLLIN,
+        revents: 0,
+    };
+    // SAFETY: one valid pollfd, no wait.
+    let n = unsafe { libc::poll(&mut fd, 1, 0) };
+    n > 0 && fd.revents & (libc::POLLHUP | libc::POLLERR | libc::POLLNVAL) != 0
+}
+
+/// Suspends the process (SIGTSTP's default action) with the terminal as it was, and takes
+/// the explorer's screen back when it continues.
+fn suspend(session: &mut Session<CrosstermBackend<Stdout>>) -> io::Result<()> {
+    restore();
+    signal_hook::low_level::emulate_default_handler(libc::SIGTSTP)?;
+    // Continued (SIGCONT): raw mode again, and a full redraw of a screen that may hold
+    // anything now.
+    enter(session.app.mouse_capture())?;
+    // Clear, and forget the last frame so the next draw repaints every cell (ratatui's own
+    // clear would query the cursor position and wait for the terminal's answer).
+    execute!(
+        session.term.backend_mut(),
+        crossterm::terminal::Clear(crossterm::terminal::ClearType::All)
+    )?;
+    session.term.swap_buffers();
+    session.app.invalidate();
+    Ok(())
 }
 
 /// Saves a recording: called with the script so far if the terminal dies under the explorer.
@@ -57,7 +113,7 @@ pub fn run(
     fps: u32,
     record: Option<SaveRecording>,
 ) -> (io::Result<bool>, Option<String>) {
-    let stop = Arc::new(AtomicBool::new(false));
+    let flags = Arc::new(Flags::default());
     let finished = Arc::new(AtomicBool::new(false));
     let recorder: Arc<Mutex<Option<SharedRecorder>>> = Arc::default();
     let recording = record.is_some();
@@ -66,9 +122,10 @@ pub fn run(
         recorder: Arc::clone(&recorder),
         save: record,
     };
-    if let Err(e) = watch_signals(Arc::clone(&stop), lost) {
+    if let Err(e) = watch_signals(Arc::clone(&flags), lost) {
         return (Err(e), None);
     }
+    watch_hangup(Arc::clone(&finished));
     let mouse = app.mouse_capture();
     let mut session = match setup(mouse).and_then(|b| Session::new(app, b, recording)) {
         Ok(s) => s,
@@ -78,13 +135,36 @@ pub fn run(
         }
     };
     *recorder.lock().unwrap_or_else(|e| e.into_inner()) = session.recorder();
-    let result = event_loop(&mut session, fps.clamp(1, 240), &stop);
+    let result = event_loop(&mut session, fps.clamp(1, 240), &flags);
     finished.store(true, Ordering::Relaxed);
     restore();
     (
-        result.map(|()| stop.load(Ordering::Relaxed)),
+        result.map(|()| flags.stop.load(Ordering::Relaxed)),
         session.take_recording(),
     )
+}
+
+/// Signals that end the process by default and can be caught: each ends the explorer with
+/// the terminal restored and the recording saved.
+const TERMINATING: [i32; 11] = [
+    libc::SIGTERM,
+    libc::SIGHUP,
+    libc::SIGINT,
+    libc::SIGQUIT,
+    libc::SIGUSR1,
+    libc::SIGUSR2,
+    libc::SIGALRM,
+    libc::SIGVTALRM,
+    libc::SIGPROF,
+    libc::SIGXCPU,
+    libc::SIGXFSZ,
+];
+
+/// What the event loop learns from the signal watcher.
+#[derive(Default)]
+struct Flags {
+    stop: AtomicBool,
+    suspend: AtomicBool,
 }
 
 /// What the signal watcher needs if the event loop never comes back.
@@ -98,12 +178,19 @@ struct Lost {
 /// connection, a killed tmux), crossterm's `poll` spins on the closed tty and never returns:
 /// then, after a grace period, this thread restores what it can, saves the recording so far
 /// and ends the process.
-fn watch_signals(stop: Arc<AtomicBool>, lost: Lost) -> io::Result<()> {
-    use signal_hook::consts::{SIGHUP, SIGINT, SIGTERM};
-    let mut signals = signal_hook::iterator::Signals::new([SIGTERM, SIGHUP, SIGINT])?;
+fn watch_signals(flags: Arc<Flags>, lost: Lost) -> io::Result<()> {
+    let mut signals =
+        signal_hook::iterator::Signals::new(TERMINATING.iter().chain(&[libc::SIGTSTP]))?;
     std::thread::spawn(move || {
-        if signals.forever().next().is_some() {
-            stop.store(true, Ordering::Relaxed);
+        let mut pending = signals.forever();
+        let terminating = loop {
+            match pending.next() {
+                Some(libc::SIGTSTP) => flags.suspend.store(true, Ordering::Relaxed),
+                other => break other,
+            }
+        };
+        if terminating.is_some() {
+            flags.stop.store(true, Ordering::Relaxed);
             std::thread::sleep(Duration::from_millis(600));
             if !lost.finished.load(Ordering::Relaxed) {
                 restore();
@@ -127,12 +214,16 @@ fn watch_signals(stop: Arc<AtomicBool>, lost: Lost) -> io::Result<()> {
 fn event_loop(
     session: &mut Session<CrosstermBackend<Stdout>>,
     fps: u32,
-    stop: &AtomicBool,
+    flags: &Flags,
 ) -> io::Result<()> {
     let frame = Duration::from_secs(1) / fps;
     let mut next_tick = Instant::now() + frame;
     let mut mouse_on = session.app.mouse_capture();
-    while !session.app.should_quit() && !stop.load(Ordering::Relaxed) {
+    while !session.app.should_quit() && !flags.stop.load(Ordering::Relaxed) {
+        if flags.suspend.swap(false, Ordering::Relaxed) {
+            suspend(session)?;
+            next_tick = Instant::now() + frame;
+        }
         if session.app.mouse_capture() != mouse_on {
             mouse_on = session.app.mouse_capture();
             if mouse_on {
@@ -156,6 +247,13 @@ fn event_loop(
             // Take everything queued before drawing again, so held keys cannot lag.
             loop {
                 match event::read()? {
+                    // Raw mode turns off the terminal's own Ctrl-Z: suspend as it would.
+                    Event::Key(k)
+                        if k.code == KeyCode::Char('z')
+                            && k.modifiers.contains(KeyModifiers::CONTROL) =>
+                    {
+                        flags.suspend.store(true, Ordering::Relaxed);
+                    }
                     Event::Key(k) => session.key(k),
                     Event::Mouse(m) => session.mouse(m)?,
                     Event::Resize(w, h) => session.resized(w, h),

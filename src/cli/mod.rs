@@ -260,6 +260,12 @@ fn explore(cli: &Cli) -> CmdResult {
     if let Some(path) = &cli.record {
         check_record_path(path, [&cli.scene, &cli.theme])?;
     }
+    use std::io::IsTerminal;
+    if !(std::io::stdin().is_terminal() && std::io::stdout().is_terminal()) {
+        return Err(Failure::Usage(
+            "the explorer needs a terminal (stdin and stdout must be a tty); headless, use `turntable replay SCRIPT` or a subcommand (see --help)".into(),
+        ));
+    }
     let mut app = crate::app::App::new(scene, theme);
     if cli.no_mouse {
         app.mouse = false;

@@ -1,0 +1,224 @@
+//! The explorer's terminal as a user's dies or stops (issue 11), on a pseudo-terminal the
+//! test opens itself (skipped, saying so, where none can be opened; no TTY is needed).
+
+use std::io::Read;
+use std::os::fd::{AsRawFd, FromRawFd, OwnedFd};
+use std::os::unix::process::CommandExt;
+use std::process::{Child, Command, Stdio};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::{Arc, Mutex};
+use std::time::{Duration, Instant};
+
+#[test]
+fn without_a_terminal_the_explorer_refuses() {
+    let out = Command::new(env!("CARGO_BIN_EXE_turntable"))
+        .stdin(Stdio::null())
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert!(out.stdout.is_empty(), "no escape codes into a file");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("needs a terminal"), "{err}");
+}
+
+/// The explorer on a new pty, in a session of its own (no controlling terminal, as under
+/// `setsid`), recording to `rec`. Returns the child, the master, and everything it printed.
+/// Everything the explorer printed so far.
+type Seen = Arc<Mutex<Vec<u8>>>;
+
+fn spawn(rec: &std::path::Path) -> Option<(Child, Pty, Seen)> {
+    // Other tests fork too: no child may inherit this master (it would keep the pty up).
+    static FORK: Mutex<()> = Mutex::new(());
+    let _one_at_a_time = FORK.lock().unwrap();
+    let (mut master, mut slave) = (0, 0);
+    let ws = libc::winsize {
+        ws_row: 24,
+        ws_col: 80,
+        ws_xpixel: 0,
+        ws_ypixel: 0,
+    };
+    // SAFETY: out-pointers to two ints and a winsize.
+    let r = unsafe {
+        libc::openpty(
+            &mut master,
+            &mut slave,
+            std::ptr::null_mut(),
+            std::ptr::null(),
+            &ws,
+        )
+    };
+    if r != 0 {
+        eprintln!("skipped: no pseudo-terminal here");
+        return None;
+    }
+    // SAFETY: our descriptors; close-on-exec as a terminal emulator's master is.
+    unsafe {
+        libc::fcntl(master, libc::F_SETFD, libc::FD_CLOEXEC);
+        libc::fcntl(slave, libc::F_SETFD, libc::FD_CLOEXEC);
+    }
+    // SAFETY: fresh descriptors we now own.
+    let (master, slave) = unsafe { (OwnedFd::from_raw_fd(master), OwnedFd::from_raw_fd(slave)) };
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_turntable"));
+    cmd.args(["--record", rec.to_str().unwrap()])
+        .stdin(slave.try_clone().unwrap())
+        .stdout(slave.try_clone().unwrap())
+        .stderr(slave);
+    // SAFETY: setsid is async-signal-safe.
+    unsafe {
+        cmd.pre_exec(|| {
+            libc::setsid();
+            Ok(())
+        });
+    }
+    let child = cmd.spawn().unwrap();
+    let seen = Arc::new(Mutex::new(Vec::new()));
+    let fd = master.as_raw_fd();
+    let hang_up = Arc::new(AtomicBool::new(false));
+    let (sink, stop) = (Arc::clone(&seen), Arc::clone(&hang_up));
+    // The reader owns the master: when told to hang up it closes the last copy of it.
+    let reader = std::thread::spawn(move || {
+        let mut file = std::fs::File::from(master);
+        let mut buf = [0; 4096];
+        while !stop.load(Ordering::Relaxed) {
+            let mut p = libc::pollfd {
+                fd,
+                events: libc::POLLIN,
+                revents: 0,
+            };
+            // SAFETY: one valid pollfd.
+            if unsafe { libc::poll(&mut p, 1, 20) } <= 0 {
+                continue;
+            }
+            match file.read(&mut buf) {
+                Ok(n) if n > 0 => sink.lock().unwrap().extend_from_slice(&buf[..n]),
+                _ => std::thread::sleep(Duration::from_millis(20)),
+            }
+        }
+    });
+    let pty = Pty {
+        fd,
+        hang_up,
+        reader: Some(reader),
+    };
+    Some((child, pty, seen))
+}
+
+/// The master side of the pty, read by a thread until [`Pty::hang_up`].
+struct Pty {
+    fd: i32,
+    hang_up: Arc<AtomicBool>,
+    reader: Option<std::thread::JoinHandle<()>>,
+}
+
+impl Pty {
+    fn type_keys(&self, keys: &[u8]) {
+        // SAFETY: the master is open until hang_up.
+        assert_eq!(
+            unsafe { libc::write(self.fd, keys.as_ptr().cast(), keys.len()) },
+            keys.len() as isize
+        );
+    }
+    /// Closes the master, as a killed tmux does.
+    fn hang_up(&mut self) {
+        self.hang_up.store(true, Ordering::Relaxed);
+        if let Some(r) = self.reader.take() {
+            r.join().unwrap();
+        }
+    }
+}
+
+impl Drop for Pty {
+    fn drop(&mut self) {
+        self.hang_up();
+    }
+}
+
+fn wait_for(what: &str, mut done: impl FnMut() -> bool) {
+    let start = Instant::now();
+    while !done() {
+        assert!(start.elapsed() < Duration::from_secs(30), "never: {what}");
+        std::thread::sleep(Duration::from_millis(20));
+    }
+}
+
+fn contains(seen: &Mutex<Vec<u8>>, from: usize, needle: &[u8]) -> bool {
+    seen.lock().unwrap()[from..]
+        .windows(needle.len())
+        .any(|w| w == needle)
+}
+
+const ALT_ON: &[u8] = b"\x1b[?1049h";
+const ALT_OFF: &[u8] = b"\x1b[?1049l";
+const MOUSE_OFF: &[u8] = b"\x1b[?1000l";
+
+fn rec(tag: &str) -> std::path::PathBuf {
+    let p = std::env::temp_dir().join(format!("turntable-term-{tag}-{}.keys", std::process::id()));
+    let _ = std::fs::remove_file(&p);
+    p
+}
+
+/// A killed tmux or a dropped connection with no controlling terminal: the explorer ends
+/// (it used to spin at full CPU) and saves its recording.
+#[test]
+fn a_hung_up_terminal_ends_the_explorer_and_saves_the_recording() {
+    let path = rec("hangup");
+    let Some((mut child, mut pty, seen)) = spawn(&path) else {
+        return;
+    };
+    wait_for("the first frame", || contains(&seen, 0, ALT_ON));
+    pty.hang_up();
+    wait_for("the process to end", || child.try_wait().unwrap().is_some());
+    let script = std::fs::read_to_string(&path).unwrap();
+    assert!(
+        script.starts_with("# turntable key script\nresize 80x24\n"),
+        "{script}"
+    );
+}
+
+/// SIGQUIT (like SIGTERM) restores the terminal first: alternate screen and mouse off.
+#[test]
+fn sigquit_restores_the_terminal() {
+    let path = rec("quit");
+    let Some((mut child, _pty, seen)) = spawn(&path) else {
+        return;
+    };
+    wait_for("the first frame", || contains(&seen, 0, ALT_ON));
+    let mark = seen.lock().unwrap().len();
+    // SAFETY: a signal to our child.
+    unsafe { libc::kill(child.id() as i32, libc::SIGQUIT) };
+    wait_for("the process to end", || child.try_wait().unwrap().is_some());
+    wait_for("the restore", || {
+        contains(&seen, mark, ALT_OFF) && contains(&seen, mark, MOUSE_OFF)
+    });
+    assert!(path.exists());
+}
+
+/// SIGTSTP hands the terminal back (cooked, main screen) before stopping; SIGCONT takes it
+/// again and redraws.
+#[test]
+fn suspend_and_continue() {
+    let path = rec("tstp");
+    let Some((mut child, pty, seen)) = spawn(&path) else {
+        return;
+    };
+    let pid = child.id() as i32;
+    let state = || {
+        std::fs::read_to_string(format!("/proc/{pid}/stat"))
+            .ok()
+            .and_then(|s| s.rsplit(')').next().map(|r| r.trim().chars().next()))
+            .flatten()
+    };
+    wait_for("the first frame", || contains(&seen, 0, ALT_ON));
+    let mark = seen.lock().unwrap().len();
+    // SAFETY: signals to our child.
+    unsafe { libc::kill(pid, libc::SIGTSTP) };
+    wait_for("stopped", || state() == Some('T'));
+    assert!(contains(&seen, mark, ALT_OFF));
+    let mark = seen.lock().unwrap().len();
+    unsafe { libc::kill(pid, libc::SIGCONT) };
+    wait_for("the screen back", || contains(&seen, mark, ALT_ON));
+    wait_for("a redraw", || contains(&seen, mark, "ξ0".as_bytes()));
+    pty.type_keys(b"q");
+    wait_for("quit", || child.try_wait().unwrap().is_some());
+    assert_eq!(child.wait().unwrap().code(), Some(0));
+}
