@@ -79,6 +79,9 @@ fn quick_bench_rows_are_finite_and_converge() {
         if r.knob <= if r.method == "dp54" { 1e-6 } else { 1e-2 } {
             assert_eq!(r.wrong, 0, "{} {}", r.method, r.setting);
         }
+        // The raw scheme has no stop of its own (`run --method rk2-raw` never stops): the
+        // row names the rule the bench stops it by.
+        assert_eq!(r.method == "rk2-raw", r.setting.ends_with("|u|≤dt"), "{}", r.setting);
     }
     // Task by task against rk2 at dt = 1e-3: dp54 is at least as accurate wherever it is
     // listed, and on the smooth stretch (no stop to close in on) far cheaper.

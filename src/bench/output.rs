@@ -44,7 +44,7 @@ pub fn table(r: &Report) -> String {
     }
     let _ = writeln!(
         o,
-        "\n{:<20} {:<8} {:<10} {:>8} {:>8} {:>8} {:>8} {:>5} {:>10} {:>10} {:>9}",
+        "\n{:<20} {:<8} {:<17} {:>8} {:>8} {:>8} {:>8} {:>5} {:>10} {:>10} {:>9}",
         "task",
         "method",
         "setting",
@@ -60,12 +60,12 @@ pub fn table(r: &Report) -> String {
     let mut last = String::new();
     for row in &r.rows {
         if row.task != last {
-            let _ = writeln!(o, "{}", "-".repeat(108));
+            let _ = writeln!(o, "{}", "-".repeat(115));
             last = row.task.clone();
         }
         let _ = writeln!(
             o,
-            "{:<20} {:<8} {:<10} {:>8} {:>8} {:>8} {:>8} {:>5} {:>10.0} {:>10} {:>9.2}",
+            "{:<20} {:<8} {:<17} {:>8} {:>8} {:>8} {:>8} {:>5} {:>10.0} {:>10} {:>9.2}",
             row.task,
             row.method,
             row.setting,

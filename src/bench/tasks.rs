@@ -72,10 +72,17 @@ pub(super) fn rest_rows(
                 pc.push(None);
             }
         }
+        // The raw scheme never stops by itself (nor in `run --method rk2-raw`): its row
+        // names the rule the bench stops it by.
+        let rule = if s.settings.method.stick_events() {
+            ""
+        } else {
+            " |u|≤dt"
+        };
         rows.push(Row {
             task: "rest".into(),
             method: s.settings.method.name().into(),
-            setting: setting_label(&s),
+            setting: format!("{}{rule}", setting_label(&s)),
             knob: s.knob(),
             cases: cs.len(),
             err_median: median(&mut pe.clone()),
