@@ -70,7 +70,89 @@ fn colour<'de, D: Deserializer<'de>>(deserializer: D) -> Result<Color, D::Error>
     })
 }
 
+/// How many colours the terminal shows, which decides how long each colour's escape
+/// sequence is: 24-bit (`38;2;R;G;B`, up to 19 bytes) or the xterm 256-colour palette
+/// (`38;5;N`, up to 11 bytes).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Depth {
+    TrueColor,
+    Ansi256,
+}
+
+impl Depth {
+    /// From the COLORTERM convention: `truecolor` or `24bit` promise 24-bit colour; anything
+    /// else gets the 256-colour palette every modern terminal has.
+    pub fn from_colorterm(colorterm: Option<&str>) -> Depth {
+        match colorterm {
+            Some(c) if c.eq_ignore_ascii_case("truecolor") || c.eq_ignore_ascii_case("24bit") => {
+                Depth::TrueColor
+            }
+            _ => Depth::Ansi256,
+        }
+    }
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Depth::TrueColor => "24-bit",
+            Depth::Ansi256 => "256",
+        }
+    }
+}
+
+/// The nearest colour of the xterm 256-colour palette (its 6×6×6 cube or its grey ramp).
+pub fn nearest_256(r: u8, g: u8, b: u8) -> u8 {
+    const LEVELS: [i32; 6] = [0, 95, 135, 175, 215, 255];
+    let near = |v: u8| {
+        (0..6)
+            .min_by_key(|&i| (LEVELS[i] - i32::from(v)).abs())
+            .unwrap_or(0)
+    };
+    let (ri, gi, bi) = (near(r), near(g), near(b));
+    let dist = |c: (i32, i32, i32)| {
+        (c.0 - i32::from(r)).pow(2) + (c.1 - i32::from(g)).pow(2) + (c.2 - i32::from(b)).pow(2)
+    };
+    let cube = (LEVELS[ri], LEVELS[gi], LEVELS[bi]);
+    let mean = (i32::from(r) + i32::from(g) + i32::from(b)) / 3;
+    let gi_ = ((mean - 8 + 5) / 10).clamp(0, 23);
+    let grey = 8 + 10 * gi_;
+    if dist((grey, grey, grey)) < dist(cube) {
+        232 + gi_ as u8
+    } else {
+        16 + 36 * ri as u8 + 6 * gi as u8 + bi as u8
+    }
+}
+
 impl Theme {
+    /// The theme with every colour as the terminal's depth shows it.
+    pub fn with_depth(mut self, depth: Depth) -> Theme {
+        if depth == Depth::Ansi256 {
+            for c in [
+                &mut self.background,
+                &mut self.foreground,
+                &mut self.muted,
+                &mut self.accent,
+                &mut self.table_edge,
+                &mut self.spokes,
+                &mut self.limit_circle,
+                &mut self.particle,
+                &mut self.trail,
+                &mut self.arrow,
+                &mut self.friction,
+                &mut self.coriolis,
+                &mut self.centrifugal,
+                &mut self.slipping,
+                &mut self.stuck,
+                &mut self.escaped,
+                &mut self.notice,
+            ] {
+                if let Color::Rgb(r, g, b) = *c {
+                    *c = Color::Indexed(nearest_256(r, g, b));
+                }
+            }
+        }
+        self
+    }
+
     /// A theme compiled into the binary, by name.
     pub fn builtin(name: &str) -> Option<Theme> {
         let source = match name {
@@ -124,6 +206,25 @@ fn parse(text: &str) -> Result<Theme, String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_256_colour_palette() {
+        assert_eq!(nearest_256(0, 0, 0), 16);
+        assert_eq!(nearest_256(255, 255, 255), 231);
+        assert_eq!(nearest_256(255, 0, 0), 196);
+        assert_eq!(nearest_256(0, 95, 135), 24);
+        // Greys go to the grey ramp: #808080 is 244 (8 + 10·12 = 128).
+        assert_eq!(nearest_256(128, 128, 128), 244);
+        assert_eq!(nearest_256(0x11, 0x15, 0x1c), 233);
+        assert_eq!(Depth::from_colorterm(Some("truecolor")), Depth::TrueColor);
+        assert_eq!(Depth::from_colorterm(Some("24bit")), Depth::TrueColor);
+        assert_eq!(Depth::from_colorterm(None), Depth::Ansi256);
+        let dark = Theme::builtin("dark").unwrap().with_depth(Depth::Ansi256);
+        assert!(matches!(dark.trail, Color::Indexed(_)));
+        assert!(matches!(dark.background, Color::Indexed(_)));
+        let same = Theme::builtin("dark").unwrap();
+        assert_eq!(same.clone().with_depth(Depth::TrueColor), same);
+    }
 
     /// Writes `text` to a temp file unique to this process and test.
     fn temp_file(tag: &str, text: &str) -> String {

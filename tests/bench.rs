@@ -81,7 +81,12 @@ fn quick_bench_rows_are_finite_and_converge() {
         }
         // The raw scheme has no stop of its own (`run --method rk2-raw` never stops): the
         // row names the rule the bench stops it by.
-        assert_eq!(r.method == "rk2-raw", r.setting.ends_with("|u|≤dt"), "{}", r.setting);
+        assert_eq!(
+            r.method == "rk2-raw",
+            r.setting.ends_with("|u|≤dt"),
+            "{}",
+            r.setting
+        );
     }
     // Task by task against rk2 at dt = 1e-3: dp54 is at least as accurate wherever it is
     // listed, and on the smooth stretch (no stop to close in on) far cheaper.
@@ -165,4 +170,23 @@ fn splitmix_is_deterministic() {
     for (_, x) in &a[3..] {
         assert!((0.0..=0.9).contains(&x.xi0) && (0.0..=0.5).contains(&x.v0));
     }
+}
+
+/// What a playing frame writes through the real crossterm backend: every theme within the
+/// slow-link budget (a byte count, deterministic: no clock), and 256 colours cheaper than 24-bit.
+#[test]
+fn terminal_bytes_fit_a_slow_link() {
+    use turntable::bench::bytes::{GOAL_KB_PER_S, all};
+    let rows = all(60).unwrap();
+    assert_eq!(rows.len(), 8);
+    for r in &rows {
+        assert!(r.kb_per_s <= GOAL_KB_PER_S, "{r:?}");
+        assert!(r.bytes_per_frame > 50.0, "something is drawn: {r:?}");
+    }
+    let dark = |d: &str| {
+        rows.iter()
+            .find(|r| r.theme == "dark" && r.depth == d)
+            .unwrap()
+    };
+    assert!(dark("256").bytes_per_frame < 0.9 * dark("24-bit").bytes_per_frame);
 }

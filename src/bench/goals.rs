@@ -112,6 +112,8 @@ pub(super) fn speed(
         Some(ms)
     };
     let (frame_ms, frame_trail) = frame_time(cfg.reps)?;
+    // Ten seconds of play (three in --quick).
+    let terminal_bytes = super::bytes::all(if cfg.quick { 90 } else { 300 })?;
     // The rk2 (stick events) dt = 1e-3 accuracy, and the loosest dp54 tol that matches it, on
     // a grid of four tolerances per decade.
     let cs = cases(cfg.cases, cfg.seed);
@@ -162,6 +164,7 @@ pub(super) fn speed(
         evals_ratio: matching.map(|m| m.2),
         frame_ms,
         frame_trail,
+        terminal_bytes,
     })
 }
 

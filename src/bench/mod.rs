@@ -2,6 +2,7 @@
 //! diagrams: error against work (RHS evaluations and wall time) for each method over a sweep of
 //! its step or tolerance, on the paper's cases and on seeded random releases. Engine only: no UI.
 
+pub mod bytes;
 mod goals;
 mod output;
 mod runs;
@@ -145,6 +146,9 @@ pub struct Speed {
     /// The explorer at 160×48 with a 20 000-point trail: one tick plus one full draw (min).
     pub frame_ms: f64,
     pub frame_trail: usize,
+    /// Bytes written to the terminal while the default scene plays at 120×40, per theme and
+    /// colour depth.
+    pub terminal_bytes: Vec<bytes::Bytes>,
 }
 
 /// dp54 against rk2 (with stick events) at dt = 1e-3 on one task: the loosest dp54 tolerance

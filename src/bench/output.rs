@@ -149,6 +149,21 @@ pub fn table(r: &Report) -> String {
         "  explorer frame at 160×48, {}-point trail, paper's run beside it (tick + draw): {:.2} ms   (goal ≤ 2 ms)",
         sp.frame_trail, sp.frame_ms
     );
+    for b in &sp.terminal_bytes {
+        let _ = writeln!(
+            o,
+            "  terminal output, default scene playing at {}×{} ({} frames), {:<13} {:<6}: {:>6.0} B/frame = {:>5.1} KB/s at {} fps   (goal ≤ {} KB/s)",
+            b.size.0,
+            b.size.1,
+            b.frames,
+            b.theme,
+            b.depth,
+            b.bytes_per_frame,
+            b.kb_per_s,
+            super::bytes::FPS,
+            super::bytes::GOAL_KB_PER_S
+        );
+    }
     o
 }
 

@@ -255,7 +255,10 @@ fn explore(cli: &Cli) -> CmdResult {
         None => crate::scene::Scene::default_scene(),
     };
     let no_color = std::env::var_os("NO_COLOR").is_some_and(|v| !v.is_empty());
-    let theme = crate::theme::Theme::resolve(theme.as_deref(), no_color).map_err(Failure::Usage)?;
+    let colorterm = std::env::var("COLORTERM").ok();
+    let theme = crate::theme::Theme::resolve(theme.as_deref(), no_color)
+        .map_err(Failure::Usage)?
+        .with_depth(crate::theme::Depth::from_colorterm(colorterm.as_deref()));
     let scene_ref = cli.scene.as_deref().map(scene_reference);
     if let Some(path) = &cli.record {
         check_record_path(path, [&cli.scene, &cli.theme])?;

@@ -148,9 +148,12 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &mut App) {
                 radius: table_r,
                 color: th.table_edge,
             });
-            for k in 0..6 {
-                let d = rotate(DVec2::X, spin + k as f64 * std::f64::consts::PI / 3.0);
-                let (a, b) = (d * 0.8 * table_r, d * table_r);
+            // Three short marks on the rim show the table turning: in the lab they move
+            // every frame, so they are kept short (each changed cell costs bytes on a slow
+            // link; six long spokes were 85 % of what a playing frame wrote).
+            for k in 0..3 {
+                let d = rotate(DVec2::X, spin + k as f64 * 2.0 * std::f64::consts::PI / 3.0);
+                let (a, b) = (d * 0.9 * table_r, d * table_r);
                 ctx.draw(&Line {
                     x1: a.x,
                     y1: a.y,

@@ -1,0 +1,96 @@
+//! Bytes the explorer writes to the terminal while it plays: drawn through the real crossterm
+//! backend into a counting writer, so what a slow link (ssh) carries is measured, not guessed.
+
+use crate::app::App;
+use crate::scene::Scene;
+use crate::theme::{Depth, Theme};
+use ratatui::Terminal;
+use ratatui::backend::CrosstermBackend;
+use serde::Serialize;
+use std::cell::Cell;
+use std::io::{self, Write};
+use std::rc::Rc;
+
+/// The explorer's default frame rate while playing.
+pub const FPS: f64 = 30.0;
+/// The budget for a slow link.
+pub const GOAL_KB_PER_S: f64 = 30.0;
+
+/// A writer that only counts, into a counter the caller keeps.
+struct Count(Rc<Cell<usize>>);
+
+impl Write for Count {
+    fn write(&mut self, buf: &[u8]) -> io::Result<usize> {
+        self.0.set(self.0.get() + buf.len());
+        Ok(buf.len())
+    }
+    fn flush(&mut self) -> io::Result<()> {
+        Ok(())
+    }
+}
+
+/// One measurement: a theme at a colour depth.
+#[derive(Clone, Debug, Serialize)]
+pub struct Bytes {
+    pub theme: String,
+    pub depth: String,
+    pub size: (u16, u16),
+    pub frames: usize,
+    pub bytes_per_frame: f64,
+    /// At [`FPS`].
+    pub kb_per_s: f64,
+}
+
+/// The default scene playing at `size` for `frames` ticks, each drawn as the explorer does
+/// (one tick, one draw; the first full frame is not counted).
+pub fn measure(
+    theme: &str,
+    depth: Depth,
+    size: (u16, u16),
+    frames: usize,
+) -> Result<Bytes, String> {
+    let th = Theme::builtin(theme)
+        .ok_or_else(|| format!("no theme {theme}"))?
+        .with_depth(depth);
+    let mut app = App::new(Scene::default_scene(), th);
+    let count = Rc::new(Cell::new(0));
+    let backend = CrosstermBackend::new(Count(Rc::clone(&count)));
+    let mut term = Terminal::with_options(
+        backend,
+        ratatui::TerminalOptions {
+            viewport: ratatui::Viewport::Fixed(ratatui::layout::Rect::new(0, 0, size.0, size.1)),
+        },
+    )
+    .map_err(|e| e.to_string())?;
+    let draw = |term: &mut Terminal<CrosstermBackend<Count>>, app: &mut App| {
+        term.draw(|f| crate::ui::draw(f, app))
+            .map(|_| ())
+            .map_err(|e| e.to_string())
+    };
+    draw(&mut term, &mut app)?;
+    let start = count.get();
+    for _ in 0..frames {
+        app.tick();
+        draw(&mut term, &mut app)?;
+    }
+    let bytes = (count.get() - start) as f64 / frames.max(1) as f64;
+    Ok(Bytes {
+        theme: theme.into(),
+        depth: depth.name().into(),
+        size,
+        frames,
+        bytes_per_frame: bytes,
+        kb_per_s: bytes * FPS / 1000.0,
+    })
+}
+
+/// Every built-in theme at both depths, at 120×40 over 10 s of play.
+pub fn all(frames: usize) -> Result<Vec<Bytes>, String> {
+    let mut out = Vec::new();
+    for theme in crate::theme::BUILTIN {
+        for depth in [Depth::TrueColor, Depth::Ansi256] {
+            out.push(measure(theme, depth, (120, 40), frames)?);
+        }
+    }
+    Ok(out)
+}
