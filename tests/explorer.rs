@@ -156,6 +156,9 @@ fn every_key_in_the_keymap_does_what_its_help_says() {
     std::fs::create_dir_all(&dir).unwrap();
     for b in KEYMAP {
         let mut a = setup(&dir);
+        if b.action == Action::Dismiss {
+            a.help = true;
+        }
         let before = render(&mut a, 80, 24);
         let (tau, init, set) = (a.sim.now().tau, a.initial, a.settings);
         let (speed, zoom, pan) = (a.speed, a.zoom, a.pan);
@@ -169,6 +172,7 @@ fn every_key_in_the_keymap_does_what_its_help_says() {
         let now = a.sim.now().tau;
         let ok = match b.action {
             Action::Quit => a.should_quit(),
+            Action::Dismiss => !a.help && !a.should_quit(),
             Action::ToggleHelp => a.help && after.contains("help"),
             Action::PlayPause => !a.is_playing() && after.contains("❚❚"),
             Action::StepForward => now > tau && !a.is_playing(),
@@ -196,7 +200,10 @@ fn every_key_in_the_keymap_does_what_its_help_says() {
             Action::ResetScene => a.initial == a.scene.initial && now == 0.0,
             Action::Preset(i) => a.scene.name == PRESETS[i] && now == 0.0,
             Action::ToggleCompare => a.paper.is_some() && after.contains("paper: rk2-raw"),
-            Action::ToggleForces => a.forces && after.contains("Coriolis"),
+            // In the lab (the default view) friction is the only force.
+            Action::ToggleForces => {
+                a.forces && after.contains("friction") && !after.contains("Coriolis")
+            }
             Action::EstimateError => after.contains("|Δr| ="),
             Action::ZoomIn => a.zoom > zoom,
             Action::ZoomOut => a.zoom < zoom,
@@ -223,7 +230,10 @@ fn esc_closes_help_before_quitting() {
     key(&mut a, '?');
     a.handle_key(KeyEvent::new(KeyCode::Esc, KeyModifiers::NONE));
     assert!(!a.help && !a.should_quit());
+    // Esc is the reflex for closing things: it never quits. q does.
     a.handle_key(KeyEvent::new(KeyCode::Esc, KeyModifiers::NONE));
+    assert!(!a.should_quit());
+    key(&mut a, 'q');
     assert!(a.should_quit());
 }
 
@@ -261,8 +271,13 @@ fn help_overlay_lists_every_binding() {
     let rows = turntable::ui::help::rows();
     for (_, rs) in &rows {
         for (label, help) in rs {
-            let line = format!("{label:<13}{help}");
-            assert!(screen.contains(&line), "missing '{line}' in\n{screen}");
+            // The label, then at least two blanks, then the help: never glued.
+            assert!(
+                screen.lines().any(|l| l
+                    .split_once(&format!(" {label}  "))
+                    .is_some_and(|(_, rest)| rest.trim_start().starts_with(help))),
+                "missing '{label}  {help}' in\n{screen}"
+            );
         }
     }
     for b in KEYMAP {
@@ -278,7 +293,15 @@ fn help_overlay_lists_every_binding() {
     }
     // 80×24 fits it too.
     let small = render(&mut a, 80, 24);
-    assert!(small.contains("presets A B C D fig1 fig2") && small.contains("q/Esc/Ctrl-c"));
+    assert!(small.contains("presets A B C D fig1 fig2") && small.contains("q/Ctrl-c       quit"));
+    assert!(
+        small.contains("Esc            close help / notice"),
+        "{small}"
+    );
+    assert!(
+        !small.contains("/ onM") && !small.contains("fig2q"),
+        "{small}"
+    );
 }
 
 #[test]
@@ -303,8 +326,7 @@ fn scene_c_shows_the_paper_escaping_where_the_converged_run_sticks() {
     let screen = render(&mut a, 80, 24);
     assert!(screen.contains(&format!("stuck at ξ = {}", num(q.length(), 5))));
     assert!(
-        screen.contains("escaped, certified")
-            && screen.contains(&format!("at τ = {}", num(esc, 3)))
+        screen.contains("escape certified") && screen.contains(&format!("at τ = {}", num(esc, 3)))
     );
     assert!(
         screen.contains("steps over the stop and escapes"),

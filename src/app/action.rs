@@ -4,6 +4,8 @@
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Action {
     Quit,
+    /// Close the help or a notice (never quits).
+    Dismiss,
     ToggleHelp,
     PlayPause,
     StepForward,

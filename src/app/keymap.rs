@@ -75,7 +75,7 @@ pub const KEYMAP: &[Binding] = &[
     b(ch('V'), N, Action::V0(-V0_FINE), "v0 +/− 0.001", "initial conditions"),
     b(ch('v'), A, Action::V0(V0_COARSE), "v0 +/− 0.05", "initial conditions"),
     b(ch('V'), A, Action::V0(-V0_COARSE), "v0 +/− 0.05", "initial conditions"),
-    b(ch('R'), N, Action::CycleRelease, "release mode: v / rest", "initial conditions"),
+    b(ch('R'), N, Action::CycleRelease, "release: v0/table/lab", "initial conditions"),
     b(ch('F'), N, Action::ToggleFriction, "friction off (μ = 0) / on", "initial conditions"),
     b(ch('0'), N, Action::ResetScene, "reset to the scene", "initial conditions"),
     b(ch('1'), N, Action::Preset(0), "presets A B C D fig1 fig2", "initial conditions"),
@@ -102,12 +102,12 @@ pub const KEYMAP: &[Binding] = &[
     b(KeyCode::Down, S, Action::Pan(0.0, -0.2), "pan (arrows)", "view"),
     b(KeyCode::Up, S, Action::Pan(0.0, 0.2), "pan (arrows)", "view"),
     b(KeyCode::Right, S, Action::Pan(0.2, 0.0), "pan (arrows)", "view"),
-    b(ch('z'), N, Action::ResetView, "auto-frame (reset zoom)", "view"),
+    b(ch('z'), N, Action::ResetView, "reset zoom and pan", "view"),
     b(ch('?'), N, Action::ToggleHelp, "help on / off", "app"),
     b(ch('s'), N, Action::Save, "save scene (toml)", "app"),
     b(ch('M'), N, Action::ToggleMouse, "mouse capture on/off", "app"),
     b(ch('q'), N, Action::Quit, "quit", "app"),
-    b(KeyCode::Esc, N, Action::Quit, "quit", "app"),
+    b(KeyCode::Esc, N, Action::Dismiss, "close help / notice", "app"),
     b(ch('c'), C, Action::Quit, "quit", "app"),
 ];
 

@@ -151,16 +151,38 @@ impl App {
         self.sim.now()
     }
 
+    /// Whether the initial conditions or settings differ from the scene as loaded.
+    pub fn edited(&self) -> bool {
+        self.initial != self.scene.initial || self.settings != self.scene.settings
+    }
+
+    /// What the scene shows, one line: the scene's own words until it is edited, then what
+    /// the run on screen does (never a preset's text about another release).
+    pub fn about(&self) -> String {
+        if !self.edited() {
+            return self.scene.about.clone();
+        }
+        let base = self.scene.name.trim_end_matches(" (edited)");
+        let what = match (self.sim.run.outcome(), self.sim.run.status) {
+            (crate::engine::Outcome::Stuck, crate::engine::Status::Stuck { tau, q }) => {
+                format!("sticks at xi = {:.4} (tau = {tau:.3})", q.length())
+            }
+            (crate::engine::Outcome::Escaped, _) => "escapes".to_string(),
+            _ => format!("still sliding at tau = {:.3}", self.sim.run.tau()),
+        };
+        format!("{base}, edited: {what}")
+    }
+
     /// The current initial conditions and settings as a scene (what `s` saves).
     pub fn current_scene(&self) -> Scene {
-        let changed = self.initial != self.scene.initial || self.settings != self.scene.settings;
+        let changed = self.edited();
         Scene {
             name: if changed {
                 format!("{} (edited)", self.scene.name.trim_end_matches(" (edited)"))
             } else {
                 self.scene.name.clone()
             },
-            about: self.scene.about.clone(),
+            about: self.about(),
             initial: self.initial,
             settings: self.settings,
         }

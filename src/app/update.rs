@@ -17,6 +17,8 @@ pub fn update(app: &mut App, action: Action) {
                 app.quit = true;
             }
         }
+        // The notice is already cleared above.
+        Action::Dismiss => app.help = false,
         Action::ToggleHelp => app.help = !app.help,
         Action::PlayPause => app.playing = !app.playing,
         Action::StepForward => {

@@ -98,6 +98,56 @@ fn trail(ctx: &mut Context, samples: &[State], frame: Frame, color: Color) {
     }
 }
 
+/// A force arrow as drawn: its label at the head (so it reads without colour), the word the
+/// legend uses, and the vector in world units of the frame shown.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ForceArrow {
+    pub label: &'static str,
+    pub word: &'static str,
+    pub vec: DVec2,
+    pub color: Color,
+}
+
+/// Share of the visible half-width the longest force arrow takes.
+pub const FORCE_SHARE: f64 = 0.2;
+
+/// The forces on the particle in the frame shown (Sec. II). In the lab, an inertial frame,
+/// only friction acts in the plane (gravity and the normal force cancel; at μ = 0 nothing
+/// does). In the rotating frame the fictitious Coriolis and centrifugal forces act too. All
+/// are scaled together so the longest is [`FORCE_SHARE`] of `half_width`.
+pub fn force_arrows(app: &App, half_width: f64) -> Vec<ForceArrow> {
+    let th = &app.theme;
+    let now = app.sim.now();
+    let [fr, co, ce] = table_forces(&now, app.initial.frictionless);
+    let mut out = Vec::new();
+    let mut push = |label, word, vec: DVec2, color| {
+        if vec.length() > 0.0 {
+            out.push(ForceArrow {
+                label,
+                word,
+                vec,
+                color,
+            });
+        }
+    };
+    match app.view {
+        Frame::Lab => push("fr", "friction", rotate(fr, now.tau), th.friction),
+        Frame::Table => {
+            push("fr", "friction", fr, th.friction);
+            push("co", "Coriolis", co, th.coriolis);
+            push("cf", "centrifugal", ce, th.centrifugal);
+        }
+    }
+    let longest = out.iter().fold(0.0, |m: f64, f| m.max(f.vec.length()));
+    if longest > 0.0 {
+        let k = FORCE_SHARE * half_width / longest;
+        for f in &mut out {
+            f.vec *= k;
+        }
+    }
+    out
+}
+
 pub fn render(f: &mut TuiFrame, area: Rect, app: &mut App) {
     let th = app.theme.clone();
     let title = match app.view {
@@ -133,8 +183,12 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &mut App) {
     let x0 = DVec2::new(app.initial.xi0, 0.0);
     let sim = &app.sim;
     let paper = app.paper.as_ref();
-    let forces = app.forces;
-    let frictionless = app.initial.frictionless;
+    let half_width = 0.5 * (xb[1] - xb[0]).min(yb[1] - yb[0]);
+    let forces = if app.forces {
+        force_arrows(app, half_width)
+    } else {
+        Vec::new()
+    };
     let canvas = Canvas::default()
         .block(block)
         .marker(Marker::Braille)
@@ -175,14 +229,15 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &mut App) {
             trail(ctx, sim.trail(), view, th.trail);
             ctx.layer();
             arrow(ctx, x0, v_init * arrow_scale, th.arrow);
-            if forces {
-                let at = in_frame(&now, view);
-                let turn = if view == Frame::Lab { now.tau } else { 0.0 };
-                let k = 0.12 * r;
-                let [fr, co, ce] = table_forces(&now, frictionless);
-                for (v, c) in [(fr, th.friction), (co, th.coriolis), (ce, th.centrifugal)] {
-                    arrow(ctx, at, rotate(v, turn) * k, c);
-                }
+            let at = in_frame(&now, view);
+            for fa in &forces {
+                arrow(ctx, at, fa.vec, fa.color);
+                let head = at + fa.vec * 1.15;
+                ctx.print(
+                    head.x,
+                    head.y,
+                    Span::styled(fa.label, Style::default().fg(fa.color)),
+                );
             }
             if let Some(p) = paper {
                 let q = in_frame(&p.now(), view);

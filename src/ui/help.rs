@@ -6,7 +6,8 @@ use ratatui::Frame as TuiFrame;
 use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::style::{Modifier, Style};
 use ratatui::text::{Line, Span};
-use ratatui::widgets::{Block, Borders, Clear, Paragraph};
+use ratatui::widgets::{Block, Borders, Clear, Paragraph, Wrap};
+use unicode_width::UnicodeWidthStr;
 
 /// Help rows per group: bindings with the same help text share a row, keys joined by `/`
 /// (a shared modifier written once: `Alt-x/X`, `Shift-←/↓/↑/→`).
@@ -65,30 +66,48 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) {
         .style(Style::default().bg(th.background).fg(th.foreground));
     let inner = block.inner(popup);
     f.render_widget(block, popup);
-    // Two columns of equal height; a long group may run on into the second.
-    let mut lines: Vec<Line> = Vec::new();
-    let mut headers = Vec::new();
+    // Two columns of equal height; a long group may run on into the second. In each column
+    // labels take its widest label's width and two blanks, so no help text is glued to its
+    // keys.
+    let mut items: Vec<(Option<&str>, String, &str)> = Vec::new();
     for (g, rs) in rows() {
-        headers.push(lines.len());
-        lines.push(Line::from(Span::styled(
-            g.to_string(),
-            Style::default().fg(th.accent).add_modifier(Modifier::BOLD),
-        )));
-        for (k, help) in rs {
-            lines.push(Line::from(vec![
-                Span::styled(format!(" {k:<13}"), Style::default().fg(th.notice)),
-                Span::styled(help.to_string(), Style::default().fg(th.foreground)),
-            ]));
-        }
+        items.push((Some(g), String::new(), ""));
+        items.extend(rs.into_iter().map(|(k, h)| (None, k, h)));
     }
-    let mut half = lines.len().div_ceil(2);
-    if headers.contains(&(half - 1)) {
+    let mut half = items.len().div_ceil(2);
+    if items[half - 1].0.is_some() {
         half -= 1; // no header left alone at the foot of a column
     }
-    let b = lines.split_off(half);
-    let a = lines;
-    let halves =
-        Layout::horizontal([Constraint::Percentage(50), Constraint::Percentage(50)]).split(inner);
-    f.render_widget(Paragraph::new(a), halves[0]);
-    f.render_widget(Paragraph::new(b), halves[1]);
+    let column = |items: &[(Option<&str>, String, &str)]| -> Vec<Line> {
+        let lw = items.iter().map(|(_, k, _)| k.width()).max().unwrap_or(0) + 2;
+        items
+            .iter()
+            .map(|(g, k, help)| match g {
+                Some(g) => Line::from(Span::styled(
+                    g.to_string(),
+                    Style::default().fg(th.accent).add_modifier(Modifier::BOLD),
+                )),
+                None => Line::from(vec![
+                    Span::styled(
+                        format!(" {k}{}", " ".repeat(lw - k.width())),
+                        Style::default().fg(th.notice),
+                    ),
+                    Span::styled(help.to_string(), Style::default().fg(th.foreground)),
+                ]),
+            })
+            .collect()
+    };
+    // Narrow columns wrap at word boundaries rather than cut a word; below 60 cells one
+    // column.
+    let wrap = Wrap { trim: false };
+    if inner.width < 60 {
+        f.render_widget(Paragraph::new(column(&items)).wrap(wrap), inner);
+        return;
+    }
+    let (a, b) = (column(&items[..half]), column(&items[half..]));
+    let halves = Layout::horizontal([Constraint::Percentage(50), Constraint::Percentage(50)])
+        .spacing(1)
+        .split(inner);
+    f.render_widget(Paragraph::new(a).wrap(wrap), halves[0]);
+    f.render_widget(Paragraph::new(b).wrap(wrap), halves[1]);
 }

@@ -49,7 +49,7 @@ pub fn draw(frame: &mut Frame, app: &mut App) {
     frame.render_widget(
         Paragraph::new(Line::from(vec![
             Span::styled(" turntable ", Style::default().fg(th.accent)),
-            Span::styled(app.scene.about.clone(), Style::default().fg(th.muted)),
+            Span::styled(app.about(), Style::default().fg(th.muted)),
         ])),
         title,
     );
@@ -93,11 +93,16 @@ pub fn lesson_line(app: &App) -> String {
         Outcome::Escaped => "escapes",
         Outcome::Running => "still slides",
     };
+    let both = |o: Outcome| match o {
+        Outcome::Stuck => "both stick",
+        Outcome::Escaped => "both escape",
+        Outcome::Running => "both still slide",
+    };
     if a == b {
         format!(
-            " paper's RK2 (○) and {} (●) agree so far: both {}",
+            " paper's RK2 (○) and {} (●) agree so far: {}",
             app.settings.method,
-            name(a)
+            both(a)
         )
     } else if a == Outcome::Stuck && b == Outcome::Escaped {
         " ● sticks; the paper's fixed-step RK2 (○) steps over the stop and escapes".into()

@@ -3,7 +3,7 @@
 
 use crate::app::App;
 use crate::engine::model::wrap_angle;
-use crate::engine::{Method, Outcome, Status};
+use crate::engine::{Certificate, Method, Outcome, Status};
 use crate::sim::Sim;
 use crate::theme::Theme;
 use ratatui::Frame as TuiFrame;
@@ -48,13 +48,21 @@ pub fn status_text(sim: &Sim, th: &Theme) -> (String, ratatui::style::Color) {
             ),
             Status::Slipping => ("stuck".into(), th.stuck),
         },
-        Outcome::Escaped => {
-            let tau = sim.run.escape.map_or(f64::NAN, |e| e.tau);
-            (
-                format!("escaped, certified\n  at τ = {}", num(tau, 3)),
+        Outcome::Escaped => match sim.run.escape {
+            // What is certified, true from that instant on, before the particle leaves.
+            Some(e) => (
+                format!(
+                    "escape certified\n  {}\n  at τ = {}",
+                    match e.by {
+                        Certificate::Radial => "ξ > 1, moving out",
+                        Certificate::Energy => "E < −½: cannot rest",
+                    },
+                    num(e.tau, 3)
+                ),
                 th.escaped,
-            )
-        }
+            ),
+            None => ("escape certified".into(), th.escaped),
+        },
         Outcome::Running => {
             let s = sim.now();
             if sim.run.settings.method == Method::Rk2Raw && s.u().length() < 0.01 && s.xi() <= 1.0 {
@@ -101,17 +109,35 @@ pub fn lines(app: &App) -> Vec<Line<'static>> {
     )));
     out.push(kv("τ", num(s.tau, 3), th));
     out.push(kv("ξ", num(s.xi(), 5), th));
-    let theta = if s.xi() > 0.0 {
-        num(wrap_angle(s.r.y.atan2(s.r.x)), 4)
-    } else {
-        "—".into()
+    // Angles in the frame shown: θ in the lab; in the rotating view the table-frame angle Θ
+    // and Θ′ = θ′ − 1 (a particle at rest on the table has Θ′ = 0), with the paper's θ′ kept.
+    let angle = |p: glam::DVec2| {
+        if p.length_squared() > 0.0 {
+            num(wrap_angle(p.y.atan2(p.x)), 4)
+        } else {
+            "—".into()
+        }
     };
-    out.push(kv("θ lab", theta, th));
-    out.push(kv(
-        "θ′",
-        s.theta_dot().map_or("—".into(), |t| num(t, 4)),
-        th,
-    ));
+    let theta_dot = s.theta_dot();
+    match app.view {
+        crate::engine::Frame::Lab => {
+            out.push(kv("θ", angle(s.r), th));
+            out.push(kv("θ′", theta_dot.map_or("—".into(), |t| num(t, 4)), th));
+        }
+        crate::engine::Frame::Table => {
+            out.push(kv("Θ", angle(s.q()), th));
+            out.push(kv(
+                "Θ′",
+                theta_dot.map_or("—".into(), |t| num(t - 1.0, 4)),
+                th,
+            ));
+            out.push(kv(
+                "θ′ lab",
+                theta_dot.map_or("—".into(), |t| num(t, 4)),
+                th,
+            ));
+        }
+    }
     out.push(kv("ξ′", num(s.xi_dot(), 4), th));
     out.push(kv("|u|", num(s.u().length(), 4), th));
     let (st, col) = status_text(&app.sim, th);
@@ -150,11 +176,20 @@ pub fn lines(app: &App) -> Vec<Line<'static>> {
         out.push(kv("  ξ", num(p.now().xi(), 5), th));
     }
     if app.forces {
-        out.push(Line::from(vec![
-            Span::styled("friction ", Style::default().fg(th.friction)),
-            Span::styled("Coriolis ", Style::default().fg(th.coriolis)),
-            Span::styled("centrif.", Style::default().fg(th.centrifugal)),
-        ]));
+        // The legend names exactly the arrows drawn, by their head labels.
+        let drawn = crate::ui::canvas::force_arrows(app, 1.0);
+        if drawn.is_empty() {
+            out.push(Line::from(Span::styled(
+                "forces: none in the plane",
+                Style::default().fg(th.muted),
+            )));
+        }
+        for fa in &drawn {
+            out.push(Line::from(vec![
+                Span::styled(format!("{:<3}", fa.label), Style::default().fg(fa.color)),
+                Span::styled(fa.word, Style::default().fg(fa.color)),
+            ]));
+        }
     }
     out
 }
