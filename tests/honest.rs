@@ -195,3 +195,16 @@ fn the_explorer_says_when_an_outcome_is_in_doubt() {
         assert_eq!(screen.contains("in doubt"), doubtful, "{screen}");
     }
 }
+
+/// The paper writes case D's angle as 1.2π: so does the explorer ([0, 2π), not −0.8π).
+#[test]
+fn the_explorer_shows_phi_as_the_paper_does() {
+    use turntable::app::App;
+    use turntable::replay::{Session, plain_text};
+    use turntable::scene::Scene;
+    use turntable::theme::Theme;
+    let app = App::new(Scene::preset("D").unwrap(), Theme::builtin("mono").unwrap());
+    let mut s = Session::headless(app, 80, 24, false);
+    let screen = plain_text(s.screen());
+    assert!(screen.contains("φ 1.20π"), "{screen}");
+}

@@ -75,7 +75,7 @@ impl App {
                 self.notice = Some(format!(
                     "v0 = {:.3}, φ = {:.3}π",
                     self.initial.v0,
-                    state::sanitize(self.initial).phi / std::f64::consts::PI
+                    self.initial.phi.rem_euclid(std::f64::consts::TAU) / std::f64::consts::PI
                 ));
                 self.dirty = true;
             }

@@ -97,7 +97,7 @@ pub fn lines(app: &App) -> Vec<Line<'static>> {
         crate::engine::Release::Velocity => format!(
             "ξ0 {} φ {}π v0 {}",
             num(i.xi0, 3),
-            num(i.phi / PI, 2),
+            num(i.phi.rem_euclid(2.0 * PI) / PI, 2),
             num(i.v0, 4)
         ),
         crate::engine::Release::TableRest => format!("ξ0 {} rest on table", num(i.xi0, 3)),
