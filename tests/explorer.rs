@@ -496,3 +496,116 @@ fn error_estimate_tells_converged_from_creeping() {
     let e = raw.error_estimate().unwrap();
     assert!(e.error > 1e-4 && e.error < 1e-2, "{e:?}");
 }
+
+/// Where a world point is drawn on the last rendered canvas: the cell whose centre maps
+/// nearest to it.
+fn cell_of(a: &App, p: glam::DVec2) -> (u16, u16) {
+    let g = a.geom_for_tests().unwrap();
+    let mut best = (0, 0, f64::INFINITY);
+    for row in g.area.y..g.area.y + g.area.height {
+        for col in g.area.x..g.area.x + g.area.width {
+            let w = g.to_world(col, row).unwrap();
+            let d = (w - p).length();
+            if d < best.2 {
+                best = (col, row, d);
+            }
+        }
+    }
+    (best.0, best.1)
+}
+
+/// A click upper-left of the centre puts the release point there, angle included: the
+/// picture turns, the model keeps its release on +x (rotational symmetry).
+#[test]
+fn a_click_places_the_release_where_clicked() {
+    use crossterm::event::{MouseButton, MouseEvent, MouseEventKind};
+    let mut a = app("C");
+    key(&mut a, ' ');
+    render(&mut a, 80, 24);
+    let target = glam::DVec2::new(-0.4, 0.4);
+    let (col, row) = cell_of(&a, target);
+    let centre = cell_of(&a, glam::DVec2::ZERO);
+    a.handle_mouse(MouseEvent {
+        kind: MouseEventKind::Down(MouseButton::Left),
+        column: col,
+        row,
+        modifiers: KeyModifiers::NONE,
+    });
+    let angle = 0.75 * std::f64::consts::PI;
+    assert!((a.turn - angle).abs() < 0.2, "turn {}", a.turn);
+    assert!(
+        (a.initial.xi0 - 0.4 * 2f64.sqrt()).abs() < 0.12,
+        "{}",
+        a.initial.xi0
+    );
+    assert_eq!(a.initial.phi, 0.0, "the model's release is unchanged");
+    let screen = render(&mut a, 80, 24);
+    let (pc, pr) = screen
+        .lines()
+        .enumerate()
+        .find_map(|(r, l)| {
+            l.chars()
+                .position(|c| c == '●')
+                .map(|c| (c as u16, r as u16))
+        })
+        .unwrap();
+    assert!(
+        pc < centre.0 && pr < centre.1,
+        "● at {pc},{pr}, centre {centre:?}\n{screen}"
+    );
+    // The same cell maps back to the release point in the model.
+    let back = a.geom_for_tests().unwrap().to_world(col, row).unwrap();
+    assert!(
+        (back - glam::DVec2::new(a.initial.xi0, 0.0)).length() < 0.1,
+        "{back}"
+    );
+}
+
+/// Forces in the frame shown: friction alone in the lab, three in the rotating frame, the
+/// longest a fifth of the visible half-width, labelled; stuck, a square glyph and a mark.
+#[test]
+fn forces_marks_and_glyphs_follow_the_frame() {
+    use turntable::ui::canvas::{FORCE_SHARE, force_arrows};
+    let mut a = app("C");
+    for _ in 0..6 {
+        a.tick();
+    }
+    for zoom in [1.0, 4.0] {
+        a.zoom = zoom;
+        let lab = force_arrows(&a, 2.0);
+        assert_eq!(lab.iter().map(|f| f.word).collect::<Vec<_>>(), ["friction"]);
+        assert!((lab[0].vec.length() - FORCE_SHARE * 2.0).abs() < 1e-12);
+        key(&mut a, 'f');
+        let rot = force_arrows(&a, 2.0);
+        assert_eq!(
+            rot.iter().map(|f| f.word).collect::<Vec<_>>(),
+            ["friction", "Coriolis", "centrifugal"]
+        );
+        let longest = rot.iter().map(|f| f.vec.length()).fold(0.0, f64::max);
+        assert!((longest - FORCE_SHARE * 2.0).abs() < 1e-12);
+        key(&mut a, 'f');
+    }
+    a.zoom = 1.0;
+    key(&mut a, 'F');
+    assert!(
+        force_arrows(&a, 2.0).is_empty(),
+        "μ = 0: no force in the lab"
+    );
+    key(&mut a, 'F');
+    key(&mut a, 'a');
+    let screen = render(&mut a, 80, 24);
+    assert!(
+        screen.contains("fr friction") && !screen.contains("Coriolis"),
+        "{screen}"
+    );
+    assert!(
+        screen.contains("ξ=1 (R_max)") && screen.contains("↺ table"),
+        "{screen}"
+    );
+    for _ in 0..200 {
+        a.tick();
+    }
+    let screen = render(&mut a, 80, 24);
+    assert!(screen.contains('■') && !screen.contains('●'), "{screen}");
+    assert!(screen.contains("× stuck τ=5.60"), "{screen}");
+}

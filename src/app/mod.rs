@@ -47,6 +47,11 @@ impl App {
         };
         match ev.kind {
             MouseEventKind::Down(MouseButton::Left) => {
+                // Clicked at an angle: the picture turns there (p is in model coordinates,
+                // so its angle adds to the turn already shown).
+                if p.length() > 0.0 {
+                    self.turn = crate::engine::model::wrap_angle(self.turn + p.y.atan2(p.x));
+                }
                 self.initial.xi0 = p.length();
                 self.dragging = true;
                 self.restart();

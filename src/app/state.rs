@@ -27,6 +27,8 @@ pub struct CanvasGeom {
     pub arrow_scale: f64,
     /// The view frame the canvas was drawn in.
     pub frame: Frame,
+    /// How far the picture is turned (see [`App::turn`]).
+    pub turn: f64,
 }
 
 impl CanvasGeom {
@@ -38,10 +40,11 @@ impl CanvasGeom {
         }
         let fx = (f64::from(col - a.x) + 0.5) / f64::from(a.width);
         let fy = (f64::from(row - a.y) + 0.5) / f64::from(a.height);
-        Some(glam::DVec2::new(
+        let p = glam::DVec2::new(
             self.x[0] + fx * (self.x[1] - self.x[0]),
             self.y[1] - fy * (self.y[1] - self.y[0]),
-        ))
+        );
+        Some(crate::engine::model::rotate(p, -self.turn))
     }
 }
 
@@ -63,6 +66,9 @@ pub struct App {
     pub forces: bool,
     pub help: bool,
     pub zoom: f64,
+    /// The picture's turn (rad): the model releases on +x, the picture shows the release
+    /// where it was clicked.
+    pub turn: f64,
     /// View centre offset, in units of the auto-framed half-width.
     pub pan: glam::DVec2,
     pub mouse: bool,
@@ -104,6 +110,7 @@ impl App {
             forces: false,
             help: false,
             zoom: 1.0,
+            turn: 0.0,
             pan: glam::DVec2::ZERO,
             mouse: true,
             notice: None,

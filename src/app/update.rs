@@ -102,6 +102,7 @@ pub fn update(app: &mut App, action: Action) {
                 app.notice = Some(format!("preset {}: {}", scene.name, scene.about));
                 app.scene = scene;
                 app.zoom = 1.0;
+                app.turn = 0.0;
                 app.pan = glam::DVec2::ZERO;
                 app.restart();
             }

@@ -76,7 +76,7 @@ fn arrow(ctx: &mut Context, from: DVec2, vec: DVec2, color: Color) {
     }
 }
 
-fn trail(ctx: &mut Context, samples: &[State], frame: Frame, color: Color) {
+fn trail(ctx: &mut Context, samples: &[State], frame: Frame, turn: f64, color: Color) {
     let stride = samples.len().div_ceil(MAX_SEGMENTS).max(1);
     let mut prev: Option<DVec2> = None;
     let n = samples.len();
@@ -84,7 +84,7 @@ fn trail(ctx: &mut Context, samples: &[State], frame: Frame, color: Color) {
         if i % stride != 0 && i + 1 != n {
             continue;
         }
-        let p = in_frame(s, frame);
+        let p = rotate(in_frame(s, frame), turn);
         if let Some(a) = prev {
             ctx.draw(&Line {
                 x1: a.x,
@@ -150,10 +150,16 @@ pub fn force_arrows(app: &App, half_width: f64) -> Vec<ForceArrow> {
 
 pub fn render(f: &mut TuiFrame, area: Rect, app: &mut App) {
     let th = app.theme.clone();
-    let title = match app.view {
-        Frame::Lab => " lab frame ",
-        Frame::Table => " rotating frame ",
+    let mut title = match app.view {
+        Frame::Lab => " lab frame ".to_string(),
+        Frame::Table => " rotating frame ".to_string(),
     };
+    if app.zoom != 1.0 {
+        title.push_str(&format!(
+            "zoom ×{} (follows ●) ",
+            crate::ui::panel::num(app.zoom, 2)
+        ));
+    }
     let block = Block::default()
         .borders(Borders::ALL)
         .border_style(Style::default().fg(th.muted))
@@ -161,7 +167,18 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &mut App) {
     let inner = block.inner(area);
     let r0 = auto_extent(app);
     let r = r0 / app.zoom;
-    let centre = app.pan * r0;
+    // The picture is turned by `app.turn` so a release point clicked anywhere shows there
+    // (the physics is rotationally symmetric: the model keeps its release on +x). Zoomed in,
+    // the view follows the particle.
+    let turn = app.turn;
+    let now = app.sim.now();
+    let view = app.view;
+    let follow = if app.zoom > 1.0 {
+        rotate(in_frame(&now, view), turn)
+    } else {
+        DVec2::ZERO
+    };
+    let centre = follow + app.pan * r0;
     let (xb, yb) = bounds(inner.width, inner.height, centre, r);
     let arrow_scale = 0.3 * r0 / app.initial.xi0.max(1.0);
     app.geom = Some(CanvasGeom {
@@ -170,17 +187,29 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &mut App) {
         y: yb,
         arrow_scale,
         frame: app.view,
+        turn,
     });
-    let now = app.sim.now();
-    let view = app.view;
     let table_r = 1.5f64.max(app.initial.xi0 * 1.2);
-    let spin = if view == Frame::Lab { now.tau } else { 0.0 };
+    let spin = turn + if view == Frame::Lab { now.tau } else { 0.0 };
+    // Where and when it stuck: the rest point in the frame shown (in the lab, where it was at
+    // the stop; it rides the table from there).
+    let stuck = match app.sim.run.status {
+        crate::engine::Status::Stuck { tau, q } if now.tau >= tau => {
+            let at = match view {
+                Frame::Lab => rotate(q, tau),
+                Frame::Table => q,
+            };
+            Some((rotate(at, turn), tau))
+        }
+        _ => None,
+    };
     let u0 = app.initial.u0();
     let v_init = match view {
         Frame::Lab => u0 + DVec2::new(0.0, app.initial.xi0),
         Frame::Table => u0,
     };
-    let x0 = DVec2::new(app.initial.xi0, 0.0);
+    let x0 = rotate(DVec2::new(app.initial.xi0, 0.0), turn);
+    let v_init = rotate(v_init, turn);
     let sim = &app.sim;
     let paper = app.paper.as_ref();
     let half_width = 0.5 * (xb[1] - xb[0]).min(yb[1] - yb[0]);
@@ -189,6 +218,8 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &mut App) {
     } else {
         Vec::new()
     };
+    let ring_label = rotate(DVec2::new(-0.95, -0.72), turn);
+    let sense = DVec2::new(-0.8, 0.62) * table_r;
     let canvas = Canvas::default()
         .block(block)
         .marker(Marker::Braille)
@@ -222,17 +253,40 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &mut App) {
                 radius: 1.0,
                 color: th.limit_circle,
             });
+            // ξ = 1 is R_max = μg/Ω², the whole story: inside it friction can hold the particle.
+            ctx.print(
+                ring_label.x,
+                ring_label.y,
+                Span::styled("ξ=1 (R_max)", Style::default().fg(th.limit_circle)),
+            );
+            // The table's sense of rotation (counterclockwise), in both frames.
+            ctx.print(
+                sense.x,
+                sense.y,
+                Span::styled("↺ table", Style::default().fg(th.table_edge)),
+            );
             ctx.layer();
             if let Some(p) = paper {
-                trail(ctx, p.trail(), view, th.accent);
+                trail(ctx, p.trail(), view, turn, th.accent);
             }
-            trail(ctx, sim.trail(), view, th.trail);
+            trail(ctx, sim.trail(), view, turn, th.trail);
             ctx.layer();
             arrow(ctx, x0, v_init * arrow_scale, th.arrow);
-            let at = in_frame(&now, view);
+            if let Some((at, tau)) = stuck {
+                ctx.print(
+                    at.x,
+                    at.y,
+                    Span::styled(
+                        format!("× stuck τ={}", crate::ui::panel::num(tau, 2)),
+                        Style::default().fg(th.stuck),
+                    ),
+                );
+            }
+            let at = rotate(in_frame(&now, view), turn);
             for fa in &forces {
-                arrow(ctx, at, fa.vec, fa.color);
-                let head = at + fa.vec * 1.15;
+                let vec = rotate(fa.vec, turn);
+                arrow(ctx, at, vec, fa.color);
+                let head = at + vec * 1.15;
                 ctx.print(
                     head.x,
                     head.y,
@@ -240,14 +294,15 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &mut App) {
                 );
             }
             if let Some(p) = paper {
-                let q = in_frame(&p.now(), view);
+                let q = rotate(in_frame(&p.now(), view), turn);
                 ctx.print(q.x, q.y, Span::styled("○", Style::default().fg(th.accent)));
             }
-            let q = in_frame(&now, view);
+            // Stuck, the particle is a square: it reads without colour.
+            let glyph = if stuck.is_some() { "■" } else { "●" };
             ctx.print(
-                q.x,
-                q.y,
-                Span::styled("●", Style::default().fg(th.particle)),
+                at.x,
+                at.y,
+                Span::styled(glyph, Style::default().fg(th.particle)),
             );
         });
     f.render_widget(canvas, area);
