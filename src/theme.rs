@@ -207,6 +207,70 @@ fn parse(text: &str) -> Result<Theme, String> {
 mod tests {
     use super::*;
 
+    /// WCAG 2 relative luminance of an sRGB colour.
+    fn luminance(c: Color) -> f64 {
+        let Color::Rgb(r, g, b) = c else {
+            panic!("not an RGB colour: {c:?}")
+        };
+        let lin = |v: u8| {
+            let x = f64::from(v) / 255.0;
+            if x <= 0.03928 {
+                x / 12.92
+            } else {
+                ((x + 0.055) / 1.055).powf(2.4)
+            }
+        };
+        0.2126 * lin(r) + 0.7152 * lin(g) + 0.0722 * lin(b)
+    }
+
+    fn contrast(a: Color, b: Color) -> f64 {
+        let (la, lb) = (luminance(a), luminance(b));
+        (la.max(lb) + 0.05) / (la.min(lb) + 0.05)
+    }
+
+    /// Legible from the back of the room: WCAG contrast against the background, computed
+    /// from the theme files. The data (trail, particle) and all text ≥ 4.5:1, the drawing
+    /// (table edge, ξ = 1, arrows, forces) ≥ 3:1; in high-contrast everything ≥ 7:1. Spokes
+    /// may stay faint. (mono uses the terminal's own colours.)
+    #[test]
+    fn built_in_themes_are_legible() {
+        for name in ["dark", "light", "high-contrast"] {
+            let t = Theme::builtin(name).unwrap();
+            let strict = name == "high-contrast";
+            let text = [
+                ("trail", t.trail),
+                ("particle", t.particle),
+                ("foreground", t.foreground),
+                ("muted", t.muted),
+                ("accent", t.accent),
+                ("slipping", t.slipping),
+                ("stuck", t.stuck),
+                ("escaped", t.escaped),
+                ("notice", t.notice),
+            ];
+            let drawing = [
+                ("table_edge", t.table_edge),
+                ("limit_circle", t.limit_circle),
+                ("arrow", t.arrow),
+                ("friction", t.friction),
+                ("coriolis", t.coriolis),
+                ("centrifugal", t.centrifugal),
+            ];
+            for (role, c, min) in text
+                .iter()
+                .map(|&(r, c)| (r, c, 4.5))
+                .chain(drawing.iter().map(|&(r, c)| (r, c, 3.0)))
+            {
+                let min = if strict { 7.0 } else { min };
+                let k = contrast(c, t.background);
+                assert!(k >= min, "{name} {role}: {k:.2} < {min}");
+            }
+            // The data stands out from the furniture.
+            assert!(contrast(t.trail, t.background) > contrast(t.table_edge, t.background));
+        }
+        assert!((contrast(Color::Rgb(0, 0, 0), Color::Rgb(255, 255, 255)) - 21.0).abs() < 1e-9);
+    }
+
     #[test]
     fn the_256_colour_palette() {
         assert_eq!(nearest_256(0, 0, 0), 16);
