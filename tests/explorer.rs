@@ -609,3 +609,30 @@ fn forces_marks_and_glyphs_follow_the_frame() {
     assert!(screen.contains('■') && !screen.contains('●'), "{screen}");
     assert!(screen.contains("× stuck τ=5.60"), "{screen}");
 }
+
+/// Layout by priority: at every size down to 40×12 the status and ξ stay on screen, sliding
+/// or stuck.
+#[test]
+fn status_and_xi_survive_every_size() {
+    for ticks in [3, 200] {
+        let mut a = app("C");
+        for _ in 0..ticks {
+            a.tick();
+        }
+        let word = if ticks == 3 {
+            "slipping"
+        } else {
+            "stuck at ξ"
+        };
+        for w in (40..=200).step_by(7) {
+            for h in (12..=60).step_by(4) {
+                let s = render(&mut a, w, h);
+                assert!(s.contains(word), "{w}×{h}: no '{word}'\n{s}");
+                assert!(
+                    s.contains("ξ      ") || s.contains("stuck at ξ = "),
+                    "{w}×{h}: no ξ readout\n{s}"
+                );
+            }
+        }
+    }
+}

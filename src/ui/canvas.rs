@@ -219,6 +219,8 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &mut App) {
         Vec::new()
     };
     let ring_label = rotate(DVec2::new(-0.95, -0.72), turn);
+    // Words on the canvas only where there is room for them beside the drawing.
+    let words = inner.width >= 40 && inner.height >= 10;
     let sense = DVec2::new(-0.8, 0.62) * table_r;
     let canvas = Canvas::default()
         .block(block)
@@ -253,18 +255,21 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &mut App) {
                 radius: 1.0,
                 color: th.limit_circle,
             });
-            // ξ = 1 is R_max = μg/Ω², the whole story: inside it friction can hold the particle.
-            ctx.print(
-                ring_label.x,
-                ring_label.y,
-                Span::styled("ξ=1 (R_max)", Style::default().fg(th.limit_circle)),
-            );
-            // The table's sense of rotation (counterclockwise), in both frames.
-            ctx.print(
-                sense.x,
-                sense.y,
-                Span::styled("↺ table", Style::default().fg(th.table_edge)),
-            );
+            if words {
+                // ξ = 1 is R_max = μg/Ω², the whole story: inside it friction can hold the
+                // particle.
+                ctx.print(
+                    ring_label.x,
+                    ring_label.y,
+                    Span::styled("ξ=1 (R_max)", Style::default().fg(th.limit_circle)),
+                );
+                // The table's sense of rotation (counterclockwise), in both frames.
+                ctx.print(
+                    sense.x,
+                    sense.y,
+                    Span::styled("↺ table", Style::default().fg(th.table_edge)),
+                );
+            }
             ctx.layer();
             if let Some(p) = paper {
                 trail(ctx, p.trail(), view, turn, th.accent);
@@ -277,7 +282,11 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &mut App) {
                     at.x,
                     at.y,
                     Span::styled(
-                        format!("× stuck τ={}", crate::ui::panel::num(tau, 2)),
+                        if words {
+                            format!("× stuck τ={}", crate::ui::panel::num(tau, 2))
+                        } else {
+                            "×".into()
+                        },
                         Style::default().fg(th.stuck),
                     ),
                 );

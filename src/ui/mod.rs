@@ -58,7 +58,8 @@ pub fn draw(frame: &mut Frame, app: &mut App) {
             Layout::horizontal([Constraint::Min(10), Constraint::Length(PANEL_W)]).areas(body);
         (c, p)
     } else {
-        let ph = (panel::lines(app).len() as u16 + 2).min(body.height / 2);
+        // At least status, ξ and τ (see panel::lines_in), however short the screen.
+        let ph = (panel::lines(app).len() as u16 + 2).min((body.height / 2).max(5));
         let [c, p] = Layout::vertical([Constraint::Min(3), Constraint::Length(ph)]).areas(body);
         (c, p)
     };

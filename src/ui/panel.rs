@@ -88,7 +88,38 @@ fn kv<'a>(k: &'a str, v: String, th: &Theme) -> Line<'a> {
     ])
 }
 
+/// The readout lines in reading order.
 pub fn lines(app: &App) -> Vec<Line<'static>> {
+    readouts(app).0
+}
+
+/// The readout lines that fit in `rows`, most important first when not all do: the status
+/// (stuck / slipping / escape certified), then ξ, τ and the release, then the rest.
+pub fn lines_in(app: &App, rows: usize) -> Vec<Line<'static>> {
+    let (all, status) = readouts(app);
+    if all.len() <= rows {
+        return all;
+    }
+    let first: Vec<usize> = [status.start, XI_LINE, TAU_LINE]
+        .into_iter()
+        .chain(status.skip(1))
+        .chain([0])
+        .collect();
+    let mut order = first.clone();
+    order.extend((0..all.len()).filter(|i| !first.contains(i)));
+    order
+        .into_iter()
+        .take(rows)
+        .map(|i| all[i].clone())
+        .collect()
+}
+
+/// Where τ and ξ stand in [`lines`].
+const TAU_LINE: usize = 1;
+const XI_LINE: usize = 2;
+
+/// The readout lines, and which of them hold the status.
+fn readouts(app: &App) -> (Vec<Line<'static>>, std::ops::Range<usize>) {
     let th = &app.theme;
     let s = app.sim.now();
     let i = &app.initial;
@@ -141,12 +172,14 @@ pub fn lines(app: &App) -> Vec<Line<'static>> {
     out.push(kv("ξ′", num(s.xi_dot(), 4), th));
     out.push(kv("|u|", num(s.u().length(), 4), th));
     let (st, col) = status_text(&app.sim, th);
+    let status_start = out.len();
     for l in st.lines() {
         out.push(Line::from(Span::styled(
             l.to_string(),
             Style::default().fg(col).add_modifier(Modifier::BOLD),
         )));
     }
+    let status = status_start..out.len();
     let c = app.sim.run.cost;
     if i.frictionless {
         out.push(kv("μ = 0", "closed form".into(), th));
@@ -191,7 +224,7 @@ pub fn lines(app: &App) -> Vec<Line<'static>> {
             ]));
         }
     }
-    out
+    (out, status)
 }
 
 pub fn fmt_speed(s: f64) -> String {
@@ -211,8 +244,9 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) {
             format!(" scene {} ", app.scene.name),
             Style::default().fg(th.accent),
         ));
+    let rows = usize::from(block.inner(area).height);
     f.render_widget(
-        Paragraph::new(lines(app))
+        Paragraph::new(lines_in(app, rows))
             .block(block)
             .style(Style::default().bg(th.background)),
         area,
