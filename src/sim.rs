@@ -9,6 +9,10 @@ use crate::engine::{Initial, Settings, State};
 
 /// Most samples kept; older ones are dropped first.
 pub const HISTORY: usize = 100_000;
+/// Spacing in τ of the trail's points, whatever the speed: the same curve at ×1 and ×256.
+pub const TRAIL_DT: f64 = 0.025;
+/// Most trail points kept (older ones are dropped first).
+pub const TRAIL_MAX: usize = 200_000;
 /// Most integration steps one tick may take, so a tiny dt at high speed cannot freeze the
 /// screen: the sample then lags behind the tick's target time.
 pub const STEPS_PER_TICK: u64 = 200_000;
@@ -16,8 +20,14 @@ pub const STEPS_PER_TICK: u64 = 200_000;
 #[derive(Clone, Debug)]
 pub struct Sim {
     pub run: Run,
-    /// One sample per tick, oldest first; the trail is drawn from these (lab frame).
+    /// One sample per tick, oldest first: the history stepped through.
     pub samples: Vec<State>,
+    /// The path on a fixed τ grid ([`TRAIL_DT`]), from the run's dense output (closed form
+    /// once stuck, one turn of the table at most): the trail is drawn from these.
+    pub path: Vec<State>,
+    /// The next grid index of the path, and whether the stop is in it.
+    next_k: u64,
+    stop_in_path: bool,
     /// Index of the sample on screen.
     pub cursor: usize,
     /// Escaped and past this radius: integration stops.
@@ -35,6 +45,9 @@ impl Sim {
         Ok(Sim {
             run,
             samples: vec![s0],
+            path: vec![s0],
+            next_k: 1,
+            stop_in_path: false,
             cursor: 0,
             view_radius,
             error: None,
@@ -47,9 +60,38 @@ impl Sim {
         self.samples[self.cursor]
     }
 
-    /// Samples up to the one on screen: the visible trail.
+    /// The path up to the τ on screen: the visible trail.
     pub fn trail(&self) -> &[State] {
-        &self.samples[..=self.cursor]
+        let tau = self.now().tau;
+        let n = self.path.partition_point(|s| s.tau <= tau);
+        &self.path[..n.max(1)]
+    }
+
+    /// Extends the path on its τ grid through the latest step, from its dense output (or the
+    /// closed form once stuck, where one turn of the table draws the whole circle).
+    fn extend_path(&mut self, tau: f64) {
+        let end = match self.run.status {
+            Status::Stuck { tau: ts, .. } => tau.min(ts + std::f64::consts::TAU),
+            // All the latest step covers: its dense output is gone after the next step.
+            Status::Slipping => self.run.tau(),
+        };
+        while self.next_k as f64 * TRAIL_DT <= end {
+            self.path
+                .push(self.run.state_at(self.next_k as f64 * TRAIL_DT));
+            self.next_k += 1;
+        }
+        if let Status::Stuck { tau: ts, .. } = self.run.status
+            && !self.stop_in_path
+            && ts <= end
+        {
+            // The stop itself, exactly, in its place on the grid.
+            let at = self.path.partition_point(|s| s.tau < ts);
+            self.path.insert(at, self.run.state_at(ts));
+            self.stop_in_path = true;
+        }
+        if self.path.len() > TRAIL_MAX {
+            self.path.drain(..TRAIL_MAX / 10);
+        }
     }
 
     pub fn at_latest(&self) -> bool {
@@ -91,6 +133,8 @@ impl Sim {
                 self.error = Some(e);
                 break;
             }
+            // Each step's dense output covers only that step: take its grid points now.
+            self.extend_path(target);
             if self.doubt.is_none() && self.run.outcome() != Outcome::Running {
                 // Once per run, right after the step that decided it (its dense output
                 // still covers the certificate), within one tick's budget (the shadow's).
@@ -101,6 +145,7 @@ impl Sim {
             Status::Stuck { .. } => f64::INFINITY,
             Status::Slipping => self.run.tau(),
         });
+        self.extend_path(t);
         self.samples.push(self.run.state_at(t));
         if self.samples.len() > HISTORY {
             self.samples.drain(..HISTORY / 10);

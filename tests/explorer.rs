@@ -636,3 +636,41 @@ fn status_and_xi_survive_every_size() {
         }
     }
 }
+
+/// The trail comes from the run's dense output on a fixed τ grid: at ×256 it is the same
+/// smooth curve as at ×1 (no chords across the table), and its points are bounded.
+#[test]
+fn the_trail_is_the_same_at_every_speed() {
+    let mut slow = app("C");
+    let mut fast = app("C");
+    for _ in 0..8 {
+        key(&mut fast, ']');
+    }
+    assert_eq!(fast.speed, 256.0);
+    fast.tick();
+    while slow.sim.now().tau < fast.sim.now().tau - 1e-9 {
+        slow.tick();
+    }
+    let (a, b) = (slow.sim.trail(), fast.sim.trail());
+    assert!(a.len() > 300, "{}", a.len());
+    assert_eq!(a.len(), b.len());
+    for (p, q) in a.iter().zip(b) {
+        assert_eq!(p.tau, q.tau);
+        assert!((p.r - q.r).length() < 1e-12, "{p:?} {q:?}");
+    }
+    // Neighbouring points are close: no chord longer than the speed allows over one step.
+    for w in b.windows(2) {
+        let gap = (w[1].r - w[0].r).length();
+        assert!(
+            gap <= 2.0 * turntable::sim::TRAIL_DT,
+            "{gap} at τ = {}",
+            w[0].tau
+        );
+    }
+    // Stuck, one turn of the table is the whole circle: the path stops growing.
+    for _ in 0..50 {
+        fast.tick();
+    }
+    let n = fast.sim.path.len();
+    assert!(n < 2 * (12.8 / turntable::sim::TRAIL_DT) as usize, "{n}");
+}

@@ -76,11 +76,20 @@ fn arrow(ctx: &mut Context, from: DVec2, vec: DVec2, color: Color) {
     }
 }
 
-fn trail(ctx: &mut Context, samples: &[State], frame: Frame, turn: f64, color: Color) {
+/// The trail of `sim` up to the τ on screen, from its path (a fixed τ grid, see
+/// [`crate::sim::TRAIL_DT`]), joined to the particle where the path is still growing.
+fn trail(ctx: &mut Context, sim: &crate::sim::Sim, frame: Frame, turn: f64, color: Color) {
+    let path = sim.trail();
+    let now = sim.now();
+    let tail = path
+        .last()
+        .filter(|l| now.tau > l.tau && now.tau - l.tau <= crate::sim::TRAIL_DT)
+        .map(|_| now);
+    let samples: Vec<&State> = path.iter().chain(tail.as_ref()).collect();
     let stride = samples.len().div_ceil(MAX_SEGMENTS).max(1);
     let mut prev: Option<DVec2> = None;
     let n = samples.len();
-    for (i, s) in samples.iter().enumerate() {
+    for (i, s) in samples.into_iter().enumerate() {
         if i % stride != 0 && i + 1 != n {
             continue;
         }
@@ -272,9 +281,9 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &mut App) {
             }
             ctx.layer();
             if let Some(p) = paper {
-                trail(ctx, p.trail(), view, turn, th.accent);
+                trail(ctx, p, view, turn, th.accent);
             }
-            trail(ctx, sim.trail(), view, turn, th.trail);
+            trail(ctx, sim, view, turn, th.trail);
             ctx.layer();
             arrow(ctx, x0, v_init * arrow_scale, th.arrow);
             if let Some((at, tau)) = stuck {
