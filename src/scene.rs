@@ -34,7 +34,7 @@ impl Scene {
             ),
             "c" => (
                 Initial::velocity(0.5, 0.0, 0.6078),
-                "Fig. 3 C: the paper says it escapes; converged, it stops just inside xi = 1",
+                "Fig. 3 C: escapes in the paper; a converged run stops inside ξ = 1",
             ),
             "d" => (
                 Initial::velocity(1.1, 1.2 * PI, 1.3),

@@ -83,7 +83,11 @@ pub fn status_text(sim: &Sim, th: &Theme) -> (String, ratatui::style::Color) {
 
 fn kv<'a>(k: &'a str, v: String, th: &Theme) -> Line<'a> {
     Line::from(vec![
-        Span::styled(format!("{k:<7}"), Style::default().fg(th.muted)),
+        // A blank always follows the key, however long (`rk2-raw dt=1e-3`, never glued).
+        Span::styled(
+            format!("{:<7}", format!("{k} ")),
+            Style::default().fg(th.muted),
+        ),
         Span::styled(v, Style::default().fg(th.foreground)),
     ])
 }
