@@ -9,6 +9,8 @@ use crate::engine::{Initial, Settings, State};
 
 /// Most samples kept; older ones are dropped first.
 pub const HISTORY: usize = 100_000;
+/// Most step marks kept.
+pub const MAX_MARKS: usize = 2000;
 /// Spacing in τ of the trail's points, whatever the speed: the same curve at ×1 and ×256.
 pub const TRAIL_DT: f64 = 0.025;
 /// Most trail points kept (older ones are dropped first).
@@ -25,6 +27,8 @@ pub struct Sim {
     /// The path on a fixed τ grid ([`TRAIL_DT`]), from the run's dense output (closed form
     /// once stuck, one turn of the table at most): the trail is drawn from these.
     pub path: Vec<State>,
+    /// End points of the integrator steps taken one at a time ([`Sim::step_once`]).
+    pub step_marks: Vec<State>,
     /// The next grid index of the path, and whether the stop is in it.
     next_k: u64,
     stop_in_path: bool,
@@ -46,6 +50,7 @@ impl Sim {
             run,
             samples: vec![s0],
             path: vec![s0],
+            step_marks: Vec::new(),
             next_k: 1,
             stop_in_path: false,
             cursor: 0,
@@ -135,11 +140,7 @@ impl Sim {
             }
             // Each step's dense output covers only that step: take its grid points now.
             self.extend_path(target);
-            if self.doubt.is_none() && self.run.outcome() != Outcome::Running {
-                // Once per run, right after the step that decided it (its dense output
-                // still covers the certificate), within one tick's budget (the shadow's).
-                self.doubt = Some(doubt(&self.run, f64::INFINITY));
-            }
+            self.note_outcome();
         }
         let t = target.min(match self.run.status {
             Status::Stuck { .. } => f64::INFINITY,
@@ -151,6 +152,64 @@ impl Sim {
             self.samples.drain(..HISTORY / 10);
         }
         self.cursor = self.samples.len() - 1;
+    }
+
+    /// Exactly one integrator step (after any tries it rejected), shown at its end: the
+    /// integrator step mode. Behind the latest sample it steps through history instead.
+    /// Returns whether anything moved.
+    pub fn step_once(&mut self) -> bool {
+        if !self.at_latest() {
+            self.cursor += 1;
+            return true;
+        }
+        let tau = self.now().tau;
+        let ahead = match self.run.status {
+            Status::Stuck { tau: ts, .. } => ts > tau,
+            Status::Slipping => self.run.tau() > tau,
+        };
+        if ahead {
+            // Ticks integrate past the screen: take the run again (the same steps) only up
+            // to the step that holds the τ on screen, and show that step's end.
+            let mut run = Run::new(self.run.initial, self.run.settings)
+                .expect("the run's own initial conditions and settings");
+            while run.status == Status::Slipping && run.tau() < tau {
+                if let Err(e) = run.step(f64::INFINITY) {
+                    self.error = Some(e);
+                    return false;
+                }
+            }
+            self.run = run;
+        } else if !self.live() || self.run.status != Status::Slipping {
+            return false;
+        } else if let Err(e) = self.run.step(f64::INFINITY) {
+            self.error = Some(e);
+            return false;
+        }
+        self.note_outcome();
+        self.extend_path(self.run.tau());
+        let s = self.run.state();
+        if s.tau <= tau {
+            return false;
+        }
+        self.samples.push(s);
+        if self.samples.len() > HISTORY {
+            self.samples.drain(..HISTORY / 10);
+        }
+        self.cursor = self.samples.len() - 1;
+        self.step_marks.push(s);
+        if self.step_marks.len() > MAX_MARKS {
+            self.step_marks.drain(..MAX_MARKS / 10);
+        }
+        true
+    }
+
+    /// Once the outcome is decided: whether the run's own error could flip it (once per run,
+    /// right after the step that decided it, while its dense output still covers the
+    /// certificate; within one tick's budget, the shadow's).
+    fn note_outcome(&mut self) {
+        if self.doubt.is_none() && self.run.outcome() != Outcome::Running {
+            self.doubt = Some(doubt(&self.run, f64::INFINITY));
+        }
     }
 
     /// One tick back through history.

@@ -177,6 +177,7 @@ fn every_key_in_the_keymap_does_what_its_help_says() {
             Action::PlayPause => !a.is_playing() && after.contains("❚❚"),
             Action::StepForward => now > tau && !a.is_playing(),
             Action::StepBack => now < tau,
+            Action::IntegratorStep => a.step_mode && !a.is_playing() && after.contains("h      "),
             Action::Faster => a.speed == 2.0 * speed && after.contains("×2"),
             Action::Slower => a.speed == speed / 2.0 && after.contains("×1/2"),
             Action::Restart => now == 0.0 && a.initial == init,
@@ -673,4 +674,59 @@ fn the_trail_is_the_same_at_every_speed() {
     }
     let n = fast.sim.path.len();
     assert!(n < 2 * (12.8 / turntable::sim::TRAIL_DT) as usize, "{n}");
+}
+
+/// Step mode: `n` takes exactly one integrator step. Toward C's stop dp54's steps shrink
+/// (held to the stability limit, then the stop in closed form); rk2-raw steps at dt through
+/// it and never stops.
+#[test]
+fn integrator_steps_one_at_a_time() {
+    use turntable::engine::Limit;
+    let mut a = app("C");
+    for _ in 0..108 {
+        a.tick();
+    }
+    let mut hs = Vec::new();
+    let mut limits = Vec::new();
+    for _ in 0..200 {
+        let before = a.sim.run.cost;
+        key(&mut a, 'n');
+        assert!(a.step_mode && !a.playing);
+        let st = a.sim.run.last_step.unwrap();
+        if hs.len() > 1 {
+            let c = a.sim.run.cost;
+            let taken = (c.steps - before.steps) + (c.rejected - before.rejected);
+            assert!(
+                taken <= 1 + u64::from(st.rejected),
+                "{taken} steps in one key"
+            );
+        }
+        hs.push(st.h);
+        limits.push(st.limit);
+        if a.sim.run.outcome() != Outcome::Running {
+            break;
+        }
+    }
+    assert_eq!(a.sim.run.outcome(), Outcome::Stuck);
+    assert_eq!(*limits.last().unwrap(), Limit::ClosedForm, "{limits:?}");
+    assert!(limits.contains(&Limit::Stability), "{limits:?}");
+    assert!(hs[hs.len() - 2] < 0.5 * hs[1], "{hs:?}");
+    assert_eq!(a.sim.step_marks.len(), hs.len());
+    let screen = render(&mut a, 100, 30);
+    assert!(
+        screen.contains("h      ") && screen.contains('·'),
+        "{screen}"
+    );
+
+    let mut a = app("C");
+    key(&mut a, 'm'); // rk2-raw
+    for _ in 0..112 {
+        a.tick();
+    }
+    for _ in 0..50 {
+        key(&mut a, 'n');
+        let st = a.sim.run.last_step.unwrap();
+        assert_eq!((st.h, st.limit), (1e-3, Limit::FixedStep));
+    }
+    assert_eq!(a.sim.run.outcome(), Outcome::Running);
 }

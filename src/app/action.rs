@@ -10,6 +10,8 @@ pub enum Action {
     PlayPause,
     StepForward,
     StepBack,
+    /// Exactly one integrator step, its end marked, its size and error shown.
+    IntegratorStep,
     Faster,
     Slower,
     Restart,

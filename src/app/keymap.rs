@@ -57,6 +57,7 @@ pub const KEYMAP: &[Binding] = &[
     b(ch('.'), N, Action::StepForward, "step forward (1 tick)", "time"),
     b(ch('l'), N, Action::StepForward, "step forward (1 tick)", "time"),
     b(KeyCode::Right, N, Action::StepForward, "step forward (1 tick)", "time"),
+    b(ch('n'), N, Action::IntegratorStep, "one integrator step", "time"),
     b(ch(','), N, Action::StepBack, "step back (history)", "time"),
     b(ch('h'), N, Action::StepBack, "step back (history)", "time"),
     b(KeyCode::Left, N, Action::StepBack, "step back (history)", "time"),

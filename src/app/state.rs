@@ -64,6 +64,8 @@ pub struct App {
     /// The frame the picture is drawn in (lab or rotating).
     pub view: Frame,
     pub forces: bool,
+    /// Integrator step mode (`n`): step ends marked, step size and error shown.
+    pub step_mode: bool,
     pub help: bool,
     pub zoom: f64,
     /// The picture's turn (rad): the model releases on +x, the picture shows the release
@@ -108,6 +110,7 @@ impl App {
             speed: 1.0,
             view: Frame::Lab,
             forces: false,
+            step_mode: false,
             help: false,
             zoom: 1.0,
             turn: 0.0,

@@ -20,7 +20,17 @@ pub fn update(app: &mut App, action: Action) {
         // The notice is already cleared above.
         Action::Dismiss => app.help = false,
         Action::ToggleHelp => app.help = !app.help,
-        Action::PlayPause => app.playing = !app.playing,
+        Action::PlayPause => {
+            app.playing = !app.playing;
+            app.step_mode &= !app.playing;
+        }
+        Action::IntegratorStep => {
+            app.playing = false;
+            app.step_mode = true;
+            if !app.sim.step_once() {
+                app.notice = Some("no more steps: the run has ended (r restarts)".into());
+            }
+        }
         Action::StepForward => {
             app.playing = false;
             step(app);

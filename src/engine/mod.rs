@@ -11,4 +11,4 @@ pub mod stop;
 
 pub use method::{Cost, Method, Settings};
 pub use model::{Frame, Initial, Release, State};
-pub use run::{Certificate, Escape, Outcome, Run, RunError, Status};
+pub use run::{Certificate, Escape, Limit, Outcome, Run, RunError, Status, StepInfo};

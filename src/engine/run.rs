@@ -130,13 +130,58 @@ impl std::error::Error for RunError {}
 /// What lies ahead of the particle: see [`Run::stop_ahead`].
 enum Ahead {
     Clear,
-    Cap(f64),
+    Cap(f64, Limit),
     /// Closed form to time `t` ahead, to table-frame position `q` and velocity `u`.
     Jump {
         t: f64,
         q: DVec2,
         u: DVec2,
     },
+}
+
+/// What bounded a step (shown by the explorer's integrator step mode).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Limit {
+    /// dp54's error control chose it.
+    Tolerance,
+    /// The fixed step dt.
+    FixedStep,
+    /// Capped to a fraction of the time to the stop ahead, |u|/(1 − q·û): never stepped
+    /// through.
+    StopAhead,
+    /// Held to the stability limit |u|/|q| while û turns.
+    Stability,
+    /// The stop (or the pass over the saddle) taken in closed form.
+    ClosedForm,
+    /// μ = 0: the straight line in closed form.
+    Frictionless,
+    /// τ-max.
+    End,
+}
+
+impl Limit {
+    pub fn describe(self) -> &'static str {
+        match self {
+            Limit::Tolerance => "tolerance",
+            Limit::FixedStep => "fixed dt",
+            Limit::StopAhead => "stop ahead",
+            Limit::Stability => "stability",
+            Limit::ClosedForm => "closed form",
+            Limit::Frictionless => "μ=0 exact",
+            Limit::End => "τ-max",
+        }
+    }
+}
+
+/// The latest step: its length, what bounded it, dp54's error estimate against the
+/// tolerance (≤ 1 accepts), and the tries rejected before it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct StepInfo {
+    pub t0: f64,
+    pub h: f64,
+    pub limit: Limit,
+    pub err_ratio: Option<f64>,
+    pub rejected: u32,
 }
 
 /// A run from given initial conditions with given settings.
@@ -151,6 +196,8 @@ pub struct Run {
     pub last: Option<Segment>,
     /// Momentary stops at ξ > 1 after which the particle slipped on.
     pub slip_restarts: u32,
+    /// The latest step, for the explorer's integrator step mode.
+    pub last_step: Option<StepInfo>,
     /// Consecutive steps longer than the time |u|/|q| in which û turns, and |u| when they
     /// began.
     stiff_steps: u32,
@@ -195,6 +242,7 @@ impl Run {
             escape: None,
             last: None,
             slip_restarts: 0,
+            last_step: None,
             stiff_steps: 0,
             stiff_speed: 0.0,
             tau: 0.0,
@@ -303,6 +351,7 @@ impl Run {
         let frame = self.settings.frame;
         let s = self.state();
         let mut cap = tau_max - self.tau;
+        let mut limit = Limit::End;
         if cap <= 1e-14 * self.tau.abs().max(1.0) {
             // τ-max to within rounding: no step could be that short.
             self.tau = tau_max;
@@ -336,16 +385,35 @@ impl Run {
                     self.jump(t, q, u);
                     return Ok(());
                 }
-                Ahead::Cap(c) => cap = cap.min(c),
+                Ahead::Cap(c, why) => {
+                    if c < cap {
+                        (cap, limit) = (c, why);
+                    }
+                }
                 Ahead::Clear | Ahead::Jump { .. } => {}
             }
         }
-        let seg = if self.settings.method.adaptive() {
-            self.dp54_step(cap)?
+        let rejected_before = self.cost.rejected;
+        let (seg, err_ratio) = if self.settings.method.adaptive() {
+            let (seg, err) = self.dp54_step(cap)?;
+            (seg, Some(err))
         } else {
-            self.fixed_step(cap)
+            (self.fixed_step(cap), None)
         };
         self.last = Some(seg);
+        self.last_step = Some(StepInfo {
+            t0: seg.t0,
+            h: seg.h,
+            limit: if seg.h >= cap {
+                limit
+            } else if err_ratio.is_some() {
+                Limit::Tolerance
+            } else {
+                Limit::FixedStep
+            },
+            err_ratio,
+            rejected: (self.cost.rejected - rejected_before) as u32,
+        });
         let speed = s.u_lab().length();
         if speed > HOVER_SPEED || seg.h * s.xi() < STIFF * speed {
             self.stiff_steps = 0;
@@ -379,6 +447,13 @@ impl Run {
             });
         }
         let frame = self.settings.frame;
+        self.last_step = Some(StepInfo {
+            t0: self.tau,
+            h: end - self.tau,
+            limit: Limit::Frictionless,
+            err_ratio: None,
+            rejected: 0,
+        });
         self.y = frame.from_state(&self.initial.free_state(end));
         self.tau = end;
         self.last = None;
@@ -409,7 +484,8 @@ impl Run {
         seg
     }
 
-    fn dp54_step(&mut self, cap: f64) -> Result<Segment, RunError> {
+    /// One accepted dp54 step of at most `cap`, and its error against the tolerance.
+    fn dp54_step(&mut self, cap: f64) -> Result<(Segment, f64), RunError> {
         let frame = self.settings.frame;
         loop {
             let h = self.h.min(cap);
@@ -435,7 +511,7 @@ impl Run {
                     dense: trial.dense,
                 };
                 self.advance(seg, trial.f1);
-                return Ok(seg);
+                return Ok((seg, trial.err));
             }
             self.cost.rejected += 1;
             if self.cost.steps + self.cost.rejected >= self.settings.max_steps {
@@ -514,7 +590,7 @@ impl Run {
         let t = speed / decel;
         if stiff && !aligned && t > SNAP_T {
             // Not yet on q̂: steps within the stability limit let û turn as it does.
-            return Ahead::Cap((STOP_CAP * t).min(speed / rho));
+            return Ahead::Cap((STOP_CAP * t).min(speed / rho), Limit::Stability);
         }
         if t <= SNAP_T {
             // Constant deceleration over a tiny interval.
@@ -524,7 +600,7 @@ impl Run {
                 u: DVec2::ZERO,
             }
         } else {
-            Ahead::Cap(STOP_CAP * t)
+            Ahead::Cap(STOP_CAP * t, Limit::StopAhead)
         }
     }
 
@@ -569,6 +645,13 @@ impl Run {
         };
         self.advance(seg, f1);
         self.last = Some(seg);
+        self.last_step = Some(StepInfo {
+            t0: seg.t0,
+            h: t,
+            limit: Limit::ClosedForm,
+            err_ratio: None,
+            rejected: 0,
+        });
         self.stiff_steps = 0;
         if u != DVec2::ZERO {
             return;

@@ -228,6 +228,17 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &mut App) {
         Vec::new()
     };
     let ring_label = rotate(DVec2::new(-0.95, -0.72), turn);
+    let tau_now = now.tau;
+    let marks: Vec<State> = if app.step_mode {
+        app.sim
+            .step_marks
+            .iter()
+            .filter(|m| m.tau <= tau_now)
+            .copied()
+            .collect()
+    } else {
+        Vec::new()
+    };
     // Words on the canvas only where there is room for them beside the drawing.
     let words = inner.width >= 40 && inner.height >= 10;
     let sense = DVec2::new(-0.8, 0.62) * table_r;
@@ -299,6 +310,11 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &mut App) {
                         Style::default().fg(th.stuck),
                     ),
                 );
+            }
+            // Integrator step mode: each step's end on the trail (the latest 500).
+            for m in marks.iter().rev().take(500) {
+                let p = rotate(in_frame(m, view), turn);
+                ctx.print(p.x, p.y, Span::styled("·", Style::default().fg(th.notice)));
             }
             let at = rotate(in_frame(&now, view), turn);
             for fa in &forces {

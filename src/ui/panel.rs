@@ -195,6 +195,19 @@ fn readouts(app: &App) -> (Vec<Line<'static>>, std::ops::Range<usize>) {
         ));
     }
     out.push(kv("steps", format!("{} rej {}", c.steps, c.rejected), th));
+    if app.step_mode
+        && let Some(st) = app.sim.run.last_step
+    {
+        out.push(kv("h", format!("{:.1e} {}", st.h, st.limit.describe()), th));
+        if let Some(e) = st.err_ratio {
+            let rej = if st.rejected > 0 {
+                format!(" ({} rejected)", st.rejected)
+            } else {
+                String::new()
+            };
+            out.push(kv("err/tol", format!("{e:.2}{rej}"), th));
+        }
+    }
     out.push(kv("RHS", format!("{}", c.rhs_evals), th));
     let play = if app.playing { "▶" } else { "❚❚" };
     out.push(kv("speed", format!("×{} {play}", fmt_speed(app.speed)), th));
