@@ -23,10 +23,33 @@ fn without_a_terminal_the_explorer_refuses() {
 
 /// The explorer on a new pty, in a session of its own (no controlling terminal, as under
 /// `setsid`), recording to `rec`. Returns the child, the master, and everything it printed.
+/// Kills the explorer if a test fails before it ends, so no process outlives the test.
+struct Reap(Child);
+
+impl Drop for Reap {
+    fn drop(&mut self) {
+        let _ = self.0.kill();
+        let _ = self.0.wait();
+    }
+}
+
+impl std::ops::Deref for Reap {
+    type Target = Child;
+    fn deref(&self) -> &Child {
+        &self.0
+    }
+}
+
+impl std::ops::DerefMut for Reap {
+    fn deref_mut(&mut self) -> &mut Child {
+        &mut self.0
+    }
+}
+
 /// Everything the explorer printed so far.
 type Seen = Arc<Mutex<Vec<u8>>>;
 
-fn spawn(rec: &std::path::Path) -> Option<(Child, Pty, Seen)> {
+fn spawn(rec: &std::path::Path) -> Option<(Reap, Pty, Seen)> {
     // Other tests fork too: no child may inherit this master (it would keep the pty up).
     static FORK: Mutex<()> = Mutex::new(());
     let _one_at_a_time = FORK.lock().unwrap();
@@ -100,7 +123,7 @@ fn spawn(rec: &std::path::Path) -> Option<(Child, Pty, Seen)> {
         hang_up,
         reader: Some(reader),
     };
-    Some((child, pty, seen))
+    Some((Reap(child), pty, seen))
 }
 
 /// The master side of the pty, read by a thread until [`Pty::hang_up`].
