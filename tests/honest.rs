@@ -112,6 +112,8 @@ fn solver_bounds_are_refused_up_front() {
     let (code, _, err) = turntable(&["run", "--xi0", "-inf"]);
     assert_eq!(code, 2);
     assert!(err.contains("xi0 must be a finite number"), "{err}");
+    let (code, _, err) = turntable(&["--fps", "5", "run"]);
+    assert_eq!(code, 2, "explorer flags before a subcommand: {err}");
     let (code, _, err) = turntable(&["run", "--tau-max", "1e300"]);
     assert_eq!(code, 2);
     assert!(err.contains("got 1e300"), "{err}");

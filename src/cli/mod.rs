@@ -15,7 +15,9 @@ use std::process::ExitCode;
 #[command(
     name = "turntable",
     version,
-    about = "A particle sliding with dry friction on a rotating table (Agha, Gupta & Joseph 2015)"
+    about = "A particle sliding with dry friction on a rotating table (Agha, Gupta & Joseph 2015)",
+    // The explorer's flags mean nothing to a subcommand: `turntable --fps 5 run` is an error.
+    args_conflicts_with_subcommands = true
 )]
 pub struct Cli {
     #[command(subcommand)]
