@@ -65,7 +65,9 @@ pub fn status_text(sim: &Sim, th: &Theme) -> (String, ratatui::style::Color) {
         },
         Outcome::Running => {
             let s = sim.now();
-            if sim.run.settings.method == Method::Rk2Raw && s.u().length() < 0.01 && s.xi() <= 1.0 {
+            // The bench's rule for the raw scheme's "stop": |u| within one step's friction.
+            let dt = sim.run.settings.dt;
+            if sim.run.settings.method == Method::Rk2Raw && s.u().length() <= dt && s.xi() <= 1.0 {
                 ("≈ at rest (raw RK2 chatters)".into(), th.slipping)
             } else {
                 ("slipping".into(), th.slipping)
