@@ -9,6 +9,7 @@ pub mod files;
 pub mod replay;
 pub mod scene;
 pub mod script;
+pub mod session;
 pub mod sim;
 pub mod terminal;
 pub mod theme;

@@ -3,7 +3,7 @@
 //! when paused (no redraw when idle).
 
 use crate::app::App;
-use crate::replay::{Session, SharedRecorder, lock};
+use crate::session::{Session, SharedRecorder, lock};
 use crossterm::event::{
     self, DisableMouseCapture, EnableMouseCapture, Event, KeyCode, KeyModifiers,
 };

@@ -3,8 +3,8 @@
 use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
 use turntable::app::App;
 use turntable::engine::{Initial, Release};
-use turntable::replay::Session;
 use turntable::scene::Scene;
+use turntable::session::Session;
 use turntable::sim::STEPS_PER_TICK;
 use turntable::theme::Theme;
 

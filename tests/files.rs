@@ -299,7 +299,7 @@ fn a_recorded_scene_path_replays_from_anywhere() {
     let abs = d.join("my scene.toml").display().to_string();
     let script = format!(
         "# turntable key script\n# replay: --scene {}\nsnapshot\n",
-        turntable::replay::quote_word(&abs)
+        turntable::script::quote_word(&abs)
     );
     let elsewhere = dir("elsewhere");
     std::fs::write(elsewhere.join("rec.keys"), script).unwrap();

@@ -4,9 +4,10 @@
 
 use crossterm::event::{KeyCode, KeyEvent, KeyModifiers, MouseButton, MouseEvent, MouseEventKind};
 use turntable::app::{Action, App, KEYMAP, keymap::event_for};
-use turntable::replay::{Session, plain_text};
 use turntable::scene::{PRESETS, Scene};
+use turntable::session::Session;
 use turntable::theme::{BUILTIN, Theme};
+use turntable::ui::export::plain_text;
 
 use turntable::bench::SplitMix64 as Rng;
 

@@ -180,9 +180,10 @@ fn words_that_say_what_the_numbers_are() {
 #[test]
 fn the_explorer_says_when_an_outcome_is_in_doubt() {
     use turntable::app::App;
-    use turntable::replay::{Session, plain_text};
     use turntable::scene::Scene;
+    use turntable::session::Session;
     use turntable::theme::Theme;
+    use turntable::ui::export::plain_text;
     for (v0, tol, doubtful) in [(0.6078236, 1e-6, true), (0.6078, 1e-10, false)] {
         let mut scene = Scene::default_scene();
         scene.initial.v0 = v0;
@@ -202,9 +203,10 @@ fn the_explorer_says_when_an_outcome_is_in_doubt() {
 #[test]
 fn the_explorer_shows_phi_as_the_paper_does() {
     use turntable::app::App;
-    use turntable::replay::{Session, plain_text};
     use turntable::scene::Scene;
+    use turntable::session::Session;
     use turntable::theme::Theme;
+    use turntable::ui::export::plain_text;
     let app = App::new(Scene::preset("D").unwrap(), Theme::builtin("mono").unwrap());
     let mut s = Session::headless(app, 80, 24, false);
     let screen = plain_text(s.screen());

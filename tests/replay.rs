@@ -10,10 +10,13 @@ use crossterm::event::{KeyEvent, MouseButton, MouseEvent, MouseEventKind};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use turntable::app::{App, KEYMAP, keymap::event_for};
-use turntable::replay::{DEFAULT_SIZE, Options, Session, plain_text, replay, script_options};
+use turntable::replay::{DEFAULT_SIZE, Options, replay};
 use turntable::scene::Scene;
 use turntable::script::parse;
+use turntable::script::script_options;
+use turntable::session::Session;
 use turntable::theme::Theme;
+use turntable::ui::export::plain_text;
 
 fn dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/replay")

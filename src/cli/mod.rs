@@ -311,8 +311,7 @@ fn save_recording(
 ) -> std::io::Result<()> {
     if let Some(s) = scene {
         let at = script.find('\n').map_or(0, |i| i + 1);
-        let line = format!("# replay: --scene {}\n", crate::replay::quote_word(s));
-        script.insert_str(at, &line);
+        script.insert_str(at, &crate::script::scene_line(s));
     }
     crate::files::write_atomic(path, script.as_bytes())
 }

@@ -1,7 +1,8 @@
 //! `turntable replay SCRIPT`: a key script run headlessly, its snapshots on stdout.
 
 use super::{CmdResult, Failure};
-use crate::replay::{Options, parse_size, replay_to, script_options};
+use crate::replay::{Options, replay_to};
+use crate::script::{parse_size, script_options};
 use clap::Args;
 
 #[derive(Args, Debug)]

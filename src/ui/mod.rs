@@ -1,6 +1,7 @@
 //! Pure rendering of the explorer's state into a ratatui frame.
 
 pub mod canvas;
+pub mod export;
 pub mod help;
 pub mod panel;
 

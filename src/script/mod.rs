@@ -15,12 +15,19 @@
 //! A `#` that begins a token starts a comment, so the `#` key is written
 //! `hash`.
 
+mod header;
+mod keys;
+mod record;
+
+pub use header::{ScriptOptions, parse_size, quote_word, scene_line, script_options};
+pub use keys::key_name;
+use keys::parse_key;
+pub use record::Recorder;
+
 use std::fmt;
 use std::ops::RangeInclusive;
 
-use crossterm::event::{
-    KeyCode, KeyEvent, KeyEventKind, KeyModifiers, MouseButton, MouseEvent, MouseEventKind,
-};
+use crossterm::event::{KeyEvent, KeyModifiers, MouseButton, MouseEvent, MouseEventKind};
 
 /// Largest `*N` repeat on one key token.
 pub const MAX_REPEAT: u32 = 100_000;
@@ -33,33 +40,6 @@ pub const MAX_KEYS: usize = 1_000_000;
 pub const MAX_SIZE: u16 = 1000;
 
 const HEADER: &str = "# turntable key script";
-
-/// Named keys, in the spelling [`key_name`] writes (parsing ignores case).
-const NAMED: [(&str, KeyCode); 16] = [
-    ("space", KeyCode::Char(' ')),
-    ("hash", KeyCode::Char('#')),
-    ("enter", KeyCode::Enter),
-    ("esc", KeyCode::Esc),
-    ("tab", KeyCode::Tab),
-    ("backtab", KeyCode::BackTab),
-    ("backspace", KeyCode::Backspace),
-    ("delete", KeyCode::Delete),
-    ("up", KeyCode::Up),
-    ("down", KeyCode::Down),
-    ("left", KeyCode::Left),
-    ("right", KeyCode::Right),
-    ("home", KeyCode::Home),
-    ("end", KeyCode::End),
-    ("pgup", KeyCode::PageUp),
-    ("pgdn", KeyCode::PageDown),
-];
-
-/// Modifier prefixes, in the order [`key_name`] writes them.
-const MODIFIERS: [(&str, KeyModifiers); 3] = [
-    ("ctrl-", KeyModifiers::CONTROL),
-    ("alt-", KeyModifiers::ALT),
-    ("shift-", KeyModifiers::SHIFT),
-];
 
 /// One thing a script asks the app to do.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -269,47 +249,6 @@ fn key_token(tok: &Token, first: bool) -> Result<(KeyEvent, usize), Fail> {
     Ok((key, count))
 }
 
-fn parse_key(name: &str) -> Option<KeyEvent> {
-    let mut modifiers = KeyModifiers::NONE;
-    let mut rest = name;
-    while let Some((prefix, m)) = MODIFIERS.iter().find(|(p, _)| {
-        rest.len() > p.len()
-            && rest
-                .get(..p.len())
-                .is_some_and(|h| h.eq_ignore_ascii_case(p))
-    }) {
-        modifiers |= *m;
-        rest = &rest[prefix.len()..];
-    }
-    let mut chars = rest.chars();
-    let code = match (chars.next(), chars.next()) {
-        (Some(c), None) if !c.is_control() => KeyCode::Char(c),
-        _ => named_key(rest)?,
-    };
-    // The app matches shifted characters as the character itself, which is
-    // also what terminals report, so `shift-a` is `A`.
-    let code = match code {
-        KeyCode::Char(c) if modifiers.contains(KeyModifiers::SHIFT) => {
-            modifiers.remove(KeyModifiers::SHIFT);
-            KeyCode::Char(c.to_ascii_uppercase())
-        }
-        code => code,
-    };
-    Some(KeyEvent::new(code, modifiers))
-}
-
-fn named_key(name: &str) -> Option<KeyCode> {
-    if let Some((_, code)) = NAMED.iter().find(|(n, _)| n.eq_ignore_ascii_case(name)) {
-        return Some(*code);
-    }
-    let digits = name.strip_prefix(['f', 'F'])?;
-    if digits.starts_with('0') || !digits.bytes().all(|b| b.is_ascii_digit()) {
-        return None;
-    }
-    let n: u8 = digits.parse().ok()?;
-    (1..=12).contains(&n).then_some(KeyCode::F(n))
-}
-
 /// Parses a decimal number, insisting on plain digits so `+5` or `5.0` are
 /// reported rather than silently accepted.
 fn number(text: &str, column: usize, range: RangeInclusive<u64>, what: &str) -> Result<u64, Fail> {
@@ -329,153 +268,10 @@ fn number(text: &str, column: usize, range: RangeInclusive<u64>, what: &str) -> 
     }
 }
 
-/// The script spelling of a key press, or `None` when the format cannot
-/// express it (releases, unusual keys, super/hyper/meta modifiers).
-pub fn key_name(key: &KeyEvent) -> Option<String> {
-    let expressible = KeyModifiers::CONTROL | KeyModifiers::ALT | KeyModifiers::SHIFT;
-    if key.kind != KeyEventKind::Press || !expressible.contains(key.modifiers) {
-        return None;
-    }
-    let mut modifiers = key.modifiers;
-    let code = match key.code {
-        KeyCode::Char(c) if c.is_control() => return None,
-        KeyCode::Char(c) if modifiers.contains(KeyModifiers::SHIFT) => {
-            modifiers.remove(KeyModifiers::SHIFT);
-            KeyCode::Char(c.to_ascii_uppercase())
-        }
-        code => code,
-    };
-    let base = match code {
-        KeyCode::F(n @ 1..=12) => format!("f{n}"),
-        code => match NAMED.iter().find(|(_, c)| *c == code) {
-            Some((name, _)) => name.to_string(),
-            None => match code {
-                KeyCode::Char(c) => c.to_string(),
-                _ => return None,
-            },
-        },
-    };
-    let prefix: String = MODIFIERS
-        .iter()
-        .filter(|(_, m)| modifiers.contains(*m))
-        .map(|(p, _)| *p)
-        .collect();
-    Some(prefix + &base)
-}
-
-/// Writes a key script from live events, folding runs of ticks and of
-/// identical keys so that a recorded session stays short and readable.
-#[derive(Clone, Debug, Default)]
-pub struct Recorder {
-    out: String,
-    /// Key tokens written so far on the current line.
-    line: String,
-    /// The key being repeated, and how many times.
-    run: Option<(String, u32)>,
-    ticks: u64,
-}
-
-impl Recorder {
-    pub fn new() -> Self {
-        Self::default()
-    }
-
-    /// Records a key press; returns false (and records nothing) when the
-    /// format cannot express it, see [`key_name`].
-    pub fn key(&mut self, key: &KeyEvent) -> bool {
-        let Some(name) = key_name(key) else {
-            return false;
-        };
-        self.flush_ticks();
-        match &mut self.run {
-            Some((last, n)) if *last == name && *n < MAX_REPEAT => *n += 1,
-            _ => {
-                self.end_run();
-                self.run = Some((name, 1));
-            }
-        }
-        true
-    }
-
-    pub fn tick(&mut self) {
-        self.flush_keys();
-        self.ticks += 1;
-        if self.ticks == MAX_TICKS {
-            self.flush_ticks();
-        }
-    }
-
-    /// Records a mouse event; returns false (and records nothing) for what
-    /// the format cannot express (presses and drags of buttons other than
-    /// the left one, plain moves, horizontal scrolling). Modifiers are
-    /// dropped and any button's release is written `up`: the app looks at
-    /// neither.
-    pub fn mouse(&mut self, event: &MouseEvent) -> bool {
-        let action = match event.kind {
-            MouseEventKind::Down(MouseButton::Left) => "click",
-            MouseEventKind::Drag(MouseButton::Left) => "drag",
-            MouseEventKind::Up(_) => "up",
-            MouseEventKind::ScrollUp => "scrollup",
-            MouseEventKind::ScrollDown => "scrolldown",
-            _ => return false,
-        };
-        self.flush_keys();
-        self.flush_ticks();
-        self.out
-            .push_str(&format!("mouse {action} {} {}\n", event.column, event.row));
-        true
-    }
-
-    /// Records a resize, clamped to [`MAX_SIZE`] so the script stays
-    /// parseable even from an enormous terminal.
-    pub fn resize(&mut self, width: u16, height: u16) {
-        self.flush_keys();
-        self.flush_ticks();
-        let (w, h) = (width.min(MAX_SIZE), height.min(MAX_SIZE));
-        self.out.push_str(&format!("resize {w}x{h}\n"));
-    }
-
-    /// The finished script, starting with a header comment.
-    pub fn finish(mut self) -> String {
-        self.flush_keys();
-        self.flush_ticks();
-        format!("{HEADER}\n{}", self.out)
-    }
-
-    fn end_run(&mut self) {
-        if let Some((name, n)) = self.run.take() {
-            if !self.line.is_empty() {
-                self.line.push(' ');
-            }
-            self.line.push_str(&name);
-            if n > 1 {
-                self.line.push_str(&format!("*{n}"));
-            }
-        }
-    }
-
-    fn flush_keys(&mut self) {
-        self.end_run();
-        if !self.line.is_empty() {
-            self.out.push_str(&self.line);
-            self.out.push('\n');
-            self.line.clear();
-        }
-    }
-
-    fn flush_ticks(&mut self) {
-        match self.ticks {
-            0 => {}
-            1 => self.out.push_str("tick\n"),
-            n => self.out.push_str(&format!("tick {n}\n")),
-        }
-        self.ticks = 0;
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crossterm::event::{KeyCode, KeyEventKind};
 
     fn key(code: KeyCode, modifiers: KeyModifiers) -> Step {
         Step::Key(KeyEvent::new(code, modifiers))

@@ -1,0 +1,163 @@
+//! One explorer session: the app, a terminal to draw it on, and optionally a recorder of
+//! everything applied. Every event goes through here, in the interactive loop (crossterm) and
+//! in a headless replay (`TestBackend`) alike, so what `--record` writes is exactly what a
+//! replay applies.
+
+use crate::app::App;
+use crate::script::{Recorder, Step};
+use crossterm::event::{KeyEvent, KeyEventKind, MouseEvent};
+use ratatui::Terminal;
+use ratatui::backend::{Backend, TestBackend};
+use ratatui::buffer::Buffer;
+use std::convert::Infallible;
+use std::sync::{Arc, Mutex, MutexGuard};
+
+/// A recorder the terminal loop shares with its signal watcher, which saves what was recorded
+/// if the terminal dies under the explorer.
+pub type SharedRecorder = Arc<Mutex<Recorder>>;
+
+/// The recorder, whatever a panicking holder left behind.
+pub fn lock(r: &SharedRecorder) -> MutexGuard<'_, Recorder> {
+    r.lock().unwrap_or_else(|e| e.into_inner())
+}
+
+/// The app, a terminal to draw it on, and optionally a recorder of everything applied.
+/// Every event goes through here, in the interactive loop and in a replay alike.
+pub struct Session<B: Backend> {
+    pub app: App,
+    pub term: Terminal<B>,
+    recorder: Option<SharedRecorder>,
+}
+
+impl<B: Backend> Session<B> {
+    /// With `record`, the script starts with the terminal's current size.
+    pub fn new(app: App, backend: B, record: bool) -> Result<Self, B::Error> {
+        let term = Terminal::new(backend)?;
+        let recorder = if record {
+            let size = term.size()?;
+            let mut r = Recorder::new();
+            r.resize(size.width, size.height);
+            Some(Arc::new(Mutex::new(r)))
+        } else {
+            None
+        };
+        Ok(Session {
+            app,
+            term,
+            recorder,
+        })
+    }
+
+    /// A key press (releases are ignored, repeats count as presses).
+    pub fn key(&mut self, key: KeyEvent) {
+        if key.kind == KeyEventKind::Release {
+            return;
+        }
+        let key = KeyEvent {
+            kind: KeyEventKind::Press,
+            ..key
+        };
+        if let Some(r) = &self.recorder {
+            lock(r).key(&key);
+        }
+        self.app.handle_key(key);
+    }
+
+    /// A mouse event. The app maps cells through the canvas as last drawn, so anything
+    /// changed since the last frame is drawn first: a recording and its replay then see the
+    /// same canvas whatever else happened in between.
+    pub fn mouse(&mut self, ev: MouseEvent) -> Result<(), B::Error> {
+        self.draw_if_needed()?;
+        if let Some(r) = &self.recorder {
+            lock(r).mouse(&ev);
+        }
+        self.app.handle_mouse(ev);
+        Ok(())
+    }
+
+    /// One tick of the app's clock (as the interactive loop calls it while playing).
+    pub fn tick(&mut self) {
+        if let Some(r) = &self.recorder {
+            lock(r).tick();
+        }
+        self.app.tick();
+    }
+
+    /// The terminal is now `width` × `height`: recorded, and the next frame is redrawn.
+    pub fn resized(&mut self, width: u16, height: u16) {
+        if let Some(r) = &self.recorder {
+            lock(r).resize(width, height);
+        }
+        self.app.invalidate();
+    }
+
+    pub fn draw(&mut self) -> Result<(), B::Error> {
+        self.term.draw(|f| crate::ui::draw(f, &mut self.app))?;
+        Ok(())
+    }
+
+    /// Draws when the app asks for it; returns whether it drew.
+    pub fn draw_if_needed(&mut self) -> Result<bool, B::Error> {
+        if self.app.needs_redraw() {
+            self.draw()?;
+            return Ok(true);
+        }
+        Ok(false)
+    }
+
+    /// The script recorded so far (None when not recording); recording stops here.
+    pub fn take_recording(&mut self) -> Option<String> {
+        self.recorder.take().map(|r| lock(&r).clone().finish())
+    }
+
+    /// The recorder, to read what was recorded from elsewhere (None when not recording).
+    pub fn recorder(&self) -> Option<SharedRecorder> {
+        self.recorder.clone()
+    }
+}
+
+fn ok<T>(r: Result<T, Infallible>) -> T {
+    match r {
+        Ok(v) => v,
+        Err(e) => match e {},
+    }
+}
+
+impl Session<TestBackend> {
+    /// A session on an off-screen terminal of `width` × `height` cells.
+    pub fn headless(app: App, width: u16, height: u16, record: bool) -> Self {
+        ok(Session::new(app, TestBackend::new(width, height), record))
+    }
+
+    pub fn resize(&mut self, width: u16, height: u16) {
+        self.term.backend_mut().resize(width, height);
+        self.resized(width, height);
+    }
+
+    /// Draws the whole screen and returns it.
+    pub fn screen(&mut self) -> &Buffer {
+        ok(self.draw());
+        self.term.backend().buffer()
+    }
+
+    /// Applies one script step (a snapshot step only draws; see [`replay`] for the output).
+    pub fn apply(&mut self, step: &Step) {
+        match step {
+            Step::Key(k) => self.key(*k),
+            Step::Tick(n) => {
+                for _ in 0..*n {
+                    // Paused, a tick changes nothing (and a tick cannot unpause).
+                    if !self.app.is_playing() {
+                        break;
+                    }
+                    self.tick();
+                }
+            }
+            Step::Resize(w, h) => self.resize(*w, *h),
+            Step::Snapshot(_) => {
+                self.screen();
+            }
+            Step::Mouse(m) => ok(self.mouse(*m)),
+        }
+    }
+}
