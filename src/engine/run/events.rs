@@ -1,0 +1,157 @@
+//! The events of a run, located inside the step: the stop ahead (Sec. II, property 1) taken
+//! in closed form or approached in shrinking steps, the jump to it, and where the escape
+//! certificate first holds (property 2).
+
+use super::outcome::{Certificate, Escape, Status, certificate, certificate_margin};
+use super::{Ahead, HOVER_STEPS, Limit, Run, SNAP_T, STIFF, STOP_CAP, StepInfo};
+use crate::engine::method::{Dense, Segment};
+use crate::engine::model::{State, rotate, zcross};
+use crate::engine::roots::illinois;
+use crate::engine::stop::radial_stop;
+use glam::DVec2;
+
+impl Run {
+    /// Looks ahead for a stop. d|u|/dτ = q·û − 1 (Coriolis does no work), so a stop is
+    /// ≈ |u|/(1 − q·û) ahead: steps are capped to a fraction of that, and a stop close enough
+    /// is taken in closed form.
+    ///
+    /// Inside ξ = 1, û soon turns onto q̂ and the last stretch is radial with ρ″ = ρ − 1: from
+    /// ρ and s = |u| it stops at ρ_s = 1 − √((1 − ρ)² − s²) after atanh(s/(1 − ρ)), having
+    /// travelled at most s·atanh(s/(1 − ρ)). That end game takes over once the travel left is
+    /// below the tolerance, or once explicit steps hover (their stability limit, ~|u|/|q|,
+    /// shrinks with |u|).
+    pub(super) fn stop_ahead(&self, s: &State) -> Ahead {
+        let u = s.u_lab();
+        let speed = u.length();
+        if speed == 0.0 {
+            return Ahead::Clear;
+        }
+        let rho = s.xi();
+        let decel = 1.0 - s.r.dot(u) / speed;
+        let gap = 1.0 - rho;
+        // Steps too long for û to be resolved, with û already on q̂: the radial end game is
+        // then exact to O(|u|²) and the explicit step is not.
+        let stiff = self.natural_step() * rho >= STIFF * speed;
+        // û on q̂ to within an angle α whose share of the energy, s²(1 − cos α), the end game
+        // may neglect.
+        let aligned = speed * (speed - s.r.dot(u) / rho) <= self.travel_tol();
+        let end_game = self.stiff_steps >= HOVER_STEPS || (stiff && aligned);
+        if gap > 0.0 && speed < gap {
+            let t = (speed / gap).atanh();
+            if speed * t <= self.travel_tol() || end_game {
+                return Ahead::Jump {
+                    t,
+                    q: radial_stop(s.q(), speed, t),
+                    u: DVec2::ZERO,
+                };
+            }
+        } else if end_game && gap > 0.0 {
+            // Over the saddle: it reaches ξ = 1 still moving out, if I = s² − (1 − ρ)² stays
+            // positive despite the O(s³) loss dI/dτ = −4ρs³ on the way.
+            let t = (gap / speed).atanh();
+            let i = speed * speed - gap * gap;
+            if i > 8.0 * speed.powi(3) * t {
+                let q = s.q() / rho;
+                return Ahead::Jump {
+                    t,
+                    q,
+                    u: q * (i - 4.0 * speed.powi(3) * t).sqrt(),
+                };
+            }
+        } else if self.stiff_steps >= HOVER_STEPS {
+            // At the saddle ξ ≈ 1 itself: stop here and let Filippov's rule decide.
+            return Ahead::Jump {
+                t: 0.0,
+                q: s.q(),
+                u: DVec2::ZERO,
+            };
+        }
+        if decel <= 0.0 {
+            return Ahead::Clear;
+        }
+        let t = speed / decel;
+        if stiff && !aligned && t > SNAP_T {
+            // Not yet on q̂: steps within the stability limit let û turn as it does.
+            return Ahead::Cap((STOP_CAP * t).min(speed / rho), Limit::Stability);
+        }
+        if t <= SNAP_T {
+            // Constant deceleration over a tiny interval.
+            Ahead::Jump {
+                t,
+                q: s.q() + s.u() * (0.5 * t),
+                u: DVec2::ZERO,
+            }
+        } else {
+            Ahead::Cap(STOP_CAP * t, Limit::StopAhead)
+        }
+    }
+
+    /// The step the integrator would take with no stop ahead.
+    pub(super) fn natural_step(&self) -> f64 {
+        if self.settings.method.adaptive() {
+            self.h
+        } else {
+            self.settings.dt
+        }
+    }
+
+    /// Distance a particle may still travel when its stop is taken in closed form.
+    pub(super) fn travel_tol(&self) -> f64 {
+        if self.settings.method.adaptive() {
+            1e-3 * self.settings.tol
+        } else {
+            1e-13
+        }
+    }
+
+    /// Takes the closed-form stretch to `t` ahead, arriving at table-frame `q` with `u`. A
+    /// stop (u = 0) sticks if ξ ≤ 1, else it slips on (Filippov).
+    pub(super) fn jump(&mut self, t: f64, q: DVec2, u: DVec2) {
+        let frame = self.settings.frame;
+        let tau = self.tau + t;
+        let r = rotate(q, tau);
+        let to = State {
+            tau,
+            r,
+            v: rotate(u, tau) + zcross(r),
+        };
+        let y1 = frame.from_state(&to);
+        let f1 = frame.rhs(y1);
+        self.cost.rhs_evals += 1;
+        let seg = Segment {
+            t0: self.tau,
+            h: t,
+            y0: self.y,
+            y1,
+            dense: Dense::Hermite { f0: self.f, f1 },
+        };
+        self.advance(seg, f1);
+        self.last = Some(seg);
+        self.last_step = Some(StepInfo {
+            t0: seg.t0,
+            h: t,
+            limit: Limit::ClosedForm,
+            err_ratio: None,
+            rejected: 0,
+        });
+        self.stiff_steps = 0;
+        if u != DVec2::ZERO {
+            return;
+        }
+        if q.length() <= 1.0 {
+            self.status = Status::Stuck { tau, q };
+        } else {
+            self.slip_restarts += 1;
+        }
+    }
+
+    /// The first time in `seg` at which escape is certified (Illinois on the margin).
+    pub(super) fn locate_escape(&self, seg: &Segment) -> Escape {
+        let frame = self.settings.frame;
+        let state = |t: f64| frame.to_state(seg.at(t), t);
+        let g = |t: f64| certificate_margin(&state(t));
+        let tau = illinois(g, seg.t0, seg.t1(), 1e-13);
+        let by = certificate(&state(tau)).unwrap_or(Certificate::Radial);
+        Escape { tau, by }
+    }
+}

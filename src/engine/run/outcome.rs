@@ -1,0 +1,110 @@
+//! How a run ends and how we know: stuck, escaped (with the certificate that proves it), or
+//! still running; and the errors that stop a run early (Sec. II, properties 1 and 2).
+
+use crate::engine::model::State;
+use glam::DVec2;
+use serde::Serialize;
+use std::fmt;
+
+/// How escape was certified (CONVENTIONS.md "Outcomes"; Sec. II, property 2).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Certificate {
+    /// ξ > 1 and ξ′ > 0: ξ′ can never turn negative again, so it never comes back.
+    Radial,
+    /// E = ½|u|² − ½ξ² < −½ with dE/dτ = −|u|: it can never be at rest at ξ ≤ 1 again.
+    Energy,
+}
+
+impl Certificate {
+    /// The bound in words, for messages.
+    pub fn describe(self) -> &'static str {
+        match self {
+            Certificate::Radial => {
+                "the radial certificate: xi = 1 crossed moving out, never to turn back"
+            }
+            Certificate::Energy => {
+                "the energy certificate: E < -1/2, so it can never rest inside xi = 1 again (it may not have crossed xi = 1 yet)"
+            }
+        }
+    }
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Escape {
+    pub tau: f64,
+    pub by: Certificate,
+}
+
+/// Where a run stands.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Status {
+    Slipping,
+    /// At rest on the table at `q` (table frame) since `tau`: it rides the table forever.
+    Stuck {
+        tau: f64,
+        q: DVec2,
+    },
+}
+
+/// What ended a call to [`Run::run`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Outcome {
+    Stuck,
+    Escaped,
+    /// τ-max came first.
+    Running,
+}
+
+impl Outcome {
+    pub fn name(self) -> &'static str {
+        match self {
+            Outcome::Stuck => "stuck",
+            Outcome::Escaped => "escaped",
+            Outcome::Running => "running",
+        }
+    }
+}
+
+#[derive(Clone, Debug, PartialEq)]
+pub enum RunError {
+    /// The step budget ran out before the run ended.
+    Budget { steps: u64, tau: f64 },
+    /// dp54 could not meet the tolerance with a representable step.
+    StepUnderflow { tau: f64 },
+}
+
+impl fmt::Display for RunError {
+    fn fmt(&self, f: &mut fmt::Formatter) -> fmt::Result {
+        match self {
+            RunError::Budget { steps, tau } => write!(
+                f,
+                "step budget of {steps} steps exhausted at tau = {tau:.6} (raise --max-steps, lower --tau-max, or use a larger dt / looser tol)"
+            ),
+            RunError::StepUnderflow { tau } => {
+                write!(
+                    f,
+                    "step size underflow at tau = {tau:.6}: the tolerance cannot be met"
+                )
+            }
+        }
+    }
+}
+
+impl std::error::Error for RunError {}
+
+pub(super) fn certificate(s: &State) -> Option<Certificate> {
+    if s.energy() < -0.5 {
+        Some(Certificate::Energy)
+    } else if s.xi() > 1.0 && s.xi_dot() > 0.0 {
+        Some(Certificate::Radial)
+    } else {
+        None
+    }
+}
+
+/// Continuous margin whose sign tells whether escape is certified: > 0 iff certified.
+pub(super) fn certificate_margin(s: &State) -> f64 {
+    (s.xi() - 1.0).min(s.xi_dot()).max(-(s.energy() + 0.5))
+}
