@@ -212,6 +212,16 @@ impl Sim {
         }
     }
 
+    /// Brings this run to `tau` if it lags behind, within one tick's step budget (another
+    /// run on screen sets the pace). Returns whether it moved.
+    pub fn catch_up_to(&mut self, tau: f64) -> bool {
+        let before = (self.cursor, self.samples.len());
+        if self.now().tau < tau {
+            self.advance(tau - self.now().tau);
+        }
+        before != (self.cursor, self.samples.len())
+    }
+
     /// One tick back through history.
     pub fn back(&mut self) {
         self.cursor = self.cursor.saturating_sub(1);

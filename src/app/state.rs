@@ -139,14 +139,7 @@ impl App {
     /// on a long session it catches up over several ticks). Returns whether it moved.
     pub fn catch_up(&mut self) -> bool {
         let target = self.sim.now().tau;
-        let Some(p) = self.paper.as_mut() else {
-            return false;
-        };
-        let before = (p.cursor, p.samples.len());
-        if p.now().tau < target {
-            p.advance(target - p.now().tau);
-        }
-        before != (p.cursor, p.samples.len())
+        self.paper.as_mut().is_some_and(|p| p.catch_up_to(target))
     }
 
     /// Whether the paper's run lags behind the one on screen (it is catching up).

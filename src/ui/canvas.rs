@@ -212,10 +212,11 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &mut App) {
         }
         _ => None,
     };
-    let u0 = app.initial.u0();
+    // The initial velocity as the frame shown sees it: lab v, or u relative to the table.
+    let s0 = app.initial.state();
     let v_init = match view {
-        Frame::Lab => u0 + DVec2::new(0.0, app.initial.xi0),
-        Frame::Table => u0,
+        Frame::Lab => s0.v,
+        Frame::Table => s0.u(),
     };
     let x0 = rotate(DVec2::new(app.initial.xi0, 0.0), turn);
     let v_init = rotate(v_init, turn);
