@@ -1,7 +1,7 @@
 //! One integration run: the stepping loop (dp54, rk4, rk2, the paper's raw rk2, μ = 0 in closed
-//! form), what bounded each step, and cost counters. Its events — stick–slip (Sec. II, property
-//! 1) located inside the step and the escape certificate (property 2 and the energy bound) —
-//! are in `events`; how a run ends, in `outcome`.
+//! form), what bounded each step, and cost counters. Its events are in `events`: stick–slip
+//! (Sec. II, property one) located inside the step, and where the escape certificate (property
+//! two, or the energy bound) first holds. How a run ends is in `outcome`.
 
 use super::method::{
     Controller, Cost, Dense, Segment, Settings, dp5_step, fixed_step, initial_step,
