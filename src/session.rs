@@ -92,7 +92,9 @@ impl<B: Backend> Session<B> {
     }
 
     pub fn draw(&mut self) -> Result<(), B::Error> {
-        self.term.draw(|f| crate::ui::draw(f, &mut self.app))?;
+        let mut geom = None;
+        self.term.draw(|f| geom = crate::ui::draw(f, &self.app))?;
+        self.app.drawn(geom);
         Ok(())
     }
 

@@ -20,7 +20,9 @@ fn app(scene: &str) -> App {
 
 fn render(app: &mut App, w: u16, h: u16) -> String {
     let mut t = Terminal::new(TestBackend::new(w, h)).unwrap();
-    t.draw(|f| draw(f, app)).unwrap();
+    let mut geom = None;
+    t.draw(|f| geom = draw(f, app)).unwrap();
+    app.drawn(geom);
     let buf = t.backend().buffer();
     let mut s = String::new();
     for y in 0..buf.area.height {
@@ -177,6 +179,9 @@ fn every_key_in_the_keymap_does_what_its_help_says() {
             Action::PlayPause => !a.is_playing() && after.contains("❚❚"),
             Action::StepForward => now > tau && !a.is_playing(),
             Action::StepBack => now < tau,
+            Action::PlaceRelease(_) | Action::AimVelocity(_) | Action::EndDrag => {
+                unreachable!("mouse actions have no key")
+            }
             Action::IntegratorStep => a.step_mode && !a.is_playing() && after.contains("h      "),
             Action::Faster => a.speed == 2.0 * speed && after.contains("×2"),
             Action::Slower => a.speed == speed / 2.0 && after.contains("×1/2"),

@@ -44,4 +44,9 @@ pub enum Action {
     ResetView,
     Save,
     ToggleMouse,
+    /// Mouse: the release point here (model coordinates, as the canvas maps the click).
+    PlaceRelease(glam::DVec2),
+    /// Mouse drag: the initial velocity points from the release point to here.
+    AimVelocity(glam::DVec2),
+    EndDrag,
 }

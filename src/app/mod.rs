@@ -11,7 +11,7 @@ pub use keymap::{Binding, KEYMAP};
 pub use state::{App, CanvasGeom, TICK_DT};
 pub use update::update;
 
-use crate::engine::{Release, Settings};
+use crate::engine::Settings;
 use crate::scene::Scene;
 use crate::theme::Theme;
 use crossterm::event::{KeyEvent, KeyEventKind, MouseButton, MouseEvent, MouseEventKind};
@@ -31,64 +31,25 @@ impl App {
         }
     }
 
-    /// Click: place the release point at the clicked radius; drag: set the initial velocity
-    /// (from the release point to the pointer, in the frame shown). Uses the canvas as last
-    /// drawn.
+    /// The mouse as actions, through the canvas as last drawn: a click places the release
+    /// point, a drag sets the initial velocity, the wheel zooms.
     pub fn handle_mouse(&mut self, ev: MouseEvent) {
         if !self.mouse || self.help {
             return;
         }
         let Some(g) = self.geom else { return };
-        let Some(p) = g.to_world(ev.column, ev.row) else {
-            if matches!(ev.kind, MouseEventKind::Up(_)) {
-                self.dragging = false;
+        let at = g.to_world(ev.column, ev.row);
+        let action = match (ev.kind, at) {
+            (MouseEventKind::Up(_), _) => Action::EndDrag,
+            (MouseEventKind::Down(MouseButton::Left), Some(p)) => Action::PlaceRelease(p),
+            (MouseEventKind::Drag(MouseButton::Left), Some(p)) if self.dragging => {
+                Action::AimVelocity(p)
             }
-            return;
+            (MouseEventKind::ScrollUp, Some(_)) => Action::ZoomIn,
+            (MouseEventKind::ScrollDown, Some(_)) => Action::ZoomOut,
+            _ => return,
         };
-        match ev.kind {
-            MouseEventKind::Down(MouseButton::Left) => {
-                // Clicked at an angle: the picture turns there (p is in model coordinates,
-                // so its angle adds to the turn already shown).
-                if p.length() > 0.0 {
-                    self.turn = crate::engine::model::wrap_angle(self.turn + p.y.atan2(p.x));
-                }
-                self.initial.xi0 = p.length();
-                self.dragging = true;
-                self.restart();
-                self.notice = Some(format!(
-                    "release point ξ0 = {:.3}; drag to set the velocity",
-                    self.initial.xi0
-                ));
-                self.dirty = true;
-            }
-            MouseEventKind::Drag(MouseButton::Left) if self.dragging => {
-                let d = p - glam::DVec2::new(self.initial.xi0, 0.0);
-                // The arrow shows u0 in the rotating view and the lab velocity in the lab view.
-                let d = if g.frame == crate::engine::Frame::Lab {
-                    d / g.arrow_scale - glam::DVec2::new(0.0, self.initial.xi0)
-                } else {
-                    d / g.arrow_scale
-                };
-                self.initial.release = Release::Velocity;
-                self.initial.v0 = d.length();
-                self.initial.phi = if d.length() > 0.0 {
-                    d.y.atan2(d.x)
-                } else {
-                    0.0
-                };
-                self.restart();
-                self.notice = Some(format!(
-                    "v0 = {:.3}, φ = {:.3}π",
-                    self.initial.v0,
-                    self.initial.phi.rem_euclid(std::f64::consts::TAU) / std::f64::consts::PI
-                ));
-                self.dirty = true;
-            }
-            MouseEventKind::Up(_) => self.dragging = false,
-            MouseEventKind::ScrollUp => update(self, Action::ZoomIn),
-            MouseEventKind::ScrollDown => update(self, Action::ZoomOut),
-            _ => {}
-        }
+        update(self, action);
     }
 
     /// One tick: advances the run(s) by `TICK_DT × speed` of sim time if playing.
@@ -107,6 +68,13 @@ impl App {
     /// False when nothing changed since the last draw (paused and idle: no redraw).
     pub fn needs_redraw(&self) -> bool {
         self.dirty
+    }
+
+    /// Records a finished draw: the canvas geometry it returned (mouse cells map through it)
+    /// and that the screen is up to date.
+    pub fn drawn(&mut self, geom: Option<CanvasGeom>) {
+        self.geom = geom;
+        self.dirty = false;
     }
 
     /// Forces the next frame to be drawn (after a resize).

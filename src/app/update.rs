@@ -7,6 +7,11 @@ use crate::engine::{Frame, Method, Release, Settings};
 use crate::scene::{PRESETS, Scene};
 
 pub fn update(app: &mut App, action: Action) {
+    if action == Action::EndDrag {
+        // Letting go of the mouse changes nothing on screen (the notice stays).
+        app.dragging = false;
+        return;
+    }
     app.dirty = true;
     app.notice = None;
     match action {
@@ -162,6 +167,45 @@ pub fn update(app: &mut App, action: Action) {
                 Err(e) => format!("could not save {}: {e}", app.save_path.display()),
             });
         }
+        Action::PlaceRelease(p) => {
+            // Clicked at an angle: the picture turns there (p is in model coordinates, so its
+            // angle adds to the turn already shown).
+            if p.length() > 0.0 {
+                app.turn = crate::engine::model::wrap_angle(app.turn + p.y.atan2(p.x));
+            }
+            app.initial.xi0 = p.length();
+            app.dragging = true;
+            app.restart();
+            app.notice = Some(format!(
+                "release point ξ0 = {:.3}; drag to set the velocity",
+                app.initial.xi0
+            ));
+        }
+        Action::AimVelocity(p) => {
+            let scale = app.geom.map_or(1.0, |g| g.arrow_scale);
+            let r0 = glam::DVec2::new(app.initial.xi0, 0.0);
+            // The arrow shows the lab velocity in the lab view and u0 in the rotating view.
+            let drawn = (p - r0) / scale;
+            let u0 = match app.view {
+                Frame::Lab => drawn - crate::engine::model::zcross(r0),
+                Frame::Table => drawn,
+            };
+            app.initial.release = Release::Velocity;
+            app.initial.v0 = u0.length();
+            app.initial.phi = if u0.length() > 0.0 {
+                u0.y.atan2(u0.x)
+            } else {
+                0.0
+            };
+            app.restart();
+            app.notice = Some(format!(
+                "v0 = {:.3}, φ = {:.3}π",
+                app.initial.v0,
+                app.initial.phi.rem_euclid(std::f64::consts::TAU) / std::f64::consts::PI
+            ));
+        }
+        // Handled before anything else, above.
+        Action::EndDrag => {}
         Action::ToggleMouse => {
             app.mouse = !app.mouse;
             app.notice = Some(

@@ -63,9 +63,11 @@ pub fn measure(
     )
     .map_err(|e| e.to_string())?;
     let draw = |term: &mut Terminal<CrosstermBackend<Count>>, app: &mut App| {
-        term.draw(|f| crate::ui::draw(f, app))
-            .map(|_| ())
-            .map_err(|e| e.to_string())
+        let mut geom = None;
+        term.draw(|f| geom = crate::ui::draw(f, app))
+            .map_err(|e| e.to_string())?;
+        app.drawn(geom);
+        Ok::<(), String>(())
     };
     draw(&mut term, &mut app)?;
     let start = count.get();

@@ -182,7 +182,10 @@ fn frame_time(reps: usize) -> Result<(f64, usize), String> {
     let mut term = Terminal::new(TestBackend::new(160, 48)).map_err(|e| e.to_string())?;
     let (r, ms) = timed(reps.max(5), || {
         app.tick();
-        term.draw(|f| crate::ui::draw(f, &mut app)).map(|_| ())
+        let mut geom = None;
+        term.draw(|f| geom = crate::ui::draw(f, &app))?;
+        app.drawn(geom);
+        Ok::<(), std::convert::Infallible>(())
     });
     r.map_err(|e| e.to_string())?;
     Ok((ms, app.sim.trail().len()))

@@ -157,7 +157,8 @@ pub fn force_arrows(app: &App, half_width: f64) -> Vec<ForceArrow> {
     out
 }
 
-pub fn render(f: &mut TuiFrame, area: Rect, app: &mut App) {
+/// Draws the canvas and returns its geometry (where it is and which world it shows).
+pub fn render(f: &mut TuiFrame, area: Rect, app: &App) -> CanvasGeom {
     let th = app.theme.clone();
     let mut title = match app.view {
         Frame::Lab => " lab frame ".to_string(),
@@ -190,14 +191,14 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &mut App) {
     let centre = follow + app.pan * r0;
     let (xb, yb) = bounds(inner.width, inner.height, centre, r);
     let arrow_scale = 0.3 * r0 / app.initial.xi0.max(1.0);
-    app.geom = Some(CanvasGeom {
+    let geom = CanvasGeom {
         area: inner,
         x: xb,
         y: yb,
         arrow_scale,
         frame: app.view,
         turn,
-    });
+    };
     let table_r = 1.5f64.max(app.initial.xi0 * 1.2);
     let spin = turn + if view == Frame::Lab { now.tau } else { 0.0 };
     // Where and when it stuck: the rest point in the frame shown (in the lab, where it was at
@@ -341,4 +342,5 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &mut App) {
             );
         });
     f.render_widget(canvas, area);
+    geom
 }

@@ -5,7 +5,7 @@ pub mod export;
 pub mod help;
 pub mod panel;
 
-use crate::app::App;
+use crate::app::{App, CanvasGeom};
 use crate::engine::Outcome;
 use ratatui::Frame;
 use ratatui::layout::{Alignment, Constraint, Layout, Rect};
@@ -18,14 +18,14 @@ pub const MIN_SIZE: (u16, u16) = (40, 12);
 /// Width of the readout panel beside the canvas.
 pub const PANEL_W: u16 = 30;
 
-/// Draws the whole screen. Never panics, whatever the size.
-pub fn draw(frame: &mut Frame, app: &mut App) {
-    app.dirty = false;
+/// Draws the whole screen and returns where the canvas went (None when there is none), for
+/// the caller to hand to [`App::drawn`] so mouse cells map to the table. Pure: it reads the
+/// state only. Never panics, whatever the size.
+pub fn draw(frame: &mut Frame, app: &App) -> Option<CanvasGeom> {
     let area = frame.area();
     let th = app.theme.clone();
     let base = Style::default().bg(th.background).fg(th.foreground);
     if area.width < MIN_SIZE.0 || area.height < MIN_SIZE.1 {
-        app.geom = None;
         let msg = format!(
             "terminal too small ({}×{}): need ≥ {}×{}",
             area.width, area.height, MIN_SIZE.0, MIN_SIZE.1
@@ -37,7 +37,7 @@ pub fn draw(frame: &mut Frame, app: &mut App) {
                 .wrap(Wrap { trim: true }),
             area,
         );
-        return;
+        return None;
     }
     frame.render_widget(Paragraph::new("").style(base), area);
     let [title, body, lesson, status] = Layout::vertical([
@@ -64,7 +64,7 @@ pub fn draw(frame: &mut Frame, app: &mut App) {
         let [c, p] = Layout::vertical([Constraint::Min(3), Constraint::Length(ph)]).areas(body);
         (c, p)
     };
-    canvas::render(frame, canvas_area, app);
+    let geom = canvas::render(frame, canvas_area, app);
     panel::render(frame, panel_area, app);
     frame.render_widget(
         Paragraph::new(Span::styled(
@@ -77,6 +77,7 @@ pub fn draw(frame: &mut Frame, app: &mut App) {
     if app.help {
         help::render(frame, body, app);
     }
+    Some(geom)
 }
 
 /// The one-line lesson: the paper's scheme against the converged run, or what μ = 0 means.
