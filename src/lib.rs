@@ -7,6 +7,7 @@ pub mod cli;
 pub mod engine;
 pub mod files;
 pub mod replay;
+pub mod rng;
 pub mod scene;
 pub mod script;
 pub mod session;

@@ -204,7 +204,7 @@ fn bad_values_are_refused() {
 /// on 100 seeded releases away from the escape threshold.
 #[test]
 fn outcomes_agree_across_methods() {
-    let mut rng = turntable::bench::SplitMix64(7);
+    let mut rng = turntable::rng::SplitMix64(7);
     let mut next = || rng.unit();
     for _ in 0..100 {
         let i = Initial::velocity(1.2 * next(), TAU * next(), 1.5 * next());

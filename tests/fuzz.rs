@@ -9,7 +9,7 @@ use turntable::session::Session;
 use turntable::theme::{BUILTIN, Theme};
 use turntable::ui::export::plain_text;
 
-use turntable::bench::SplitMix64 as Rng;
+use turntable::rng::SplitMix64 as Rng;
 
 /// "NaN" or "inf" as a word (Rust's spelling of non-finite floats), anywhere on screen.
 fn non_finite(screen: &str) -> Option<&str> {

@@ -6,7 +6,7 @@ use turntable::engine::method::Dense;
 use turntable::engine::model::{Frame, Y, friction};
 use turntable::engine::{Initial, Method, Outcome, Run, Settings, Status};
 
-use turntable::bench::SplitMix64 as Rng;
+use turntable::rng::SplitMix64 as Rng;
 
 fn random_release(rng: &mut Rng) -> Initial {
     Initial::velocity(1.5 * rng.unit(), TAU * rng.unit(), 2.0 * rng.unit())

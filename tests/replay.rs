@@ -137,7 +137,7 @@ fn the_same_script_gives_the_same_bytes() {
     assert_eq!(run_script(&script), run_script(&script));
 }
 
-use turntable::bench::SplitMix64 as Rng;
+use turntable::rng::SplitMix64 as Rng;
 
 /// A live session is recorded through the same `Session` the interactive loop uses (ticks
 /// only while playing, as the loop calls them); replaying the recording gives the same

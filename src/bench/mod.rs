@@ -17,7 +17,7 @@ use std::time::Instant;
 use tasks::{escape_rows, fig5_curve, fig5_rows, methods_for, position_rows, rest_rows};
 
 pub use output::{plot, table};
-pub use runs::{End, SplitMix64, cases, finish, rest_angle, state_at};
+pub use runs::{End, cases, finish, rest_angle, state_at};
 pub use tasks::position_error;
 
 /// What to measure and how thoroughly.

@@ -5,31 +5,6 @@ use crate::engine::{Initial, Outcome, Run, Settings, State, Status};
 use glam::DVec2;
 use std::f64::consts::{PI, TAU};
 
-/// splitmix64 (Steele, Lea & Flood 2014): a tiny deterministic generator for the random cases.
-#[derive(Clone, Debug)]
-pub struct SplitMix64(pub u64);
-
-impl SplitMix64 {
-    pub fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-    /// Uniform in [0, 1).
-    pub fn unit(&mut self) -> f64 {
-        (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64
-    }
-    /// Uniform in 0..n (n > 0).
-    pub fn below(&mut self, n: u64) -> u64 {
-        self.next_u64() % n
-    }
-    pub fn pick<T: Copy>(&mut self, xs: &[T]) -> T {
-        xs[self.below(xs.len() as u64) as usize]
-    }
-}
-
 /// A, B and D of the paper, then `n` seeded releases (ξ0 ∈ [0, 0.9], φ ∈ [0, 2π),
 /// v0 ∈ [0, 0.5]: most of them stick).
 pub fn cases(n: usize, seed: u64) -> Vec<(String, Initial)> {
@@ -38,7 +13,7 @@ pub fn cases(n: usize, seed: u64) -> Vec<(String, Initial)> {
         ("B".to_string(), Initial::velocity(0.5, 0.0, 0.6)),
         ("D".to_string(), Initial::velocity(1.1, 1.2 * PI, 1.3)),
     ];
-    let mut rng = SplitMix64(seed);
+    let mut rng = crate::rng::SplitMix64(seed);
     for i in 0..n {
         let xi0 = 0.9 * rng.unit();
         let phi = TAU * rng.unit();
