@@ -10,10 +10,10 @@ use crossterm::event::{KeyEvent, MouseButton, MouseEvent, MouseEventKind};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use turntable::app::{App, KEYMAP, keymap::event_for};
-use turntable::replay::{DEFAULT_SIZE, Options, replay};
+use turntable::cli::replay::{ReplayArgs, prepare};
+use turntable::replay::{Options, replay};
 use turntable::scene::Scene;
 use turntable::script::parse;
-use turntable::script::script_options;
 use turntable::session::Session;
 use turntable::theme::Theme;
 use turntable::ui::export::plain_text;
@@ -22,23 +22,12 @@ fn dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/replay")
 }
 
-/// The app and options a script's `# replay:` line asks for.
-fn setup(script: &str) -> (App, Options) {
-    let own = script_options(script).unwrap();
-    let scene = own
-        .scene
-        .map_or_else(Scene::default_scene, |s| Scene::load(&s).unwrap());
-    let theme = Theme::load(own.theme.as_deref().unwrap_or("dark")).unwrap();
-    let opts = Options {
-        size: own.size.unwrap_or(DEFAULT_SIZE),
-        ansi: own.ansi,
-    };
-    (App::new(scene, theme), opts)
-}
-
+/// What `turntable replay` prints for `script` (the same preparation as the command's).
 fn run_script(script: &str) -> String {
-    let (app, opts) = setup(script);
-    replay(app, &parse(script).expect("script parses"), &opts)
+    let Ok((app, opts, steps)) = prepare(script, &ReplayArgs::default()) else {
+        panic!("script does not prepare")
+    };
+    replay(app, &steps, &opts)
 }
 
 /// The first few differing lines, numbered, expected against actual.

@@ -5,7 +5,7 @@ use crate::replay::{Options, replay_to};
 use crate::script::{parse_size, script_options};
 use clap::Args;
 
-#[derive(Args, Debug)]
+#[derive(Args, Debug, Default)]
 pub struct ReplayArgs {
     /// The key script (`-` reads stdin).
     #[arg(value_name = "SCRIPT")]
@@ -35,9 +35,21 @@ pub fn run(a: ReplayArgs) -> CmdResult {
         crate::files::read_bounded(std::path::Path::new(&a.script), crate::files::READ_CAP)
             .map_err(Failure::Usage)?
     };
+    let (app, opts, steps) = prepare(&text, &a)?;
+    let mut so = std::io::BufWriter::new(std::io::stdout().lock());
+    replay_to(app, &steps, &opts, &mut so)?;
+    Ok(())
+}
+
+/// A script's app, options and steps as `turntable replay` runs it: the flags in `a` first,
+/// then the script's own `# replay:` lines. Writes no files (`s` only says what it would).
+pub fn prepare(
+    text: &str,
+    a: &ReplayArgs,
+) -> Result<(crate::app::App, Options, Vec<crate::script::Step>), Failure> {
     let steps =
-        crate::script::parse(&text).map_err(|e| Failure::Usage(format!("{}: {e}", a.script)))?;
-    let own = script_options(&text).map_err(|e| Failure::Usage(format!("{}: {e}", a.script)))?;
+        crate::script::parse(text).map_err(|e| Failure::Usage(format!("{}: {e}", a.script)))?;
+    let own = script_options(text).map_err(|e| Failure::Usage(format!("{}: {e}", a.script)))?;
     let scene = match a.scene.as_ref().or(own.scene.as_ref()) {
         Some(s) => crate::scene::Scene::load(s).map_err(Failure::Usage)?,
         None => crate::scene::Scene::default_scene(),
@@ -51,9 +63,7 @@ pub fn run(a: ReplayArgs) -> CmdResult {
         size: a.size.or(own.size).unwrap_or(crate::replay::DEFAULT_SIZE),
         ansi: a.ansi || own.ansi,
     };
-    let mut so = std::io::BufWriter::new(std::io::stdout().lock());
-    replay_to(app, &steps, &opts, &mut so)?;
-    Ok(())
+    Ok((app, opts, steps))
 }
 
 #[cfg(test)]
