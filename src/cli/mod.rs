@@ -22,12 +22,8 @@ use std::process::ExitCode;
 pub struct Cli {
     #[command(subcommand)]
     pub command: Option<Command>,
-    /// Explorer: scene to open, a preset (A, B, C, D, fig1, fig2) or a .toml file.
-    #[arg(long, value_name = "NAME|PATH")]
-    pub scene: Option<String>,
-    /// Explorer: colour theme (dark, light, high-contrast, mono) or a .toml file. NO_COLOR is respected.
-    #[arg(long, value_name = "NAME|PATH")]
-    pub theme: Option<String>,
+    #[command(flatten)]
+    pub look: Look,
     /// Explorer: frame-rate cap while playing.
     #[arg(long, default_value_t = 30, value_parser = clap::value_parser!(u32).range(1..=240))]
     pub fps: u32,
@@ -38,6 +34,20 @@ pub struct Cli {
     /// written when the explorer exits; `turntable replay FILE` shows the same screens.
     #[arg(long, value_name = "FILE")]
     pub record: Option<PathBuf>,
+}
+
+/// What the explorer shows, for the explorer and for `replay`.
+#[derive(Args, Debug, Default, Clone)]
+pub struct Look {
+    /// Scene to open: a preset (A, B, C, D, fig1, fig2) or a .toml file. Default: C (replay:
+    /// the script's own `# replay: --scene` line first).
+    #[arg(long, value_name = "NAME|PATH")]
+    pub scene: Option<String>,
+    /// Colour theme: dark, light, high-contrast, mono, or a .toml file. The explorer respects
+    /// NO_COLOR; replay ignores it (its output depends on its arguments alone) and only --ansi
+    /// shows colour.
+    #[arg(long, value_name = "NAME|PATH")]
+    pub theme: Option<String>,
 }
 
 #[derive(Subcommand, Debug)]
@@ -251,7 +261,7 @@ pub fn check_initial(i: &Initial) -> Result<(), Failure> {
 /// Opens the explorer. Bad scenes, themes and `--record` paths fail before the terminal is
 /// touched.
 fn explore(cli: &Cli) -> CmdResult {
-    let (scene, theme) = (&cli.scene, &cli.theme);
+    let (scene, theme) = (&cli.look.scene, &cli.look.theme);
     let scene = match scene {
         Some(s) => crate::scene::Scene::load(s).map_err(Failure::Usage)?,
         None => crate::scene::Scene::default_scene(),
@@ -261,9 +271,9 @@ fn explore(cli: &Cli) -> CmdResult {
     let theme = crate::theme::Theme::resolve(theme.as_deref(), no_color)
         .map_err(Failure::Usage)?
         .with_depth(crate::theme::Depth::from_colorterm(colorterm.as_deref()));
-    let scene_ref = cli.scene.as_deref().map(scene_reference);
+    let scene_ref = cli.look.scene.as_deref().map(scene_reference);
     if let Some(path) = &cli.record {
-        check_record_path(path, [&cli.scene, &cli.theme])?;
+        check_record_path(path, [&cli.look.scene, &cli.look.theme])?;
     }
     use std::io::IsTerminal;
     if !(std::io::stdin().is_terminal() && std::io::stdout().is_terminal()) {

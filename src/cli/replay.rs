@@ -17,14 +17,8 @@ pub struct ReplayArgs {
     /// Style the snapshots with ANSI colour escape sequences.
     #[arg(long)]
     pub ansi: bool,
-    /// Scene to open, a preset (A, B, C, D, fig1, fig2) or a .toml file; default the script's
-    /// `# replay: --scene` line (a recording writes one), else the explorer's default.
-    #[arg(long, value_name = "NAME|PATH")]
-    pub scene: Option<String>,
-    /// Colour theme (dark, light, high-contrast, mono) or a .toml file; only --ansi shows it.
-    /// NO_COLOR is ignored so that the output depends on the arguments alone.
-    #[arg(long, value_name = "NAME|PATH")]
-    pub theme: Option<String>,
+    #[command(flatten)]
+    pub look: super::Look,
 }
 
 pub fn run(a: ReplayArgs) -> CmdResult {
@@ -50,11 +44,11 @@ pub fn prepare(
     let steps =
         crate::script::parse(text).map_err(|e| Failure::Usage(format!("{}: {e}", a.script)))?;
     let own = script_options(text).map_err(|e| Failure::Usage(format!("{}: {e}", a.script)))?;
-    let scene = match a.scene.as_ref().or(own.scene.as_ref()) {
+    let scene = match a.look.scene.as_ref().or(own.scene.as_ref()) {
         Some(s) => crate::scene::Scene::load(s).map_err(Failure::Usage)?,
         None => crate::scene::Scene::default_scene(),
     };
-    let theme = a.theme.as_ref().or(own.theme.as_ref());
+    let theme = a.look.theme.as_ref().or(own.theme.as_ref());
     let theme =
         crate::theme::Theme::resolve(theme.map(String::as_str), false).map_err(Failure::Usage)?;
     let mut app = crate::app::App::new(scene, theme);
