@@ -137,3 +137,41 @@ impl Scene {
         )))
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::engine::method::Scheme;
+
+    /// Settings carry one knob, their method's: a saved scene writes only it, and a scene
+    /// written when both were carried still reads (the method's own is taken).
+    #[test]
+    fn settings_carry_their_methods_knob() {
+        let mut s = Scene::preset("B").unwrap();
+        s.settings = Settings::fixed(crate::engine::Method::Rk4, 0.01);
+        let text = s.to_toml();
+        assert!(
+            text.contains("dt = 0.01") && !text.contains("tol"),
+            "{text}"
+        );
+        let back: Scene = toml::from_str(&text).unwrap();
+        assert_eq!(back.settings.scheme, Scheme::Rk4 { dt: 0.01 });
+        let old = "name = \"old\"\n[initial]\nxi0 = 0.5\nphi = 0.0\nv0 = 0.6\n[settings]\n\
+                   method = \"dp54\"\ndt = 0.001\ntol = 1e-8\nframe = \"lab\"\nmax_steps = 1000\n";
+        let old: Scene = toml::from_str(old).unwrap();
+        assert_eq!(old.settings.scheme, Scheme::Dp54 { tol: 1e-8 });
+        assert_eq!(old.settings.max_steps, 1000);
+        // The knob may be left out: the method's default.
+        let bare: Scene = toml::from_str(
+            "name = \"x\"\n[initial]\nxi0 = 0.5\nphi = 0.0\nv0 = 0.6\n[settings]\nmethod = \"rk2\"\n",
+        )
+        .unwrap();
+        assert_eq!(bare.settings.scheme, Scheme::Rk2 { dt: 1e-3 });
+        assert!(
+            toml::from_str::<Scene>(
+                "name = \"x\"\n[initial]\nxi0 = 0.5\nphi = 0.0\nv0 = 0.6\n[settings]\nmethod = \"rk2\"\ntoll = 1\n"
+            )
+            .is_err()
+        );
+    }
+}

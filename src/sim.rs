@@ -243,11 +243,7 @@ impl Sim {
     /// An error estimate for the state on screen, from a shadow run with dp54 at a tolerance
     /// 1000× tighter than the run's own (at most 1e-13). Computed only when asked.
     pub fn error_estimate(&self) -> Result<ErrorEstimate, String> {
-        let own = if self.run.settings.method.adaptive() {
-            self.run.settings.tol
-        } else {
-            1e-10
-        };
+        let own = self.run.settings.scheme.tol().unwrap_or(1e-10);
         let tol = (own * 1e-3).clamp(TOL_RANGE.0, 1e-13);
         let now = self.now();
         // Within one tick's budget, so the key never waits long.

@@ -187,9 +187,9 @@ fn every_key_in_the_keymap_does_what_its_help_says() {
             Action::Slower => a.speed == speed / 2.0 && after.contains("×1/2"),
             Action::Restart => now == 0.0 && a.initial == init,
             Action::ToggleFrame => a.view == Frame::Table,
-            Action::CycleMethod => a.settings.method != set.method && now == 0.0,
-            Action::Loosen => a.settings.tol > set.tol && now == 0.0,
-            Action::Tighten => a.settings.tol < set.tol && now == 0.0,
+            Action::CycleMethod => a.settings.method() != set.method() && now == 0.0,
+            Action::Loosen => a.settings.scheme.knob() > set.scheme.knob() && now == 0.0,
+            Action::Tighten => a.settings.scheme.knob() < set.scheme.knob() && now == 0.0,
             Action::Xi0(d) => (a.initial.xi0 - (init.xi0 + d)).abs() < 1e-12 && now == 0.0,
             Action::Phi(d) => {
                 let w = turntable::engine::model::wrap_angle(init.phi + d);

@@ -107,8 +107,7 @@ fn phi_is_periodic_and_may_be_negative() {
 fn a_stop_inside_the_first_step() {
     for m in Method::ALL.into_iter().filter(|m| m.stick_events()) {
         let s = Settings {
-            method: m,
-            dt: 0.1,
+            scheme: m.with(if m.adaptive() { m.default_knob() } else { 0.1 }),
             ..Settings::default()
         };
         let (o, st) = finish(Initial::velocity(0.5, 1.0, 1e-6), s, 1.0);
@@ -305,7 +304,7 @@ fn underflowing_speeds_stop() {
     for method in [Method::Dp54, Method::Rk4, Method::Rk2] {
         for i in cases {
             let s = Settings {
-                method,
+                scheme: method.with(method.default_knob()),
                 ..Settings::default()
             };
             let mut run = Run::new(i, s).unwrap();

@@ -57,7 +57,16 @@ pub fn update(app: &mut App, action: Action) {
             }
         }
         Action::CycleMethod => {
-            app.settings.method = next_of(&Method::ALL, app.settings.method);
+            let (now, next) = (
+                app.settings.scheme,
+                next_of(&Method::ALL, app.settings.method()),
+            );
+            // A fixed step carries over between the fixed-step methods; else the default.
+            let knob = match now.fixed() {
+                Some((_, dt)) if !next.adaptive() => dt,
+                _ => next.default_knob(),
+            };
+            app.settings.scheme = next.with(knob);
             app.restart();
         }
         Action::Loosen | Action::Tighten => {
@@ -66,12 +75,13 @@ pub fn update(app: &mut App, action: Action) {
             } else {
                 1.0 / 10f64.sqrt()
             };
-            let s = &mut app.settings;
-            if s.method.adaptive() {
-                s.tol = round_sig(s.tol * k).clamp(TOL_RANGE.0, TOL_RANGE.1);
+            let s = &mut app.settings.scheme;
+            let range = if s.method().adaptive() {
+                TOL_RANGE
             } else {
-                s.dt = round_sig(s.dt * k).clamp(DT_RANGE.0, DT_RANGE.1);
-            }
+                DT_RANGE
+            };
+            *s = s.with_knob(round_sig(s.knob() * k).clamp(range.0, range.1));
             app.restart();
         }
         Action::Xi0(d) => {

@@ -119,7 +119,7 @@ pub(super) fn speed(
     let cs = cases(cfg.cases, cfg.seed);
     let rk2 = per_case
         .iter()
-        .find(|(s, _)| s.settings.method == Method::Rk2 && (s.knob() / 1e-3 - 1.0).abs() < 1e-9);
+        .find(|(s, _)| s.settings.method() == Method::Rk2 && (s.knob() / 1e-3 - 1.0).abs() < 1e-9);
     let mut rk2_err = f64::NAN;
     let mut matching = None;
     if let Some((_, rk2)) = rk2 {

@@ -75,11 +75,7 @@ impl Setting {
         Setting { settings }
     }
     pub fn knob(&self) -> f64 {
-        if self.settings.method.adaptive() {
-            self.settings.tol
-        } else {
-            self.settings.dt
-        }
+        self.settings.scheme.knob()
     }
 }
 

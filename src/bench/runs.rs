@@ -38,7 +38,7 @@ pub struct End {
 /// stop is declared at the first step with |u| ≤ dt at ξ ≤ 1 (one step's worth of friction).
 pub fn finish(initial: Initial, settings: Settings, tau_max: f64) -> Result<End, String> {
     let mut run = Run::new(initial, settings)?;
-    if settings.method.stick_events() {
+    if settings.method().stick_events() {
         let (outcome, s) = run.finish(tau_max).map_err(|e| e.to_string())?;
         return Ok(End {
             outcome,
@@ -57,7 +57,8 @@ pub fn finish(initial: Initial, settings: Settings, tau_max: f64) -> Result<End,
                 evals: run.cost.rhs_evals,
             });
         }
-        if s.u_lab().length() <= settings.dt && s.xi() <= 1.0 {
+        let dt = settings.scheme.knob();
+        if s.u_lab().length() <= dt && s.xi() <= 1.0 {
             return Ok(End {
                 outcome: Outcome::Stuck,
                 tau: s.tau,

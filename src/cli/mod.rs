@@ -222,11 +222,15 @@ pub type CmdResult = Result<(), Failure>;
 
 impl NumericsArgs {
     pub fn settings(&self) -> Result<Settings, Failure> {
-        let mut s = Settings {
-            method: self.method,
+        let knob = if self.method.adaptive() {
+            self.tol
+        } else {
+            self.dt
+        };
+        let s = Settings {
+            scheme: self.method.with(knob.unwrap_or(self.method.default_knob())),
             frame: self.frame,
             max_steps: self.max_steps,
-            ..Settings::default()
         };
         match (self.method.adaptive(), self.tol, self.dt) {
             (true, _, Some(_)) => {
@@ -242,12 +246,6 @@ impl NumericsArgs {
                 )));
             }
             _ => {}
-        }
-        if let Some(tol) = self.tol {
-            s.tol = tol;
-        }
-        if let Some(dt) = self.dt {
-            s.dt = dt;
         }
         s.validate().map_err(Failure::Usage)?;
         Ok(s)

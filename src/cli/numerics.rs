@@ -110,10 +110,10 @@ pub fn run(a: RunArgs) -> CmdResult {
             "rejected": c.rejected,
             "rhs_evals": c.rhs_evals,
             "frictionless": initial.frictionless,
-            "method": settings.method.name(),
+            "method": settings.method().name(),
             "frame": settings.frame.name(),
-            "tol": settings.method.adaptive().then_some(settings.tol),
-            "dt": (!settings.method.adaptive()).then_some(settings.dt),
+            "tol": settings.scheme.tol(),
+            "dt": settings.scheme.fixed().map(|(_, dt)| dt),
         });
         emit(None, &format!("{v}\n"))?;
     } else {
@@ -132,7 +132,7 @@ pub fn run(a: RunArgs) -> CmdResult {
                 c.steps,
                 c.rejected,
                 c.rhs_evals,
-                settings.method,
+                settings.method(),
                 settings.accuracy_label()
             )
         };
@@ -162,10 +162,10 @@ pub fn run(a: RunArgs) -> CmdResult {
 /// comes to rest, so it cannot.
 fn solver_settings(n: &super::NumericsArgs) -> Result<crate::engine::Settings, Failure> {
     let s = n.settings()?;
-    if !s.method.stick_events() {
+    if !s.method().stick_events() {
         return Err(Failure::Usage(format!(
             "{} has no stick event, so its runs never come to rest: the solvers need dp54, rk4 or rk2",
-            s.method
+            s.method()
         )));
     }
     Ok(s)

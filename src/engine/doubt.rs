@@ -54,8 +54,8 @@ pub fn doubt(run: &Run, tau_max: f64) -> Doubt {
             shadow: Some(own),
         };
     }
-    let tol = match run.settings.method {
-        Method::Dp54 => (run.settings.tol * 1e-3).max(TOL_RANGE.0),
+    let tol = match run.settings.method() {
+        Method::Dp54 => (run.settings.scheme.knob() * 1e-3).max(TOL_RANGE.0),
         _ => 1e-12,
     };
     let settings = Settings {

@@ -60,26 +60,138 @@ impl FromStr for Method {
 pub const DT_RANGE: (f64, f64) = (1e-7, 0.5);
 pub const TOL_RANGE: (f64, f64) = (1e-14, 1e-2);
 
+/// The integrator and the one knob that sets its accuracy: a fixed step dt for the
+/// Runge–Kutta schemes, a tolerance for dp54. No setting carries a value its method ignores.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Scheme {
+    Rk2Raw { dt: f64 },
+    Rk2 { dt: f64 },
+    Rk4 { dt: f64 },
+    Dp54 { tol: f64 },
+}
+
+/// The fixed-step Runge–Kutta rules.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FixedRk {
+    /// The midpoint rule (the paper's second order).
+    Midpoint,
+    /// Classical fourth order.
+    Classic,
+}
+
+impl Method {
+    /// The default knob: tol 1e-10 for dp54, dt 1e-3 (the paper's) for the others.
+    pub fn default_knob(self) -> f64 {
+        if self == Method::Dp54 { 1e-10 } else { 1e-3 }
+    }
+    /// This method with `knob` as its dt or tol.
+    pub fn with(self, knob: f64) -> Scheme {
+        match self {
+            Method::Rk2Raw => Scheme::Rk2Raw { dt: knob },
+            Method::Rk2 => Scheme::Rk2 { dt: knob },
+            Method::Rk4 => Scheme::Rk4 { dt: knob },
+            Method::Dp54 => Scheme::Dp54 { tol: knob },
+        }
+    }
+}
+
+impl Scheme {
+    pub fn method(self) -> Method {
+        match self {
+            Scheme::Rk2Raw { .. } => Method::Rk2Raw,
+            Scheme::Rk2 { .. } => Method::Rk2,
+            Scheme::Rk4 { .. } => Method::Rk4,
+            Scheme::Dp54 { .. } => Method::Dp54,
+        }
+    }
+    /// The dt or the tol.
+    pub fn knob(self) -> f64 {
+        match self {
+            Scheme::Rk2Raw { dt } | Scheme::Rk2 { dt } | Scheme::Rk4 { dt } => dt,
+            Scheme::Dp54 { tol } => tol,
+        }
+    }
+    pub fn with_knob(self, knob: f64) -> Scheme {
+        self.method().with(knob)
+    }
+    /// dp54's tolerance (None for the fixed-step schemes).
+    pub fn tol(self) -> Option<f64> {
+        match self {
+            Scheme::Dp54 { tol } => Some(tol),
+            _ => None,
+        }
+    }
+    /// The fixed-step rule and its dt (None for dp54).
+    pub fn fixed(self) -> Option<(FixedRk, f64)> {
+        match self {
+            Scheme::Rk2Raw { dt } | Scheme::Rk2 { dt } => Some((FixedRk::Midpoint, dt)),
+            Scheme::Rk4 { dt } => Some((FixedRk::Classic, dt)),
+            Scheme::Dp54 { .. } => None,
+        }
+    }
+}
+
 /// How a run is integrated: the user's speed/accuracy choice.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[serde(try_from = "SettingsFile", into = "SettingsFile")]
 pub struct Settings {
-    pub method: Method,
-    /// Step of the fixed-step methods.
-    pub dt: f64,
-    /// Relative and absolute tolerance of dp54.
-    pub tol: f64,
+    pub scheme: Scheme,
     pub frame: Frame,
     /// Accepted plus rejected steps a run may take before it gives up.
     pub max_steps: u64,
 }
 
+/// Settings as a scene file spells them: the method and its knob (`dt` or `tol`). Files
+/// written before the knob belonged to the method carry both; the method's own is read.
+#[derive(Clone, Copy, Debug, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct SettingsFile {
+    method: Method,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    dt: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    tol: Option<f64>,
+    #[serde(default)]
+    frame: Frame,
+    #[serde(default = "default_max_steps")]
+    max_steps: u64,
+}
+
+fn default_max_steps() -> u64 {
+    Settings::default().max_steps
+}
+
+impl TryFrom<SettingsFile> for Settings {
+    type Error = String;
+    fn try_from(f: SettingsFile) -> Result<Self, String> {
+        let knob = match f.method {
+            Method::Dp54 => f.tol,
+            _ => f.dt,
+        };
+        Ok(Settings {
+            scheme: f.method.with(knob.unwrap_or(f.method.default_knob())),
+            frame: f.frame,
+            max_steps: f.max_steps,
+        })
+    }
+}
+
+impl From<Settings> for SettingsFile {
+    fn from(s: Settings) -> Self {
+        SettingsFile {
+            method: s.method(),
+            dt: s.scheme.fixed().map(|(_, dt)| dt),
+            tol: s.scheme.tol(),
+            frame: s.frame,
+            max_steps: s.max_steps,
+        }
+    }
+}
+
 impl Default for Settings {
     fn default() -> Self {
         Settings {
-            method: Method::Dp54,
-            dt: 1e-3,
-            tol: 1e-10,
+            scheme: Scheme::Dp54 { tol: 1e-10 },
             frame: Frame::Lab,
             max_steps: 20_000_000,
         }
@@ -89,38 +201,32 @@ impl Default for Settings {
 impl Settings {
     /// The paper's own integration: raw RK2 at δt = 1e-3 (Sec. IV).
     pub fn paper() -> Self {
-        Settings {
-            method: Method::Rk2Raw,
-            dt: 1e-3,
-            ..Settings::default()
-        }
+        Settings::fixed(Method::Rk2Raw, 1e-3)
     }
     pub fn dp54(tol: f64) -> Self {
         Settings {
-            tol,
+            scheme: Scheme::Dp54 { tol },
             ..Settings::default()
         }
     }
     pub fn fixed(method: Method, dt: f64) -> Self {
         Settings {
-            method,
-            dt,
+            scheme: method.with(dt),
             ..Settings::default()
         }
     }
+    pub fn method(&self) -> Method {
+        self.scheme.method()
+    }
     pub fn validate(&self) -> Result<(), String> {
-        let (lo, hi) = DT_RANGE;
-        if !(self.dt.is_finite() && (lo..=hi).contains(&self.dt)) {
+        let (name, (lo, hi), k) = match self.scheme {
+            Scheme::Dp54 { tol } => ("tol", TOL_RANGE, tol),
+            s => ("dt", DT_RANGE, s.knob()),
+        };
+        if !(k.is_finite() && (lo..=hi).contains(&k)) {
             return Err(format!(
-                "dt must lie in [{lo:e}, {hi}], got {}",
-                Initial::show(self.dt)
-            ));
-        }
-        let (lo, hi) = TOL_RANGE;
-        if !(self.tol.is_finite() && (lo..=hi).contains(&self.tol)) {
-            return Err(format!(
-                "tol must lie in [{lo:e}, {hi:e}], got {}",
-                Initial::show(self.tol)
+                "{name} must lie in [{lo:e}, {hi:e}], got {}",
+                Initial::show(k)
             ));
         }
         if self.max_steps == 0 {
@@ -130,10 +236,9 @@ impl Settings {
     }
     /// "dt=1e-3" or "tol=1e-10": the knob that sets this method's accuracy.
     pub fn accuracy_label(&self) -> String {
-        if self.method.adaptive() {
-            format!("tol={:.0e}", self.tol)
-        } else {
-            format!("dt={:.0e}", self.dt)
+        match self.scheme {
+            Scheme::Dp54 { tol } => format!("tol={tol:.0e}"),
+            s => format!("dt={:.0e}", s.knob()),
         }
     }
 }
@@ -187,22 +292,21 @@ impl Segment {
     }
 }
 
-/// A fixed step of `method` from `y` with slope `f0 = f(y)`; returns the new point.
+/// A fixed step of `rk` from `y` with slope `f0 = f(y)`; returns the new point.
 /// `evals` counts right-hand-side evaluations beyond `f0`.
-pub fn fixed_step(method: Method, rhs: impl Fn(Y) -> Y, y: Y, f0: Y, h: f64, evals: &mut u64) -> Y {
-    match method {
-        Method::Rk2Raw | Method::Rk2 => {
+pub fn fixed_step(rk: FixedRk, rhs: impl Fn(Y) -> Y, y: Y, f0: Y, h: f64, evals: &mut u64) -> Y {
+    match rk {
+        FixedRk::Midpoint => {
             *evals += 1;
             y + rhs(y + f0 * (0.5 * h)) * h
         }
-        Method::Rk4 => {
+        FixedRk::Classic => {
             *evals += 3;
             let k2 = rhs(y + f0 * (0.5 * h));
             let k3 = rhs(y + k2 * (0.5 * h));
             let k4 = rhs(y + k3 * h);
             y + (f0 + (k2 + k3) * 2.0 + k4) * (h / 6.0)
         }
-        Method::Dp54 => unreachable!("dp54 is adaptive"),
     }
 }
 

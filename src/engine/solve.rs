@@ -1,7 +1,7 @@
 //! Solvers over many runs (Sec. IV): the escape speed v_e(ξ0, φ) of Fig. 5, the critical
 //! radius ξ0c of Fig. 6, and sweeps of both.
 
-use super::method::Settings;
+use super::method::{Scheme, Settings};
 use super::model::{Initial, Release};
 use super::run::{Outcome, Run};
 use serde::Serialize;
@@ -178,21 +178,22 @@ pub fn escape_speed(xi0: f64, phi: f64, settings: Settings, tol: f64) -> Result<
         return Err(format!("tol must be > 0, got {tol}"));
     }
     Initial::velocity(xi0, phi, 0.0).validate()?;
-    if !settings.method.stick_events() {
+    if !settings.method().stick_events() {
         return Err(format!(
             "the escape speed needs stick events: {} never comes to rest",
-            settings.method
+            settings.method()
         ));
     }
     let mut evals = 0;
     let at = |v0: f64| Initial::velocity(xi0, phi, v0);
-    let scan_settings = if settings.method.adaptive() {
-        Settings {
-            tol: settings.tol.max(SCAN_TOL),
+    let scan_settings = match settings.scheme {
+        Scheme::Dp54 { tol } => Settings {
+            scheme: Scheme::Dp54 {
+                tol: tol.max(SCAN_TOL),
+            },
             ..settings
-        }
-    } else {
-        settings
+        },
+        _ => settings,
     };
     check_escape_xi0(xi0)?;
     let top = escape_scan_top(xi0);

@@ -104,7 +104,7 @@ pub fn lesson_line(app: &App) -> String {
     if a == b {
         format!(
             " paper's RK2 (○) and {} (●) agree so far: {}",
-            app.settings.method,
+            app.settings.method(),
             both(a)
         )
     } else if a == Outcome::Stuck && b == Outcome::Escaped {
@@ -114,7 +114,7 @@ pub fn lesson_line(app: &App) -> String {
     } else {
         format!(
             " disagree: {} (●) {}, paper's RK2 (○) {}",
-            app.settings.method,
+            app.settings.method(),
             name(a),
             name(b)
         )

@@ -66,8 +66,9 @@ pub fn status_text(sim: &Sim, th: &Theme) -> (String, ratatui::style::Color) {
         Outcome::Running => {
             let s = sim.now();
             // The bench's rule for the raw scheme's "stop": |u| within one step's friction.
-            let dt = sim.run.settings.dt;
-            if sim.run.settings.method == Method::Rk2Raw && s.u().length() <= dt && s.xi() <= 1.0 {
+            let dt = sim.run.settings.scheme.knob();
+            if sim.run.settings.method() == Method::Rk2Raw && s.u().length() <= dt && s.xi() <= 1.0
+            {
                 ("≈ at rest (raw RK2 chatters)".into(), th.slipping)
             } else {
                 ("slipping".into(), th.slipping)
@@ -191,7 +192,7 @@ fn readouts(app: &App) -> (Vec<Line<'static>>, std::ops::Range<usize>) {
         out.push(kv("μ = 0", "closed form".into(), th));
     } else {
         out.push(kv(
-            app.settings.method.name(),
+            app.settings.method().name(),
             app.settings.accuracy_label(),
             th,
         ));

@@ -88,20 +88,15 @@ impl Run {
 
     /// The step the integrator would take with no stop ahead.
     pub(super) fn natural_step(&self) -> f64 {
-        if self.settings.method.adaptive() {
-            self.h
-        } else {
-            self.settings.dt
+        match self.settings.scheme.fixed() {
+            Some((_, dt)) => dt,
+            None => self.h,
         }
     }
 
     /// Distance a particle may still travel when its stop is taken in closed form.
     pub(super) fn travel_tol(&self) -> f64 {
-        if self.settings.method.adaptive() {
-            1e-3 * self.settings.tol
-        } else {
-            1e-13
-        }
+        self.settings.scheme.tol().map_or(1e-13, |tol| 1e-3 * tol)
     }
 
     /// Takes the closed-form stretch to `t` ahead, arriving at table-frame `q` with `u`. A

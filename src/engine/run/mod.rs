@@ -4,7 +4,7 @@
 //! two, or the energy bound) first holds. How a run ends is in `outcome`.
 
 use super::method::{
-    Controller, Cost, Dense, Segment, Settings, dp5_step, fixed_step, initial_step,
+    Controller, Cost, Dense, FixedRk, Segment, Settings, dp5_step, fixed_step, initial_step,
 };
 use super::model::{Initial, State, Y};
 use super::stop::{frozen_stop, frozen_stop_error};
@@ -160,7 +160,7 @@ impl Run {
             return Ok(run);
         }
         // Filippov at u = 0: at rest on the table inside ξ ≤ 1 it stays (property 1).
-        if settings.method.stick_events() && s0.u_lab() == DVec2::ZERO && s0.xi() <= 1.0 {
+        if settings.method().stick_events() && s0.u_lab() == DVec2::ZERO && s0.xi() <= 1.0 {
             run.status = Status::Stuck {
                 tau: 0.0,
                 q: s0.q(),
@@ -169,8 +169,8 @@ impl Run {
         if let Some(by) = certificate(&s0) {
             run.escape = Some(Escape { tau: 0.0, by });
         }
-        if settings.method.adaptive() {
-            run.h = initial_step(|y| frame.rhs(y), y, run.f, settings.tol);
+        if settings.method().adaptive() {
+            run.h = initial_step(|y| frame.rhs(y), y, run.f, settings.scheme.knob());
             run.cost.rhs_evals += 1;
         }
         Ok(run)
@@ -262,7 +262,7 @@ impl Run {
         }
         let (q, u) = (s.q(), s.u());
         let speed = u.x.hypot(u.y);
-        if self.settings.method.stick_events() && u != DVec2::ZERO && speed < UNDERFLOW_SPEED {
+        if self.settings.method().stick_events() && u != DVec2::ZERO && speed < UNDERFLOW_SPEED {
             let decel = 1.0 - q.dot(u / speed);
             self.jump(
                 if decel > 0.0 { speed / decel } else { 0.0 },
@@ -271,10 +271,10 @@ impl Run {
             );
             return Ok(());
         }
-        if self.settings.method.adaptive()
+        if self.settings.method().adaptive()
             && u != DVec2::ZERO
             && q.length() < 1.0
-            && frozen_stop_error(q, u) <= FROZEN_SHARE * self.settings.tol
+            && frozen_stop_error(q, u) <= FROZEN_SHARE * self.settings.scheme.knob()
         {
             let (t, dq) = frozen_stop(q, u);
             if t <= cap {
@@ -282,7 +282,7 @@ impl Run {
                 return Ok(());
             }
         }
-        if self.settings.method.stick_events() {
+        if self.settings.method().stick_events() {
             match self.stop_ahead(&s) {
                 Ahead::Jump { t, q, u } if t <= cap => {
                     self.jump(t, q, u);
@@ -297,11 +297,12 @@ impl Run {
             }
         }
         let rejected_before = self.cost.rejected;
-        let (seg, err_ratio) = if self.settings.method.adaptive() {
-            let (seg, err) = self.dp54_step(cap)?;
-            (seg, Some(err))
-        } else {
-            (self.fixed_step(cap), None)
+        let (seg, err_ratio) = match self.settings.scheme.fixed() {
+            Some((rk, dt)) => (self.fixed_step(rk, dt, cap), None),
+            None => {
+                let (seg, err) = self.dp54_step(self.settings.scheme.knob(), cap)?;
+                (seg, Some(err))
+            }
         };
         self.last = Some(seg);
         self.last_step = Some(StepInfo {
@@ -362,11 +363,11 @@ impl Run {
         self.last = None;
     }
 
-    fn fixed_step(&mut self, cap: f64) -> Segment {
+    fn fixed_step(&mut self, rk: FixedRk, dt: f64, cap: f64) -> Segment {
         let frame = self.settings.frame;
-        let h = self.settings.dt.min(cap);
+        let h = dt.min(cap);
         let y1 = fixed_step(
-            self.settings.method,
+            rk,
             |y| frame.rhs(y),
             self.y,
             self.f,
@@ -388,14 +389,14 @@ impl Run {
     }
 
     /// One accepted dp54 step of at most `cap`, and its error against the tolerance.
-    fn dp54_step(&mut self, cap: f64) -> Result<(Segment, f64), RunError> {
+    fn dp54_step(&mut self, tol: f64, cap: f64) -> Result<(Segment, f64), RunError> {
         let frame = self.settings.frame;
         loop {
             let h = self.h.min(cap);
             if h < 1e-14 * self.tau.abs().max(1.0) {
                 return Err(RunError::StepUnderflow { tau: self.tau });
             }
-            let trial = dp5_step(|y| frame.rhs(y), self.y, self.f, h, self.settings.tol);
+            let trial = dp5_step(|y| frame.rhs(y), self.y, self.f, h, tol);
             self.cost.rhs_evals += 6;
             let (hnew, accepted) = self.ctrl.next(h, trial.err);
             // A capped step says nothing about how large the next free step may be.
