@@ -3,9 +3,9 @@
 //! in a headless replay (`TestBackend`) alike, so what `--record` writes is exactly what a
 //! replay applies.
 
-use crate::app::App;
+use crate::app::{App, Chord};
 use crate::script::{Recorder, Step};
-use crossterm::event::{KeyEvent, KeyEventKind, MouseEvent};
+use crossterm::event::{KeyEvent, MouseEvent};
 use ratatui::Terminal;
 use ratatui::backend::{Backend, TestBackend};
 use ratatui::buffer::Buffer;
@@ -48,19 +48,20 @@ impl<B: Backend> Session<B> {
         })
     }
 
-    /// A key press (releases are ignored, repeats count as presses).
+    /// A terminal's key event (releases and keys a script cannot name are ignored; repeats
+    /// count as presses).
     pub fn key(&mut self, key: KeyEvent) {
-        if key.kind == KeyEventKind::Release {
-            return;
+        if let Some(chord) = Chord::from_event(&key) {
+            self.press(chord);
         }
-        let key = KeyEvent {
-            kind: KeyEventKind::Press,
-            ..key
-        };
+    }
+
+    /// A key chord, recorded and pressed.
+    pub fn press(&mut self, chord: Chord) {
         if let Some(r) = &self.recorder {
-            lock(r).key(&key);
+            lock(r).key(chord);
         }
-        self.app.handle_key(key);
+        self.app.press(chord);
     }
 
     /// A mouse event. The app maps cells through the canvas as last drawn, so anything
@@ -145,7 +146,7 @@ impl Session<TestBackend> {
     /// Applies one script step (a snapshot step only draws; see [`replay`] for the output).
     pub fn apply(&mut self, step: &Step) {
         match step {
-            Step::Key(k) => self.key(*k),
+            Step::Key(k) => self.press(*k),
             Step::Tick(n) => {
                 for _ in 0..*n {
                     // Paused, a tick changes nothing (and a tick cannot unpause).

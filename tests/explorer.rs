@@ -3,7 +3,7 @@
 use crossterm::event::{KeyCode, KeyEvent, KeyModifiers, MouseButton, MouseEvent, MouseEventKind};
 use ratatui::Terminal;
 use ratatui::backend::TestBackend;
-use turntable::app::keymap::{KEYMAP, event_for, key_label};
+use turntable::app::keymap::KEYMAP;
 use turntable::app::{Action, App};
 use turntable::engine::{Frame, Outcome, Run, Settings, Status};
 use turntable::scene::{PRESETS, Scene};
@@ -164,9 +164,9 @@ fn every_key_in_the_keymap_does_what_its_help_says() {
         let before = render(&mut a, 80, 24);
         let (tau, init, set) = (a.sim.now().tau, a.initial, a.settings);
         let (speed, zoom, pan) = (a.speed, a.zoom, a.pan);
-        a.handle_key(event_for(b));
+        a.handle_key(b.chord.event());
         let after = render(&mut a, 80, 24);
-        let what = format!("{} ({})", key_label(b), b.help);
+        let what = format!("{} ({})", b.chord.label(), b.help);
         match b.action {
             Action::Quit => assert!(a.should_quit(), "{what}"),
             _ => assert_ne!(before, after, "{what}: screen unchanged"),
@@ -289,12 +289,10 @@ fn help_overlay_lists_every_binding() {
     for b in KEYMAP {
         assert!(
             rows.iter().any(|(g, rs)| *g == b.group
-                && rs
-                    .iter()
-                    .any(|(l, h)| *h == b.help
-                        && l.contains(key_label(b).rsplit('-').next().unwrap()))),
+                && rs.iter().any(|(l, h)| *h == b.help
+                    && l.contains(b.chord.label().rsplit('-').next().unwrap()))),
             "{} not in help",
-            key_label(b)
+            b.chord.label()
         );
     }
     // 80×24 fits it too.
@@ -420,10 +418,10 @@ fn random_keys_keep_the_invariants() {
             a.tick();
             continue;
         }
-        a.handle_key(event_for(b));
+        a.handle_key(b.chord.event());
         a.tick();
         a.check_invariants()
-            .unwrap_or_else(|e| panic!("after {i} keys ({}): {e}", key_label(b)));
+            .unwrap_or_else(|e| panic!("after {i} keys ({}): {e}", b.chord.label()));
         if i % 50 == 0 {
             let s = render(&mut a, 80, 24);
             assert!(!s.contains("NaN") && !s.contains("inf"), "{s}");
@@ -448,17 +446,15 @@ fn bad_scene_or_theme_exits_2_before_touching_the_terminal() {
 fn no_key_is_bound_twice() {
     for (i, a) in KEYMAP.iter().enumerate() {
         for b in &KEYMAP[i + 1..] {
-            assert!(
-                !(a.code == b.code && a.mods == b.mods),
-                "{} bound twice",
-                key_label(a)
-            );
+            assert!(a.chord != b.chord, "{} bound twice", a.chord.label());
         }
+        let sent = turntable::app::Chord::from_event(&a.chord.event());
+        assert_eq!(sent, Some(a.chord), "{} is not in normal form", a.chord);
         assert_eq!(
-            turntable::app::keymap::lookup(&event_for(a)),
+            turntable::app::keymap::lookup(a.chord),
             Some(a.action),
             "{} does not dispatch to its own action",
-            key_label(a)
+            a.chord.label()
         );
     }
 }

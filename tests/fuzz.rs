@@ -3,7 +3,7 @@
 //! no panic, `check_invariants()` after every step, and no NaN or infinity on any screen.
 
 use crossterm::event::{KeyCode, KeyEvent, KeyModifiers, MouseButton, MouseEvent, MouseEventKind};
-use turntable::app::{Action, App, KEYMAP, keymap::event_for};
+use turntable::app::{Action, App, KEYMAP};
 use turntable::scene::{PRESETS, Scene};
 use turntable::session::Session;
 use turntable::theme::{BUILTIN, Theme};
@@ -25,7 +25,9 @@ fn non_finite(screen: &str) -> Option<&str> {
 
 fn random_key(rng: &mut Rng) -> KeyEvent {
     match rng.below(10) {
-        0..=6 => event_for(&KEYMAP[rng.below(KEYMAP.len() as u64) as usize]),
+        0..=6 => KEYMAP[rng.below(KEYMAP.len() as u64) as usize]
+            .chord
+            .event(),
         7 => {
             let c = char::from_u32(rng.below(0x250) as u32).unwrap_or('?');
             let m = rng.pick(&[
@@ -172,7 +174,7 @@ fn edits_at_the_bounds_clamp() {
                 );
                 s.app.save_path = std::env::temp_dir().join("turntable-never-written.toml");
                 for b in KEYMAP {
-                    let mut k = event_for(b);
+                    let mut k = b.chord.event();
                     if matches!(b.action, Action::Save | Action::Quit) {
                         continue;
                     }

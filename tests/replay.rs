@@ -9,7 +9,7 @@
 use crossterm::event::{KeyEvent, MouseButton, MouseEvent, MouseEventKind};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
-use turntable::app::{App, KEYMAP, keymap::event_for};
+use turntable::app::{App, KEYMAP};
 use turntable::cli::replay::{ReplayArgs, prepare};
 use turntable::replay::{Options, replay};
 use turntable::scene::Scene;
@@ -144,7 +144,7 @@ fn record_then_replay_gives_the_same_screen() {
             .iter()
             .filter(|b| !matches!(b.action, turntable::app::Action::Quit))
             .filter(|b| !matches!(b.action, turntable::app::Action::Save))
-            .map(event_for)
+            .map(|b| b.chord.event())
             .collect();
         for _ in 0..400 {
             match rng.below(20) {

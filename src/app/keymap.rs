@@ -2,14 +2,14 @@
 //! disagree.
 
 use super::action::Action;
-use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
+use super::chord::Chord;
+use crossterm::event::{KeyCode, KeyModifiers};
 use std::f64::consts::PI;
 
 /// A key, its action, the help text and the help group it is listed under.
 #[derive(Clone, Copy, Debug)]
 pub struct Binding {
-    pub code: KeyCode,
-    pub mods: KeyModifiers,
+    pub chord: Chord,
     pub action: Action,
     pub help: &'static str,
     pub group: &'static str,
@@ -28,8 +28,7 @@ const fn b(
     group: &'static str,
 ) -> Binding {
     Binding {
-        code,
-        mods,
+        chord: Chord::new(code, mods),
         action,
         help,
         group,
@@ -112,54 +111,7 @@ pub const KEYMAP: &[Binding] = &[
     b(ch('c'), C, Action::Quit, "quit", "app"),
 ];
 
-/// Whether `key` is this binding. Shift is ignored on characters (it is already in the
-/// character: `X`, `?`, `+`), so terminals that do or do not report it agree.
-pub fn matches(bnd: &Binding, key: &KeyEvent) -> bool {
-    match (bnd.code, key.code) {
-        (KeyCode::Char(a), KeyCode::Char(c)) => {
-            a == c && bnd.mods == (key.modifiers - KeyModifiers::SHIFT)
-        }
-        (a, c) => a == c && bnd.mods == key.modifiers,
-    }
-}
-
-/// The action bound to `key`, if any.
-pub fn lookup(key: &KeyEvent) -> Option<Action> {
-    KEYMAP.iter().find(|b| matches(b, key)).map(|b| b.action)
-}
-
-/// The key as the help shows it: `x`, `Alt-X`, `Shift-←`, `Space`, `Esc`.
-pub fn key_label(bnd: &Binding) -> String {
-    let base = match bnd.code {
-        KeyCode::Char(' ') => "Space".to_string(),
-        KeyCode::Char(c) => c.to_string(),
-        KeyCode::Left => "←".into(),
-        KeyCode::Right => "→".into(),
-        KeyCode::Up => "↑".into(),
-        KeyCode::Down => "↓".into(),
-        KeyCode::Esc => "Esc".into(),
-        other => format!("{other:?}"),
-    };
-    let mut s = String::new();
-    if bnd.mods.contains(KeyModifiers::CONTROL) {
-        s.push_str("Ctrl-");
-    }
-    if bnd.mods.contains(KeyModifiers::ALT) {
-        s.push_str("Alt-");
-    }
-    if bnd.mods.contains(KeyModifiers::SHIFT) {
-        s.push_str("Shift-");
-    }
-    s + &base
-}
-
-/// A key event that triggers `bnd`, as a terminal would send it.
-pub fn event_for(bnd: &Binding) -> KeyEvent {
-    let mut mods = bnd.mods;
-    if let KeyCode::Char(c) = bnd.code
-        && c.is_ascii_uppercase()
-    {
-        mods |= KeyModifiers::SHIFT;
-    }
-    KeyEvent::new(bnd.code, mods)
+/// The action bound to `chord`, if any.
+pub fn lookup(chord: Chord) -> Option<Action> {
+    KEYMAP.iter().find(|b| b.chord == chord).map(|b| b.action)
 }

@@ -2,11 +2,13 @@
 //! the terminal loop in `crate::terminal`.
 
 pub mod action;
+pub mod chord;
 pub mod keymap;
 pub mod state;
 pub mod update;
 
 pub use action::Action;
+pub use chord::Chord;
 pub use keymap::{Binding, KEYMAP};
 pub use state::{App, CanvasGeom, TICK_DT};
 pub use update::update;
@@ -14,19 +16,23 @@ pub use update::update;
 use crate::engine::Settings;
 use crate::scene::Scene;
 use crate::theme::Theme;
-use crossterm::event::{KeyEvent, KeyEventKind, MouseButton, MouseEvent, MouseEventKind};
+use crossterm::event::{KeyEvent, MouseButton, MouseEvent, MouseEventKind};
 
 impl App {
     pub fn new(scene: Scene, theme: Theme) -> App {
         App::build(scene, theme)
     }
 
-    /// Keymap → action → update. Key releases are ignored.
+    /// A terminal's key event: its chord, if it has one (releases have none).
     pub fn handle_key(&mut self, key: KeyEvent) {
-        if key.kind == KeyEventKind::Release {
-            return;
+        if let Some(chord) = Chord::from_event(&key) {
+            self.press(chord);
         }
-        if let Some(a) = keymap::lookup(&key) {
+    }
+
+    /// Keymap → action → update.
+    pub fn press(&mut self, chord: Chord) {
+        if let Some(a) = keymap::lookup(chord) {
             update(self, a);
         }
     }

@@ -16,18 +16,17 @@
 //! `hash`.
 
 mod header;
-mod keys;
 mod record;
 
 pub use header::{ScriptOptions, parse_size, quote_word, scene_line, script_options};
-pub use keys::key_name;
-use keys::parse_key;
 pub use record::Recorder;
+
+use crate::app::Chord;
 
 use std::fmt;
 use std::ops::RangeInclusive;
 
-use crossterm::event::{KeyEvent, KeyModifiers, MouseButton, MouseEvent, MouseEventKind};
+use crossterm::event::{KeyModifiers, MouseButton, MouseEvent, MouseEventKind};
 
 /// Largest `*N` repeat on one key token.
 pub const MAX_REPEAT: u32 = 100_000;
@@ -41,10 +40,19 @@ pub const MAX_SIZE: u16 = 1000;
 
 const HEADER: &str = "# turntable key script";
 
+/// Mouse actions by their script word: the parser reads and the recorder writes this table.
+const MOUSE: [(&str, MouseEventKind); 5] = [
+    ("click", MouseEventKind::Down(MouseButton::Left)),
+    ("drag", MouseEventKind::Drag(MouseButton::Left)),
+    ("up", MouseEventKind::Up(MouseButton::Left)),
+    ("scrollup", MouseEventKind::ScrollUp),
+    ("scrolldown", MouseEventKind::ScrollDown),
+];
+
 /// One thing a script asks the app to do.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub enum Step {
-    Key(KeyEvent),
+    Key(Chord),
     /// Let this many ticks of simulated time pass.
     Tick(u64),
     /// Resize the off-screen terminal to width × height cells.
@@ -176,21 +184,19 @@ fn parse_line(line: &str, steps: &mut Vec<Step>, keys: &mut usize) -> Result<(),
             let [_, action, x, y, ..] = toks.as_slice() else {
                 return Err(need("an action and X Y, e.g. `mouse click 10 5`"));
             };
-            let kind = match action.text.to_ascii_lowercase().as_str() {
-                "click" => MouseEventKind::Down(MouseButton::Left),
-                "drag" => MouseEventKind::Drag(MouseButton::Left),
-                "up" => MouseEventKind::Up(MouseButton::Left),
-                "scrollup" => MouseEventKind::ScrollUp,
-                "scrolldown" => MouseEventKind::ScrollDown,
-                _ => {
-                    return Err((
-                        action.column,
-                        format!(
-                            "unknown mouse action '{}' (click, drag, up, scrollup, scrolldown)",
-                            action.text
-                        ),
-                    ));
-                }
+            let Some(&(_, kind)) = MOUSE
+                .iter()
+                .find(|(word, _)| word.eq_ignore_ascii_case(action.text))
+            else {
+                let words: Vec<&str> = MOUSE.iter().map(|m| m.0).collect();
+                return Err((
+                    action.column,
+                    format!(
+                        "unknown mouse action '{}' ({})",
+                        action.text,
+                        words.join(", ")
+                    ),
+                ));
             };
             let cell = 0..=u64::from(u16::MAX);
             steps.push(Step::Mouse(MouseEvent {
@@ -227,7 +233,7 @@ fn parse_line(line: &str, steps: &mut Vec<Step>, keys: &mut usize) -> Result<(),
 
 /// Parses a key token with its optional `*N` repeat; `*` alone (or last)
 /// is the star key itself.
-fn key_token(tok: &Token, first: bool) -> Result<(KeyEvent, usize), Fail> {
+fn key_token(tok: &Token, first: bool) -> Result<(Chord, usize), Fail> {
     let (name, count) = match tok.text.rfind('*') {
         Some(i) if i > 0 && i + 1 < tok.text.len() => {
             let max = u64::from(MAX_REPEAT);
@@ -236,7 +242,7 @@ fn key_token(tok: &Token, first: bool) -> Result<(KeyEvent, usize), Fail> {
         }
         _ => (tok.text, 1),
     };
-    let key = parse_key(name).ok_or_else(|| {
+    let key = name.parse().map_err(|_| {
         // A lone unknown word at the start of a line is most likely a
         // misspelt command.
         let what = if first && name.chars().count() > 1 && name.chars().all(char::is_alphabetic) {
@@ -271,10 +277,14 @@ fn number(text: &str, column: usize, range: RangeInclusive<u64>, what: &str) -> 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crossterm::event::{KeyCode, KeyEventKind};
+    use crossterm::event::{KeyCode, KeyEvent, KeyEventKind};
 
     fn key(code: KeyCode, modifiers: KeyModifiers) -> Step {
-        Step::Key(KeyEvent::new(code, modifiers))
+        Step::Key(Chord::new(code, modifiers))
+    }
+
+    fn key_name(event: &KeyEvent) -> Option<String> {
+        Chord::from_event(event).map(|c| c.to_string())
     }
 
     fn plain(code: KeyCode) -> Step {
@@ -335,7 +345,7 @@ mod tests {
         ];
         for (name, code, modifiers) in cases {
             let event = KeyEvent::new(code, modifiers);
-            assert_eq!(parse(name), Ok(vec![Step::Key(event)]), "{name}");
+            assert_eq!(parse(name), Ok(vec![key(code, modifiers)]), "{name}");
             assert_eq!(key_name(&event).as_deref(), Some(name), "{name}");
         }
         for n in 1..=12 {
@@ -489,7 +499,6 @@ mod tests {
             KeyEvent::new(KeyCode::Char('a'), KeyModifiers::SUPER),
         ] {
             assert_eq!(key_name(&k), None, "{k:?}");
-            assert!(!Recorder::new().key(&k));
         }
     }
 
@@ -513,10 +522,10 @@ mod tests {
             r.tick();
         }
         for code in [KeyCode::Right, KeyCode::Right, KeyCode::Char('?')] {
-            r.key(&KeyEvent::from(code));
+            r.key(Chord::new(code, KeyModifiers::NONE));
         }
         r.tick();
-        r.key(&KeyEvent::new(KeyCode::Char('c'), KeyModifiers::CONTROL));
+        r.key(Chord::new(KeyCode::Char('c'), KeyModifiers::CONTROL));
         r.resize(2000, 5);
         assert_eq!(
             r.finish(),
@@ -546,7 +555,7 @@ mod tests {
         let mut r = Recorder::new();
         for step in &events {
             match step {
-                Step::Key(k) => assert!(r.key(k)),
+                Step::Key(k) => r.key(*k),
                 Step::Tick(_) => r.tick(),
                 Step::Resize(w, h) => r.resize(*w, *h),
                 _ => unreachable!(),
@@ -561,7 +570,7 @@ mod tests {
     fn recorder_splits_runs_at_the_limits() {
         let mut r = Recorder::new();
         for _ in 0..=MAX_REPEAT {
-            r.key(&KeyEvent::from(KeyCode::Up));
+            r.key(Chord::new(KeyCode::Up, KeyModifiers::NONE));
         }
         for _ in 0..=MAX_TICKS {
             r.tick();
@@ -590,13 +599,13 @@ mod tests {
             ev(MouseEventKind::ScrollDown, 0, 0),
         ];
         let mut r = Recorder::new();
-        r.key(&KeyEvent::from(KeyCode::Up));
+        r.key(Chord::new(KeyCode::Up, KeyModifiers::NONE));
         for e in &events {
             assert!(r.mouse(e));
         }
         assert!(!r.mouse(&ev(MouseEventKind::Moved, 1, 1)));
         assert!(!r.mouse(&ev(MouseEventKind::Down(MouseButton::Right), 1, 1)));
-        let mut expected = vec![Step::Key(KeyEvent::from(KeyCode::Up))];
+        let mut expected = vec![plain(KeyCode::Up)];
         expected.extend(events.iter().map(|e| Step::Mouse(*e)));
         assert_eq!(parse(&r.finish()), Ok(expected));
     }

@@ -1,8 +1,8 @@
 //! Writes a key script from a live session.
 
-use super::keys::key_name;
-use super::{HEADER, MAX_REPEAT, MAX_SIZE, MAX_TICKS};
-use crossterm::event::{KeyEvent, MouseButton, MouseEvent, MouseEventKind};
+use super::{HEADER, MAX_REPEAT, MAX_SIZE, MAX_TICKS, MOUSE};
+use crate::app::Chord;
+use crossterm::event::{MouseButton, MouseEvent, MouseEventKind};
 
 /// Writes a key script from live events, folding runs of ticks and of
 /// identical keys so that a recorded session stays short and readable.
@@ -21,12 +21,9 @@ impl Recorder {
         Self::default()
     }
 
-    /// Records a key press; returns false (and records nothing) when the
-    /// format cannot express it, see [`key_name`].
-    pub fn key(&mut self, key: &KeyEvent) -> bool {
-        let Some(name) = key_name(key) else {
-            return false;
-        };
+    /// Records a key press.
+    pub fn key(&mut self, chord: Chord) {
+        let name = chord.to_string();
         self.flush_ticks();
         match &mut self.run {
             Some((last, n)) if *last == name && *n < MAX_REPEAT => *n += 1,
@@ -35,7 +32,6 @@ impl Recorder {
                 self.run = Some((name, 1));
             }
         }
-        true
     }
 
     pub fn tick(&mut self) {
@@ -52,13 +48,12 @@ impl Recorder {
     /// dropped and any button's release is written `up`: the app looks at
     /// neither.
     pub fn mouse(&mut self, event: &MouseEvent) -> bool {
-        let action = match event.kind {
-            MouseEventKind::Down(MouseButton::Left) => "click",
-            MouseEventKind::Drag(MouseButton::Left) => "drag",
-            MouseEventKind::Up(_) => "up",
-            MouseEventKind::ScrollUp => "scrollup",
-            MouseEventKind::ScrollDown => "scrolldown",
-            _ => return false,
+        let kind = match event.kind {
+            MouseEventKind::Up(_) => MouseEventKind::Up(MouseButton::Left),
+            kind => kind,
+        };
+        let Some((action, _)) = MOUSE.iter().find(|m| m.1 == kind) else {
+            return false;
         };
         self.flush_keys();
         self.flush_ticks();

@@ -1,7 +1,7 @@
 //! The help overlay, generated from `KEYMAP` (the table the keys dispatch on).
 
 use crate::app::App;
-use crate::app::keymap::{GROUPS, KEYMAP, key_label};
+use crate::app::keymap::{GROUPS, KEYMAP};
 use ratatui::Frame as TuiFrame;
 use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::style::{Modifier, Style};
@@ -25,16 +25,12 @@ pub fn rows() -> Vec<(&'static str, Vec<(String, &'static str)>)> {
             let rows = rows
                 .into_iter()
                 .map(|(keys, help)| {
-                    let labels: Vec<String> = keys.iter().map(|b| key_label(b)).collect();
-                    let same = keys.iter().all(|b| b.mods == keys[0].mods);
-                    let prefix = labels[0]
-                        .rfind('-')
-                        .filter(|_| same && labels[0].len() > 1)
-                        .map_or("", |i| &labels[0][..=i]);
-                    let label = if !prefix.is_empty() {
-                        let tails: Vec<&str> = labels.iter().map(|l| &l[prefix.len()..]).collect();
-                        format!("{prefix}{}", tails.join("/"))
+                    let mods = keys[0].chord.mods;
+                    let label = if keys.iter().all(|b| b.chord.mods == mods) {
+                        let tails: Vec<String> = keys.iter().map(|b| b.chord.key_label()).collect();
+                        keys[0].chord.mods_label() + &tails.join("/")
                     } else {
+                        let labels: Vec<String> = keys.iter().map(|b| b.chord.label()).collect();
                         labels.join("/")
                     };
                     (label, help)
