@@ -81,17 +81,22 @@ impl Sim {
             Status::Slipping => self.run.tau(),
         };
         while self.next_k as f64 * TRAIL_DT <= end {
-            self.path
-                .push(self.run.state_at(self.next_k as f64 * TRAIL_DT));
+            match self.run.state_at(self.next_k as f64 * TRAIL_DT) {
+                Ok(s) => self.path.push(s),
+                Err(e) => {
+                    self.error = Some(e);
+                    return;
+                }
+            }
             self.next_k += 1;
         }
-        if let Status::Stuck { tau: ts, .. } = self.run.status
+        if let Status::Stuck { tau: ts, q } = self.run.status
             && !self.stop_in_path
             && ts <= end
         {
             // The stop itself, exactly, in its place on the grid.
             let at = self.path.partition_point(|s| s.tau < ts);
-            self.path.insert(at, self.run.state_at(ts));
+            self.path.insert(at, State::riding(q, ts));
             self.stop_in_path = true;
         }
         if self.path.len() > TRAIL_MAX {
@@ -147,7 +152,10 @@ impl Sim {
             Status::Slipping => self.run.tau(),
         });
         self.extend_path(t);
-        self.samples.push(self.run.state_at(t));
+        match self.run.state_at(t) {
+            Ok(s) => self.samples.push(s),
+            Err(e) => self.error = Some(e),
+        }
         if self.samples.len() > HISTORY {
             self.samples.drain(..HISTORY / 10);
         }
@@ -255,7 +263,7 @@ impl Sim {
             },
         )?;
         shadow.run(now.tau, false).map_err(|e| e.to_string())?;
-        let error = (shadow.state_at(now.tau).r - now.r).length();
+        let error = (shadow.state_at(now.tau).map_err(|e| e.to_string())?.r - now.r).length();
         Ok(ErrorEstimate {
             tau: now.tau,
             error,

@@ -110,7 +110,7 @@ fn readouts_equal_the_engine_state() {
     assert!((s.tau - 23.0 * turntable::app::TICK_DT).abs() < 1e-9);
     let mut run = Run::new(a.initial, a.settings).unwrap();
     run.run(s.tau, false).unwrap();
-    let e = run.state_at(s.tau);
+    let e = run.state_at(s.tau).unwrap();
     assert!((e.r - s.r).length() < 1e-8, "{e:?} vs {s:?}");
     let screen = render(&mut a, 80, 24);
     for v in [

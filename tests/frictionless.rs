@@ -2,7 +2,7 @@
 //! form, checked against integrating the frictionless equations in the rotating frame.
 
 use glam::DVec2;
-use turntable::engine::method::dp54_plain;
+use turntable::engine::stepper::dp54_plain;
 use turntable::engine::{Frame, Initial, Outcome, Release, Run, Settings};
 
 fn free(i: Initial) -> Initial {

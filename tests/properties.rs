@@ -2,8 +2,8 @@
 //! initial conditions.
 
 use std::f64::consts::TAU;
-use turntable::engine::method::Dense;
 use turntable::engine::model::{Frame, Y, friction};
+use turntable::engine::stepper::Dense;
 use turntable::engine::{Initial, Method, Outcome, Run, Settings, Status};
 
 use turntable::rng::SplitMix64 as Rng;
@@ -24,7 +24,7 @@ fn sampled(i: Initial, tau_max: f64) -> Vec<Sample> {
         while run.status == Status::Slipping && run.tau() < t {
             run.step(f64::INFINITY).unwrap();
         }
-        let s = run.state_at(t);
+        let s = run.state_at(t).unwrap();
         out.push((t, s.xi(), s.xi_dot(), s.theta_dot()));
         t += 0.01;
     }
@@ -50,7 +50,7 @@ fn property_1_at_rest_inside_xi_1_stays_at_rest() {
         .unwrap();
         assert_eq!(run.outcome(), Outcome::Stuck);
         // ... and it rides the table in closed form.
-        let s = run.state_at(7.0);
+        let s = run.state_at(7.0).unwrap();
         assert!((s.xi() - q.length()).abs() < 1e-15 && (s.u_lab().length()) < 1e-14);
     }
 }
@@ -205,4 +205,26 @@ fn outcomes_agree_across_frames() {
             assert!((lab.1.q() - table.1.q()).length() < 1e-7, "{i:?}");
         }
     }
+}
+
+#[test]
+fn a_state_outside_the_dense_output_is_an_error() {
+    let mut run = Run::new(Initial::velocity(0.5, 0.4, 0.3), Settings::default()).unwrap();
+    for _ in 0..5 {
+        run.step(f64::INFINITY).unwrap();
+    }
+    let seg = run.last.unwrap();
+    let mid = 0.5 * (seg.t0 + seg.t1());
+    assert!(run.state_at(mid).is_ok() && run.state_at(run.tau()).is_ok());
+    for tau in [0.5 * seg.t0, seg.t1() + 1e-3, 1e3] {
+        let e = run.state_at(tau).unwrap_err().to_string();
+        assert!(
+            e.contains(&format!("no state at tau = {tau}")) && e.contains("only from"),
+            "{e}"
+        );
+    }
+    // Once stuck the particle rides the table: every later τ has a state.
+    run.run(100.0, false).unwrap();
+    assert_eq!(run.outcome(), Outcome::Stuck);
+    assert!(run.state_at(1e6).is_ok());
 }

@@ -6,8 +6,8 @@ use super::{
     Config, ESCAPE_VTOL, FAR_TAU, FREE_TAU, REST_TAU, Row, Saving, Setting, Speed, TaskRatio,
     median, reference, timed,
 };
-use crate::engine::method::dp54_plain;
 use crate::engine::solve::{escape_speed, sweep_escape};
+use crate::engine::stepper::dp54_plain;
 use crate::engine::{Frame, Initial, Method, Release, Run, Settings};
 
 pub(super) fn savings(cs: &[(String, Initial)]) -> Result<Vec<Saving>, String> {

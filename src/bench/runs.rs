@@ -53,7 +53,7 @@ pub fn finish(initial: Initial, settings: Settings, tau_max: f64) -> Result<End,
             return Ok(End {
                 outcome: Outcome::Escaped,
                 tau: e.tau,
-                q: run.state_at(e.tau).q(),
+                q: e.state.q(),
                 evals: run.cost.rhs_evals,
             });
         }
@@ -83,7 +83,7 @@ pub fn state_at(initial: Initial, settings: Settings, tau: f64) -> Result<(State
     let mut run = Run::new(initial, settings)?;
     run.run(tau, false).map_err(|e| e.to_string())?;
     let s = match run.status {
-        Status::Stuck { .. } => run.state_at(tau),
+        Status::Stuck { .. } => run.state_at(tau).map_err(|e| e.to_string())?,
         Status::Slipping => run.state(),
     };
     Ok((s, run.cost.rhs_evals))

@@ -74,7 +74,10 @@ pub fn run(a: RunArgs) -> CmdResult {
                 let n = ((run.tau() - before) / FREE_SAMPLE).ceil().min(1e5) as usize;
                 for i in 1..n {
                     let t = before + (run.tau() - before) * i as f64 / n as f64;
-                    trajectory_row(csv, &run.state_at(t), false).map_err(write_err)?;
+                    let s = run
+                        .state_at(t)
+                        .map_err(|e| Failure::Runtime(e.to_string()))?;
+                    trajectory_row(csv, &s, false).map_err(write_err)?;
                 }
             }
             trajectory_row(csv, &run.state(), run.status != Status::Slipping).map_err(write_err)?;
@@ -82,7 +85,7 @@ pub fn run(a: RunArgs) -> CmdResult {
     }
     let outcome = run.outcome();
     let end = match (outcome, run.escape) {
-        (Outcome::Escaped, Some(e)) if stop_on_escape => run.state_at(e.tau),
+        (Outcome::Escaped, Some(e)) if stop_on_escape => e.state,
         _ => run.state(),
     };
     if let Some(csv) = csv {

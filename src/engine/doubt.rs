@@ -34,7 +34,7 @@ pub struct Doubt {
 /// latest state.
 pub fn decided_state(run: &Run) -> State {
     match (run.outcome(), run.escape) {
-        (Outcome::Escaped, Some(e)) => run.state_at(e.tau),
+        (Outcome::Escaped, Some(e)) => e.state,
         _ => run.state(),
     }
 }

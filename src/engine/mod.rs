@@ -8,8 +8,10 @@ pub mod model;
 pub mod roots;
 pub mod run;
 pub mod solve;
+pub mod stepper;
 pub mod stop;
 
-pub use method::{Cost, Method, Settings};
+pub use method::{Method, Settings};
 pub use model::{Frame, Initial, Release, State};
 pub use run::{Certificate, Escape, Limit, Outcome, Run, RunError, Status, StepInfo};
+pub use stepper::Cost;

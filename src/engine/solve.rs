@@ -104,7 +104,7 @@ fn probe(
             };
         }
         if let Some(e) = run.escape {
-            let s = run.state_at(e.tau);
+            let s = e.state;
             let h = saddle_h(&s);
             break Probe {
                 escapes: true,

@@ -4,9 +4,9 @@
 
 use super::outcome::{Certificate, Escape, Status, certificate, certificate_margin};
 use super::{Ahead, HOVER_STEPS, Limit, Run, SNAP_T, STIFF, STOP_CAP, StepInfo};
-use crate::engine::method::{Dense, Segment};
 use crate::engine::model::{State, rotate, zcross};
 use crate::engine::roots::illinois;
+use crate::engine::stepper::Segment;
 use crate::engine::stop::radial_stop;
 use glam::DVec2;
 
@@ -88,10 +88,7 @@ impl Run {
 
     /// The step the integrator would take with no stop ahead.
     pub(super) fn natural_step(&self) -> f64 {
-        match self.settings.scheme.fixed() {
-            Some((_, dt)) => dt,
-            None => self.h,
-        }
+        self.stepper.natural_step(self.settings.scheme)
     }
 
     /// Distance a particle may still travel when its stop is taken in closed form.
@@ -103,24 +100,20 @@ impl Run {
     /// stop (u = 0) sticks if ξ ≤ 1, else it slips on (Filippov).
     pub(super) fn jump(&mut self, t: f64, q: DVec2, u: DVec2) {
         let frame = self.settings.frame;
-        let tau = self.tau + t;
+        let tau = self.stepper.t + t;
         let r = rotate(q, tau);
         let to = State {
             tau,
             r,
             v: rotate(u, tau) + zcross(r),
         };
-        let y1 = frame.from_state(&to);
-        let f1 = frame.rhs(y1);
-        self.cost.rhs_evals += 1;
-        let seg = Segment {
-            t0: self.tau,
-            h: t,
-            y0: self.y,
-            y1,
-            dense: Dense::Hermite { f0: self.f, f1 },
-        };
-        self.advance(seg, f1);
+        let seg = self.stepper.advance(
+            |y| frame.rhs(y),
+            t,
+            frame.from_state(&to),
+            None,
+            &mut self.cost,
+        );
         self.last = Some(seg);
         self.last_step = Some(StepInfo {
             t0: seg.t0,
@@ -146,7 +139,8 @@ impl Run {
         let state = |t: f64| frame.to_state(seg.at(t), t);
         let g = |t: f64| certificate_margin(&state(t));
         let tau = illinois(g, seg.t0, seg.t1(), 1e-13);
-        let by = certificate(&state(tau)).unwrap_or(Certificate::Radial);
-        Escape { tau, by }
+        let state = state(tau);
+        let by = certificate(&state).unwrap_or(Certificate::Radial);
+        Escape { tau, by, state }
     }
 }

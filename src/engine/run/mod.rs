@@ -3,10 +3,9 @@
 //! (Sec. II, property one) located inside the step, and where the escape certificate (property
 //! two, or the energy bound) first holds. How a run ends is in `outcome`.
 
-use super::method::{
-    Controller, Cost, Dense, FixedRk, Segment, Settings, dp5_step, fixed_step, initial_step,
-};
-use super::model::{Initial, State, Y};
+use super::method::Settings;
+use super::model::{Initial, State};
+use super::stepper::{Cost, Segment, StepError, Stepper, too_short};
 use super::stop::{frozen_stop, frozen_stop_error};
 use glam::DVec2;
 
@@ -120,11 +119,7 @@ pub struct Run {
     /// began.
     stiff_steps: u32,
     stiff_speed: f64,
-    tau: f64,
-    y: Y,
-    f: Y,
-    h: f64,
-    ctrl: Controller,
+    stepper: Stepper,
 }
 
 impl Run {
@@ -133,14 +128,17 @@ impl Run {
         settings.validate()?;
         let frame = settings.frame;
         let s0 = initial.state();
-        let y = frame.from_state(&s0);
+        let mut cost = Cost::default();
+        let stepper = Stepper::new(
+            |y| frame.rhs(y),
+            frame.from_state(&s0),
+            settings.scheme,
+            &mut cost,
+        );
         let mut run = Run {
             initial,
             settings,
-            cost: Cost {
-                rhs_evals: 1,
-                ..Cost::default()
-            },
+            cost,
             status: Status::Slipping,
             escape: None,
             last: None,
@@ -148,11 +146,7 @@ impl Run {
             last_step: None,
             stiff_steps: 0,
             stiff_speed: 0.0,
-            tau: 0.0,
-            y,
-            f: frame.rhs(y),
-            h: 0.0,
-            ctrl: Controller::default(),
+            stepper,
         };
         if initial.frictionless {
             // Closed form throughout: nothing to evaluate.
@@ -167,41 +161,46 @@ impl Run {
             };
         }
         if let Some(by) = certificate(&s0) {
-            run.escape = Some(Escape { tau: 0.0, by });
-        }
-        if settings.method().adaptive() {
-            run.h = initial_step(|y| frame.rhs(y), y, run.f, settings.scheme.knob());
-            run.cost.rhs_evals += 1;
+            run.escape = Some(Escape {
+                tau: 0.0,
+                by,
+                state: s0,
+            });
         }
         Ok(run)
     }
 
     pub fn tau(&self) -> f64 {
         match self.status {
-            Status::Slipping => self.tau,
+            Status::Slipping => self.stepper.t,
             Status::Stuck { tau, .. } => tau,
         }
     }
 
     /// The particle at the end of the integration so far (at the stop, once stuck).
     pub fn state(&self) -> State {
-        self.settings.frame.to_state(self.y, self.tau)
+        self.settings.frame.to_state(self.stepper.y, self.stepper.t)
     }
 
-    /// The particle at any τ not beyond the integration so far that lies in the latest step,
-    /// or at any τ after a stick (closed-form rotation with the table).
-    pub fn state_at(&self, tau: f64) -> State {
+    /// The particle at a τ in the latest step (or the latest τ itself), at any τ after a stick
+    /// (closed-form rotation with the table), or at any τ at all when μ = 0 (closed form).
+    /// Elsewhere the run holds no dense output: an error, never a nearby state.
+    pub fn state_at(&self, tau: f64) -> Result<State, RunError> {
         if self.initial.frictionless {
-            return self.initial.free_state(tau);
+            return Ok(self.initial.free_state(tau));
         }
-        match self.status {
-            Status::Stuck { tau: ts, q } if tau >= ts => State::riding(q, tau),
-            _ => match self.last {
-                Some(seg) if tau >= seg.t0 && tau <= seg.t1() => {
-                    self.settings.frame.to_state(seg.at(tau), tau)
-                }
-                _ => self.state(),
-            },
+        let now = self.stepper.t;
+        match (self.status, self.last) {
+            (Status::Stuck { tau: ts, q }, _) if tau >= ts => Ok(State::riding(q, tau)),
+            (_, Some(seg)) if tau >= seg.t0 && tau <= seg.t1() => {
+                Ok(self.settings.frame.to_state(seg.at(tau), tau))
+            }
+            _ if tau == now => Ok(self.state()),
+            (_, seg) => Err(RunError::OutOfRange {
+                tau,
+                from: seg.map_or(now, |s| s.t0),
+                to: now,
+            }),
         }
     }
 
@@ -215,7 +214,7 @@ impl Run {
 
     /// Integrates until stuck, until escape is certified (if `stop_on_escape`), or `tau_max`.
     pub fn run(&mut self, tau_max: f64, stop_on_escape: bool) -> Result<Outcome, RunError> {
-        while self.status == Status::Slipping && self.tau < tau_max {
+        while self.status == Status::Slipping && self.stepper.t < tau_max {
             if stop_on_escape && self.escape.is_some() {
                 break;
             }
@@ -229,7 +228,7 @@ impl Run {
     pub fn finish(&mut self, tau_max: f64) -> Result<(Outcome, State), RunError> {
         let outcome = self.run(tau_max, true)?;
         let s = match (outcome, self.escape) {
-            (Outcome::Escaped, Some(e)) => self.state_at(e.tau),
+            (Outcome::Escaped, Some(e)) => e.state,
             _ => self.state(),
         };
         Ok((outcome, s))
@@ -238,13 +237,13 @@ impl Run {
     /// Advances by one accepted step, or one located stop, without passing `tau_max`.
     /// Does nothing once stuck.
     pub fn step(&mut self, tau_max: f64) -> Result<(), RunError> {
-        if self.status != Status::Slipping || self.tau >= tau_max {
+        if self.status != Status::Slipping || self.stepper.t >= tau_max {
             return Ok(());
         }
         if self.cost.steps + self.cost.rejected >= self.settings.max_steps {
             return Err(RunError::Budget {
                 steps: self.settings.max_steps,
-                tau: self.tau,
+                tau: self.stepper.t,
             });
         }
         if self.initial.frictionless {
@@ -253,11 +252,11 @@ impl Run {
         }
         let frame = self.settings.frame;
         let s = self.state();
-        let mut cap = tau_max - self.tau;
+        let mut cap = tau_max - self.stepper.t;
         let mut limit = Limit::End;
-        if cap <= 1e-14 * self.tau.abs().max(1.0) {
+        if too_short(cap, self.stepper.t) {
             // τ-max to within rounding: no step could be that short.
-            self.tau = tau_max;
+            self.stepper.t = tau_max;
             return Ok(());
         }
         let (q, u) = (s.q(), s.u());
@@ -297,13 +296,23 @@ impl Run {
             }
         }
         let rejected_before = self.cost.rejected;
-        let (seg, err_ratio) = match self.settings.scheme.fixed() {
-            Some((rk, dt)) => (self.fixed_step(rk, dt, cap), None),
-            None => {
-                let (seg, err) = self.dp54_step(self.settings.scheme.knob(), cap)?;
-                (seg, Some(err))
-            }
-        };
+        let tau = self.stepper.t;
+        let (seg, err_ratio) = self
+            .stepper
+            .step(
+                |y| frame.rhs(y),
+                self.settings.scheme,
+                cap,
+                &mut self.cost,
+                self.settings.max_steps,
+            )
+            .map_err(|e| match e {
+                StepError::Underflow => RunError::StepUnderflow { tau },
+                StepError::Budget => RunError::Budget {
+                    steps: self.settings.max_steps,
+                    tau,
+                },
+            })?;
         self.last = Some(seg);
         self.last_step = Some(StepInfo {
             t0: seg.t0,
@@ -338,98 +347,29 @@ impl Run {
         let mut end = if tau_max.is_finite() {
             tau_max
         } else {
-            self.tau + FREE_STRIDE
+            self.stepper.t + FREE_STRIDE
         };
         if self.escape.is_none()
             && let Some(te) = self.initial.free_escape()
             && te <= end
         {
-            end = te.max(self.tau);
+            end = te.max(self.stepper.t);
             self.escape = Some(Escape {
                 tau: te,
                 by: Certificate::Radial,
+                state: self.initial.free_state(te),
             });
         }
         let frame = self.settings.frame;
         self.last_step = Some(StepInfo {
-            t0: self.tau,
-            h: end - self.tau,
+            t0: self.stepper.t,
+            h: end - self.stepper.t,
             limit: Limit::Frictionless,
             err_ratio: None,
             rejected: 0,
         });
-        self.y = frame.from_state(&self.initial.free_state(end));
-        self.tau = end;
+        self.stepper.y = frame.from_state(&self.initial.free_state(end));
+        self.stepper.t = end;
         self.last = None;
-    }
-
-    fn fixed_step(&mut self, rk: FixedRk, dt: f64, cap: f64) -> Segment {
-        let frame = self.settings.frame;
-        let h = dt.min(cap);
-        let y1 = fixed_step(
-            rk,
-            |y| frame.rhs(y),
-            self.y,
-            self.f,
-            h,
-            &mut self.cost.rhs_evals,
-        );
-        let f1 = frame.rhs(y1);
-        self.cost.rhs_evals += 1;
-        self.cost.steps += 1;
-        let seg = Segment {
-            t0: self.tau,
-            h,
-            y0: self.y,
-            y1,
-            dense: Dense::Hermite { f0: self.f, f1 },
-        };
-        self.advance(seg, f1);
-        seg
-    }
-
-    /// One accepted dp54 step of at most `cap`, and its error against the tolerance.
-    fn dp54_step(&mut self, tol: f64, cap: f64) -> Result<(Segment, f64), RunError> {
-        let frame = self.settings.frame;
-        loop {
-            let h = self.h.min(cap);
-            if h < 1e-14 * self.tau.abs().max(1.0) {
-                return Err(RunError::StepUnderflow { tau: self.tau });
-            }
-            let trial = dp5_step(|y| frame.rhs(y), self.y, self.f, h, tol);
-            self.cost.rhs_evals += 6;
-            let (hnew, accepted) = self.ctrl.next(h, trial.err);
-            // A capped step says nothing about how large the next free step may be.
-            self.h = if h < self.h && accepted {
-                self.h.max(hnew)
-            } else {
-                hnew
-            };
-            if accepted {
-                self.cost.steps += 1;
-                let seg = Segment {
-                    t0: self.tau,
-                    h,
-                    y0: self.y,
-                    y1: trial.y1,
-                    dense: trial.dense,
-                };
-                self.advance(seg, trial.f1);
-                return Ok((seg, trial.err));
-            }
-            self.cost.rejected += 1;
-            if self.cost.steps + self.cost.rejected >= self.settings.max_steps {
-                return Err(RunError::Budget {
-                    steps: self.settings.max_steps,
-                    tau: self.tau,
-                });
-            }
-        }
-    }
-
-    fn advance(&mut self, seg: Segment, f1: Y) {
-        self.tau = seg.t1();
-        self.y = seg.y1;
-        self.f = f1;
     }
 }

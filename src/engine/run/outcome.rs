@@ -34,6 +34,9 @@ impl Certificate {
 pub struct Escape {
     pub tau: f64,
     pub by: Certificate,
+    /// The particle where the certificate first holds.
+    #[serde(skip)]
+    pub state: State,
 }
 
 /// Where a run stands.
@@ -73,6 +76,9 @@ pub enum RunError {
     Budget { steps: u64, tau: f64 },
     /// dp54 could not meet the tolerance with a representable step.
     StepUnderflow { tau: f64 },
+    /// A state was asked for at a τ the run cannot interpolate: it holds dense output for its
+    /// latest step only, `from` to `to`.
+    OutOfRange { tau: f64, from: f64, to: f64 },
 }
 
 impl fmt::Display for RunError {
@@ -88,6 +94,10 @@ impl fmt::Display for RunError {
                     "step size underflow at tau = {tau:.6}: the tolerance cannot be met"
                 )
             }
+            RunError::OutOfRange { tau, from, to } => write!(
+                f,
+                "no state at tau = {tau}: the run can interpolate only from {from} to {to}"
+            ),
         }
     }
 }
