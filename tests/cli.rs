@@ -1,17 +1,7 @@
 //! The headless commands as a user runs them: JSON fields and the trajectory file.
 
-use std::process::Command;
-
-fn turntable(args: &[&str]) -> (i32, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_turntable"))
-        .args(args)
-        .output()
-        .unwrap();
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8(out.stdout).unwrap(),
-    )
-}
+mod common;
+use common::turntable;
 
 fn field(json: &str, key: &str) -> String {
     let v: serde_json::Value = serde_json::from_str(json).unwrap();
@@ -22,7 +12,7 @@ fn field(json: &str, key: &str) -> String {
 fn run_json_and_trajectory_agree() {
     let path = std::env::temp_dir().join(format!("turntable-traj-{}.csv", std::process::id()));
     let p = path.to_str().unwrap();
-    let (code, out) = turntable(&[
+    let (code, out, _) = turntable(&[
         "run",
         "--xi0",
         "0.5",
@@ -63,15 +53,15 @@ fn run_json_and_trajectory_agree() {
 
 #[test]
 fn escape_and_critical_print_their_values() {
-    let (code, out) = turntable(&["escape", "--xi0", "0.5", "--phi", "0", "--json"]);
+    let (code, out, _) = turntable(&["escape", "--xi0", "0.5", "--phi", "0", "--json"]);
     assert_eq!(code, 0);
     let v: f64 = field(&out, "v_escape").parse().unwrap();
     assert!((v - 0.60782364).abs() < 2e-8, "{v}");
-    let (code, out) = turntable(&["critical", "--json"]);
+    let (code, out, _) = turntable(&["critical", "--json"]);
     assert_eq!(code, 0);
     let x: f64 = field(&out, "xi0c").parse().unwrap();
     assert!((x - 0.87204386).abs() < 1e-7, "{x}");
-    let (code, out) = turntable(&["sweep", "fig6", "--points", "11"]);
+    let (code, out, _) = turntable(&["sweep", "fig6", "--points", "11"]);
     assert_eq!(code, 0);
     let lines: Vec<&str> = out.lines().collect();
     assert_eq!(lines[0], "xi0,outcome,xi,angle");
@@ -84,20 +74,20 @@ fn escape_and_critical_print_their_values() {
 /// The paper's way to measure μ (Eq. 22): from the measured Ω and critical radius r0c.
 #[test]
 fn critical_radius_measures_mu() {
-    let (code, out) = turntable(&["critical", "--omega", "3.3", "--r0c", "0.12", "--json"]);
+    let (code, out, _) = turntable(&["critical", "--omega", "3.3", "--r0c", "0.12", "--json"]);
     assert_eq!(code, 0);
     let mu: f64 = field(&out, "mu").parse().unwrap();
     assert!(
         (mu - 3.3 * 3.3 * 0.12 / (0.87204386 * 9.81)).abs() < 1e-7,
         "{mu}"
     );
-    let (code, _) = turntable(&["critical", "--omega", "3.3"]);
+    let (code, _, _) = turntable(&["critical", "--omega", "3.3"]);
     assert_eq!(code, 2);
 }
 
 #[test]
 fn run_frictionless_is_a_closed_form_line() {
-    let (code, out) = turntable(&[
+    let (code, out, _) = turntable(&[
         "run",
         "--xi0",
         "0.5",
@@ -112,9 +102,28 @@ fn run_frictionless_is_a_closed_form_line() {
     assert_eq!(field(&out, "rhs_evals"), "0");
     let tau: f64 = field(&out, "escape_tau").parse().unwrap();
     assert!((tau - 3f64.sqrt()).abs() < 1e-12, "{tau}");
-    let (_, text) = turntable(&["run", "--release", "lab-rest", "--frictionless"]);
+    let (_, text, _) = turntable(&["run", "--release", "lab-rest", "--frictionless"]);
     assert!(
         text.contains("running") && text.contains("closed form"),
         "{text}"
     );
+}
+
+#[test]
+fn enum_flags_list_their_values_and_take_aliases() {
+    let (code, _, err) = turntable(&["run", "--method", "rk3"]);
+    assert_eq!(code, 2);
+    assert!(
+        err.contains("[possible values: rk2-raw, rk2, rk4, dp54]"),
+        "{err}"
+    );
+    let (code, out, err) = turntable(&["run", "--frame", "rotating", "--json"]);
+    assert_eq!(
+        (code, field(&out, "frame")),
+        (0, "\"table\"".into()),
+        "{err}"
+    );
+    let (code, _, err) = turntable(&["run", "--release", "rest"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("velocity, table-rest, lab-rest"), "{err}");
 }

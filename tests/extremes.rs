@@ -2,6 +2,7 @@
 //! across methods wherever each is accurate.
 
 use std::f64::consts::{PI, TAU};
+use strum::VariantArray;
 use turntable::engine::method::{DT_RANGE, TOL_RANGE};
 use turntable::engine::{Initial, Method, Outcome, Release, Run, RunError, Settings, State};
 
@@ -105,7 +106,7 @@ fn phi_is_periodic_and_may_be_negative() {
 
 #[test]
 fn a_stop_inside_the_first_step() {
-    for m in Method::ALL.into_iter().filter(|m| m.stick_events()) {
+    for &m in Method::VARIANTS.iter().filter(|m| m.stick_events()) {
         let s = Settings {
             scheme: m.with(if m.adaptive() { m.default_knob() } else { 0.1 }),
             ..Settings::default()
@@ -265,7 +266,7 @@ fn the_cli_refuses_bad_input_with_exit_code_2() {
 fn frictionless_at_the_extremes() {
     for xi0 in [0.0, 1e-9, 1.0, 1e6, Initial::MAX] {
         for v0 in [0.0, 1e-9, 1e6, Initial::MAX] {
-            for release in Release::ALL {
+            for &release in Release::VARIANTS {
                 let i = Initial {
                     frictionless: true,
                     ..Initial {

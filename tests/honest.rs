@@ -1,21 +1,10 @@
 //! Honest numbers (issue 11): outcomes that say when the run's own error could flip them,
 //! bad solver input refused up front, and words that say what the numbers are.
 
-use std::process::Command;
+mod common;
+use common::turntable;
 use turntable::engine::doubt::doubt;
 use turntable::engine::{Initial, Outcome, Run, Settings};
-
-fn turntable(args: &[&str]) -> (i32, String, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_turntable"))
-        .args(args)
-        .output()
-        .unwrap();
-    (
-        out.status.code().unwrap_or(-1),
-        String::from_utf8(out.stdout).unwrap(),
-        String::from_utf8(out.stderr).unwrap(),
-    )
-}
 
 fn json(args: &[&str]) -> serde_json::Value {
     let (code, out, err) = turntable(args);

@@ -5,6 +5,7 @@ use super::state::{App, SPEED_RANGE, ZOOM_RANGE, make_sim};
 use crate::engine::method::{DT_RANGE, TOL_RANGE};
 use crate::engine::{Frame, Method, Release, Settings};
 use crate::scene::{PRESETS, Scene};
+use strum::VariantArray;
 
 pub fn update(app: &mut App, action: Action) {
     if action == Action::EndDrag {
@@ -59,7 +60,7 @@ pub fn update(app: &mut App, action: Action) {
         Action::CycleMethod => {
             let (now, next) = (
                 app.settings.scheme,
-                next_of(&Method::ALL, app.settings.method()),
+                next_of(Method::VARIANTS, app.settings.method()),
             );
             // A fixed step carries over between the fixed-step methods; else the default.
             let knob = match now.fixed() {
@@ -99,7 +100,7 @@ pub fn update(app: &mut App, action: Action) {
             app.restart();
         }
         Action::CycleRelease => {
-            app.initial.release = next_of(&Release::ALL, app.initial.release);
+            app.initial.release = next_of(Release::VARIANTS, app.initial.release);
             app.restart();
         }
         Action::ToggleFriction => {

@@ -81,7 +81,7 @@ pub(super) fn rest_rows(
         };
         rows.push(Row {
             task: "rest".into(),
-            method: s.settings.method().name().into(),
+            method: s.settings.method().to_string(),
             setting: format!("{}{rule}", setting_label(&s)),
             knob: s.knob(),
             cases: cs.len(),
@@ -128,7 +128,7 @@ pub(super) fn position_rows(
         let mut ev: Vec<f64> = out.iter().map(|(_, e)| *e as f64).collect();
         rows.push(Row {
             task: task.into(),
-            method: s.settings.method().name().into(),
+            method: s.settings.method().to_string(),
             setting: setting_label(s),
             knob: s.knob(),
             cases: cs.len(),
@@ -177,7 +177,7 @@ pub(super) fn escape_rows(cfg: &Config, v_ref: f64) -> Result<Vec<Row>, String> 
         let err = (t.value - v_ref).abs();
         rows.push(Row {
             task: "v_e(0.5,0)".into(),
-            method: s.settings.method().name().into(),
+            method: s.settings.method().to_string(),
             setting: setting_label(&s),
             knob: s.knob(),
             cases: 1,
@@ -234,7 +234,7 @@ pub(super) fn fig5_rows(
         let errs: Vec<f64> = vals.iter().zip(refs).map(|(a, b)| (a - b).abs()).collect();
         rows.push(Row {
             task: format!("fig5 ξ0=0.5 ({n}φ)"),
-            method: s.settings.method().name().into(),
+            method: s.settings.method().to_string(),
             setting: setting_label(&s),
             knob: s.knob(),
             cases: n,

@@ -89,7 +89,7 @@ pub struct BenchArgs {
 #[derive(Args, Debug, Clone)]
 pub struct NumericsArgs {
     /// dp54 (adaptive), rk4, rk2 (with stick events) or rk2-raw (the paper's scheme).
-    #[arg(long, default_value = "dp54", value_parser = parse_str::<Method>)]
+    #[arg(long, default_value = "dp54", value_parser = variant::<Method>())]
     pub method: Method,
     /// Tolerance of dp54.
     #[arg(long, allow_hyphen_values = true)]
@@ -98,7 +98,7 @@ pub struct NumericsArgs {
     #[arg(long, allow_hyphen_values = true)]
     pub dt: Option<f64>,
     /// Frame the equations are integrated in (lab is cheaper far from the centre).
-    #[arg(long, default_value = "lab", value_parser = parse_str::<Frame>)]
+    #[arg(long, default_value = "lab", value_parser = variant::<Frame>())]
     pub frame: Frame,
     /// Step budget of one run.
     #[arg(long, default_value_t = Settings::default().max_steps)]
@@ -118,7 +118,7 @@ pub struct RunArgs {
     pub v0: f64,
     /// How it is released: velocity (v0 at phi, table frame), table-rest (at rest on the
     /// table) or lab-rest (at rest in the lab).
-    #[arg(long, default_value = "velocity", value_parser = parse_str::<Release>)]
+    #[arg(long, default_value = "velocity", value_parser = variant::<Release>())]
     pub release: Release,
     /// mu = 0: no friction, a straight line in the lab, in closed form (no integration).
     #[arg(long)]
@@ -201,8 +201,22 @@ pub struct SweepArgs {
     pub out: Option<PathBuf>,
 }
 
-fn parse_str<T: std::str::FromStr<Err = String>>(s: &str) -> Result<T, String> {
-    s.parse()
+/// A clap parser for an engine enum: its names (from the strum derives) as the possible
+/// values, so `--help` lists them and a typo is refused with the list; other spellings it
+/// accepts (`rotating` for `table`) are aliases.
+fn variant<T>() -> impl clap::builder::TypedValueParser<Value = T>
+where
+    T: strum::VariantArray + strum::EnumMessage + Into<&'static str> + std::str::FromStr,
+    T: Clone + Send + Sync + 'static,
+    T::Err: std::error::Error + Send + Sync + 'static,
+{
+    use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
+    let values = T::VARIANTS.iter().map(|v| {
+        let name: &'static str = v.clone().into();
+        let aliases = v.get_serializations().iter().filter(|a| **a != name);
+        PossibleValue::new(name).aliases(aliases)
+    });
+    PossibleValuesParser::new(values).try_map(|s| s.parse::<T>())
 }
 
 /// A command's failure: bad input (exit 2) or a run that could not finish (exit 1).

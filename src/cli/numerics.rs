@@ -113,8 +113,8 @@ pub fn run(a: RunArgs) -> CmdResult {
             "rejected": c.rejected,
             "rhs_evals": c.rhs_evals,
             "frictionless": initial.frictionless,
-            "method": settings.method().name(),
-            "frame": settings.frame.name(),
+            "method": settings.method().to_string(),
+            "frame": settings.frame.to_string(),
             "tol": settings.scheme.tol(),
             "dt": settings.scheme.fixed().map(|(_, dt)| dt),
         });

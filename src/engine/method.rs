@@ -4,11 +4,25 @@
 
 use super::model::{Frame, Initial};
 use serde::{Deserialize, Serialize};
-use std::fmt;
-use std::str::FromStr;
 
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, Default)]
+/// The integration methods on offer; names (`rk2-raw`, `dp54`, …) from the derives.
+#[derive(
+    Clone,
+    Copy,
+    Debug,
+    PartialEq,
+    Eq,
+    Serialize,
+    Deserialize,
+    Default,
+    strum::Display,
+    strum::EnumString,
+    strum::IntoStaticStr,
+    strum::VariantArray,
+    strum::EnumMessage,
+)]
 #[serde(rename_all = "kebab-case")]
+#[strum(serialize_all = "kebab-case")]
 pub enum Method {
     /// The paper's scheme as it made the figures: midpoint RK2, fixed step, no stick event.
     Rk2Raw,
@@ -22,37 +36,12 @@ pub enum Method {
 }
 
 impl Method {
-    pub const ALL: [Method; 4] = [Method::Rk2Raw, Method::Rk2, Method::Rk4, Method::Dp54];
-    pub fn name(self) -> &'static str {
-        match self {
-            Method::Rk2Raw => "rk2-raw",
-            Method::Rk2 => "rk2",
-            Method::Rk4 => "rk4",
-            Method::Dp54 => "dp54",
-        }
-    }
     pub fn adaptive(self) -> bool {
         self == Method::Dp54
     }
     /// Whether stops are located as events (all but the paper's raw scheme).
     pub fn stick_events(self) -> bool {
         self != Method::Rk2Raw
-    }
-}
-
-impl fmt::Display for Method {
-    fn fmt(&self, f: &mut fmt::Formatter) -> fmt::Result {
-        f.write_str(self.name())
-    }
-}
-
-impl FromStr for Method {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, String> {
-        Method::ALL
-            .into_iter()
-            .find(|m| m.name() == s)
-            .ok_or_else(|| format!("unknown method '{s}' (dp54, rk4, rk2, rk2-raw)"))
     }
 }
 

@@ -5,8 +5,6 @@
 use glam::DVec2;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
-use std::fmt;
-use std::str::FromStr;
 
 /// `ẑ × a`: the table's velocity at `a`, and the Coriolis direction (Sec. II).
 pub fn zcross(a: DVec2) -> DVec2 {
@@ -39,8 +37,23 @@ pub fn friction(u: DVec2, p: DVec2) -> DVec2 {
 }
 
 /// How a particle is released (CONVENTIONS.md; the paper's Figs. 1–5).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[derive(
+    Clone,
+    Copy,
+    Debug,
+    PartialEq,
+    Eq,
+    Serialize,
+    Deserialize,
+    Default,
+    strum::Display,
+    strum::EnumString,
+    strum::IntoStaticStr,
+    strum::VariantArray,
+    strum::EnumMessage,
+)]
 #[serde(rename_all = "kebab-case")]
+#[strum(serialize_all = "kebab-case")]
 pub enum Release {
     /// Speed `v0` in direction `φ`, both in the table frame (Figs. 3–5).
     #[default]
@@ -49,33 +62,6 @@ pub enum Release {
     TableRest,
     /// At rest in the lab, u0 = (0, −ξ0) (Sec. III A, Figs. 1 and 6).
     LabRest,
-}
-
-impl Release {
-    pub const ALL: [Release; 3] = [Release::Velocity, Release::TableRest, Release::LabRest];
-    pub fn name(self) -> &'static str {
-        match self {
-            Release::Velocity => "velocity",
-            Release::TableRest => "table-rest",
-            Release::LabRest => "lab-rest",
-        }
-    }
-}
-
-impl fmt::Display for Release {
-    fn fmt(&self, f: &mut fmt::Formatter) -> fmt::Result {
-        f.write_str(self.name())
-    }
-}
-
-impl FromStr for Release {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, String> {
-        Release::ALL
-            .into_iter()
-            .find(|r| r.name() == s)
-            .ok_or_else(|| format!("unknown release mode '{s}' (velocity, table-rest, lab-rest)"))
-    }
 }
 
 /// Initial conditions as in the paper's Figs. 3–5: start at (ξ0, 0); `v0` and `φ` in the table
@@ -256,34 +242,30 @@ impl State {
 }
 
 /// The frame an integrator works in (CONVENTIONS.md, "Frames and state").
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[derive(
+    Clone,
+    Copy,
+    Debug,
+    PartialEq,
+    Eq,
+    Serialize,
+    Deserialize,
+    Default,
+    strum::Display,
+    strum::EnumString,
+    strum::IntoStaticStr,
+    strum::VariantArray,
+    strum::EnumMessage,
+)]
 #[serde(rename_all = "kebab-case")]
+#[strum(serialize_all = "kebab-case")]
 pub enum Frame {
     /// r′ = v, v′ = −û (the paper's Sec. IV system). Bounded right-hand side: cheap far out.
     #[default]
     Lab,
     /// q′ = u, u′ = −2ẑ×u + q − û (Coriolis, centrifugal, friction).
+    #[strum(to_string = "table", serialize = "rotating")]
     Table,
-}
-
-impl Frame {
-    pub fn name(self) -> &'static str {
-        match self {
-            Frame::Lab => "lab",
-            Frame::Table => "table",
-        }
-    }
-}
-
-impl FromStr for Frame {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, String> {
-        match s {
-            "lab" => Ok(Frame::Lab),
-            "table" | "rotating" => Ok(Frame::Table),
-            _ => Err(format!("unknown frame '{s}' (lab, table)")),
-        }
-    }
 }
 
 /// Phase-space point of the integrator in its frame: position `p`, velocity `w`

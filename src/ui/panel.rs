@@ -192,7 +192,7 @@ fn readouts(app: &App) -> (Vec<Line<'static>>, std::ops::Range<usize>) {
         out.push(kv("μ = 0", "closed form".into(), th));
     } else {
         out.push(kv(
-            app.settings.method().name(),
+            app.settings.method().into(),
             app.settings.accuracy_label(),
             th,
         ));
