@@ -5,6 +5,7 @@ pub mod app;
 pub mod bench;
 pub mod cli;
 pub mod engine;
+pub mod error;
 pub mod files;
 pub mod replay;
 pub mod rng;

@@ -6,6 +6,7 @@ use crate::engine::doubt::{Doubt, doubt};
 use crate::engine::method::TOL_RANGE;
 use crate::engine::run::{Outcome, Run, RunError, Status};
 use crate::engine::{Initial, Settings, State};
+use crate::error::Error;
 
 /// Most samples kept; older ones are dropped first.
 pub const HISTORY: usize = 100_000;
@@ -43,7 +44,7 @@ pub struct Sim {
 }
 
 impl Sim {
-    pub fn new(initial: Initial, settings: Settings, view_radius: f64) -> Result<Sim, String> {
+    pub fn new(initial: Initial, settings: Settings, view_radius: f64) -> Result<Sim, Error> {
         let run = Run::new(initial, settings)?;
         let s0 = run.state();
         Ok(Sim {
@@ -250,7 +251,7 @@ pub struct ErrorEstimate {
 impl Sim {
     /// An error estimate for the state on screen, from a shadow run with dp54 at a tolerance
     /// 1000× tighter than the run's own (at most 1e-13). Computed only when asked.
-    pub fn error_estimate(&self) -> Result<ErrorEstimate, String> {
+    pub fn error_estimate(&self) -> Result<ErrorEstimate, Error> {
         let own = self.run.settings.scheme.tol().unwrap_or(1e-10);
         let tol = (own * 1e-3).clamp(TOL_RANGE.0, 1e-13);
         let now = self.now();
@@ -262,8 +263,8 @@ impl Sim {
                 ..Settings::dp54(tol)
             },
         )?;
-        shadow.run(now.tau, false).map_err(|e| e.to_string())?;
-        let error = (shadow.state_at(now.tau).map_err(|e| e.to_string())?.r - now.r).length();
+        shadow.run(now.tau, false)?;
+        let error = (shadow.state_at(now.tau)?.r - now.r).length();
         Ok(ErrorEstimate {
             tau: now.tau,
             error,

@@ -99,6 +99,12 @@ fn error_estimate_is_bounded() {
     let est = s.app.sim.error_estimate();
     match est {
         Ok(e) => assert!(e.rhs_evals <= 13 * STEPS_PER_TICK, "{e:?}"),
-        Err(e) => assert!(e.contains("budget") || e.contains("steps"), "{e}"),
+        Err(e) => assert!(
+            matches!(
+                e,
+                turntable::error::Error::Run(turntable::engine::RunError::Budget { .. })
+            ),
+            "{e}"
+        ),
     }
 }

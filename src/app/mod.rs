@@ -139,8 +139,8 @@ impl App {
                 return Err("paper run does not use the paper's settings".into());
             }
         }
-        self.initial.validate()?;
-        self.settings.validate()?;
+        self.initial.validate().map_err(|e| e.to_string())?;
+        self.settings.validate().map_err(|e| e.to_string())?;
         if self.sim.run.initial != self.initial || self.sim.run.settings != self.settings {
             return Err("run is not from the current initial conditions".into());
         }

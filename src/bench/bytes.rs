@@ -2,6 +2,7 @@
 //! backend into a counting writer, so what a slow link (ssh) carries is measured, not guessed.
 
 use crate::app::App;
+use crate::error::Error;
 use crate::scene::Scene;
 use crate::theme::{Depth, Theme};
 use ratatui::Terminal;
@@ -43,14 +44,9 @@ pub struct Bytes {
 
 /// The default scene playing at `size` for `frames` ticks, each drawn as the explorer does
 /// (one tick, one draw; the first full frame is not counted).
-pub fn measure(
-    theme: &str,
-    depth: Depth,
-    size: (u16, u16),
-    frames: usize,
-) -> Result<Bytes, String> {
+pub fn measure(theme: &str, depth: Depth, size: (u16, u16), frames: usize) -> Result<Bytes, Error> {
     let th = Theme::builtin(theme)
-        .ok_or_else(|| format!("no theme {theme}"))?
+        .ok_or_else(|| Error::invalid(format!("no theme {theme}")))?
         .with_depth(depth);
     let mut app = App::new(Scene::default_scene(), th);
     let count = Rc::new(Cell::new(0));
@@ -60,14 +56,12 @@ pub fn measure(
         ratatui::TerminalOptions {
             viewport: ratatui::Viewport::Fixed(ratatui::layout::Rect::new(0, 0, size.0, size.1)),
         },
-    )
-    .map_err(|e| e.to_string())?;
+    )?;
     let draw = |term: &mut Terminal<CrosstermBackend<Count>>, app: &mut App| {
         let mut geom = None;
-        term.draw(|f| geom = crate::ui::draw(f, app))
-            .map_err(|e| e.to_string())?;
+        term.draw(|f| geom = crate::ui::draw(f, app))?;
         app.drawn(geom);
-        Ok::<(), String>(())
+        Ok::<(), Error>(())
     };
     draw(&mut term, &mut app)?;
     let start = count.get();
@@ -87,7 +81,7 @@ pub fn measure(
 }
 
 /// Every built-in theme at both depths, at 120×40 over 10 s of play.
-pub fn all(frames: usize) -> Result<Vec<Bytes>, String> {
+pub fn all(frames: usize) -> Result<Vec<Bytes>, Error> {
     let mut out = Vec::new();
     for theme in crate::theme::BUILTIN {
         for depth in [Depth::TrueColor, Depth::Ansi256] {

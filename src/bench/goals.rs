@@ -9,8 +9,9 @@ use super::{
 use crate::engine::solve::{escape_speed, sweep_escape};
 use crate::engine::stepper::dp54_plain;
 use crate::engine::{Frame, Initial, Method, Release, Run, Settings};
+use crate::error::Error;
 
-pub(super) fn savings(cs: &[(String, Initial)]) -> Result<Vec<Saving>, String> {
+pub(super) fn savings(cs: &[(String, Initial)]) -> Result<Vec<Saving>, Error> {
     let mut out = Vec::new();
     // Stuck: closed-form rotation after the stop, against the paper's stepping to τ = 50.
     let (mut raw, mut rk2, mut dp) = (0, 0, 0);
@@ -35,9 +36,9 @@ pub(super) fn savings(cs: &[(String, Initial)]) -> Result<Vec<Saving>, String> {
     // Escaping: stop at the certificate instead of following it out to τ = 400.
     let far = Initial::velocity(0.5, 0.4, 1.5);
     let mut follow = Run::new(far, Settings::default())?;
-    follow.run(FAR_TAU, false).map_err(|e| e.to_string())?;
+    follow.run(FAR_TAU, false)?;
     let mut stop = Run::new(far, Settings::default())?;
-    stop.run(FAR_TAU, true).map_err(|e| e.to_string())?;
+    stop.run(FAR_TAU, true)?;
     out.push(Saving {
         what: "far escape (0.5, 0.4, 1.5): stop at the certificate".into(),
         baseline: "dp54 followed to τ = 400".into(),
@@ -77,7 +78,9 @@ pub(super) fn savings(cs: &[(String, Initial)]) -> Result<Vec<Saving>, String> {
         FREE_TAU,
         1e-10,
     )
-    .ok_or("dp54 on the frictionless equations: step size underflow")?;
+    .ok_or(Error::Failed(
+        "dp54 on the frictionless equations: step size underflow".into(),
+    ))?;
     let off = (Frame::Table.to_state(y, FREE_TAU).r - free.free_state(FREE_TAU).r).length();
     out.push(Saving {
         what: format!("μ = 0 from C's release to τ = {FREE_TAU} (ξ ≈ 25): closed form"),
@@ -93,7 +96,7 @@ pub(super) fn savings(cs: &[(String, Initial)]) -> Result<Vec<Saving>, String> {
 pub(super) fn speed(
     cfg: &Config,
     per_case: &[(Setting, Vec<Option<RestCase>>)],
-) -> Result<Speed, String> {
+) -> Result<Speed, Error> {
     let (t, escape_ms) = timed(if cfg.reps == 0 { 0 } else { cfg.reps.max(3) }, || {
         escape_speed(0.5, 0.0, Settings::default(), ESCAPE_VTOL)
     });
@@ -170,16 +173,16 @@ pub(super) fn speed(
 
 /// One frame of the explorer as it plays: a tick of simulation and a full draw of the default
 /// scene at 160×48, with the paper's run beside it, once the trail holds 20 000 samples.
-fn frame_time(reps: usize) -> Result<(f64, usize), String> {
+fn frame_time(reps: usize) -> Result<(f64, usize), Error> {
     use crate::app::{Action, App, update};
     use ratatui::{Terminal, backend::TestBackend};
-    let theme = crate::theme::Theme::builtin("dark").ok_or("no dark theme")?;
+    let theme = crate::theme::Theme::builtin("dark").ok_or(Error::invalid("no dark theme"))?;
     let mut app = App::new(crate::scene::Scene::default_scene(), theme);
     update(&mut app, Action::ToggleCompare);
     while app.sim.samples.len() < 20_000 {
         app.tick();
     }
-    let mut term = Terminal::new(TestBackend::new(160, 48)).map_err(|e| e.to_string())?;
+    let mut term = Terminal::new(TestBackend::new(160, 48))?;
     let (r, ms) = timed(reps.max(5), || {
         app.tick();
         let mut geom = None;
@@ -187,7 +190,7 @@ fn frame_time(reps: usize) -> Result<(f64, usize), String> {
         app.drawn(geom);
         Ok::<(), std::convert::Infallible>(())
     });
-    r.map_err(|e| e.to_string())?;
+    r?;
     Ok((ms, app.sim.trail().len()))
 }
 

@@ -10,6 +10,7 @@ mod tasks;
 
 use crate::engine::solve::escape_speed;
 use crate::engine::{Frame, Initial, Method, Outcome, Settings};
+use crate::error::Error;
 use glam::DVec2;
 use goals::{savings, speed, task_ratios};
 use serde::Serialize;
@@ -233,7 +234,7 @@ const FAR_TAU: f64 = 400.0;
 const ESCAPE_VTOL: f64 = 1e-8;
 
 /// Runs the whole bench. `progress` hears about each task as it starts.
-pub fn run(cfg: &Config, mut progress: impl FnMut(&str)) -> Result<Report, String> {
+pub fn run(cfg: &Config, mut progress: impl FnMut(&str)) -> Result<Report, Error> {
     let cs = cases(cfg.cases, cfg.seed);
     let inits: Vec<Initial> = cs.iter().map(|(_, i)| *i).collect();
     let refset = reference();

@@ -2,6 +2,7 @@
 
 use crate::engine::model::wrap_angle;
 use crate::engine::{Initial, Outcome, Run, Settings, State, Status};
+use crate::error::Error;
 use glam::DVec2;
 use std::f64::consts::{PI, TAU};
 
@@ -36,10 +37,10 @@ pub struct End {
 
 /// Runs to the stop or the escape certificate. The paper's raw scheme has no stick event: its
 /// stop is declared at the first step with |u| ≤ dt at ξ ≤ 1 (one step's worth of friction).
-pub fn finish(initial: Initial, settings: Settings, tau_max: f64) -> Result<End, String> {
+pub fn finish(initial: Initial, settings: Settings, tau_max: f64) -> Result<End, Error> {
     let mut run = Run::new(initial, settings)?;
     if settings.method().stick_events() {
-        let (outcome, s) = run.finish(tau_max).map_err(|e| e.to_string())?;
+        let (outcome, s) = run.finish(tau_max)?;
         return Ok(End {
             outcome,
             tau: s.tau,
@@ -74,16 +75,16 @@ pub fn finish(initial: Initial, settings: Settings, tau_max: f64) -> Result<End,
                 evals: run.cost.rhs_evals,
             });
         }
-        run.step(tau_max).map_err(|e| e.to_string())?;
+        run.step(tau_max)?;
     }
 }
 
 /// The lab state at exactly `tau` (no stopping at escape), and the cost.
-pub fn state_at(initial: Initial, settings: Settings, tau: f64) -> Result<(State, u64), String> {
+pub fn state_at(initial: Initial, settings: Settings, tau: f64) -> Result<(State, u64), Error> {
     let mut run = Run::new(initial, settings)?;
-    run.run(tau, false).map_err(|e| e.to_string())?;
+    run.run(tau, false)?;
     let s = match run.status {
-        Status::Stuck { .. } => run.state_at(tau).map_err(|e| e.to_string())?,
+        Status::Stuck { .. } => run.state_at(tau)?,
         Status::Slipping => run.state(),
     };
     Ok((s, run.cost.rhs_evals))

@@ -5,6 +5,7 @@ use super::runs::{End, finish, state_at};
 use super::{Config, ESCAPE_VTOL, REST_TAU, Row, Setting, median, reference, timed, worst};
 use crate::engine::solve::escape_speed;
 use crate::engine::{Initial, Method, Outcome, Settings};
+use crate::error::Error;
 use glam::DVec2;
 use std::f64::consts::TAU;
 
@@ -41,7 +42,7 @@ pub(super) fn rest_rows(
     cs: &[(String, Initial)],
     refs: &[End],
     per_case: &mut Vec<(Setting, Vec<Option<RestCase>>)>,
-) -> Result<Vec<Row>, String> {
+) -> Result<Vec<Row>, Error> {
     let mut rows = Vec::new();
     for s in methods_for(cfg, 0.0, true) {
         let (ends, ms) = timed(cfg.reps, || {
@@ -107,7 +108,7 @@ pub(super) fn position_rows(
     refs: &[DVec2],
     tau: f64,
     settings: &[Setting],
-) -> Result<Vec<Row>, String> {
+) -> Result<Vec<Row>, Error> {
     let mut rows = Vec::new();
     for s in settings {
         let (out, ms) = timed(cfg.reps, || {
@@ -147,13 +148,13 @@ pub(super) fn position_rows(
 
 /// Error of the position at τ = `tau` of `initial` with a fixed-step method at `dt`, against
 /// the reference: for measuring the order of the fixed-step methods on a smooth stretch.
-pub fn position_error(initial: Initial, method: Method, dt: f64, tau: f64) -> Result<f64, String> {
+pub fn position_error(initial: Initial, method: Method, dt: f64, tau: f64) -> Result<f64, Error> {
     let (r, _) = state_at(initial, reference(), tau)?;
     let (s, _) = state_at(initial, Setting::new(method, dt).settings, tau)?;
     Ok((s.r - r.r).length())
 }
 
-pub(super) fn escape_rows(cfg: &Config, v_ref: f64) -> Result<Vec<Row>, String> {
+pub(super) fn escape_rows(cfg: &Config, v_ref: f64) -> Result<Vec<Row>, Error> {
     let mut settings: Vec<Setting> = vec![];
     let dts: &[f64] = if cfg.quick {
         &[1e-2]
@@ -198,7 +199,7 @@ pub(super) fn fig5_curve(
     settings: Settings,
     n: usize,
     vtol: f64,
-) -> Result<(Vec<f64>, u64), String> {
+) -> Result<(Vec<f64>, u64), Error> {
     let mut evals = 0;
     let mut v = Vec::with_capacity(n);
     for i in 0..n {
@@ -215,7 +216,7 @@ pub(super) fn fig5_rows(
     n: usize,
     refs: &[f64],
     vtol: f64,
-) -> Result<Vec<Row>, String> {
+) -> Result<Vec<Row>, Error> {
     let mut settings: Vec<Setting> = vec![];
     if !cfg.quick {
         for m in [Method::Rk2, Method::Rk4] {

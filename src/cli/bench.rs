@@ -1,6 +1,6 @@
 //! `turntable bench`: the work–precision table, as text, JSON or braille charts.
 
-use super::{BenchArgs, CmdResult, Failure};
+use super::{BenchArgs, CmdResult, Error};
 use crate::bench::{self, Config};
 use crate::files::emit;
 
@@ -12,7 +12,7 @@ pub fn bench(a: BenchArgs) -> CmdResult {
     };
     if let Some(n) = a.cases {
         if n > 10_000 {
-            return Err(Failure::Usage(format!(
+            return Err(Error::Invalid(format!(
                 "cases must be at most 10000, got {n}"
             )));
         }
@@ -21,9 +21,9 @@ pub fn bench(a: BenchArgs) -> CmdResult {
     if let Some(s) = a.seed {
         cfg.seed = s;
     }
-    let report = bench::run(&cfg, |task| eprintln!("bench: {task}…")).map_err(Failure::Runtime)?;
+    let report = bench::run(&cfg, |task| eprintln!("bench: {task}…"))?;
     let mut out = if a.json {
-        serde_json::to_string_pretty(&report).map_err(|e| Failure::Runtime(e.to_string()))? + "\n"
+        serde_json::to_string_pretty(&report).map_err(|e| Error::Failed(e.to_string()))? + "\n"
     } else {
         bench::table(&report)
     };

@@ -6,6 +6,7 @@ mod numerics;
 pub mod replay;
 
 use crate::engine::{Frame, Initial, Method, Release, Settings};
+use crate::error::Error;
 use clap::{Args, Parser, Subcommand};
 use std::io::Write;
 use std::path::PathBuf;
@@ -219,23 +220,10 @@ where
     PossibleValuesParser::new(values).try_map(|s| s.parse::<T>())
 }
 
-/// A command's failure: bad input (exit 2) or a run that could not finish (exit 1).
-#[derive(Debug)]
-pub enum Failure {
-    Usage(String),
-    Runtime(String),
-}
-
-impl From<std::io::Error> for Failure {
-    fn from(e: std::io::Error) -> Self {
-        Failure::Runtime(e.to_string())
-    }
-}
-
-pub type CmdResult = Result<(), Failure>;
+pub type CmdResult = Result<(), Error>;
 
 impl NumericsArgs {
-    pub fn settings(&self) -> Result<Settings, Failure> {
+    pub fn settings(&self) -> Result<Settings, Error> {
         let knob = if self.method.adaptive() {
             self.tol
         } else {
@@ -248,26 +236,26 @@ impl NumericsArgs {
         };
         match (self.method.adaptive(), self.tol, self.dt) {
             (true, _, Some(_)) => {
-                return Err(Failure::Usage(
+                return Err(Error::Invalid(
                     "--dt applies to the fixed-step methods (rk4, rk2, rk2-raw); dp54 takes --tol"
                         .into(),
                 ));
             }
             (false, Some(_), _) => {
-                return Err(Failure::Usage(format!(
+                return Err(Error::Invalid(format!(
                     "--tol applies to dp54; {} takes --dt",
                     self.method
                 )));
             }
             _ => {}
         }
-        s.validate().map_err(Failure::Usage)?;
+        s.validate()?;
         Ok(s)
     }
 }
 
-pub fn check_initial(i: &Initial) -> Result<(), Failure> {
-    i.validate().map_err(Failure::Usage)
+pub fn check_initial(i: &Initial) -> Result<(), Error> {
+    i.validate()
 }
 
 /// Opens the explorer. Bad scenes, themes and `--record` paths fail before the terminal is
@@ -275,13 +263,13 @@ pub fn check_initial(i: &Initial) -> Result<(), Failure> {
 fn explore(cli: &Cli) -> CmdResult {
     let (scene, theme) = (&cli.look.scene, &cli.look.theme);
     let scene = match scene {
-        Some(s) => crate::scene::Scene::load(s).map_err(Failure::Usage)?,
+        Some(s) => crate::scene::Scene::load(s).map_err(Error::Invalid)?,
         None => crate::scene::Scene::default_scene(),
     };
     let no_color = std::env::var_os("NO_COLOR").is_some_and(|v| !v.is_empty());
     let colorterm = std::env::var("COLORTERM").ok();
     let theme = crate::theme::Theme::resolve(theme.as_deref(), no_color)
-        .map_err(Failure::Usage)?
+        .map_err(Error::Invalid)?
         .with_depth(crate::theme::Depth::from_colorterm(colorterm.as_deref()));
     let scene_ref = cli.look.scene.as_deref().map(scene_reference);
     if let Some(path) = &cli.record {
@@ -289,7 +277,7 @@ fn explore(cli: &Cli) -> CmdResult {
     }
     use std::io::IsTerminal;
     if !(std::io::stdin().is_terminal() && std::io::stdout().is_terminal()) {
-        return Err(Failure::Usage(
+        return Err(Error::Invalid(
             "the explorer needs a terminal (stdin and stdout must be a tty); headless, use `turntable replay SCRIPT` or a subcommand (see --help)".into(),
         ));
     }
@@ -306,12 +294,12 @@ fn explore(cli: &Cli) -> CmdResult {
     let (result, recording) = crate::terminal::run(app, cli.fps, save);
     if let (Some(path), Some(script)) = (&cli.record, recording) {
         save_recording(path, scene_ref.as_deref(), script)
-            .map_err(|e| Failure::Runtime(format!("--record: {e}")))?;
+            .map_err(|e| Error::Failed(format!("--record: {e}")))?;
     }
     match result {
         Ok(false) => Ok(()),
-        Ok(true) => Err(Failure::Runtime("ended by a signal".into())),
-        Err(e) => Err(Failure::Runtime(format!("terminal: {e}"))),
+        Ok(true) => Err(Error::Failed("ended by a signal".into())),
+        Err(e) => Err(Error::Failed(format!("terminal: {e}"))),
     }
 }
 
@@ -340,8 +328,8 @@ fn save_recording(
 
 /// A `--record` file must be writable where it is named, and must not be one of the files
 /// the session reads: fail before the session, not after.
-fn check_record_path(path: &std::path::Path, inputs: [&Option<String>; 2]) -> Result<(), Failure> {
-    let usage = |e: String| Failure::Usage(format!("--record {e}"));
+fn check_record_path(path: &std::path::Path, inputs: [&Option<String>; 2]) -> Result<(), Error> {
+    let usage = |e: String| Error::Invalid(format!("--record {e}"));
     if let Ok(rec) = std::fs::canonicalize(path) {
         for input in inputs.into_iter().flatten() {
             if std::fs::canonicalize(input).is_ok_and(|i| i == rec) {
@@ -371,15 +359,10 @@ pub fn main() -> ExitCode {
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
-        Err(Failure::Usage(m)) => {
-            let m = crate::files::escape_controls(&m);
+        Err(e) => {
+            let m = crate::files::escape_controls(&e.to_string());
             let _ = writeln!(std::io::stderr(), "error: {m}");
-            ExitCode::from(2)
-        }
-        Err(Failure::Runtime(m)) => {
-            let m = crate::files::escape_controls(&m);
-            let _ = writeln!(std::io::stderr(), "error: {m}");
-            ExitCode::from(1)
+            ExitCode::from(e.exit_code())
         }
     }
 }

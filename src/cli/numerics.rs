@@ -1,6 +1,6 @@
 //! The headless numerical commands: run, escape, critical, sweep.
 
-use super::{CmdResult, CriticalArgs, EscapeArgs, Failure, RunArgs, SweepArgs, check_initial};
+use super::{CmdResult, CriticalArgs, Error, EscapeArgs, RunArgs, SweepArgs, check_initial};
 use crate::engine::solve::{
     Threshold, check_escape_xi0, critical_radius, escape_speed, sweep_escape, sweep_rest,
 };
@@ -40,21 +40,21 @@ pub fn run(a: RunArgs) -> CmdResult {
     };
     check_initial(&initial)?;
     if !(a.tau_max.is_finite() && a.tau_max > 0.0 && a.tau_max <= TAU_MAX_LIMIT) {
-        return Err(Failure::Usage(format!(
+        return Err(Error::Invalid(format!(
             "tau-max must lie in (0, {TAU_MAX_LIMIT:e}], got {}",
             Initial::show(a.tau_max)
         )));
     }
     let settings = a.numerics.settings()?;
-    let mut run = Run::new(initial, settings).map_err(Failure::Usage)?;
+    let mut run = Run::new(initial, settings)?;
     // The file is opened (and a bad path refused) before any work; rows stream into it.
     let mut csv = match &a.trajectory {
         Some(path) => Some(BufWriter::new(
-            Output::create(path).map_err(|e| Failure::Usage(format!("--trajectory: {e}")))?,
+            Output::create(path).map_err(|e| Error::Invalid(format!("--trajectory: {e}")))?,
         )),
         None => None,
     };
-    let write_err = |e: std::io::Error| Failure::Runtime(format!("--trajectory: {e}"));
+    let write_err = |e: std::io::Error| Error::Failed(format!("--trajectory: {e}"));
     if let Some(csv) = csv.as_mut() {
         csv.write_all(b"tau,x,y,xq,yq,u,stuck\n")
             .map_err(write_err)?;
@@ -66,17 +66,14 @@ pub fn run(a: RunArgs) -> CmdResult {
         && !(stop_on_escape && run.escape.is_some())
     {
         let before = run.tau();
-        run.step(a.tau_max)
-            .map_err(|e| Failure::Runtime(e.to_string()))?;
+        run.step(a.tau_max)?;
         if let Some(csv) = csv.as_mut() {
             if initial.frictionless {
                 // No steps to write: sample the closed form instead.
                 let n = ((run.tau() - before) / FREE_SAMPLE).ceil().min(1e5) as usize;
                 for i in 1..n {
                     let t = before + (run.tau() - before) * i as f64 / n as f64;
-                    let s = run
-                        .state_at(t)
-                        .map_err(|e| Failure::Runtime(e.to_string()))?;
+                    let s = run.state_at(t)?;
                     trajectory_row(csv, &s, false).map_err(write_err)?;
                 }
             }
@@ -163,10 +160,10 @@ pub fn run(a: RunArgs) -> CmdResult {
 
 /// Settings for the solvers, which classify runs by how they end: the paper's raw scheme never
 /// comes to rest, so it cannot.
-fn solver_settings(n: &super::NumericsArgs) -> Result<crate::engine::Settings, Failure> {
+fn solver_settings(n: &super::NumericsArgs) -> Result<crate::engine::Settings, Error> {
     let s = n.settings()?;
     if !s.method().stick_events() {
-        return Err(Failure::Usage(format!(
+        return Err(Error::Invalid(format!(
             "{} has no stick event, so its runs never come to rest: the solvers need dp54, rk4 or rk2",
             s.method()
         )));
@@ -174,11 +171,11 @@ fn solver_settings(n: &super::NumericsArgs) -> Result<crate::engine::Settings, F
     Ok(s)
 }
 
-fn positive(name: &str, x: f64) -> Result<(), Failure> {
+fn positive(name: &str, x: f64) -> Result<(), Error> {
     if x.is_finite() && x > 0.0 {
         Ok(())
     } else {
-        Err(Failure::Usage(format!(
+        Err(Error::Invalid(format!(
             "{name} must be a positive number, got {}",
             Initial::show(x)
         )))
@@ -210,10 +207,10 @@ fn scan_summary(t: &Threshold) -> String {
 
 pub fn escape(a: EscapeArgs) -> CmdResult {
     check_initial(&Initial::velocity(a.xi0, a.phi, 0.0))?;
-    check_escape_xi0(a.xi0).map_err(Failure::Usage)?;
+    check_escape_xi0(a.xi0)?;
     positive("vtol", a.vtol)?;
     let settings = solver_settings(&a.numerics)?;
-    let t = escape_speed(a.xi0, a.phi, settings, a.vtol).map_err(Failure::Runtime)?;
+    let t = escape_speed(a.xi0, a.phi, settings, a.vtol)?;
     let phi = a.phi.rem_euclid(std::f64::consts::TAU);
     if a.json {
         let scan: Vec<_> = t
@@ -258,7 +255,7 @@ pub fn critical(a: CriticalArgs) -> CmdResult {
         positive("r0c", r)?;
         let m = w * w * r / a.g;
         if !(m.is_finite() && m > 0.0) {
-            return Err(Failure::Usage(format!(
+            return Err(Error::Invalid(format!(
                 "mu = omega² r0c / (xi0c g) is out of range for omega {}, r0c {}, g {}: check the units (rad/s, m, m/s²)",
                 Initial::show(w),
                 Initial::show(r),
@@ -267,7 +264,7 @@ pub fn critical(a: CriticalArgs) -> CmdResult {
         }
     }
     let settings = solver_settings(&a.numerics)?;
-    let t = critical_radius(settings, a.xtol).map_err(Failure::Runtime)?;
+    let t = critical_radius(settings, a.xtol)?;
     // The paper's Eq. 22: mu = Omega² r0c / (xi0c g), friction measured by the critical radius.
     let mu = a.omega.zip(a.r0c).map(|(w, r)| w * w * r / (t.value * a.g));
     if a.json {
@@ -296,7 +293,7 @@ pub fn critical(a: CriticalArgs) -> CmdResult {
 pub fn sweep(a: SweepArgs) -> CmdResult {
     positive("vtol", a.vtol)?;
     if a.points == 0 || a.points > 100_000 {
-        return Err(Failure::Usage(format!(
+        return Err(Error::Invalid(format!(
             "points must lie in 1..=100000, got {}",
             a.points
         )));
@@ -307,14 +304,14 @@ pub fn sweep(a: SweepArgs) -> CmdResult {
         .as_deref()
         .map(Output::create)
         .transpose()
-        .map_err(|e| Failure::Usage(format!("--out: {e}")))?;
+        .map_err(|e| Error::Invalid(format!("--out: {e}")))?;
     let mut csv = String::new();
     if a.figure == "fig5" {
         for &xi0 in &a.xi0 {
-            check_escape_xi0(xi0).map_err(Failure::Usage)?;
+            check_escape_xi0(xi0)?;
         }
         csv.push_str("xi0,phi,v_escape\n");
-        for p in sweep_escape(&a.xi0, a.points, settings, a.vtol).map_err(Failure::Runtime)? {
+        for p in sweep_escape(&a.xi0, a.points, settings, a.vtol)? {
             let _ = writeln!(csv, "{},{},{}", p.xi0, p.phi, p.v_escape);
         }
     } else {
@@ -324,7 +321,7 @@ pub fn sweep(a: SweepArgs) -> CmdResult {
             .map(|i| a.xi0_max * i as f64 / (a.points - 1).max(1) as f64)
             .collect();
         csv.push_str("xi0,outcome,xi,angle\n");
-        for p in sweep_rest(&xi0s, settings).map_err(Failure::Runtime)? {
+        for p in sweep_rest(&xi0s, settings)? {
             let f = |x: Option<f64>| x.map_or(String::new(), |x| x.to_string());
             let _ = writeln!(
                 csv,

@@ -1,6 +1,6 @@
 //! `turntable replay SCRIPT`: a key script run headlessly, its snapshots on stdout.
 
-use super::{CmdResult, Failure};
+use super::{CmdResult, Error};
 use crate::replay::{Options, replay_to};
 use crate::script::{parse_size, script_options};
 use clap::Args;
@@ -24,10 +24,10 @@ pub struct ReplayArgs {
 pub fn run(a: ReplayArgs) -> CmdResult {
     let text = if a.script == "-" {
         crate::files::read_capped(std::io::stdin().lock(), crate::files::READ_CAP)
-            .map_err(|e| Failure::Usage(format!("-: {e}")))?
+            .map_err(|e| Error::Invalid(format!("-: {e}")))?
     } else {
         crate::files::read_bounded(std::path::Path::new(&a.script), crate::files::READ_CAP)
-            .map_err(Failure::Usage)?
+            .map_err(Error::Invalid)?
     };
     let (app, opts, steps) = prepare(&text, &a)?;
     let mut so = std::io::BufWriter::new(std::io::stdout().lock());
@@ -40,17 +40,17 @@ pub fn run(a: ReplayArgs) -> CmdResult {
 pub fn prepare(
     text: &str,
     a: &ReplayArgs,
-) -> Result<(crate::app::App, Options, Vec<crate::script::Step>), Failure> {
+) -> Result<(crate::app::App, Options, Vec<crate::script::Step>), Error> {
     let steps =
-        crate::script::parse(text).map_err(|e| Failure::Usage(format!("{}: {e}", a.script)))?;
-    let own = script_options(text).map_err(|e| Failure::Usage(format!("{}: {e}", a.script)))?;
+        crate::script::parse(text).map_err(|e| Error::Invalid(format!("{}: {e}", a.script)))?;
+    let own = script_options(text).map_err(|e| Error::Invalid(format!("{}: {e}", a.script)))?;
     let scene = match a.look.scene.as_ref().or(own.scene.as_ref()) {
-        Some(s) => crate::scene::Scene::load(s).map_err(Failure::Usage)?,
+        Some(s) => crate::scene::Scene::load(s).map_err(Error::Invalid)?,
         None => crate::scene::Scene::default_scene(),
     };
     let theme = a.look.theme.as_ref().or(own.theme.as_ref());
     let theme =
-        crate::theme::Theme::resolve(theme.map(String::as_str), false).map_err(Failure::Usage)?;
+        crate::theme::Theme::resolve(theme.map(String::as_str), false).map_err(Error::Invalid)?;
     let mut app = crate::app::App::new(scene, theme);
     app.writes_files = false;
     let opts = Options {

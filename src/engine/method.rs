@@ -3,6 +3,7 @@
 //! *Solving ODEs I*, II.5 and the DOPRI5 code).
 
 use super::model::{Frame, Initial};
+use crate::error::Error;
 use serde::{Deserialize, Serialize};
 
 /// The integration methods on offer; names (`rk2-raw`, `dp54`, …) from the derives.
@@ -122,7 +123,7 @@ impl Scheme {
 
 /// How a run is integrated: the user's speed/accuracy choice.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(try_from = "SettingsFile", into = "SettingsFile")]
+#[serde(from = "SettingsFile", into = "SettingsFile")]
 pub struct Settings {
     pub scheme: Scheme,
     pub frame: Frame,
@@ -150,18 +151,17 @@ fn default_max_steps() -> u64 {
     Settings::default().max_steps
 }
 
-impl TryFrom<SettingsFile> for Settings {
-    type Error = String;
-    fn try_from(f: SettingsFile) -> Result<Self, String> {
+impl From<SettingsFile> for Settings {
+    fn from(f: SettingsFile) -> Self {
         let knob = match f.method {
             Method::Dp54 => f.tol,
             _ => f.dt,
         };
-        Ok(Settings {
+        Settings {
             scheme: f.method.with(knob.unwrap_or(f.method.default_knob())),
             frame: f.frame,
             max_steps: f.max_steps,
-        })
+        }
     }
 }
 
@@ -207,19 +207,19 @@ impl Settings {
     pub fn method(&self) -> Method {
         self.scheme.method()
     }
-    pub fn validate(&self) -> Result<(), String> {
+    pub fn validate(&self) -> Result<(), Error> {
         let (name, (lo, hi), k) = match self.scheme {
             Scheme::Dp54 { tol } => ("tol", TOL_RANGE, tol),
             s => ("dt", DT_RANGE, s.knob()),
         };
         if !(k.is_finite() && (lo..=hi).contains(&k)) {
-            return Err(format!(
+            return Err(Error::invalid(format!(
                 "{name} must lie in [{lo:e}, {hi:e}], got {}",
                 Initial::show(k)
-            ));
+            )));
         }
         if self.max_steps == 0 {
-            return Err("max-steps must be at least 1".into());
+            return Err(Error::invalid("max-steps must be at least 1"));
         }
         Ok(())
     }

@@ -2,6 +2,7 @@
 //! Sec. IV, with the conventions of `shared/CONVENTIONS.md` (Ω = 1, μg = 1, the table turns
 //! counterclockwise). Never polar inside: polar forms are singular at ξ = 0.
 
+use crate::error::Error;
 use glam::DVec2;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
@@ -145,24 +146,33 @@ impl Initial {
     }
 
     /// Checks the values a user may type: finite, 0 ≤ ξ0, v0 ≤ [`Initial::MAX`].
-    pub fn validate(&self) -> Result<(), String> {
+    pub fn validate(&self) -> Result<(), Error> {
         for (name, x) in [("xi0", self.xi0), ("phi", self.phi), ("v0", self.v0)] {
             if !x.is_finite() {
-                return Err(format!(
+                return Err(Error::invalid(format!(
                     "{name} must be a finite number, got {}",
                     Self::show(x)
-                ));
+                )));
             }
         }
         if self.xi0 < 0.0 {
-            return Err(format!("xi0 must be ≥ 0, got {}", Self::show(self.xi0)));
+            return Err(Error::invalid(format!(
+                "xi0 must be ≥ 0, got {}",
+                Self::show(self.xi0)
+            )));
         }
         if self.v0 < 0.0 {
-            return Err(format!("v0 must be ≥ 0, got {}", Self::show(self.v0)));
+            return Err(Error::invalid(format!(
+                "v0 must be ≥ 0, got {}",
+                Self::show(self.v0)
+            )));
         }
         for (name, x) in [("xi0", self.xi0), ("v0", self.v0)] {
             if x > Self::MAX {
-                return Err(format!("{name} must be ≤ {:e}, got {x:e}", Self::MAX));
+                return Err(Error::invalid(format!(
+                    "{name} must be ≤ {:e}, got {x:e}",
+                    Self::MAX
+                )));
             }
         }
         Ok(())

@@ -4,6 +4,7 @@
 use super::method::{Scheme, Settings};
 use super::model::{Initial, Release};
 use super::run::{Outcome, Run};
+use crate::error::Error;
 use serde::Serialize;
 
 /// Time limit of one classifying run. Every run ends stuck or certified long before this except
@@ -34,8 +35,8 @@ fn bisect(
     mut lo: f64,
     mut hi: f64,
     tol: f64,
-    mut escapes: impl FnMut(f64) -> Result<bool, String>,
-) -> Result<(f64, f64, u32), String> {
+    mut escapes: impl FnMut(f64) -> Result<bool, Error>,
+) -> Result<(f64, f64, u32), Error> {
     let mut runs = 0;
     while hi - lo > tol {
         let mid = 0.5 * (lo + hi);
@@ -53,8 +54,8 @@ fn bisect(
 #[allow(clippy::type_complexity)]
 fn scan(
     grid: &[f64],
-    mut escapes: impl FnMut(f64) -> Result<bool, String>,
-) -> Result<(usize, bool, Vec<(f64, bool)>), String> {
+    mut escapes: impl FnMut(f64) -> Result<bool, Error>,
+) -> Result<(usize, bool, Vec<(f64, bool)>), Error> {
     let outcomes = grid
         .iter()
         .map(|&x| escapes(x).map(|e| (x, e)))
@@ -62,7 +63,7 @@ fn scan(
     let first = outcomes
         .iter()
         .position(|o| o.1)
-        .ok_or("no escape found in the scanned range")?;
+        .ok_or(Error::Failed("no escape found in the scanned range".into()))?;
     let interval = outcomes[first..].iter().all(|o| o.1);
     Ok((first, interval, outcomes))
 }
@@ -92,7 +93,7 @@ fn probe(
     settings: Settings,
     early: bool,
     evals: &mut u64,
-) -> Result<Probe, String> {
+) -> Result<Probe, Error> {
     use super::run::Status;
     let mut run = Run::new(initial, settings)?;
     let result = loop {
@@ -129,7 +130,7 @@ fn probe(
         }
         if let Err(e) = run.step(CLASSIFY_TAU) {
             *evals += run.cost.rhs_evals;
-            return Err(e.to_string());
+            return Err(e.into());
         }
     };
     *evals += run.cost.rhs_evals;
@@ -146,14 +147,14 @@ fn escape_scan_top(xi0: f64) -> f64 {
 pub const MAX_ESCAPE_XI0: f64 = 4e11;
 
 /// Whether [`escape_speed`] accepts `xi0` (so that a command can refuse it before any run).
-pub fn check_escape_xi0(xi0: f64) -> Result<(), String> {
+pub fn check_escape_xi0(xi0: f64) -> Result<(), Error> {
     Initial::velocity(xi0, 0.0, 0.0).validate()?;
     if xi0 > MAX_ESCAPE_XI0 {
-        return Err(format!(
+        return Err(Error::invalid(format!(
             "xi0 must be ≤ {MAX_ESCAPE_XI0:e} for an escape speed (the scan reaches v0 = 2(1 + xi0) + 2 ≤ {:e}), got {}",
             Initial::MAX,
             Initial::show(xi0)
-        ));
+        )));
     }
     Ok(())
 }
@@ -173,16 +174,16 @@ const CERTIFY_STEP: f64 = 1e3;
 /// threshold, see [`saddle_h`] — closes in; once its steps are small, a pair of runs straddling
 /// the estimate by ±0.45 `tol` certifies it. Bisection on the outcome is the safeguard
 /// whenever H is unavailable or the secant makes poor progress.
-pub fn escape_speed(xi0: f64, phi: f64, settings: Settings, tol: f64) -> Result<Threshold, String> {
+pub fn escape_speed(xi0: f64, phi: f64, settings: Settings, tol: f64) -> Result<Threshold, Error> {
     if !(tol.is_finite() && tol > 0.0) {
-        return Err(format!("tol must be > 0, got {tol}"));
+        return Err(Error::invalid(format!("tol must be > 0, got {tol}")));
     }
     Initial::velocity(xi0, phi, 0.0).validate()?;
     if !settings.method().stick_events() {
-        return Err(format!(
+        return Err(Error::invalid(format!(
             "the escape speed needs stick events: {} never comes to rest",
             settings.method()
-        ));
+        )));
     }
     let mut evals = 0;
     let at = |v0: f64| Initial::velocity(xi0, phi, v0);
@@ -227,7 +228,11 @@ pub fn escape_speed(xi0: f64, phi: f64, settings: Settings, tol: f64) -> Result<
             }
             (true, _) if i > 1 => i -= 1,
             (false, false) if i + 1 < grid.len() => i += 1,
-            _ => return Err("the escape speed could not be bracketed".into()),
+            _ => {
+                return Err(Error::Failed(
+                    "the escape speed could not be bracketed".into(),
+                ));
+            }
         }
     }
     // Secant on H through the latest two points, safeguarded by the bracket (Brent's rule:
@@ -316,8 +321,8 @@ fn close_in(
     mut slope: f64,
     tol: f64,
     mut runs: u32,
-    mut probe: impl FnMut(f64) -> Result<Probe, String>,
-) -> Result<(f64, f64, u32), String> {
+    mut probe: impl FnMut(f64) -> Result<Probe, Error>,
+) -> Result<(f64, f64, u32), Error> {
     let mut reach = 0.7 * tol;
     let mut last_escape: Option<(f64, f64)> = None;
     for _ in 0..12 {
@@ -360,18 +365,20 @@ fn close_in(
 
 /// Critical radius ξ0c (Sec. IV, Fig. 6): the largest ξ0 at which a particle released at rest
 /// in the lab still ends stuck.
-pub fn critical_radius(settings: Settings, tol: f64) -> Result<Threshold, String> {
+pub fn critical_radius(settings: Settings, tol: f64) -> Result<Threshold, Error> {
     let mut evals = 0;
-    let mut classify = |xi0: f64| -> Result<bool, String> {
+    let mut classify = |xi0: f64| -> Result<bool, Error> {
         let mut run = Run::new(Initial::at_rest(xi0, Release::LabRest), settings)?;
-        let outcome = run.run(CLASSIFY_TAU, true).map_err(|e| e.to_string())?;
+        let outcome = run.run(CLASSIFY_TAU, true)?;
         evals += run.cost.rhs_evals;
         Ok(outcome != Outcome::Stuck)
     };
     let grid: Vec<f64> = (0..=30).map(|i| 1.5 * i as f64 / 30.0).collect();
     let (first, interval, scanned) = scan(&grid, &mut classify)?;
     if first == 0 {
-        return Err("released at rest in the lab at the centre, the particle escaped".into());
+        return Err(Error::Failed(
+            "released at rest in the lab at the centre, the particle escaped".into(),
+        ));
     }
     let (lo, hi, runs) = bisect(grid[first - 1], grid[first], tol, &mut classify)?;
     Ok(Threshold {
@@ -434,7 +441,7 @@ pub fn sweep_escape(
     n: usize,
     settings: Settings,
     tol: f64,
-) -> Result<Vec<EscapePoint>, String> {
+) -> Result<Vec<EscapePoint>, Error> {
     let jobs: Vec<(f64, f64)> = xi0s
         .iter()
         .flat_map(|&xi0| (0..n).map(move |i| (xi0, std::f64::consts::TAU * i as f64 / n as f64)))
@@ -461,10 +468,10 @@ pub struct RestPoint {
 }
 
 /// Fig. 6: the final rest position against ξ0 for release at rest in the lab.
-pub fn sweep_rest(xi0s: &[f64], settings: Settings) -> Result<Vec<RestPoint>, String> {
+pub fn sweep_rest(xi0s: &[f64], settings: Settings) -> Result<Vec<RestPoint>, Error> {
     par_map(xi0s, |&xi0| {
         let mut run = Run::new(Initial::at_rest(xi0, Release::LabRest), settings)?;
-        let (outcome, s) = run.finish(CLASSIFY_TAU).map_err(|e| e.to_string())?;
+        let (outcome, s) = run.finish(CLASSIFY_TAU)?;
         let stuck = outcome == Outcome::Stuck;
         let q = s.q();
         Ok(RestPoint {
@@ -486,11 +493,11 @@ pub fn easiest_angle(
     settings: Settings,
     tol: f64,
     phi_tol: f64,
-) -> Result<(f64, f64), String> {
+) -> Result<(f64, f64), Error> {
     let ve = |phi: f64| escape_speed(xi0, phi, settings, tol).map(|t| t.value);
     let step = std::f64::consts::TAU / n as f64;
     let phis: Vec<f64> = (0..n).map(|i| step * i as f64).collect();
-    let vals: Vec<Result<f64, String>> = par_map(&phis, |&p| ve(p));
+    let vals: Vec<Result<f64, Error>> = par_map(&phis, |&p| ve(p));
     let vals: Vec<f64> = vals.into_iter().collect::<Result<_, _>>()?;
     let imin = (0..n)
         .min_by(|&a, &b| vals[a].total_cmp(&vals[b]))

@@ -7,6 +7,7 @@ use super::method::Settings;
 use super::model::{Initial, State};
 use super::stepper::{Cost, Segment, StepError, Stepper, too_short};
 use super::stop::{frozen_stop, frozen_stop_error};
+use crate::error::Error;
 use glam::DVec2;
 
 mod events;
@@ -123,7 +124,7 @@ pub struct Run {
 }
 
 impl Run {
-    pub fn new(initial: Initial, settings: Settings) -> Result<Run, String> {
+    pub fn new(initial: Initial, settings: Settings) -> Result<Run, Error> {
         initial.validate()?;
         settings.validate()?;
         let frame = settings.frame;

@@ -4,7 +4,6 @@
 use crate::engine::model::State;
 use glam::DVec2;
 use serde::Serialize;
-use std::fmt;
 
 /// How escape was certified (CONVENTIONS.md "Outcomes"; Sec. II, property 2).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
@@ -70,39 +69,22 @@ impl Outcome {
     }
 }
 
-#[derive(Clone, Debug, PartialEq)]
+/// Why a run could not go on.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum RunError {
     /// The step budget ran out before the run ended.
+    #[error(
+        "step budget of {steps} steps exhausted at tau = {tau:.6} (raise --max-steps, lower --tau-max, or use a larger dt / looser tol)"
+    )]
     Budget { steps: u64, tau: f64 },
     /// dp54 could not meet the tolerance with a representable step.
+    #[error("step size underflow at tau = {tau:.6}: the tolerance cannot be met")]
     StepUnderflow { tau: f64 },
     /// A state was asked for at a τ the run cannot interpolate: it holds dense output for its
     /// latest step only, `from` to `to`.
+    #[error("no state at tau = {tau}: the run can interpolate only from {from} to {to}")]
     OutOfRange { tau: f64, from: f64, to: f64 },
 }
-
-impl fmt::Display for RunError {
-    fn fmt(&self, f: &mut fmt::Formatter) -> fmt::Result {
-        match self {
-            RunError::Budget { steps, tau } => write!(
-                f,
-                "step budget of {steps} steps exhausted at tau = {tau:.6} (raise --max-steps, lower --tau-max, or use a larger dt / looser tol)"
-            ),
-            RunError::StepUnderflow { tau } => {
-                write!(
-                    f,
-                    "step size underflow at tau = {tau:.6}: the tolerance cannot be met"
-                )
-            }
-            RunError::OutOfRange { tau, from, to } => write!(
-                f,
-                "no state at tau = {tau}: the run can interpolate only from {from} to {to}"
-            ),
-        }
-    }
-}
-
-impl std::error::Error for RunError {}
 
 pub(super) fn certificate(s: &State) -> Option<Certificate> {
     if s.energy() < -0.5 {
