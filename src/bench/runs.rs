@@ -1,6 +1,7 @@
 //! What one measurement runs: the seeded cases, and one run to its end or to a time.
 
 use crate::engine::model::wrap_angle;
+use crate::engine::run::raw_at_rest;
 use crate::engine::{Initial, Outcome, Run, Settings, State, Status};
 use crate::error::Error;
 use glam::DVec2;
@@ -59,7 +60,7 @@ pub fn finish(initial: Initial, settings: Settings, tau_max: f64) -> Result<End,
             });
         }
         let dt = settings.scheme.knob();
-        if s.u_lab().length() <= dt && s.xi() <= 1.0 {
+        if raw_at_rest(&s, dt) {
             return Ok(End {
                 outcome: Outcome::Stuck,
                 tau: s.tau,

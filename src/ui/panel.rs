@@ -3,6 +3,7 @@
 
 use crate::app::App;
 use crate::engine::model::wrap_angle;
+use crate::engine::run::raw_at_rest;
 use crate::engine::{Certificate, Method, Outcome, Status};
 use crate::sim::Sim;
 use crate::theme::Theme;
@@ -65,10 +66,8 @@ pub fn status_text(sim: &Sim, th: &Theme) -> (String, ratatui::style::Color) {
         },
         Outcome::Running => {
             let s = sim.now();
-            // The bench's rule for the raw scheme's "stop": |u| within one step's friction.
-            let dt = sim.run.settings.scheme.knob();
-            if sim.run.settings.method() == Method::Rk2Raw && s.u().length() <= dt && s.xi() <= 1.0
-            {
+            let raw = sim.run.settings.method() == Method::Rk2Raw;
+            if raw && raw_at_rest(&s, sim.run.settings.scheme.knob()) {
                 ("≈ at rest (raw RK2 chatters)".into(), th.slipping)
             } else {
                 ("slipping".into(), th.slipping)

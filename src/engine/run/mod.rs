@@ -14,7 +14,7 @@ mod events;
 mod outcome;
 
 use outcome::certificate;
-pub use outcome::{Certificate, Escape, Outcome, RunError, Status};
+pub use outcome::{Certificate, Escape, Outcome, RunError, Status, raw_at_rest};
 
 /// What bounded a step (shown by the explorer's integrator step mode).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -86,6 +86,13 @@ pub enum RunError {
     OutOfRange { tau: f64, from: f64, to: f64 },
 }
 
+/// The paper's raw RK2 has no stop event, so it never sticks: it is taken to be at rest once
+/// |u| is within one step's worth of friction (|u| ≤ dt) inside ξ ≤ 1 (Sec. IV's scheme). The
+/// one rule the bench scores it by and the explorer labels it with.
+pub fn raw_at_rest(s: &State, dt: f64) -> bool {
+    s.u_lab().length() <= dt && s.xi() <= 1.0
+}
+
 pub(super) fn certificate(s: &State) -> Option<Certificate> {
     if s.energy() < -0.5 {
         Some(Certificate::Energy)
