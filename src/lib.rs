@@ -1,6 +1,7 @@
 //! turntable: a particle sliding with dry friction on a rotating table
 //! (Agha, Gupta & Joseph, Am. J. Phys. 83, 126 (2015)).
 
+pub mod analysis;
 pub mod app;
 pub mod bench;
 pub mod cli;

@@ -109,7 +109,7 @@ pub type SaveRecording = Box<dyn FnOnce(String) + Send>;
 /// session as a key script (also after a signal or an error, as far as it got). If the
 /// terminal is gone and the process must end without returning, `record` gets that script.
 pub fn run(
-    app: App,
+    mut app: App,
     fps: u32,
     record: Option<SaveRecording>,
 ) -> (io::Result<bool>, Option<String>) {
@@ -126,6 +126,8 @@ pub fn run(
         return (Err(e), None);
     }
     watch_hangup(Arc::clone(&finished));
+    // The analysis pages fill in off this thread: keys never wait for them.
+    app.analysis = crate::analysis::Analysis::threaded();
     let mouse = app.mouse_capture();
     let mut session = match setup(mouse).and_then(|b| Session::new(app, b, recording)) {
         Ok(s) => s,

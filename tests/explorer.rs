@@ -4,6 +4,7 @@ use crossterm::event::{KeyCode, KeyEvent, KeyModifiers, MouseButton, MouseEvent,
 use ratatui::Terminal;
 use ratatui::backend::TestBackend;
 use turntable::app::keymap::KEYMAP;
+use turntable::app::pages::Page;
 use turntable::app::{Action, App};
 use turntable::engine::{Frame, Outcome, Run, Settings, Status};
 use turntable::scene::{PRESETS, Scene};
@@ -223,6 +224,18 @@ fn every_key_in_the_keymap_does_what_its_help_says() {
                     && Scene::load(a.save_path.to_str().unwrap()).unwrap().initial == a.initial
             }
             Action::ToggleMouse => !a.mouse_capture() && after.contains("mouse off"),
+            Action::NextPage => a.page == Page::TimePlots && after.contains("time plots"),
+            Action::PrevPage => a.page == Page::RestRadius && after.contains("rest radius"),
+            Action::Choose => a.page == Page::Turntable && after.contains("Enter runs"),
+            Action::PickRelease(_) => unreachable!("mouse actions have no key"),
+            Action::Omega(d) => {
+                (a.mu_probe.0 - (turntable::app::MU_PROBE.0 + d)).abs() < 1e-12
+                    && after.contains("Ω = ")
+            }
+            Action::R0c(d) => {
+                (a.mu_probe.1 - (turntable::app::MU_PROBE.1 + d)).abs() < 1e-12
+                    && after.contains("r0c = ")
+            }
         };
         assert!(ok, "{what} did not do what it says");
         a.check_invariants().unwrap();

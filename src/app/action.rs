@@ -49,4 +49,14 @@ pub enum Action {
     /// Mouse drag: the initial velocity points from the release point to here.
     AimVelocity(glam::DVec2),
     EndDrag,
+    /// The next / previous page (turntable, time plots, escape speed, outcome map, rest radius).
+    NextPage,
+    PrevPage,
+    /// Back to the turntable with the release chosen on an analysis page.
+    Choose,
+    /// Mouse on the escape-speed or outcome-map page: the release (φ, v0) clicked.
+    PickRelease(glam::DVec2),
+    /// The μ measurement: change Ω (rad/s) or r0c (m) by this much.
+    Omega(f64),
+    R0c(f64),
 }

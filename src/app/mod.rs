@@ -4,13 +4,14 @@
 pub mod action;
 pub mod chord;
 pub mod keymap;
+pub mod pages;
 pub mod state;
 pub mod update;
 
 pub use action::Action;
 pub use chord::Chord;
 pub use keymap::{Binding, KEYMAP};
-pub use state::{App, CanvasGeom, TICK_DT};
+pub use state::{App, CanvasGeom, G_DEFAULT, MU_PROBE, TICK_DT};
 pub use update::update;
 
 use crate::engine::Settings;
@@ -45,6 +46,13 @@ impl App {
         }
         let Some(g) = self.geom else { return };
         let at = g.to_world(ev.column, ev.row);
+        if g.page != pages::Page::Turntable {
+            // The plot is the (φ, v0) plane: a click picks that release.
+            if let (MouseEventKind::Down(MouseButton::Left), Some(p)) = (ev.kind, at) {
+                update(self, Action::PickRelease(p));
+            }
+            return;
+        }
         let action = match (ev.kind, at) {
             (MouseEventKind::Up(_), _) => Action::EndDrag,
             (MouseEventKind::Down(MouseButton::Left), Some(p)) => Action::PlaceRelease(p),
@@ -60,6 +68,7 @@ impl App {
 
     /// One tick: advances the run(s) by `TICK_DT × speed` of sim time if playing.
     pub fn tick(&mut self) {
+        self.sync_analysis();
         if self.playing {
             update::step(self);
         } else if self.catch_up() {
@@ -93,9 +102,10 @@ impl App {
         self.geom
     }
 
-    /// Whether time should tick: playing, or the paper's run still catching up.
+    /// Whether time should tick: playing, the paper's run still catching up, or a page
+    /// filling in.
     pub fn is_playing(&self) -> bool {
-        self.playing || self.paper_lags()
+        self.playing || self.paper_lags() || self.analysis.busy()
     }
 
     pub fn mouse_capture(&self) -> bool {

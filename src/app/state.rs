@@ -1,6 +1,8 @@
 //! The explorer's state: the scene being edited, its run (and the paper's, to compare), and
 //! how it is shown. Nothing here reads the clock: time passes only through ticks.
 
+use super::pages::{Charts, Page};
+use crate::analysis::Analysis;
 use crate::engine::{Frame, Initial, Settings, State};
 use crate::scene::Scene;
 use crate::sim::Sim;
@@ -13,6 +15,10 @@ pub const TICK_DT: f64 = 0.05;
 /// Speed factor bounds (powers of two).
 pub const SPEED_RANGE: (f64, f64) = (1.0 / 64.0, 256.0);
 pub const ZOOM_RANGE: (f64, f64) = (1.0 / 64.0, 1024.0);
+/// Gravity for the SI readouts unless a scene or flag says otherwise (m/s²).
+pub const G_DEFAULT: f64 = 9.81;
+/// The μ measurement's starting values: the paper's Ω = 3.3 rad/s and r0c = 0.12 m (Sec. IV).
+pub const MU_PROBE: (f64, f64) = (3.3, 0.12);
 /// Where `s` saves the scene.
 pub const SAVE_PATH: &str = "turntable-scene.toml";
 
@@ -29,6 +35,9 @@ pub struct CanvasGeom {
     pub frame: Frame,
     /// How far the picture is turned (see [`App::turn`]).
     pub turn: f64,
+    /// The page drawn: on the turntable a click places the release; on the escape-speed and
+    /// outcome-map pages the plot is the (φ, v0) plane and a click picks that release.
+    pub page: Page,
 }
 
 impl CanvasGeom {
@@ -79,6 +88,13 @@ pub struct App {
     /// False in a headless replay: `s` then says what it would save and writes nothing.
     pub writes_files: bool,
     pub quit: bool,
+    /// What the body shows (`Tab` cycles).
+    pub page: Page,
+    /// What the analysis pages have received, and where it is computed.
+    pub charts: Charts,
+    pub analysis: Analysis,
+    /// The μ measurement of the rest-radius page (Eq. 22): Ω in rad/s and r0c in metres.
+    pub mu_probe: (f64, f64),
     pub(crate) dirty: bool,
     pub(crate) geom: Option<CanvasGeom>,
     /// Mouse drag in progress: setting the initial velocity.
@@ -120,6 +136,10 @@ impl App {
             save_path: PathBuf::from(SAVE_PATH),
             writes_files: true,
             quit: false,
+            page: Page::Turntable,
+            charts: Charts::default(),
+            analysis: Analysis::inline(),
+            mu_probe: MU_PROBE,
             dirty: true,
             geom: None,
             dragging: false,
@@ -152,6 +172,37 @@ impl App {
     /// The state on screen.
     pub fn now(&self) -> State {
         self.sim.now()
+    }
+
+    /// Takes the analysis pieces that arrived and asks for what the page on screen still lacks
+    /// (nothing for a page not on screen). Returns whether anything arrived or was asked.
+    pub fn sync_analysis(&mut self) -> bool {
+        let mut moved = false;
+        // Inline, each request completes at once: a page needs at most five jobs.
+        for _ in 0..8 {
+            if let Some((job, settings)) = self.analysis.current() {
+                for p in self.analysis.take() {
+                    self.charts.apply(&job, settings, p);
+                    moved = true;
+                }
+            }
+            let settings = crate::analysis::settings_for(self.settings);
+            let Some(job) =
+                super::pages::wanted(self.page, &self.charts, &self.initial, self.settings)
+            else {
+                // Nothing is computed for a page that is not on screen.
+                self.analysis.cancel();
+                break;
+            };
+            if self.analysis.current() == Some((job, settings)) {
+                // In flight, or done and still lacking (a failed piece): ask no more.
+                break;
+            }
+            self.analysis.request(job, settings);
+            moved = true;
+        }
+        self.dirty |= moved;
+        moved
     }
 
     /// Whether the initial conditions or settings differ from the scene as loaded.

@@ -1,6 +1,7 @@
 //! The pure update: an action applied to the state. No I/O but `Save`, no clock.
 
 use super::action::Action;
+use super::pages::Page;
 use super::state::{App, SPEED_RANGE, ZOOM_RANGE, make_sim};
 use crate::engine::method::{DT_RANGE, TOL_RANGE};
 use crate::engine::{Frame, Method, Release, Settings};
@@ -228,7 +229,50 @@ pub fn update(app: &mut App, action: Action) {
                 .into(),
             );
         }
+        Action::NextPage => app.page = app.page.next(),
+        Action::PrevPage => app.page = app.page.prev(),
+        Action::Choose => {
+            if matches!(app.page, Page::EscapeSpeed | Page::OutcomeMap) {
+                app.page = Page::Turntable;
+                app.playing = true;
+                app.restart();
+            } else {
+                app.notice = Some(
+                    "Enter runs the release chosen on the escape-speed or outcome-map page (Tab)"
+                        .into(),
+                );
+            }
+        }
+        Action::PickRelease(p) => {
+            let release = match app.page {
+                Page::OutcomeMap => app.initial.release,
+                _ => Release::Velocity,
+            };
+            let chosen = crate::analysis::map_release(app.initial.xi0, release, p.x, p.y.max(0.0));
+            app.initial = chosen;
+            app.restart();
+            app.notice = Some(format!(
+                "release v0 = {:.4} at φ = {:.3}π: Enter runs it on the turntable",
+                app.initial.v0,
+                app.initial.phi.rem_euclid(std::f64::consts::TAU) / std::f64::consts::PI
+            ));
+        }
+        Action::Omega(d) | Action::R0c(d) => {
+            let (omega, r0c) = &mut app.mu_probe;
+            if matches!(action, Action::Omega(_)) {
+                *omega = round_sig((*omega + d).clamp(0.1, 100.0));
+            } else {
+                *r0c = round_sig((*r0c + d).clamp(0.001, 10.0));
+            }
+            if app.page != Page::RestRadius {
+                app.notice = Some(format!(
+                    "μ probe: Ω = {} rad/s, r0c = {} m (the rest-radius page reads μ)",
+                    app.mu_probe.0, app.mu_probe.1
+                ));
+            }
+        }
     }
+    app.sync_analysis();
 }
 
 /// One tick of sim time (× speed) for both runs. Marks the screen dirty only if time moved.

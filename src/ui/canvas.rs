@@ -198,6 +198,7 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) -> CanvasGeom {
         arrow_scale,
         frame: app.view,
         turn,
+        page: crate::app::pages::Page::Turntable,
     };
     let table_r = 1.5f64.max(app.initial.xi0 * 1.2);
     let spin = turn + if view == Frame::Lab { now.tau } else { 0.0 };

@@ -1,8 +1,10 @@
 //! Pure rendering of the explorer's state into a ratatui frame.
 
 pub mod canvas;
+pub mod chart;
 pub mod export;
 pub mod help;
+pub mod pages;
 pub mod panel;
 
 use crate::app::{App, CanvasGeom};
@@ -64,7 +66,10 @@ pub fn draw(frame: &mut Frame, app: &App) -> Option<CanvasGeom> {
         let [c, p] = Layout::vertical([Constraint::Min(3), Constraint::Length(ph)]).areas(body);
         (c, p)
     };
-    let geom = canvas::render(frame, canvas_area, app);
+    let geom = match app.page {
+        crate::app::pages::Page::Turntable => Some(canvas::render(frame, canvas_area, app)),
+        _ => pages::render(frame, canvas_area, app),
+    };
     panel::render(frame, panel_area, app);
     frame.render_widget(
         Paragraph::new(Span::styled(
@@ -75,9 +80,14 @@ pub fn draw(frame: &mut Frame, app: &App) -> Option<CanvasGeom> {
     );
     frame.render_widget(Paragraph::new(status_line(app, status.width)), status);
     if app.help {
-        help::render(frame, body, app);
+        // Over the body and the two lines below it: the whole keymap fits at 80×24.
+        let below = Rect {
+            height: body.height + lesson.height + status.height,
+            ..body
+        };
+        help::render(frame, below, app);
     }
-    Some(geom)
+    geom
 }
 
 /// The one-line lesson: the paper's scheme against the converged run, or what μ = 0 means.

@@ -1,0 +1,299 @@
+//! The paper's analysis behind the explorer's pages (Sec. IV, Figs. 5 and 6): escape-speed
+//! curves, the outcome map, the rest radius. Work is split into small pieces (one escape speed,
+//! one cell, one radius) computed off the UI thread and streamed back, so a page fills in
+//! progressively and a key never waits. A newer request cancels an older one between pieces.
+//! Headless (tests, replay) the same pieces are computed inline, so screens stay a function
+//! of the keys.
+
+use crate::engine::solve::{CLASSIFY_TAU, critical_radius, escape_speed};
+use crate::engine::{Initial, Outcome, Release, Run, Settings};
+use crate::error::Error;
+use std::sync::Arc;
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::mpsc::{Receiver, Sender, channel};
+
+/// Angles of an escape-speed curve (every 5°, as `sweep fig5`'s default).
+pub const CURVE_POINTS: usize = 72;
+/// Width of the final bracket on each escape speed of a curve.
+pub const CURVE_VTOL: f64 = 1e-6;
+/// The paper's Fig. 5 radii.
+pub const PAPER_XI0: [f64; 4] = [0.8, 0.5, 0.2, 0.001];
+/// Outcome-map resolution: angles × speeds.
+pub const MAP_SIZE: (usize, usize) = (72, 40);
+/// Radii of the rest-radius curve (Fig. 6), over [0, [`REST_XI0_MAX`]].
+pub const REST_POINTS: usize = 101;
+pub const REST_XI0_MAX: f64 = 1.5;
+
+/// What a page asks to be computed.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Job {
+    /// v_e(φ) at ξ0 (Fig. 5).
+    Curve { xi0: f64 },
+    /// Stuck or escaped over (φ, v0) at ξ0 in a release mode, speeds up to `v0_max`.
+    Map {
+        xi0: f64,
+        release: Release,
+        v0_max: f64,
+    },
+    /// Final rest ξ against ξ0, released at rest in the lab, and ξ0c (Fig. 6).
+    Rest,
+}
+
+/// One computed piece of a job.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Piece {
+    /// Escape speed at angle index `i` (`None`: it could not be bracketed).
+    Escape { i: usize, v: Option<f64> },
+    /// Outcome-map cell `i` (row-major, φ fastest).
+    Cell { i: usize, cell: Cell },
+    /// Fig. 6 point `i`: the final rest ξ (`None`: it escaped).
+    Rest { i: usize, xi: Option<f64> },
+    /// The critical radius ξ0c.
+    Critical(f64),
+}
+
+/// One cell of the outcome map: how a release there ends, and where it rests if it sticks.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Cell {
+    pub outcome: Outcome,
+    /// Final rest ξ and angle (table frame) when stuck.
+    pub rest: Option<(f64, f64)>,
+}
+
+/// The settings the analysis runs with: the explorer's method if it has stick events, else
+/// the default (the paper's raw RK2 never stops, so it cannot classify).
+pub fn settings_for(s: Settings) -> Settings {
+    if s.method().stick_events() {
+        s
+    } else {
+        Settings::default()
+    }
+}
+
+/// The angles of a curve or map row: φ_i = 2π i / n.
+pub fn angle(i: usize, n: usize) -> f64 {
+    std::f64::consts::TAU * i as f64 / n as f64
+}
+
+/// The speed of map row `j` of `m`: from v0_max/m up to v0_max (row 0 at the bottom).
+pub fn map_speed(j: usize, m: usize, v0_max: f64) -> f64 {
+    v0_max * (j + 1) as f64 / m as f64
+}
+
+/// The release a map cell stands for. With velocity and table-rest releases (φ, v0) are the
+/// speed relative to the table; with lab-rest they are the lab velocity, so the particle is
+/// thrown from the lab at (φ, v0) and u0 = v − ẑ×r.
+pub fn map_release(xi0: f64, release: Release, phi: f64, v0: f64) -> Initial {
+    let u0 = glam::DVec2::from_angle(phi) * v0
+        - match release {
+            Release::LabRest => glam::DVec2::new(0.0, xi0),
+            _ => glam::DVec2::ZERO,
+        };
+    Initial::velocity(xi0, u0.y.atan2(u0.x), u0.length())
+}
+
+/// How one release ends, run to its stop or its escape certificate.
+pub fn classify(initial: Initial, settings: Settings) -> Result<Cell, Error> {
+    let mut run = Run::new(initial, settings)?;
+    let (outcome, s) = run.finish(CLASSIFY_TAU)?;
+    let q = s.q();
+    Ok(Cell {
+        outcome,
+        rest: (outcome == Outcome::Stuck).then(|| (q.length(), q.y.atan2(q.x))),
+    })
+}
+
+/// The number of pieces a job has.
+pub fn pieces(job: &Job) -> usize {
+    match job {
+        Job::Curve { .. } => CURVE_POINTS,
+        Job::Map { .. } => MAP_SIZE.0 * MAP_SIZE.1,
+        Job::Rest => REST_POINTS + 1,
+    }
+}
+
+/// Piece `k` of `job`.
+pub fn piece(job: &Job, k: usize, settings: Settings) -> Piece {
+    match *job {
+        Job::Curve { xi0 } => {
+            let phi = angle(k, CURVE_POINTS);
+            let v = escape_speed(xi0, phi, settings, CURVE_VTOL)
+                .ok()
+                .map(|t| t.value);
+            Piece::Escape { i: k, v }
+        }
+        Job::Map {
+            xi0,
+            release,
+            v0_max,
+        } => {
+            let (n, m) = MAP_SIZE;
+            let (i, j) = (k % n, k / n);
+            let initial = map_release(xi0, release, angle(i, n), map_speed(j, m, v0_max));
+            let cell = classify(initial, settings).unwrap_or(Cell {
+                outcome: Outcome::Running,
+                rest: None,
+            });
+            Piece::Cell { i: k, cell }
+        }
+        Job::Rest if k == REST_POINTS => {
+            Piece::Critical(critical_radius(settings, 1e-6).map_or(f64::NAN, |t| t.value))
+        }
+        Job::Rest => {
+            let xi0 = REST_XI0_MAX * k as f64 / (REST_POINTS - 1) as f64;
+            let cell = classify(Initial::at_rest(xi0, Release::LabRest), settings);
+            let xi = cell.ok().and_then(|c| c.rest).map(|r| r.0);
+            Piece::Rest { i: k, xi }
+        }
+    }
+}
+
+/// A request in flight: which job, its generation, and the pieces received so far.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Progress {
+    pub job: Job,
+    pub settings: Settings,
+    pub done: usize,
+}
+
+/// Where pieces are computed: inline (headless, deterministic) or on a worker thread.
+#[derive(Debug)]
+pub struct Analysis {
+    worker: Option<Worker>,
+    /// The job being filled in, and how far it got.
+    pub progress: Option<Progress>,
+    /// Pieces received and not yet taken by the app.
+    inbox: Vec<Piece>,
+}
+
+#[derive(Debug)]
+struct Worker {
+    jobs: Sender<(u64, Job, Settings)>,
+    pieces: Receiver<(u64, Piece)>,
+    generation: Arc<AtomicU64>,
+}
+
+impl Clone for Analysis {
+    /// A copy computes inline: a worker belongs to one app.
+    fn clone(&self) -> Self {
+        Analysis {
+            worker: None,
+            progress: self.progress.clone(),
+            inbox: self.inbox.clone(),
+        }
+    }
+}
+
+impl Default for Analysis {
+    fn default() -> Self {
+        Analysis::inline()
+    }
+}
+
+impl Analysis {
+    /// Pieces computed at the request, on the caller's thread.
+    pub fn inline() -> Analysis {
+        Analysis {
+            worker: None,
+            progress: None,
+            inbox: Vec::new(),
+        }
+    }
+
+    /// Pieces computed on a worker thread and streamed back.
+    pub fn threaded() -> Analysis {
+        let (jobs, inbox) = channel::<(u64, Job, Settings)>();
+        let (out, received) = channel();
+        let generation = Arc::new(AtomicU64::new(0));
+        let current = Arc::clone(&generation);
+        std::thread::spawn(move || {
+            while let Ok((gen_id, job, settings)) = inbox.recv() {
+                for k in 0..pieces(&job) {
+                    if current.load(Ordering::Relaxed) != gen_id {
+                        break;
+                    }
+                    if out.send((gen_id, piece(&job, k, settings))).is_err() {
+                        return;
+                    }
+                }
+            }
+        });
+        Analysis {
+            worker: Some(Worker {
+                jobs,
+                pieces: received,
+                generation,
+            }),
+            progress: None,
+            inbox: Vec::new(),
+        }
+    }
+
+    /// Asks for `job` (cancelling any other in flight). Inline, it is computed now.
+    pub fn request(&mut self, job: Job, settings: Settings) {
+        self.inbox.clear();
+        match &self.worker {
+            Some(w) => {
+                let id = w.generation.fetch_add(1, Ordering::Relaxed) + 1;
+                self.progress = Some(Progress {
+                    job,
+                    settings,
+                    done: 0,
+                });
+                if w.jobs.send((id, job, settings)).is_err() {
+                    self.worker = None;
+                    self.request(job, settings);
+                }
+            }
+            None => {
+                self.inbox = (0..pieces(&job))
+                    .map(|k| piece(&job, k, settings))
+                    .collect();
+                self.progress = Some(Progress {
+                    job,
+                    settings,
+                    done: pieces(&job),
+                });
+            }
+        }
+    }
+
+    /// Stops the job in flight, if any (its pieces so far are kept by whoever took them).
+    pub fn cancel(&mut self) {
+        if self.busy() {
+            if let Some(w) = &self.worker {
+                w.generation.fetch_add(1, Ordering::Relaxed);
+            }
+            self.progress = None;
+            self.inbox.clear();
+        }
+    }
+
+    /// The job in flight (or last completed).
+    pub fn current(&self) -> Option<(Job, Settings)> {
+        self.progress.as_ref().map(|p| (p.job, p.settings))
+    }
+
+    /// Whether pieces are still to come.
+    pub fn busy(&self) -> bool {
+        self.progress
+            .as_ref()
+            .is_some_and(|p| p.done < pieces(&p.job))
+    }
+
+    /// The pieces that arrived since the last call (none after a newer request).
+    pub fn take(&mut self) -> Vec<Piece> {
+        if let Some(w) = &self.worker {
+            let current = w.generation.load(Ordering::Relaxed);
+            while let Ok((id, p)) = w.pieces.try_recv() {
+                if id == current {
+                    self.inbox.push(p);
+                    if let Some(pr) = self.progress.as_mut() {
+                        pr.done += 1;
+                    }
+                }
+            }
+        }
+        std::mem::take(&mut self.inbox)
+    }
+}

@@ -1,0 +1,244 @@
+//! The explorer's pages (Tab cycles them) and the analysis results they show. A page asks for
+//! what it lacks ([`wanted`]); results arrive piece by piece ([`Charts::apply`]).
+
+use crate::analysis::{
+    CURVE_POINTS, Cell, Job, MAP_SIZE, PAPER_XI0, Piece, REST_POINTS, pieces, settings_for,
+};
+use crate::engine::{Initial, Release, Settings};
+
+/// What the body of the screen shows, in `Tab` order.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Page {
+    #[default]
+    Turntable,
+    TimePlots,
+    EscapeSpeed,
+    OutcomeMap,
+    RestRadius,
+}
+
+impl Page {
+    const ORDER: [Page; 5] = [
+        Page::Turntable,
+        Page::TimePlots,
+        Page::EscapeSpeed,
+        Page::OutcomeMap,
+        Page::RestRadius,
+    ];
+
+    pub fn next(self) -> Page {
+        let i = Page::ORDER.iter().position(|p| *p == self).unwrap_or(0);
+        Page::ORDER[(i + 1) % Page::ORDER.len()]
+    }
+
+    pub fn prev(self) -> Page {
+        let i = Page::ORDER.iter().position(|p| *p == self).unwrap_or(0);
+        Page::ORDER[(i + Page::ORDER.len() - 1) % Page::ORDER.len()]
+    }
+
+    /// The page's name, in its title.
+    pub fn title(self) -> &'static str {
+        match self {
+            Page::Turntable => "turntable",
+            Page::TimePlots => "time plots",
+            Page::EscapeSpeed => "escape speed",
+            Page::OutcomeMap => "outcome map",
+            Page::RestRadius => "rest radius",
+        }
+    }
+}
+
+/// v_e(φ) at one ξ0, filled in as it arrives (`None`: not yet; `Some(None)`: no escape speed
+/// could be bracketed there).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Curve {
+    pub xi0: f64,
+    pub settings: Settings,
+    pub ve: Vec<Option<Option<f64>>>,
+}
+
+impl Curve {
+    pub fn complete(&self) -> bool {
+        self.ve.iter().all(Option::is_some)
+    }
+
+    /// The computed points (φ, v_e).
+    pub fn points(&self) -> Vec<(f64, f64)> {
+        let n = self.ve.len();
+        (0..n)
+            .filter_map(|i| Some((crate::analysis::angle(i, n), self.ve[i]??)))
+            .collect()
+    }
+
+    /// The least and greatest v_e found, with their angles.
+    pub fn extremes(&self) -> Option<((f64, f64), (f64, f64))> {
+        let pts = self.points();
+        let min = pts.iter().copied().min_by(|a, b| a.1.total_cmp(&b.1))?;
+        let max = pts.iter().copied().max_by(|a, b| a.1.total_cmp(&b.1))?;
+        Some((min, max))
+    }
+}
+
+/// The outcome map for one ξ0, release mode and speed range.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Map {
+    pub job: Job,
+    pub settings: Settings,
+    pub cells: Vec<Option<Cell>>,
+}
+
+/// Fig. 6: final rest ξ against ξ0 (`Some(None)`: escaped), and ξ0c.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Rest {
+    pub settings: Settings,
+    pub xi: Vec<Option<Option<f64>>>,
+    /// `Some(None)`: the bisection failed.
+    pub critical: Option<Option<f64>>,
+}
+
+/// What the analysis pages have received.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Charts {
+    /// Escape-speed curves, newest last (a few kept, so that going back is instant).
+    pub curves: Vec<Curve>,
+    pub map: Option<Map>,
+    pub rest: Option<Rest>,
+}
+
+/// Curves kept besides the paper's four.
+const CURVES_KEPT: usize = 8;
+
+impl Charts {
+    pub fn curve(&self, xi0: f64, settings: Settings) -> Option<&Curve> {
+        self.curves
+            .iter()
+            .find(|c| c.xi0 == xi0 && c.settings == settings)
+    }
+
+    /// Files one piece of `job` where it belongs.
+    pub fn apply(&mut self, job: &Job, settings: Settings, piece: Piece) {
+        match (job, piece) {
+            (Job::Curve { xi0 }, Piece::Escape { i, v }) => {
+                let at = match self
+                    .curves
+                    .iter()
+                    .position(|c| c.xi0 == *xi0 && c.settings == settings)
+                {
+                    Some(at) => at,
+                    None => {
+                        self.curves.push(Curve {
+                            xi0: *xi0,
+                            settings,
+                            ve: vec![None; CURVE_POINTS],
+                        });
+                        let extra = self
+                            .curves
+                            .len()
+                            .saturating_sub(CURVES_KEPT + PAPER_XI0.len());
+                        let paper = |c: &Curve| PAPER_XI0.contains(&c.xi0);
+                        // Drop the oldest non-paper curves first.
+                        for _ in 0..extra {
+                            if let Some(old) = self.curves.iter().position(|c| !paper(c)) {
+                                self.curves.remove(old);
+                            }
+                        }
+                        self.curves.len() - 1
+                    }
+                };
+                if let Some(slot) = self.curves[at].ve.get_mut(i) {
+                    *slot = Some(v);
+                }
+            }
+            (Job::Map { .. }, Piece::Cell { i, cell }) => {
+                let fresh = self
+                    .map
+                    .as_ref()
+                    .is_none_or(|m| m.job != *job || m.settings != settings);
+                if fresh {
+                    self.map = Some(Map {
+                        job: *job,
+                        settings,
+                        cells: vec![None; pieces(job)],
+                    });
+                }
+                if let Some(slot) = self.map.as_mut().and_then(|m| m.cells.get_mut(i)) {
+                    *slot = Some(cell);
+                }
+            }
+            (Job::Rest, Piece::Rest { i, xi }) => {
+                if let Some(slot) = self.rest_for(settings).xi.get_mut(i) {
+                    *slot = Some(xi);
+                }
+            }
+            (Job::Rest, Piece::Critical(x)) => {
+                self.rest_for(settings).critical = Some(x.is_finite().then_some(x));
+            }
+            _ => {}
+        }
+    }
+
+    fn rest_for(&mut self, settings: Settings) -> &mut Rest {
+        if self.rest.as_ref().is_none_or(|r| r.settings != settings) {
+            self.rest = Some(Rest {
+                settings,
+                xi: vec![None; REST_POINTS],
+                critical: None,
+            });
+        }
+        self.rest.as_mut().expect("just set")
+    }
+
+    /// The speed range of the outcome map for this release: a margin above the escape
+    /// curve's greatest speed (thrown from the lab, the table's own speed ξ0 added).
+    pub fn map_v0_max(curve: &Curve, release: Release, xi0: f64) -> f64 {
+        let top = curve.extremes().map_or(1.0, |(_, max)| max.1);
+        let top = if release == Release::LabRest {
+            top + xi0
+        } else {
+            top
+        };
+        (1.3 * top).max(0.2)
+    }
+}
+
+/// The next job `page` needs and lacks for these initial conditions and settings, if any.
+pub fn wanted(page: Page, charts: &Charts, initial: &Initial, settings: Settings) -> Option<Job> {
+    let settings = settings_for(settings);
+    let missing_curve = |xi0: f64| {
+        let have = charts.curve(xi0, settings);
+        (!have.is_some_and(Curve::complete)).then_some(Job::Curve { xi0 })
+    };
+    match page {
+        Page::Turntable | Page::TimePlots => None,
+        Page::EscapeSpeed => std::iter::once(initial.xi0)
+            .chain(PAPER_XI0)
+            .find_map(missing_curve),
+        Page::OutcomeMap => {
+            if let Some(job) = missing_curve(initial.xi0) {
+                return Some(job);
+            }
+            let curve = charts.curve(initial.xi0, settings)?;
+            let job = Job::Map {
+                xi0: initial.xi0,
+                release: initial.release,
+                v0_max: Charts::map_v0_max(curve, initial.release, initial.xi0),
+            };
+            let done = charts.map.as_ref().is_some_and(|m| {
+                m.job == job && m.settings == settings && m.cells.iter().all(Option::is_some)
+            });
+            (!done).then_some(job)
+        }
+        Page::RestRadius => {
+            let done = charts.rest.as_ref().is_some_and(|r| {
+                r.settings == settings && r.critical.is_some() && r.xi.iter().all(Option::is_some)
+            });
+            (!done).then_some(Job::Rest)
+        }
+    }
+}
+
+/// Cells of the map that have arrived, out of all.
+pub fn map_filled(map: &Map) -> (usize, usize) {
+    let done = map.cells.iter().filter(|c| c.is_some()).count();
+    (done, MAP_SIZE.0 * MAP_SIZE.1)
+}

@@ -1,0 +1,318 @@
+//! A braille chart with labelled axes, tick values and a legend: what every analysis page
+//! draws with. The plot area it returns maps mouse cells back to data (see `CanvasGeom`).
+
+use crate::theme::Theme;
+use ratatui::Frame as TuiFrame;
+use ratatui::layout::Rect;
+use ratatui::style::{Color, Style};
+use ratatui::symbols::Marker;
+use ratatui::text::{Line, Span};
+use ratatui::widgets::canvas::{Canvas, Line as Seg, Points};
+use ratatui::widgets::{Block, Borders, Paragraph};
+
+/// One curve or point set.
+#[derive(Clone, Debug)]
+pub struct Series {
+    pub name: String,
+    pub color: Color,
+    pub points: Vec<(f64, f64)>,
+    /// Joined by lines (else dots). A gap (NaN) breaks the line.
+    pub joined: bool,
+}
+
+/// Something marked on the chart: a vertical line at x, or a point, each with a label.
+#[derive(Clone, Debug)]
+pub enum Mark {
+    VLine {
+        x: f64,
+        label: String,
+        color: Color,
+    },
+    Point {
+        x: f64,
+        y: f64,
+        label: String,
+        color: Color,
+    },
+}
+
+#[derive(Clone, Debug)]
+pub struct Chart {
+    pub title: String,
+    pub x_label: String,
+    pub y_label: String,
+    pub x: [f64; 2],
+    pub y: [f64; 2],
+    pub series: Vec<Series>,
+    pub marks: Vec<Mark>,
+}
+
+/// Tick values: a 1-2-5 step giving about `n` ticks over `[a, b]`.
+pub fn ticks(a: f64, b: f64, n: usize) -> Vec<f64> {
+    let span = b - a;
+    if !(span.is_finite() && span > 0.0) || n == 0 {
+        return vec![a];
+    }
+    let raw = span / n as f64;
+    let e = raw.log10().floor() as i32;
+    let mag = 10f64.powi(e);
+    let m = [1.0, 2.0, 5.0, 10.0]
+        .into_iter()
+        .find(|m| m * mag >= raw)
+        .unwrap_or(10.0);
+    let step = m * mag;
+    let first = (a / step).ceil() as i64;
+    let last = (b / step).floor() as i64;
+    // k·m·10^e, divided rather than multiplied for e < 0 so 0.6 is 0.6.
+    let at = |k: i64| {
+        let v = k as f64 * m;
+        if e < 0 { v / 10f64.powi(-e) } else { v * mag }
+    };
+    (first..=last).take(1000).map(at).collect()
+}
+
+/// A tick value, short: `0.5`, `12`, `1e-3`, `-0.25`.
+pub fn tick_label(v: f64) -> String {
+    let a = v.abs();
+    if a == 0.0 {
+        "0".into()
+    } else if !(1e-3..1e5).contains(&a) {
+        format!("{v:.0e}")
+    } else {
+        let s = format!("{v:.3}");
+        let s = s.trim_end_matches('0').trim_end_matches('.');
+        s.to_string()
+    }
+}
+
+/// Widens a degenerate or non-finite range so a chart can always be drawn.
+pub fn sane(r: [f64; 2]) -> [f64; 2] {
+    let [a, b] = r;
+    if !(a.is_finite() && b.is_finite()) {
+        return [0.0, 1.0];
+    }
+    if b - a > 1e-12 * a.abs().max(b.abs()).max(1e-300) {
+        [a, b]
+    } else {
+        let pad = 0.5 * a.abs().max(1e-3);
+        [a - pad, b + pad]
+    }
+}
+
+/// The bounds of some points with a small margin.
+pub fn extent(points: impl Iterator<Item = f64>) -> [f64; 2] {
+    let (lo, hi) = points
+        .filter(|v| v.is_finite())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| {
+            (l.min(v), h.max(v))
+        });
+    let pad = 0.05 * (hi - lo);
+    sane([lo - pad, hi + pad])
+}
+
+/// Draws `chart` in `area`: a titled block around [`render_bare`] with its τ axis. Returns
+/// the plot area (None when `area` is too small to hold one).
+pub fn render(f: &mut TuiFrame, area: Rect, th: &Theme, chart: &Chart) -> Option<Rect> {
+    let block = Block::default()
+        .borders(Borders::ALL)
+        .border_style(Style::default().fg(th.muted))
+        .title(Span::styled(
+            format!(" {} ", chart.title),
+            Style::default().fg(th.accent),
+        ));
+    let inner = block.inner(area);
+    f.render_widget(block, area);
+    render_bare(f, inner, th, chart, true)
+}
+
+/// Where [`render`] puts the plot in `area`, to draw beneath it first.
+pub fn plot_area(area: Rect, chart: &Chart) -> Option<Rect> {
+    let inner = Block::default().borders(Borders::ALL).inner(area);
+    layout(inner, chart, true).map(|l| l.0)
+}
+
+/// The plot rectangle, the y-tick gutter's width, and the y ticks.
+fn layout(inner: Rect, chart: &Chart, x_axis: bool) -> Option<(Rect, u16, Vec<f64>)> {
+    let y = sane(chart.y);
+    let below = if x_axis { 2 } else { 0 };
+    let rows = inner.height.checked_sub(1 + below).filter(|r| *r >= 2)?;
+    let yt = ticks(y[0], y[1], (rows as usize / 3).clamp(1, 5));
+    let gutter = yt
+        .iter()
+        .map(|v| tick_label(*v).chars().count())
+        .max()
+        .unwrap_or(1) as u16
+        + 1;
+    if inner.width < gutter + 8 {
+        return None;
+    }
+    let plot = Rect {
+        x: inner.x + gutter,
+        y: inner.y + 1,
+        width: inner.width - gutter,
+        height: rows,
+    };
+    Some((plot, gutter, yt))
+}
+
+/// Draws `chart` in `area` with no border: the legend line, the y ticks in a left gutter, the
+/// plot, and (with `x_axis`) the x ticks and the x axis name below. Returns the plot area.
+pub fn render_bare(
+    f: &mut TuiFrame,
+    inner: Rect,
+    th: &Theme,
+    chart: &Chart,
+    x_axis: bool,
+) -> Option<Rect> {
+    let (x, y) = (sane(chart.x), sane(chart.y));
+    let (plot, gutter, yt) = layout(inner, chart, x_axis)?;
+    let ylabels: Vec<String> = yt.iter().map(|v| tick_label(*v)).collect();
+    let muted = Style::default().fg(th.muted);
+    // Legend: every series and mark by name, in its colour, after the y axis name.
+    let mut legend = vec![Span::styled(format!("{} ", chart.y_label), muted)];
+    for s in chart.series.iter().filter(|s| !s.name.is_empty()) {
+        legend.push(Span::styled(
+            format!("━ {}  ", s.name),
+            Style::default().fg(s.color),
+        ));
+    }
+    f.render_widget(
+        Paragraph::new(Line::from(legend)),
+        Rect { height: 1, ..inner },
+    );
+    let to_row = |v: f64| {
+        let fy = (y[1] - v) / (y[1] - y[0]);
+        plot.y + ((fy * f64::from(plot.height - 1)).round() as u16).min(plot.height - 1)
+    };
+    for (v, l) in yt.iter().zip(&ylabels) {
+        let r = Rect::new(inner.x, to_row(*v), gutter - 1, 1);
+        f.render_widget(
+            Paragraph::new(Span::styled(l.clone(), muted)).right_aligned(),
+            r,
+        );
+    }
+    let xt = if x_axis {
+        ticks(x[0], x[1], (plot.width as usize / 10).clamp(1, 8))
+    } else {
+        Vec::new()
+    };
+    let axis_row = plot.y + plot.height;
+    let mut taken = 0u16;
+    for v in xt {
+        let fx = (v - x[0]) / (x[1] - x[0]);
+        let col = plot.x + ((fx * f64::from(plot.width - 1)).round() as u16).min(plot.width - 1);
+        let l = tick_label(v);
+        let w = l.chars().count() as u16;
+        let start = col
+            .saturating_sub(w / 2)
+            .max(plot.x)
+            .min(plot.right().saturating_sub(w));
+        if start < taken {
+            continue;
+        }
+        taken = start + w + 1;
+        f.render_widget(
+            Paragraph::new(Span::styled(l, muted)),
+            Rect::new(start, axis_row, w.min(plot.right() - start), 1),
+        );
+    }
+    if x_axis {
+        f.render_widget(
+            Paragraph::new(Span::styled(chart.x_label.clone(), muted)).right_aligned(),
+            Rect::new(plot.x, axis_row + 1, plot.width, 1),
+        );
+    }
+    let canvas = Canvas::default()
+        .marker(Marker::Braille)
+        .x_bounds(x)
+        .y_bounds(y)
+        .paint(|ctx| {
+            for m in &chart.marks {
+                if let Mark::VLine { x: mx, color, .. } = m {
+                    ctx.draw(&Seg::new(*mx, y[0], *mx, y[1], *color));
+                }
+            }
+            ctx.layer();
+            for s in &chart.series {
+                if s.joined {
+                    for w in s.points.windows(2) {
+                        let ((x1, y1), (x2, y2)) = (w[0], w[1]);
+                        if [x1, y1, x2, y2].iter().all(|v| v.is_finite()) {
+                            ctx.draw(&Seg::new(x1, y1, x2, y2, s.color));
+                        }
+                    }
+                } else {
+                    ctx.draw(&Points {
+                        coords: &s.points,
+                        color: s.color,
+                    });
+                }
+            }
+            ctx.layer();
+            for m in &chart.marks {
+                match m {
+                    Mark::VLine {
+                        x: mx,
+                        label,
+                        color,
+                    } => {
+                        ctx.print(
+                            *mx,
+                            y[1],
+                            Span::styled(label.clone(), Style::default().fg(*color)),
+                        );
+                    }
+                    Mark::Point {
+                        x: px,
+                        y: py,
+                        label,
+                        color,
+                    } => {
+                        ctx.print(
+                            *px,
+                            *py,
+                            Span::styled(format!("●{label}"), Style::default().fg(*color)),
+                        );
+                    }
+                }
+            }
+        });
+    f.render_widget(canvas, plot);
+    Some(plot)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ticks_are_round_and_inside() {
+        assert_eq!(ticks(0.0, 1.0, 5), vec![0.0, 0.2, 0.4, 0.6, 0.8, 1.0]);
+        assert_eq!(
+            ticks(0.0, std::f64::consts::TAU, 4),
+            vec![0.0, 2.0, 4.0, 6.0]
+        );
+        let t = ticks(-0.37, 12.5, 3);
+        assert_eq!(t, vec![0.0, 5.0, 10.0]);
+        assert_eq!(ticks(1.0, 1.0, 3), vec![1.0]);
+    }
+
+    #[test]
+    fn labels_are_short() {
+        assert_eq!(tick_label(0.6), "0.6");
+        assert_eq!(tick_label(1.0 / 3.0), "0.333");
+        assert_eq!(tick_label(12.0), "12");
+        assert_eq!(tick_label(-0.25), "-0.25");
+        assert_eq!(tick_label(1e-4), "1e-4");
+        assert_eq!(tick_label(0.0), "0");
+    }
+
+    #[test]
+    fn ranges_are_never_degenerate() {
+        assert_eq!(sane([f64::NAN, 1.0]), [0.0, 1.0]);
+        let [a, b] = sane([2.0, 2.0]);
+        assert!(a < 2.0 && b > 2.0);
+        let [a, b] = extent([f64::INFINITY, 1.0, 3.0].into_iter());
+        assert!(a < 1.0 && b > 3.0);
+    }
+}

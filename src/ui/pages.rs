@@ -1,0 +1,533 @@
+//! The analysis pages: time plots of the run, the escape speed v_e(φ) (Fig. 5), the outcome
+//! map over (φ, v0), and the rest radius against ξ0 (Fig. 6) with the paper's μ measurement
+//! (Eq. 22). Pure: they draw what the app holds and never compute a run.
+
+use super::chart::{self, Chart, Mark, Series, extent};
+use crate::analysis::{MAP_SIZE, PAPER_XI0, REST_POINTS, REST_XI0_MAX};
+use crate::app::pages::{Charts, Page, map_filled};
+use crate::app::{App, CanvasGeom};
+use crate::engine::approx::{TABLE_REST_WINDOW, lab_rest, lab_rest_window, table_rest};
+use crate::engine::{Frame, Outcome, Release, State, Status};
+use crate::ui::panel::num;
+use ratatui::Frame as TuiFrame;
+use ratatui::layout::{Constraint, Layout, Rect};
+use ratatui::style::Style;
+use ratatui::text::{Line, Span};
+use ratatui::widgets::{Block, Borders, Paragraph, Wrap};
+use std::f64::consts::{PI, TAU};
+
+/// Draws `app.page` in `area`; returns the plot's geometry where a click means a release.
+pub fn render(f: &mut TuiFrame, area: Rect, app: &App) -> Option<CanvasGeom> {
+    match app.page {
+        Page::Turntable => None,
+        Page::TimePlots => {
+            time_plots(f, area, app);
+            None
+        }
+        Page::EscapeSpeed => escape_speed(f, area, app),
+        Page::OutcomeMap => outcome_map(f, area, app),
+        Page::RestRadius => {
+            rest_radius(f, area, app);
+            None
+        }
+    }
+}
+
+fn geom(plot: Rect, c: &Chart, page: Page, app: &App) -> CanvasGeom {
+    CanvasGeom {
+        area: plot,
+        x: chart::sane(c.x),
+        y: chart::sane(c.y),
+        arrow_scale: 1.0,
+        frame: app.view,
+        turn: 0.0,
+        page,
+    }
+}
+
+/// The run's path up to the τ on screen, ending exactly there.
+fn path(sim: &crate::sim::Sim) -> Vec<State> {
+    let mut p = sim.trail().to_vec();
+    let now = sim.now();
+    if p.last().is_none_or(|s| s.tau < now.tau) {
+        p.push(now);
+    }
+    p
+}
+
+/// One quantity of a path against τ.
+fn series(
+    name: &str,
+    color: ratatui::style::Color,
+    path: &[State],
+    y: impl Fn(&State) -> f64,
+) -> Series {
+    Series {
+        name: name.into(),
+        color,
+        points: path.iter().map(|s| (s.tau, y(s))).collect(),
+        joined: true,
+    }
+}
+
+/// E − E(0) and −∫|u|dτ (trapezoids on the path's grid): equal, since dE/dτ = −|u|.
+fn energy_pair(path: &[State]) -> [Vec<(f64, f64)>; 2] {
+    let e0 = path.first().map_or(0.0, State::energy);
+    let mut work = 0.0;
+    let mut w = Vec::with_capacity(path.len());
+    for (i, s) in path.iter().enumerate() {
+        if i > 0 {
+            let p = &path[i - 1];
+            work -= 0.5 * (s.tau - p.tau) * (s.u_lab().length() + p.u_lab().length());
+        }
+        w.push((s.tau, work));
+    }
+    let e = path.iter().map(|s| (s.tau, s.energy() - e0)).collect();
+    [e, w]
+}
+
+/// The time plots: ξ, θ′ (Θ′ in the rotating view), |u| and the energy identity, aligned in τ
+/// with the cursor at the τ on screen, the stop and the escape certificate marked, and the
+/// paper's Sec. III approximations over their window for releases at rest.
+fn time_plots(f: &mut TuiFrame, area: Rect, app: &App) {
+    let th = &app.theme;
+    let block = Block::default()
+        .borders(Borders::ALL)
+        .border_style(Style::default().fg(th.muted))
+        .title(Span::styled(
+            " time plots: ξ, θ′, |u|, energy against τ ",
+            Style::default().fg(th.accent),
+        ));
+    let inner = block.inner(area);
+    f.render_widget(block, area);
+    let p = path(&app.sim);
+    let paper = app.paper.as_ref().map(path);
+    let now = app.sim.now().tau;
+    let x = [0.0, now.max(1e-3)];
+    let mut marks = vec![Mark::VLine {
+        x: now,
+        label: format!("τ={}", num(now, 2)),
+        color: th.accent,
+    }];
+    if let Status::Stuck { tau, .. } = app.sim.run.status
+        && tau <= now
+    {
+        marks.push(Mark::VLine {
+            x: tau,
+            label: "stop".into(),
+            color: th.stuck,
+        });
+    }
+    if let Some(e) = app.sim.run.escape
+        && e.tau <= now
+    {
+        marks.push(Mark::VLine {
+            x: e.tau,
+            label: "escape cert.".into(),
+            color: th.escaped,
+        });
+    }
+    let i = app.initial;
+    let approx_window = match i.release {
+        _ if i.frictionless => None,
+        Release::LabRest => Some(lab_rest_window(i.xi0)),
+        Release::TableRest if i.xi0 > 1.0 => Some(TABLE_REST_WINDOW),
+        _ => None,
+    };
+    if let Some(w) = approx_window.filter(|w| *w <= now) {
+        marks.push(Mark::VLine {
+            x: w,
+            label: "approx. valid ←".into(),
+            color: th.muted,
+        });
+    }
+    let approx = |y: &dyn Fn(f64) -> Option<f64>| -> Option<Series> {
+        approx_window?;
+        let n = 200;
+        let pts = (0..=n)
+            .map(|k| now * k as f64 / n as f64)
+            .filter_map(|t| y(t).map(|v| (t, v)))
+            .collect();
+        Some(Series {
+            name: "Sec. III approx.".into(),
+            color: th.muted,
+            points: pts,
+            joined: true,
+        })
+    };
+    let rotating = app.view == Frame::Table;
+    let (theta_name, shift) = if rotating {
+        ("Θ′", 1.0)
+    } else {
+        ("θ′", 0.0)
+    };
+    let paper_series = |name: &str, y: &dyn Fn(&State) -> f64| {
+        paper.as_ref().map(|pp| Series {
+            name: format!("{name} paper RK2"),
+            color: th.spokes,
+            points: pp.iter().map(|s| (s.tau, y(s))).collect(),
+            joined: true,
+        })
+    };
+    let xi_of = |s: &State| s.xi();
+    let th_of = move |s: &State| s.theta_dot().map_or(f64::NAN, |t| t - shift);
+    let u_of = |s: &State| s.u_lab().length();
+    let mut xi_s = vec![series("ξ", th.trail, &p, xi_of)];
+    xi_s.extend(paper_series("ξ", &xi_of));
+    xi_s.extend(approx(&|t| match i.release {
+        Release::LabRest => Some(lab_rest(i.xi0, t).0),
+        _ => Some(table_rest(i.xi0, t).0),
+    }));
+    let mut th_s = vec![series(theta_name, th.trail, &p, th_of)];
+    th_s.extend(paper_series(theta_name, &th_of));
+    th_s.extend(approx(&|t| match i.release {
+        // θ = τ²/(2ξ0) (Eq. 16): θ′ = τ/ξ0 in the lab.
+        Release::LabRest => Some(t / i.xi0 - shift),
+        // Θ′ = 2 ln(ξ0/ξ) (Eq. 25), table frame.
+        _ => Some(table_rest(i.xi0, t).1 + 1.0 - shift),
+    }));
+    let mut u_s = vec![series("|u|", th.trail, &p, u_of)];
+    u_s.extend(paper_series("|u|", &u_of));
+    let [e, w] = energy_pair(&p);
+    let e_s = vec![
+        Series {
+            name: "E − E(0)".into(),
+            color: th.trail,
+            points: e,
+            joined: true,
+        },
+        Series {
+            name: "−∫|u|dτ".into(),
+            color: th.centrifugal,
+            points: w,
+            joined: false,
+        },
+    ];
+    let plots = [
+        ("ξ", xi_s),
+        (theta_name, th_s),
+        ("|u|", u_s),
+        ("dE/dτ = −|u|:", e_s),
+    ];
+    // As many plots as fit (ξ first), each at least a legend line and three rows; the τ axis
+    // under the last.
+    let fit = ((inner.height.saturating_sub(2)) / 4).clamp(0, 4) as usize;
+    if fit == 0 {
+        return;
+    }
+    let rows = Layout::vertical(
+        (0..fit)
+            .map(|k| Constraint::Fill(if k + 1 == fit { 2 } else { 1 }))
+            .collect::<Vec<_>>(),
+    )
+    .split(inner);
+    for (k, (name, s)) in plots.into_iter().take(fit).enumerate() {
+        let y = extent(s.iter().flat_map(|s| s.points.iter().map(|p| p.1)));
+        let c = Chart {
+            title: String::new(),
+            x_label: if k + 1 == fit {
+                "τ".into()
+            } else {
+                String::new()
+            },
+            y_label: name.into(),
+            x,
+            y,
+            series: s,
+            marks: marks.clone(),
+        };
+        chart::render_bare(f, rows[k], th, &c, k + 1 == fit);
+    }
+}
+
+/// v_e(φ) for the current ξ0 beside the paper's four, the release as a point, min and max.
+fn escape_speed(f: &mut TuiFrame, area: Rect, app: &App) -> Option<CanvasGeom> {
+    let th = &app.theme;
+    let i = app.initial;
+    let settings = crate::analysis::settings_for(app.settings);
+    let charts = &app.charts;
+    let mine = charts.curve(i.xi0, settings);
+    let mut series = Vec::new();
+    for xi0 in PAPER_XI0.into_iter().filter(|x| *x != i.xi0) {
+        if let Some(c) = charts.curve(xi0, settings) {
+            series.push(Series {
+                name: format!("ξ0={xi0}"),
+                color: th.muted,
+                points: c.points(),
+                joined: true,
+            });
+        }
+    }
+    let mut marks = Vec::new();
+    let mut progress = String::new();
+    if let Some(c) = mine {
+        series.push(Series {
+            name: format!("ξ0={} (now)", num(i.xi0, 3)),
+            color: th.trail,
+            points: c.points(),
+            joined: true,
+        });
+        if let Some(((p0, v0), (p1, v1))) = c.extremes() {
+            marks.push(Mark::Point {
+                x: p0,
+                y: v0,
+                label: format!("min {} at {}π", num(v0, 4), num(p0 / PI, 2)),
+                color: th.stuck,
+            });
+            marks.push(Mark::Point {
+                x: p1,
+                y: v1,
+                label: format!("max {} at {}π", num(v1, 4), num(p1 / PI, 2)),
+                color: th.escaped,
+            });
+        }
+        let done = c.ve.iter().filter(|v| v.is_some()).count();
+        if done < c.ve.len() {
+            progress = format!(" {done}/{} angles", c.ve.len());
+        }
+    } else {
+        progress = " computing…".into();
+    }
+    let phi = i.phi.rem_euclid(TAU);
+    let (verdict, color) = match (i.release, mine.and_then(|c| nearest(c, phi))) {
+        (Release::Velocity, Some(ve)) if i.v0 > ve => (" escapes (above v_e)", th.escaped),
+        (Release::Velocity, Some(_)) => (" sticks (below v_e)", th.stuck),
+        (Release::Velocity, None) => ("", th.particle),
+        _ => (" (release at rest: v0 = 0)", th.particle),
+    };
+    let v_now = if i.release == Release::Velocity {
+        i.v0
+    } else {
+        0.0
+    };
+    marks.push(Mark::Point {
+        x: phi,
+        y: v_now,
+        label: format!("release{verdict}"),
+        color,
+    });
+    let top = series
+        .iter()
+        .flat_map(|s| s.points.iter().map(|p| p.1))
+        .fold(v_now, f64::max);
+    let c = Chart {
+        title: format!("escape speed v_e(φ), ξ0 = {}{progress}", num(i.xi0, 3)),
+        x_label: "φ (rad)  p/v move · Enter: release it".into(),
+        y_label: "v_e".into(),
+        x: [0.0, TAU],
+        y: [0.0, (1.1 * top).max(0.1)],
+        series,
+        marks,
+    };
+    let plot = chart::render(f, area, th, &c)?;
+    Some(geom(plot, &c, Page::EscapeSpeed, app))
+}
+
+/// The curve's v_e at the computed angle nearest φ.
+fn nearest(c: &crate::app::pages::Curve, phi: f64) -> Option<f64> {
+    let n = c.ve.len();
+    let i = ((phi / TAU) * n as f64).round() as usize % n;
+    c.ve[i].flatten()
+}
+
+/// Stuck or escaped over (φ, v0), stuck cells shaded by their rest radius, the v_e curve on it.
+fn outcome_map(f: &mut TuiFrame, area: Rect, app: &App) -> Option<CanvasGeom> {
+    let th = &app.theme;
+    let i = app.initial;
+    let settings = crate::analysis::settings_for(app.settings);
+    let map = app.charts.map.as_ref().filter(|m| match m.job {
+        crate::analysis::Job::Map { xi0, release, .. } => {
+            xi0 == i.xi0 && release == i.release && m.settings == settings
+        }
+        _ => false,
+    });
+    let v0_max = match map.map(|m| m.job) {
+        Some(crate::analysis::Job::Map { v0_max, .. }) => v0_max,
+        _ => app
+            .charts
+            .curve(i.xi0, settings)
+            .map_or(1.0, |c| Charts::map_v0_max(c, i.release, i.xi0)),
+    };
+    let frame_word = if i.release == Release::LabRest {
+        "lab"
+    } else {
+        "table"
+    };
+    let progress = match map {
+        Some(m) => {
+            let (done, all) = map_filled(m);
+            if done < all {
+                format!(" {done}/{all} cells")
+            } else {
+                String::new()
+            }
+        }
+        None => " computing…".into(),
+    };
+    let mut series = Vec::new();
+    if i.release != Release::LabRest
+        && let Some(c) = app.charts.curve(i.xi0, settings)
+    {
+        series.push(Series {
+            name: "v_e(φ)".into(),
+            color: th.accent,
+            points: c.points(),
+            joined: true,
+        });
+    }
+    let (phi, v0) = match i.release {
+        Release::Velocity => (i.phi.rem_euclid(TAU), i.v0),
+        _ => (0.0, 0.0),
+    };
+    let c = Chart {
+        title: format!(
+            "outcome map, ξ0 = {}, {} release{progress}",
+            num(i.xi0, 3),
+            i.release
+        ),
+        x_label: format!("φ ({frame_word} frame)  blank: escapes  ·:▒▓ stuck at ξ <¼ <½ <¾ ≤1"),
+        y_label: "v0".into(),
+        x: [0.0, TAU],
+        y: [0.0, v0_max],
+        series,
+        marks: vec![Mark::Point {
+            x: phi,
+            y: v0,
+            label: "release".into(),
+            color: th.particle,
+        }],
+    };
+    // The cells first, then the chart's braille over them.
+    let plot = chart::plot_area(area, &c)?;
+    if let Some(m) = map {
+        let (n, rows) = MAP_SIZE;
+        let buf = f.buffer_mut();
+        for cy in 0..plot.height {
+            for cx in 0..plot.width {
+                let fx = (f64::from(cx) + 0.5) / f64::from(plot.width);
+                let fy = 1.0 - (f64::from(cy) + 0.5) / f64::from(plot.height);
+                let ci = ((fx * n as f64) as usize).min(n - 1);
+                let v = fy * v0_max;
+                // The row whose speed is nearest.
+                let cj = ((v / v0_max * rows as f64).round() as usize).clamp(1, rows) - 1;
+                let Some(Some(cell)) = m.cells.get(cj * n + ci) else {
+                    continue;
+                };
+                let (ch, color) = match (cell.outcome, cell.rest) {
+                    (Outcome::Stuck, Some((xi, _))) => (
+                        match xi {
+                            x if x < 0.25 => '·',
+                            x if x < 0.5 => ':',
+                            x if x < 0.75 => '▒',
+                            _ => '▓',
+                        },
+                        th.stuck,
+                    ),
+                    (Outcome::Escaped, _) => (' ', th.escaped),
+                    _ => ('?', th.muted),
+                };
+                if let Some(c) = buf.cell_mut((plot.x + cx, plot.y + cy)) {
+                    c.set_char(ch).set_fg(color);
+                }
+            }
+        }
+    }
+    let plot = chart::render(f, area, th, &c)?;
+    Some(geom(plot, &c, Page::OutcomeMap, app))
+}
+
+/// Fig. 6: where a particle released at rest in the lab comes to rest, against ξ0, with ξ0c;
+/// beside it Eq. 22, μ = Ω² r0c / (g ξ0c), from an Ω and r0c the user enters.
+fn rest_radius(f: &mut TuiFrame, area: Rect, app: &App) {
+    let th = &app.theme;
+    let settings = crate::analysis::settings_for(app.settings);
+    let rest = app.charts.rest.as_ref().filter(|r| r.settings == settings);
+    let [top, bottom] = Layout::vertical([Constraint::Min(6), Constraint::Length(5)]).areas(area);
+    let mut points = Vec::new();
+    let mut escaped = Vec::new();
+    let mut marks = Vec::new();
+    let mut progress = " computing…".to_string();
+    let xi0c = rest.and_then(|r| r.critical.flatten());
+    if let Some(r) = rest {
+        for (k, v) in r.xi.iter().enumerate() {
+            let xi0 = REST_XI0_MAX * k as f64 / (REST_POINTS - 1) as f64;
+            match v {
+                Some(Some(xi)) => points.push((xi0, *xi)),
+                Some(None) => escaped.push((xi0, 1.0)),
+                None => {}
+            }
+        }
+        let done = r.xi.iter().filter(|v| v.is_some()).count();
+        progress = if done < r.xi.len() || r.critical.is_none() {
+            format!(" {done}/{} radii", r.xi.len())
+        } else {
+            String::new()
+        };
+        if let Some(c) = xi0c {
+            marks.push(Mark::VLine {
+                x: c,
+                label: format!("ξ0c={}", num(c, 4)),
+                color: th.escaped,
+            });
+        }
+    }
+    marks.push(Mark::VLine {
+        x: app.initial.xi0.min(REST_XI0_MAX),
+        label: "now".into(),
+        color: th.particle,
+    });
+    let c = Chart {
+        title: format!("rest radius (Fig. 6): at rest in the lab at ξ0{progress}"),
+        x_label: "ξ0".into(),
+        y_label: "final ξ".into(),
+        x: [0.0, REST_XI0_MAX],
+        y: [0.0, 1.05],
+        series: vec![
+            Series {
+                name: "stuck at".into(),
+                color: th.trail,
+                points,
+                joined: false,
+            },
+            Series {
+                name: "escapes".into(),
+                color: th.escaped,
+                points: escaped,
+                joined: false,
+            },
+        ],
+        marks,
+    };
+    chart::render(f, top, th, &c);
+    let (omega, r0c) = app.mu_probe;
+    let g = crate::app::G_DEFAULT;
+    let mu = xi0c.map(|c| omega * omega * r0c / (g * c));
+    let text = vec![
+        Line::from(Span::styled(
+            "Eq. 22: μ = Ω² r0c / (g ξ0c)   o/O Ω ±0.1 rad/s, d/D r0c ±1 mm",
+            Style::default().fg(th.muted),
+        )),
+        Line::from(format!(
+            "Ω = {} rad/s ({} rpm)   r0c = {} m   g = {g} m/s²",
+            num(omega, 3),
+            num(omega * 60.0 / TAU, 3),
+            num(r0c, 4)
+        )),
+        Line::from(Span::styled(
+            match mu {
+                Some(mu) => format!("μ = {}", num(mu, 4)),
+                None => "μ = … (ξ0c still computing)".into(),
+            },
+            Style::default().fg(th.accent),
+        )),
+    ];
+    f.render_widget(
+        Paragraph::new(text).wrap(Wrap { trim: true }).block(
+            Block::default()
+                .borders(Borders::ALL)
+                .border_style(Style::default().fg(th.muted))
+                .title(Span::styled(" measure μ ", Style::default().fg(th.accent))),
+        ),
+        bottom,
+    );
+}
