@@ -34,11 +34,20 @@ pub enum Mark {
         label: String,
         color: Color,
     },
+    /// A label alone, its left end at (x, y).
+    Text {
+        x: f64,
+        y: f64,
+        label: String,
+        color: Color,
+    },
 }
 
 #[derive(Clone, Debug)]
 pub struct Chart {
     pub title: String,
+    /// A line of readouts under the x ticks, left of the x axis name.
+    pub note: String,
     pub x_label: String,
     pub y_label: String,
     pub x: [f64; 2],
@@ -136,7 +145,9 @@ fn layout(inner: Rect, chart: &Chart, x_axis: bool) -> Option<(Rect, u16, Vec<f6
     let y = sane(chart.y);
     let below = if x_axis { 2 } else { 0 };
     let rows = inner.height.checked_sub(1 + below).filter(|r| *r >= 2)?;
-    let yt = ticks(y[0], y[1], (rows as usize / 3).clamp(1, 5));
+    let yt = ticks(y[0], y[1], (rows as usize / 3).clamp(2, 5));
+    // Too short for round ticks: label the ends.
+    let yt = if yt.len() < 2 { vec![y[0], y[1]] } else { yt };
     let gutter = yt
         .iter()
         .map(|v| tick_label(*v).chars().count())
@@ -217,11 +228,23 @@ pub fn render_bare(
         );
     }
     if x_axis {
+        let row = Rect::new(inner.x, axis_row + 1, inner.width, 1);
+        let room = (inner.width as usize).saturating_sub(chart.x_label.chars().count() + 1);
+        let note: String = chart.note.chars().take(room).collect();
+        f.render_widget(
+            Paragraph::new(Line::from(vec![Span::styled(
+                note,
+                Style::default().fg(th.foreground),
+            )])),
+            row,
+        );
         f.render_widget(
             Paragraph::new(Span::styled(chart.x_label.clone(), muted)).right_aligned(),
             Rect::new(plot.x, axis_row + 1, plot.width, 1),
         );
     }
+    // One terminal column in x units.
+    let col = (x[1] - x[0]) / f64::from(plot.width.max(1));
     let canvas = Canvas::default()
         .marker(Marker::Braille)
         .x_bounds(x)
@@ -256,9 +279,28 @@ pub fn render_bare(
                         label,
                         color,
                     } => {
+                        // Right of the line, or left of it in the right half.
+                        let w = (label.chars().count() + 1) as f64 * col;
+                        let at = if *mx > 0.5 * (x[0] + x[1]) {
+                            *mx - w
+                        } else {
+                            *mx + col
+                        };
                         ctx.print(
-                            *mx,
+                            at,
                             y[1],
+                            Span::styled(label.clone(), Style::default().fg(*color)),
+                        );
+                    }
+                    Mark::Text {
+                        x: px,
+                        y: py,
+                        label,
+                        color,
+                    } => {
+                        ctx.print(
+                            *px,
+                            *py,
                             Span::styled(label.clone(), Style::default().fg(*color)),
                         );
                     }

@@ -71,7 +71,7 @@ fn series(
 }
 
 /// E − E(0) and −∫|u|dτ (trapezoids on the path's grid): equal, since dE/dτ = −|u|.
-fn energy_pair(path: &[State]) -> [Vec<(f64, f64)>; 2] {
+pub fn energy_pair(path: &[State]) -> [Vec<(f64, f64)>; 2] {
     let e0 = path.first().map_or(0.0, State::energy);
     let mut work = 0.0;
     let mut w = Vec::with_capacity(path.len());
@@ -225,6 +225,7 @@ fn time_plots(f: &mut TuiFrame, area: Rect, app: &App) {
         let y = extent(s.iter().flat_map(|s| s.points.iter().map(|p| p.1)));
         let c = Chart {
             title: String::new(),
+            note: String::new(),
             x_label: if k + 1 == fit {
                 "τ".into()
             } else {
@@ -259,7 +260,19 @@ fn escape_speed(f: &mut TuiFrame, area: Rect, app: &App) -> Option<CanvasGeom> {
         }
     }
     let mut marks = Vec::new();
+    // Each of the paper's curves named at its peak (their colours are all faint).
+    for c in series.iter() {
+        if let Some(&(x, y)) = c.points.iter().max_by(|a, b| a.1.total_cmp(&b.1)) {
+            marks.push(Mark::Text {
+                x,
+                y,
+                label: c.name.trim_start_matches("ξ0=").to_string(),
+                color: th.muted,
+            });
+        }
+    }
     let mut progress = String::new();
+    let mut note = String::new();
     if let Some(c) = mine {
         series.push(Series {
             name: format!("ξ0={} (now)", num(i.xi0, 3)),
@@ -271,15 +284,22 @@ fn escape_speed(f: &mut TuiFrame, area: Rect, app: &App) -> Option<CanvasGeom> {
             marks.push(Mark::Point {
                 x: p0,
                 y: v0,
-                label: format!("min {} at {}π", num(v0, 4), num(p0 / PI, 2)),
+                label: "min".into(),
                 color: th.stuck,
             });
             marks.push(Mark::Point {
                 x: p1,
                 y: v1,
-                label: format!("max {} at {}π", num(v1, 4), num(p1 / PI, 2)),
+                label: "max".into(),
                 color: th.escaped,
             });
+            note = format!(
+                "min {} at {}π, max {} at {}π",
+                num(v0, 4),
+                num(p0 / PI, 2),
+                num(v1, 4),
+                num(p1 / PI, 2)
+            );
         }
         let done = c.ve.iter().filter(|v| v.is_some()).count();
         if done < c.ve.len() {
@@ -312,7 +332,8 @@ fn escape_speed(f: &mut TuiFrame, area: Rect, app: &App) -> Option<CanvasGeom> {
         .fold(v_now, f64::max);
     let c = Chart {
         title: format!("escape speed v_e(φ), ξ0 = {}{progress}", num(i.xi0, 3)),
-        x_label: "φ (rad)  p/v move · Enter: release it".into(),
+        note,
+        x_label: "φ".into(),
         y_label: "v_e".into(),
         x: [0.0, TAU],
         y: [0.0, (1.1 * top).max(0.1)],
@@ -385,6 +406,7 @@ fn outcome_map(f: &mut TuiFrame, area: Rect, app: &App) -> Option<CanvasGeom> {
             num(i.xi0, 3),
             i.release
         ),
+        note: String::new(),
         x_label: format!("φ ({frame_word} frame)  blank: escapes  ·:▒▓ stuck at ξ <¼ <½ <¾ ≤1"),
         y_label: "v0".into(),
         x: [0.0, TAU],
@@ -478,6 +500,7 @@ fn rest_radius(f: &mut TuiFrame, area: Rect, app: &App) {
     });
     let c = Chart {
         title: format!("rest radius (Fig. 6): at rest in the lab at ξ0{progress}"),
+        note: xi0c.map_or(String::new(), |c| format!("ξ0c = {}", num(c, 6))),
         x_label: "ξ0".into(),
         y_label: "final ξ".into(),
         x: [0.0, REST_XI0_MAX],

@@ -1,0 +1,246 @@
+//! The analysis pages (issue 10): Tab order and titles, and the data each page shows checked
+//! against the engine's solvers, not only that a chart renders.
+
+use crossterm::event::{KeyCode, KeyEvent, KeyModifiers, MouseButton, MouseEvent, MouseEventKind};
+use ratatui::Terminal;
+use ratatui::backend::TestBackend;
+use std::f64::consts::TAU;
+use turntable::analysis::{self, CURVE_VTOL, MAP_SIZE, PAPER_XI0, map_speed, settings_for};
+use turntable::app::App;
+use turntable::app::pages::Page;
+use turntable::engine::solve::{critical_radius, escape_speed};
+use turntable::engine::{Outcome, Release, Settings};
+use turntable::scene::Scene;
+use turntable::theme::Theme;
+use turntable::ui::draw;
+
+fn app(scene: &str) -> App {
+    App::new(
+        Scene::preset(scene).unwrap(),
+        Theme::builtin("dark").unwrap(),
+    )
+}
+
+fn render(app: &mut App, w: u16, h: u16) -> String {
+    let mut t = Terminal::new(TestBackend::new(w, h)).unwrap();
+    let mut geom = None;
+    t.draw(|f| geom = draw(f, app)).unwrap();
+    app.drawn(geom);
+    let buf = t.backend().buffer();
+    (0..buf.area.height)
+        .map(|y| {
+            (0..buf.area.width)
+                .map(|x| buf[(x, y)].symbol())
+                .collect::<String>()
+                + "\n"
+        })
+        .collect()
+}
+
+fn press(app: &mut App, code: KeyCode) {
+    app.handle_key(KeyEvent::new(code, KeyModifiers::NONE));
+}
+
+#[test]
+fn tab_cycles_the_pages_and_each_title_names_its_page() {
+    let mut a = app("C");
+    assert!(render(&mut a, 100, 30).contains("lab frame"));
+    for (page, words) in [
+        (Page::TimePlots, "time plots"),
+        (Page::EscapeSpeed, "escape speed"),
+        (Page::OutcomeMap, "outcome map"),
+        (Page::RestRadius, "rest radius"),
+        (Page::Turntable, "lab frame"),
+    ] {
+        press(&mut a, KeyCode::Tab);
+        assert_eq!(a.page, page);
+        let screen = render(&mut a, 100, 30);
+        assert!(screen.contains(words), "{words}:\n{screen}");
+        assert!(!screen.contains("NaN"), "{screen}");
+    }
+    press(&mut a, KeyCode::BackTab);
+    assert_eq!(a.page, Page::RestRadius);
+}
+
+#[test]
+fn nothing_is_computed_for_a_page_not_on_screen() {
+    let mut a = app("C");
+    a.tick();
+    assert_eq!(a.analysis.current(), None);
+    assert!(a.charts.curves.is_empty() && a.charts.map.is_none() && a.charts.rest.is_none());
+    press(&mut a, KeyCode::Tab); // time plots: from the run itself
+    assert_eq!(a.analysis.current(), None);
+}
+
+#[test]
+fn the_escape_speed_page_holds_the_solver_s_curves() {
+    let mut a = app("C");
+    a.page = Page::EscapeSpeed;
+    a.sync_analysis();
+    let s = settings_for(a.settings);
+    for xi0 in std::iter::once(0.5).chain(PAPER_XI0) {
+        let c = a.charts.curve(xi0, s).expect("curve");
+        assert!(c.complete(), "{xi0}");
+    }
+    let c = a.charts.curve(0.5, s).unwrap().clone();
+    for i in [0, 5, 23, 40, 71] {
+        let phi = analysis::angle(i, c.ve.len());
+        let v = escape_speed(0.5, phi, s, CURVE_VTOL).unwrap().value;
+        assert!(
+            (c.ve[i].unwrap().unwrap() - v).abs() <= CURVE_VTOL,
+            "φ {phi}"
+        );
+    }
+    let ((pmin, vmin), (pmax, vmax)) = c.extremes().unwrap();
+    assert!(c.points().iter().all(|p| p.1 >= vmin && p.1 <= vmax));
+    let screen = render(&mut a, 100, 30);
+    let label = |v: f64, p: f64| {
+        format!(
+            "{} at {}π",
+            turntable::ui::panel::num(v, 4),
+            turntable::ui::panel::num(p / std::f64::consts::PI, 2)
+        )
+    };
+    let note = format!("min {}, max {}", label(vmin, pmin), label(vmax, pmax));
+    assert!(screen.contains(&note), "{note}\n{screen}");
+    // C's v0 = 0.6078 at φ = 0 is below v_e(0) there: the page says it sticks.
+    assert!(c.ve[0].unwrap().unwrap() > a.initial.v0);
+    assert!(screen.contains("release sticks (below v_e)"), "{screen}");
+}
+
+#[test]
+fn the_outcome_map_agrees_with_the_escape_speeds() {
+    let mut a = app("C");
+    a.page = Page::OutcomeMap;
+    a.sync_analysis();
+    let s = settings_for(a.settings);
+    let curve = a.charts.curve(0.5, s).unwrap().clone();
+    let map = a.charts.map.clone().expect("map");
+    let turntable::analysis::Job::Map { v0_max, .. } = map.job else {
+        panic!("{:?}", map.job)
+    };
+    let (n, m) = MAP_SIZE;
+    let (mut stuck, mut escaped) = (0, 0);
+    for j in 0..m {
+        for i in 0..n {
+            let cell = map.cells[j * n + i].expect("filled");
+            let ve = curve.ve[i].unwrap().unwrap();
+            let v0 = map_speed(j, m, v0_max);
+            if v0 < ve - 1e-3 {
+                assert_eq!(cell.outcome, Outcome::Stuck, "φ_{i} v0 {v0} < {ve}");
+                let (xi, _) = cell.rest.unwrap();
+                assert!(xi <= 1.0);
+                stuck += 1;
+            } else if v0 > ve + 1e-3 {
+                assert_eq!(cell.outcome, Outcome::Escaped, "φ_{i} v0 {v0} > {ve}");
+                escaped += 1;
+            }
+        }
+    }
+    assert!(stuck > 500 && escaped > 500, "{stuck} {escaped}");
+    assert!(v0_max > curve.extremes().unwrap().1.1);
+    let screen = render(&mut a, 100, 30);
+    assert!(screen.contains('▓') && screen.contains('·'), "{screen}");
+}
+
+#[test]
+fn a_click_on_the_map_picks_that_release_and_enter_runs_it() {
+    let mut a = app("C");
+    a.page = Page::OutcomeMap;
+    a.sync_analysis();
+    render(&mut a, 100, 30);
+    let g = a.geom_for_tests().expect("plot geometry");
+    assert_eq!(g.page, Page::OutcomeMap);
+    let (col, row) = (g.area.x + g.area.width / 4, g.area.y + g.area.height / 3);
+    let want = g.to_world(col, row).unwrap();
+    a.handle_mouse(MouseEvent {
+        kind: MouseEventKind::Down(MouseButton::Left),
+        column: col,
+        row,
+        modifiers: KeyModifiers::NONE,
+    });
+    assert!((a.initial.phi.rem_euclid(TAU) - want.x).abs() < 1e-9);
+    assert!((a.initial.v0 - want.y).abs() < 1e-9);
+    assert_eq!(a.initial.release, Release::Velocity);
+    press(&mut a, KeyCode::Enter);
+    assert_eq!(a.page, Page::Turntable);
+    assert!(a.playing && a.sim.now().tau == 0.0);
+}
+
+#[test]
+fn the_rest_radius_page_has_fig6_and_reads_mu_from_eq22() {
+    let mut a = app("C");
+    a.page = Page::RestRadius;
+    a.sync_analysis();
+    let rest = a.charts.rest.clone().expect("rest");
+    let c = rest.critical.unwrap().unwrap();
+    let want = critical_radius(settings_for(Settings::default()), 1e-6)
+        .unwrap()
+        .value;
+    assert!((c - want).abs() < 1e-6, "{c} {want}");
+    // Below ξ0c every release at rest in the lab sticks, and further out the farther in;
+    // above it every one escapes (Fig. 6).
+    let xs: Vec<(f64, Option<f64>)> = rest
+        .xi
+        .iter()
+        .enumerate()
+        .map(|(k, v)| (1.5 * k as f64 / 100.0, v.unwrap()))
+        .collect();
+    for w in xs.windows(2) {
+        if w[1].0 < c {
+            assert!(w[1].1.unwrap() >= w[0].1.unwrap() - 1e-9, "{w:?}");
+        }
+    }
+    assert!(xs.iter().filter(|x| x.0 > c + 1e-3).all(|x| x.1.is_none()));
+    let screen = render(&mut a, 100, 30);
+    let mu = 3.3f64 * 3.3 * 0.12 / (9.81 * c);
+    assert!(
+        screen.contains(&format!("μ = {}", turntable::ui::panel::num(mu, 4))),
+        "{screen}"
+    );
+    press(&mut a, KeyCode::Char('o'));
+    let mu2 = 3.4f64 * 3.4 * 0.12 / (9.81 * c);
+    let screen = render(&mut a, 100, 30);
+    assert!(screen.contains(&format!("μ = {}", turntable::ui::panel::num(mu2, 4))));
+}
+
+#[test]
+fn the_time_plots_show_the_energy_identity() {
+    let mut a = app("C");
+    for _ in 0..60 {
+        a.tick();
+    }
+    let path = a.sim.trail().to_vec();
+    let [e, w] = turntable::ui::pages::energy_pair(&path);
+    let worst = e
+        .iter()
+        .zip(&w)
+        .map(|(a, b)| (a.1 - b.1).abs())
+        .fold(0.0, f64::max);
+    // Trapezoids on the 0.025 grid: dE/dτ = −|u| to O(Δτ²).
+    assert!(worst < 1e-3, "{worst}");
+    assert!(e.last().unwrap().1 < -0.1);
+    press(&mut a, KeyCode::Tab);
+    let screen = render(&mut a, 100, 30);
+    for words in ["ξ", "θ′", "|u|", "E − E(0)", "−∫|u|dτ", "stop"] {
+        assert!(screen.contains(words), "{words}:\n{screen}");
+    }
+}
+
+#[test]
+fn pages_survive_every_size() {
+    let mut a = app("fig1");
+    for page in [
+        Page::TimePlots,
+        Page::EscapeSpeed,
+        Page::OutcomeMap,
+        Page::RestRadius,
+    ] {
+        a.page = page;
+        a.sync_analysis();
+        for (w, h) in [(40, 12), (60, 20), (80, 24), (200, 60), (1, 1)] {
+            let s = render(&mut a, w, h);
+            assert!(!s.contains("NaN"), "{page:?} {w}x{h}");
+        }
+    }
+}
