@@ -103,6 +103,34 @@ pub fn classify(initial: Initial, settings: Settings) -> Result<Cell, Error> {
     })
 }
 
+/// One row of `sweep map`: a cell's release and how it ends.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MapRow {
+    pub phi: f64,
+    pub v0: f64,
+    pub cell: Cell,
+}
+
+/// The outcome map as `sweep map` prints it (the page's own grid and classification): `n`
+/// angles φ_i = 2π i/n by `m` speeds v0_max (j + 1)/m, φ fastest, on all cores. Fails on the
+/// first run that cannot finish.
+pub fn outcome_map(
+    xi0: f64,
+    release: Release,
+    (n, m): (usize, usize),
+    v0_max: f64,
+    settings: Settings,
+) -> Result<Vec<MapRow>, Error> {
+    let cells: Vec<(f64, f64)> = (0..n * m)
+        .map(|k| (angle(k % n, n), map_speed(k / n, m, v0_max)))
+        .collect();
+    crate::engine::solve::par_map(&cells, |&(phi, v0)| {
+        classify(map_release(xi0, release, phi, v0), settings).map(|cell| MapRow { phi, v0, cell })
+    })
+    .into_iter()
+    .collect()
+}
+
 /// The number of pieces a job has.
 pub fn pieces(job: &Job) -> usize {
     match job {

@@ -157,8 +157,11 @@ pub fn emit(out: Option<&Path>, text: &str) -> io::Result<()> {
         Some(p) => write_atomic(p, text.as_bytes()),
         None => {
             let mut so = io::stdout().lock();
-            so.write_all(text.as_bytes())?;
-            so.flush()
+            match so.write_all(text.as_bytes()).and_then(|()| so.flush()) {
+                // The reader stopped reading (`| head`): what it took is what it wanted.
+                Err(e) if e.kind() == io::ErrorKind::BrokenPipe => Ok(()),
+                r => r,
+            }
         }
     }
 }

@@ -127,3 +127,48 @@ fn enum_flags_list_their_values_and_take_aliases() {
     assert_eq!(code, 2);
     assert!(err.contains("velocity, table-rest, lab-rest"), "{err}");
 }
+
+#[test]
+fn sweep_map_prints_one_row_per_cell_that_agrees_with_v_e() {
+    let (code, out, err) = turntable(&[
+        "sweep",
+        "map",
+        "--xi0",
+        "0.5",
+        "--phi-points",
+        "12",
+        "--v0-points",
+        "10",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let mut lines = out.lines();
+    assert_eq!(lines.next(), Some("phi,v0,outcome,xi,angle"));
+    let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
+    assert_eq!(rows.len(), 120);
+    let mut checked = 0;
+    for r in &rows {
+        let (phi, v0): (f64, f64) = (r[0].parse().unwrap(), r[1].parse().unwrap());
+        let (_, ve, _) = turntable(&["escape", "--xi0", "0.5", "--phi", r[0], "--json"]);
+        let ve: f64 = field(&ve, "v_escape").parse().unwrap();
+        if (v0 - ve).abs() > 1e-3 {
+            let want = if v0 > ve { "escaped" } else { "stuck" };
+            assert_eq!(r[2], want, "phi {phi} v0 {v0} v_e {ve}");
+            assert_eq!(r[3].is_empty(), want == "escaped");
+            checked += 1;
+        }
+        if checked > 30 {
+            break;
+        }
+    }
+    for bad in [
+        &["sweep", "map"][..],
+        &["sweep", "map", "--xi0", "0.5,0.2"],
+        &["sweep", "map", "--xi0", "0.5", "--v0-points", "0"],
+        &["sweep", "map", "--xi0", "0.5", "--v0-max", "-1"],
+        &["sweep", "map", "--xi0", "0.5", "--release", "sideways"],
+    ] {
+        let (code, out, err) = turntable(bad);
+        assert_eq!(code, 2, "{bad:?}: {err}");
+        assert!(out.is_empty() && err.lines().count() <= 4, "{bad:?}: {err}");
+    }
+}

@@ -180,12 +180,26 @@ pub struct CriticalArgs {
 
 #[derive(Args, Debug)]
 pub struct SweepArgs {
-    /// fig5: v_e over phi for each --xi0; fig6: final rest xi over xi0 in [0, --xi0-max].
-    #[arg(value_parser = ["fig5", "fig6"])]
+    /// fig5: v_e over phi for each --xi0; fig6: final rest xi over xi0 in [0, --xi0-max];
+    /// map: stuck or escaped over (phi, v0) at one --xi0 (the explorer's outcome map).
+    #[arg(value_parser = ["fig5", "fig6", "map"])]
     pub figure: String,
-    /// Release radii for fig5.
-    #[arg(long, value_delimiter = ',', default_values_t = [0.8, 0.5, 0.2, 0.001], allow_hyphen_values = true)]
+    /// Release radii for fig5 [default: 0.8,0.5,0.2,0.001]; the one radius of map.
+    #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
     pub xi0: Vec<f64>,
+    /// map: how phi and v0 are meant: velocity or table-rest, the speed relative to the
+    /// table; lab-rest, the lab velocity (thrown from the lab, u0 = v − Ω×r).
+    #[arg(long, default_value = "velocity", value_parser = variant::<Release>())]
+    pub release: Release,
+    /// map: number of angles phi in [0, 2π).
+    #[arg(long, default_value_t = 72)]
+    pub phi_points: usize,
+    /// map: number of speeds v0 in (0, --v0-max].
+    #[arg(long, default_value_t = 60)]
+    pub v0_points: usize,
+    /// map: largest v0 [default: 1.3 × the largest v_e over phi, plus xi0 for lab-rest].
+    #[arg(long, allow_hyphen_values = true)]
+    pub v0_max: Option<f64>,
     /// Number of angles (fig5) or radii (fig6).
     #[arg(long, default_value_t = 72)]
     pub points: usize,

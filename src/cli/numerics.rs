@@ -306,12 +306,19 @@ pub fn sweep(a: SweepArgs) -> CmdResult {
         .transpose()
         .map_err(|e| Error::Invalid(format!("--out: {e}")))?;
     let mut csv = String::new();
-    if a.figure == "fig5" {
-        for &xi0 in &a.xi0 {
+    if a.figure == "map" {
+        csv = sweep_map(&a, settings)?;
+    } else if a.figure == "fig5" {
+        let xi0s = if a.xi0.is_empty() {
+            crate::analysis::PAPER_XI0.to_vec()
+        } else {
+            a.xi0.clone()
+        };
+        for &xi0 in &xi0s {
             check_escape_xi0(xi0)?;
         }
         csv.push_str("xi0,phi,v_escape\n");
-        for p in sweep_escape(&a.xi0, a.points, settings, a.vtol)? {
+        for p in sweep_escape(&xi0s, a.points, settings, a.vtol)? {
             let _ = writeln!(csv, "{},{},{}", p.xi0, p.phi, p.v_escape);
         }
     } else {
@@ -341,4 +348,63 @@ pub fn sweep(a: SweepArgs) -> CmdResult {
         None => emit(None, &csv)?,
     }
     Ok(())
+}
+
+/// `sweep map`: one row per (phi, v0) cell, as the explorer's outcome map classifies it.
+fn sweep_map(a: &SweepArgs, settings: crate::engine::Settings) -> Result<String, Error> {
+    let [xi0] = a.xi0[..] else {
+        return Err(Error::invalid(format!(
+            "sweep map takes one --xi0, got {}",
+            a.xi0.len()
+        )));
+    };
+    check_escape_xi0(xi0)?;
+    for (name, n) in [("phi-points", a.phi_points), ("v0-points", a.v0_points)] {
+        if !(1..=2000).contains(&n) {
+            return Err(Error::invalid(format!(
+                "{name} must lie in 1..=2000, got {n}"
+            )));
+        }
+    }
+    let v0_max = match a.v0_max {
+        Some(v) => {
+            positive("v0-max", v)?;
+            check_initial(&Initial::velocity(xi0, 0.0, v))?;
+            v
+        }
+        None => {
+            let curve = sweep_escape(&[xi0], a.phi_points, settings, a.vtol)?;
+            let top = curve.iter().map(|p| p.v_escape).fold(0.0, f64::max);
+            let lab = if a.release == crate::engine::Release::LabRest {
+                xi0
+            } else {
+                0.0
+            };
+            (1.3 * (top + lab)).max(0.2)
+        }
+    };
+    let rows = crate::analysis::outcome_map(
+        xi0,
+        a.release,
+        (a.phi_points, a.v0_points),
+        v0_max,
+        settings,
+    )?;
+    let mut csv = String::from("phi,v0,outcome,xi,angle\n");
+    for r in rows {
+        let (xi, angle) = r
+            .cell
+            .rest
+            .map_or((String::new(), String::new()), |(x, t)| {
+                (x.to_string(), t.to_string())
+            });
+        let _ = writeln!(
+            csv,
+            "{},{},{},{xi},{angle}",
+            r.phi,
+            r.v0,
+            r.cell.outcome.name()
+        );
+    }
+    Ok(csv)
 }
