@@ -114,6 +114,29 @@ pub(super) fn speed(
         r?;
         Some(ms)
     };
+    let (r, curve_ms) = timed(cfg.reps.min(2), || {
+        (0..72)
+            .map(|i| {
+                escape_speed(
+                    0.5,
+                    crate::analysis::angle(i, 72),
+                    Settings::default(),
+                    1e-6,
+                )
+            })
+            .collect::<Result<Vec<_>, _>>()
+    });
+    let top = r?.iter().map(|t| t.value).fold(0.0, f64::max);
+    let (r, map_ms) = timed(cfg.reps.min(2), || {
+        crate::analysis::outcome_map(
+            0.5,
+            crate::engine::Release::Velocity,
+            (72, 60),
+            1.3 * top,
+            Settings::default(),
+        )
+    });
+    r?;
     let (frame_ms, frame_trail) = frame_time(cfg.reps)?;
     // Ten seconds of play (three in --quick).
     let terminal_bytes = super::bytes::all(if cfg.quick { 90 } else { 300 })?;
@@ -161,6 +184,8 @@ pub(super) fn speed(
         fig5_vtol: 1e-6,
         fig5_ms,
         fig5_ms_vtol_1e8,
+        curve_ms,
+        map_ms,
         rk2_err_median: rk2_err,
         matching_tol: matching.map(|m| m.0),
         matching_err_median: matching.map(|m| m.1),

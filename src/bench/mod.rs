@@ -134,6 +134,10 @@ pub struct Speed {
     pub fig5_vtol: f64,
     pub fig5_ms: f64,
     pub fig5_ms_vtol_1e8: Option<f64>,
+    /// Issue 10: the escape-speed page's curve for a new ξ0 (0.5; 72 angles, vtol 1e-6) on one
+    /// thread, and the outcome map's 72 × 60 cells (`sweep map`) on all cores.
+    pub curve_ms: f64,
+    pub map_ms: f64,
     /// dp54 against rk2 (with stick events) at dt = 1e-3 on the rest task.
     pub rk2_err_median: f64,
     pub matching_tol: Option<f64>,

@@ -108,6 +108,16 @@ pub fn table(r: &Report) -> String {
         sp.fig5_ms_vtol_1e8
             .map_or(String::new(), |m| format!("; at vtol 1e-8: {m:.0} ms"))
     );
+    let _ = writeln!(
+        o,
+        "  escape-speed page, one curve (ξ0 = 0.5, 72 angles, vtol 1e-6, one thread): {:.0} ms   (goal ≤ 50 ms)",
+        sp.curve_ms
+    );
+    let _ = writeln!(
+        o,
+        "  outcome map 72 × 60 cells (sweep map, all cores): {:.0} ms   (goal ≤ 1000 ms)",
+        sp.map_ms
+    );
     match (sp.matching_tol, sp.evals_ratio) {
         (Some(tol), Some(ratio)) => {
             let _ = writeln!(
