@@ -16,6 +16,9 @@ pub struct Scene {
     pub initial: Initial,
     #[serde(default)]
     pub settings: Settings,
+    /// A real table (μ, rpm, g): readouts in SI too.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub units: Option<crate::engine::units::Units>,
 }
 
 /// The paper's reference cases (CONVENTIONS.md), in the order of their keys.
@@ -59,6 +62,7 @@ impl Scene {
             about: about.into(),
             initial,
             settings: Settings::default(),
+            units: None,
         })
     }
 
@@ -95,6 +99,10 @@ impl Scene {
             .settings
             .validate()
             .map_err(|e| format!("scene file {name_or_path}: {e}"))?;
+        if let Some(u) = scene.units {
+            crate::engine::units::Units::new(u.mu, u.rpm, u.g)
+                .map_err(|e| format!("scene file {name_or_path}: [units] {e}"))?;
+        }
         Ok(scene)
     }
 

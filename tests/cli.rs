@@ -172,3 +172,77 @@ fn sweep_map_prints_one_row_per_cell_that_agrees_with_v_e() {
         assert!(out.is_empty() && err.lines().count() <= 4, "{bad:?}: {err}");
     }
 }
+
+#[test]
+fn physical_units_give_si_copies() {
+    let (code, out, err) = turntable(&[
+        "run", "--xi0", "0.5", "--v0", "0.6", "--mu", "0.15", "--rpm", "31.5", "--json",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    let omega = 31.5 * std::f64::consts::TAU / 60.0;
+    let r_max = 0.15 * 9.81 / (omega * omega);
+    let u = &v["units"];
+    assert!((u["R_max_m"].as_f64().unwrap() - r_max).abs() < 1e-15);
+    assert!((u["T_s"].as_f64().unwrap() - 1.0 / omega).abs() < 1e-15);
+    let xi = v["xi"].as_f64().unwrap();
+    assert!((u["xi_m"].as_f64().unwrap() - xi * r_max).abs() < 1e-15);
+    let tau = v["tau"].as_f64().unwrap();
+    assert!((u["tau_s"].as_f64().unwrap() - tau / omega).abs() < 1e-15);
+    let (code, out, _) = turntable(&["run", "--xi0", "0.5", "--json"]);
+    assert_eq!(code, 0);
+    assert!(!out.contains("units"));
+    for bad in [
+        &["run", "--mu", "0.2"][..],
+        &["run", "--mu", "0.2", "--rpm", "-3"],
+        &["run", "--mu", "nan", "--rpm", "30"],
+        &["--rpm", "30"],
+    ] {
+        let (code, _, err) = turntable(bad);
+        assert_eq!(code, 2, "{bad:?}: {err}");
+        assert_eq!(err.lines().count(), 1, "{err}");
+    }
+}
+
+#[test]
+fn scene_files_carry_units_and_the_explorer_shows_si() {
+    let dir = std::env::temp_dir().join(format!("turntable-units-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let good = dir.join("table.toml");
+    std::fs::write(
+        &good,
+        "name = \"real\"\n[initial]\nxi0 = 0.5\nphi = 0.0\nv0 = 0.6\n[units]\nmu = 0.15\nrpm = 31.5\n",
+    )
+    .unwrap();
+    let scene = turntable::scene::Scene::load(good.to_str().unwrap()).unwrap();
+    let u = scene.units.unwrap();
+    assert_eq!((u.mu, u.rpm, u.g), (0.15, 31.5, 9.81));
+    let mut app =
+        turntable::app::App::new(scene, turntable::theme::Theme::builtin("dark").unwrap());
+    let lines: Vec<String> = turntable::ui::panel::lines(&app)
+        .iter()
+        .map(|l| l.to_string())
+        .collect();
+    assert!(
+        lines
+            .iter()
+            .any(|l| l.contains("ξ") && l.contains("= 6.76 cm")),
+        "{lines:?}"
+    );
+    assert!(
+        lines
+            .iter()
+            .any(|l| l.contains("τ") && l.contains("= 0.00 s")),
+        "{lines:?}"
+    );
+    app.tick();
+    let bad = dir.join("bad.toml");
+    std::fs::write(
+        &bad,
+        "name = \"real\"\n[initial]\nxi0 = 0.5\nphi = 0.0\nv0 = 0.6\n[units]\nmu = -1\nrpm = 31.5\n",
+    )
+    .unwrap();
+    let e = turntable::scene::Scene::load(bad.to_str().unwrap()).unwrap_err();
+    assert!(e.contains("[units] mu must lie in"), "{e}");
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -93,6 +93,8 @@ pub struct App {
     /// What the analysis pages have received, and where it is computed.
     pub charts: Charts,
     pub analysis: Analysis,
+    /// A real table (`--mu`, `--rpm`, `--g` or the scene's `[units]`): readouts in SI too.
+    pub units: Option<crate::engine::units::Units>,
     /// The μ measurement of the rest-radius page (Eq. 22): Ω in rad/s and r0c in metres.
     pub mu_probe: (f64, f64),
     pub(crate) dirty: bool,
@@ -115,6 +117,7 @@ impl App {
             Settings::default()
         };
         let sim = make_sim(initial, settings);
+        let units = scene.units;
         App {
             scene,
             initial,
@@ -140,6 +143,7 @@ impl App {
             charts: Charts::default(),
             analysis: Analysis::inline(),
             mu_probe: MU_PROBE,
+            units,
             dirty: true,
             geom: None,
             dragging: false,
@@ -239,6 +243,7 @@ impl App {
             about: self.about(),
             initial: self.initial,
             settings: self.settings,
+            units: self.units,
         }
     }
 }

@@ -5,6 +5,7 @@ mod bench;
 mod numerics;
 pub mod replay;
 
+use crate::app::G_DEFAULT;
 use crate::engine::{Frame, Initial, Method, Release, Settings};
 use crate::error::Error;
 use clap::{Args, Parser, Subcommand};
@@ -35,6 +36,8 @@ pub struct Cli {
     /// written when the explorer exits; `turntable replay FILE` shows the same screens.
     #[arg(long, value_name = "FILE")]
     pub record: Option<PathBuf>,
+    #[command(flatten)]
+    pub units: UnitsArgs,
 }
 
 /// What the explorer shows, for the explorer and for `replay`.
@@ -138,6 +141,37 @@ pub struct RunArgs {
     /// Write the trajectory (one row per step) to this CSV file.
     #[arg(long)]
     pub trajectory: Option<PathBuf>,
+    #[command(flatten)]
+    pub units: UnitsArgs,
+}
+
+/// A real table: every length, time and speed also in SI.
+#[derive(Args, Debug, Clone, Default)]
+pub struct UnitsArgs {
+    /// Friction coefficient of a real table (with --rpm): SI values beside the dimensionless ones.
+    #[arg(long, allow_hyphen_values = true)]
+    pub mu: Option<f64>,
+    /// The table's speed in revolutions per minute (with --mu).
+    #[arg(long, allow_hyphen_values = true)]
+    pub rpm: Option<f64>,
+    /// Gravitational acceleration in m/s² (with --mu and --rpm) [default: 9.81].
+    #[arg(long = "g", allow_hyphen_values = true)]
+    pub gravity: Option<f64>,
+}
+
+impl UnitsArgs {
+    /// The units asked for, if any: --mu and --rpm go together.
+    pub fn units(&self) -> Result<Option<crate::engine::units::Units>, Error> {
+        match (self.mu, self.rpm, self.gravity) {
+            (None, None, None) => Ok(None),
+            (Some(mu), Some(rpm), g) => {
+                crate::engine::units::Units::new(mu, rpm, g.unwrap_or(G_DEFAULT)).map(Some)
+            }
+            _ => Err(Error::invalid(
+                "physical units need both --mu and --rpm (and optionally --g)",
+            )),
+        }
+    }
 }
 
 #[derive(Args, Debug)]
@@ -285,6 +319,7 @@ fn explore(cli: &Cli) -> CmdResult {
     let theme = crate::theme::Theme::resolve(theme.as_deref(), no_color)
         .map_err(Error::Invalid)?
         .with_depth(crate::theme::Depth::from_colorterm(colorterm.as_deref()));
+    let units = cli.units.units()?;
     let scene_ref = cli.look.scene.as_deref().map(scene_reference);
     if let Some(path) = &cli.record {
         check_record_path(path, [&cli.look.scene, &cli.look.theme])?;
@@ -296,6 +331,9 @@ fn explore(cli: &Cli) -> CmdResult {
         ));
     }
     let mut app = crate::app::App::new(scene, theme);
+    if units.is_some() {
+        app.units = units;
+    }
     if cli.no_mouse {
         app.mouse = false;
     }

@@ -96,8 +96,9 @@ pub fn run(a: RunArgs) -> CmdResult {
     let angle = q.y.atan2(q.x).rem_euclid(std::f64::consts::TAU);
     let speed = end.u_lab().length();
     let c = run.cost;
+    let units = a.units.units()?;
     if a.json {
-        let v = json!({
+        let mut v = json!({
             "outcome": outcome.name(),
             "certain": doubt.certain,
             "tau": end.tau,
@@ -115,6 +116,20 @@ pub fn run(a: RunArgs) -> CmdResult {
             "tol": settings.scheme.tol(),
             "dt": settings.scheme.fixed().map(|(_, dt)| dt),
         });
+        if let Some(u) = units {
+            let (l, t) = (u.r_max_m(), u.t_s());
+            v["units"] = json!({
+                "mu": u.mu,
+                "rpm": u.rpm,
+                "g": u.g,
+                "R_max_m": l,
+                "T_s": t,
+                "tau_s": end.tau * t,
+                "xi_m": q.length() * l,
+                "speed_m_s": speed * u.speed_m_s(),
+                "escape_tau_s": run.escape.map(|e| e.tau * t),
+            });
+        }
         emit(None, &format!("{v}\n"))?;
     } else {
         let how = match (outcome, run.escape) {
@@ -146,13 +161,28 @@ pub fn run(a: RunArgs) -> CmdResult {
                 doubt.shadow.map_or("out of budget", |o| o.name())
             )
         };
-        let text = format!(
+        let mut text = format!(
             "outcome  {how}\n{certain}tau      {:.9}\nxi       {:.12}\nangle    {:.12} rad in [0, 2pi) (table frame, ccw from the release direction)\n|u|      {:.3e}\ncost     {cost}\n",
             end.tau,
             q.length(),
             angle,
             speed,
         );
+        if let Some(u) = units {
+            use crate::engine::units::{show_length, show_time};
+            let _ = writeln!(
+                text,
+                "SI       tau = {}, xi = {}, |u| = {:.3e} m/s (mu {}, {} rpm, g {}: R_max = {}, 1/Omega = {})",
+                show_time(end.tau * u.t_s()),
+                show_length(q.length() * u.r_max_m()),
+                speed * u.speed_m_s(),
+                u.mu,
+                u.rpm,
+                u.g,
+                show_length(u.r_max_m()),
+                show_time(u.t_s())
+            );
+        }
         emit(None, &text)?;
     }
     Ok(())

@@ -10,6 +10,7 @@ pub mod run;
 pub mod solve;
 pub mod stepper;
 pub mod stop;
+pub mod units;
 
 pub use method::{Method, Settings};
 pub use model::{Frame, Initial, Release, State};

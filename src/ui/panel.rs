@@ -144,8 +144,20 @@ fn readouts(app: &App) -> (Vec<Line<'static>>, std::ops::Range<usize>) {
         init,
         Style::default().fg(th.accent),
     )));
-    out.push(kv("τ", num(s.tau, 3), th));
-    out.push(kv("ξ", num(s.xi(), 5), th));
+    // With a real table (--mu, --rpm), the SI value beside the dimensionless one.
+    let si = |x: f64, show: fn(f64) -> String| {
+        app.units
+            .map_or(String::new(), |_| format!(" = {}", show(x)))
+    };
+    let (tau_si, xi_si) = match app.units {
+        Some(u) => (
+            si(s.tau * u.t_s(), crate::engine::units::show_time),
+            si(s.xi() * u.r_max_m(), crate::engine::units::show_length),
+        ),
+        None => (String::new(), String::new()),
+    };
+    out.push(kv("τ", format!("{}{tau_si}", num(s.tau, 3)), th));
+    out.push(kv("ξ", format!("{}{xi_si}", num(s.xi(), 5)), th));
     // Angles in the frame shown: θ in the lab; in the rotating view the table-frame angle Θ
     // and Θ′ = θ′ − 1 (a particle at rest on the table has Θ′ = 0), with the paper's θ′ kept.
     let angle = |p: glam::DVec2| {

@@ -1,0 +1,112 @@
+//! Physical units (Sec. II): the equations are dimensionless with lengths in
+//! R_max = μg/Ω² and time in 1/Ω; a table turning at `rpm` with friction μ under gravity g
+//! gives every length, time and speed its SI value.
+
+use crate::error::Error;
+
+/// μ, Ω (rad/s) and g (m/s²) of a real table.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Units {
+    pub mu: f64,
+    pub rpm: f64,
+    #[serde(default = "default_g")]
+    pub g: f64,
+}
+
+fn default_g() -> f64 {
+    9.81
+}
+
+impl Units {
+    /// Checks the values: finite and positive, μ at most 10, rpm at most 10⁶.
+    pub fn new(mu: f64, rpm: f64, g: f64) -> Result<Units, Error> {
+        for (name, x, max) in [("mu", mu, 10.0), ("rpm", rpm, 1e6), ("g", g, 1e4)] {
+            if !(x.is_finite() && x > 0.0 && x <= max) {
+                return Err(Error::invalid(format!(
+                    "{name} must lie in (0, {max}], got {x}"
+                )));
+            }
+        }
+        Ok(Units { mu, rpm, g })
+    }
+
+    /// Ω in rad/s.
+    pub fn omega(&self) -> f64 {
+        self.rpm * std::f64::consts::TAU / 60.0
+    }
+
+    /// R_max = μg/Ω² in metres: the unit of ξ.
+    pub fn r_max_m(&self) -> f64 {
+        self.mu * self.g / (self.omega() * self.omega())
+    }
+
+    /// 1/Ω in seconds: the unit of τ.
+    pub fn t_s(&self) -> f64 {
+        1.0 / self.omega()
+    }
+
+    /// μg/Ω in m/s: the unit of speed.
+    pub fn speed_m_s(&self) -> f64 {
+        self.r_max_m() / self.t_s()
+    }
+}
+
+/// A length in metres, short: `7.12 cm`, `1.5 m`, `820 µm`.
+pub fn show_length(m: f64) -> String {
+    let a = m.abs();
+    if a >= 1.0 || a == 0.0 || !a.is_finite() {
+        format!("{} m", sig(m))
+    } else if a >= 1e-2 {
+        format!("{} cm", sig(m * 1e2))
+    } else if a >= 1e-3 {
+        format!("{} mm", sig(m * 1e3))
+    } else {
+        format!("{} µm", sig(m * 1e6))
+    }
+}
+
+/// A time in seconds, short.
+pub fn show_time(s: f64) -> String {
+    if s.abs() >= 1.0 || s == 0.0 || !s.is_finite() {
+        format!("{} s", sig(s))
+    } else {
+        format!("{} ms", sig(s * 1e3))
+    }
+}
+
+/// Three significant digits, no exponent below 10⁶.
+fn sig(x: f64) -> String {
+    if !x.is_finite() || x.abs() >= 1e6 {
+        return format!("{x:.2e}");
+    }
+    let d = if x.abs() >= 100.0 {
+        0
+    } else if x.abs() >= 10.0 {
+        1
+    } else {
+        2
+    };
+    format!("{x:.d$}")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_paper_s_table() {
+        // μ = 0.15 at Ω = 3.3 rad/s (31.5 rpm): R_max = 0.135 m, 1/Ω = 0.303 s.
+        let u = Units::new(0.15, 3.3 * 60.0 / std::f64::consts::TAU, 9.81).unwrap();
+        assert!((u.omega() - 3.3).abs() < 1e-12);
+        assert!((u.r_max_m() - 0.15 * 9.81 / (3.3 * 3.3)).abs() < 1e-15);
+        assert!((u.t_s() - 1.0 / 3.3).abs() < 1e-15);
+        assert!((u.speed_m_s() - 0.15 * 9.81 / 3.3).abs() < 1e-14);
+        assert_eq!(show_length(u.r_max_m()), "13.5 cm");
+        assert_eq!(show_time(u.t_s()), "303 ms");
+        assert_eq!(show_length(2.5), "2.50 m");
+        for bad in [(0.0, 33.0, 9.81), (0.2, f64::NAN, 9.81), (0.2, 33.0, -1.0)] {
+            assert!(Units::new(bad.0, bad.1, bad.2).is_err(), "{bad:?}");
+        }
+    }
+}
