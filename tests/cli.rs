@@ -34,9 +34,19 @@ fn run_json_and_trajectory_agree() {
     let rows: Vec<Vec<f64>> = csv
         .lines()
         .skip(1)
-        .map(|l| l.split(',').map(|x| x.parse().unwrap()).collect())
+        .map(|l| l.split(',').take(9).map(|x| x.parse().unwrap()).collect())
         .collect();
-    assert_eq!(csv.lines().next().unwrap(), "tau,x,y,xq,yq,u,stuck");
+    assert_eq!(
+        csv.lines().next().unwrap(),
+        "tau,x,y,xq,yq,u,stuck,energy,work,approx_xi"
+    );
+    // dE/dτ = −|u|: E − E(0) and the work column agree to the trapezoid rule's error; a
+    // release with speed has no Sec. III approximation (the column is empty).
+    let e0 = rows[0][7];
+    for r in &rows {
+        assert!((r[7] - e0 - r[8]).abs() < 1e-4, "{r:?}");
+    }
+    assert!(csv.lines().skip(1).all(|l| l.ends_with(',')));
     // One row per step, plus the start and the closed-form stop.
     assert!(rows.len() > steps, "{} rows for {steps} steps", rows.len());
     let last = rows.last().unwrap();
@@ -49,6 +59,29 @@ fn run_json_and_trajectory_agree() {
     );
     let tau: f64 = field(&out, "tau").parse().unwrap();
     assert_eq!(last[0], tau);
+    // Released at rest in the lab far out (Fig. 1), the approx_xi column is Eq. 17.
+    let (code, _, err) = turntable(&[
+        "run",
+        "--xi0",
+        "500",
+        "--release",
+        "lab-rest",
+        "--tau-max",
+        "10",
+        "--follow",
+        "--trajectory",
+        p,
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let csv = std::fs::read_to_string(&path).unwrap();
+    std::fs::remove_file(&path).unwrap();
+    for l in csv.lines().skip(1) {
+        let r: Vec<f64> = l.split(',').map(|x| x.parse().unwrap()).collect();
+        let xi = (r[1] * r[1] + r[2] * r[2]).sqrt();
+        assert!((r[9] - (r[0].powi(4) / 6000.0 + 500.0)).abs() < 1e-9, "{l}");
+        // Within the window τ ≲ √ξ0 the approximation holds closely.
+        assert!((r[9] - xi).abs() < 0.05, "{l}");
+    }
 }
 
 #[test]

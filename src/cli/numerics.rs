@@ -12,19 +12,57 @@ use std::io::{BufWriter, Write as _};
 
 const TAU_MAX_LIMIT: f64 = 1e9;
 
-fn trajectory_row(csv: &mut impl std::io::Write, s: &State, stuck: bool) -> std::io::Result<()> {
-    let (q, u) = (s.q(), s.u_lab().length());
-    writeln!(
-        csv,
-        "{},{},{},{},{},{},{}",
-        s.tau,
-        s.r.x,
-        s.r.y,
-        q.x,
-        q.y,
-        u,
-        u8::from(stuck)
-    )
+/// The trajectory file's columns.
+const TRAJECTORY_HEADER: &[u8] = b"tau,x,y,xq,yq,u,stuck,energy,work,approx_xi\n";
+
+/// Writes trajectory rows: the state, E = ½|u|² − ½ξ² and −∫|u|dτ (trapezoids between rows;
+/// dE/dτ = −|u|, so the two differ by E(0) up to the rule's error), and the Sec. III
+/// approximation of ξ for a release at rest (Eq. 17 in the lab, Eq. 24 on the table for
+/// ξ0 > 1; valid only early, see README), empty otherwise.
+struct Rows {
+    initial: Initial,
+    prev: Option<State>,
+    work: f64,
+}
+
+impl Rows {
+    fn write(
+        &mut self,
+        csv: &mut impl std::io::Write,
+        s: &State,
+        stuck: bool,
+    ) -> std::io::Result<()> {
+        let (q, u) = (s.q(), s.u_lab().length());
+        if let Some(p) = self.prev {
+            self.work -= 0.5 * (s.tau - p.tau) * (u + p.u_lab().length());
+        }
+        self.prev = Some(*s);
+        let i = self.initial;
+        let approx = match i.release {
+            _ if i.frictionless => None,
+            crate::engine::Release::LabRest => {
+                Some(crate::engine::approx::lab_rest(i.xi0, s.tau).0)
+            }
+            crate::engine::Release::TableRest if i.xi0 > 1.0 => {
+                Some(crate::engine::approx::table_rest(i.xi0, s.tau).0)
+            }
+            _ => None,
+        };
+        writeln!(
+            csv,
+            "{},{},{},{},{},{},{},{},{},{}",
+            s.tau,
+            s.r.x,
+            s.r.y,
+            q.x,
+            q.y,
+            u,
+            u8::from(stuck),
+            s.energy(),
+            self.work,
+            approx.map_or(String::new(), |x| x.to_string())
+        )
+    }
 }
 
 /// Spacing in τ of the trajectory rows of a frictionless run, which takes no steps.
@@ -55,10 +93,15 @@ pub fn run(a: RunArgs) -> CmdResult {
         None => None,
     };
     let write_err = |e: std::io::Error| Error::Failed(format!("--trajectory: {e}"));
+    let mut rows = Rows {
+        initial,
+        prev: None,
+        work: 0.0,
+    };
     if let Some(csv) = csv.as_mut() {
-        csv.write_all(b"tau,x,y,xq,yq,u,stuck\n")
+        csv.write_all(TRAJECTORY_HEADER).map_err(write_err)?;
+        rows.write(csv, &run.state(), run.status != Status::Slipping)
             .map_err(write_err)?;
-        trajectory_row(csv, &run.state(), run.status != Status::Slipping).map_err(write_err)?;
     }
     let stop_on_escape = !a.follow;
     while run.status == Status::Slipping
@@ -74,10 +117,11 @@ pub fn run(a: RunArgs) -> CmdResult {
                 for i in 1..n {
                     let t = before + (run.tau() - before) * i as f64 / n as f64;
                     let s = run.state_at(t)?;
-                    trajectory_row(csv, &s, false).map_err(write_err)?;
+                    rows.write(csv, &s, false).map_err(write_err)?;
                 }
             }
-            trajectory_row(csv, &run.state(), run.status != Status::Slipping).map_err(write_err)?;
+            rows.write(csv, &run.state(), run.status != Status::Slipping)
+                .map_err(write_err)?;
         }
     }
     let outcome = run.outcome();
