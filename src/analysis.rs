@@ -124,7 +124,7 @@ pub fn outcome_map(
     let cells: Vec<(f64, f64)> = (0..n * m)
         .map(|k| (angle(k % n, n), map_speed(k / n, m, v0_max)))
         .collect();
-    crate::engine::solve::par_map(&cells, |&(phi, v0)| {
+    crate::engine::par::par_map(&cells, |&(phi, v0)| {
         classify(map_release(xi0, release, phi, v0), settings).map(|cell| MapRow { phi, v0, cell })
     })
     .into_iter()

@@ -4,6 +4,7 @@
 mod bench;
 mod numerics;
 pub mod replay;
+mod sweep;
 
 use crate::app::G_DEFAULT;
 use crate::engine::{Frame, Initial, Method, Release, Settings};
@@ -405,7 +406,7 @@ pub fn main() -> ExitCode {
         Some(Command::Run(a)) => numerics::run(a),
         Some(Command::Escape(a)) => numerics::escape(a),
         Some(Command::Critical(a)) => numerics::critical(a),
-        Some(Command::Sweep(a)) => numerics::sweep(a),
+        Some(Command::Sweep(a)) => sweep::sweep(a),
         Some(Command::Bench(a)) => bench::bench(a),
         Some(Command::Replay(a)) => replay::run(a),
     };

@@ -5,6 +5,7 @@ pub mod approx;
 pub mod doubt;
 pub mod method;
 pub mod model;
+pub mod par;
 pub mod roots;
 pub mod run;
 pub mod solve;

@@ -3,6 +3,8 @@
 
 use super::method::{Scheme, Settings};
 use super::model::{Initial, Release};
+use super::par::par_map;
+use super::roots::{bisect, golden_min};
 use super::run::{Outcome, Run};
 use crate::error::Error;
 use serde::Serialize;
@@ -27,26 +29,6 @@ pub struct Threshold {
     pub scan: Vec<(f64, bool)>,
     pub runs: u32,
     pub rhs_evals: u64,
-}
-
-/// Bisection on a monotone outcome: `escapes(x)` false at `lo`, true at `hi`, down to width
-/// `tol`. Runs that never settle count as escaping (the saddle is the threshold itself).
-fn bisect(
-    mut lo: f64,
-    mut hi: f64,
-    tol: f64,
-    mut escapes: impl FnMut(f64) -> Result<bool, Error>,
-) -> Result<(f64, f64, u32), Error> {
-    let mut runs = 0;
-    while hi - lo > tol {
-        let mid = 0.5 * (lo + hi);
-        if mid <= lo || mid >= hi {
-            break;
-        }
-        runs += 1;
-        if escapes(mid)? { hi = mid } else { lo = mid }
-    }
-    Ok((lo, hi, runs))
 }
 
 /// Runs every value of `grid`: the index of the first that escapes, whether all after it
@@ -392,41 +374,6 @@ pub fn critical_radius(settings: Settings, tol: f64) -> Result<Threshold, Error>
     })
 }
 
-/// Maps `f` over `items` on all available cores, keeping order. Items are handed out one at a
-/// time (an atomic counter), so a few slow items (escape speeds near a saddle) do not leave a
-/// core idle as a fixed split would.
-pub fn par_map<T: Sync, R: Send>(items: &[T], f: impl Fn(&T) -> R + Sync) -> Vec<R> {
-    use std::sync::atomic::{AtomicUsize, Ordering};
-    let threads = std::thread::available_parallelism()
-        .map_or(1, |n| n.get())
-        .min(items.len().max(1));
-    if threads <= 1 {
-        return items.iter().map(&f).collect();
-    }
-    let next = AtomicUsize::new(0);
-    let mut out: Vec<(usize, R)> = std::thread::scope(|scope| {
-        let handles: Vec<_> = (0..threads)
-            .map(|_| {
-                scope.spawn(|| {
-                    let mut done = Vec::new();
-                    loop {
-                        let i = next.fetch_add(1, Ordering::Relaxed);
-                        let Some(item) = items.get(i) else { break };
-                        done.push((i, f(item)));
-                    }
-                    done
-                })
-            })
-            .collect();
-        handles
-            .into_iter()
-            .flat_map(|h| h.join().expect("sweep worker panicked"))
-            .collect()
-    });
-    out.sort_by_key(|(i, _)| *i);
-    out.into_iter().map(|(_, r)| r).collect()
-}
-
 /// One point of Fig. 5.
 #[derive(Clone, Copy, Debug, Serialize)]
 pub struct EscapePoint {
@@ -502,21 +449,11 @@ pub fn easiest_angle(
     let imin = (0..n)
         .min_by(|&a, &b| vals[a].total_cmp(&vals[b]))
         .unwrap_or(0);
-    let (mut a, mut b) = (phis[imin] - step, phis[imin] + step);
-    let g = 0.5 * (5f64.sqrt() - 1.0);
-    let (mut c, mut d) = (b - g * (b - a), a + g * (b - a));
-    let (mut fc, mut fd) = (ve(c)?, ve(d)?);
-    while b - a > phi_tol {
-        if fc < fd {
-            (b, d, fd) = (d, c, fc);
-            c = b - g * (b - a);
-            fc = ve(c)?;
-        } else {
-            (a, c, fc) = (c, d, fd);
-            d = a + g * (b - a);
-            fd = ve(d)?;
-        }
-    }
-    let phi = 0.5 * (a + b);
+    let phi = golden_min(
+        &mut |p| ve(p),
+        phis[imin] - step,
+        phis[imin] + step,
+        phi_tol,
+    )?;
     Ok((phi.rem_euclid(std::f64::consts::TAU), ve(phi)?))
 }

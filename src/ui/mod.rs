@@ -6,6 +6,7 @@ pub mod export;
 pub mod help;
 pub mod pages;
 pub mod panel;
+pub mod time_plots;
 
 use crate::app::{App, CanvasGeom};
 use crate::engine::Outcome;

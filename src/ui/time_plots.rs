@@ -1,0 +1,210 @@
+//! The time plots page: ξ, θ′ (Θ′ in the rotating view), |u| and the energy identity
+//! dE/dτ = −|u| against τ, with the paper's Sec. III approximations (Eqs. 16–17, 24–25) over
+//! their window for releases at rest, and the paper's RK2 run beside the converged one.
+
+use super::chart::{self, Chart, Mark, Series, extent};
+use crate::app::App;
+use crate::engine::approx::{TABLE_REST_WINDOW, lab_rest, lab_rest_window, table_rest};
+use crate::engine::{Frame, Release, State, Status};
+use crate::ui::panel::num;
+use ratatui::Frame as TuiFrame;
+use ratatui::layout::{Constraint, Layout, Rect};
+use ratatui::style::Style;
+use ratatui::text::Span;
+use ratatui::widgets::{Block, Borders};
+
+/// The run's path up to the τ on screen, ending exactly there.
+fn path(sim: &crate::sim::Sim) -> Vec<State> {
+    let mut p = sim.trail().to_vec();
+    let now = sim.now();
+    if p.last().is_none_or(|s| s.tau < now.tau) {
+        p.push(now);
+    }
+    p
+}
+
+/// One quantity of a path against τ.
+fn series(
+    name: &str,
+    color: ratatui::style::Color,
+    path: &[State],
+    y: impl Fn(&State) -> f64,
+) -> Series {
+    Series {
+        name: name.into(),
+        color,
+        points: path.iter().map(|s| (s.tau, y(s))).collect(),
+        joined: true,
+    }
+}
+
+/// E − E(0) and −∫|u|dτ (trapezoids on the path's grid): equal, since dE/dτ = −|u|.
+pub fn energy_pair(path: &[State]) -> [Vec<(f64, f64)>; 2] {
+    let e0 = path.first().map_or(0.0, State::energy);
+    let mut work = 0.0;
+    let mut w = Vec::with_capacity(path.len());
+    for (i, s) in path.iter().enumerate() {
+        if i > 0 {
+            let p = &path[i - 1];
+            work -= 0.5 * (s.tau - p.tau) * (s.u_lab().length() + p.u_lab().length());
+        }
+        w.push((s.tau, work));
+    }
+    let e = path.iter().map(|s| (s.tau, s.energy() - e0)).collect();
+    [e, w]
+}
+
+/// The time plots: ξ, θ′ (Θ′ in the rotating view), |u| and the energy identity, aligned in τ
+/// with the cursor at the τ on screen, the stop and the escape certificate marked, and the
+/// paper's Sec. III approximations over their window for releases at rest.
+pub fn render(f: &mut TuiFrame, area: Rect, app: &App) {
+    let th = &app.theme;
+    let block = Block::default()
+        .borders(Borders::ALL)
+        .border_style(Style::default().fg(th.muted))
+        .title(Span::styled(
+            " time plots: ξ, θ′, |u|, energy against τ ",
+            Style::default().fg(th.accent),
+        ));
+    let inner = block.inner(area);
+    f.render_widget(block, area);
+    let p = path(&app.sim);
+    let paper = app.paper.as_ref().map(path);
+    let now = app.sim.now().tau;
+    let x = [0.0, now.max(1e-3)];
+    let mut marks = vec![Mark::VLine {
+        x: now,
+        label: format!("τ={}", num(now, 2)),
+        color: th.accent,
+    }];
+    if let Status::Stuck { tau, .. } = app.sim.run.status
+        && tau <= now
+    {
+        marks.push(Mark::VLine {
+            x: tau,
+            label: "stop".into(),
+            color: th.stuck,
+        });
+    }
+    if let Some(e) = app.sim.run.escape
+        && e.tau <= now
+    {
+        marks.push(Mark::VLine {
+            x: e.tau,
+            label: "escape cert.".into(),
+            color: th.escaped,
+        });
+    }
+    let i = app.initial;
+    let approx_window = match i.release {
+        _ if i.frictionless => None,
+        Release::LabRest => Some(lab_rest_window(i.xi0)),
+        Release::TableRest if i.xi0 > 1.0 => Some(TABLE_REST_WINDOW),
+        _ => None,
+    };
+    if let Some(w) = approx_window.filter(|w| *w <= now) {
+        marks.push(Mark::VLine {
+            x: w,
+            label: "approx. valid ←".into(),
+            color: th.muted,
+        });
+    }
+    let approx = |y: &dyn Fn(f64) -> Option<f64>| -> Option<Series> {
+        approx_window?;
+        let n = 200;
+        let pts = (0..=n)
+            .map(|k| now * k as f64 / n as f64)
+            .filter_map(|t| y(t).map(|v| (t, v)))
+            .collect();
+        Some(Series {
+            name: "Sec. III approx.".into(),
+            color: th.muted,
+            points: pts,
+            joined: true,
+        })
+    };
+    let rotating = app.view == Frame::Table;
+    let (theta_name, shift) = if rotating {
+        ("Θ′", 1.0)
+    } else {
+        ("θ′", 0.0)
+    };
+    let paper_series = |name: &str, y: &dyn Fn(&State) -> f64| {
+        paper.as_ref().map(|pp| Series {
+            name: format!("{name} paper RK2"),
+            color: th.spokes,
+            points: pp.iter().map(|s| (s.tau, y(s))).collect(),
+            joined: true,
+        })
+    };
+    let xi_of = |s: &State| s.xi();
+    let th_of = move |s: &State| s.theta_dot().map_or(f64::NAN, |t| t - shift);
+    let u_of = |s: &State| s.u_lab().length();
+    let mut xi_s = vec![series("ξ", th.trail, &p, xi_of)];
+    xi_s.extend(paper_series("ξ", &xi_of));
+    xi_s.extend(approx(&|t| match i.release {
+        Release::LabRest => Some(lab_rest(i.xi0, t).0),
+        _ => Some(table_rest(i.xi0, t).0),
+    }));
+    let mut th_s = vec![series(theta_name, th.trail, &p, th_of)];
+    th_s.extend(paper_series(theta_name, &th_of));
+    th_s.extend(approx(&|t| match i.release {
+        // θ = τ²/(2ξ0) (Eq. 16): θ′ = τ/ξ0 in the lab.
+        Release::LabRest => Some(t / i.xi0 - shift),
+        // Θ′ = 2 ln(ξ0/ξ) (Eq. 25), table frame.
+        _ => Some(table_rest(i.xi0, t).1 + 1.0 - shift),
+    }));
+    let mut u_s = vec![series("|u|", th.trail, &p, u_of)];
+    u_s.extend(paper_series("|u|", &u_of));
+    let [e, w] = energy_pair(&p);
+    let e_s = vec![
+        Series {
+            name: "E − E(0)".into(),
+            color: th.trail,
+            points: e,
+            joined: true,
+        },
+        Series {
+            name: "−∫|u|dτ".into(),
+            color: th.centrifugal,
+            points: w,
+            joined: false,
+        },
+    ];
+    let plots = [
+        ("ξ", xi_s),
+        (theta_name, th_s),
+        ("|u|", u_s),
+        ("dE/dτ = −|u|:", e_s),
+    ];
+    // As many plots as fit (ξ first), each at least a legend line and three rows; the τ axis
+    // under the last.
+    let fit = ((inner.height.saturating_sub(2)) / 4).clamp(0, 4) as usize;
+    if fit == 0 {
+        return;
+    }
+    let rows = Layout::vertical(
+        (0..fit)
+            .map(|k| Constraint::Fill(if k + 1 == fit { 2 } else { 1 }))
+            .collect::<Vec<_>>(),
+    )
+    .split(inner);
+    for (k, (name, s)) in plots.into_iter().take(fit).enumerate() {
+        let y = extent(s.iter().flat_map(|s| s.points.iter().map(|p| p.1)));
+        let c = Chart {
+            title: String::new(),
+            note: String::new(),
+            x_label: if k + 1 == fit {
+                "τ".into()
+            } else {
+                String::new()
+            },
+            y_label: name.into(),
+            x,
+            y,
+            series: s,
+            marks: marks.clone(),
+        };
+        chart::render_bare(f, rows[k], th, &c, k + 1 == fit);
+    }
+}
