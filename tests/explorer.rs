@@ -1,15 +1,15 @@
 //! The explorer driven headless: keys and ticks into `App`, frames rendered on a `TestBackend`.
 
+mod common;
+use common::render;
 use crossterm::event::{KeyCode, KeyEvent, KeyModifiers, MouseButton, MouseEvent, MouseEventKind};
-use ratatui::Terminal;
-use ratatui::backend::TestBackend;
 use turntable::app::keymap::KEYMAP;
 use turntable::app::pages::Page;
 use turntable::app::{Action, App};
 use turntable::engine::{Frame, Outcome, Run, Settings, Status};
 use turntable::scene::{PRESETS, Scene};
 use turntable::theme::Theme;
-use turntable::ui::{draw, panel::num};
+use turntable::ui::panel::num;
 
 fn theme() -> Theme {
     Theme::builtin("dark").expect("dark theme")
@@ -17,22 +17,6 @@ fn theme() -> Theme {
 
 fn app(scene: &str) -> App {
     App::new(Scene::preset(scene).unwrap(), theme())
-}
-
-fn render(app: &mut App, w: u16, h: u16) -> String {
-    let mut t = Terminal::new(TestBackend::new(w, h)).unwrap();
-    let mut geom = None;
-    t.draw(|f| geom = draw(f, app)).unwrap();
-    app.drawn(geom);
-    let buf = t.backend().buffer();
-    let mut s = String::new();
-    for y in 0..buf.area.height {
-        for x in 0..buf.area.width {
-            s.push_str(buf[(x, y)].symbol());
-        }
-        s.push('\n');
-    }
-    s
 }
 
 fn key(app: &mut App, c: char) {

@@ -1,9 +1,9 @@
 //! The analysis pages (issue 10): Tab order and titles, and the data each page shows checked
 //! against the engine's solvers, not only that a chart renders.
 
+mod common;
+use common::render;
 use crossterm::event::{KeyCode, KeyEvent, KeyModifiers, MouseButton, MouseEvent, MouseEventKind};
-use ratatui::Terminal;
-use ratatui::backend::TestBackend;
 use std::f64::consts::TAU;
 use turntable::analysis::{self, CURVE_VTOL, MAP_SIZE, PAPER_XI0, map_speed, settings_for};
 use turntable::app::App;
@@ -12,29 +12,12 @@ use turntable::engine::solve::{critical_radius, escape_speed};
 use turntable::engine::{Outcome, Release, Settings};
 use turntable::scene::Scene;
 use turntable::theme::Theme;
-use turntable::ui::draw;
 
 fn app(scene: &str) -> App {
     App::new(
         Scene::preset(scene).unwrap(),
         Theme::builtin("dark").unwrap(),
     )
-}
-
-fn render(app: &mut App, w: u16, h: u16) -> String {
-    let mut t = Terminal::new(TestBackend::new(w, h)).unwrap();
-    let mut geom = None;
-    t.draw(|f| geom = draw(f, app)).unwrap();
-    app.drawn(geom);
-    let buf = t.backend().buffer();
-    (0..buf.area.height)
-        .map(|y| {
-            (0..buf.area.width)
-                .map(|x| buf[(x, y)].symbol())
-                .collect::<String>()
-                + "\n"
-        })
-        .collect()
 }
 
 fn press(app: &mut App, code: KeyCode) {

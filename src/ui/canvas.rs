@@ -11,7 +11,6 @@ use ratatui::style::{Color, Style};
 use ratatui::symbols::Marker;
 use ratatui::text::Span;
 use ratatui::widgets::canvas::{Canvas, Circle, Context, Line};
-use ratatui::widgets::{Block, Borders};
 
 /// Most trail segments drawn per run (longer trails are thinned evenly).
 const MAX_SEGMENTS: usize = 3000;
@@ -170,10 +169,7 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) -> CanvasGeom {
             crate::ui::panel::num(app.zoom, 2)
         ));
     }
-    let block = Block::default()
-        .borders(Borders::ALL)
-        .border_style(Style::default().fg(th.muted))
-        .title(Span::styled(title, Style::default().fg(th.accent)));
+    let block = super::titled(title, &th);
     let inner = block.inner(area);
     let r0 = auto_extent(app);
     let r = r0 / app.zoom;

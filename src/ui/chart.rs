@@ -122,13 +122,7 @@ pub fn extent(points: impl Iterator<Item = f64>) -> [f64; 2] {
 /// Draws `chart` in `area`: a titled block around [`render_bare`] with its τ axis. Returns
 /// the plot area (None when `area` is too small to hold one).
 pub fn render(f: &mut TuiFrame, area: Rect, th: &Theme, chart: &Chart) -> Option<Rect> {
-    let block = Block::default()
-        .borders(Borders::ALL)
-        .border_style(Style::default().fg(th.muted))
-        .title(Span::styled(
-            format!(" {} ", chart.title),
-            Style::default().fg(th.accent),
-        ));
+    let block = super::titled(format!(" {} ", chart.title), th);
     let inner = block.inner(area);
     f.render_widget(block, area);
     render_bare(f, inner, th, chart, true)
@@ -297,24 +291,21 @@ pub fn render_bare(
                         y: py,
                         label,
                         color,
-                    } => {
-                        ctx.print(
-                            *px,
-                            *py,
-                            Span::styled(label.clone(), Style::default().fg(*color)),
-                        );
                     }
-                    Mark::Point {
+                    | Mark::Point {
                         x: px,
                         y: py,
                         label,
                         color,
                     } => {
-                        ctx.print(
-                            *px,
-                            *py,
-                            Span::styled(format!("●{label}"), Style::default().fg(*color)),
-                        );
+                        let dot = if matches!(m, Mark::Point { .. }) {
+                            "●"
+                        } else {
+                            ""
+                        };
+                        let text =
+                            Span::styled(format!("{dot}{label}"), Style::default().fg(*color));
+                        ctx.print(*px, *py, text);
                     }
                 }
             }

@@ -152,6 +152,15 @@ fn status_line(app: &App, width: u16) -> Line<'static> {
     ])
 }
 
+/// The bordered box every part of the screen sits in: a muted border, the title in the accent
+/// colour.
+pub fn titled(title: String, th: &crate::theme::Theme) -> ratatui::widgets::Block<'static> {
+    ratatui::widgets::Block::default()
+        .borders(ratatui::widgets::Borders::ALL)
+        .border_style(Style::default().fg(th.muted))
+        .title(Span::styled(title, Style::default().fg(th.accent)))
+}
+
 /// A frame area as a rectangle helper for tests.
 pub fn screen(width: u16, height: u16) -> Rect {
     Rect::new(0, 0, width, height)

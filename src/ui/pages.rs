@@ -12,7 +12,7 @@ use ratatui::Frame as TuiFrame;
 use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::style::Style;
 use ratatui::text::{Line, Span};
-use ratatui::widgets::{Block, Borders, Paragraph, Wrap};
+use ratatui::widgets::{Paragraph, Wrap};
 use std::f64::consts::{PI, TAU};
 
 /// Draws `app.page` in `area`; returns the plot's geometry where a click means a release.
@@ -348,12 +348,9 @@ fn rest_radius(f: &mut TuiFrame, area: Rect, app: &App) {
         )),
     ];
     f.render_widget(
-        Paragraph::new(text).wrap(Wrap { trim: true }).block(
-            Block::default()
-                .borders(Borders::ALL)
-                .border_style(Style::default().fg(th.muted))
-                .title(Span::styled(" measure μ ", Style::default().fg(th.accent))),
-        ),
+        Paragraph::new(text)
+            .wrap(Wrap { trim: true })
+            .block(super::titled(" measure μ ".into(), th)),
         bottom,
     );
 }

@@ -11,7 +11,7 @@ use ratatui::Frame as TuiFrame;
 use ratatui::layout::Rect;
 use ratatui::style::{Modifier, Style};
 use ratatui::text::{Line, Span};
-use ratatui::widgets::{Block, Borders, Paragraph};
+use ratatui::widgets::Paragraph;
 use std::f64::consts::PI;
 
 /// A number for a readout: never NaN or inf on screen.
@@ -268,13 +268,7 @@ pub fn fmt_speed(s: f64) -> String {
 
 pub fn render(f: &mut TuiFrame, area: Rect, app: &App) {
     let th = &app.theme;
-    let block = Block::default()
-        .borders(Borders::ALL)
-        .border_style(Style::default().fg(th.muted))
-        .title(Span::styled(
-            format!(" scene {} ", app.scene.name),
-            Style::default().fg(th.accent),
-        ));
+    let block = super::titled(format!(" scene {} ", app.scene.name), th);
     let rows = usize::from(block.inner(area).height);
     f.render_widget(
         Paragraph::new(lines_in(app, rows))

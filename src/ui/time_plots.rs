@@ -9,9 +9,6 @@ use crate::engine::{Frame, Release, State, Status};
 use crate::ui::panel::num;
 use ratatui::Frame as TuiFrame;
 use ratatui::layout::{Constraint, Layout, Rect};
-use ratatui::style::Style;
-use ratatui::text::Span;
-use ratatui::widgets::{Block, Borders};
 
 /// The run's path up to the τ on screen, ending exactly there.
 fn path(sim: &crate::sim::Sim) -> Vec<State> {
@@ -59,13 +56,7 @@ pub fn energy_pair(path: &[State]) -> [Vec<(f64, f64)>; 2] {
 /// paper's Sec. III approximations over their window for releases at rest.
 pub fn render(f: &mut TuiFrame, area: Rect, app: &App) {
     let th = &app.theme;
-    let block = Block::default()
-        .borders(Borders::ALL)
-        .border_style(Style::default().fg(th.muted))
-        .title(Span::styled(
-            " time plots: ξ, θ′, |u|, energy against τ ",
-            Style::default().fg(th.accent),
-        ));
+    let block = super::titled(" time plots: ξ, θ′, |u|, energy against τ ".into(), th);
     let inner = block.inner(area);
     f.render_widget(block, area);
     let p = path(&app.sim);

@@ -1,4 +1,6 @@
-//! What the integration tests share: the binary run as a user runs it.
+//! What the integration tests share: the binary run as a user runs it, and the explorer drawn
+//! on an off-screen terminal. (Each test target uses part of it.)
+#![allow(dead_code)]
 
 use std::process::Command;
 
@@ -13,4 +15,22 @@ pub fn turntable(args: &[&str]) -> (i32, String, String) {
         String::from_utf8(out.stdout).unwrap(),
         String::from_utf8(out.stderr).unwrap(),
     )
+}
+
+/// Draws `app` on a `w` × `h` off-screen terminal (recording the geometry, as the terminal
+/// loop does) and returns the screen as text, one line per row.
+pub fn render(app: &mut turntable::app::App, w: u16, h: u16) -> String {
+    let mut t = ratatui::Terminal::new(ratatui::backend::TestBackend::new(w, h)).unwrap();
+    let mut geom = None;
+    t.draw(|f| geom = turntable::ui::draw(f, app)).unwrap();
+    app.drawn(geom);
+    let buf = t.backend().buffer();
+    (0..buf.area.height)
+        .map(|y| {
+            (0..buf.area.width)
+                .map(|x| buf[(x, y)].symbol())
+                .collect::<String>()
+                + "\n"
+        })
+        .collect()
 }
