@@ -43,6 +43,9 @@ fn tab_cycles_the_pages_and_each_title_names_its_page() {
     }
     press(&mut a, KeyCode::BackTab);
     assert_eq!(a.page, Page::RestRadius);
+    // As crossterm reports Shift-Tab: BackTab with Shift.
+    a.handle_key(KeyEvent::new(KeyCode::BackTab, KeyModifiers::SHIFT));
+    assert_eq!(a.page, Page::OutcomeMap);
 }
 
 #[test]

@@ -68,6 +68,11 @@ impl Chord {
                 mods.remove(KeyModifiers::SHIFT);
                 KeyCode::Char(c.to_ascii_uppercase())
             }
+            // Back-tab is Shift-Tab already; terminals report it with Shift or without.
+            KeyCode::BackTab => {
+                mods.remove(KeyModifiers::SHIFT);
+                code
+            }
             KeyCode::Char(_) | KeyCode::F(1..=12) => code,
             _ if NAMED.iter().any(|(_, c)| *c == code) => code,
             _ => return None,

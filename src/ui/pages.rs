@@ -329,22 +329,28 @@ fn rest_radius(f: &mut TuiFrame, area: Rect, app: &App) {
     let g = crate::app::G_DEFAULT;
     let mu = xi0c.map(|c| omega * omega * r0c / (g * c));
     let text = vec![
-        Line::from(Span::styled(
-            "Eq. 22: μ = Ω² r0c / (g ξ0c)   o/O Ω ±0.1 rad/s, d/D r0c ±1 mm",
-            Style::default().fg(th.muted),
-        )),
+        Line::from(vec![
+            Span::styled(
+                match mu {
+                    Some(mu) => format!("μ = {}", num(mu, 4)),
+                    None => "μ = … (ξ0c still computing)".into(),
+                },
+                Style::default().fg(th.accent),
+            ),
+            Span::styled(
+                "   Eq. 22: μ = Ω² r0c / (g ξ0c)",
+                Style::default().fg(th.muted),
+            ),
+        ]),
         Line::from(format!(
-            "Ω = {} rad/s ({} rpm)   r0c = {} m   g = {g} m/s²",
+            "Ω = {} rad/s ({} rpm), r0c = {} m",
             num(omega, 3),
-            num(omega * 60.0 / TAU, 3),
+            num(omega * 60.0 / TAU, 1),
             num(r0c, 4)
         )),
         Line::from(Span::styled(
-            match mu {
-                Some(mu) => format!("μ = {}", num(mu, 4)),
-                None => "μ = … (ξ0c still computing)".into(),
-            },
-            Style::default().fg(th.accent),
+            format!("g = {g} m/s²   o/O: Ω ±0.1   d/D: r0c ±1 mm"),
+            Style::default().fg(th.muted),
         )),
     ];
     f.render_widget(
