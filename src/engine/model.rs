@@ -6,6 +6,7 @@ use crate::error::Error;
 use glam::DVec2;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
+use strum::{Display, EnumMessage, EnumString, IntoStaticStr, VariantArray};
 
 /// `ẑ × a`: the table's velocity at `a`, and the Coriolis direction (Sec. II).
 pub fn zcross(a: DVec2) -> DVec2 {
@@ -38,22 +39,9 @@ pub fn friction(u: DVec2, p: DVec2) -> DVec2 {
 }
 
 /// How a particle is released (CONVENTIONS.md; the paper's Figs. 1–5).
-#[derive(
-    Clone,
-    Copy,
-    Debug,
-    PartialEq,
-    Eq,
-    Serialize,
-    Deserialize,
-    Default,
-    strum::Display,
-    strum::EnumString,
-    strum::IntoStaticStr,
-    strum::VariantArray,
-    strum::EnumMessage,
-)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
+#[derive(Display, EnumString, IntoStaticStr, VariantArray, EnumMessage)]
 #[strum(serialize_all = "kebab-case")]
 pub enum Release {
     /// Speed `v0` in direction `φ`, both in the table frame (Figs. 3–5).
@@ -252,22 +240,9 @@ impl State {
 }
 
 /// The frame an integrator works in (CONVENTIONS.md, "Frames and state").
-#[derive(
-    Clone,
-    Copy,
-    Debug,
-    PartialEq,
-    Eq,
-    Serialize,
-    Deserialize,
-    Default,
-    strum::Display,
-    strum::EnumString,
-    strum::IntoStaticStr,
-    strum::VariantArray,
-    strum::EnumMessage,
-)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
+#[derive(Display, EnumString, IntoStaticStr, VariantArray, EnumMessage)]
 #[strum(serialize_all = "kebab-case")]
 pub enum Frame {
     /// r′ = v, v′ = −û (the paper's Sec. IV system). Bounded right-hand side: cheap far out.
