@@ -8,6 +8,7 @@
 //!   with no writer, /dev/zero and /dev/urandom are refused at once);
 //! - text echoed into a message has its control characters escaped.
 
+use crate::error::Error;
 use std::fs::{File, OpenOptions};
 use std::io::{self, Read, Write};
 use std::os::unix::fs::{FileTypeExt, OpenOptionsExt, PermissionsExt};
@@ -167,30 +168,31 @@ pub fn emit(out: Option<&Path>, text: &str) -> io::Result<()> {
 }
 
 /// Reads a regular file of at most `cap` bytes as UTF-8. Errors name the file.
-pub fn read_bounded(path: &Path, cap: u64) -> Result<String, String> {
+pub fn read_bounded(path: &Path, cap: u64) -> Result<String, Error> {
     let name = escape_controls(&path.display().to_string());
+    let refuse = |e: String| Error::Invalid(format!("{name}: {e}"));
     let f = OpenOptions::new()
         .read(true)
         .custom_flags(libc::O_NONBLOCK)
         .open(path)
-        .map_err(|e| format!("{name}: {e}"))?;
-    let m = f.metadata().map_err(|e| format!("{name}: {e}"))?;
+        .map_err(|e| refuse(e.to_string()))?;
+    let m = f.metadata().map_err(|e| refuse(e.to_string()))?;
     if !m.is_file() {
-        return Err(format!("{name}: not a regular file"));
+        return Err(refuse("not a regular file".into()));
     }
-    read_capped(f, cap).map_err(|e| format!("{name}: {e}"))
+    read_capped(f, cap).map_err(|e| e.context(&name))
 }
 
 /// Reads at most `cap` bytes of UTF-8 from `r`; more is an error.
-pub fn read_capped(r: impl Read, cap: u64) -> Result<String, String> {
+pub fn read_capped(r: impl Read, cap: u64) -> Result<String, Error> {
     let mut bytes = Vec::new();
     r.take(cap + 1)
         .read_to_end(&mut bytes)
-        .map_err(|e| e.to_string())?;
+        .map_err(|e| Error::Invalid(e.to_string()))?;
     if bytes.len() as u64 > cap {
-        return Err(format!("larger than {} KiB", cap >> 10));
+        return Err(Error::Invalid(format!("larger than {} KiB", cap >> 10)));
     }
-    String::from_utf8(bytes).map_err(|_| "not UTF-8 text".to_string())
+    String::from_utf8(bytes).map_err(|_| Error::invalid("not UTF-8 text"))
 }
 
 /// A TOML parse error as "line L: problem", L counted from 1 at the error's start.

@@ -2,6 +2,7 @@
 //! (Figs. 1–4) are built in; others load from and save to TOML files.
 
 use crate::engine::{Initial, Release, Settings};
+use crate::error::Error;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 use std::path::Path;
@@ -73,35 +74,27 @@ impl Scene {
     }
 
     /// A preset name, or a path to a TOML scene file. Errors name the file and the problem.
-    pub fn load(name_or_path: &str) -> Result<Scene, String> {
+    pub fn load(name_or_path: &str) -> Result<Scene, Error> {
         if let Some(s) = Scene::preset(name_or_path) {
             return Ok(s);
         }
         if !(name_or_path.contains('/') || name_or_path.ends_with(".toml")) {
-            return Err(format!(
+            return Err(Error::Invalid(format!(
                 "unknown scene '{name_or_path}' (presets: {}; or a path to a .toml file)",
                 PRESETS.join(", ")
-            ));
+            )));
         }
         let text = crate::files::read_bounded(Path::new(name_or_path), crate::files::READ_CAP)
-            .map_err(|e| format!("scene file {e}"))?;
+            .map_err(|e| Error::Invalid(format!("scene file {e}")))?;
+        let file = format!("scene file {name_or_path}");
         let scene: Scene = toml::from_str(&text).map_err(|e| {
-            format!(
-                "scene file {name_or_path}: {}",
-                crate::files::toml_error(&text, &e)
-            )
+            Error::Invalid(format!("{file}: {}", crate::files::toml_error(&text, &e)))
         })?;
-        scene
-            .initial
-            .validate()
-            .map_err(|e| format!("scene file {name_or_path}: {e}"))?;
-        scene
-            .settings
-            .validate()
-            .map_err(|e| format!("scene file {name_or_path}: {e}"))?;
+        scene.initial.validate().map_err(|e| e.context(&file))?;
+        scene.settings.validate().map_err(|e| e.context(&file))?;
         if let Some(u) = scene.units {
             crate::engine::units::Units::new(u.mu, u.rpm, u.g)
-                .map_err(|e| format!("scene file {name_or_path}: [units] {e}"))?;
+                .map_err(|e| Error::Invalid(format!("{file}: [units] {e}")))?;
         }
         Ok(scene)
     }

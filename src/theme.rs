@@ -3,6 +3,7 @@
 //! at all. Colours are `"#rrggbb"` or ratatui colour names (`"lightblue"`,
 //! `"reset"`, ...).
 
+use crate::error::Error;
 use std::str::FromStr;
 
 use ratatui::style::Color;
@@ -168,27 +169,28 @@ impl Theme {
     /// A built-in name, or a path to a TOML file (anything containing `/` or
     /// ending in `.toml`). Err is one human-readable line naming the file or
     /// name and the problem.
-    pub fn load(name_or_path: &str) -> Result<Theme, String> {
+    pub fn load(name_or_path: &str) -> Result<Theme, Error> {
         if name_or_path.contains('/') || name_or_path.ends_with(".toml") {
             let text = crate::files::read_bounded(
                 std::path::Path::new(name_or_path),
                 crate::files::READ_CAP,
             )
-            .map_err(|e| format!("theme file {e}"))?;
-            return parse(&text).map_err(|p| format!("theme file {name_or_path}: {p}"));
+            .map_err(|e| Error::Invalid(format!("theme file {e}")))?;
+            return parse(&text)
+                .map_err(|p| Error::Invalid(format!("theme file {name_or_path}: {p}")));
         }
         Self::builtin(name_or_path).ok_or_else(|| {
-            format!(
+            Error::Invalid(format!(
                 "unknown theme '{name_or_path}' (built-in: {}; or a path to a .toml file)",
                 BUILTIN.join(", ")
-            )
+            ))
         })
     }
 
     /// The theme to use: an explicit request always wins; otherwise
     /// `no_color` (the NO_COLOR environment variable is set and non-empty,
     /// see no-color.org) selects mono, and the default is dark.
-    pub fn resolve(requested: Option<&str>, no_color: bool) -> Result<Theme, String> {
+    pub fn resolve(requested: Option<&str>, no_color: bool) -> Result<Theme, Error> {
         match requested {
             Some(name_or_path) => Self::load(name_or_path),
             None => Self::load(if no_color { "mono" } else { "dark" }),
@@ -309,7 +311,8 @@ mod tests {
         let path = temp_file(tag, text);
         let err = Theme::load(&path).expect_err(tag);
         std::fs::remove_file(&path).unwrap();
-        (err, path)
+        assert_eq!(err.exit_code(), 2, "{err}");
+        (err.to_string(), path)
     }
 
     #[test]
@@ -413,7 +416,7 @@ mod tests {
     fn missing_file() {
         let path = temp_file("missing-file", "");
         std::fs::remove_file(&path).unwrap();
-        let err = Theme::load(&path).unwrap_err();
+        let err = Theme::load(&path).unwrap_err().to_string();
         assert!(err.starts_with(&format!("theme file {path}: ")), "{err}");
     }
 
@@ -421,18 +424,22 @@ mod tests {
     fn unknown_name() {
         assert_eq!(
             Theme::load("foo").unwrap_err(),
-            "unknown theme 'foo' (built-in: dark, light, high-contrast, mono; \
-             or a path to a .toml file)"
+            Error::invalid(
+                "unknown theme 'foo' (built-in: dark, light, high-contrast, mono; \
+                 or a path to a .toml file)"
+            )
         );
         // Paths are recognised by shape, never mistaken for names.
         assert!(
             Theme::load("dark.toml")
                 .unwrap_err()
+                .to_string()
                 .starts_with("theme file dark.toml: ")
         );
         assert!(
             Theme::load("./dark")
                 .unwrap_err()
+                .to_string()
                 .starts_with("theme file ./dark: ")
         );
     }

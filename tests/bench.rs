@@ -2,7 +2,8 @@
 //! tolerance tightens, the fixed-step methods' orders, and the fast escape speed against pure
 //! bisection. No test here depends on timing.
 
-use turntable::bench::{self, Config};
+use turntable::bench::{self, Config, Task};
+use turntable::engine::Method as M;
 use turntable::engine::solve::escape_speed;
 use turntable::engine::{Initial, Method, Outcome, Run, Settings};
 
@@ -19,13 +20,7 @@ fn tiny() -> Config {
 fn quick_bench_rows_are_finite_and_converge() {
     let report = bench::run(&tiny(), |_| {}).expect("bench runs");
     assert!(!report.rows.is_empty());
-    for task in [
-        "rest",
-        "A@τ=0.5",
-        "drift τ=20",
-        "far τ=400 (rel)",
-        "v_e(0.5,0)",
-    ] {
+    for &task in <Task as strum::VariantArray>::VARIANTS {
         assert!(
             report.rows.iter().any(|r| r.task == task),
             "task {task} missing"
@@ -44,11 +39,11 @@ fn quick_bench_rows_are_finite_and_converge() {
         assert!(r.rhs_evals > 0);
     }
     // Errors shrink as dt / tol tighten (over two decades; single steps may wobble).
-    for m in ["rk2", "rk4", "dp54"] {
+    for m in [M::Rk2, M::Rk4, M::Dp54] {
         let rows: Vec<_> = report
             .rows
             .iter()
-            .filter(|r| r.task == "rest" && r.method == m)
+            .filter(|r| r.task == Task::Rest && r.method == m)
             .collect();
         let first = rows.first().unwrap();
         let last = rows.last().unwrap();
@@ -60,29 +55,29 @@ fn quick_bench_rows_are_finite_and_converge() {
         );
     }
     // Stick events: no drift after the stop; the paper's raw scheme creeps.
-    let drift = |m: &str, s: &str| {
+    let drift = |m: M, s: &str| {
         report
             .rows
             .iter()
-            .find(|r| r.task == "drift τ=20" && r.method == m && r.setting == s)
+            .find(|r| r.task == Task::Drift && r.method == m && r.setting == s)
             .unwrap()
             .err_median
     };
-    assert!(drift("rk2-raw", "dt=1e-3") > 1e3 * drift("rk2", "dt=1e-3"));
+    assert!(drift(M::Rk2Raw, "dt=1e-3") > 1e3 * drift(M::Rk2, "dt=1e-3"));
     // The reference agrees with its cross-check.
     for c in &report.reference {
         assert!(c.agreement < 1e-6, "{}: {}", c.task, c.agreement);
     }
     // Every method gets the outcome right once accurate: dt ≤ 1e-2, or tol ≤ 1e-6 (looser
     // dp54 tolerances misjudge releases near the escape threshold).
-    for r in report.rows.iter().filter(|r| r.task == "rest") {
-        if r.knob <= if r.method == "dp54" { 1e-6 } else { 1e-2 } {
+    for r in report.rows.iter().filter(|r| r.task == Task::Rest) {
+        if r.knob <= if r.method == M::Dp54 { 1e-6 } else { 1e-2 } {
             assert_eq!(r.wrong, 0, "{} {}", r.method, r.setting);
         }
         // The raw scheme has no stop of its own (`run --method rk2-raw` never stops): the
         // row names the rule the bench stops it by.
         assert_eq!(
-            r.method == "rk2-raw",
+            r.method == M::Rk2Raw,
             r.setting.ends_with("|u|≤dt"),
             "{}",
             r.setting
@@ -93,12 +88,28 @@ fn quick_bench_rows_are_finite_and_converge() {
     for t in &report.ratios {
         assert!(t.dp54_err <= t.rk2_err && t.ratio > 1.0, "{t:?}");
     }
-    let smooth = report.ratios.iter().find(|t| t.task == "A@τ=0.5").unwrap();
+    let smooth = report
+        .ratios
+        .iter()
+        .find(|t| t.task == Task::Smooth)
+        .unwrap();
     assert!(smooth.ratio > 20.0, "{smooth:?}");
     assert!(bench::table(&report).contains("rest"));
-    assert!(bench::plot(&report, "rest", 40, 10).contains('d'));
+    // The chart marks each method's points and names its axes.
+    let plot = bench::plot(&report, Task::Rest, 72, 20).unwrap();
+    for want in [
+        "r rk2-raw",
+        "d dp54",
+        "log10 RHS evaluations per case",
+        "rest",
+    ] {
+        assert!(plot.contains(want), "{want} not in\n{plot}");
+    }
     let json = serde_json::to_string(&report).unwrap();
-    assert!(json.contains("\"rows\""));
+    assert!(
+        json.contains("\"task\":\"drift τ=20\",\"method\":\"rk2-raw\""),
+        "{json}"
+    );
 }
 
 #[test]

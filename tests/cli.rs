@@ -276,6 +276,6 @@ fn scene_files_carry_units_and_the_explorer_shows_si() {
     )
     .unwrap();
     let e = turntable::scene::Scene::load(bad.to_str().unwrap()).unwrap_err();
-    assert!(e.contains("[units] mu must lie in"), "{e}");
+    assert!(e.to_string().contains("[units] mu must lie in"), "{e}");
     let _ = std::fs::remove_dir_all(&dir);
 }

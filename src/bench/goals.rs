@@ -1,21 +1,18 @@
 //! The speed goals of issue 5, and the work saved by modelling only what a scene requires.
 
-use super::runs::{End, cases, finish, state_at};
-use super::tasks::RestCase;
-use super::{
-    Config, ESCAPE_VTOL, FAR_TAU, FREE_TAU, REST_TAU, Row, Saving, Setting, Speed, TaskRatio,
-    median, reference, timed,
-};
+use super::runs::state_at;
+use super::tasks::{ESCAPE_VTOL, Measure, Task, value_error};
+use super::{Config, FAR_TAU, FREE_TAU, Row, Saving, Speed, TaskRatio, median, timed};
 use crate::engine::solve::{escape_speed, sweep_escape};
 use crate::engine::stepper::dp54_plain;
 use crate::engine::{Frame, Initial, Method, Release, Run, Settings};
 use crate::error::Error;
 
-pub(super) fn savings(cs: &[(String, Initial)]) -> Result<Vec<Saving>, Error> {
+pub(super) fn savings(cs: &[Initial]) -> Result<Vec<Saving>, Error> {
     let mut out = Vec::new();
     // Stuck: closed-form rotation after the stop, against the paper's stepping to τ = 50.
     let (mut raw, mut rk2, mut dp) = (0, 0, 0);
-    for (_, i) in cs {
+    for i in cs {
         raw += state_at(*i, Settings::paper(), 50.0)?.1;
         rk2 += state_at(*i, Settings::fixed(Method::Rk2, 1e-3), 50.0)?.1;
         dp += state_at(*i, Settings::default(), 50.0)?.1;
@@ -93,10 +90,8 @@ pub(super) fn savings(cs: &[(String, Initial)]) -> Result<Vec<Saving>, Error> {
     Ok(out)
 }
 
-pub(super) fn speed(
-    cfg: &Config,
-    per_case: &[(Setting, Vec<Option<RestCase>>)],
-) -> Result<Speed, Error> {
+/// The speed goals; `all` are the rest task's cases and `refs` their reference measures.
+pub(super) fn speed(cfg: &Config, all: &[Initial], refs: &[Measure]) -> Result<Speed, Error> {
     let (t, escape_ms) = timed(if cfg.reps == 0 { 0 } else { cfg.reps.max(3) }, || {
         escape_speed(0.5, 0.0, Settings::default(), ESCAPE_VTOL)
     });
@@ -140,40 +135,33 @@ pub(super) fn speed(
     let (frame_ms, frame_trail) = frame_time(cfg.reps)?;
     // Ten seconds of play (three in --quick).
     let terminal_bytes = super::bytes::all(if cfg.quick { 90 } else { 300 })?;
-    // The rk2 (stick events) dt = 1e-3 accuracy, and the loosest dp54 tol that matches it, on
-    // a grid of four tolerances per decade.
-    let cs = cases(cfg.cases, cfg.seed);
-    let rk2 = per_case
-        .iter()
-        .find(|(s, _)| s.settings.method() == Method::Rk2 && (s.knob() / 1e-3 - 1.0).abs() < 1e-9);
-    let mut rk2_err = f64::NAN;
+    // The rk2 (stick events) dt = 1e-3 accuracy on the rest task, and the loosest dp54 tol
+    // that matches it, on a grid of four tolerances per decade.
+    let rest = |s: Settings| -> Result<Vec<Measure>, Error> {
+        all.iter()
+            .map(|i| Task::Rest.measure(*i, s, ESCAPE_VTOL))
+            .collect()
+    };
+    let rk2 = rest(Settings::fixed(Method::Rk2, 1e-3))?;
+    // The cases rk2 gets right and stuck, with their error.
+    let right: Vec<(usize, f64)> = (0..all.len())
+        .filter(|&k| rk2[k].outcome == refs[k].outcome && refs[k].value.is_some())
+        .map(|k| (k, value_error(&rk2[k], &refs[k])))
+        .collect();
+    let rk2_err = median(&mut right.iter().map(|c| c.1).collect::<Vec<_>>());
     let mut matching = None;
-    if let Some((_, rk2)) = rk2 {
-        let mut e: Vec<f64> = rk2.iter().flatten().map(|c| c.err).collect();
-        rk2_err = median(&mut e);
-        let refs: Vec<Option<End>> = cs
-            .iter()
-            .map(|(_, i)| finish(*i, reference(), REST_TAU).ok())
-            .collect();
-        for k in 12..=40 {
-            let tol = 10f64.powf(-k as f64 / 4.0);
-            let mut errs = Vec::new();
-            let mut ratios = Vec::new();
-            for (((_, i), r), a) in cs.iter().zip(&refs).zip(rk2) {
-                let (Some(r), Some(a)) = (r, a) else { continue };
-                let e = finish(*i, Settings::dp54(tol), REST_TAU)?;
-                if e.outcome != r.outcome {
-                    errs.push(f64::INFINITY);
-                    continue;
-                }
-                errs.push((e.q - r.q).length());
-                ratios.push(a.evals as f64 / e.evals as f64);
-            }
-            let err = median(&mut errs);
-            if err <= rk2_err {
-                matching = Some((tol, err, median(&mut ratios)));
-                break;
-            }
+    for k in 12..=40 {
+        let tol = 10f64.powf(-k as f64 / 4.0);
+        let (mut errs, mut ratios) = (Vec::new(), Vec::new());
+        for &(c, _) in &right {
+            let e = Task::Rest.measure(all[c], Settings::dp54(tol), ESCAPE_VTOL)?;
+            errs.push(value_error(&e, &refs[c]));
+            ratios.push(rk2[c].evals as f64 / e.evals as f64);
+        }
+        let err = median(&mut errs);
+        if err <= rk2_err {
+            matching = Some((tol, err, median(&mut ratios)));
+            break;
         }
     }
     Ok(Speed {
@@ -225,16 +213,16 @@ pub(super) fn task_ratios(rows: &[Row]) -> Vec<TaskRatio> {
     let mut out = Vec::new();
     for rk2 in rows
         .iter()
-        .filter(|r| r.method == "rk2" && (r.knob / 1e-3 - 1.0).abs() < 1e-9)
+        .filter(|r| r.method == Method::Rk2 && (r.knob / 1e-3 - 1.0).abs() < 1e-9)
     {
         let mut dp: Vec<&Row> = rows
             .iter()
-            .filter(|r| r.task == rk2.task && r.method == "dp54")
+            .filter(|r| r.task == rk2.task && r.method == Method::Dp54)
             .collect();
         dp.sort_by(|a, b| b.knob.total_cmp(&a.knob));
         if let Some(d) = dp.into_iter().find(|d| d.err_median <= rk2.err_median) {
             out.push(TaskRatio {
-                task: rk2.task.clone(),
+                task: rk2.task,
                 rk2_err: rk2.err_median,
                 rk2_evals: rk2.evals_median,
                 dp54_setting: d.setting.clone(),

@@ -1,6 +1,7 @@
 //! Work–precision measurements (issue 5), in the manner of the ODE community's work–precision
 //! diagrams: error against work (RHS evaluations and wall time) for each method over a sweep of
-//! its step or tolerance, on the paper's cases and on seeded random releases. Engine only: no UI.
+//! its step or tolerance, on the paper's cases and on seeded random releases; then the speed goals, which also time
+//! the explorer's frame and its terminal output.
 
 pub mod bytes;
 mod goals;
@@ -8,18 +9,17 @@ mod output;
 mod runs;
 mod tasks;
 
-use crate::engine::solve::escape_speed;
-use crate::engine::{Frame, Initial, Method, Outcome, Settings};
+use crate::engine::{Initial, Method, Settings};
 use crate::error::Error;
-use glam::DVec2;
 use goals::{savings, speed, task_ratios};
 use serde::Serialize;
 use std::time::Instant;
-use tasks::{escape_rows, fig5_curve, fig5_rows, methods_for, position_rows, rest_rows};
+use strum::VariantArray;
+use tasks::{ESCAPE_VTOL, Measure, apart, distance, label};
 
 pub use output::{plot, table};
-pub use runs::{End, cases, finish, rest_angle, state_at};
-pub use tasks::position_error;
+pub use runs::cases;
+pub use tasks::{Task, position_error};
 
 /// What to measure and how thoroughly.
 #[derive(Clone, Debug, Serialize)]
@@ -60,31 +60,12 @@ impl Config {
     }
 }
 
-/// A method at one setting of its accuracy knob.
-#[derive(Clone, Copy, Debug)]
-pub struct Setting {
-    pub settings: Settings,
-}
-
-impl Setting {
-    pub fn new(method: Method, knob: f64) -> Self {
-        let settings = if method.adaptive() {
-            Settings::dp54(knob)
-        } else {
-            Settings::fixed(method, knob)
-        };
-        Setting { settings }
-    }
-    pub fn knob(&self) -> f64 {
-        self.settings.scheme.knob()
-    }
-}
-
 /// One line of the work–precision table.
 #[derive(Clone, Debug, Serialize)]
 pub struct Row {
-    pub task: String,
-    pub method: String,
+    pub task: Task,
+    pub method: Method,
+    /// The knob as the table prints it (with the raw scheme's stop rule on the rest task).
     pub setting: String,
     pub knob: f64,
     pub cases: usize,
@@ -105,7 +86,7 @@ pub struct Row {
 /// The reference's own agreement with a second method, per task.
 #[derive(Clone, Debug, Serialize)]
 pub struct RefCheck {
-    pub task: String,
+    pub task: Task,
     pub reference: String,
     pub check: String,
     pub agreement: f64,
@@ -156,7 +137,7 @@ pub struct Speed {
 /// on the grid whose median error is no larger, and the ratio of median RHS evaluations.
 #[derive(Clone, Debug, Serialize)]
 pub struct TaskRatio {
-    pub task: String,
+    pub task: Task,
     pub rk2_err: f64,
     pub rk2_evals: f64,
     pub dp54_setting: String,
@@ -214,193 +195,107 @@ pub fn reference() -> Settings {
     Settings::dp54(1e-13)
 }
 
-/// The cross-check of the reference on a smooth stretch: rk4 at a small step.
-fn check_settings() -> Settings {
-    Settings::fixed(Method::Rk4, 1e-4)
-}
-
-/// The cross-check of the reference across stops: dp54 at 1e-12 in the other frame. (rk4 at
-/// a small dt agrees on rest positions but not on stop times: its last steps before a stop are
-/// at the stability limit of the stiff friction direction, see the τ columns.)
-fn stop_check_settings() -> Settings {
-    Settings {
-        frame: Frame::Table,
-        ..Settings::dp54(1e-12)
-    }
-}
-
 const REST_TAU: f64 = 200.0;
-const DRIFT_TAU: f64 = 20.0;
 /// How long the frictionless saving runs: ξ ≈ 25 by then, far past any view.
 const FREE_TAU: f64 = 30.0;
-const SMOOTH_TAU: f64 = 0.5;
 const FAR_TAU: f64 = 400.0;
-const ESCAPE_VTOL: f64 = 1e-8;
 
 /// Runs the whole bench. `progress` hears about each task as it starts.
 pub fn run(cfg: &Config, mut progress: impl FnMut(&str)) -> Result<Report, Error> {
-    let cs = cases(cfg.cases, cfg.seed);
-    let inits: Vec<Initial> = cs.iter().map(|(_, i)| *i).collect();
-    let refset = reference();
-    let check = check_settings();
-    let mut reference = Vec::new();
-    let mut rows = Vec::new();
-
-    progress("reference: rest positions and stop times");
-    let refs: Vec<End> = inits
-        .iter()
-        .map(|i| finish(*i, refset, REST_TAU))
-        .collect::<Result<_, _>>()?;
-    let stop_check = stop_check_settings();
-    let checks: Vec<End> = inits
-        .iter()
-        .map(|i| finish(*i, stop_check, REST_TAU))
-        .collect::<Result<_, _>>()?;
-    let agree = refs
-        .iter()
-        .zip(&checks)
-        .map(|(a, b)| {
-            if a.outcome != b.outcome {
-                f64::INFINITY
-            } else if a.outcome == Outcome::Stuck {
-                (a.q - b.q).length().max((a.tau - b.tau).abs())
-            } else {
-                0.0
-            }
-        })
-        .fold(0.0, f64::max);
-    reference.push(RefCheck {
-        task: "rest (pos & stop time)".into(),
-        reference: refset.accuracy_label(),
-        check: format!("dp54 {} table frame", stop_check.accuracy_label()),
-        agreement: agree,
-    });
-
-    progress("rest position and stop time");
-    let mut per_case = Vec::new();
-    rows.extend(rest_rows(cfg, &cs, &refs, &mut per_case)?);
-
-    progress("smooth stretch: case A at τ = 0.5");
-    let a = [inits[0]];
-    let a_ref = [state_at(a[0], refset, SMOOTH_TAU)?.0.r];
-    let a_chk = state_at(a[0], check, SMOOTH_TAU)?.0.r;
-    reference.push(RefCheck {
-        task: "A@τ=0.5".into(),
-        reference: refset.accuracy_label(),
-        check: format!("rk4 {}", check.accuracy_label()),
-        agreement: (a_ref[0] - a_chk).length(),
-    });
-    rows.extend(position_rows(
-        cfg,
-        "A@τ=0.5",
-        &a,
-        &a_ref,
-        SMOOTH_TAU,
-        &methods_for(cfg, 0.0, true),
-    )?);
-
-    progress("drift after the stop: position at τ = 20");
-    let drift_cases: Vec<Initial> = inits.iter().take(3 + cfg.cases.min(20)).copied().collect();
-    let drift_chk: Vec<DVec2> = drift_cases
-        .iter()
-        .map(|i| state_at(*i, stop_check, DRIFT_TAU).map(|s| s.0.r))
-        .collect::<Result<_, _>>()?;
-    let drift_ref: Vec<DVec2> = drift_cases
-        .iter()
-        .map(|i| state_at(*i, refset, DRIFT_TAU).map(|s| s.0.r))
-        .collect::<Result<_, _>>()?;
-    reference.push(RefCheck {
-        task: "drift τ=20".into(),
-        reference: refset.accuracy_label(),
-        check: format!("dp54 {} table frame", stop_check.accuracy_label()),
-        agreement: drift_ref
-            .iter()
-            .zip(&drift_chk)
-            .map(|(a, b)| (*a - *b).length())
-            .fold(0.0, f64::max),
-    });
-    rows.extend(position_rows(
-        cfg,
-        "drift τ=20",
-        &drift_cases,
-        &drift_ref,
-        DRIFT_TAU,
-        &methods_for(cfg, 0.0, true),
-    )?);
-
-    progress("far escape to τ = 400");
-    let far = [Initial::velocity(0.5, 0.4, 1.5)];
-    let far_ref = [state_at(far[0], refset, FAR_TAU)?.0.r];
-    let far_chk = state_at(far[0], Settings::fixed(Method::Rk4, 1e-3), FAR_TAU)?
-        .0
-        .r;
-    reference.push(RefCheck {
-        task: "far τ=400 (relative)".into(),
-        reference: refset.accuracy_label(),
-        check: "rk4 dt=1e-3".into(),
-        agreement: (far_ref[0] - far_chk).length() / far_ref[0].length(),
-    });
-    let far_min_dt = if cfg.quick { 1e-2 } else { 1e-3 };
-    rows.extend(position_rows(
-        cfg,
-        "far τ=400 (rel)",
-        &far,
-        &far_ref,
-        FAR_TAU,
-        &methods_for(cfg, far_min_dt, true),
-    )?);
-
-    progress("escape speed at ξ0 = 0.5, φ = 0");
-    let v_ref = escape_speed(0.5, 0.0, refset, 1e-10)?;
-    let v_chk = escape_speed(
-        0.5,
-        0.0,
-        Settings {
-            frame: Frame::Table,
-            ..Settings::dp54(1e-12)
-        },
-        1e-10,
-    )?;
-    reference.push(RefCheck {
-        task: "v_e(0.5,0)".into(),
-        reference: format!("{} vtol=1e-10", refset.accuracy_label()),
-        check: "dp54 tol=1e-12 table frame".into(),
-        agreement: (v_ref.value - v_chk.value).abs(),
-    });
-    rows.extend(escape_rows(cfg, v_ref.value)?);
-
-    let n = if cfg.quick { 12 } else { 72 };
-    progress("one Fig. 5 curve (ξ0 = 0.5)");
-    let vtol = 1e-8;
-    let (f_ref, _) = fig5_curve(refset, n, 1e-9)?;
-    let (f_chk, _) = fig5_curve(Settings::dp54(1e-11), n, 1e-9)?;
-    reference.push(RefCheck {
-        task: "fig5 ξ0=0.5".into(),
-        reference: format!("{} vtol=1e-9", refset.accuracy_label()),
-        check: "dp54 tol=1e-11".into(),
-        agreement: f_ref
-            .iter()
-            .zip(&f_chk)
-            .map(|(a, b)| (a - b).abs())
-            .fold(0.0, f64::max),
-    });
-    rows.extend(fig5_rows(cfg, n, &f_ref, vtol)?);
-
+    let all: Vec<Initial> = cases(cfg.cases, cfg.seed)
+        .into_iter()
+        .map(|c| c.1)
+        .collect();
+    let (mut agreement, mut rows, mut rest) = (Vec::new(), Vec::new(), Vec::new());
+    for &task in Task::VARIANTS {
+        progress(&task.to_string());
+        let cs = task.cases(cfg, &all);
+        let measure = |s: Settings, vtol: f64| {
+            cs.iter()
+                .map(|i| task.measure(*i, s, vtol))
+                .collect::<Result<Vec<Measure>, Error>>()
+        };
+        let vtol = task.reference_vtol();
+        let refs = measure(reference(), vtol)?;
+        let checks = measure(task.check(), vtol)?;
+        let vtag = if task.escape() {
+            format!(" vtol={vtol:.0e}")
+        } else {
+            String::new()
+        };
+        agreement.push(RefCheck {
+            task,
+            reference: label(reference()) + &vtag,
+            check: label(task.check()),
+            agreement: refs
+                .iter()
+                .zip(&checks)
+                .map(|(a, b)| apart(a, b))
+                .fold(0.0, f64::max),
+        });
+        for s in task.settings(cfg) {
+            let (out, ms) = timed(cfg.reps, || measure(s, ESCAPE_VTOL));
+            rows.push(row(task, s, &refs, &out?, ms));
+        }
+        if task == Task::Rest {
+            rest = refs;
+        }
+    }
     progress("model only what a scene requires");
-    let savings = savings(&cs)?;
-
+    let savings = savings(&all)?;
     progress("speed goals");
-    let speed = speed(cfg, &per_case)?;
+    let speed = speed(cfg, &all, &rest)?;
     let load = std::fs::read_to_string("/proc/loadavg")
         .ok()
         .map(|l| l.split_whitespace().take(3).collect::<Vec<_>>().join(" "));
     Ok(Report {
         config: cfg.clone(),
         load,
-        reference,
+        reference: agreement,
         ratios: task_ratios(&rows),
         rows,
         savings,
         speed,
     })
+}
+
+/// One row: `out` (one setting's measures of the task's cases) against the reference's.
+fn row(task: Task, s: Settings, refs: &[Measure], out: &[Measure], wall_ms: f64) -> Row {
+    let (mut errs, mut times, mut wrong) = (Vec::new(), Vec::new(), 0);
+    for (m, r) in out.iter().zip(refs) {
+        if m.outcome != r.outcome {
+            wrong += 1;
+            continue;
+        }
+        if let (Some(a), Some(b)) = (m.value, r.value) {
+            errs.push(distance(a, b));
+        }
+        if let (Some(a), Some(b)) = (m.tau, r.tau) {
+            times.push((a - b).abs());
+        }
+    }
+    let mut evals: Vec<f64> = out.iter().map(|m| m.evals as f64).collect();
+    // The raw scheme never stops by itself (nor in `run --method rk2-raw`): its row names the
+    // rule the bench stops it by.
+    let rule = if task == Task::Rest && !s.method().stick_events() {
+        " |u|≤dt"
+    } else {
+        ""
+    };
+    let stops = task.times_stops();
+    Row {
+        task,
+        method: s.method(),
+        setting: format!("{}{rule}", s.accuracy_label()),
+        knob: s.scheme.knob(),
+        cases: out.len(),
+        err_median: median(&mut errs.clone()),
+        err_worst: worst(&errs),
+        time_median: stops.then(|| median(&mut times.clone())),
+        time_worst: stops.then(|| worst(&times)),
+        wrong,
+        rhs_evals: out.iter().map(|m| m.evals).sum(),
+        evals_median: median(&mut evals),
+        wall_ms,
+    }
 }

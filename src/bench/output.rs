@@ -1,6 +1,13 @@
 //! The report as a table and as braille work–precision charts.
 
-use super::Report;
+use super::{Report, Task};
+use crate::engine::Method;
+use crate::error::Error;
+use crate::theme::Theme;
+use crate::ui::chart::{Chart, Mark, Series, extent, render};
+use crate::ui::export::plain_text;
+use ratatui::Terminal;
+use ratatui::backend::TestBackend;
 
 fn sci(x: f64) -> String {
     if x.is_nan() {
@@ -36,7 +43,7 @@ pub fn table(r: &Report) -> String {
         let _ = writeln!(
             o,
             "  {:<22} {:<26} vs {:<28} {}",
-            c.task,
+            c.task.to_string(),
             c.reference,
             c.check,
             sci(c.agreement)
@@ -57,17 +64,17 @@ pub fn table(r: &Report) -> String {
         "RHS total",
         "wall ms"
     );
-    let mut last = String::new();
+    let mut last = None;
     for row in &r.rows {
-        if row.task != last {
+        if last != Some(row.task) {
             let _ = writeln!(o, "{}", "-".repeat(115));
-            last = row.task.clone();
+            last = Some(row.task);
         }
         let _ = writeln!(
             o,
             "{:<20} {:<8} {:<17} {:>8} {:>8} {:>8} {:>8} {:>5} {:>10.0} {:>10} {:>9.2}",
-            row.task,
-            row.method,
+            row.task.to_string(),
+            row.method.to_string(),
             row.setting,
             sci(row.err_median),
             sci(row.err_worst),
@@ -122,7 +129,7 @@ pub fn table(r: &Report) -> String {
         (Some(tol), Some(ratio)) => {
             let _ = writeln!(
                 o,
-                "  rk2 dt=1e-3 median rest error {}: dp54 reaches it at tol={tol:.1e} (median {}) with {ratio:.0}× fewer RHS evaluations (median over cases; goal ≥ 20×)",
+                "  rk2 dt=1e-3 median rest error {}: dp54 reaches it at tol={tol:.1e} (median {}) with {ratio:.0}× fewer RHS evaluations (median over cases; the 20× target is withdrawn)",
                 sci(sp.rk2_err_median),
                 sci(sp.matching_err_median.unwrap_or(f64::NAN))
             );
@@ -144,7 +151,7 @@ pub fn table(r: &Report) -> String {
             let _ = writeln!(
                 o,
                 "    {:<20} rk2 {} in {:>9.0} RHS   dp54 {:<9} {} in {:>7.0} RHS   {:>6.1}×",
-                t.task,
+                t.task.to_string(),
                 sci(t.rk2_err),
                 t.rk2_evals,
                 t.dp54_setting,
@@ -177,9 +184,21 @@ pub fn table(r: &Report) -> String {
     o
 }
 
-/// Error against work (log–log) for one task, as a braille chart in plain text.
-pub fn plot(r: &Report, task: &str, width: usize, height: usize) -> String {
-    let mut series: Vec<(String, Vec<(f64, f64)>)> = Vec::new();
+/// The letter that marks a method's points on a chart without colours.
+fn mark(m: Method) -> char {
+    match m {
+        Method::Rk2Raw => 'r',
+        Method::Rk2 => '2',
+        Method::Rk4 => '4',
+        Method::Dp54 => 'd',
+    }
+}
+
+/// Error against work (log–log) for one task: the explorer's braille chart, as plain text.
+pub fn plot(r: &Report, task: Task, width: u16, height: u16) -> Result<String, Error> {
+    let th = Theme::builtin("mono").ok_or(Error::Failed("no mono theme".into()))?;
+    let mut series: Vec<Series> = Vec::new();
+    let mut marks = Vec::new();
     for row in r.rows.iter().filter(|row| row.task == task) {
         let p = (
             row.evals_median.max(1.0).log10(),
@@ -188,103 +207,40 @@ pub fn plot(r: &Report, task: &str, width: usize, height: usize) -> String {
         if !(p.0.is_finite() && p.1.is_finite()) {
             continue;
         }
-        match series.iter_mut().find(|(m, _)| *m == row.method) {
-            Some((_, v)) => v.push(p),
-            None => series.push((row.method.clone(), vec![p])),
+        let name = format!("{} {}", mark(row.method), row.method);
+        match series.iter_mut().find(|s| s.name == name) {
+            Some(s) => s.points.push(p),
+            None => series.push(Series {
+                name,
+                color: th.foreground,
+                points: vec![p],
+                joined: true,
+            }),
         }
+        marks.push(Mark::Text {
+            x: p.0,
+            y: p.1,
+            label: mark(row.method).to_string(),
+            color: th.foreground,
+        });
     }
-    let pts: Vec<(f64, f64)> = series.iter().flat_map(|(_, v)| v.iter().copied()).collect();
-    if pts.is_empty() {
-        return format!("{task}: nothing to plot\n");
+    let pts = || series.iter().flat_map(|s| s.points.iter().copied());
+    if marks.is_empty() {
+        return Ok(format!("{task}: nothing to plot\n"));
     }
-    let (x0, x1) = pts.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |a, p| {
-        (a.0.min(p.0.floor()), a.1.max(p.0.ceil()))
-    });
-    let (y0, y1) = pts.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |a, p| {
-        (a.0.min(p.1.floor()), a.1.max(p.1.ceil()))
-    });
-    let (x1, y1) = (x1.max(x0 + 1.0), y1.max(y0 + 1.0));
-    let (dw, dh) = (width * 2, height * 4);
-    let mut dots = vec![vec![false; dw]; dh];
-    let to_dot = |p: (f64, f64)| {
-        let x = ((p.0 - x0) / (x1 - x0) * (dw - 1) as f64).round() as i64;
-        let y = ((y1 - p.1) / (y1 - y0) * (dh - 1) as f64).round() as i64;
-        (x, y)
+    let chart = Chart {
+        title: format!("{task}: work against precision"),
+        note: String::new(),
+        x_label: "log10 RHS evaluations per case".into(),
+        y_label: "log10 median error".into(),
+        x: extent(pts().map(|p| p.0)),
+        y: extent(pts().map(|p| p.1)),
+        series,
+        marks,
     };
-    let mut labels: Vec<(usize, usize, char)> = Vec::new();
-    let marks = ['r', '2', '4', 'd', 'e', 'f'];
-    for (k, (name, v)) in series.iter().enumerate() {
-        let mark = match name.as_str() {
-            "rk2-raw" => 'r',
-            "rk2" => '2',
-            "rk4" => '4',
-            "dp54" => 'd',
-            _ => marks[k % marks.len()],
-        };
-        for w in v.windows(2) {
-            let (a, b) = (to_dot(w[0]), to_dot(w[1]));
-            let n = (b.0 - a.0).abs().max((b.1 - a.1).abs()).max(1);
-            for i in 0..=n {
-                let x = a.0 + (b.0 - a.0) * i / n;
-                let y = a.1 + (b.1 - a.1) * i / n;
-                if (0..dw as i64).contains(&x) && (0..dh as i64).contains(&y) {
-                    dots[y as usize][x as usize] = true;
-                }
-            }
-        }
-        for &p in v {
-            let (x, y) = to_dot(p);
-            labels.push(((x / 2) as usize, (y / 4) as usize, mark));
-        }
-    }
-    let mut grid: Vec<Vec<char>> = (0..height)
-        .map(|cy| {
-            (0..width)
-                .map(|cx| {
-                    // Braille dot bits: (0,0)=1 (0,1)=2 (0,2)=4 (1,0)=8 (1,1)=16 (1,2)=32
-                    // (0,3)=64 (1,3)=128.
-                    let bits = [[0x01, 0x08], [0x02, 0x10], [0x04, 0x20], [0x40, 0x80]];
-                    let mut b = 0u32;
-                    for (dy, row) in bits.iter().enumerate() {
-                        for (dx, bit) in row.iter().enumerate() {
-                            if dots[cy * 4 + dy][cx * 2 + dx] {
-                                b |= bit;
-                            }
-                        }
-                    }
-                    char::from_u32(0x2800 + b).unwrap_or(' ')
-                })
-                .collect()
-        })
-        .collect();
-    for (cx, cy, m) in labels {
-        if cy < height && cx < width {
-            grid[cy][cx] = m;
-        }
-    }
-    let mut o = format!(
-        "{task}: median error (log10, up) against RHS evaluations per case (log10, right)\n"
-    );
-    for (cy, line) in grid.iter().enumerate() {
-        let label = if cy == 0 {
-            format!("{y1:>4.0} ")
-        } else if cy == height - 1 {
-            format!("{y0:>4.0} ")
-        } else {
-            "     ".into()
-        };
-        o.push_str(&label);
-        o.push('│');
-        o.extend(line.iter());
-        o.push('\n');
-    }
-    o.push_str(&format!("     └{}\n", "─".repeat(width)));
-    o.push_str(&format!(
-        "      {:<w$}{:>4.0}\n",
-        format!("{x0:.0}"),
-        x1,
-        w = width - 4
-    ));
-    o.push_str("      r = rk2-raw, 2 = rk2, 4 = rk4, d = dp54\n");
-    o
+    let mut term = Terminal::new(TestBackend::new(width, height))?;
+    term.draw(|f| {
+        render(f, f.area(), &th, &chart);
+    })?;
+    Ok(plain_text(term.backend().buffer()))
 }

@@ -1,6 +1,5 @@
 //! What one measurement runs: the seeded cases, and one run to its end or to a time.
 
-use crate::engine::model::wrap_angle;
 use crate::engine::run::raw_at_rest;
 use crate::engine::{Initial, Outcome, Run, Settings, State, Status};
 use crate::error::Error;
@@ -89,9 +88,4 @@ pub fn state_at(initial: Initial, settings: Settings, tau: f64) -> Result<(State
         Status::Slipping => run.state(),
     };
     Ok((s, run.cost.rhs_evals))
-}
-
-/// The rest angle (table frame) of a stuck end, in (−π, π].
-pub fn rest_angle(e: &End) -> f64 {
-    wrap_angle(e.q.y.atan2(e.q.x))
 }

@@ -1,253 +1,239 @@
-//! The work–precision tasks: each method over its knob, on rest positions, a smooth stretch,
-//! the escape speed and a Fig. 5 curve.
+//! The work–precision tasks: what each measures, on which cases, against which cross-check of
+//! the reference, and over which settings of each method's knob.
 
-use super::runs::{End, finish, state_at};
-use super::{Config, ESCAPE_VTOL, REST_TAU, Row, Setting, median, reference, timed, worst};
+use super::runs::{finish, state_at};
+use super::{Config, FAR_TAU, REST_TAU, reference};
+use crate::analysis::angle;
 use crate::engine::solve::escape_speed;
-use crate::engine::{Initial, Method, Outcome, Settings};
+use crate::engine::{Frame, Initial, Method, Outcome, Settings};
 use crate::error::Error;
 use glam::DVec2;
-use std::f64::consts::TAU;
+use serde::{Serialize, Serializer};
+use strum::{Display, VariantArray};
 
-fn setting_label(s: &Setting) -> String {
-    s.settings.accuracy_label()
+/// Escape speeds in the rows are found to this tolerance.
+pub(super) const ESCAPE_VTOL: f64 = 1e-8;
+const DRIFT_TAU: f64 = 20.0;
+const SMOOTH_TAU: f64 = 0.5;
+
+/// The tasks of the work–precision table, in the order they run.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Display, VariantArray)]
+pub enum Task {
+    /// Rest position (table frame) and stop time of every case.
+    #[strum(to_string = "rest")]
+    Rest,
+    /// Case A's position at τ = 0.5, before its stop: a smooth stretch.
+    #[strum(to_string = "A@τ=0.5")]
+    Smooth,
+    /// Positions at τ = 20, long after most stops: does the particle creep?
+    #[strum(to_string = "drift τ=20")]
+    Drift,
+    /// An escape followed to τ = 400 (ξ ~ 1e4): the error relative to the distance.
+    #[strum(to_string = "far τ=400 (rel)")]
+    Far,
+    /// The escape speed at ξ0 = 0.5, φ = 0 (Sec. IV).
+    #[strum(to_string = "v_e(0.5,0)")]
+    Escape,
+    /// One Fig. 5 curve: v_e over the angles at ξ0 = 0.5.
+    #[strum(to_string = "fig5 ξ0=0.5")]
+    Fig5,
 }
 
-pub(super) fn methods_for(cfg: &Config, fixed_min_dt: f64, raw: bool) -> Vec<Setting> {
-    let mut v = Vec::new();
-    for m in [Method::Rk2Raw, Method::Rk2, Method::Rk4] {
-        if m == Method::Rk2Raw && !raw {
-            continue;
-        }
-        for dt in cfg.dts() {
-            if dt >= fixed_min_dt {
-                v.push(Setting::new(m, dt));
-            }
-        }
+impl Serialize for Task {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.collect_str(self)
     }
-    for tol in cfg.tols() {
-        v.push(Setting::new(Method::Dp54, tol));
-    }
-    v
 }
 
-/// Per-case results of one setting on the rest task, kept for the speed ratio.
-pub(super) struct RestCase {
-    pub(super) err: f64,
+/// One case's result under one setting.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Measure {
+    /// Stuck or escaped (rest task only: it is what the others' values assume).
+    pub(super) outcome: Option<Outcome>,
+    /// The quantity compared: a position, or (v_e, 0). None where it has no meaning (the
+    /// rest task's escaping cases).
+    pub(super) value: Option<DVec2>,
+    /// The stop time (rest task, stuck cases).
+    pub(super) tau: Option<f64>,
     pub(super) evals: u64,
 }
 
-pub(super) fn rest_rows(
-    cfg: &Config,
-    cs: &[(String, Initial)],
-    refs: &[End],
-    per_case: &mut Vec<(Setting, Vec<Option<RestCase>>)>,
-) -> Result<Vec<Row>, Error> {
-    let mut rows = Vec::new();
-    for s in methods_for(cfg, 0.0, true) {
-        let (ends, ms) = timed(cfg.reps, || {
-            cs.iter()
-                .map(|(_, i)| finish(*i, s.settings, REST_TAU))
-                .collect::<Result<Vec<_>, _>>()
-        });
-        let ends = ends?;
-        let (mut pe, mut te, mut ev) = (Vec::new(), Vec::new(), Vec::new());
-        let mut wrong = 0;
-        let mut pc = Vec::new();
-        for (e, r) in ends.iter().zip(refs) {
-            ev.push(e.evals as f64);
-            if e.outcome != r.outcome {
-                wrong += 1;
-                pc.push(None);
-                continue;
-            }
-            if r.outcome == Outcome::Stuck {
-                let err = (e.q - r.q).length();
-                pe.push(err);
-                te.push((e.tau - r.tau).abs());
-                pc.push(Some(RestCase {
-                    err,
-                    evals: e.evals,
-                }));
-            } else {
-                pc.push(None);
-            }
-        }
-        // The raw scheme never stops by itself (nor in `run --method rk2-raw`): its row
-        // names the rule the bench stops it by.
-        let rule = if s.settings.method().stick_events() {
-            ""
-        } else {
-            " |u|≤dt"
-        };
-        rows.push(Row {
-            task: "rest".into(),
-            method: s.settings.method().to_string(),
-            setting: format!("{}{rule}", setting_label(&s)),
-            knob: s.knob(),
-            cases: cs.len(),
-            err_median: median(&mut pe.clone()),
-            err_worst: worst(&pe),
-            time_median: Some(median(&mut te.clone())),
-            time_worst: Some(worst(&te)),
-            wrong,
-            rhs_evals: ends.iter().map(|e| e.evals).sum(),
-            evals_median: median(&mut ev),
-            wall_ms: ms,
-        });
-        per_case.push((s, pc));
-    }
-    Ok(rows)
+/// |a − b|, relative to |b| far out (the far escape runs to ξ ~ 1e4).
+pub(super) fn distance(a: DVec2, b: DVec2) -> f64 {
+    let e = (a - b).length();
+    if b.length() > 10.0 { e / b.length() } else { e }
 }
 
-/// Rows of a task whose error per case is |x − x_ref| of a position at a fixed time.
-pub(super) fn position_rows(
-    cfg: &Config,
-    task: &str,
-    cs: &[Initial],
-    refs: &[DVec2],
-    tau: f64,
-    settings: &[Setting],
-) -> Result<Vec<Row>, Error> {
-    let mut rows = Vec::new();
-    for s in settings {
-        let (out, ms) = timed(cfg.reps, || {
-            cs.iter()
-                .map(|i| state_at(*i, s.settings, tau))
-                .collect::<Result<Vec<_>, _>>()
-        });
-        let out = out?;
-        let errs: Vec<f64> = out
-            .iter()
-            .zip(refs)
-            .map(|((st, _), r)| {
-                let e = (st.r - *r).length();
-                // Relative far out (the far escape runs to ξ ~ 1e4).
-                if r.length() > 10.0 { e / r.length() } else { e }
-            })
-            .collect();
-        let mut ev: Vec<f64> = out.iter().map(|(_, e)| *e as f64).collect();
-        rows.push(Row {
-            task: task.into(),
-            method: s.settings.method().to_string(),
-            setting: setting_label(s),
-            knob: s.knob(),
-            cases: cs.len(),
-            err_median: median(&mut errs.clone()),
-            err_worst: worst(&errs),
-            time_median: None,
-            time_worst: None,
-            wrong: 0,
-            rhs_evals: out.iter().map(|(_, e)| e).sum(),
-            evals_median: median(&mut ev),
-            wall_ms: ms,
-        });
+/// The cross-check of the reference across stops: dp54 at 1e-12 in the other frame. (rk4 at
+/// a small dt agrees on rest positions but not on stop times: its last steps before a stop are
+/// at the stability limit of the stiff friction direction, see the τ columns.)
+fn stop_check() -> Settings {
+    Settings {
+        frame: Frame::Table,
+        ..Settings::dp54(1e-12)
     }
-    Ok(rows)
+}
+
+/// A setting as the table names it: method, knob, and the frame when not the lab's.
+pub(super) fn label(s: Settings) -> String {
+    let frame = if s.frame == Frame::Table {
+        " table frame"
+    } else {
+        ""
+    };
+    format!("{} {}{frame}", s.method(), s.accuracy_label())
+}
+
+impl Task {
+    /// The releases measured: all seeded cases for the rest, a few for the others.
+    pub(super) fn cases(self, cfg: &Config, all: &[Initial]) -> Vec<Initial> {
+        let at = |phi| Initial::velocity(0.5, phi, 0.0);
+        match self {
+            Task::Rest => all.to_vec(),
+            Task::Smooth => all[..1].to_vec(),
+            Task::Drift => all.iter().take(3 + cfg.cases.min(20)).copied().collect(),
+            Task::Far => vec![Initial::velocity(0.5, 0.4, 1.5)],
+            Task::Escape => vec![at(0.0)],
+            Task::Fig5 => {
+                let n = if cfg.quick { 12 } else { 72 };
+                (0..n).map(|i| at(angle(i, n))).collect()
+            }
+        }
+    }
+
+    /// The second method the reference is checked against.
+    pub(super) fn check(self) -> Settings {
+        match self {
+            Task::Rest | Task::Drift | Task::Escape => stop_check(),
+            Task::Smooth => Settings::fixed(Method::Rk4, 1e-4),
+            Task::Far => Settings::fixed(Method::Rk4, 1e-3),
+            Task::Fig5 => Settings::dp54(1e-11),
+        }
+    }
+
+    /// Whether the task measures escape speeds.
+    pub(super) fn escape(self) -> bool {
+        matches!(self, Task::Escape | Task::Fig5)
+    }
+
+    /// The escape-speed tolerance of the reference and its check (escape tasks only).
+    pub(super) fn reference_vtol(self) -> f64 {
+        if self == Task::Fig5 { 1e-9 } else { 1e-10 }
+    }
+
+    /// Whether the task times stops (the τ columns).
+    pub(super) fn times_stops(self) -> bool {
+        self == Task::Rest
+    }
+
+    /// The settings measured: each method over its knob, within what the task can afford.
+    pub(super) fn settings(self, cfg: &Config) -> Vec<Settings> {
+        let fixed = |methods: &[Method], dts: &[f64]| -> Vec<Settings> {
+            methods
+                .iter()
+                .flat_map(|&m| dts.iter().map(move |&dt| Settings::fixed(m, dt)))
+                .collect()
+        };
+        let dp54 = |keep: &dyn Fn(f64) -> bool| -> Vec<Settings> {
+            cfg.tols()
+                .into_iter()
+                .filter(|t| keep(*t))
+                .map(Settings::dp54)
+                .collect()
+        };
+        let all = [Method::Rk2Raw, Method::Rk2, Method::Rk4];
+        let smooth = [Method::Rk2, Method::Rk4];
+        let (fixed, dp) = match self {
+            Task::Rest | Task::Smooth | Task::Drift => (fixed(&all, &cfg.dts()), dp54(&|_| true)),
+            Task::Far => {
+                let min = if cfg.quick { 1e-2 } else { 1e-3 };
+                let dts: Vec<f64> = cfg.dts().into_iter().filter(|&d| d >= min).collect();
+                (fixed(&all, &dts), dp54(&|_| true))
+            }
+            Task::Escape => {
+                let dts: &[f64] = if cfg.quick {
+                    &[1e-2]
+                } else {
+                    &[1e-2, 3e-3, 1e-3]
+                };
+                (fixed(&smooth, dts), dp54(&|t| !cfg.quick || t >= 1e-10))
+            }
+            Task::Fig5 => {
+                let dts: &[f64] = if cfg.quick { &[] } else { &[1e-2] };
+                let even = |t: f64| t.log10().round() as i32 % 2 == 0;
+                let keep = |t: f64| t <= 1e-4 && (!cfg.quick || t >= 1e-10) && even(t);
+                (fixed(&smooth, dts), dp54(&keep))
+            }
+        };
+        fixed.into_iter().chain(dp).collect()
+    }
+
+    /// One case under one setting.
+    pub(super) fn measure(
+        self,
+        initial: Initial,
+        settings: Settings,
+        vtol: f64,
+    ) -> Result<Measure, Error> {
+        let tau = match self {
+            Task::Rest => {
+                let e = finish(initial, settings, REST_TAU)?;
+                let stuck = e.outcome == Outcome::Stuck;
+                return Ok(Measure {
+                    outcome: Some(e.outcome),
+                    value: stuck.then_some(e.q),
+                    tau: stuck.then_some(e.tau),
+                    evals: e.evals,
+                });
+            }
+            Task::Escape | Task::Fig5 => {
+                let t = escape_speed(initial.xi0, initial.phi, settings, vtol)?;
+                return Ok(Measure {
+                    outcome: None,
+                    value: Some(DVec2::new(t.value, 0.0)),
+                    tau: None,
+                    evals: t.rhs_evals,
+                });
+            }
+            Task::Smooth => SMOOTH_TAU,
+            Task::Drift => DRIFT_TAU,
+            Task::Far => FAR_TAU,
+        };
+        let (s, evals) = state_at(initial, settings, tau)?;
+        Ok(Measure {
+            outcome: None,
+            value: Some(s.r),
+            tau: None,
+            evals,
+        })
+    }
+}
+
+/// How far the values of two measures of one case lie apart; infinitely far when the
+/// outcomes differ.
+pub(super) fn value_error(a: &Measure, b: &Measure) -> f64 {
+    if a.outcome != b.outcome {
+        return f64::INFINITY;
+    }
+    match (a.value, b.value) {
+        (Some(x), Some(y)) => distance(x, y),
+        _ => 0.0,
+    }
+}
+
+/// How far two measures of one case lie apart in value and stop time.
+pub(super) fn apart(a: &Measure, b: &Measure) -> f64 {
+    let t = match (a.tau, b.tau) {
+        (Some(x), Some(y)) => (x - y).abs(),
+        _ => 0.0,
+    };
+    value_error(a, b).max(t)
 }
 
 /// Error of the position at τ = `tau` of `initial` with a fixed-step method at `dt`, against
 /// the reference: for measuring the order of the fixed-step methods on a smooth stretch.
 pub fn position_error(initial: Initial, method: Method, dt: f64, tau: f64) -> Result<f64, Error> {
     let (r, _) = state_at(initial, reference(), tau)?;
-    let (s, _) = state_at(initial, Setting::new(method, dt).settings, tau)?;
+    let (s, _) = state_at(initial, Settings::fixed(method, dt), tau)?;
     Ok((s.r - r.r).length())
-}
-
-pub(super) fn escape_rows(cfg: &Config, v_ref: f64) -> Result<Vec<Row>, Error> {
-    let mut settings: Vec<Setting> = vec![];
-    let dts: &[f64] = if cfg.quick {
-        &[1e-2]
-    } else {
-        &[1e-2, 3e-3, 1e-3]
-    };
-    for m in [Method::Rk2, Method::Rk4] {
-        for &dt in dts {
-            settings.push(Setting::new(m, dt));
-        }
-    }
-    for tol in cfg.tols() {
-        if !cfg.quick || tol >= 1e-10 {
-            settings.push(Setting::new(Method::Dp54, tol));
-        }
-    }
-    let mut rows = Vec::new();
-    for s in settings {
-        let (t, ms) = timed(cfg.reps, || escape_speed(0.5, 0.0, s.settings, ESCAPE_VTOL));
-        let t = t?;
-        let err = (t.value - v_ref).abs();
-        rows.push(Row {
-            task: "v_e(0.5,0)".into(),
-            method: s.settings.method().to_string(),
-            setting: setting_label(&s),
-            knob: s.knob(),
-            cases: 1,
-            err_median: err,
-            err_worst: err,
-            time_median: None,
-            time_worst: None,
-            wrong: 0,
-            rhs_evals: t.rhs_evals,
-            evals_median: t.rhs_evals as f64,
-            wall_ms: ms,
-        });
-    }
-    Ok(rows)
-}
-
-pub(super) fn fig5_curve(
-    settings: Settings,
-    n: usize,
-    vtol: f64,
-) -> Result<(Vec<f64>, u64), Error> {
-    let mut evals = 0;
-    let mut v = Vec::with_capacity(n);
-    for i in 0..n {
-        let phi = TAU * i as f64 / n as f64;
-        let t = escape_speed(0.5, phi, settings, vtol)?;
-        evals += t.rhs_evals;
-        v.push(t.value);
-    }
-    Ok((v, evals))
-}
-
-pub(super) fn fig5_rows(
-    cfg: &Config,
-    n: usize,
-    refs: &[f64],
-    vtol: f64,
-) -> Result<Vec<Row>, Error> {
-    let mut settings: Vec<Setting> = vec![];
-    if !cfg.quick {
-        for m in [Method::Rk2, Method::Rk4] {
-            settings.push(Setting::new(m, 1e-2));
-        }
-    }
-    for tol in cfg.tols() {
-        if tol <= 1e-4 && (!cfg.quick || tol >= 1e-10) && tol.log10().round() as i32 % 2 == 0 {
-            settings.push(Setting::new(Method::Dp54, tol));
-        }
-    }
-    let mut rows = Vec::new();
-    for s in settings {
-        let (out, ms) = timed(cfg.reps.min(1), || fig5_curve(s.settings, n, vtol));
-        let (vals, evals) = out?;
-        let errs: Vec<f64> = vals.iter().zip(refs).map(|(a, b)| (a - b).abs()).collect();
-        rows.push(Row {
-            task: format!("fig5 ξ0=0.5 ({n}φ)"),
-            method: s.settings.method().to_string(),
-            setting: setting_label(&s),
-            knob: s.knob(),
-            cases: n,
-            err_median: median(&mut errs.clone()),
-            err_worst: worst(&errs),
-            time_median: None,
-            time_worst: None,
-            wrong: 0,
-            rhs_evals: evals,
-            evals_median: evals as f64 / n as f64,
-            wall_ms: ms,
-        });
-    }
-    Ok(rows)
 }

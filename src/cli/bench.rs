@@ -1,7 +1,7 @@
 //! `turntable bench`: the work–precision table, as text, JSON or braille charts.
 
 use super::{BenchArgs, CmdResult, Error};
-use crate::bench::{self, Config};
+use crate::bench::{self, Config, Task};
 use crate::files::emit;
 
 pub fn bench(a: BenchArgs) -> CmdResult {
@@ -28,10 +28,9 @@ pub fn bench(a: BenchArgs) -> CmdResult {
         bench::table(&report)
     };
     if a.plot {
-        let tasks = ["rest", "drift τ=20", "v_e(0.5,0)"];
-        for t in tasks {
+        for t in [Task::Rest, Task::Drift, Task::Escape] {
             out.push('\n');
-            out.push_str(&bench::plot(&report, t, 64, 16));
+            out.push_str(&bench::plot(&report, t, 72, 20)?);
         }
     }
     emit(None, &out)?;

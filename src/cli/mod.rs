@@ -312,13 +312,12 @@ pub fn check_initial(i: &Initial) -> Result<(), Error> {
 fn explore(cli: &Cli) -> CmdResult {
     let (scene, theme) = (&cli.look.scene, &cli.look.theme);
     let scene = match scene {
-        Some(s) => crate::scene::Scene::load(s).map_err(Error::Invalid)?,
+        Some(s) => crate::scene::Scene::load(s)?,
         None => crate::scene::Scene::default_scene(),
     };
     let no_color = std::env::var_os("NO_COLOR").is_some_and(|v| !v.is_empty());
     let colorterm = std::env::var("COLORTERM").ok();
-    let theme = crate::theme::Theme::resolve(theme.as_deref(), no_color)
-        .map_err(Error::Invalid)?
+    let theme = crate::theme::Theme::resolve(theme.as_deref(), no_color)?
         .with_depth(crate::theme::Depth::from_colorterm(colorterm.as_deref()));
     let units = cli.units.units()?;
     let scene_ref = cli.look.scene.as_deref().map(scene_reference);

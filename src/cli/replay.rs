@@ -24,10 +24,9 @@ pub struct ReplayArgs {
 pub fn run(a: ReplayArgs) -> CmdResult {
     let text = if a.script == "-" {
         crate::files::read_capped(std::io::stdin().lock(), crate::files::READ_CAP)
-            .map_err(|e| Error::Invalid(format!("-: {e}")))?
+            .map_err(|e| e.context("-"))?
     } else {
-        crate::files::read_bounded(std::path::Path::new(&a.script), crate::files::READ_CAP)
-            .map_err(Error::Invalid)?
+        crate::files::read_bounded(std::path::Path::new(&a.script), crate::files::READ_CAP)?
     };
     let (app, opts, steps) = prepare(&text, &a)?;
     let mut so = std::io::BufWriter::new(std::io::stdout().lock());
@@ -43,14 +42,13 @@ pub fn prepare(
 ) -> Result<(crate::app::App, Options, Vec<crate::script::Step>), Error> {
     let steps =
         crate::script::parse(text).map_err(|e| Error::Invalid(format!("{}: {e}", a.script)))?;
-    let own = script_options(text).map_err(|e| Error::Invalid(format!("{}: {e}", a.script)))?;
+    let own = script_options(text).map_err(|e| e.context(&a.script))?;
     let scene = match a.look.scene.as_ref().or(own.scene.as_ref()) {
-        Some(s) => crate::scene::Scene::load(s).map_err(Error::Invalid)?,
+        Some(s) => crate::scene::Scene::load(s)?,
         None => crate::scene::Scene::default_scene(),
     };
     let theme = a.look.theme.as_ref().or(own.theme.as_ref());
-    let theme =
-        crate::theme::Theme::resolve(theme.map(String::as_str), false).map_err(Error::Invalid)?;
+    let theme = crate::theme::Theme::resolve(theme.map(String::as_str), false)?;
     let mut app = crate::app::App::new(scene, theme);
     app.writes_files = false;
     let opts = Options {
@@ -87,11 +85,12 @@ mod tests {
         );
         assert_eq!(
             script_options("# replay: --size").unwrap_err(),
-            "line 1: --size needs a value"
+            Error::invalid("line 1: --size needs a value")
         );
         assert!(
             script_options("\n# replay: --fast")
                 .unwrap_err()
+                .to_string()
                 .starts_with("line 2: unknown")
         );
     }

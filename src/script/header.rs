@@ -1,19 +1,21 @@
 //! A script's own options, in `# replay:` lines: read here, and written here for a recording.
 
+use crate::error::Error;
+
 /// `WxH`, each at most the scripts' own limit.
-pub fn parse_size(s: &str) -> Result<(u16, u16), String> {
-    let bad = || format!("bad size '{s}': expected WxH, e.g. 80x24");
+pub fn parse_size(s: &str) -> Result<(u16, u16), Error> {
+    let bad = || Error::Invalid(format!("bad size '{s}': expected WxH, e.g. 80x24"));
     let (w, h) = s.split_once(['x', 'X']).ok_or_else(bad)?;
-    let n = |t: &str| -> Result<u16, String> {
+    let n = |t: &str| -> Result<u16, Error> {
         if t.is_empty() || !t.bytes().all(|b| b.is_ascii_digit()) {
             return Err(bad());
         }
         match t.parse::<u16>() {
             Ok(v) if v <= crate::script::MAX_SIZE => Ok(v),
-            _ => Err(format!(
+            _ => Err(Error::Invalid(format!(
                 "size {t} out of range 0..={}",
                 crate::script::MAX_SIZE
-            )),
+            ))),
         }
     };
     Ok((n(w)?, n(h)?))
@@ -29,27 +31,30 @@ pub struct ScriptOptions {
     pub theme: Option<String>,
 }
 
-pub fn script_options(text: &str) -> Result<ScriptOptions, String> {
+pub fn script_options(text: &str) -> Result<ScriptOptions, Error> {
     let mut o = ScriptOptions::default();
     for (n, line) in text.lines().enumerate() {
         let Some(args) = line.trim_start().strip_prefix("# replay:") else {
             continue;
         };
-        let words = split_words(args).map_err(|e| format!("line {}: {e}", n + 1))?;
+        let at = format!("line {}", n + 1);
+        let words = split_words(args).map_err(|e| Error::Invalid(format!("{at}: {e}")))?;
         let mut it = words.iter().map(String::as_str);
         while let Some(a) = it.next() {
             let mut value = || {
                 it.next()
-                    .ok_or_else(|| format!("line {}: {a} needs a value", n + 1))
+                    .ok_or_else(|| Error::Invalid(format!("{at}: {a} needs a value")))
             };
             match a {
                 "--ansi" => o.ansi = true,
-                "--size" => {
-                    o.size = Some(parse_size(value()?).map_err(|e| format!("line {}: {e}", n + 1))?)
-                }
+                "--size" => o.size = Some(parse_size(value()?).map_err(|e| e.context(&at))?),
                 "--scene" => o.scene = Some(value()?.to_string()),
                 "--theme" => o.theme = Some(value()?.to_string()),
-                other => return Err(format!("line {}: unknown replay option '{other}'", n + 1)),
+                other => {
+                    return Err(Error::Invalid(format!(
+                        "{at}: unknown replay option '{other}'"
+                    )));
+                }
             }
         }
     }
