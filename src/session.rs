@@ -16,6 +16,11 @@ use std::sync::{Arc, Mutex, MutexGuard};
 /// if the terminal dies under the explorer.
 pub type SharedRecorder = Arc<Mutex<Recorder>>;
 
+/// An empty recorder to share.
+pub fn new_recorder() -> SharedRecorder {
+    Arc::new(Mutex::new(Recorder::new()))
+}
+
 /// The recorder, whatever a panicking holder left behind.
 pub fn lock(r: &SharedRecorder) -> MutexGuard<'_, Recorder> {
     r.lock().unwrap_or_else(|e| e.into_inner())
@@ -30,17 +35,14 @@ pub struct Session<B: Backend> {
 }
 
 impl<B: Backend> Session<B> {
-    /// With `record`, the script starts with the terminal's current size.
-    pub fn new(app: App, backend: B, record: bool) -> Result<Self, B::Error> {
+    /// With a `recorder` (see [`new_recorder`]), the script starts with the terminal's
+    /// current size.
+    pub fn new(app: App, backend: B, recorder: Option<SharedRecorder>) -> Result<Self, B::Error> {
         let term = Terminal::new(backend)?;
-        let recorder = if record {
+        if let Some(r) = &recorder {
             let size = term.size()?;
-            let mut r = Recorder::new();
-            r.resize(size.width, size.height);
-            Some(Arc::new(Mutex::new(r)))
-        } else {
-            None
-        };
+            lock(r).resize(size.width, size.height);
+        }
         Ok(Session {
             app,
             term,
@@ -112,11 +114,6 @@ impl<B: Backend> Session<B> {
     pub fn take_recording(&mut self) -> Option<String> {
         self.recorder.take().map(|r| lock(&r).clone().finish())
     }
-
-    /// The recorder, to read what was recorded from elsewhere (None when not recording).
-    pub fn recorder(&self) -> Option<SharedRecorder> {
-        self.recorder.clone()
-    }
 }
 
 fn ok<T>(r: Result<T, Infallible>) -> T {
@@ -129,7 +126,8 @@ fn ok<T>(r: Result<T, Infallible>) -> T {
 impl Session<TestBackend> {
     /// A session on an off-screen terminal of `width` × `height` cells.
     pub fn headless(app: App, width: u16, height: u16, record: bool) -> Self {
-        ok(Session::new(app, TestBackend::new(width, height), record))
+        let recorder = record.then(new_recorder);
+        ok(Session::new(app, TestBackend::new(width, height), recorder))
     }
 
     pub fn resize(&mut self, width: u16, height: u16) {

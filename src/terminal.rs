@@ -3,7 +3,7 @@
 //! when paused (no redraw when idle).
 
 use crate::app::App;
-use crate::session::{Session, SharedRecorder, lock};
+use crate::session::{Session, SharedRecorder, lock, new_recorder};
 use crossterm::event::{
     self, DisableMouseCapture, EnableMouseCapture, Event, KeyCode, KeyModifiers,
 };
@@ -14,8 +14,8 @@ use crossterm::terminal::{
 use crossterm::{cursor, execute};
 use ratatui::backend::CrosstermBackend;
 use std::io::{self, Stdout, Write};
+use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
 /// Puts the terminal back as it was. Safe to call more than once and on a dead terminal.
@@ -115,11 +115,10 @@ pub fn run(
 ) -> (io::Result<bool>, Option<String>) {
     let flags = Arc::new(Flags::default());
     let finished = Arc::new(AtomicBool::new(false));
-    let recorder: Arc<Mutex<Option<SharedRecorder>>> = Arc::default();
-    let recording = record.is_some();
+    let recorder = record.is_some().then(new_recorder);
     let lost = Lost {
         finished: Arc::clone(&finished),
-        recorder: Arc::clone(&recorder),
+        recorder: recorder.clone(),
         save: record,
     };
     if let Err(e) = watch_signals(Arc::clone(&flags), lost) {
@@ -129,14 +128,13 @@ pub fn run(
     // The analysis pages fill in off this thread: keys never wait for them.
     app.analysis = crate::analysis::Analysis::threaded();
     let mouse = app.mouse_capture();
-    let mut session = match setup(mouse).and_then(|b| Session::new(app, b, recording)) {
+    let mut session = match setup(mouse).and_then(|b| Session::new(app, b, recorder)) {
         Ok(s) => s,
         Err(e) => {
             restore();
             return (Err(e), None);
         }
     };
-    *recorder.lock().unwrap_or_else(|e| e.into_inner()) = session.recorder();
     let result = event_loop(&mut session, fps.clamp(1, 240), &flags);
     finished.store(true, Ordering::Relaxed);
     restore();
@@ -172,7 +170,7 @@ struct Flags {
 /// What the signal watcher needs if the event loop never comes back.
 struct Lost {
     finished: Arc<AtomicBool>,
-    recorder: Arc<Mutex<Option<SharedRecorder>>>,
+    recorder: Option<SharedRecorder>,
     save: Option<SaveRecording>,
 }
 
@@ -196,12 +194,7 @@ fn watch_signals(flags: Arc<Flags>, lost: Lost) -> io::Result<()> {
             std::thread::sleep(Duration::from_millis(600));
             if !lost.finished.load(Ordering::Relaxed) {
                 restore();
-                let shared = lost
-                    .recorder
-                    .lock()
-                    .unwrap_or_else(|e| e.into_inner())
-                    .clone();
-                if let (Some(save), Some(r)) = (lost.save, shared) {
+                if let (Some(save), Some(r)) = (lost.save, lost.recorder) {
                     save(lock(&r).clone().finish());
                 }
                 // The terminal may be gone: a failed write must not panic this thread.
