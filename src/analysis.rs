@@ -5,6 +5,7 @@
 //! Headless (tests, replay) the same pieces are computed inline, so screens stay a function
 //! of the keys.
 
+use crate::engine::method::Scheme;
 use crate::engine::solve::{CLASSIFY_TAU, critical_radius, escape_speed};
 use crate::engine::{Initial, Outcome, Release, Run, Settings};
 use crate::error::Error;
@@ -67,6 +68,22 @@ pub fn settings_for(s: Settings) -> Settings {
         s
     } else {
         Settings::default()
+    }
+}
+
+/// The integration behind a curve's escape speeds: dp54 no tighter than [`CURVE_VTOL`]/100.
+/// Its own error in v_e is about its tol (the v_e rows of `turntable bench`), so a tighter
+/// explorer tol would cost time and change no digit the chart can show.
+pub fn curve_settings(s: Settings) -> Settings {
+    let s = settings_for(s);
+    match s.scheme {
+        Scheme::Dp54 { tol } => Settings {
+            scheme: Scheme::Dp54 {
+                tol: tol.max(1e-2 * CURVE_VTOL),
+            },
+            ..s
+        },
+        _ => s,
     }
 }
 
@@ -145,7 +162,7 @@ pub fn piece(job: &Job, k: usize, settings: Settings) -> Piece {
     match *job {
         Job::Curve { xi0 } => {
             let phi = angle(k, CURVE_POINTS);
-            let v = escape_speed(xi0, phi, settings, CURVE_VTOL)
+            let v = escape_speed(xi0, phi, curve_settings(settings), CURVE_VTOL)
                 .ok()
                 .map(|t| t.value);
             Piece::Escape { i: k, v }

@@ -3,6 +3,7 @@
 use super::runs::state_at;
 use super::tasks::{ESCAPE_VTOL, Measure, Task, value_error};
 use super::{Config, FAR_TAU, FREE_TAU, Row, Saving, Speed, TaskRatio, median, timed};
+use crate::analysis::{Job, Piece, piece, pieces};
 use crate::engine::solve::{escape_speed, sweep_escape};
 use crate::engine::stepper::dp54_plain;
 use crate::engine::{Frame, Initial, Method, Release, Run, Settings};
@@ -109,19 +110,17 @@ pub(super) fn speed(cfg: &Config, all: &[Initial], refs: &[Measure]) -> Result<S
         r?;
         Some(ms)
     };
+    // The escape-speed page's own work for a new ξ0 (the pieces of its job).
+    let curve = Job::Curve { xi0: 0.5 };
     let (r, curve_ms) = timed(cfg.reps.min(2), || {
-        (0..72)
-            .map(|i| {
-                escape_speed(
-                    0.5,
-                    crate::analysis::angle(i, 72),
-                    Settings::default(),
-                    1e-6,
-                )
+        (0..pieces(&curve))
+            .map(|k| match piece(&curve, k, Settings::default()) {
+                Piece::Escape { v: Some(v), .. } => Ok(v),
+                _ => Err(Error::Failed(format!("no escape speed at angle {k}"))),
             })
-            .collect::<Result<Vec<_>, _>>()
+            .collect::<Result<Vec<f64>, Error>>()
     });
-    let top = r?.iter().map(|t| t.value).fold(0.0, f64::max);
+    let top = r?.into_iter().fold(0.0, f64::max);
     let (r, map_ms) = timed(cfg.reps.min(2), || {
         crate::analysis::outcome_map(
             0.5,

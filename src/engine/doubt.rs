@@ -11,7 +11,7 @@
 use super::State;
 use super::method::{Method, Settings, TOL_RANGE};
 use super::run::{Outcome, Run};
-use super::solve::saddle_h;
+use super::saddle::saddle_h;
 
 /// Shadow steps allowed: a shadow that cannot finish within them leaves the outcome in doubt.
 pub const SHADOW_BUDGET: u64 = 200_000;

@@ -8,6 +8,7 @@ pub mod model;
 pub mod par;
 pub mod roots;
 pub mod run;
+pub mod saddle;
 pub mod solve;
 pub mod stepper;
 pub mod stop;

@@ -6,6 +6,7 @@ use super::model::{Initial, Release};
 use super::par::par_map;
 use super::roots::{bisect, golden_min};
 use super::run::{Outcome, Run};
+use super::saddle::{Fate, fate, saddle_h};
 use crate::error::Error;
 use serde::Serialize;
 
@@ -50,16 +51,6 @@ fn scan(
     Ok((first, interval, outcomes))
 }
 
-/// `H = E + ξ − ½ = ½(|u|² − (1 − ξ)²)`: never increases (dH/dτ = −|u| + ξ′ ≤ 0, as
-/// |ξ′| ≤ |u| and dE/dτ = −|u|), and at ξ = 1 it is ½|u|² ≥ 0. So H < 0 at ξ < 1 certifies that
-/// the particle never reaches ξ = 1 again: it will stick. Near the saddle (ξ = 1, u = 0) H is
-/// nearly conserved, and its final value (−½(1 − ξ_rest)² when stuck, ½|u|² on crossing ξ = 1
-/// when escaping) is a smooth, nearly linear function of v0 through the escape speed.
-pub fn saddle_h(s: &crate::engine::State) -> f64 {
-    let gap = 1.0 - s.xi();
-    0.5 * (s.u_lab().length_squared() - gap * gap)
-}
-
 /// Outcome of one classifying run at speed v0, and the smooth measure H at its end when the
 /// run went all the way (see [`saddle_h`]).
 struct Probe {
@@ -101,14 +92,23 @@ fn probe(
                 h: None,
             };
         }
-        if early {
-            let s = run.state();
-            if s.xi() < 1.0 && saddle_h(&s) < 0.0 {
-                break Probe {
-                    escapes: false,
-                    h: None,
-                };
-            }
+        let s = run.state();
+        if early && s.xi() < 1.0 && saddle_h(&s) < 0.0 {
+            break Probe {
+                escapes: false,
+                h: None,
+            };
+        }
+        // Crawling up to the saddle: the slow manifold tells how it ends.
+        if let Some(f) = fate(&s) {
+            let (escapes, h) = match f {
+                Fate::Escapes { h } => (true, h),
+                Fate::Sticks { h } => (false, h),
+            };
+            break Probe {
+                escapes,
+                h: Some(h),
+            };
         }
         if let Err(e) = run.step(CLASSIFY_TAU) {
             *evals += run.cost.rhs_evals;
@@ -306,7 +306,7 @@ fn close_in(
     mut probe: impl FnMut(f64) -> Result<Probe, Error>,
 ) -> Result<(f64, f64, u32), Error> {
     let mut reach = 0.7 * tol;
-    let mut last_escape: Option<(f64, f64)> = None;
+    let mut last: Option<(f64, f64)> = None;
     for _ in 0..12 {
         if hi - lo <= tol {
             return Ok((lo, hi, runs));
@@ -319,27 +319,27 @@ fn close_in(
         let x = if x > lo && x < hi { x } else { 0.5 * (lo + hi) };
         runs += 1;
         let p = probe(x)?;
+        // The local slope from the last two runs with an H, when sane: at loose tolerances H
+        // bends near the saddle and the far secant's slope misleads.
+        if let (Some((x0, h0)), Some(h)) = (last, p.h) {
+            let local = (h0 - h) / (x0 - x);
+            if local > 0.01 * slope && local < 100.0 * slope {
+                slope = local;
+            }
+        }
+        last = p.h.map(|h| (x, h)).or(last);
         if p.escapes {
             hi = x;
-            // The local slope from the last two escaping runs, when sane: at loose
-            // tolerances H bends near the saddle and the far secant's slope misleads.
-            if let (Some((x0, h0)), Some(h)) = (last_escape, p.h) {
-                let local = (h0 - h) / (x0 - x);
-                if local > 0.01 * slope && local < 100.0 * slope {
-                    slope = local;
-                }
-            }
-            last_escape = p.h.map(|h| (x, h));
-            est = match p.h {
-                Some(h) if slope > 0.0 => (x - h / slope).min(x),
-                _ => 0.5 * (lo + hi),
-            };
         } else {
             lo = x;
             // Below the root after all: reach farther.
             reach *= 2.0;
-            est = est.max(lo);
         }
+        est = match p.h {
+            Some(h) if slope > 0.0 => (x - h / slope).clamp(lo, hi),
+            _ if p.escapes => 0.5 * (lo + hi),
+            _ => est.max(lo),
+        };
     }
     let (lo, hi, n) = bisect(lo, hi, tol, |x| probe(x).map(|p| p.escapes))?;
     Ok((lo, hi, runs + n))
