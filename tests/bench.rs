@@ -135,7 +135,7 @@ fn fixed_methods_show_their_order() {
 #[test]
 fn fast_escape_speed_matches_bisection_and_is_certified() {
     let s = Settings::default();
-    for (xi0, phi) in [(0.5, 0.0), (0.8, 0.4), (0.2, 4.0)] {
+    for (xi0, phi) in [(0.5, 0.0), (0.8, 0.4), (0.2, 4.0), (0.001, 2.0), (0.8, 5.5)] {
         let t = escape_speed(xi0, phi, s, 1e-8).unwrap();
         assert!(t.stuck_at.unwrap() < t.escapes_at, "{t:?}");
         assert!(t.escapes_at - t.stuck_at.unwrap() <= 1e-8, "{t:?}");

@@ -8,6 +8,7 @@ use crate::engine::solve::{escape_speed, sweep_escape};
 use crate::engine::stepper::dp54_plain;
 use crate::engine::{Frame, Initial, Method, Release, Run, Settings};
 use crate::error::Error;
+use std::time::Instant;
 
 pub(super) fn savings(cs: &[Initial]) -> Result<Vec<Saving>, Error> {
     let mut out = Vec::new();
@@ -131,6 +132,8 @@ pub(super) fn speed(cfg: &Config, all: &[Initial], refs: &[Measure]) -> Result<S
         )
     });
     r?;
+    let escape_angles = if cfg.quick { 3 } else { 12 };
+    let escape_cli_ms = escape_cli(&xi0s, escape_angles);
     let (frame_ms, frame_trail) = frame_time(cfg.reps)?;
     // Ten seconds of play (three in --quick).
     let terminal_bytes = super::bytes::all(if cfg.quick { 90 } else { 300 })?;
@@ -173,6 +176,8 @@ pub(super) fn speed(cfg: &Config, all: &[Initial], refs: &[Measure]) -> Result<S
         fig5_ms_vtol_1e8,
         curve_ms,
         map_ms,
+        escape_cli_ms,
+        escape_angles,
         rk2_err_median: rk2_err,
         matching_tol: matching.map(|m| m.0),
         matching_err_median: matching.map(|m| m.1),
@@ -181,6 +186,34 @@ pub(super) fn speed(cfg: &Config, all: &[Initial], refs: &[Measure]) -> Result<S
         frame_trail,
         terminal_bytes,
     })
+}
+
+/// The median wall time of `turntable escape --xi0 X --phi P --vtol 1e-8` run as a process
+/// (this executable), over `xi0s` × `n` angles. None if it cannot be run (a test harness).
+fn escape_cli(xi0s: &[f64], n: usize) -> Option<f64> {
+    let exe = std::env::current_exe().ok()?;
+    if exe.file_stem()? != "turntable" {
+        return None;
+    }
+    let mut ms = Vec::new();
+    for &xi0 in xi0s {
+        for k in 0..n {
+            let phi = crate::analysis::angle(k, n).to_string();
+            let t = Instant::now();
+            let out = std::process::Command::new(&exe)
+                .args(["escape", "--xi0", &xi0.to_string(), "--phi", &phi])
+                .args(["--vtol", "1e-8"])
+                .stdout(std::process::Stdio::null())
+                .stderr(std::process::Stdio::null())
+                .status()
+                .ok()?;
+            if !out.success() {
+                return None;
+            }
+            ms.push(t.elapsed().as_secs_f64() * 1e3);
+        }
+    }
+    Some(median(&mut ms))
 }
 
 /// One frame of the explorer as it plays: a tick of simulation and a full draw of the default

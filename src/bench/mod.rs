@@ -119,6 +119,10 @@ pub struct Speed {
     /// thread, and the outcome map's 72 × 60 cells (`sweep map`) on all cores.
     pub curve_ms: f64,
     pub map_ms: f64,
+    /// `turntable escape --vtol 1e-8` as a user runs it, process start included: the median
+    /// wall time over Fig. 5 points (the paper's four ξ0 × `escape_angles` angles).
+    pub escape_cli_ms: Option<f64>,
+    pub escape_angles: usize,
     /// dp54 against rk2 (with stick events) at dt = 1e-3 on the rest task.
     pub rk2_err_median: f64,
     pub matching_tol: Option<f64>,

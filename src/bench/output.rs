@@ -120,6 +120,13 @@ pub fn table(r: &Report) -> String {
         "  escape-speed page, one curve (ξ0 = 0.5, 72 angles, vtol 1e-6, one thread): {:.0} ms   (goal ≤ 50 ms)",
         sp.curve_ms
     );
+    if let Some(ms) = sp.escape_cli_ms {
+        let _ = writeln!(
+            o,
+            "  `turntable escape --vtol 1e-8` on Fig. 5's points (4 ξ0 × {} φ), process start included: {ms:.2} ms median   (goal ≤ 3 ms)",
+            sp.escape_angles
+        );
+    }
     let _ = writeln!(
         o,
         "  outcome map 72 × 60 cells (sweep map, all cores): {:.0} ms   (goal ≤ 1000 ms)",
