@@ -19,8 +19,11 @@ pub const CURVE_POINTS: usize = 72;
 pub const CURVE_VTOL: f64 = 1e-6;
 /// The paper's Fig. 5 radii.
 pub const PAPER_XI0: [f64; 4] = [0.8, 0.5, 0.2, 0.001];
-/// Outcome-map resolution: angles × speeds.
+/// Outcome-map resolution (angles × speeds) before the page has a size on screen; then it is
+/// the plot's, one cell a character.
 pub const MAP_SIZE: (usize, usize) = (72, 40);
+/// The largest map asked for, whatever the terminal.
+pub const MAP_MAX: (usize, usize) = (400, 200);
 /// Radii of the rest-radius curve (Fig. 6), over [0, [`REST_XI0_MAX`]].
 pub const REST_POINTS: usize = 101;
 pub const REST_XI0_MAX: f64 = 1.5;
@@ -30,11 +33,13 @@ pub const REST_XI0_MAX: f64 = 1.5;
 pub enum Job {
     /// v_e(φ) at ξ0 (Fig. 5).
     Curve { xi0: f64 },
-    /// Stuck or escaped over (φ, v0) at ξ0 in a release mode, speeds up to `v0_max`.
+    /// Stuck or escaped over (φ, v0) at ξ0 in a release mode, speeds up to `v0_max`, on a
+    /// grid of `size` = angles × speeds.
     Map {
         xi0: f64,
         release: Release,
         v0_max: f64,
+        size: (usize, usize),
     },
     /// Final rest ξ against ξ0, released at rest in the lab, and ξ0c (Fig. 6).
     Rest,
@@ -87,14 +92,18 @@ pub fn curve_settings(s: Settings) -> Settings {
     }
 }
 
-/// The angles of a curve or map row: φ_i = 2π i / n.
+/// The angles of a curve: φ_i = 2π i / n.
 pub fn angle(i: usize, n: usize) -> f64 {
     std::f64::consts::TAU * i as f64 / n as f64
 }
 
-/// The speed of map row `j` of `m`: from v0_max/m up to v0_max (row 0 at the bottom).
-pub fn map_speed(j: usize, m: usize, v0_max: f64) -> f64 {
-    v0_max * (j + 1) as f64 / m as f64
+/// The (φ, v0) at the centre of map cell `k` (row-major, φ fastest, speeds from the bottom) of
+/// a grid of `size` = angles × speeds over [0, 2π) × [0, v0_max]: what a character of the
+/// map stands for.
+pub fn map_cell(k: usize, (n, m): (usize, usize), v0_max: f64) -> (f64, f64) {
+    let (i, j) = (k % n, k / n);
+    let phi = std::f64::consts::TAU * (i as f64 + 0.5) / n as f64;
+    (phi, v0_max * (j as f64 + 0.5) / m as f64)
 }
 
 /// The release a map cell stands for. With velocity and table-rest releases (φ, v0) are the
@@ -139,7 +148,7 @@ pub fn outcome_map(
     settings: Settings,
 ) -> Result<Vec<MapRow>, Error> {
     let cells: Vec<(f64, f64)> = (0..n * m)
-        .map(|k| (angle(k % n, n), map_speed(k / n, m, v0_max)))
+        .map(|k| map_cell(k, (n, m), v0_max))
         .collect();
     crate::engine::par::par_map(&cells, |&(phi, v0)| {
         classify(map_release(xi0, release, phi, v0), settings).map(|cell| MapRow { phi, v0, cell })
@@ -152,7 +161,7 @@ pub fn outcome_map(
 pub fn pieces(job: &Job) -> usize {
     match job {
         Job::Curve { .. } => CURVE_POINTS,
-        Job::Map { .. } => MAP_SIZE.0 * MAP_SIZE.1,
+        Job::Map { size, .. } => size.0 * size.1,
         Job::Rest => REST_POINTS + 1,
     }
 }
@@ -171,10 +180,10 @@ pub fn piece(job: &Job, k: usize, settings: Settings) -> Piece {
             xi0,
             release,
             v0_max,
+            size,
         } => {
-            let (n, m) = MAP_SIZE;
-            let (i, j) = (k % n, k / n);
-            let initial = map_release(xi0, release, angle(i, n), map_speed(j, m, v0_max));
+            let (phi, v0) = map_cell(k, size, v0_max);
+            let initial = map_release(xi0, release, phi, v0);
             let cell = classify(initial, settings).unwrap_or(Cell {
                 outcome: Outcome::Running,
                 rest: None,
@@ -211,9 +220,12 @@ pub struct Analysis {
     inbox: Vec<Piece>,
 }
 
+/// A job for the worker: its generation, and the pieces still to compute.
+type Request = (u64, Job, Settings, Vec<usize>);
+
 #[derive(Debug)]
 struct Worker {
-    jobs: Sender<(u64, Job, Settings)>,
+    jobs: Sender<Request>,
     pieces: Receiver<(u64, Piece)>,
     generation: Arc<AtomicU64>,
 }
@@ -247,13 +259,13 @@ impl Analysis {
 
     /// Pieces computed on a worker thread and streamed back.
     pub fn threaded() -> Analysis {
-        let (jobs, inbox) = channel::<(u64, Job, Settings)>();
+        let (jobs, inbox) = channel::<Request>();
         let (out, received) = channel();
         let generation = Arc::new(AtomicU64::new(0));
         let current = Arc::clone(&generation);
         std::thread::spawn(move || {
-            while let Ok((gen_id, job, settings)) = inbox.recv() {
-                for k in 0..pieces(&job) {
+            while let Ok((gen_id, job, settings, todo)) = inbox.recv() {
+                for k in todo {
                     if current.load(Ordering::Relaxed) != gen_id {
                         break;
                     }
@@ -274,26 +286,26 @@ impl Analysis {
         }
     }
 
-    /// Asks for `job` (cancelling any other in flight). Inline, it is computed now.
-    pub fn request(&mut self, job: Job, settings: Settings) {
+    /// Asks for the pieces `todo` of `job` (cancelling any other job in flight): those a
+    /// cancelled request left are not computed again. Inline, they are computed now.
+    pub fn request(&mut self, job: Job, settings: Settings, todo: Vec<usize>) {
         self.inbox.clear();
+        let done = pieces(&job) - todo.len().min(pieces(&job));
         match &self.worker {
             Some(w) => {
                 let id = w.generation.fetch_add(1, Ordering::Relaxed) + 1;
                 self.progress = Some(Progress {
                     job,
                     settings,
-                    done: 0,
+                    done,
                 });
-                if w.jobs.send((id, job, settings)).is_err() {
+                if let Err(e) = w.jobs.send((id, job, settings, todo)) {
                     self.worker = None;
-                    self.request(job, settings);
+                    self.request(job, settings, e.0.3);
                 }
             }
             None => {
-                self.inbox = (0..pieces(&job))
-                    .map(|k| piece(&job, k, settings))
-                    .collect();
+                self.inbox = todo.iter().map(|&k| piece(&job, k, settings)).collect();
                 self.progress = Some(Progress {
                     job,
                     settings,

@@ -5,7 +5,7 @@ mod common;
 use common::render;
 use crossterm::event::{KeyCode, KeyEvent, KeyModifiers, MouseButton, MouseEvent, MouseEventKind};
 use std::f64::consts::TAU;
-use turntable::analysis::{self, CURVE_VTOL, MAP_SIZE, PAPER_XI0, map_speed, settings_for};
+use turntable::analysis::{self, CURVE_VTOL, MAP_SIZE, PAPER_XI0, map_cell, settings_for};
 use turntable::app::App;
 use turntable::app::pages::Page;
 use turntable::engine::solve::{critical_radius, escape_speed};
@@ -107,23 +107,33 @@ fn the_outcome_map_agrees_with_the_escape_speeds() {
     let s = settings_for(a.settings);
     let curve = a.charts.curve(0.5, s).unwrap().clone();
     let map = a.charts.map.clone().expect("map");
-    let turntable::analysis::Job::Map { v0_max, .. } = map.job else {
+    let turntable::analysis::Job::Map {
+        v0_max,
+        size: (n, m),
+        ..
+    } = map.job
+    else {
         panic!("{:?}", map.job)
     };
-    let (n, m) = MAP_SIZE;
+    // Not drawn yet: the default grid, whose columns lie between the curve's angles.
+    assert_eq!((n, m), MAP_SIZE);
+    assert_eq!(curve.ve.len(), n);
     let (mut stuck, mut escaped) = (0, 0);
     for j in 0..m {
         for i in 0..n {
             let cell = map.cells[j * n + i].expect("filled");
-            let ve = curve.ve[i].unwrap().unwrap();
-            let v0 = map_speed(j, m, v0_max);
-            if v0 < ve - 1e-3 {
-                assert_eq!(cell.outcome, Outcome::Stuck, "φ_{i} v0 {v0} < {ve}");
+            let (phi, v0) = map_cell(j * n + i, (n, m), v0_max);
+            assert!((phi - analysis::angle(i, n) - 0.5 * TAU / n as f64).abs() < 1e-12);
+            let (a, b) = (curve.ve[i], curve.ve[(i + 1) % n]);
+            let (a, b) = (a.unwrap().unwrap(), b.unwrap().unwrap());
+            let (ve_lo, ve_hi) = (a.min(b), a.max(b));
+            if v0 < ve_lo - 1e-3 {
+                assert_eq!(cell.outcome, Outcome::Stuck, "φ_{i} v0 {v0} < {ve_lo}");
                 let (xi, _) = cell.rest.unwrap();
                 assert!(xi <= 1.0);
                 stuck += 1;
-            } else if v0 > ve + 1e-3 {
-                assert_eq!(cell.outcome, Outcome::Escaped, "φ_{i} v0 {v0} > {ve}");
+            } else if v0 > ve_hi + 1e-3 {
+                assert_eq!(cell.outcome, Outcome::Escaped, "φ_{i} v0 {v0} > {ve_hi}");
                 escaped += 1;
             }
         }

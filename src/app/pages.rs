@@ -2,7 +2,7 @@
 //! what it lacks ([`wanted`]); results arrive piece by piece ([`Charts::apply`]).
 
 use crate::analysis::{
-    CURVE_POINTS, Cell, Job, MAP_SIZE, PAPER_XI0, Piece, REST_POINTS, pieces, settings_for,
+    CURVE_POINTS, Cell, Job, PAPER_XI0, Piece, REST_POINTS, pieces, settings_for,
 };
 use crate::engine::{Initial, Release, Settings};
 
@@ -177,6 +177,35 @@ impl Charts {
         }
     }
 
+    /// The pieces of `job` not yet received (all of them for a job not begun).
+    pub fn missing(&self, job: &Job, settings: Settings) -> Vec<usize> {
+        let have: Vec<bool> = match job {
+            Job::Curve { xi0 } => self
+                .curve(*xi0, settings)
+                .map(|c| c.ve.iter().map(Option::is_some).collect())
+                .unwrap_or_default(),
+            Job::Map { .. } => self
+                .map
+                .as_ref()
+                .filter(|m| m.job == *job && m.settings == settings)
+                .map(|m| m.cells.iter().map(Option::is_some).collect())
+                .unwrap_or_default(),
+            Job::Rest => self
+                .rest
+                .as_ref()
+                .filter(|r| r.settings == settings)
+                .map(|r| {
+                    let mut v: Vec<bool> = r.xi.iter().map(Option::is_some).collect();
+                    v.push(r.critical.is_some());
+                    v
+                })
+                .unwrap_or_default(),
+        };
+        (0..pieces(job))
+            .filter(|&k| !have.get(k).copied().unwrap_or(false))
+            .collect()
+    }
+
     fn rest_for(&mut self, settings: Settings) -> &mut Rest {
         if self.rest.as_ref().is_none_or(|r| r.settings != settings) {
             self.rest = Some(Rest {
@@ -201,8 +230,15 @@ impl Charts {
     }
 }
 
-/// The next job `page` needs and lacks for these initial conditions and settings, if any.
-pub fn wanted(page: Page, charts: &Charts, initial: &Initial, settings: Settings) -> Option<Job> {
+/// The next job `page` needs and lacks for these initial conditions and settings, if any; an
+/// outcome map of `map_size` cells.
+pub fn wanted(
+    page: Page,
+    charts: &Charts,
+    initial: &Initial,
+    settings: Settings,
+    map_size: (usize, usize),
+) -> Option<Job> {
     let settings = settings_for(settings);
     let missing_curve = |xi0: f64| {
         let have = charts.curve(xi0, settings);
@@ -222,6 +258,7 @@ pub fn wanted(page: Page, charts: &Charts, initial: &Initial, settings: Settings
                 xi0: initial.xi0,
                 release: initial.release,
                 v0_max: Charts::map_v0_max(curve, initial.release, initial.xi0),
+                size: map_size,
             };
             let done = charts.map.as_ref().is_some_and(|m| {
                 m.job == job && m.settings == settings && m.cells.iter().all(Option::is_some)
@@ -240,5 +277,5 @@ pub fn wanted(page: Page, charts: &Charts, initial: &Initial, settings: Settings
 /// Cells of the map that have arrived, out of all.
 pub fn map_filled(map: &Map) -> (usize, usize) {
     let done = map.cells.iter().filter(|c| c.is_some()).count();
-    (done, MAP_SIZE.0 * MAP_SIZE.1)
+    (done, map.cells.len())
 }

@@ -191,9 +191,14 @@ impl App {
                 }
             }
             let settings = crate::analysis::settings_for(self.settings);
-            let Some(job) =
-                super::pages::wanted(self.page, &self.charts, &self.initial, self.settings)
-            else {
+            let wanted = super::pages::wanted(
+                self.page,
+                &self.charts,
+                &self.initial,
+                self.settings,
+                self.map_size(),
+            );
+            let Some(job) = wanted else {
                 // Nothing is computed for a page that is not on screen.
                 self.analysis.cancel();
                 break;
@@ -202,11 +207,25 @@ impl App {
                 // In flight, or done and still lacking (a failed piece): ask no more.
                 break;
             }
-            self.analysis.request(job, settings);
+            let todo = self.charts.missing(&job, settings);
+            self.analysis.request(job, settings, todo);
             moved = true;
         }
         self.dirty |= moved;
         moved
+    }
+
+    /// The outcome map's grid: the plot's cells as last drawn (its own plot once drawn, else
+    /// the page drawn before it), so that the map fills in at the screen's resolution.
+    fn map_size(&self) -> (usize, usize) {
+        use crate::analysis::{MAP_MAX, MAP_SIZE};
+        match self.geom {
+            Some(g) if g.page != super::pages::Page::Turntable => (
+                usize::from(g.area.width).clamp(8, MAP_MAX.0),
+                usize::from(g.area.height).clamp(4, MAP_MAX.1),
+            ),
+            _ => MAP_SIZE,
+        }
     }
 
     /// Whether the initial conditions or settings differ from the scene as loaded.

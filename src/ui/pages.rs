@@ -3,7 +3,7 @@
 //! in `time_plots`. Pure: they draw what the app holds and never compute a run.
 
 use super::chart::{self, Chart, Mark, Series};
-use crate::analysis::{MAP_SIZE, PAPER_XI0, REST_POINTS, REST_XI0_MAX};
+use crate::analysis::{PAPER_XI0, REST_POINTS, REST_XI0_MAX};
 use crate::app::pages::{Charts, Page, map_filled};
 use crate::app::{App, CanvasGeom};
 use crate::engine::{Outcome, Release};
@@ -224,17 +224,18 @@ fn outcome_map(f: &mut TuiFrame, area: Rect, app: &App) -> Option<CanvasGeom> {
     };
     // The cells first, then the chart's braille over them.
     let plot = chart::plot_area(area, &c)?;
-    if let Some(m) = map {
-        let (n, rows) = MAP_SIZE;
+    if let Some(m) = map
+        && let crate::analysis::Job::Map {
+            size: (n, rows), ..
+        } = m.job
+    {
         let buf = f.buffer_mut();
         for cy in 0..plot.height {
             for cx in 0..plot.width {
                 let fx = (f64::from(cx) + 0.5) / f64::from(plot.width);
                 let fy = 1.0 - (f64::from(cy) + 0.5) / f64::from(plot.height);
                 let ci = ((fx * n as f64) as usize).min(n - 1);
-                let v = fy * v0_max;
-                // The row whose speed is nearest.
-                let cj = ((v / v0_max * rows as f64).round() as usize).clamp(1, rows) - 1;
+                let cj = ((fy * rows as f64) as usize).min(rows - 1);
                 let Some(Some(cell)) = m.cells.get(cj * n + ci) else {
                     continue;
                 };
