@@ -147,9 +147,7 @@ pub fn outcome_map(
     v0_max: f64,
     settings: Settings,
 ) -> Result<Vec<MapRow>, Error> {
-    let cells: Vec<(f64, f64)> = (0..n * m)
-        .map(|k| map_cell(k, (n, m), v0_max))
-        .collect();
+    let cells: Vec<(f64, f64)> = (0..n * m).map(|k| map_cell(k, (n, m), v0_max)).collect();
     crate::engine::par::par_map(&cells, |&(phi, v0)| {
         classify(map_release(xi0, release, phi, v0), settings).map(|cell| MapRow { phi, v0, cell })
     })

@@ -245,3 +245,54 @@ fn pages_survive_every_size() {
         }
     }
 }
+
+/// The map is computed at the plot's size once drawn (one character, one release), again after
+/// a resize; and a job asked for again computes only the pieces still missing.
+#[test]
+fn the_map_fills_the_plot_and_a_return_computes_only_what_is_missing() {
+    use turntable::analysis::{Analysis, Job, Piece};
+    let mut a = app("C");
+    a.page = Page::OutcomeMap;
+    a.sync_analysis();
+    render(&mut a, 90, 26);
+    a.sync_analysis();
+    let size = |a: &App| match a.charts.map.as_ref().map(|m| m.job) {
+        Some(Job::Map { size, .. }) => size,
+        other => panic!("{other:?}"),
+    };
+    let plot = a.geom_for_tests().expect("drawn").area;
+    assert_eq!(
+        size(&a),
+        (usize::from(plot.width), usize::from(plot.height))
+    );
+    render(&mut a, 120, 40);
+    a.sync_analysis();
+    render(&mut a, 120, 40);
+    let plot = a.geom_for_tests().unwrap().area;
+    assert_eq!(
+        size(&a),
+        (usize::from(plot.width), usize::from(plot.height))
+    );
+    let map = a.charts.map.clone().unwrap();
+    assert!(map.cells.iter().all(Option::is_some));
+    // Two cells lost: those two are what is missing, and all a new request computes.
+    let mut charts = a.charts.clone();
+    let cells = &mut charts.map.as_mut().unwrap().cells;
+    cells[3] = None;
+    cells[17] = None;
+    let s = settings_for(a.settings);
+    assert_eq!(charts.missing(&map.job, s), vec![3, 17]);
+    let mut an = Analysis::inline();
+    an.request(map.job, s, charts.missing(&map.job, s));
+    let got = an.take();
+    assert_eq!(got.len(), 2);
+    for (p, k) in got.into_iter().zip([3, 17]) {
+        assert_eq!(
+            p,
+            Piece::Cell {
+                i: k,
+                cell: map.cells[k].unwrap()
+            }
+        );
+    }
+}
