@@ -39,10 +39,12 @@ impl<B: Backend> Session<B> {
     /// current size.
     pub fn new(app: App, backend: B, recorder: Option<SharedRecorder>) -> Result<Self, B::Error> {
         let term = Terminal::new(backend)?;
+        let size = term.size()?;
         if let Some(r) = &recorder {
-            let size = term.size()?;
             lock(r).resize(size.width, size.height);
         }
+        let mut app = app;
+        app.resize(size.width, size.height);
         Ok(Session {
             app,
             term,
@@ -91,7 +93,7 @@ impl<B: Backend> Session<B> {
         if let Some(r) = &self.recorder {
             lock(r).resize(width, height);
         }
-        self.app.invalidate();
+        self.app.resize(width, height);
     }
 
     pub fn draw(&mut self) -> Result<(), B::Error> {

@@ -6,6 +6,7 @@ use crossterm::event::{KeyCode, KeyEvent, KeyModifiers, MouseButton, MouseEvent,
 use turntable::app::keymap::KEYMAP;
 use turntable::app::pages::Page;
 use turntable::app::{Action, App};
+use turntable::engine::units::Units;
 use turntable::engine::{Frame, Outcome, Run, Settings, Status};
 use turntable::scene::{PRESETS, Scene};
 use turntable::theme::Theme;
@@ -196,6 +197,11 @@ fn every_key_in_the_keymap_does_what_its_help_says() {
                 a.forces && after.contains("friction") && !after.contains("Coriolis")
             }
             Action::EstimateError => after.contains("|Δr| ="),
+            // Off at first: the first press turns SI units on at the paper's table.
+            Action::Unit(..) => {
+                a.units == Some(Units::paper()) && after.contains("SI units: μ 0.15")
+            }
+            Action::UnitsOff => a.units.is_none() && after.contains("SI units off"),
             Action::ZoomIn => a.zoom > zoom,
             Action::ZoomOut => a.zoom < zoom,
             Action::Pan(dx, dy) => {
@@ -727,4 +733,39 @@ fn integrator_steps_one_at_a_time() {
         assert_eq!((st.h, st.limit), (1e-3, Limit::FixedStep));
     }
     assert_eq!(a.sim.run.outcome(), Outcome::Running);
+}
+
+/// SI units from the keys: the first press turns them on at the paper's table, the next change
+/// μ, rpm and g; the panel and the time plots' axes show SI values; Alt-u turns them off.
+#[test]
+fn unit_keys_give_si_readouts_and_axes() {
+    let mut a = App::new(Scene::default_scene(), Theme::builtin("dark").unwrap());
+    let press = |a: &mut App, c: char, m: KeyModifiers| {
+        a.handle_key(KeyEvent::new(KeyCode::Char(c), m));
+    };
+    press(&mut a, 'u', KeyModifiers::NONE);
+    assert_eq!(a.units, Some(Units::paper()));
+    press(&mut a, 'u', KeyModifiers::NONE);
+    press(&mut a, 'w', KeyModifiers::NONE);
+    press(&mut a, 'G', KeyModifiers::NONE);
+    let u = a.units.unwrap();
+    let paper = Units::paper();
+    assert!((u.mu - 0.16).abs() < 1e-12, "{u:?}");
+    assert!((u.rpm - (paper.rpm + 1.0)).abs() < 1e-9, "{u:?}");
+    assert!((u.g - 9.8).abs() < 1e-12, "{u:?}");
+    let screen = render(&mut a, 100, 30);
+    // R_max = μg/Ω² for this table, as the notice says.
+    let r_max = 0.16 * 9.8 / (u.omega() * u.omega());
+    let shown = turntable::engine::units::show_length(r_max);
+    assert!(screen.contains(&shown), "{shown}\n{screen}");
+    // The time plots' axes carry the unit's SI value.
+    a.page = Page::TimePlots;
+    let screen = render(&mut a, 100, 30);
+    let tau = turntable::engine::units::show_time(1.0 / u.omega());
+    assert!(screen.contains(&format!("τ (1 = {tau})")), "{screen}");
+    assert!(screen.contains(&format!("ξ (1 = {shown})")), "{screen}");
+    press(&mut a, 'u', KeyModifiers::ALT);
+    assert_eq!(a.units, None);
+    let screen = render(&mut a, 100, 30);
+    assert!(!screen.contains("(1 ="), "{screen}");
 }

@@ -5,7 +5,7 @@ mod common;
 use common::render;
 use crossterm::event::{KeyCode, KeyEvent, KeyModifiers, MouseButton, MouseEvent, MouseEventKind};
 use std::f64::consts::TAU;
-use turntable::analysis::{self, CURVE_VTOL, MAP_SIZE, PAPER_XI0, map_cell, settings_for};
+use turntable::analysis::{self, CURVE_VTOL, PAPER_XI0, map_cell, settings_for};
 use turntable::app::App;
 use turntable::app::pages::Page;
 use turntable::engine::solve::{critical_radius, escape_speed};
@@ -115,16 +115,18 @@ fn the_outcome_map_agrees_with_the_escape_speeds() {
     else {
         panic!("{:?}", map.job)
     };
-    // Not drawn yet: the default grid, whose columns lie between the curve's angles.
-    assert_eq!((n, m), MAP_SIZE);
-    assert_eq!(curve.ve.len(), n);
+    // One cell a character of the plot at 80×24 (the app's size until told otherwise).
+    assert_eq!((n, m), (44, 16));
+    let c = curve.ve.len();
     let (mut stuck, mut escaped) = (0, 0);
     for j in 0..m {
         for i in 0..n {
             let cell = map.cells[j * n + i].expect("filled");
             let (phi, v0) = map_cell(j * n + i, (n, m), v0_max);
             assert!((phi - analysis::angle(i, n) - 0.5 * TAU / n as f64).abs() < 1e-12);
-            let (a, b) = (curve.ve[i], curve.ve[(i + 1) % n]);
+            // v_e at the cell's angle lies between the curve's neighbours there.
+            let k = (phi / TAU * c as f64) as usize;
+            let (a, b) = (curve.ve[k], curve.ve[(k + 1) % c]);
             let (a, b) = (a.unwrap().unwrap(), b.unwrap().unwrap());
             let (ve_lo, ve_hi) = (a.min(b), a.max(b));
             if v0 < ve_lo - 1e-3 {
@@ -138,7 +140,7 @@ fn the_outcome_map_agrees_with_the_escape_speeds() {
             }
         }
     }
-    assert!(stuck > 500 && escaped > 500, "{stuck} {escaped}");
+    assert!(stuck > 200 && escaped > 200, "{stuck} {escaped}");
     assert!(v0_max > curve.extremes().unwrap().1.1);
     let screen = render(&mut a, 100, 30);
     assert!(screen.contains('▓') && screen.contains('·'), "{screen}");

@@ -59,4 +59,17 @@ pub enum Action {
     /// The μ measurement: change Ω (rad/s) or r0c (m) by this much.
     Omega(f64),
     R0c(f64),
+    /// SI units: change μ, the table's rpm or g by this much (turning units on, from the
+    /// paper's table, if they were off).
+    Unit(UnitKnob, f64),
+    /// Dimensionless readouts only.
+    UnitsOff,
+}
+
+/// The physical constants the SI readouts rest on.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum UnitKnob {
+    Mu,
+    Rpm,
+    G,
 }

@@ -1,7 +1,7 @@
 //! The one key table: it dispatches keys and it generates the help overlay, so they cannot
 //! disagree.
 
-use super::action::Action;
+use super::action::{Action, UnitKnob};
 use super::chord::Chord;
 use crossterm::event::{KeyCode, KeyModifiers};
 use std::f64::consts::PI;
@@ -63,18 +63,18 @@ pub const KEYMAP: &[Binding] = &[
     b(ch(']'), N, Action::Faster, "speed ×2 / ÷2", "time"),
     b(ch('['), N, Action::Slower, "speed ×2 / ÷2", "time"),
     b(ch('r'), N, Action::Restart, "restart at τ = 0", "time"),
-    b(ch('x'), N, Action::Xi0(XI0_FINE), "ξ0 +/− 0.01", "initial conditions"),
-    b(ch('X'), N, Action::Xi0(-XI0_FINE), "ξ0 +/− 0.01", "initial conditions"),
-    b(ch('x'), A, Action::Xi0(XI0_COARSE), "ξ0 +/− 0.1", "initial conditions"),
-    b(ch('X'), A, Action::Xi0(-XI0_COARSE), "ξ0 +/− 0.1", "initial conditions"),
-    b(ch('p'), N, Action::Phi(PHI_FINE), "φ +/− 0.01π", "initial conditions"),
-    b(ch('P'), N, Action::Phi(-PHI_FINE), "φ +/− 0.01π", "initial conditions"),
-    b(ch('p'), A, Action::Phi(PHI_COARSE), "φ +/− 0.1π", "initial conditions"),
-    b(ch('P'), A, Action::Phi(-PHI_COARSE), "φ +/− 0.1π", "initial conditions"),
-    b(ch('v'), N, Action::V0(V0_FINE), "v0 +/− 0.001", "initial conditions"),
-    b(ch('V'), N, Action::V0(-V0_FINE), "v0 +/− 0.001", "initial conditions"),
-    b(ch('v'), A, Action::V0(V0_COARSE), "v0 +/− 0.05", "initial conditions"),
-    b(ch('V'), A, Action::V0(-V0_COARSE), "v0 +/− 0.05", "initial conditions"),
+    b(ch('x'), N, Action::Xi0(XI0_FINE), "ξ0 ±0.01 (Alt ±0.1)", "initial conditions"),
+    b(ch('X'), N, Action::Xi0(-XI0_FINE), "ξ0 ±0.01 (Alt ±0.1)", "initial conditions"),
+    b(ch('x'), A, Action::Xi0(XI0_COARSE), "ξ0 ±0.01 (Alt ±0.1)", "initial conditions"),
+    b(ch('X'), A, Action::Xi0(-XI0_COARSE), "ξ0 ±0.01 (Alt ±0.1)", "initial conditions"),
+    b(ch('p'), N, Action::Phi(PHI_FINE), "φ ±0.01π (Alt ±0.1π)", "initial conditions"),
+    b(ch('P'), N, Action::Phi(-PHI_FINE), "φ ±0.01π (Alt ±0.1π)", "initial conditions"),
+    b(ch('p'), A, Action::Phi(PHI_COARSE), "φ ±0.01π (Alt ±0.1π)", "initial conditions"),
+    b(ch('P'), A, Action::Phi(-PHI_COARSE), "φ ±0.01π (Alt ±0.1π)", "initial conditions"),
+    b(ch('v'), N, Action::V0(V0_FINE), "v0 ±0.001 (Alt ±0.05)", "initial conditions"),
+    b(ch('V'), N, Action::V0(-V0_FINE), "v0 ±0.001 (Alt ±0.05)", "initial conditions"),
+    b(ch('v'), A, Action::V0(V0_COARSE), "v0 ±0.001 (Alt ±0.05)", "initial conditions"),
+    b(ch('V'), A, Action::V0(-V0_COARSE), "v0 ±0.001 (Alt ±0.05)", "initial conditions"),
     b(ch('R'), N, Action::CycleRelease, "release: v0/table/lab", "initial conditions"),
     b(ch('F'), N, Action::ToggleFriction, "friction off (μ = 0) / on", "initial conditions"),
     b(ch('0'), N, Action::ResetScene, "reset to the scene", "initial conditions"),
@@ -110,6 +110,13 @@ pub const KEYMAP: &[Binding] = &[
     b(ch('O'), N, Action::Omega(-0.1), "μ probe: Ω, r0c", "view"),
     b(ch('d'), N, Action::R0c(0.001), "μ probe: Ω, r0c", "view"),
     b(ch('D'), N, Action::R0c(-0.001), "μ probe: Ω, r0c", "view"),
+    b(ch('u'), N, Action::Unit(UnitKnob::Mu, 0.01), "SI units: μ ±0.01", "view"),
+    b(ch('U'), N, Action::Unit(UnitKnob::Mu, -0.01), "SI units: μ ±0.01", "view"),
+    b(ch('w'), N, Action::Unit(UnitKnob::Rpm, 1.0), "table rpm ±1", "view"),
+    b(ch('W'), N, Action::Unit(UnitKnob::Rpm, -1.0), "table rpm ±1", "view"),
+    b(ch('g'), N, Action::Unit(UnitKnob::G, 0.01), "g ±0.01 m/s²", "view"),
+    b(ch('G'), N, Action::Unit(UnitKnob::G, -0.01), "g ±0.01 m/s²", "view"),
+    b(ch('u'), A, Action::UnitsOff, "SI units off", "view"),
     b(ch('?'), N, Action::ToggleHelp, "help on / off", "app"),
     b(ch('s'), N, Action::Save, "save scene (toml)", "app"),
     b(ch('M'), N, Action::ToggleMouse, "mouse capture on/off", "app"),

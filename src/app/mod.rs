@@ -92,9 +92,16 @@ impl App {
         self.dirty = false;
     }
 
-    /// Forces the next frame to be drawn (after a resize).
+    /// Forces the next frame to be drawn (after the terminal was cleared).
     pub fn invalidate(&mut self) {
         self.dirty = true;
+    }
+
+    /// The terminal is now `width` × `height`: redraw, and size what is computed for it.
+    pub fn resize(&mut self, width: u16, height: u16) {
+        self.screen = (width, height);
+        self.dirty = true;
+        self.sync_analysis();
     }
 
     /// The canvas geometry of the last draw (where mouse cells land in world coordinates).

@@ -19,6 +19,8 @@ pub const ZOOM_RANGE: (f64, f64) = (1.0 / 64.0, 1024.0);
 pub const G_DEFAULT: f64 = 9.81;
 /// The μ measurement's starting values: the paper's Ω = 3.3 rad/s and r0c = 0.12 m (Sec. IV).
 pub const MU_PROBE: (f64, f64) = (3.3, 0.12);
+/// Width of the readout panel beside the picture (wide terminals).
+pub const PANEL_W: u16 = 30;
 /// Where `s` saves the scene.
 pub const SAVE_PATH: &str = "turntable-scene.toml";
 
@@ -99,6 +101,8 @@ pub struct App {
     pub mu_probe: (f64, f64),
     pub(crate) dirty: bool,
     pub(crate) geom: Option<CanvasGeom>,
+    /// The terminal's size, as its session last said (the outcome map's grid follows it).
+    pub(crate) screen: (u16, u16),
     /// Mouse drag in progress: setting the initial velocity.
     pub(crate) dragging: bool,
 }
@@ -146,6 +150,7 @@ impl App {
             units,
             dirty: true,
             geom: None,
+            screen: (80, 24),
             dragging: false,
         }
     }
@@ -215,17 +220,18 @@ impl App {
         moved
     }
 
-    /// The outcome map's grid: the plot's cells as last drawn (its own plot once drawn, else
-    /// the page drawn before it), so that the map fills in at the screen's resolution.
+    /// The outcome map's grid: one cell a character of its plot at this terminal size (the
+    /// plot of the wide layout: the body less the panel, the box, a four-column tick gutter,
+    /// the legend and the two axis lines). A function of the size, not of when frames were
+    /// drawn, so that the same keys give the same map.
     fn map_size(&self) -> (usize, usize) {
-        use crate::analysis::{MAP_MAX, MAP_SIZE};
-        match self.geom {
-            Some(g) if g.page != super::pages::Page::Turntable => (
-                usize::from(g.area.width).clamp(8, MAP_MAX.0),
-                usize::from(g.area.height).clamp(4, MAP_MAX.1),
-            ),
-            _ => MAP_SIZE,
-        }
+        use crate::analysis::MAP_MAX;
+        let (w, h) = self.screen;
+        let body = (w.saturating_sub(PANEL_W), h.saturating_sub(3));
+        (
+            usize::from(body.0.saturating_sub(2 + 4)).clamp(8, MAP_MAX.0),
+            usize::from(body.1.saturating_sub(2 + 3)).clamp(4, MAP_MAX.1),
+        )
     }
 
     /// Whether the initial conditions or settings differ from the scene as loaded.

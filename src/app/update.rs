@@ -1,6 +1,6 @@
 //! The pure update: an action applied to the state. No I/O but `Save`, no clock.
 
-use super::action::Action;
+use super::action::{Action, UnitKnob};
 use super::pages::Page;
 use super::state::{App, SPEED_RANGE, ZOOM_RANGE, make_sim};
 use crate::engine::method::{DT_RANGE, TOL_RANGE};
@@ -256,6 +256,27 @@ pub fn update(app: &mut App, action: Action) {
                 app.initial.v0,
                 app.initial.phi.rem_euclid(std::f64::consts::TAU) / std::f64::consts::PI
             ));
+        }
+        Action::Unit(knob, d) => {
+            use crate::engine::units::Units;
+            let was = app.units;
+            let mut u = was.unwrap_or(Units::paper());
+            if was.is_some() {
+                let (x, lo, hi) = match knob {
+                    UnitKnob::Mu => (&mut u.mu, 0.01, 10.0),
+                    UnitKnob::Rpm => (&mut u.rpm, 1.0, 1e4),
+                    UnitKnob::G => (&mut u.g, 0.01, 1e3),
+                };
+                *x = round_sig((*x + d).clamp(lo, hi));
+            }
+            if let Ok(u) = Units::new(u.mu, u.rpm, u.g) {
+                app.units = Some(u);
+                app.notice = Some(format!("SI units: {}", u.describe()));
+            }
+        }
+        Action::UnitsOff => {
+            app.units = None;
+            app.notice = Some("SI units off: dimensionless readouts only".into());
         }
         Action::Omega(d) | Action::R0c(d) => {
             let (omega, r0c) = &mut app.mu_probe;

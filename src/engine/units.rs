@@ -50,6 +50,49 @@ impl Units {
     pub fn speed_m_s(&self) -> f64 {
         self.r_max_m() / self.t_s()
     }
+
+    /// The table of the paper's μ measurement (Sec. IV, Eq. 22): μ = 0.15 at Ω = 3.3 rad/s,
+    /// under g = 9.81 m/s². The explorer starts from it when SI units are first asked for.
+    pub fn paper() -> Units {
+        Units {
+            mu: 0.15,
+            rpm: 3.3 * 60.0 / std::f64::consts::TAU,
+            g: 9.81,
+        }
+    }
+
+    /// The table and its scales, one line: `μ 0.15, 31.5 rpm, g 9.81 m/s²: R_max 13.5 cm,
+    /// 1/Ω 303 ms`.
+    pub fn describe(&self) -> String {
+        format!(
+            "μ {}, {} rpm, g {} m/s²: R_max {}, 1/Ω {}",
+            sig(self.mu),
+            sig(self.rpm),
+            sig(self.g),
+            self.unit_of(Quantity::Length),
+            self.unit_of(Quantity::Time)
+        )
+    }
+
+    /// The SI value of one dimensionless unit of `q`: `13.5 cm`, `303 ms`, `0.446 m/s`.
+    pub fn unit_of(&self, q: Quantity) -> String {
+        match q {
+            Quantity::Length => show_length(self.r_max_m()),
+            Quantity::Time => show_time(self.t_s()),
+            Quantity::Speed => format!("{} m/s", sig(self.speed_m_s())),
+            Quantity::Rate => format!("{} rad/s", sig(self.omega())),
+        }
+    }
+}
+
+/// What an axis or a readout measures, for its SI unit: lengths in R_max, times in 1/Ω,
+/// speeds in μg/Ω, angular velocities in Ω (Sec. II).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Quantity {
+    Length,
+    Time,
+    Speed,
+    Rate,
 }
 
 /// A length in metres, short: `7.12 cm`, `1.5 m`, `820 µm`.
@@ -105,6 +148,15 @@ mod tests {
         assert_eq!(show_length(u.r_max_m()), "13.5 cm");
         assert_eq!(show_time(u.t_s()), "303 ms");
         assert_eq!(show_length(2.5), "2.50 m");
+        assert_eq!(u, Units::paper());
+        assert_eq!(u.unit_of(Quantity::Length), "13.5 cm");
+        assert_eq!(u.unit_of(Quantity::Time), "303 ms");
+        assert_eq!(u.unit_of(Quantity::Speed), "0.45 m/s");
+        assert_eq!(u.unit_of(Quantity::Rate), "3.30 rad/s");
+        assert_eq!(
+            u.describe(),
+            "μ 0.15, 31.5 rpm, g 9.81 m/s²: R_max 13.5 cm, 1/Ω 303 ms"
+        );
         for bad in [(0.0, 33.0, 9.81), (0.2, f64::NAN, 9.81), (0.2, 33.0, -1.0)] {
             assert!(Units::new(bad.0, bad.1, bad.2).is_err(), "{bad:?}");
         }

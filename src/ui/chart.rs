@@ -1,6 +1,7 @@
 //! A braille chart with labelled axes, tick values and a legend: what every analysis page
 //! draws with. The plot area it returns maps mouse cells back to data (see `CanvasGeom`).
 
+use crate::engine::units::{Quantity, Units};
 use crate::theme::Theme;
 use ratatui::Frame as TuiFrame;
 use ratatui::layout::Rect;
@@ -54,6 +55,15 @@ pub struct Chart {
     pub y: [f64; 2],
     pub series: Vec<Series>,
     pub marks: Vec<Mark>,
+}
+
+/// An axis name with the SI value of its unit beside it when the table is real:
+/// `τ (1 = 303 ms)`.
+pub fn axis(name: &str, q: Quantity, units: Option<Units>) -> String {
+    match units {
+        Some(u) => format!("{name} (1 = {})", u.unit_of(q)),
+        None => name.to_string(),
+    }
 }
 
 /// Tick values: a 1-2-5 step giving about `n` ticks over `[a, b]`.

@@ -10,7 +10,8 @@ use ratatui::widgets::{Block, Borders, Clear, Paragraph, Wrap};
 use unicode_width::UnicodeWidthStr;
 
 /// Help rows per group: bindings with the same help text share a row, keys joined by `/`
-/// (a shared modifier written once: `Alt-x/X`, `Shift-←/↓/↑/→`).
+/// (a shared modifier written once: `Alt-x/X`, `Shift-←/↓/↑/→`; the same keys again with a
+/// modifier after them: `x/X (Alt)`).
 pub fn rows() -> Vec<(&'static str, Vec<(String, &'static str)>)> {
     GROUPS
         .iter()
@@ -26,9 +27,25 @@ pub fn rows() -> Vec<(&'static str, Vec<(String, &'static str)>)> {
                 .into_iter()
                 .map(|(keys, help)| {
                     let mods = keys[0].chord.mods;
-                    let label = if keys.iter().all(|b| b.chord.mods == mods) {
-                        let tails: Vec<String> = keys.iter().map(|b| b.chord.key_label()).collect();
-                        keys[0].chord.mods_label() + &tails.join("/")
+                    let tails = |m| -> Vec<String> {
+                        keys.iter()
+                            .filter(|b| b.chord.mods == m)
+                            .map(|b| b.chord.key_label())
+                            .collect()
+                    };
+                    let others: Vec<&crate::app::Binding> = keys
+                        .iter()
+                        .copied()
+                        .filter(|b| b.chord.mods != mods)
+                        .collect();
+                    let label = if others.is_empty() {
+                        keys[0].chord.mods_label() + &tails(mods).join("/")
+                    } else if others.iter().all(|b| b.chord.mods == others[0].chord.mods)
+                        && tails(others[0].chord.mods) == tails(mods)
+                    {
+                        // The same keys again with a modifier: `x/X (Alt)`.
+                        let m = others[0].chord.mods_label();
+                        format!("{} ({})", tails(mods).join("/"), m.trim_end_matches('-'))
                     } else {
                         let labels: Vec<String> = keys.iter().map(|b| b.chord.label()).collect();
                         labels.join("/")

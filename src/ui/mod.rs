@@ -18,8 +18,7 @@ use ratatui::widgets::{Paragraph, Wrap};
 
 /// Below this the explorer shows a "too small" notice instead.
 pub const MIN_SIZE: (u16, u16) = (40, 12);
-/// Width of the readout panel beside the canvas.
-pub const PANEL_W: u16 = 30;
+pub use crate::app::state::PANEL_W;
 
 /// Draws the whole screen and returns where the canvas went (None when there is none), for
 /// the caller to hand to [`App::drawn`] so mouse cells map to the table. Pure: it reads the

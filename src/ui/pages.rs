@@ -6,6 +6,7 @@ use super::chart::{self, Chart, Mark, Series};
 use crate::analysis::{PAPER_XI0, REST_POINTS, REST_XI0_MAX};
 use crate::app::pages::{Charts, Page, map_filled};
 use crate::app::{App, CanvasGeom};
+use crate::engine::units::Quantity;
 use crate::engine::{Outcome, Release};
 use crate::ui::panel::num;
 use ratatui::Frame as TuiFrame;
@@ -137,7 +138,7 @@ fn escape_speed(f: &mut TuiFrame, area: Rect, app: &App) -> Option<CanvasGeom> {
         title: format!("escape speed v_e(φ), ξ0 = {}{progress}", num(i.xi0, 3)),
         note,
         x_label: "φ".into(),
-        y_label: "v_e".into(),
+        y_label: chart::axis("v_e", Quantity::Speed, app.units),
         x: [0.0, TAU],
         y: [0.0, (1.1 * top).max(0.1)],
         series,
@@ -211,7 +212,7 @@ fn outcome_map(f: &mut TuiFrame, area: Rect, app: &App) -> Option<CanvasGeom> {
         ),
         note: String::new(),
         x_label: format!("φ ({frame_word} frame)  blank: escapes  ·:▒▓ stuck at ξ <¼ <½ <¾ ≤1"),
-        y_label: "v0".into(),
+        y_label: chart::axis("v0", Quantity::Speed, app.units),
         x: [0.0, TAU],
         y: [0.0, v0_max],
         series,
@@ -305,8 +306,8 @@ fn rest_radius(f: &mut TuiFrame, area: Rect, app: &App) {
     let c = Chart {
         title: format!("rest radius (Fig. 6): at rest in the lab at ξ0{progress}"),
         note: xi0c.map_or(String::new(), |c| format!("ξ0c = {}", num(c, 6))),
-        x_label: "ξ0".into(),
-        y_label: "final ξ".into(),
+        x_label: chart::axis("ξ0", Quantity::Length, app.units),
+        y_label: chart::axis("final ξ", Quantity::Length, app.units),
         x: [0.0, REST_XI0_MAX],
         y: [0.0, 1.05],
         series: vec![

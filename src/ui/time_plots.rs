@@ -5,6 +5,7 @@
 use super::chart::{self, Chart, Mark, Series, extent};
 use crate::app::App;
 use crate::engine::approx::{TABLE_REST_WINDOW, lab_rest, lab_rest_window, table_rest};
+use crate::engine::units::Quantity;
 use crate::engine::{Frame, Release, State, Status};
 use crate::ui::panel::num;
 use ratatui::Frame as TuiFrame;
@@ -163,10 +164,10 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) {
         },
     ];
     let plots = [
-        ("ξ", xi_s),
-        (theta_name, th_s),
-        ("|u|", u_s),
-        ("dE/dτ = −|u|:", e_s),
+        ("ξ", Some(Quantity::Length), xi_s),
+        (theta_name, Some(Quantity::Rate), th_s),
+        ("|u|", Some(Quantity::Speed), u_s),
+        ("dE/dτ = −|u|:", None, e_s),
     ];
     // As many plots as fit (ξ first), each at least a legend line and three rows; the τ axis
     // under the last.
@@ -180,17 +181,20 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) {
             .collect::<Vec<_>>(),
     )
     .split(inner);
-    for (k, (name, s)) in plots.into_iter().take(fit).enumerate() {
+    for (k, (name, quantity, s)) in plots.into_iter().take(fit).enumerate() {
         let y = extent(s.iter().flat_map(|s| s.points.iter().map(|p| p.1)));
         let c = Chart {
             title: String::new(),
             note: String::new(),
             x_label: if k + 1 == fit {
-                "τ".into()
+                chart::axis("τ", Quantity::Time, app.units)
             } else {
                 String::new()
             },
-            y_label: name.into(),
+            y_label: match quantity {
+                Some(q) => chart::axis(name, q, app.units),
+                None => name.into(),
+            },
             x,
             y,
             series: s,

@@ -21,6 +21,7 @@ pub fn turntable(args: &[&str]) -> (i32, String, String) {
 /// loop does) and returns the screen as text, one line per row.
 pub fn render(app: &mut turntable::app::App, w: u16, h: u16) -> String {
     let mut t = ratatui::Terminal::new(ratatui::backend::TestBackend::new(w, h)).unwrap();
+    app.resize(w, h);
     let mut geom = None;
     t.draw(|f| geom = turntable::ui::draw(f, app)).unwrap();
     app.drawn(geom);
