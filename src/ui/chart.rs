@@ -276,6 +276,10 @@ pub fn render_bare(
                 }
             }
             ctx.layer();
+            // Line labels along the top, a row lower where one would overwrite another.
+            // One text row in y (the canvas puts text at row ⌊(y1 − y)/(y1 − y0)·(h − 1)⌋).
+            let row = (y[1] - y[0]) / f64::from(plot.height.max(2) - 1);
+            let mut taken: Vec<(f64, f64, usize)> = Vec::new();
             for m in &chart.marks {
                 match m {
                     Mark::VLine {
@@ -290,9 +294,18 @@ pub fn render_bare(
                         } else {
                             *mx + col
                         };
+                        let free = |k: usize| {
+                            !taken
+                                .iter()
+                                .any(|&(a, b, r)| r == k && at < b && a < at + w)
+                        };
+                        let k = (0..usize::from(plot.height))
+                            .find(|&k| free(k))
+                            .unwrap_or(0);
+                        taken.push((at, at + w, k));
                         ctx.print(
                             at,
-                            y[1],
+                            y[1] - (k as f64 + if k > 0 { 0.25 } else { 0.0 }) * row,
                             Span::styled(label.clone(), Style::default().fg(*color)),
                         );
                     }

@@ -53,25 +53,25 @@ fn escape_speed(f: &mut TuiFrame, area: Rect, app: &App) -> Option<CanvasGeom> {
     let charts = &app.charts;
     let mine = charts.curve(i.xi0, settings);
     let mut series = Vec::new();
+    let mut marks = Vec::new();
     for xi0 in PAPER_XI0.into_iter().filter(|x| *x != i.xi0) {
         if let Some(c) = charts.curve(xi0, settings) {
+            let points = c.points();
+            // Named at its peak rather than in the legend (their faint colours are all one),
+            // which keeps the legend's room for the current curve.
+            if let Some(&(x, y)) = points.iter().max_by(|a, b| a.1.total_cmp(&b.1)) {
+                marks.push(Mark::Text {
+                    x,
+                    y,
+                    label: xi0.to_string(),
+                    color: th.muted,
+                });
+            }
             series.push(Series {
-                name: format!("ξ0={xi0}"),
+                name: String::new(),
                 color: th.muted,
-                points: c.points(),
+                points,
                 joined: true,
-            });
-        }
-    }
-    let mut marks = Vec::new();
-    // Each of the paper's curves named at its peak (their colours are all faint).
-    for c in series.iter() {
-        if let Some(&(x, y)) = c.points.iter().max_by(|a, b| a.1.total_cmp(&b.1)) {
-            marks.push(Mark::Text {
-                x,
-                y,
-                label: c.name.trim_start_matches("ξ0=").to_string(),
-                color: th.muted,
             });
         }
     }
@@ -312,13 +312,13 @@ fn rest_radius(f: &mut TuiFrame, area: Rect, app: &App) {
         y: [0.0, 1.05],
         series: vec![
             Series {
-                name: "stuck at".into(),
+                name: "stuck".into(),
                 color: th.trail,
                 points,
                 joined: false,
             },
             Series {
-                name: "escapes".into(),
+                name: "escapes (drawn at 1)".into(),
                 color: th.escaped,
                 points: escaped,
                 joined: false,
