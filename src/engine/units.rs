@@ -79,8 +79,8 @@ impl Units {
         match q {
             Quantity::Length => show_length(self.r_max_m()),
             Quantity::Time => show_time(self.t_s()),
-            Quantity::Speed => format!("{} m/s", sig(self.speed_m_s())),
-            Quantity::Rate => format!("{} rad/s", sig(self.omega())),
+            Quantity::Speed => show_speed(self.speed_m_s()),
+            Quantity::Rate => show_rate(self.omega()),
         }
     }
 }
@@ -107,6 +107,23 @@ pub fn show_length(m: f64) -> String {
     } else {
         format!("{} µm", sig(m * 1e6))
     }
+}
+
+/// A speed, short: `1.20 m/s`, `45.0 cm/s`, `8.72 mm/s`.
+pub fn show_speed(v: f64) -> String {
+    let a = v.abs();
+    if a >= 1.0 || a == 0.0 || !a.is_finite() {
+        format!("{} m/s", sig(v))
+    } else if a >= 1e-2 {
+        format!("{} cm/s", sig(v * 1e2))
+    } else {
+        format!("{} mm/s", sig(v * 1e3))
+    }
+}
+
+/// An angular velocity, short: `3.30 rad/s`.
+pub fn show_rate(w: f64) -> String {
+    format!("{} rad/s", sig(w))
 }
 
 /// A time in seconds, short.
@@ -151,7 +168,9 @@ mod tests {
         assert_eq!(u, Units::paper());
         assert_eq!(u.unit_of(Quantity::Length), "13.5 cm");
         assert_eq!(u.unit_of(Quantity::Time), "303 ms");
-        assert_eq!(u.unit_of(Quantity::Speed), "0.45 m/s");
+        assert_eq!(u.unit_of(Quantity::Speed), "44.6 cm/s");
+        assert_eq!(show_speed(0.00872), "8.72 mm/s");
+        assert_eq!(show_speed(1.2), "1.20 m/s");
         assert_eq!(u.unit_of(Quantity::Rate), "3.30 rad/s");
         assert_eq!(
             u.describe(),

@@ -149,12 +149,30 @@ fn readouts(app: &App) -> (Vec<Line<'static>>, std::ops::Range<usize>) {
         app.units
             .map_or(String::new(), |_| format!(" = {}", show(x)))
     };
-    let (tau_si, xi_si) = match app.units {
+    use crate::engine::units::{show_length, show_rate, show_speed, show_time};
+    let (tau_si, xi_si, rate_si, xi_dot_si, u_si) = match app.units {
         Some(u) => (
-            si(s.tau * u.t_s(), crate::engine::units::show_time),
-            si(s.xi() * u.r_max_m(), crate::engine::units::show_length),
+            si(s.tau * u.t_s(), show_time),
+            si(s.xi() * u.r_max_m(), show_length),
+            u.omega(),
+            si(s.xi_dot() * u.speed_m_s(), show_speed),
+            si(s.u().length() * u.speed_m_s(), show_speed),
         ),
-        None => (String::new(), String::new()),
+        None => (
+            String::new(),
+            String::new(),
+            f64::NAN,
+            String::new(),
+            String::new(),
+        ),
+    };
+    // θ′ in rad/s: the table's own Ω times the dimensionless rate.
+    let lab_rate = |t: f64| {
+        if rate_si.is_finite() {
+            format!("{} = {}", num(t, 4), show_rate(t * rate_si))
+        } else {
+            num(t, 4)
+        }
     };
     out.push(kv("τ", format!("{}{tau_si}", num(s.tau, 3)), th));
     out.push(kv("ξ", format!("{}{xi_si}", num(s.xi(), 5)), th));
@@ -171,7 +189,7 @@ fn readouts(app: &App) -> (Vec<Line<'static>>, std::ops::Range<usize>) {
     match app.view {
         crate::engine::Frame::Lab => {
             out.push(kv("θ", angle(s.r), th));
-            out.push(kv("θ′", theta_dot.map_or("—".into(), |t| num(t, 4)), th));
+            out.push(kv("θ′", theta_dot.map_or("—".into(), lab_rate), th));
         }
         crate::engine::Frame::Table => {
             out.push(kv("Θ", angle(s.q()), th));
@@ -180,15 +198,11 @@ fn readouts(app: &App) -> (Vec<Line<'static>>, std::ops::Range<usize>) {
                 theta_dot.map_or("—".into(), |t| num(t - 1.0, 4)),
                 th,
             ));
-            out.push(kv(
-                "θ′ lab",
-                theta_dot.map_or("—".into(), |t| num(t, 4)),
-                th,
-            ));
+            out.push(kv("θ′ lab", theta_dot.map_or("—".into(), lab_rate), th));
         }
     }
-    out.push(kv("ξ′", num(s.xi_dot(), 4), th));
-    out.push(kv("|u|", num(s.u().length(), 4), th));
+    out.push(kv("ξ′", format!("{}{xi_dot_si}", num(s.xi_dot(), 4)), th));
+    out.push(kv("|u|", format!("{}{u_si}", num(s.u().length(), 4)), th));
     let (st, col) = status_text(&app.sim, th);
     let status_start = out.len();
     for l in st.lines() {
