@@ -95,30 +95,25 @@ pub enum Quantity {
     Rate,
 }
 
+/// `x` in the largest of `ladder` (factor, name) it reaches, three digits: `7.12 cm`.
+fn scaled(x: f64, ladder: &[(f64, &str)]) -> String {
+    let a = x.abs();
+    let (f, name) = ladder
+        .iter()
+        .copied()
+        .find(|(f, _)| a >= *f || a == 0.0 || !a.is_finite())
+        .unwrap_or(ladder[ladder.len() - 1]);
+    format!("{} {name}", sig(x / f))
+}
+
 /// A length in metres, short: `7.12 cm`, `1.5 m`, `820 µm`.
 pub fn show_length(m: f64) -> String {
-    let a = m.abs();
-    if a >= 1.0 || a == 0.0 || !a.is_finite() {
-        format!("{} m", sig(m))
-    } else if a >= 1e-2 {
-        format!("{} cm", sig(m * 1e2))
-    } else if a >= 1e-3 {
-        format!("{} mm", sig(m * 1e3))
-    } else {
-        format!("{} µm", sig(m * 1e6))
-    }
+    scaled(m, &[(1.0, "m"), (1e-2, "cm"), (1e-3, "mm"), (1e-6, "µm")])
 }
 
 /// A speed, short: `1.20 m/s`, `45.0 cm/s`, `8.72 mm/s`.
 pub fn show_speed(v: f64) -> String {
-    let a = v.abs();
-    if a >= 1.0 || a == 0.0 || !a.is_finite() {
-        format!("{} m/s", sig(v))
-    } else if a >= 1e-2 {
-        format!("{} cm/s", sig(v * 1e2))
-    } else {
-        format!("{} mm/s", sig(v * 1e3))
-    }
+    scaled(v, &[(1.0, "m/s"), (1e-2, "cm/s"), (1e-3, "mm/s")])
 }
 
 /// An angular velocity, short: `3.30 rad/s`.
@@ -127,12 +122,8 @@ pub fn show_rate(w: f64) -> String {
 }
 
 /// A time in seconds, short.
-pub fn show_time(s: f64) -> String {
-    if s.abs() >= 1.0 || s == 0.0 || !s.is_finite() {
-        format!("{} s", sig(s))
-    } else {
-        format!("{} ms", sig(s * 1e3))
-    }
+pub fn show_time(t: f64) -> String {
+    scaled(t, &[(1.0, "s"), (1e-3, "ms")])
 }
 
 /// Three significant digits, no exponent below 10⁶.
