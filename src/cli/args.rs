@@ -1,0 +1,295 @@
+//! The command line as clap reads it: the explorer's flags, the subcommands and their
+//! arguments, and the checks that turn them into engine settings.
+
+use crate::app::G_DEFAULT;
+use crate::engine::{Frame, Method, Release, Settings};
+use crate::error::Error;
+use clap::{Args, Parser, Subcommand};
+use std::path::PathBuf;
+
+#[derive(Parser, Debug)]
+#[command(
+    name = "turntable",
+    version,
+    about = "A particle sliding with dry friction on a rotating table (Agha, Gupta & Joseph 2015)",
+    // The explorer's flags mean nothing to a subcommand: `turntable --fps 5 run` is an error.
+    args_conflicts_with_subcommands = true
+)]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Option<Command>,
+    #[command(flatten)]
+    pub look: Look,
+    /// Explorer: frame-rate cap while playing.
+    #[arg(long, default_value_t = 30, value_parser = clap::value_parser!(u32).range(1..=240))]
+    pub fps: u32,
+    /// Explorer: do not capture the mouse (M toggles it inside).
+    #[arg(long)]
+    pub no_mouse: bool,
+    /// Explorer: record the session (keys, ticks, resizes, mouse) as a key script to FILE,
+    /// written when the explorer exits; `turntable replay FILE` shows the same screens.
+    #[arg(long, value_name = "FILE")]
+    pub record: Option<PathBuf>,
+    #[command(flatten)]
+    pub units: UnitsArgs,
+}
+
+/// What the explorer shows, for the explorer and for `replay`.
+#[derive(Args, Debug, Default, Clone)]
+pub struct Look {
+    /// Scene to open: a preset (A, B, C, D, fig1, fig2) or a .toml file. Default: C (replay:
+    /// the script's own `# replay: --scene` line first).
+    #[arg(long, value_name = "NAME|PATH")]
+    pub scene: Option<String>,
+    /// Colour theme: dark, light, high-contrast, mono, or a .toml file. The explorer respects
+    /// NO_COLOR; replay ignores it (its output depends on its arguments alone) and only --ansi
+    /// shows colour.
+    #[arg(long, value_name = "NAME|PATH")]
+    pub theme: Option<String>,
+}
+
+#[derive(Subcommand, Debug)]
+pub enum Command {
+    /// Integrate one trajectory and report how it ends.
+    Run(RunArgs),
+    /// Find the escape speed v_e(xi0, phi) (Fig. 5).
+    Escape(EscapeArgs),
+    /// Find the critical radius xi0c for release at rest in the lab (Fig. 6).
+    Critical(CriticalArgs),
+    /// CSV for Fig. 5 (v_e over phi) or Fig. 6 (final rest xi over xi0).
+    Sweep(SweepArgs),
+    /// Work–precision measurements: error against cost for every method, and the speed goals.
+    Bench(BenchArgs),
+    /// Run a key script headlessly and print its snapshots (see README, "Key scripts").
+    Replay(super::replay::ReplayArgs),
+}
+
+#[derive(Args, Debug)]
+pub struct BenchArgs {
+    /// A small bench that finishes in seconds (fewer settings, cases and angles).
+    #[arg(long)]
+    pub quick: bool,
+    /// Print one JSON object instead of text.
+    #[arg(long)]
+    pub json: bool,
+    /// Draw error against cost (log–log) as braille charts.
+    #[arg(long)]
+    pub plot: bool,
+    /// Number of seeded random releases besides the paper's A, B and D.
+    #[arg(long)]
+    pub cases: Option<usize>,
+    /// Seed of the random releases.
+    #[arg(long)]
+    pub seed: Option<u64>,
+}
+
+/// The integrator, shared by every command.
+#[derive(Args, Debug, Clone)]
+pub struct NumericsArgs {
+    /// dp54 (adaptive), rk4, rk2 (with stick events) or rk2-raw (the paper's scheme).
+    #[arg(long, default_value = "dp54", value_parser = variant::<Method>())]
+    pub method: Method,
+    /// Tolerance of dp54.
+    #[arg(long, allow_hyphen_values = true)]
+    pub tol: Option<f64>,
+    /// Step of the fixed-step methods.
+    #[arg(long, allow_hyphen_values = true)]
+    pub dt: Option<f64>,
+    /// Frame the equations are integrated in (lab is cheaper far from the centre).
+    #[arg(long, default_value = "lab", value_parser = variant::<Frame>())]
+    pub frame: Frame,
+    /// Step budget of one run.
+    #[arg(long, default_value_t = Settings::default().max_steps)]
+    pub max_steps: u64,
+}
+
+#[derive(Args, Debug)]
+pub struct RunArgs {
+    /// Release radius xi0 (units of R_max = mu g / Omega^2).
+    #[arg(long, default_value_t = 0.5, allow_hyphen_values = true)]
+    pub xi0: f64,
+    /// Direction of the initial velocity in the table frame, from radially outward, ccw (rad).
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    pub phi: f64,
+    /// Initial speed relative to the table.
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    pub v0: f64,
+    /// How it is released: velocity (v0 at phi, table frame), table-rest (at rest on the
+    /// table) or lab-rest (at rest in the lab).
+    #[arg(long, default_value = "velocity", value_parser = variant::<Release>())]
+    pub release: Release,
+    /// mu = 0: no friction, a straight line in the lab, in closed form (no integration).
+    #[arg(long)]
+    pub frictionless: bool,
+    #[command(flatten)]
+    pub numerics: NumericsArgs,
+    /// Stop at this time if the particle has neither stuck nor escaped.
+    #[arg(long, default_value_t = 100.0, allow_hyphen_values = true)]
+    pub tau_max: f64,
+    /// Keep integrating after escape is certified, up to tau-max.
+    #[arg(long)]
+    pub follow: bool,
+    /// Print one JSON object instead of text.
+    #[arg(long)]
+    pub json: bool,
+    /// Write the trajectory (one row per step) to this CSV file.
+    #[arg(long)]
+    pub trajectory: Option<PathBuf>,
+    #[command(flatten)]
+    pub units: UnitsArgs,
+}
+
+/// A real table: every length, time and speed also in SI.
+#[derive(Args, Debug, Clone, Default)]
+pub struct UnitsArgs {
+    /// Friction coefficient of a real table (with --rpm): SI values beside the dimensionless ones.
+    #[arg(long, allow_hyphen_values = true)]
+    pub mu: Option<f64>,
+    /// The table's speed in revolutions per minute (with --mu).
+    #[arg(long, allow_hyphen_values = true)]
+    pub rpm: Option<f64>,
+    /// Gravitational acceleration in m/s² (with --mu and --rpm) [default: 9.81].
+    #[arg(long = "g", allow_hyphen_values = true)]
+    pub gravity: Option<f64>,
+}
+
+impl UnitsArgs {
+    /// The units asked for, if any: --mu and --rpm go together.
+    pub fn units(&self) -> Result<Option<crate::engine::units::Units>, Error> {
+        match (self.mu, self.rpm, self.gravity) {
+            (None, None, None) => Ok(None),
+            (Some(mu), Some(rpm), g) => {
+                crate::engine::units::Units::new(mu, rpm, g.unwrap_or(G_DEFAULT)).map(Some)
+            }
+            _ => Err(Error::invalid(
+                "physical units need both --mu and --rpm (and optionally --g)",
+            )),
+        }
+    }
+}
+
+#[derive(Args, Debug)]
+pub struct EscapeArgs {
+    #[arg(long, allow_hyphen_values = true)]
+    pub xi0: f64,
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    pub phi: f64,
+    /// Width of the final bracket on v0.
+    #[arg(long = "vtol", default_value_t = 1e-8, allow_hyphen_values = true)]
+    pub vtol: f64,
+    #[command(flatten)]
+    pub numerics: NumericsArgs,
+    /// Print one JSON object instead of text.
+    #[arg(long)]
+    pub json: bool,
+}
+
+#[derive(Args, Debug)]
+pub struct CriticalArgs {
+    /// Width of the final bracket on xi0.
+    #[arg(long = "xtol", default_value_t = 1e-8, allow_hyphen_values = true)]
+    pub xtol: f64,
+    /// Measured: the table's angular speed Omega (rad/s). With --r0c it gives mu (Eq. 22).
+    #[arg(long, requires = "r0c", allow_hyphen_values = true)]
+    pub omega: Option<f64>,
+    /// Measured: the largest release radius (m) at which a particle placed at rest in the lab
+    /// still stays on the table.
+    #[arg(long, requires = "omega", allow_hyphen_values = true)]
+    pub r0c: Option<f64>,
+    /// Gravitational acceleration (m/s²).
+    #[arg(long, default_value_t = 9.81, allow_hyphen_values = true)]
+    pub g: f64,
+    #[command(flatten)]
+    pub numerics: NumericsArgs,
+    /// Print one JSON object instead of text.
+    #[arg(long)]
+    pub json: bool,
+}
+
+#[derive(Args, Debug)]
+pub struct SweepArgs {
+    /// fig5: v_e over phi for each --xi0; fig6: final rest xi over xi0 in [0, --xi0-max];
+    /// map: stuck or escaped over (phi, v0) at one --xi0 (the explorer's outcome map).
+    #[arg(value_parser = ["fig5", "fig6", "map"])]
+    pub figure: String,
+    /// Release radii for fig5 [default: 0.8,0.5,0.2,0.001]; the one radius of map.
+    #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
+    pub xi0: Vec<f64>,
+    /// map: how phi and v0 are meant: velocity or table-rest, the speed relative to the
+    /// table; lab-rest, the lab velocity (thrown from the lab, u0 = v − Ω×r).
+    #[arg(long, default_value = "velocity", value_parser = variant::<Release>())]
+    pub release: Release,
+    /// map: number of angles phi in [0, 2π).
+    #[arg(long, default_value_t = 72)]
+    pub phi_points: usize,
+    /// map: number of speeds v0 in (0, --v0-max].
+    #[arg(long, default_value_t = 60)]
+    pub v0_points: usize,
+    /// map: largest v0 [default: 1.3 × the largest v_e over phi, plus xi0 for lab-rest].
+    #[arg(long, allow_hyphen_values = true)]
+    pub v0_max: Option<f64>,
+    /// Number of angles (fig5) or radii (fig6).
+    #[arg(long, default_value_t = 72)]
+    pub points: usize,
+    /// Largest release radius for fig6.
+    #[arg(long, default_value_t = 1.0, allow_hyphen_values = true)]
+    pub xi0_max: f64,
+    /// Width of the final bracket on each escape speed (fig5).
+    #[arg(long = "vtol", default_value_t = 1e-6, allow_hyphen_values = true)]
+    pub vtol: f64,
+    #[command(flatten)]
+    pub numerics: NumericsArgs,
+    /// Write the CSV here instead of stdout.
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+}
+
+/// A clap parser for an engine enum: its names (from the strum derives) as the possible
+/// values, so `--help` lists them and a typo is refused with the list; other spellings it
+/// accepts (`rotating` for `table`) are aliases.
+fn variant<T>() -> impl clap::builder::TypedValueParser<Value = T>
+where
+    T: strum::VariantArray + strum::EnumMessage + Into<&'static str> + std::str::FromStr,
+    T: Clone + Send + Sync + 'static,
+    T::Err: std::error::Error + Send + Sync + 'static,
+{
+    use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
+    let values = T::VARIANTS.iter().map(|v| {
+        let name: &'static str = v.clone().into();
+        let aliases = v.get_serializations().iter().filter(|a| **a != name);
+        PossibleValue::new(name).aliases(aliases)
+    });
+    PossibleValuesParser::new(values).try_map(|s| s.parse::<T>())
+}
+
+impl NumericsArgs {
+    pub fn settings(&self) -> Result<Settings, Error> {
+        let knob = if self.method.adaptive() {
+            self.tol
+        } else {
+            self.dt
+        };
+        let s = Settings {
+            scheme: self.method.with(knob.unwrap_or(self.method.default_knob())),
+            frame: self.frame,
+            max_steps: self.max_steps,
+        };
+        match (self.method.adaptive(), self.tol, self.dt) {
+            (true, _, Some(_)) => {
+                return Err(Error::Invalid(
+                    "--dt applies to the fixed-step methods (rk4, rk2, rk2-raw); dp54 takes --tol"
+                        .into(),
+                ));
+            }
+            (false, Some(_), _) => {
+                return Err(Error::Invalid(format!(
+                    "--tol applies to dp54; {} takes --dt",
+                    self.method
+                )));
+            }
+            _ => {}
+        }
+        s.validate()?;
+        Ok(s)
+    }
+}
