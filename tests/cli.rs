@@ -279,3 +279,19 @@ fn scene_files_carry_units_and_the_explorer_shows_si() {
     assert!(e.to_string().contains("[units] mu must lie in"), "{e}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A release at rest in the lab far out escapes at once, on its release direction: the angle
+/// is 0, not 2π less a rounding error (which printed as 6.283185307180, outside [0, 2π)).
+#[test]
+fn an_angle_a_hair_below_a_turn_is_zero() {
+    let (code, out, _) = turntable(&["run", "--xi0", "500", "--release", "lab-rest", "--json"]);
+    assert_eq!(code, 0);
+    assert_eq!(field(&out, "angle"), "0.0");
+    let (code, out, _) = turntable(&["run", "--xi0", "500", "--release", "lab-rest"]);
+    assert_eq!(code, 0);
+    assert!(out.contains("angle    0.000000000000 rad"), "{out}");
+    assert_eq!(turntable::engine::model::turn_angle(-1e-13), 0.0);
+    assert_eq!(turntable::engine::model::turn_angle(-0.0), 0.0);
+    let w = turntable::engine::model::turn_angle(-1e-3);
+    assert!((w - (std::f64::consts::TAU - 1e-3)).abs() < 1e-15);
+}

@@ -213,7 +213,7 @@ pub fn update(app: &mut App, action: Action) {
             app.notice = Some(format!(
                 "v0 = {:.3}, φ = {:.3}π",
                 app.initial.v0,
-                app.initial.phi.rem_euclid(std::f64::consts::TAU) / std::f64::consts::PI
+                crate::engine::model::turn_angle(app.initial.phi) / std::f64::consts::PI
             ));
         }
         // Handled before anything else, above.
@@ -254,7 +254,7 @@ pub fn update(app: &mut App, action: Action) {
             app.notice = Some(format!(
                 "release v0 = {:.4} at φ = {:.3}π: Enter runs it on the turntable",
                 app.initial.v0,
-                app.initial.phi.rem_euclid(std::f64::consts::TAU) / std::f64::consts::PI
+                crate::engine::model::turn_angle(app.initial.phi) / std::f64::consts::PI
             ));
         }
         Action::Unit(knob, d) => {

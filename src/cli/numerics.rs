@@ -135,7 +135,7 @@ pub fn run(a: RunArgs) -> CmdResult {
     }
     let doubt = crate::engine::doubt::doubt(&run, a.tau_max);
     let q = end.q();
-    let angle = q.y.atan2(q.x).rem_euclid(std::f64::consts::TAU);
+    let angle = crate::engine::model::turn_angle(q.y.atan2(q.x));
     let speed = end.u_lab().length();
     let c = run.cost;
     let units = a.units.units()?;
@@ -283,7 +283,7 @@ pub fn escape(a: EscapeArgs) -> CmdResult {
     positive("vtol", a.vtol)?;
     let settings = solver_settings(&a.numerics)?;
     let t = escape_speed(a.xi0, a.phi, settings, a.vtol)?;
-    let phi = a.phi.rem_euclid(std::f64::consts::TAU);
+    let phi = crate::engine::model::turn_angle(a.phi);
     if a.json {
         let scan: Vec<_> = t
             .scan

@@ -24,6 +24,13 @@ pub fn wrap_angle(a: f64) -> f64 {
     if w > PI { w - 2.0 * PI } else { w }
 }
 
+/// An angle in [0, 2π). A hair below a whole turn (−0, or −1e-13 from a rest exactly on the
+/// release direction) is 0: `rem_euclid` alone gives 2π − ε, printed as 6.283185307180.
+pub fn turn_angle(a: f64) -> f64 {
+    let w = a.rem_euclid(2.0 * PI);
+    if 2.0 * PI - w < 1e-12 { 0.0 } else { w }
+}
+
 /// Dry friction on the particle (Eq. 2): −û while slipping. At u = 0 it is the Filippov value:
 /// static friction balances the centrifugal pull `p` if it can (|p| ≤ 1, property 1 of Sec. II),
 /// otherwise it opposes it at full strength, so the particle leaves the discontinuity along `p`.

@@ -455,5 +455,5 @@ pub fn easiest_angle(
         phis[imin] + step,
         phi_tol,
     )?;
-    Ok((phi.rem_euclid(std::f64::consts::TAU), ve(phi)?))
+    Ok((super::model::turn_angle(phi), ve(phi)?))
 }

@@ -6,6 +6,7 @@ use super::chart::{self, Chart, Mark, Series};
 use crate::analysis::{PAPER_XI0, REST_POINTS, REST_XI0_MAX};
 use crate::app::pages::{Charts, Page, map_filled};
 use crate::app::{App, CanvasGeom};
+use crate::engine::model::turn_angle;
 use crate::engine::units::Quantity;
 use crate::engine::{Outcome, Release};
 use crate::ui::panel::num;
@@ -112,7 +113,7 @@ fn escape_speed(f: &mut TuiFrame, area: Rect, app: &App) -> Option<CanvasGeom> {
     } else {
         progress = " computing…".into();
     }
-    let phi = i.phi.rem_euclid(TAU);
+    let phi = turn_angle(i.phi);
     let (verdict, color) = match (i.release, mine.and_then(|c| nearest(c, phi))) {
         (Release::Velocity, Some(ve)) if i.v0 > ve => (" escapes (above v_e)", th.escaped),
         (Release::Velocity, Some(_)) => (" sticks (below v_e)", th.stuck),
@@ -201,7 +202,7 @@ fn outcome_map(f: &mut TuiFrame, area: Rect, app: &App) -> Option<CanvasGeom> {
         });
     }
     let (phi, v0) = match i.release {
-        Release::Velocity => (i.phi.rem_euclid(TAU), i.v0),
+        Release::Velocity => (turn_angle(i.phi), i.v0),
         _ => (0.0, 0.0),
     };
     let c = Chart {

@@ -2,7 +2,7 @@
 //! how the paper's scheme fares from the same start.
 
 use crate::app::App;
-use crate::engine::model::wrap_angle;
+use crate::engine::model::{turn_angle, wrap_angle};
 use crate::engine::run::raw_at_rest;
 use crate::engine::{Certificate, Method, Outcome, Status};
 use crate::sim::Sim;
@@ -134,7 +134,7 @@ fn readouts(app: &App) -> (Vec<Line<'static>>, std::ops::Range<usize>) {
         crate::engine::Release::Velocity => format!(
             "ξ0 {} φ {}π v0 {}",
             num(i.xi0, 3),
-            num(i.phi.rem_euclid(2.0 * PI) / PI, 2),
+            num(turn_angle(i.phi) / PI, 2),
             num(i.v0, 4)
         ),
         crate::engine::Release::TableRest => format!("ξ0 {} rest on table", num(i.xi0, 3)),
