@@ -144,7 +144,7 @@ fn escaping_speeds_that_are_not_one_interval() {
 #[test]
 fn words_that_say_what_the_numbers_are() {
     let (_, text, _) = turntable(&["run", "--v0", "1.5", "--phi", "0.4"]);
-    assert!(text.starts_with("outcome  escaped: tau is when the radial certificate"));
+    assert!(text.starts_with("outcome  escaped: certified at tau (radial: xi = 1 crossed"));
     assert!(!text.contains("escaped: escaped"), "{text}");
     let v = json(&["run", "--frictionless", "--v0", "1", "--json"]);
     assert_eq!(

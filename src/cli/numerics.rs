@@ -177,7 +177,7 @@ pub fn run(a: RunArgs) -> CmdResult {
         let how = match (outcome, run.escape) {
             (Outcome::Stuck, _) => "stuck: at rest on the table from tau on".to_string(),
             (Outcome::Escaped, Some(e)) => {
-                format!("escaped: tau is when {} first held", e.by.describe())
+                format!("escaped: certified at tau ({})", e.by.describe())
             }
             _ => "running: still slipping at tau-max".to_string(),
         };

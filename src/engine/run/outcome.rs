@@ -20,10 +20,10 @@ impl Certificate {
     pub fn describe(self) -> &'static str {
         match self {
             Certificate::Radial => {
-                "the radial certificate: xi = 1 crossed moving out, never to turn back"
+                "radial: xi = 1 crossed moving out, never to turn back"
             }
             Certificate::Energy => {
-                "the energy certificate: E < -1/2, so it can never rest inside xi = 1 again (it may not have crossed xi = 1 yet)"
+                "energy: E < -1/2, so it can never rest inside xi = 1 again (it may not have crossed xi = 1 yet)"
             }
         }
     }
