@@ -298,3 +298,26 @@ fn the_map_fills_the_plot_and_a_return_computes_only_what_is_missing() {
         );
     }
 }
+
+/// Between two computed angles the chart knows v_e only to the range of its neighbours: a
+/// release inside that range is not called either way.
+#[test]
+fn the_escape_page_does_not_guess_between_its_angles() {
+    let mut a = app("C");
+    a.page = Page::EscapeSpeed;
+    a.sync_analysis();
+    let s = settings_for(a.settings);
+    let c = a.charts.curve(0.5, s).unwrap().clone();
+    let n = c.ve.len();
+    let (v1, v2) = (c.ve[1].unwrap().unwrap(), c.ve[2].unwrap().unwrap());
+    a.initial.phi = 1.5 * TAU / n as f64;
+    for (v0, words) in [
+        (0.5 * (v1 + v2), "release ≈ v_e: Enter runs it to see"),
+        (v1.max(v2) + 1e-3, "release escapes (above v_e)"),
+        (v1.min(v2) - 1e-3, "release sticks (below v_e)"),
+    ] {
+        a.initial.v0 = v0;
+        let screen = render(&mut a, 100, 30);
+        assert!(screen.contains(words), "{v0}: {words}\n{screen}");
+    }
+}

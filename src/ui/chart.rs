@@ -195,10 +195,26 @@ pub fn render_bare(
         Paragraph::new(Line::from(legend)),
         Rect { height: 1, ..inner },
     );
-    let to_row = |v: f64| {
-        let fy = (y[1] - v) / (y[1] - y[0]);
-        plot.y + ((fy * f64::from(plot.height - 1)).round() as u16).min(plot.height - 1)
+    // The row a value's braille dot falls in (the canvas maps y to dot rows 0..4h − 1, top
+    // down, by truncation): tick labels and text marks go on it, so that they sit beside
+    // their curve rather than a row off.
+    let h = plot.height;
+    let dot_row = move |v: f64| -> u16 {
+        let d = ((y[1] - v) / (y[1] - y[0]) * (4.0 * f64::from(h) - 1.0)).max(0.0);
+        ((d as u32 / 4) as u16).min(h - 1)
     };
+    // A y at which the canvas prints text on row `r` (it puts text at row
+    // ⌊(y1 − y)/(y1 − y0)·(h − 1)⌋).
+    let text_y_of_row = move |r: i64| {
+        if h > 1 {
+            // The middle of the row, or the bottom edge for the last (text below y0 is dropped).
+            let k = (r as f64 + 0.5).min(f64::from(h - 1));
+            y[1] - k * (y[1] - y[0]) / f64::from(h - 1)
+        } else {
+            y[1]
+        }
+    };
+    let to_row = |v: f64| plot.y + dot_row(v);
     for (v, l) in yt.iter().zip(&ylabels) {
         let r = Rect::new(inner.x, to_row(*v), gutter - 1, 1);
         f.render_widget(
@@ -276,59 +292,73 @@ pub fn render_bare(
                 }
             }
             ctx.layer();
-            // Line labels along the top, a row lower where one would overwrite another.
-            // One text row in y (the canvas puts text at row ⌊(y1 − y)/(y1 − y0)·(h − 1)⌋).
-            let row = (y[1] - y[0]) / f64::from(plot.height.max(2) - 1);
-            let mut taken: Vec<(f64, f64, usize)> = Vec::new();
+            // Labels never overwrite one another: line labels go along the top, a row lower
+            // where the row is taken; a point keeps its dot and its words move a row up or
+            // down if they must. The last marks (the release) are placed first.
+            let rows = i64::from(h);
+            let at_row = |r: i64| text_y_of_row(r);
+            let mut taken: Vec<(f64, f64, i64)> = Vec::new();
+            let mut place = |a: f64, w: f64, tries: &mut dyn Iterator<Item = i64>| {
+                let first = tries.next().unwrap_or(0);
+                let free = |r: i64, t: &[(f64, f64, i64)]| {
+                    (0..rows).contains(&r)
+                        && !t
+                            .iter()
+                            .any(|&(x0, x1, rr)| rr == r && a < x1 && x0 < a + w)
+                };
+                let r = std::iter::once(first)
+                    .chain(tries)
+                    .find(|&r| free(r, &taken))
+                    .unwrap_or(first);
+                taken.push((a, a + w, r));
+                r
+            };
+            // The points' dots first: words go around them.
             for m in &chart.marks {
-                match m {
-                    Mark::VLine {
-                        x: mx,
-                        label,
-                        color,
-                    } => {
+                if let Mark::Point {
+                    x: px,
+                    y: py,
+                    color,
+                    ..
+                } = *m
+                {
+                    let r0 = i64::from(dot_row(py));
+                    place(px, col, &mut std::iter::once(r0));
+                    ctx.print(
+                        px,
+                        at_row(r0),
+                        Span::styled("●", Style::default().fg(color)),
+                    );
+                }
+            }
+            for m in chart.marks.iter().rev() {
+                let (label, color) = match m {
+                    Mark::VLine { label, color, .. }
+                    | Mark::Text { label, color, .. }
+                    | Mark::Point { label, color, .. } => (label, *color),
+                };
+                let style = Style::default().fg(color);
+                let w = (label.chars().count() + 1) as f64 * col;
+                match *m {
+                    Mark::VLine { x: mx, .. } => {
                         // Right of the line, or left of it in the right half.
-                        let w = (label.chars().count() + 1) as f64 * col;
-                        let at = if *mx > 0.5 * (x[0] + x[1]) {
-                            *mx - w
+                        let a = if mx > 0.5 * (x[0] + x[1]) {
+                            mx - w
                         } else {
-                            *mx + col
+                            mx + col
                         };
-                        let free = |k: usize| {
-                            !taken
-                                .iter()
-                                .any(|&(a, b, r)| r == k && at < b && a < at + w)
-                        };
-                        let k = (0..usize::from(plot.height))
-                            .find(|&k| free(k))
-                            .unwrap_or(0);
-                        taken.push((at, at + w, k));
-                        ctx.print(
-                            at,
-                            y[1] - (k as f64 + if k > 0 { 0.25 } else { 0.0 }) * row,
-                            Span::styled(label.clone(), Style::default().fg(*color)),
-                        );
+                        let r = place(a, w, &mut (0..rows));
+                        ctx.print(a, at_row(r), Span::styled(label.clone(), style));
                     }
-                    Mark::Text {
-                        x: px,
-                        y: py,
-                        label,
-                        color,
-                    }
-                    | Mark::Point {
-                        x: px,
-                        y: py,
-                        label,
-                        color,
-                    } => {
-                        let dot = if matches!(m, Mark::Point { .. }) {
-                            "●"
+                    Mark::Point { x: px, y: py, .. } | Mark::Text { x: px, y: py, .. } => {
+                        let r0 = i64::from(dot_row(py));
+                        let a = if matches!(m, Mark::Point { .. }) {
+                            px + col
                         } else {
-                            ""
+                            px
                         };
-                        let text =
-                            Span::styled(format!("{dot}{label}"), Style::default().fg(*color));
-                        ctx.print(*px, *py, text);
+                        let r = place(a, w, &mut [r0, r0 - 1, r0 + 1, r0 - 2, r0 + 2].into_iter());
+                        ctx.print(a, at_row(r), Span::styled(label.clone(), style));
                     }
                 }
             }

@@ -114,9 +114,11 @@ fn escape_speed(f: &mut TuiFrame, area: Rect, app: &App) -> Option<CanvasGeom> {
         progress = " computing…".into();
     }
     let phi = turn_angle(i.phi);
-    let (verdict, color) = match (i.release, mine.and_then(|c| nearest(c, phi))) {
-        (Release::Velocity, Some(ve)) if i.v0 > ve => (" escapes (above v_e)", th.escaped),
-        (Release::Velocity, Some(_)) => (" sticks (below v_e)", th.stuck),
+    let (verdict, color) = match (i.release, mine.and_then(|c| v_e_range(c, phi))) {
+        (Release::Velocity, Some((_, hi))) if i.v0 > hi => (" escapes (above v_e)", th.escaped),
+        (Release::Velocity, Some((lo, _))) if i.v0 < lo => (" sticks (below v_e)", th.stuck),
+        // Between the computed angles' values: the chart cannot tell; the run can.
+        (Release::Velocity, Some(_)) => (" ≈ v_e: Enter runs it to see", th.notice),
         (Release::Velocity, None) => ("", th.particle),
         _ => (" (release at rest: v0 = 0)", th.particle),
     };
@@ -149,11 +151,22 @@ fn escape_speed(f: &mut TuiFrame, area: Rect, app: &App) -> Option<CanvasGeom> {
     Some(geom(plot, &c, Page::EscapeSpeed, app))
 }
 
-/// The curve's v_e at the computed angle nearest φ.
-fn nearest(c: &crate::app::pages::Curve, phi: f64) -> Option<f64> {
+/// Where v_e at φ can lie, from the curve: at a computed angle its value, between two the
+/// range of theirs (v_e is monotone between neighbours but at its extremes, where it is flat),
+/// each widened by its bracket's half-width.
+fn v_e_range(c: &crate::app::pages::Curve, phi: f64) -> Option<(f64, f64)> {
     let n = c.ve.len();
-    let i = ((phi / TAU) * n as f64).round() as usize % n;
-    c.ve[i].flatten()
+    let x = phi / TAU * n as f64;
+    let i = x.floor() as usize % n;
+    let on_grid = (x - x.round()).abs() < 1e-9;
+    let (a, b) = if on_grid {
+        let k = x.round() as usize % n;
+        (c.ve[k]??, c.ve[k]??)
+    } else {
+        (c.ve[i]??, c.ve[(i + 1) % n]??)
+    };
+    let pad = 0.5 * crate::analysis::CURVE_VTOL;
+    Some((a.min(b) - pad, a.max(b) + pad))
 }
 
 /// Stuck or escaped over (φ, v0), stuck cells shaded by their rest radius, the v_e curve on it.

@@ -19,9 +19,7 @@ impl Certificate {
     /// The bound in words, for messages.
     pub fn describe(self) -> &'static str {
         match self {
-            Certificate::Radial => {
-                "radial: xi = 1 crossed moving out, never to turn back"
-            }
+            Certificate::Radial => "radial: xi = 1 crossed moving out, never to turn back",
             Certificate::Energy => {
                 "energy: E < -1/2, so it can never rest inside xi = 1 again (it may not have crossed xi = 1 yet)"
             }
