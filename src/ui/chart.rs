@@ -393,6 +393,61 @@ mod tests {
         assert_eq!(tick_label(0.0), "0");
     }
 
+    /// Two points side by side and a line label over them: every dot and every word shows,
+    /// and each dot sits on the row of its value's braille.
+    #[test]
+    fn labels_never_cover_one_another() {
+        use ratatui::{Terminal, backend::TestBackend};
+        let th = Theme::builtin("mono").unwrap();
+        let c = Color::Reset;
+        let chart = Chart {
+            title: "t".into(),
+            note: String::new(),
+            x_label: "x".into(),
+            y_label: "y".into(),
+            x: [0.0, 10.0],
+            y: [0.0, 1.0],
+            series: vec![],
+            marks: vec![
+                Mark::Point {
+                    x: 0.5,
+                    y: 0.5,
+                    label: "min".into(),
+                    color: c,
+                },
+                Mark::Point {
+                    x: 0.2,
+                    y: 0.5,
+                    label: "release sticks".into(),
+                    color: c,
+                },
+                Mark::VLine {
+                    x: 0.3,
+                    label: "stop".into(),
+                    color: c,
+                },
+                Mark::VLine {
+                    x: 0.4,
+                    label: "τ=6".into(),
+                    color: c,
+                },
+            ],
+        };
+        let mut t = Terminal::new(TestBackend::new(40, 14)).unwrap();
+        let mut plot = None;
+        t.draw(|f| plot = render(f, f.area(), &th, &chart)).unwrap();
+        let text = crate::ui::export::plain_text(t.backend().buffer());
+        for w in ["min", "release sticks", "stop", "τ=6"] {
+            assert!(text.contains(w), "{w} missing:\n{text}");
+        }
+        assert_eq!(text.matches('●').count(), 2, "{text}");
+        // y = 0.5 falls in dot row ⌊0.5·(4h − 1)⌋ of the plot, so in text row that / 4.
+        let plot = plot.unwrap();
+        let row = (0.5 * (4.0 * f64::from(plot.height) - 1.0)) as u16 / 4;
+        let line = text.lines().nth(usize::from(plot.y + row)).unwrap();
+        assert_eq!(line.matches('●').count(), 2, "{text}");
+    }
+
     #[test]
     fn ranges_are_never_degenerate() {
         assert_eq!(sane([f64::NAN, 1.0]), [0.0, 1.0]);
