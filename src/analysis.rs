@@ -19,10 +19,8 @@ pub const CURVE_POINTS: usize = 72;
 pub const CURVE_VTOL: f64 = 1e-6;
 /// The paper's Fig. 5 radii.
 pub const PAPER_XI0: [f64; 4] = [0.8, 0.5, 0.2, 0.001];
-/// Outcome-map resolution (angles × speeds) before the page has a size on screen; then it is
-/// the plot's, one cell a character.
-pub const MAP_SIZE: (usize, usize) = (72, 40);
-/// The largest map asked for, whatever the terminal.
+/// The largest outcome map asked for, whatever the terminal (it is the plot's size, one cell a
+/// character: see `App::map_size`).
 pub const MAP_MAX: (usize, usize) = (400, 200);
 /// Radii of the rest-radius curve (Fig. 6), over [0, [`REST_XI0_MAX`]].
 pub const REST_POINTS: usize = 101;
