@@ -292,10 +292,11 @@ pub fn escape_speed(xi0: f64, phi: f64, settings: Settings, tol: f64) -> Result<
 }
 
 /// The last stage of [`escape_speed`]: from an estimate `est` of the root of H (slope `slope`
-/// in v0), runs that pass close to the saddle certify a bracket of width ≤ `tol`. Escaping runs
-/// there are the expensive ones (they crawl past the saddle), and each one's H pins the root
-/// (root ≈ v − H/slope), so an escaping run goes first, 0.7 `tol` above the estimate, and a
-/// stuck run then just inside the width. Falls back to bisection on the outcome.
+/// in v0), runs that pass close to the saddle certify a bracket of width ≤ `tol`. Each run's H
+/// (read off the slow manifold, one smooth function through the threshold: see
+/// [`super::saddle`]) pins the root (root ≈ v − H/slope), so an escaping run goes 0.7 `tol`
+/// above the estimate, and a stuck run then just inside the width. Falls back to bisection on
+/// the outcome.
 fn close_in(
     mut lo: f64,
     mut hi: f64,
