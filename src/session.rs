@@ -143,7 +143,7 @@ impl Session<TestBackend> {
         self.term.backend().buffer()
     }
 
-    /// Applies one script step (a snapshot step only draws; see [`replay`] for the output).
+    /// Applies one script step (a snapshot step only draws; see [`replay`](crate::replay::replay) for the output).
     pub fn apply(&mut self, step: &Step) {
         match step {
             Step::Key(k) => self.press(*k),

@@ -96,7 +96,7 @@ fn split_words(line: &str) -> Result<Vec<String>, String> {
     Ok(words)
 }
 
-/// A word as [`split_words`] reads it back: quoted if it holds blanks, quotes or backslashes.
+/// A word as `split_words` reads it back: quoted if it holds blanks, quotes or backslashes.
 pub fn quote_word(w: &str) -> String {
     if !w.is_empty() && !w.contains(|c: char| c.is_whitespace() || c == '"' || c == '\\') {
         return w.to_string();

@@ -47,7 +47,7 @@ pub enum Status {
     },
 }
 
-/// What ended a call to [`Run::run`].
+/// What ended a call to [`Run::run`](super::Run::run).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Outcome {
