@@ -175,10 +175,10 @@ fn splitmix_is_deterministic() {
     let a = bench::cases(5, 42);
     let b = bench::cases(5, 42);
     assert_eq!(a.len(), 8);
-    for ((_, x), (_, y)) in a.iter().zip(&b) {
+    for (x, y) in a.iter().zip(&b) {
         assert_eq!(x, y);
     }
-    for (_, x) in &a[3..] {
+    for x in &a[3..] {
         assert!((0.0..=0.9).contains(&x.xi0) && (0.0..=0.5).contains(&x.v0));
     }
 }

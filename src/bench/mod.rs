@@ -9,7 +9,7 @@ mod output;
 mod runs;
 mod tasks;
 
-use crate::engine::{Initial, Method, Settings};
+use crate::engine::{Method, Settings};
 use crate::error::Error;
 use goals::{savings, speed, task_ratios};
 use serde::Serialize;
@@ -206,10 +206,7 @@ const FAR_TAU: f64 = 400.0;
 
 /// Runs the whole bench. `progress` hears about each task as it starts.
 pub fn run(cfg: &Config, mut progress: impl FnMut(&str)) -> Result<Report, Error> {
-    let all: Vec<Initial> = cases(cfg.cases, cfg.seed)
-        .into_iter()
-        .map(|c| c.1)
-        .collect();
+    let all = cases(cfg.cases, cfg.seed);
     let (mut agreement, mut rows, mut rest) = (Vec::new(), Vec::new(), Vec::new());
     for &task in Task::VARIANTS {
         progress(&task.to_string());

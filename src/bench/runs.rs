@@ -8,18 +8,18 @@ use std::f64::consts::{PI, TAU};
 
 /// A, B and D of the paper, then `n` seeded releases (ξ0 ∈ [0, 0.9], φ ∈ [0, 2π),
 /// v0 ∈ [0, 0.5]: most of them stick).
-pub fn cases(n: usize, seed: u64) -> Vec<(String, Initial)> {
+pub fn cases(n: usize, seed: u64) -> Vec<Initial> {
     let mut v = vec![
-        ("A".to_string(), Initial::velocity(0.5, PI, 1.0)),
-        ("B".to_string(), Initial::velocity(0.5, 0.0, 0.6)),
-        ("D".to_string(), Initial::velocity(1.1, 1.2 * PI, 1.3)),
+        Initial::velocity(0.5, PI, 1.0),
+        Initial::velocity(0.5, 0.0, 0.6),
+        Initial::velocity(1.1, 1.2 * PI, 1.3),
     ];
     let mut rng = crate::rng::SplitMix64(seed);
-    for i in 0..n {
+    for _ in 0..n {
         let xi0 = 0.9 * rng.unit();
         let phi = TAU * rng.unit();
         let v0 = 0.5 * rng.unit();
-        v.push((format!("r{i}"), Initial::velocity(xi0, phi, v0)));
+        v.push(Initial::velocity(xi0, phi, v0));
     }
     v
 }
