@@ -201,3 +201,72 @@ fn the_explorer_shows_phi_as_the_paper_does() {
     let screen = plain_text(s.screen());
     assert!(screen.contains("φ 1.20π"), "{screen}");
 }
+
+/// The second opinion is another formulation, even at the tightest tolerance (where a tighter
+/// run in the same frame would be the run itself); `--no-check` skips it and then claims
+/// nothing.
+#[test]
+fn the_second_opinion_is_independent_and_can_be_skipped() {
+    let v = json(&["run", "--v0", "0.6", "--tol", "1e-14", "--json"]);
+    assert_eq!(v["certain"], true);
+    assert_eq!(v["check"]["frame"], "table");
+    assert_eq!(v["check"]["tol"], 1e-14);
+    let v = json(&["run", "--v0", "0.6", "--frame", "table", "--json"]);
+    assert_eq!(v["check"]["frame"], "lab");
+    let v = json(&["run", "--v0", "0.6", "--json", "--no-check"]);
+    assert!(
+        v.get("certain").is_none() && v.get("check").is_none(),
+        "{v}"
+    );
+    let (_, text, _) = turntable(&["run", "--v0", "0.6", "--no-check"]);
+    assert!(!text.contains("certain"), "{text}");
+}
+
+/// `certain` covers the outcome; the time and place of the end come with their measured
+/// differences from the second opinion. Near a threshold the stop time is ill-conditioned
+/// (v0 = v_e − 3e-9 at ξ0 = 0.5): the run is certain to stick, and says its τ is uncertain by
+/// far more than its tolerance.
+#[test]
+fn stop_times_come_with_their_measured_error() {
+    let v = json(&["run", "--v0", "0.60782364", "--tau-max", "1e4", "--json"]);
+    assert_eq!(v["outcome"], "stuck");
+    assert_eq!(v["certain"], true);
+    let dt = v["check"]["tau_error"].as_f64().unwrap();
+    assert!(dt > 1e-4, "{v}");
+    // And it is an honest measure: the converged stop time lies within it.
+    let tight = json(&[
+        "run",
+        "--v0",
+        "0.60782364",
+        "--tau-max",
+        "1e4",
+        "--tol",
+        "1e-14",
+        "--json",
+    ]);
+    let (t, t_ref) = (v["tau"].as_f64().unwrap(), tight["tau"].as_f64().unwrap());
+    assert!((t - t_ref).abs() <= 2.0 * dt, "{t} vs {t_ref}, said ±{dt}");
+    // Far from any threshold the difference is at the tolerance's scale.
+    let v = json(&["run", "--v0", "0.3", "--json"]);
+    assert!(v["check"]["tau_error"].as_f64().unwrap() < 1e-8, "{v}");
+}
+
+/// A solver asked for a bracket narrower than its runs can place (tol looser than the
+/// bracket) runs them tighter, and only a bracket whose ends, run in full, end as they say in
+/// both the run and its second opinion is called certified.
+#[test]
+fn solver_brackets_are_certified_only_when_checked() {
+    let v = json(&["critical", "--tol", "1e-6", "--json"]);
+    assert_eq!(v["run_tol"], 1e-10);
+    assert_eq!(v["certified"], true, "{v}");
+    // ξ0c from a converged reference (tol 1e-13, xtol 1e-10).
+    let x = v["xi0c"].as_f64().unwrap();
+    assert!((x - 0.87204385).abs() < 2e-8, "{x}");
+    let v = json(&[
+        "escape", "--xi0", "0.99", "--phi", "1", "--vtol", "1e-9", "--json",
+    ]);
+    assert_eq!(v["certified"], true, "{v}");
+    assert_eq!(v["run_tol"], 1e-11);
+    let v = json(&["escape", "--xi0", "0.5", "--json", "--no-check"]);
+    assert!(v["certified"].is_null(), "{v}");
+}

@@ -129,6 +129,10 @@ pub struct RunArgs {
     /// Keep integrating after escape is certified, up to tau-max.
     #[arg(long)]
     pub follow: bool,
+    /// Skip the second opinion (a run 1000x tighter in the other frame, about 4x this run's
+    /// work): no `certain` then, nor measured errors.
+    #[arg(long)]
+    pub no_check: bool,
     /// Print one JSON object instead of text.
     #[arg(long)]
     pub json: bool,
@@ -177,6 +181,10 @@ pub struct EscapeArgs {
     /// Width of the final bracket on v0.
     #[arg(long = "vtol", default_value_t = 1e-8, allow_hyphen_values = true)]
     pub vtol: f64,
+    /// Skip running the bracket's two ends in full against their second opinions: the
+    /// bracket is then not certified.
+    #[arg(long)]
+    pub no_check: bool,
     #[command(flatten)]
     pub numerics: NumericsArgs,
     /// Print one JSON object instead of text.
@@ -189,6 +197,10 @@ pub struct CriticalArgs {
     /// Width of the final bracket on xi0.
     #[arg(long = "xtol", default_value_t = 1e-8, allow_hyphen_values = true)]
     pub xtol: f64,
+    /// Skip running the bracket's two ends in full against their second opinions: the
+    /// bracket is then not certified.
+    #[arg(long)]
+    pub no_check: bool,
     /// Measured: the table's angular speed Omega (rad/s). With --r0c it gives mu (Eq. 22).
     #[arg(long, requires = "r0c", allow_hyphen_values = true)]
     pub omega: Option<f64>,

@@ -1,7 +1,9 @@
 //! The headless numerical commands: run, escape, critical (sweep is in `sweep`).
 
 use super::{CmdResult, CriticalArgs, Error, EscapeArgs, RunArgs, check_initial};
-use crate::engine::solve::{Threshold, check_escape_xi0, critical_radius, escape_speed};
+use crate::engine::solve::{
+    Threshold, check_escape_xi0, confirmed, critical_radius, escape_speed, floor_tol,
+};
 use crate::engine::{Initial, Outcome, Run, State, Status};
 use crate::files::{Output, emit};
 use serde_json::json;
@@ -61,6 +63,12 @@ impl Rows {
             approx.map_or(String::new(), |x| x.to_string())
         )
     }
+}
+
+/// A JSON number, or null where a measured difference is infinite (the two runs ended
+/// differently).
+fn finite(x: f64) -> Option<f64> {
+    x.is_finite().then_some(x)
 }
 
 /// Spacing in τ of the trajectory rows of a frictionless run, which takes no steps.
@@ -133,7 +141,7 @@ pub fn run(a: RunArgs) -> CmdResult {
             .finish()
             .map_err(write_err)?;
     }
-    let doubt = crate::engine::doubt::doubt(&run, a.tau_max);
+    let doubt = (!a.no_check).then(|| crate::engine::doubt::doubt(&run, a.tau_max));
     let q = end.q();
     let angle = crate::engine::model::turn_angle(q.y.atan2(q.x));
     let speed = end.u_lab().length();
@@ -142,7 +150,6 @@ pub fn run(a: RunArgs) -> CmdResult {
     if a.json {
         let mut v = json!({
             "outcome": outcome.name(),
-            "certain": doubt.certain,
             "tau": end.tau,
             "xi": q.length(),
             "angle": angle,
@@ -158,6 +165,19 @@ pub fn run(a: RunArgs) -> CmdResult {
             "tol": settings.scheme.tol(),
             "dt": settings.scheme.fixed().map(|(_, dt)| dt),
         });
+        if let Some(d) = doubt {
+            v["certain"] = json!(d.certain);
+            v["check"] = json!({
+                "method": d.check.method().to_string(),
+                "tol": d.check.scheme.tol(),
+                "frame": d.check.frame.to_string(),
+                "outcome": d.shadow.map(|o| o.name()),
+                "margin": d.margin,
+                "h_error": finite(d.error),
+                "tau_error": finite(d.tau_error),
+                "q_error": finite(d.q_error),
+            });
+        }
         if let Some(u) = units {
             let (l, t) = (u.r_max_m(), u.t_s());
             v["units"] = json!({
@@ -193,15 +213,25 @@ pub fn run(a: RunArgs) -> CmdResult {
                 settings.accuracy_label()
             )
         };
-        let certain = if doubt.certain {
-            String::new()
-        } else {
-            format!(
-                "certain  no: this run's own error could change the outcome (|H| margin {:.1e}, error {:.1e} against a run 1000x tighter, which ends {})\n",
-                doubt.margin,
-                doubt.error,
-                doubt.shadow.map_or("out of budget", |o| o.name())
-            )
+        let certain = match doubt {
+            None => String::new(),
+            Some(d) if d.certain => format!(
+                "check    outcome certain: {} {} in the {} frame agrees; tau differs from it by {:.1e}, position by {:.1e}\n",
+                d.check.method(),
+                d.check.accuracy_label(),
+                d.check.frame,
+                d.tau_error,
+                d.q_error,
+            ),
+            Some(d) => format!(
+                "certain  no: this run's own error could change the outcome (|H| margin {:.1e}, error {:.1e} against {} {} in the {} frame, which ends {})\n",
+                d.margin,
+                d.error,
+                d.check.method(),
+                d.check.accuracy_label(),
+                d.check.frame,
+                d.shadow.map_or("out of budget", |o| o.name())
+            ),
         };
         let mut text = format!(
             "outcome  {how}\n{certain}tau      {:.9}\nxi       {:.12}\nangle    {:.12} rad in [0, 2pi) (table frame, ccw from the release direction)\n|u|      {:.3e}\ncost     {cost}\n",
@@ -254,6 +284,42 @@ pub(super) fn positive(name: &str, x: f64) -> Result<(), Error> {
     }
 }
 
+/// Whether both ends of `t`'s bracket end as it says when run in full and checked by their
+/// second opinions (None: not asked for). A bracket with no stuck end has only its escaping
+/// end to check.
+fn checked(
+    check: bool,
+    t: &Threshold,
+    settings: crate::engine::Settings,
+    at: impl Fn(f64) -> Initial,
+) -> Result<Option<bool>, Error> {
+    if !check {
+        return Ok(None);
+    }
+    // A tenth of the solver's tolerance: its runs placed the ends; these judge them.
+    let width = t.escapes_at - t.stuck_at.unwrap_or(t.escapes_at);
+    let settings = floor_tol(settings, 0.1 * width.max(f64::MIN_POSITIVE));
+    let stuck = match t.stuck_at {
+        Some(lo) => confirmed(at(lo), settings, Outcome::Stuck)?,
+        None => true,
+    };
+    Ok(Some(
+        stuck && confirmed(at(t.escapes_at), settings, Outcome::Escaped)?,
+    ))
+}
+
+fn certified_line(certified: Option<bool>) -> &'static str {
+    match certified {
+        None => "",
+        Some(true) => {
+            "checked  certified: each end run in full ends as it says, and so does a run 1000x tighter in the other frame\n"
+        }
+        Some(false) => {
+            "checked  NOT certified: an end of the bracket, run in full or by its second opinion, did not end as it says or with a margin (tighten --tol)\n"
+        }
+    }
+}
+
 /// The scan of a threshold search as runs of equal outcome: "0 to 1.2 escape; 1.35 to 2.4
 /// stick; …" (what is known where the escaping values are not one interval).
 fn scan_summary(t: &Threshold) -> String {
@@ -283,6 +349,8 @@ pub fn escape(a: EscapeArgs) -> CmdResult {
     positive("vtol", a.vtol)?;
     let settings = solver_settings(&a.numerics)?;
     let t = escape_speed(a.xi0, a.phi, settings, a.vtol)?;
+    let at = |v0: f64| Initial::velocity(a.xi0, a.phi, v0);
+    let certified = checked(!a.no_check, &t, settings, at)?;
     let phi = crate::engine::model::turn_angle(a.phi);
     if a.json {
         let scan: Vec<_> = t
@@ -294,6 +362,7 @@ pub fn escape(a: EscapeArgs) -> CmdResult {
             "xi0": a.xi0, "phi": phi, "v_escape": t.value,
             "stuck_at": t.stuck_at, "escapes_at": t.escapes_at, "interval": t.interval,
             "scan": scan, "runs": t.runs, "rhs_evals": t.rhs_evals,
+            "run_tol": t.run_tol, "certified": certified,
         });
         emit(None, &format!("{v}\n"))?;
     } else {
@@ -305,8 +374,12 @@ pub fn escape(a: EscapeArgs) -> CmdResult {
             None => "v_escape 0  (released at rest on the table here, it already escapes)\n".into(),
         };
         text.push_str(&format!(
-            "cost     {} runs, {} rhs evaluations\n",
-            t.runs, t.rhs_evals
+            "cost     {} runs, {} rhs evaluations{}\n{}",
+            t.runs,
+            t.rhs_evals,
+            t.run_tol
+                .map_or(String::new(), |tol| format!(" (runs at tol {tol:.0e})")),
+            certified_line(certified)
         ));
         if !t.interval {
             text.push_str(&format!(
@@ -337,20 +410,25 @@ pub fn critical(a: CriticalArgs) -> CmdResult {
     }
     let settings = solver_settings(&a.numerics)?;
     let t = critical_radius(settings, a.xtol)?;
+    let certified = checked(!a.no_check, &t, settings, |xi0| {
+        Initial::at_rest(xi0, crate::engine::Release::LabRest)
+    })?;
     // The paper's Eq. 22: mu = Omega² r0c / (xi0c g), friction measured by the critical radius.
     let mu = a.omega.zip(a.r0c).map(|(w, r)| w * w * r / (t.value * a.g));
     if a.json {
         let v = json!({
             "xi0c": t.value, "stuck_at": t.stuck_at, "escapes_at": t.escapes_at,
             "interval": t.interval, "runs": t.runs, "rhs_evals": t.rhs_evals, "mu": mu,
+            "run_tol": t.run_tol, "certified": certified,
         });
         emit(None, &format!("{v}\n"))?;
     } else {
         let mut text = format!(
-            "xi0c     {:.10}\nbracket  stuck at {:.10}, escapes at {:.10}\n",
+            "xi0c     {:.10}\nbracket  stuck at {:.10}, escapes at {:.10}\n{}",
             t.value,
             t.stuck_at.unwrap_or(0.0),
-            t.escapes_at
+            t.escapes_at,
+            certified_line(certified)
         );
         if let Some(mu) = mu {
             text.push_str(&format!(

@@ -4,16 +4,21 @@
 //! Near the saddle H = ½(|u|² − (1 − ξ)²) is nearly conserved and its final value is a smooth
 //! function of the release ([`saddle_h`]): −½(1 − ξ_rest)² for a stuck run, ½|u|² where an
 //! escaping one crosses ξ = 1. Its size is the outcome's margin. The run's error in it is
-//! measured against a shadow run 1000× tighter (the explorer's `e` does the same for the
-//! position): the outcome is certain when the shadow agrees and the difference is well inside
-//! the margin.
+//! measured against a second opinion: dp54 at 1000× the run's tolerance (at least 1e-14) in the
+//! *other* frame, so that even at the tightest tolerance it is an independent formulation and
+//! not the run again. The outcome is certain when the second opinion agrees and the difference
+//! is well inside the margin. `certain` covers the outcome only: where and when it ended are
+//! given with their measured differences from the second opinion ([`Doubt::tau_error`],
+//! [`Doubt::q_error`]), which near a threshold can be large while the outcome is sure.
 
 use super::State;
 use super::method::{Method, Settings, TOL_RANGE};
+use super::model::Frame;
 use super::run::{Outcome, Run};
 use super::saddle::saddle_h;
 
-/// Shadow steps allowed: a shadow that cannot finish within them leaves the outcome in doubt.
+/// Second-opinion steps allowed: one that cannot finish within them leaves the outcome in
+/// doubt.
 pub const SHADOW_BUDGET: u64 = 200_000;
 /// The error must be below this share of the margin.
 const SHARE: f64 = 0.25;
@@ -26,8 +31,34 @@ pub struct Doubt {
     /// The margin |H| at the end of the run, and the run's error in it.
     pub margin: f64,
     pub error: f64,
-    /// The shadow's outcome (`None`: it could not finish within [`SHADOW_BUDGET`]).
+    /// The second opinion's outcome (`None`: it could not finish within [`SHADOW_BUDGET`]).
     pub shadow: Option<Outcome>,
+    /// |Δτ| and |Δq| (table frame) between the run's deciding state (the stop, the escape
+    /// certificate, or τ-max) and the second opinion's: the measured error of the run's time and
+    /// place, to within the second opinion's own (about 1000× smaller). Infinite when the two
+    /// end differently.
+    pub tau_error: f64,
+    pub q_error: f64,
+    /// How the second opinion ran.
+    pub check: Settings,
+}
+
+/// The second opinion on `run`: dp54 at 1000× its tolerance (fixed-step runs: tol 1e-12), at
+/// least 1e-14, in the other frame.
+pub fn second_opinion(run: &Run) -> Settings {
+    let tol = match run.settings.method() {
+        Method::Dp54 => (run.settings.scheme.knob() * 1e-3).max(TOL_RANGE.0),
+        _ => 1e-12,
+    };
+    let frame = match run.settings.frame {
+        Frame::Lab => Frame::Table,
+        Frame::Table => Frame::Lab,
+    };
+    Settings {
+        max_steps: SHADOW_BUDGET,
+        frame,
+        ..Settings::dp54(tol)
+    }
 }
 
 /// The state at which a run's outcome was decided: the stop, the escape certificate, or its
@@ -39,12 +70,13 @@ pub fn decided_state(run: &Run) -> State {
     }
 }
 
-/// Checks a finished run (stuck, escaped, or run to `tau_max`) against a shadow run with
-/// dp54 at 1000× its tolerance (fixed-step runs: tol 1e-12), in the same frame.
+/// Checks a finished run (stuck, escaped, or run to `tau_max`) against its
+/// [`second_opinion`].
 pub fn doubt(run: &Run, tau_max: f64) -> Doubt {
     let own = run.outcome();
     let end = decided_state(run);
     let margin = saddle_h(&end).abs();
+    let check = second_opinion(run);
     if run.initial.frictionless {
         // Closed form: exact.
         return Doubt {
@@ -52,33 +84,35 @@ pub fn doubt(run: &Run, tau_max: f64) -> Doubt {
             margin,
             error: 0.0,
             shadow: Some(own),
+            tau_error: 0.0,
+            q_error: 0.0,
+            check,
         };
     }
-    let tol = match run.settings.method() {
-        Method::Dp54 => (run.settings.scheme.knob() * 1e-3).max(TOL_RANGE.0),
-        _ => 1e-12,
-    };
-    let settings = Settings {
-        max_steps: SHADOW_BUDGET,
-        frame: run.settings.frame,
-        ..Settings::dp54(tol)
-    };
-    // A stuck or escaping run near the saddle may take the shadow longer to decide.
+    // A stuck or escaping run near the saddle may take the second opinion longer to decide.
     let limit = match own {
         Outcome::Running => tau_max,
         _ => (2.0 * end.tau + 10.0).min(tau_max.max(end.tau)),
     };
-    let shadow = Run::new(run.initial, settings)
+    let shadow = Run::new(run.initial, check)
         .ok()
         .and_then(|mut s| s.run(limit, true).ok().map(|o| (o, decided_state(&s))));
     match shadow {
         Some((o, s)) => {
             let error = (saddle_h(&s) - saddle_h(&end)).abs();
+            let (tau_error, q_error) = if o == own {
+                ((s.tau - end.tau).abs(), (s.q() - end.q()).length())
+            } else {
+                (f64::INFINITY, f64::INFINITY)
+            };
             Doubt {
                 certain: o == own && (own == Outcome::Running || error < SHARE * margin),
                 margin,
                 error,
                 shadow: Some(o),
+                tau_error,
+                q_error,
+                check,
             }
         }
         None => Doubt {
@@ -86,6 +120,9 @@ pub fn doubt(run: &Run, tau_max: f64) -> Doubt {
             margin,
             error: f64::INFINITY,
             shadow: None,
+            tau_error: f64::INFINITY,
+            q_error: f64::INFINITY,
+            check,
         },
     }
 }

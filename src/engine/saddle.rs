@@ -35,6 +35,32 @@ const SLAVED: f64 = 0.1;
 /// (∝ (g/4)⁵) is far below the bound on the model's own.
 const STEPS: usize = 4;
 
+/// I = s² − g² carried along the slow manifold from gap `g` (= 1 − ξ) to ξ = 1, and the time it
+/// takes: dI/dg = 2k/(1 − k) with 1 − cos α = k = 2s²/(ρ² + s²)², s² = I + g² (module docs), by
+/// RK4 in g. On each step the time is the leading-order crossing, dg/dτ = −√(I + g²), with I
+/// held at the step's mean: asinh(g/√I) between its ends (for I > 0; the time is only needed
+/// for a crossing).
+pub fn carry(i0: f64, g: f64) -> (f64, f64) {
+    let k = |s2: f64, rho: f64| 2.0 * s2 / ((rho * rho + s2) * (rho * rho + s2));
+    let slope = |g: f64, i: f64| {
+        let k = k(i + g * g, 1.0 - g);
+        2.0 * k / (1.0 - k)
+    };
+    let dg = -g / STEPS as f64;
+    let (mut gg, mut i, mut t) = (g, i0, 0.0);
+    for _ in 0..STEPS {
+        let k1 = slope(gg, i);
+        let k2 = slope(gg + 0.5 * dg, i + 0.5 * dg * k1);
+        let k3 = slope(gg + 0.5 * dg, i + 0.5 * dg * k2);
+        let k4 = slope(gg + dg, i + dg * k3);
+        let next = i + dg / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+        let root = (0.5 * (i + next)).max(0.0).sqrt();
+        t += (gg / root).asinh() - ((gg + dg).max(0.0) / root).asinh();
+        (i, gg) = (next, gg + dg);
+    }
+    (i, t)
+}
+
 /// What the slow manifold says of a particle sliding out near the saddle, with `h` = I/2
 /// carried to ξ = 1 (for an escape, H as it crosses ξ = 1; for a stop, above −½(1 − ξ_rest)²
 /// by O((1 − ξ_rest)³)).
@@ -62,10 +88,16 @@ pub fn fate(s: &State) -> Option<Fate> {
     if cos <= 0.0 {
         return None;
     }
+    // On the manifold u lags q̂ clockwise, sin α ≈ −2s/(ρ² + s²). Judged on sin α itself:
+    // 1 − cos α cannot tell α from its mirror −α, which a release near the rim sweeps through
+    // while û is still turning onto the manifold (far from it, and off it the other way).
     let sin = qh.perp_dot(uh);
+    let on = sin * (rho * rho + speed * speed) / (-2.0 * speed);
     let one_minus_cos = sin * sin / (1.0 + cos);
     let k = |s2: f64, rho: f64| 2.0 * s2 / ((rho * rho + s2) * (rho * rho + s2));
-    let misaligned = (one_minus_cos / k(speed * speed, rho) - 1.0).abs();
+    let misaligned = (one_minus_cos / k(speed * speed, rho) - 1.0)
+        .abs()
+        .max((on - 1.0).abs());
     if misaligned > SLAVED {
         return None;
     }
@@ -76,20 +108,7 @@ pub fn fate(s: &State) -> Option<Fate> {
     if (i0 - rough).abs() < 0.5 * rough * (3.0 * misaligned + speed) {
         return None;
     }
-    let slope = |g: f64, i: f64| {
-        let k = k(i + g * g, 1.0 - g);
-        2.0 * k / (1.0 - k)
-    };
-    let dg = -g / STEPS as f64;
-    let (mut gg, mut i) = (g, i0);
-    for _ in 0..STEPS {
-        let k1 = slope(gg, i);
-        let k2 = slope(gg + 0.5 * dg, i + 0.5 * dg * k1);
-        let k3 = slope(gg + 0.5 * dg, i + 0.5 * dg * k2);
-        let k4 = slope(gg + dg, i + dg * k3);
-        i += dg / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
-        gg += dg;
-    }
+    let (i, _) = carry(i0, g);
     let loss = i0 - i;
     let doubt = loss * (3.0 * misaligned + speed) + 1e-16;
     if i > doubt {

@@ -1,7 +1,8 @@
 //! Solvers over many runs (Sec. IV): the escape speed v_e(ξ0, φ) of Fig. 5, the critical
 //! radius ξ0c of Fig. 6, and sweeps of both.
 
-use super::method::{Scheme, Settings};
+use super::doubt::doubt;
+use super::method::{Scheme, Settings, TOL_RANGE};
 use super::model::{Initial, Release};
 use super::par::par_map;
 use super::roots::{bisect, golden_min};
@@ -30,6 +31,33 @@ pub struct Threshold {
     pub scan: Vec<(f64, bool)>,
     pub runs: u32,
     pub rhs_evals: u64,
+    /// dp54's tolerance in the runs that decided the bracket: the one asked for, floored at
+    /// 1/100 of the bracket's width (a looser run misplaces the threshold by more than that).
+    pub run_tol: Option<f64>,
+}
+
+/// `settings` with dp54's tolerance no looser than 1/100 of a bracket `width`: near a threshold
+/// a run's error moves the threshold by about its tolerance (measured on Fig. 5's points), and
+/// up to ~15× that near the rim.
+pub fn floor_tol(settings: Settings, width: f64) -> Settings {
+    match settings.scheme {
+        Scheme::Dp54 { tol } => Settings {
+            scheme: Scheme::Dp54 {
+                tol: tol.min(1e-2 * width).max(TOL_RANGE.0),
+            },
+            ..settings
+        },
+        _ => settings,
+    }
+}
+
+/// Whether the release `initial` ends as `want` (stuck, or escaped with its certificate) when
+/// run in full at `settings` with no shortcut, and its second opinion ([`doubt`]: another frame,
+/// 1000× tighter) agrees with a margin: what certifies one end of a bracket.
+pub fn confirmed(initial: Initial, settings: Settings, want: Outcome) -> Result<bool, Error> {
+    let mut run = Run::new(initial, settings)?;
+    let own = run.run(CLASSIFY_TAU, true)?;
+    Ok(own == want && doubt(&run, CLASSIFY_TAU).certain)
 }
 
 /// Runs every value of `grid`: the index of the first that escapes, whether all after it
@@ -167,6 +195,7 @@ pub fn escape_speed(xi0: f64, phi: f64, settings: Settings, tol: f64) -> Result<
             settings.method()
         )));
     }
+    let settings = floor_tol(settings, tol);
     let mut evals = 0;
     let at = |v0: f64| Initial::velocity(xi0, phi, v0);
     let scan_settings = match settings.scheme {
@@ -194,6 +223,7 @@ pub fn escape_speed(xi0: f64, phi: f64, settings: Settings, tol: f64) -> Result<
             scan: scanned,
             runs,
             rhs_evals: evals,
+            run_tol: settings.scheme.tol(),
         });
     }
     // The bracket, confirmed at the full settings (the scan ran looser).
@@ -288,6 +318,7 @@ pub fn escape_speed(xi0: f64, phi: f64, settings: Settings, tol: f64) -> Result<
         scan: scanned,
         runs,
         rhs_evals: evals,
+        run_tol: settings.scheme.tol(),
     })
 }
 
@@ -349,6 +380,7 @@ fn close_in(
 /// Critical radius ξ0c (Sec. IV, Fig. 6): the largest ξ0 at which a particle released at rest
 /// in the lab still ends stuck.
 pub fn critical_radius(settings: Settings, tol: f64) -> Result<Threshold, Error> {
+    let settings = floor_tol(settings, tol);
     let mut evals = 0;
     let mut classify = |xi0: f64| -> Result<bool, Error> {
         let mut run = Run::new(Initial::at_rest(xi0, Release::LabRest), settings)?;
@@ -372,6 +404,7 @@ pub fn critical_radius(settings: Settings, tol: f64) -> Result<Threshold, Error>
         runs: scanned.len() as u32 + runs,
         scan: scanned,
         rhs_evals: evals,
+        run_tol: settings.scheme.tol(),
     })
 }
 

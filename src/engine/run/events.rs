@@ -6,6 +6,7 @@ use super::outcome::{Certificate, Escape, Status, certificate, certificate_margi
 use super::{Ahead, HOVER_STEPS, Limit, Run, SNAP_T, STIFF, STOP_CAP, StepInfo};
 use crate::engine::model::{State, rotate, zcross};
 use crate::engine::roots::illinois;
+use crate::engine::saddle::carry;
 use crate::engine::stepper::Segment;
 use crate::engine::stop::radial_stop;
 use glam::DVec2;
@@ -27,38 +28,45 @@ impl Run {
             return Ahead::Clear;
         }
         let rho = s.xi();
-        let decel = 1.0 - s.r.dot(u) / speed;
+        // ξ′|q|: the radial models below hold only for a particle moving out.
+        let out = s.r.dot(u);
+        let decel = 1.0 - out / speed;
         let gap = 1.0 - rho;
         // Steps too long for û to be resolved, with û already on q̂: the radial end game is
         // then exact to O(|u|²) and the explicit step is not.
         let stiff = self.natural_step() * rho >= STIFF * speed;
-        // û on q̂ to within an angle α whose share of the energy, s²(1 − cos α), the end game
-        // may neglect.
-        let aligned = speed * (speed - s.r.dot(u) / rho) <= self.travel_tol();
-        let end_game = self.stiff_steps >= HOVER_STEPS || (stiff && aligned);
-        if gap > 0.0 && speed < gap {
+        // û on q̂ (outward, never inward) to within an angle α whose share of the energy,
+        // s²(1 − cos α), the end game may neglect.
+        let aligned = out > 0.0 && speed * (speed - out / rho) <= self.travel_tol();
+        let hovering = self.stiff_steps >= HOVER_STEPS;
+        let end_game = (hovering && out > 0.0) || (stiff && aligned);
+        if gap > 0.0 && speed < gap && out > 0.0 {
             let t = (speed / gap).atanh();
-            if speed * t <= self.travel_tol() || end_game {
+            // Short enough to neglect: the radial path is the slowest and longest way to the
+            // stop (d|u|/dτ ≤ −(1 − ξ) in every direction), so off q̂ it bounds the error.
+            let negligible = speed * t <= self.travel_tol() && (aligned || t <= self.snap_time());
+            if negligible || end_game {
                 return Ahead::Jump {
                     t,
                     q: radial_stop(s.q(), speed, t),
                     u: DVec2::ZERO,
                 };
             }
-        } else if end_game && gap > 0.0 {
-            // Over the saddle: it reaches ξ = 1 still moving out, if I = s² − (1 − ρ)² stays
-            // positive despite the O(s³) loss dI/dτ = −4ρs³ on the way.
-            let t = (gap / speed).atanh();
-            let i = speed * speed - gap * gap;
-            if i > 8.0 * speed.powi(3) * t {
+        } else if end_game && gap > 0.0 && speed >= gap {
+            // Over the saddle: it reaches ξ = 1 still moving out if I = s² − (1 − ρ)², carried
+            // along the slow manifold ([`carry`]: û is on it here), stays positive beyond the
+            // model's own error (its O(s) share of the loss of I on the way).
+            let i0 = speed * speed - gap * gap;
+            let (i, t) = carry(i0, gap);
+            if i > (i0 - i) * speed {
                 let q = s.q() / rho;
                 return Ahead::Jump {
                     t,
                     q,
-                    u: q * (i - 4.0 * speed.powi(3) * t).sqrt(),
+                    u: q * i.sqrt(),
                 };
             }
-        } else if self.stiff_steps >= HOVER_STEPS {
+        } else if hovering && gap <= 0.0 {
             // At the saddle ξ ≈ 1 itself: stop here and let Filippov's rule decide.
             return Ahead::Jump {
                 t: 0.0,
@@ -70,20 +78,46 @@ impl Run {
             return Ahead::Clear;
         }
         let t = speed / decel;
-        if stiff && !aligned && t > SNAP_T {
-            // Not yet on q̂: steps within the stability limit let û turn as it does.
-            return Ahead::Cap((STOP_CAP * t).min(speed / rho), Limit::Stability);
-        }
-        if t <= SNAP_T {
+        if self.snaps(rho, speed, t) {
             // Constant deceleration over a tiny interval.
-            Ahead::Jump {
+            return Ahead::Jump {
                 t,
                 q: s.q() + s.u() * (0.5 * t),
                 u: DVec2::ZERO,
-            }
+            };
+        }
+        if stiff && !aligned {
+            // Not yet on q̂: steps within the stability limit let û turn as it does.
+            Ahead::Cap((STOP_CAP * t).min(speed / rho), Limit::Stability)
         } else {
             Ahead::Cap(STOP_CAP * t, Limit::StopAhead)
         }
+    }
+
+    /// Whether the stop `t` ahead at constant deceleration may be taken in closed form: only
+    /// where that model cannot be wrong by more than [`Run::snap_time`], whichever way û turns
+    /// on the way. Inside ξ = 1 the deceleration is at least 1 − ξ in every direction, so the
+    /// stop comes within s/(1 − ξ). Outside, only once s < ξ − 1: then H < 0, so it can never
+    /// come back inside ξ = 1 (where H ≥ 0 is needed to arrive) and the stop is momentary.
+    /// Near ξ = 1 neither holds and the stop is integrated: there û swings onto q̂ and the
+    /// deceleration falls to 1 − ξ, which a snap would not see.
+    fn snaps(&self, rho: f64, speed: f64, t: f64) -> bool {
+        let within = self.snap_time();
+        if rho < 1.0 {
+            speed / (1.0 - rho) <= within
+        } else {
+            speed < rho - 1.0 && t <= within
+        }
+    }
+
+    /// The error in a stop's time that a closed-form stop may make: dp54's tolerance, a fixed
+    /// step's dt² (its own error per unit time), at most [`SNAP_T`].
+    pub(super) fn snap_time(&self) -> f64 {
+        let scheme = self.settings.scheme;
+        scheme
+            .tol()
+            .unwrap_or_else(|| scheme.knob() * scheme.knob())
+            .min(SNAP_T)
     }
 
     /// The step the integrator would take with no stop ahead.

@@ -64,8 +64,8 @@ pub struct StepInfo {
 /// Fraction of the predicted time to a stop that one step may cover: the stop is approached in
 /// steps that shrink geometrically, never stepped through.
 const STOP_CAP: f64 = 0.7;
-/// Below this predicted time to a momentary stop outside ξ = 1, the stop is taken in closed
-/// form (constant deceleration): the error is O(T²|u|), far below any tolerance on offer.
+/// The largest error in a stop's time that a closed-form stop may make (see
+/// `Run::snap_time`): the fixed-step methods' dt² is capped here.
 const SNAP_T: f64 = 1e-6;
 /// Near a stop the direction of u turns at a rate ~|q|/|u| that grows without bound: once a
 /// step is longer than a few |u|/|q|, explicit steps are unstable and can hover at a small
