@@ -36,6 +36,16 @@ pub struct Threshold {
     pub run_tol: Option<f64>,
 }
 
+/// `settings` run by dp54 at `tol` (not below 1e-14).
+fn with_tol(settings: Settings, tol: f64) -> Settings {
+    Settings {
+        scheme: Scheme::Dp54 {
+            tol: tol.max(TOL_RANGE.0),
+        },
+        ..settings
+    }
+}
+
 /// `settings` with dp54's tolerance no looser than 1/100 of a bracket `width`: near a threshold
 /// a run's error moves the threshold by about its tolerance (measured on Fig. 5's points), and
 /// up to ~15× that near the rim.
@@ -49,6 +59,51 @@ pub fn floor_tol(settings: Settings, width: f64) -> Settings {
         },
         _ => settings,
     }
+}
+
+/// Whether both ends of `t`'s bracket end as it says when run in full (no shortcut) at a tenth
+/// of the tolerance that placed them, each [`confirmed`] by its second opinion. `at` makes the
+/// release from the bracket's variable. A bracket with no stuck end has only its escaping end.
+pub fn certify(
+    t: &Threshold,
+    settings: Settings,
+    at: impl Fn(f64) -> Initial,
+) -> Result<bool, Error> {
+    let settings = match t.run_tol {
+        Some(tol) => with_tol(settings, 0.1 * tol),
+        None => settings,
+    };
+    let stuck = match t.stuck_at {
+        Some(lo) => confirmed(at(lo), settings, Outcome::Stuck)?,
+        None => true,
+    };
+    Ok(stuck && confirmed(at(t.escapes_at), settings, Outcome::Escaped)?)
+}
+
+/// Solves with `solve` at `settings` and [`certify`]s the bracket; while that fails, solves
+/// again with dp54 100× tighter (twice at most, not below 1e-14): a run misplaces the threshold
+/// by about its tolerance, so an end placed within that of it may lie on the wrong side. The
+/// answer (its cost counting every attempt), and whether its bracket is certified.
+pub fn solve_certified(
+    settings: Settings,
+    solve: impl Fn(Settings) -> Result<Threshold, Error>,
+    at: impl Fn(f64) -> Initial,
+) -> Result<(Threshold, bool), Error> {
+    let mut t = solve(settings)?;
+    for _ in 0..2 {
+        if certify(&t, settings, &at)? {
+            return Ok((t, true));
+        }
+        let Some(tol) = t.run_tol.filter(|&tol| tol > TOL_RANGE.0) else {
+            return Ok((t, false));
+        };
+        let (runs, evals) = (t.runs, t.rhs_evals);
+        t = solve(with_tol(settings, 1e-2 * tol))?;
+        t.runs += runs;
+        t.rhs_evals += evals;
+    }
+    let ok = certify(&t, settings, &at)?;
+    Ok((t, ok))
 }
 
 /// Whether the release `initial` ends as `want` (stuck, or escaped with its certificate) when
