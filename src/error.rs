@@ -41,6 +41,18 @@ impl Error {
     }
 }
 
+/// The engine's errors keep their kind: input refused stays refused (exit 2).
+impl From<crate::engine::error::Error> for Error {
+    fn from(e: crate::engine::error::Error) -> Error {
+        use crate::engine::error::Error as E;
+        match e {
+            E::Invalid(m) => Error::Invalid(m),
+            E::Run(r) => Error::Run(r),
+            E::Failed(m) => Error::Failed(m),
+        }
+    }
+}
+
 impl From<std::io::Error> for Error {
     fn from(e: std::io::Error) -> Error {
         Error::Failed(e.to_string())

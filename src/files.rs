@@ -119,14 +119,9 @@ impl Output {
 
 /// Writes to a device or FIFO block as usual once it is open.
 fn clear_nonblock(f: &File) {
-    use std::os::fd::AsRawFd;
-    let fd = f.as_raw_fd();
-    // SAFETY: fcntl on a descriptor we own, with flags it returned.
-    unsafe {
-        let flags = libc::fcntl(fd, libc::F_GETFL);
-        if flags >= 0 {
-            libc::fcntl(fd, libc::F_SETFL, flags & !libc::O_NONBLOCK);
-        }
+    use rustix::fs::{OFlags, fcntl_getfl, fcntl_setfl};
+    if let Ok(flags) = fcntl_getfl(f) {
+        let _ = fcntl_setfl(f, flags - OFlags::NONBLOCK);
     }
 }
 

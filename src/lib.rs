@@ -1,3 +1,4 @@
+#![cfg_attr(not(test), deny(clippy::unwrap_used))]
 //! turntable: a particle sliding with dry friction on a rotating table
 //! (Agha, Gupta & Joseph, Am. J. Phys. 83, 126 (2015)).
 

@@ -90,8 +90,14 @@ impl Scene {
         let scene: Scene = toml::from_str(&text).map_err(|e| {
             Error::Invalid(format!("{file}: {}", crate::files::toml_error(&text, &e)))
         })?;
-        scene.initial.validate().map_err(|e| e.context(&file))?;
-        scene.settings.validate().map_err(|e| e.context(&file))?;
+        scene
+            .initial
+            .validate()
+            .map_err(|e| Error::from(e).context(&file))?;
+        scene
+            .settings
+            .validate()
+            .map_err(|e| Error::from(e).context(&file))?;
         if let Some(u) = scene.units {
             crate::engine::units::Units::new(u.mu, u.rpm, u.g)
                 .map_err(|e| Error::Invalid(format!("{file}: [units] {e}")))?;

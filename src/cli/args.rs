@@ -163,7 +163,7 @@ impl UnitsArgs {
         match (self.mu, self.rpm, self.gravity) {
             (None, None, None) => Ok(None),
             (Some(mu), Some(rpm), g) => {
-                crate::engine::units::Units::new(mu, rpm, g.unwrap_or(G_DEFAULT)).map(Some)
+                Ok(crate::engine::units::Units::new(mu, rpm, g.unwrap_or(G_DEFAULT)).map(Some)?)
             }
             _ => Err(Error::invalid(
                 "physical units need both --mu and --rpm (and optionally --g)",

@@ -18,7 +18,7 @@ pub use args::*;
 pub type CmdResult = Result<(), Error>;
 
 pub fn check_initial(i: &Initial) -> Result<(), Error> {
-    i.validate()
+    Ok(i.validate()?)
 }
 
 /// Opens the explorer. Bad scenes, themes and `--record` paths fail before the terminal is

@@ -3,7 +3,7 @@
 //! *Solving ODEs I*, II.5 and the DOPRI5 code).
 
 use super::model::{Frame, Initial};
-use crate::error::Error;
+use crate::engine::error::Error;
 use serde::{Deserialize, Serialize};
 use strum::{Display, EnumMessage, EnumString, IntoStaticStr, VariantArray};
 

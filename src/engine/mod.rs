@@ -3,6 +3,7 @@
 
 pub mod approx;
 pub mod doubt;
+pub mod error;
 pub mod method;
 pub mod model;
 pub mod par;

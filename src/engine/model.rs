@@ -2,7 +2,7 @@
 //! Sec. IV, with the conventions of `shared/CONVENTIONS.md` (Ω = 1, μg = 1, the table turns
 //! counterclockwise). Never polar inside: polar forms are singular at ξ = 0.
 
-use crate::error::Error;
+use crate::engine::error::Error;
 use glam::DVec2;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;

@@ -8,7 +8,7 @@ use super::par::par_map;
 use super::roots::{bisect, golden_min};
 use super::run::{Outcome, Run};
 use super::saddle::{Fate, fate, saddle_h};
-use crate::error::Error;
+use crate::engine::error::Error;
 use serde::Serialize;
 
 /// Time limit of one classifying run. Every run ends stuck or certified long before this except

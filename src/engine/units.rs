@@ -2,7 +2,7 @@
 //! R_max = μg/Ω² and time in 1/Ω; a table turning at `rpm` with friction μ under gravity g
 //! gives every length, time and speed its SI value.
 
-use crate::error::Error;
+use crate::engine::error::Error;
 
 /// μ, Ω (rad/s) and g (m/s²) of a real table.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]

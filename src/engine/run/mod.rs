@@ -7,7 +7,7 @@ use super::method::Settings;
 use super::model::{Initial, State};
 use super::stepper::{Cost, Segment, StepError, Stepper, too_short};
 use super::stop::{frozen_stop, frozen_stop_error};
-use crate::error::Error;
+use crate::engine::error::Error;
 use glam::DVec2;
 
 mod events;

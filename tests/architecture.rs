@@ -1,0 +1,87 @@
+//! The invariants of ARCHITECTURE.md that a grep can hold: the engine depends on nothing else in
+//! the crate, no clock outside the terminal loop and the bench, no `unsafe` outside the terminal,
+//! and files are written only through `files`. Each reads the sources' non-test code.
+
+use std::path::{Path, PathBuf};
+
+/// Every `.rs` file under `dir`, with its text up to its `#[cfg(test)]` module.
+fn sources(dir: &Path) -> Vec<(PathBuf, String)> {
+    let mut out = vec![];
+    for entry in std::fs::read_dir(dir).unwrap() {
+        let path = entry.unwrap().path();
+        if path.is_dir() {
+            out.extend(sources(&path));
+        } else if path.extension().is_some_and(|e| e == "rs") {
+            let text = std::fs::read_to_string(&path).unwrap();
+            let code = text.split("#[cfg(test)]").next().unwrap_or("").to_string();
+            out.push((path, code));
+        }
+    }
+    out
+}
+
+fn src() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("src")
+}
+
+/// Lines of code (comments dropped) in files not under `allowed` that contain `needle`.
+fn offenders(needle: &str, allowed: &[&str]) -> Vec<String> {
+    let root = src();
+    let mut found = vec![];
+    for (path, code) in sources(&root) {
+        let rel = path
+            .strip_prefix(&root)
+            .unwrap()
+            .to_string_lossy()
+            .replace('\\', "/");
+        if allowed.iter().any(|a| rel.starts_with(a)) {
+            continue;
+        }
+        for (n, line) in code.lines().enumerate() {
+            let line = line.split("//").next().unwrap_or("");
+            if line.contains(needle) {
+                found.push(format!("src/{rel}:{}: {}", n + 1, line.trim()));
+            }
+        }
+    }
+    found
+}
+
+#[test]
+fn the_engine_depends_on_nothing_else_in_the_crate() {
+    let mut bad = vec![];
+    for (path, code) in sources(&src().join("engine")) {
+        for line in code.lines() {
+            let code = line.split("//").next().unwrap_or("");
+            if code.contains("crate::") && !code.contains("crate::engine") {
+                bad.push(format!("{}: {}", path.display(), line.trim()));
+            }
+        }
+    }
+    assert!(bad.is_empty(), "{}", bad.join("\n"));
+}
+
+/// Time advances by ticks inside the model, so the same keys give the same screens: the wall
+/// clock is read by the terminal loop (frame pacing) and the bench (timings) only.
+#[test]
+fn no_clock_outside_the_terminal_and_the_bench() {
+    for clock in ["Instant", "SystemTime"] {
+        let bad = offenders(clock, &["terminal", "bench/"]);
+        assert!(bad.is_empty(), "{}", bad.join("\n"));
+    }
+}
+
+#[test]
+fn no_unsafe_outside_the_terminal() {
+    let bad = offenders("unsafe", &["terminal"]);
+    assert!(bad.is_empty(), "{}", bad.join("\n"));
+}
+
+/// Files are written atomically, through `files` (a temporary file renamed into place).
+#[test]
+fn files_are_written_only_through_files() {
+    for call in ["fs::write", "File::create", "fs::rename", "OpenOptions"] {
+        let bad = offenders(call, &["files.rs"]);
+        assert!(bad.is_empty(), "{}", bad.join("\n"));
+    }
+}
