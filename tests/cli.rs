@@ -296,3 +296,43 @@ fn an_angle_a_hair_below_a_turn_is_zero() {
     let w = turntable::engine::model::turn_angle(-1e-3);
     assert!((w - (std::f64::consts::TAU - 1e-3)).abs() < 1e-15);
 }
+
+/// The fields README's table under `heading` lists.
+fn readme_fields(heading: &str) -> Vec<String> {
+    let readme =
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md")).unwrap();
+    let table = readme.split(heading).nth(1).unwrap();
+    table
+        .lines()
+        .skip_while(|l| !l.starts_with("| field"))
+        .skip(2)
+        .take_while(|l| l.starts_with("| `"))
+        .map(|l| l.split('`').nth(1).unwrap().to_string())
+        .collect()
+}
+
+/// The JSON reports are documented once, in README: every field printed is listed there, and
+/// nothing else is (units and check included when asked for).
+#[test]
+fn json_reports_are_the_fields_readme_lists() {
+    for (heading, args) in [
+        (
+            "`run --json`:",
+            &["run", "--v0", "0.3", "--json", "--mu", "0.2", "--rpm", "30"][..],
+        ),
+        ("`escape --json`:", &["escape", "--xi0", "0.5", "--json"]),
+        (
+            "`critical --json`:",
+            &["critical", "--json", "--xtol", "1e-6"],
+        ),
+    ] {
+        let (code, out, err) = turntable(args);
+        assert_eq!(code, 0, "{err}");
+        let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+        // serde_json's map sorts its keys.
+        let keys: Vec<String> = v.as_object().unwrap().keys().cloned().collect();
+        let mut listed = readme_fields(heading);
+        listed.sort();
+        assert_eq!(keys, listed, "{heading}");
+    }
+}

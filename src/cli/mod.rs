@@ -5,6 +5,7 @@ mod args;
 mod bench;
 mod numerics;
 pub mod replay;
+mod report;
 mod sweep;
 
 use crate::engine::Initial;

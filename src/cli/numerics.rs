@@ -1,13 +1,10 @@
 //! The headless numerical commands: run, escape, critical (sweep is in `sweep`).
 
+use super::report::{CriticalReport, EscapeReport, RunReport};
 use super::{CmdResult, CriticalArgs, Error, EscapeArgs, RunArgs, check_initial};
-use crate::engine::solve::{
-    Threshold, check_escape_xi0, critical_radius, escape_speed, solve_certified,
-};
+use crate::engine::solve::{check_escape_xi0, critical_radius, escape_speed, solve_certified};
 use crate::engine::{Initial, Limit, Outcome, Run, State, Status};
 use crate::files::{Output, emit};
-use serde_json::json;
-use std::fmt::Write as _;
 use std::io::{BufWriter, Write as _};
 
 const TAU_MAX_LIMIT: f64 = 1e9;
@@ -79,16 +76,34 @@ impl Rows {
     }
 }
 
-/// A JSON number, or null where a measured difference is infinite (the two runs ended
-/// differently).
-fn finite(x: f64) -> Option<f64> {
-    x.is_finite().then_some(x)
-}
-
 /// Spacing in τ of the trajectory rows of a frictionless run, which takes no steps.
 const FREE_SAMPLE: f64 = 1e-2;
 
 pub fn run(a: RunArgs) -> CmdResult {
+    let (initial, settings) = run_inputs(&a)?;
+    let units = a.units.units()?;
+    // The file is opened (and a bad path refused) before any work; rows stream into it.
+    let csv = match &a.trajectory {
+        Some(path) => Some(BufWriter::new(
+            Output::create(path).map_err(|e| Error::Invalid(format!("--trajectory: {e}")))?,
+        )),
+        None => None,
+    };
+    let mut run = Run::new(initial, settings)?;
+    let end = integrate(&mut run, a.tau_max, !a.follow, csv)?;
+    let doubt = (!a.no_check).then(|| crate::engine::doubt::doubt(&run, a.tau_max));
+    let report = RunReport::new(&run, &end, doubt, units);
+    let out = if a.json {
+        json_line(&report)?
+    } else {
+        report.text()
+    };
+    emit(None, &out)?;
+    Ok(())
+}
+
+/// The release and settings `run` was asked for, checked.
+fn run_inputs(a: &RunArgs) -> Result<(Initial, crate::engine::Settings), Error> {
     let initial = Initial {
         xi0: a.xi0,
         phi: a.phi,
@@ -103,15 +118,18 @@ pub fn run(a: RunArgs) -> CmdResult {
             Initial::show(a.tau_max)
         )));
     }
-    let settings = a.numerics.settings()?;
-    let mut run = Run::new(initial, settings)?;
-    // The file is opened (and a bad path refused) before any work; rows stream into it.
-    let mut csv = match &a.trajectory {
-        Some(path) => Some(BufWriter::new(
-            Output::create(path).map_err(|e| Error::Invalid(format!("--trajectory: {e}")))?,
-        )),
-        None => None,
-    };
+    Ok((initial, a.numerics.settings()?))
+}
+
+/// Runs to its outcome (past the escape certificate unless `stop_on_escape`) or `tau_max`,
+/// writing a trajectory row per step to `csv`; returns the state that decided it.
+fn integrate(
+    run: &mut Run,
+    tau_max: f64,
+    stop_on_escape: bool,
+    mut csv: Option<BufWriter<Output>>,
+) -> Result<State, Error> {
+    let initial = run.initial;
     let write_err = |e: std::io::Error| Error::Failed(format!("--trajectory: {e}"));
     let mut rows = Rows { initial, work: 0.0 };
     if let Some(csv) = csv.as_mut() {
@@ -119,13 +137,12 @@ pub fn run(a: RunArgs) -> CmdResult {
         rows.write(csv, &run.state(), run.status != Status::Slipping)
             .map_err(write_err)?;
     }
-    let stop_on_escape = !a.follow;
     while run.status == Status::Slipping
-        && run.tau() < a.tau_max
+        && run.tau() < tau_max
         && !(stop_on_escape && run.escape.is_some())
     {
         let (before, before_energy) = (run.tau(), run.state().energy());
-        run.step(a.tau_max)?;
+        run.step(tau_max)?;
         if let Some(csv) = csv.as_mut() {
             if initial.frictionless {
                 // No steps to write: sample the closed form instead.
@@ -142,140 +159,29 @@ pub fn run(a: RunArgs) -> CmdResult {
                 // A stretch taken in closed form has no dense output of its own (its segment
                 // is a cubic between the ends): the identity gives its work.
                 Some(Limit::ClosedForm) => run.state().energy() - before_energy,
-                _ => step_work(&run, before, run.tau())?,
+                _ => step_work(run, before, run.tau())?,
             };
             rows.write(csv, &run.state(), run.status != Status::Slipping)
                 .map_err(write_err)?;
         }
     }
-    let outcome = run.outcome();
-    let end = match (outcome, run.escape) {
-        (Outcome::Escaped, Some(e)) if stop_on_escape => e.state,
-        _ => run.state(),
-    };
     if let Some(csv) = csv {
         csv.into_inner()
             .map_err(|e| write_err(e.into_error()))?
             .finish()
             .map_err(write_err)?;
     }
-    let doubt = (!a.no_check).then(|| crate::engine::doubt::doubt(&run, a.tau_max));
-    let q = end.q();
-    let angle = crate::engine::model::turn_angle(q.y.atan2(q.x));
-    let speed = end.u_lab().length();
-    let c = run.cost;
-    let units = a.units.units()?;
-    if a.json {
-        let mut v = json!({
-            "outcome": outcome.name(),
-            "tau": end.tau,
-            "xi": q.length(),
-            "angle": angle,
-            "speed": speed,
-            "certificate": run.escape.map(|e| e.by),
-            "escape_tau": run.escape.map(|e| e.tau),
-            "steps": c.steps,
-            "rejected": c.rejected,
-            "rhs_evals": c.rhs_evals,
-            "frictionless": initial.frictionless,
-            "method": settings.method().to_string(),
-            "frame": settings.frame.to_string(),
-            "tol": settings.scheme.tol(),
-            "dt": settings.scheme.fixed().map(|(_, dt)| dt),
-        });
-        if let Some(d) = doubt {
-            v["certain"] = json!(d.certain);
-            v["check"] = json!({
-                "method": d.check.method().to_string(),
-                "tol": d.check.scheme.tol(),
-                "frame": d.check.frame.to_string(),
-                "outcome": d.shadow.map(|o| o.name()),
-                "margin": d.margin,
-                "h_error": finite(d.error),
-                "tau_error": finite(d.tau_error),
-                "q_error": finite(d.q_error),
-            });
-        }
-        if let Some(u) = units {
-            let (l, t) = (u.r_max_m(), u.t_s());
-            v["units"] = json!({
-                "mu": u.mu,
-                "rpm": u.rpm,
-                "g": u.g,
-                "R_max_m": l,
-                "T_s": t,
-                "tau_s": end.tau * t,
-                "xi_m": q.length() * l,
-                "speed_m_s": speed * u.speed_m_s(),
-                "escape_tau_s": run.escape.map(|e| e.tau * t),
-            });
-        }
-        emit(None, &format!("{v}\n"))?;
-    } else {
-        let how = match (outcome, run.escape) {
-            (Outcome::Stuck, _) => "stuck: at rest on the table from tau on".to_string(),
-            (Outcome::Escaped, Some(e)) => {
-                format!("escaped: certified at tau ({})", e.by.describe())
-            }
-            _ => "running: still slipping at tau-max".to_string(),
-        };
-        let cost = if initial.frictionless {
-            "closed form, 0 rhs evaluations (mu = 0: a straight line in the lab)".to_string()
-        } else {
-            format!(
-                "{} steps, {} rejected, {} rhs evaluations ({} {})",
-                c.steps,
-                c.rejected,
-                c.rhs_evals,
-                settings.method(),
-                settings.accuracy_label()
-            )
-        };
-        let certain = match doubt {
-            None => String::new(),
-            Some(d) if d.certain => format!(
-                "check    outcome certain: {} {} in the {} frame agrees; tau differs from it by {:.1e}, position by {:.1e}\n",
-                d.check.method(),
-                d.check.accuracy_label(),
-                d.check.frame,
-                d.tau_error,
-                d.q_error,
-            ),
-            Some(d) => format!(
-                "certain  no: this run's own error could change the outcome (|H| margin {:.1e}, error {:.1e} against {} {} in the {} frame, which ends {})\n",
-                d.margin,
-                d.error,
-                d.check.method(),
-                d.check.accuracy_label(),
-                d.check.frame,
-                d.shadow.map_or("out of budget", |o| o.name())
-            ),
-        };
-        let mut text = format!(
-            "outcome  {how}\n{certain}tau      {:.9}\nxi       {:.12}\nangle    {:.12} rad in [0, 2pi) (table frame, ccw from the release direction)\n|u|      {:.3e}\ncost     {cost}\n",
-            end.tau,
-            q.length(),
-            angle,
-            speed,
-        );
-        if let Some(u) = units {
-            use crate::engine::units::{show_length, show_time};
-            let _ = writeln!(
-                text,
-                "SI       tau = {}, xi = {}, |u| = {:.3e} m/s (mu {}, {} rpm, g {}: R_max = {}, 1/Omega = {})",
-                show_time(end.tau * u.t_s()),
-                show_length(q.length() * u.r_max_m()),
-                speed * u.speed_m_s(),
-                u.mu,
-                u.rpm,
-                u.g,
-                show_length(u.r_max_m()),
-                show_time(u.t_s())
-            );
-        }
-        emit(None, &text)?;
-    }
-    Ok(())
+    Ok(match (run.outcome(), run.escape) {
+        (Outcome::Escaped, Some(e)) if stop_on_escape => e.state,
+        _ => run.state(),
+    })
+}
+
+/// A report as one line of JSON.
+fn json_line(report: &impl serde::Serialize) -> Result<String, Error> {
+    serde_json::to_string(report)
+        .map(|s| s + "\n")
+        .map_err(|e| Error::Failed(e.to_string()))
 }
 
 /// Settings for the solvers, which classify runs by how they end: the paper's raw scheme never
@@ -302,41 +208,6 @@ pub(super) fn positive(name: &str, x: f64) -> Result<(), Error> {
     }
 }
 
-fn certified_line(certified: Option<bool>) -> &'static str {
-    match certified {
-        None => "",
-        Some(true) => {
-            "checked  certified: each end run in full ends as it says, and so does a run 1000x tighter in the other frame\n"
-        }
-        Some(false) => {
-            "checked  NOT certified: an end of the bracket, run in full or by its second opinion, did not end as it says with a margin, even with runs 10^4x tighter\n"
-        }
-    }
-}
-
-/// The scan of a threshold search as runs of equal outcome: "0 to 1.2 escape; 1.35 to 2.4
-/// stick; …" (what is known where the escaping values are not one interval).
-fn scan_summary(t: &Threshold) -> String {
-    let mut parts: Vec<String> = Vec::new();
-    let mut i = 0;
-    while i < t.scan.len() {
-        let (x0, e) = t.scan[i];
-        let mut j = i;
-        while j + 1 < t.scan.len() && t.scan[j + 1].1 == e {
-            j += 1;
-        }
-        let x1 = t.scan[j].0;
-        let range = if j == i {
-            format!("{x0:.4}")
-        } else {
-            format!("{x0:.4} to {x1:.4}")
-        };
-        parts.push(format!("{range} {}", if e { "escape" } else { "stick" }));
-        i = j + 1;
-    }
-    parts.join("; ")
-}
-
 pub fn escape(a: EscapeArgs) -> CmdResult {
     check_initial(&Initial::velocity(a.xi0, a.phi, 0.0))?;
     check_escape_xi0(a.xi0)?;
@@ -350,44 +221,13 @@ pub fn escape(a: EscapeArgs) -> CmdResult {
         let (t, c) = solve_certified(settings, solve, at)?;
         (t, Some(c))
     };
-    let phi = crate::engine::model::turn_angle(a.phi);
-    if a.json {
-        let scan: Vec<_> = t
-            .scan
-            .iter()
-            .map(|&(v0, e)| json!({"v0": v0, "outcome": if e { "escaped" } else { "stuck" }}))
-            .collect();
-        let v = json!({
-            "xi0": a.xi0, "phi": phi, "v_escape": t.value,
-            "stuck_at": t.stuck_at, "escapes_at": t.escapes_at, "interval": t.interval,
-            "scan": scan, "runs": t.runs, "rhs_evals": t.rhs_evals,
-            "run_tol": t.run_tol, "certified": certified,
-        });
-        emit(None, &format!("{v}\n"))?;
+    let report = EscapeReport::new(a.xi0, a.phi, &t, certified);
+    let out = if a.json {
+        json_line(&report)?
     } else {
-        let mut text = match t.stuck_at {
-            Some(lo) => format!(
-                "v_escape {:.10}  (the least escaping speed)\nbracket  stuck at {lo:.10}, escapes at {:.10}\n",
-                t.value, t.escapes_at
-            ),
-            None => "v_escape 0  (released at rest on the table here, it already escapes)\n".into(),
-        };
-        text.push_str(&format!(
-            "cost     {} runs, {} rhs evaluations{}\n{}",
-            t.runs,
-            t.rhs_evals,
-            t.run_tol
-                .map_or(String::new(), |tol| format!(" (runs at tol {tol:.0e})")),
-            certified_line(certified)
-        ));
-        if !t.interval {
-            text.push_str(&format!(
-                "note     the escaping speeds are not one interval: some faster releases come to rest.\n         scanned v0: {}\n",
-                scan_summary(&t)
-            ));
-        }
-        emit(None, &text)?;
-    }
+        report.text()
+    };
+    emit(None, &out)?;
     Ok(())
 }
 
@@ -418,27 +258,12 @@ pub fn critical(a: CriticalArgs) -> CmdResult {
     };
     // The paper's Eq. 22: mu = Omega² r0c / (xi0c g), friction measured by the critical radius.
     let mu = a.omega.zip(a.r0c).map(|(w, r)| w * w * r / (t.value * a.g));
-    if a.json {
-        let v = json!({
-            "xi0c": t.value, "stuck_at": t.stuck_at, "escapes_at": t.escapes_at,
-            "interval": t.interval, "runs": t.runs, "rhs_evals": t.rhs_evals, "mu": mu,
-            "run_tol": t.run_tol, "certified": certified,
-        });
-        emit(None, &format!("{v}\n"))?;
+    let report = CriticalReport::new(&t, certified, mu);
+    let out = if a.json {
+        json_line(&report)?
     } else {
-        let mut text = format!(
-            "xi0c     {:.10}\nbracket  stuck at {:.10}, escapes at {:.10}\n{}",
-            t.value,
-            t.stuck_at.unwrap_or(0.0),
-            t.escapes_at,
-            certified_line(certified)
-        );
-        if let Some(mu) = mu {
-            text.push_str(&format!(
-                "mu       {mu:.6}  (Eq. 22: Omega² r0c / (xi0c g))\n"
-            ));
-        }
-        emit(None, &text)?;
-    }
+        report.text()
+    };
+    emit(None, &out)?;
     Ok(())
 }

@@ -1,0 +1,351 @@
+//! The numerical commands' reports: one typed struct per command, whose fields are its `--json`
+//! object (documented once, in README's *JSON reports*, and checked against it by
+//! `tests/cli.rs`), and whose `text` is its plain output.
+
+use crate::engine::doubt::Doubt;
+use crate::engine::model::turn_angle;
+use crate::engine::solve::Threshold;
+use crate::engine::units::{Units, show_length, show_time};
+use crate::engine::{Certificate, Frame, Method, Outcome, Run, Settings, State};
+use serde::Serialize;
+use std::fmt::Write as _;
+
+/// `run --json`.
+#[derive(Debug, Serialize)]
+pub struct RunReport {
+    pub outcome: Outcome,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub certain: Option<bool>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub check: Option<CheckReport>,
+    pub tau: f64,
+    pub xi: f64,
+    pub angle: f64,
+    pub speed: f64,
+    pub certificate: Option<Certificate>,
+    pub escape_tau: Option<f64>,
+    pub steps: u64,
+    pub rejected: u64,
+    pub rhs_evals: u64,
+    pub frictionless: bool,
+    pub method: Method,
+    pub frame: Frame,
+    pub tol: Option<f64>,
+    pub dt: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub units: Option<UnitsReport>,
+}
+
+/// The second opinion on a run ([`crate::engine::doubt`]): dp54 1000× tighter in the other
+/// frame, and the differences it measured (null where the two end differently).
+#[derive(Debug, Serialize)]
+pub struct CheckReport {
+    pub method: Method,
+    pub tol: Option<f64>,
+    pub frame: Frame,
+    pub outcome: Option<Outcome>,
+    pub margin: f64,
+    pub h_error: Option<f64>,
+    pub tau_error: Option<f64>,
+    pub q_error: Option<f64>,
+}
+
+/// `run --json`'s `units`: the table's μ, rpm and g, its scales, and the end in SI.
+#[derive(Debug, Serialize)]
+#[allow(non_snake_case)]
+pub struct UnitsReport {
+    pub mu: f64,
+    pub rpm: f64,
+    pub g: f64,
+    pub R_max_m: f64,
+    pub T_s: f64,
+    pub tau_s: f64,
+    pub xi_m: f64,
+    pub speed_m_s: f64,
+    pub escape_tau_s: Option<f64>,
+}
+
+/// A JSON number, or null where a measured difference is infinite.
+fn finite(x: f64) -> Option<f64> {
+    x.is_finite().then_some(x)
+}
+
+impl CheckReport {
+    fn new(d: &Doubt) -> CheckReport {
+        CheckReport {
+            method: d.check.method(),
+            tol: d.check.scheme.tol(),
+            frame: d.check.frame,
+            outcome: d.shadow,
+            margin: d.margin,
+            h_error: finite(d.error),
+            tau_error: finite(d.tau_error),
+            q_error: finite(d.q_error),
+        }
+    }
+
+    fn who(&self) -> String {
+        let tol = self.tol.map_or(String::new(), |t| format!(" tol={t:.0e}"));
+        format!("{}{tol} in the {} frame", self.method, self.frame)
+    }
+}
+
+impl RunReport {
+    /// The report of `run`, ended at `end`, with its second opinion if one was asked for.
+    pub fn new(run: &Run, end: &State, doubt: Option<Doubt>, units: Option<Units>) -> RunReport {
+        let (q, speed) = (end.q(), end.u_lab().length());
+        let settings: Settings = run.settings;
+        RunReport {
+            outcome: run.outcome(),
+            certain: doubt.map(|d| d.certain),
+            check: doubt.as_ref().map(CheckReport::new),
+            tau: end.tau,
+            xi: q.length(),
+            angle: turn_angle(q.y.atan2(q.x)),
+            speed,
+            certificate: run.escape.map(|e| e.by),
+            escape_tau: run.escape.map(|e| e.tau),
+            steps: run.cost.steps,
+            rejected: run.cost.rejected,
+            rhs_evals: run.cost.rhs_evals,
+            frictionless: run.initial.frictionless,
+            method: settings.method(),
+            frame: settings.frame,
+            tol: settings.scheme.tol(),
+            dt: settings.scheme.fixed().map(|(_, dt)| dt),
+            units: units.map(|u| {
+                let (l, t) = (u.r_max_m(), u.t_s());
+                UnitsReport {
+                    mu: u.mu,
+                    rpm: u.rpm,
+                    g: u.g,
+                    R_max_m: l,
+                    T_s: t,
+                    tau_s: end.tau * t,
+                    xi_m: q.length() * l,
+                    speed_m_s: speed * u.speed_m_s(),
+                    escape_tau_s: run.escape.map(|e| e.tau * t),
+                }
+            }),
+        }
+    }
+
+    pub fn text(&self) -> String {
+        let how = match (self.outcome, self.certificate) {
+            (Outcome::Stuck, _) => "stuck: at rest on the table from tau on".to_string(),
+            (Outcome::Escaped, Some(by)) => {
+                format!("escaped: certified at tau ({})", by.describe())
+            }
+            _ => "running: still slipping at tau-max".to_string(),
+        };
+        let cost = if self.frictionless {
+            "closed form, 0 rhs evaluations (mu = 0: a straight line in the lab)".to_string()
+        } else {
+            let knob = match (self.tol, self.dt) {
+                (Some(tol), _) => format!("tol={tol:.0e}"),
+                (_, Some(dt)) => format!("dt={dt:.0e}"),
+                _ => String::new(),
+            };
+            format!(
+                "{} steps, {} rejected, {} rhs evaluations ({} {knob})",
+                self.steps, self.rejected, self.rhs_evals, self.method
+            )
+        };
+        let check = match (&self.check, self.certain) {
+            (Some(c), Some(true)) => format!(
+                "check    outcome certain: {} agrees; tau differs from it by {:.1e}, position by {:.1e}\n",
+                c.who(),
+                c.tau_error.unwrap_or(f64::INFINITY),
+                c.q_error.unwrap_or(f64::INFINITY),
+            ),
+            (Some(c), _) => format!(
+                "certain  no: this run's own error could change the outcome (|H| margin {:.1e}, error {:.1e} against {}, which ends {})\n",
+                c.margin,
+                c.h_error.unwrap_or(f64::INFINITY),
+                c.who(),
+                c.outcome.map_or("out of budget", |o| o.name())
+            ),
+            _ => String::new(),
+        };
+        let mut text = format!(
+            "outcome  {how}\n{check}tau      {:.9}\nxi       {:.12}\nangle    {:.12} rad in [0, 2pi) (table frame, ccw from the release direction)\n|u|      {:.3e}\ncost     {cost}\n",
+            self.tau, self.xi, self.angle, self.speed,
+        );
+        if let Some(u) = &self.units {
+            let _ = writeln!(
+                text,
+                "SI       tau = {}, xi = {}, |u| = {:.3e} m/s (mu {}, {} rpm, g {}: R_max = {}, 1/Omega = {})",
+                show_time(u.tau_s),
+                show_length(u.xi_m),
+                u.speed_m_s,
+                u.mu,
+                u.rpm,
+                u.g,
+                show_length(u.R_max_m),
+                show_time(u.T_s)
+            );
+        }
+        text
+    }
+}
+
+/// One run of a threshold's coarse scan.
+#[derive(Debug, Serialize)]
+pub struct ScanPoint {
+    pub v0: f64,
+    pub outcome: Outcome,
+}
+
+/// `escape --json`: the escape speed v_e(ξ0, φ) and how it was found.
+#[derive(Debug, Serialize)]
+pub struct EscapeReport {
+    pub xi0: f64,
+    pub phi: f64,
+    pub v_escape: f64,
+    pub stuck_at: Option<f64>,
+    pub escapes_at: f64,
+    pub interval: bool,
+    pub scan: Vec<ScanPoint>,
+    #[serde(flatten)]
+    pub solve: SolveReport,
+}
+
+/// `critical --json`: the critical radius ξ0c and, with `--omega --r0c`, μ by Eq. 22.
+#[derive(Debug, Serialize)]
+pub struct CriticalReport {
+    pub xi0c: f64,
+    pub stuck_at: Option<f64>,
+    pub escapes_at: f64,
+    pub interval: bool,
+    pub mu: Option<f64>,
+    #[serde(flatten)]
+    pub solve: SolveReport,
+}
+
+/// What a threshold search cost and what it can vouch for.
+#[derive(Debug, Serialize)]
+pub struct SolveReport {
+    pub runs: u32,
+    pub rhs_evals: u64,
+    pub run_tol: Option<f64>,
+    pub certified: Option<bool>,
+}
+
+impl SolveReport {
+    pub fn new(t: &Threshold, certified: Option<bool>) -> SolveReport {
+        SolveReport {
+            runs: t.runs,
+            rhs_evals: t.rhs_evals,
+            run_tol: t.run_tol,
+            certified,
+        }
+    }
+
+    fn text(&self) -> String {
+        let at = self
+            .run_tol
+            .map_or(String::new(), |tol| format!(" (runs at tol {tol:.0e})"));
+        let checked = match self.certified {
+            None => "",
+            Some(true) => {
+                "checked  certified: each end run in full ends as it says, and so does a run 1000x tighter in the other frame\n"
+            }
+            Some(false) => {
+                "checked  NOT certified: an end of the bracket, run in full or by its second opinion, did not end as it says with a margin, even with runs 10^4x tighter\n"
+            }
+        };
+        format!(
+            "cost     {} runs, {} rhs evaluations{at}\n{checked}",
+            self.runs, self.rhs_evals
+        )
+    }
+}
+
+impl EscapeReport {
+    pub fn new(xi0: f64, phi: f64, t: &Threshold, certified: Option<bool>) -> EscapeReport {
+        EscapeReport {
+            xi0,
+            phi: turn_angle(phi),
+            v_escape: t.value,
+            stuck_at: t.stuck_at,
+            escapes_at: t.escapes_at,
+            interval: t.interval,
+            scan: t
+                .scan
+                .iter()
+                .map(|&(v0, e)| ScanPoint {
+                    v0,
+                    outcome: if e { Outcome::Escaped } else { Outcome::Stuck },
+                })
+                .collect(),
+            solve: SolveReport::new(t, certified),
+        }
+    }
+
+    pub fn text(&self) -> String {
+        let mut text = match self.stuck_at {
+            Some(lo) => format!(
+                "v_escape {:.10}  (the least escaping speed)\nbracket  stuck at {lo:.10}, escapes at {:.10}\n",
+                self.v_escape, self.escapes_at
+            ),
+            None => "v_escape 0  (released at rest on the table here, it already escapes)\n".into(),
+        };
+        text.push_str(&self.solve.text());
+        if !self.interval {
+            let _ = writeln!(
+                text,
+                "note     the escaping speeds are not one interval: some faster releases come to rest.\n         scanned v0: {}",
+                self.scan_summary()
+            );
+        }
+        text
+    }
+
+    /// The scan as runs of equal outcome: "0 to 1.2 escape; 1.35 to 2.4 stick; …" (what is
+    /// known where the escaping values are not one interval).
+    fn scan_summary(&self) -> String {
+        let mut parts: Vec<String> = Vec::new();
+        for run in self.scan.chunk_by(|a, b| a.outcome == b.outcome) {
+            let (first, last) = (&run[0], &run[run.len() - 1]);
+            let range = if run.len() == 1 {
+                format!("{:.4}", first.v0)
+            } else {
+                format!("{:.4} to {:.4}", first.v0, last.v0)
+            };
+            let word = if first.outcome == Outcome::Escaped {
+                "escape"
+            } else {
+                "stick"
+            };
+            parts.push(format!("{range} {word}"));
+        }
+        parts.join("; ")
+    }
+}
+
+impl CriticalReport {
+    pub fn new(t: &Threshold, certified: Option<bool>, mu: Option<f64>) -> CriticalReport {
+        CriticalReport {
+            xi0c: t.value,
+            stuck_at: t.stuck_at,
+            escapes_at: t.escapes_at,
+            interval: t.interval,
+            mu,
+            solve: SolveReport::new(t, certified),
+        }
+    }
+
+    pub fn text(&self) -> String {
+        let mut text = format!(
+            "xi0c     {:.10}\nbracket  stuck at {:.10}, escapes at {:.10}\n{}",
+            self.xi0c,
+            self.stuck_at.unwrap_or(0.0),
+            self.escapes_at,
+            self.solve.text()
+        );
+        if let Some(mu) = self.mu {
+            let _ = writeln!(text, "mu       {mu:.6}  (Eq. 22: Omega² r0c / (xi0c g))");
+        }
+        text
+    }
+}
