@@ -85,3 +85,24 @@ fn files_are_written_only_through_files() {
         assert!(bad.is_empty(), "{}", bad.join("\n"));
     }
 }
+
+/// The UI draws what the state holds: it never integrates, solves or checks a run.
+#[test]
+fn the_ui_never_integrates() {
+    let root = src();
+    let mut bad = vec![];
+    for (path, code) in sources(&root.join("ui")) {
+        for call in [
+            "Run::new",
+            ".step(",
+            "engine::solve",
+            "engine::doubt",
+            "par_map",
+        ] {
+            if code.contains(call) {
+                bad.push(format!("{}: {call}", path.display()));
+            }
+        }
+    }
+    assert!(bad.is_empty(), "{}", bad.join("\n"));
+}
