@@ -133,7 +133,8 @@ pub(super) fn speed(cfg: &Config, all: &[Initial], refs: &[Measure]) -> Result<S
     });
     r?;
     let escape_angles = if cfg.quick { 3 } else { 12 };
-    let escape_cli_ms = escape_cli(&xi0s, escape_angles);
+    let escape_cli_ms = escape_cli(&xi0s, escape_angles, false);
+    let escape_checked_ms = escape_cli(&xi0s, escape_angles, true);
     let (frame_ms, frame_trail) = frame_time(cfg.reps)?;
     // Ten seconds of play (three in --quick).
     let terminal_bytes = super::bytes::all(if cfg.quick { 90 } else { 300 })?;
@@ -177,6 +178,7 @@ pub(super) fn speed(cfg: &Config, all: &[Initial], refs: &[Measure]) -> Result<S
         curve_ms,
         map_ms,
         escape_cli_ms,
+        escape_checked_ms,
         escape_angles,
         rk2_err_median: rk2_err,
         matching_tol: matching.map(|m| m.0),
@@ -189,8 +191,9 @@ pub(super) fn speed(cfg: &Config, all: &[Initial], refs: &[Measure]) -> Result<S
 }
 
 /// The median wall time of `turntable escape --xi0 X --phi P --vtol 1e-8` run as a process
-/// (this executable), over `xi0s` × `n` angles. None if it cannot be run (a test harness).
-fn escape_cli(xi0s: &[f64], n: usize) -> Option<f64> {
+/// (this executable), over `xi0s` × `n` angles, with the check of its bracket's ends (the
+/// default) or `--no-check`. None if it cannot be run (a test harness).
+fn escape_cli(xi0s: &[f64], n: usize, check: bool) -> Option<f64> {
     let exe = std::env::current_exe().ok()?;
     if exe.file_stem()? != "turntable" {
         return None;
@@ -203,6 +206,7 @@ fn escape_cli(xi0s: &[f64], n: usize) -> Option<f64> {
             let out = std::process::Command::new(&exe)
                 .args(["escape", "--xi0", &xi0.to_string(), "--phi", &phi])
                 .args(["--vtol", "1e-8"])
+                .args(if check { &[][..] } else { &["--no-check"][..] })
                 .stdout(std::process::Stdio::null())
                 .stderr(std::process::Stdio::null())
                 .status()

@@ -122,6 +122,9 @@ pub struct Speed {
     /// `turntable escape --vtol 1e-8` as a user runs it, process start included: the median
     /// wall time over Fig. 5 points (the paper's four ξ0 × `escape_angles` angles).
     pub escape_cli_ms: Option<f64>,
+    /// The same with the default check of the bracket's ends (certification), no goal: the
+    /// price of `certified`.
+    pub escape_checked_ms: Option<f64>,
     pub escape_angles: usize,
     /// dp54 against rk2 (with stick events) at dt = 1e-3 on the rest task.
     pub rk2_err_median: f64,

@@ -39,8 +39,9 @@ pub struct Doubt {
     /// end differently.
     pub tau_error: f64,
     pub q_error: f64,
-    /// How the second opinion ran.
+    /// How the second opinion ran, and its right-hand-side evaluations.
     pub check: Settings,
+    pub check_evals: u64,
 }
 
 /// The second opinion on `run`: dp54 at 1000× its tolerance (fixed-step runs: tol 1e-12), at
@@ -87,6 +88,7 @@ pub fn doubt(run: &Run, tau_max: f64) -> Doubt {
             tau_error: 0.0,
             q_error: 0.0,
             check,
+            check_evals: 0,
         };
     }
     // A stuck or escaping run near the saddle may take the second opinion longer to decide.
@@ -94,9 +96,12 @@ pub fn doubt(run: &Run, tau_max: f64) -> Doubt {
         Outcome::Running => tau_max,
         _ => (2.0 * end.tau + 10.0).min(tau_max.max(end.tau)),
     };
-    let shadow = Run::new(run.initial, check)
-        .ok()
-        .and_then(|mut s| s.run(limit, true).ok().map(|o| (o, decided_state(&s))));
+    let mut check_evals = 0;
+    let shadow = Run::new(run.initial, check).ok().and_then(|mut s| {
+        let o = s.run(limit, true);
+        check_evals = s.cost.rhs_evals;
+        o.ok().map(|o| (o, decided_state(&s)))
+    });
     match shadow {
         Some((o, s)) => {
             let error = (saddle_h(&s) - saddle_h(&end)).abs();
@@ -113,6 +118,7 @@ pub fn doubt(run: &Run, tau_max: f64) -> Doubt {
                 tau_error,
                 q_error,
                 check,
+                check_evals,
             }
         }
         None => Doubt {
@@ -123,6 +129,7 @@ pub fn doubt(run: &Run, tau_max: f64) -> Doubt {
             tau_error: f64::INFINITY,
             q_error: f64::INFINITY,
             check,
+            check_evals,
         },
     }
 }

@@ -61,23 +61,32 @@ pub fn floor_tol(settings: Settings, width: f64) -> Settings {
     }
 }
 
-/// Whether both ends of `t`'s bracket end as it says when run in full (no shortcut) at a tenth
-/// of the tolerance that placed them, each [`confirmed`] by its second opinion. `at` makes the
+/// Whether both ends of `t`'s bracket end as it says when run in full (no shortcut) at the
+/// tolerance that placed them, each [`confirmed`] by its second opinion (the judge: 1000×
+/// tighter, in the other frame). `at` makes the
 /// release from the bracket's variable. A bracket with no stuck end has only its escaping end.
+/// The runs and their cost are added to `t`'s.
 pub fn certify(
-    t: &Threshold,
+    t: &mut Threshold,
     settings: Settings,
     at: impl Fn(f64) -> Initial,
 ) -> Result<bool, Error> {
     let settings = match t.run_tol {
-        Some(tol) => with_tol(settings, 0.1 * tol),
+        Some(tol) => with_tol(settings, tol),
         None => settings,
     };
-    let stuck = match t.stuck_at {
-        Some(lo) => confirmed(at(lo), settings, Outcome::Stuck)?,
-        None => true,
-    };
-    Ok(stuck && confirmed(at(t.escapes_at), settings, Outcome::Escaped)?)
+    let mut ends = vec![(t.escapes_at, Outcome::Escaped)];
+    ends.extend(t.stuck_at.map(|lo| (lo, Outcome::Stuck)));
+    let mut ok = true;
+    for (x, want) in ends {
+        let (yes, evals) = confirmed(at(x), settings, want)?;
+        (t.runs, t.rhs_evals) = (t.runs + 2, t.rhs_evals + evals);
+        ok &= yes;
+        if !ok {
+            break;
+        }
+    }
+    Ok(ok)
 }
 
 /// Solves with `solve` at `settings` and [`certify`]s the bracket; while that fails, solves
@@ -91,7 +100,7 @@ pub fn solve_certified(
 ) -> Result<(Threshold, bool), Error> {
     let mut t = solve(settings)?;
     for _ in 0..2 {
-        if certify(&t, settings, &at)? {
+        if certify(&mut t, settings, &at)? {
             return Ok((t, true));
         }
         let Some(tol) = t.run_tol.filter(|&tol| tol > TOL_RANGE.0) else {
@@ -102,17 +111,23 @@ pub fn solve_certified(
         t.runs += runs;
         t.rhs_evals += evals;
     }
-    let ok = certify(&t, settings, &at)?;
+    let ok = certify(&mut t, settings, &at)?;
     Ok((t, ok))
 }
 
 /// Whether the release `initial` ends as `want` (stuck, or escaped with its certificate) when
 /// run in full at `settings` with no shortcut, and its second opinion ([`doubt`]: another frame,
-/// 1000× tighter) agrees with a margin: what certifies one end of a bracket.
-pub fn confirmed(initial: Initial, settings: Settings, want: Outcome) -> Result<bool, Error> {
+/// 1000× tighter) agrees with a margin: what certifies one end of a bracket. Also the
+/// right-hand-side evaluations both took.
+pub fn confirmed(
+    initial: Initial,
+    settings: Settings,
+    want: Outcome,
+) -> Result<(bool, u64), Error> {
     let mut run = Run::new(initial, settings)?;
     let own = run.run(CLASSIFY_TAU, true)?;
-    Ok(own == want && doubt(&run, CLASSIFY_TAU).certain)
+    let d = doubt(&run, CLASSIFY_TAU);
+    Ok((own == want && d.certain, run.cost.rhs_evals + d.check_evals))
 }
 
 /// Runs every value of `grid`: the index of the first that escapes, whether all after it
