@@ -336,3 +336,32 @@ fn json_reports_are_the_fields_readme_lists() {
         assert_eq!(keys, listed, "{heading}");
     }
 }
+
+/// Shell completions and the manual page come from the clap definitions, every subcommand in.
+#[test]
+fn completions_and_man_page() {
+    for shell in ["bash", "zsh", "fish"] {
+        let (code, out, err) = turntable(&["completions", shell]);
+        assert_eq!(code, 0, "{err}");
+        for word in ["escape", "critical", "vtol", "no-check"] {
+            assert!(out.contains(word), "{shell}: no {word}");
+        }
+    }
+    let (code, _, err) = turntable(&["completions", "tcsh"]);
+    assert_eq!(code, 2, "{err}");
+    let (code, out, _) = turntable(&["man"]);
+    assert_eq!(code, 0);
+    assert!(
+        out.starts_with(".ie ") || out.starts_with(".TH"),
+        "{}",
+        &out[..40]
+    );
+    for section in [
+        "TURNTABLE RUN",
+        "TURNTABLE ESCAPE",
+        "TURNTABLE REPLAY",
+        "xi0",
+    ] {
+        assert!(out.contains(section), "no {section}");
+    }
+}

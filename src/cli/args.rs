@@ -62,6 +62,17 @@ pub enum Command {
     Bench(BenchArgs),
     /// Run a key script headlessly and print its snapshots (see README, "Key scripts").
     Replay(super::replay::ReplayArgs),
+    /// Print a shell completion script: `turntable completions bash > ~/.local/share/bash-completion/completions/turntable`.
+    Completions(CompletionsArgs),
+    /// Print the manual page (roff): `turntable man > ~/.local/share/man/man1/turntable.1`.
+    Man,
+}
+
+#[derive(Args, Debug)]
+pub struct CompletionsArgs {
+    /// The shell to complete for.
+    #[arg(value_enum)]
+    pub shell: clap_complete::Shell,
 }
 
 #[derive(Args, Debug)]
@@ -174,8 +185,10 @@ impl UnitsArgs {
 
 #[derive(Args, Debug)]
 pub struct EscapeArgs {
+    /// Release radius xi0 (units of R_max = mu g / Omega^2).
     #[arg(long, allow_hyphen_values = true)]
     pub xi0: f64,
+    /// Direction of the initial velocity in the table frame, from radially outward, ccw (rad).
     #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
     pub phi: f64,
     /// Width of the final bracket on v0.

@@ -112,6 +112,35 @@ fn check_record_path(path: &std::path::Path, inputs: [&Option<String>; 2]) -> Re
     Ok(())
 }
 
+/// A completion script for `shell`, from the clap definitions.
+fn completions(shell: clap_complete::Shell) -> CmdResult {
+    use clap::CommandFactory;
+    let mut out = Vec::new();
+    clap_complete::generate(shell, &mut Cli::command(), "turntable", &mut out);
+    crate::files::emit(None, &String::from_utf8_lossy(&out))?;
+    Ok(())
+}
+
+/// The manual page, in roff, from the clap definitions: the command and each subcommand.
+fn man() -> CmdResult {
+    use clap::CommandFactory;
+    let cmd = Cli::command();
+    let mut out = Vec::new();
+    clap_mangen::Man::new(cmd.clone()).render(&mut out)?;
+    for sub in cmd.get_subcommands().filter(|s| s.get_name() != "help") {
+        let about = sub.get_about().map(|a| a.to_string()).unwrap_or_default();
+        let head = format!(
+            ".SH \"TURNTABLE {}\"\n{}\n",
+            sub.get_name().to_uppercase(),
+            about.replace('\\', "\\\\")
+        );
+        out.extend_from_slice(head.as_bytes());
+        clap_mangen::Man::new(sub.clone()).render_options_section(&mut out)?;
+    }
+    crate::files::emit(None, &String::from_utf8_lossy(&out))?;
+    Ok(())
+}
+
 /// Entry point of the binary.
 pub fn main() -> ExitCode {
     let cli = Cli::parse();
@@ -123,6 +152,8 @@ pub fn main() -> ExitCode {
         Some(Command::Sweep(a)) => sweep::sweep(a),
         Some(Command::Bench(a)) => bench::bench(a),
         Some(Command::Replay(a)) => replay::run(a),
+        Some(Command::Completions(a)) => completions(a.shell),
+        Some(Command::Man) => man(),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
