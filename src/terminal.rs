@@ -1,11 +1,12 @@
-//! The terminal: raw mode, alternate screen, mouse capture; always restored (quit, panic,
-//! SIGTERM, SIGHUP). The event loop ticks at a capped frame rate while playing and blocks
+//! The terminal: raw mode, alternate screen, mouse capture, bracketed paste; always restored
+//! (quit, panic, SIGTERM, SIGHUP) and taken back on SIGCONT. The event loop ticks at a capped frame rate while playing and blocks
 //! when paused (no redraw when idle).
 
 use crate::app::App;
 use crate::session::{Session, SharedRecorder, lock, new_recorder};
 use crossterm::event::{
-    self, DisableMouseCapture, EnableMouseCapture, Event, KeyCode, KeyModifiers,
+    self, DisableBracketedPaste, DisableMouseCapture, EnableBracketedPaste, EnableMouseCapture,
+    Event, KeyCode, KeyModifiers,
 };
 use crossterm::terminal::{
     BeginSynchronizedUpdate, EndSynchronizedUpdate, EnterAlternateScreen, LeaveAlternateScreen,
@@ -25,6 +26,7 @@ pub fn restore() {
         out,
         EndSynchronizedUpdate,
         DisableMouseCapture,
+        DisableBracketedPaste,
         LeaveAlternateScreen,
         cursor::Show
     );
@@ -42,11 +44,17 @@ fn setup(mouse: bool) -> io::Result<CrosstermBackend<Stdout>> {
     Ok(CrosstermBackend::new(io::stdout()))
 }
 
-/// Raw mode, the alternate screen, no cursor, and mouse capture if asked.
+/// Raw mode, the alternate screen, no cursor, bracketed paste (pasted text arrives as one
+/// event, never as keys), and mouse capture if asked.
 fn enter(mouse: bool) -> io::Result<()> {
     enable_raw_mode()?;
     let mut out = io::stdout();
-    execute!(out, EnterAlternateScreen, cursor::Hide)?;
+    execute!(
+        out,
+        EnterAlternateScreen,
+        cursor::Hide,
+        EnableBracketedPaste
+    )?;
     if mouse {
         execute!(out, EnableMouseCapture)?;
     }
@@ -87,8 +95,15 @@ fn hung_up() -> bool {
 fn suspend(session: &mut Session<CrosstermBackend<Stdout>>) -> io::Result<()> {
     restore();
     signal_hook::low_level::emulate_default_handler(libc::SIGTSTP)?;
-    // Continued (SIGCONT): raw mode again, and a full redraw of a screen that may hold
-    // anything now.
+    resume(session)
+}
+
+/// Continued (SIGCONT, also after a SIGSTOP this process never saw, whose shell put the
+/// terminal back in cooked mode): raw mode again, and a full redraw of a screen that may hold
+/// anything now.
+fn resume(session: &mut Session<CrosstermBackend<Stdout>>) -> io::Result<()> {
+    // crossterm skips enabling raw mode while it believes it on: forget that belief first.
+    disable_raw_mode()?;
     enter(session.app.mouse_capture())?;
     // Clear, and forget the last frame so the next draw repaints every cell (ratatui's own
     // clear would query the cursor position and wait for the terminal's answer).
@@ -165,6 +180,7 @@ const TERMINATING: [i32; 11] = [
 struct Flags {
     stop: AtomicBool,
     suspend: AtomicBool,
+    resume: AtomicBool,
 }
 
 /// What the signal watcher needs if the event loop never comes back.
@@ -179,13 +195,15 @@ struct Lost {
 /// then, after a grace period, this thread restores what it can, saves the recording so far
 /// and ends the process.
 fn watch_signals(flags: Arc<Flags>, lost: Lost) -> io::Result<()> {
-    let mut signals =
-        signal_hook::iterator::Signals::new(TERMINATING.iter().chain(&[libc::SIGTSTP]))?;
+    let mut signals = signal_hook::iterator::Signals::new(
+        TERMINATING.iter().chain(&[libc::SIGTSTP, libc::SIGCONT]),
+    )?;
     std::thread::spawn(move || {
         let mut pending = signals.forever();
         let terminating = loop {
             match pending.next() {
                 Some(libc::SIGTSTP) => flags.suspend.store(true, Ordering::Relaxed),
+                Some(libc::SIGCONT) => flags.resume.store(true, Ordering::Relaxed),
                 other => break other,
             }
         };
@@ -218,6 +236,9 @@ fn event_loop(
         if flags.suspend.swap(false, Ordering::Relaxed) {
             suspend(session)?;
             next_tick = Instant::now() + frame;
+        }
+        if flags.resume.swap(false, Ordering::Relaxed) {
+            resume(session)?;
         }
         if session.app.mouse_capture() != mouse_on {
             mouse_on = session.app.mouse_capture();
@@ -252,6 +273,9 @@ fn event_loop(
                     Event::Key(k) => session.key(k),
                     Event::Mouse(m) => session.mouse(m)?,
                     Event::Resize(w, h) => session.resized(w, h),
+                    // Pasted text is not keys (a `q` in it would quit): ignored, and left out
+                    // of the recording as it leaves the screen alone.
+                    Event::Paste(_) => {}
                     _ => {}
                 }
                 if !event::poll(Duration::ZERO)? {

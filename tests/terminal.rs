@@ -245,3 +245,68 @@ fn suspend_and_continue() {
     wait_for("quit", || child.try_wait().unwrap().is_some());
     assert_eq!(child.wait().unwrap().code(), Some(0));
 }
+
+const PASTE_ON: &[u8] = b"\x1b[?2004h";
+const PASTE_OFF: &[u8] = b"\x1b[?2004l";
+
+/// Issue 18 item 19: the explorer asks for bracketed paste (and gives it back), so a paste
+/// arrives as one event, not as keys: a pasted `q` does not quit, the keys after it still
+/// work.
+#[test]
+fn pasted_text_is_not_keys() {
+    let path = rec("paste");
+    let Some((mut child, pty, seen)) = spawn(&path) else {
+        return;
+    };
+    wait_for("the first frame", || contains(&seen, 0, ALT_ON));
+    assert!(contains(&seen, 0, PASTE_ON));
+    let mark = seen.lock().unwrap().len();
+    pty.type_keys(b"\x1b[200~sq\x1b[201~?");
+    // Keys are taken in order: had the `q` quit, no help would be drawn.
+    wait_for("the help", || contains(&seen, mark, b"help"));
+    assert!(child.try_wait().unwrap().is_none());
+    let mark = seen.lock().unwrap().len();
+    pty.type_keys(b"?q");
+    wait_for("quit", || child.try_wait().unwrap().is_some());
+    assert_eq!(child.wait().unwrap().code(), Some(0));
+    assert!(contains(&seen, mark, PASTE_OFF));
+    let script = std::fs::read_to_string(&path).unwrap();
+    assert!(!script.contains("\ns\n"), "{script}");
+}
+
+/// Whether the pty's line discipline is cooked (canonical input, echo).
+fn cooked(fd: i32) -> bool {
+    // SAFETY: a valid descriptor and an out-pointer to a termios.
+    let mut t: libc::termios = unsafe { std::mem::zeroed() };
+    assert_eq!(unsafe { libc::tcgetattr(fd, &mut t) }, 0);
+    t.c_lflag & (libc::ICANON | libc::ECHO) != 0
+}
+
+/// Issue 18 item 20: SIGSTOP cannot be caught, and the shell puts the terminal back in cooked
+/// mode while the job is stopped; SIGCONT (`fg`) takes raw mode back and redraws.
+#[test]
+fn sigstop_then_sigcont_takes_raw_mode_back() {
+    let path = rec("stop");
+    let Some((mut child, pty, seen)) = spawn(&path) else {
+        return;
+    };
+    let pid = child.id() as i32;
+    wait_for("the first frame", || contains(&seen, 0, ALT_ON));
+    assert!(!cooked(pty.fd));
+    // SAFETY: signals to our child; termios of our pty (through its master, as a shell's
+    // own tcsetattr on the slave).
+    unsafe { libc::kill(pid, libc::SIGSTOP) };
+    let mut t: libc::termios = unsafe { std::mem::zeroed() };
+    assert_eq!(unsafe { libc::tcgetattr(pty.fd, &mut t) }, 0);
+    t.c_lflag |= libc::ICANON | libc::ECHO;
+    assert_eq!(unsafe { libc::tcsetattr(pty.fd, libc::TCSANOW, &t) }, 0);
+    assert!(cooked(pty.fd));
+    let mark = seen.lock().unwrap().len();
+    unsafe { libc::kill(pid, libc::SIGCONT) };
+    wait_for("raw mode back", || !cooked(pty.fd));
+    wait_for("a redraw", || contains(&seen, mark, "ξ0".as_bytes()));
+    // One key, no Enter: raw.
+    pty.type_keys(b"q");
+    wait_for("quit", || child.try_wait().unwrap().is_some());
+    assert_eq!(child.wait().unwrap().code(), Some(0));
+}
