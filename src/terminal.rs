@@ -16,7 +16,7 @@ use crossterm::{cursor, execute};
 use ratatui::backend::CrosstermBackend;
 use std::io::{self, Stdout, Write};
 use std::sync::Arc;
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicI32, Ordering};
 use std::time::{Duration, Instant};
 
 /// Puts the terminal back as it was. Safe to call more than once and on a dead terminal.
@@ -120,14 +120,14 @@ fn resume(session: &mut Session<CrosstermBackend<Stdout>>) -> io::Result<()> {
 pub type SaveRecording = Box<dyn FnOnce(String) + Send>;
 
 /// Runs the explorer until quit or a terminating signal. `fps` caps the frame rate.
-/// Returns whether a signal (SIGTERM, SIGHUP, SIGINT) ended it, and with `record` the
+/// Returns the signal (SIGTERM, SIGHUP, SIGINT, …) that ended it, if one did, and with `record` the
 /// session as a key script (also after a signal or an error, as far as it got). If the
 /// terminal is gone and the process must end without returning, `record` gets that script.
 pub fn run(
     mut app: App,
     fps: u32,
     record: Option<SaveRecording>,
-) -> (io::Result<bool>, Option<String>) {
+) -> (io::Result<Option<i32>>, Option<String>) {
     let flags = Arc::new(Flags::default());
     let finished = Arc::new(AtomicBool::new(false));
     let recorder = record.is_some().then(new_recorder);
@@ -154,7 +154,10 @@ pub fn run(
     finished.store(true, Ordering::Relaxed);
     restore();
     (
-        result.map(|()| flags.stop.load(Ordering::Relaxed)),
+        result.map(|()| match flags.signal.load(Ordering::Relaxed) {
+            0 => None,
+            n => Some(n),
+        }),
         session.take_recording(),
     )
 }
@@ -179,6 +182,8 @@ const TERMINATING: [i32; 11] = [
 #[derive(Default)]
 struct Flags {
     stop: AtomicBool,
+    /// The terminating signal's number (0: none).
+    signal: AtomicI32,
     suspend: AtomicBool,
     resume: AtomicBool,
 }
@@ -207,7 +212,8 @@ fn watch_signals(flags: Arc<Flags>, lost: Lost) -> io::Result<()> {
                 other => break other,
             }
         };
-        if terminating.is_some() {
+        if let Some(n) = terminating {
+            flags.signal.store(n, Ordering::Relaxed);
             flags.stop.store(true, Ordering::Relaxed);
             std::thread::sleep(Duration::from_millis(600));
             if !lost.finished.load(Ordering::Relaxed) {
@@ -216,8 +222,8 @@ fn watch_signals(flags: Arc<Flags>, lost: Lost) -> io::Result<()> {
                     save(lock(&r).clone().finish());
                 }
                 // The terminal may be gone: a failed write must not panic this thread.
-                let _ = writeln!(io::stderr(), "turntable: ended by a signal");
-                std::process::exit(1);
+                let _ = writeln!(io::stderr(), "turntable: ended by signal {n}");
+                std::process::exit(128 + n);
             }
         }
     });

@@ -205,7 +205,8 @@ fn a_hung_up_terminal_ends_the_explorer_and_saves_the_recording() {
     );
 }
 
-/// SIGQUIT (like SIGTERM) restores the terminal first: alternate screen and mouse off.
+/// SIGQUIT (like SIGTERM) restores the terminal first: alternate screen and mouse off; the
+/// exit status is 128 + the signal's number.
 #[test]
 fn sigquit_restores_the_terminal() {
     let path = rec("quit");
@@ -221,6 +222,8 @@ fn sigquit_restores_the_terminal() {
         contains(&seen, mark, ALT_OFF) && contains(&seen, mark, MOUSE_OFF)
     });
     assert!(path.exists());
+    // As a shell reports a process a signal ended (issue 18 item 22): 128 + 3.
+    assert_eq!(child.wait().unwrap().code(), Some(131));
 }
 
 /// SIGTSTP hands the terminal back (cooked, main screen) before stopping; SIGCONT takes it

@@ -18,12 +18,61 @@ pub use args::*;
 pub type CmdResult = Result<(), Error>;
 
 pub fn check_initial(i: &Initial) -> Result<(), Error> {
-    i.validate()
+    i.validate()?;
+    if i.phi.abs() > PHI_MAX {
+        return Err(Error::Invalid(format!(
+            "phi must lie in [-{PHI_MAX:e}, {PHI_MAX:e}] rad, got {}",
+            Initial::show(i.phi)
+        )));
+    }
+    Ok(())
+}
+
+/// A number as the CSV outputs write it: the shortest digits that read back exactly, in
+/// exponent form outside 1e-5..1e16 (never a 300-digit decimal), and −0 as 0.
+pub(crate) fn num(x: f64) -> String {
+    if x == 0.0 {
+        "0".into()
+    } else if (1e-5..1e16).contains(&x.abs()) {
+        format!("{x}")
+    } else {
+        format!("{x:e}")
+    }
+}
+
+/// Largest |φ| taken (rad): beyond it the angle's remainder mod 2π has lost its digits.
+pub const PHI_MAX: f64 = 1e6;
+
+/// The narrowest bracket `--vtol`/`--xtol` may ask for: a threshold of order 1 resolved to a few
+/// thousand ulps, which the runs' own accuracy (dp54 at tol 1e-14) can still certify.
+pub const BRACKET_MIN: f64 = 1e-12;
+
+/// A bracket width: in [[`BRACKET_MIN`], 1].
+pub(crate) fn bracket_width(name: &str, x: f64) -> Result<(), Error> {
+    if (BRACKET_MIN..=1.0).contains(&x) {
+        Ok(())
+    } else {
+        Err(Error::Invalid(format!(
+            "{name} must lie in [{BRACKET_MIN:e}, 1] (narrower than the runs can certify), got {}",
+            Initial::show(x)
+        )))
+    }
+}
+
+/// A step budget exhausted inside a solver: the advice names the solver's own flags (the
+/// run's message names --tau-max, which the solvers do not take).
+pub(crate) fn solver_budget(tol_flag: &'static str) -> impl Fn(Error) -> Error {
+    move |e| match e {
+        Error::Run(crate::engine::RunError::Budget { steps, tau }) => Error::Failed(format!(
+            "step budget of {steps} steps exhausted at tau = {tau:.6} (raise --max-steps, or loosen {tol_flag} or --tol)"
+        )),
+        e => e,
+    }
 }
 
 /// Opens the explorer. Bad scenes, themes and `--record` paths fail before the terminal is
-/// touched.
-fn explore(cli: &Cli) -> CmdResult {
+/// touched. Returns the signal that ended it, if one did.
+fn explore(cli: &Cli) -> Result<Option<i32>, Error> {
     let (scene, theme) = (&cli.look.scene, &cli.look.theme);
     let scene = match scene {
         Some(s) => crate::scene::Scene::load(s)?,
@@ -78,11 +127,7 @@ fn explore(cli: &Cli) -> CmdResult {
             );
         }
     }
-    match result {
-        Ok(false) => Ok(()),
-        Ok(true) => Err(Error::Failed("ended by a signal".into())),
-        Err(e) => Err(Error::Failed(format!("terminal: {e}"))),
-    }
+    result.map_err(|e| Error::Failed(format!("terminal: {e}")))
 }
 
 /// How a recording names its scene: a preset by name, a file by its absolute path, so that
@@ -169,7 +214,14 @@ fn check_record_path(
 pub fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
-        None => explore(&cli),
+        None => match explore(&cli) {
+            // As the shell reports a process a signal killed: 128 + its number.
+            Ok(Some(n)) => {
+                let _ = writeln!(std::io::stderr(), "turntable: ended by signal {n}");
+                return ExitCode::from(128 + n as u8);
+            }
+            r => r.map(|_| ()),
+        },
         Some(Command::Run(a)) => numerics::run(a),
         Some(Command::Escape(a)) => numerics::escape(a),
         Some(Command::Critical(a)) => numerics::critical(a),

@@ -1,6 +1,9 @@
 //! The headless numerical commands: run, escape, critical (sweep is in `sweep`).
 
-use super::{CmdResult, CriticalArgs, Error, EscapeArgs, RunArgs, check_initial};
+use super::{
+    CmdResult, CriticalArgs, Error, EscapeArgs, RunArgs, bracket_width, check_initial, num,
+    solver_budget,
+};
 use crate::engine::solve::{Threshold, check_escape_xi0, critical_radius, escape_speed};
 use crate::engine::{Initial, Outcome, Run, State, Status};
 use crate::files::{Output, emit};
@@ -49,15 +52,15 @@ impl Rows {
         writeln!(
             csv,
             "{},{},{},{},{},{},{},{},{},{}",
-            s.tau,
-            s.r.x,
-            s.r.y,
-            q.x,
-            q.y,
-            u,
+            num(s.tau),
+            num(s.r.x),
+            num(s.r.y),
+            num(q.x),
+            num(q.y),
+            num(u),
             u8::from(stuck),
-            s.energy(),
-            self.work,
+            num(s.energy()),
+            num(self.work),
             approx.map_or(String::new(), |x| x.to_string())
         )
     }
@@ -280,10 +283,11 @@ fn scan_summary(t: &Threshold) -> String {
 pub fn escape(a: EscapeArgs) -> CmdResult {
     check_initial(&Initial::velocity(a.xi0, a.phi, 0.0))?;
     check_escape_xi0(a.xi0)?;
-    positive("vtol", a.vtol)?;
+    bracket_width("vtol", a.vtol)?;
     let settings = solver_settings(&a.numerics)?;
-    let t = escape_speed(a.xi0, a.phi, settings, a.vtol)?;
-    let phi = crate::engine::model::turn_angle(a.phi);
+    let t = escape_speed(a.xi0, a.phi, settings, a.vtol).map_err(solver_budget("--vtol"))?;
+    // + 0.0: −0 reads 0.
+    let phi = crate::engine::model::turn_angle(a.phi) + 0.0;
     if a.json {
         let scan: Vec<_> = t
             .scan
@@ -320,7 +324,7 @@ pub fn escape(a: EscapeArgs) -> CmdResult {
 }
 
 pub fn critical(a: CriticalArgs) -> CmdResult {
-    positive("xtol", a.xtol)?;
+    bracket_width("xtol", a.xtol)?;
     positive("g", a.g)?;
     if let (Some(w), Some(r)) = (a.omega, a.r0c) {
         positive("omega", w)?;
@@ -336,7 +340,7 @@ pub fn critical(a: CriticalArgs) -> CmdResult {
         }
     }
     let settings = solver_settings(&a.numerics)?;
-    let t = critical_radius(settings, a.xtol)?;
+    let t = critical_radius(settings, a.xtol).map_err(solver_budget("--xtol"))?;
     // The paper's Eq. 22: mu = Omega² r0c / (xi0c g), friction measured by the critical radius.
     let mu = a.omega.zip(a.r0c).map(|(w, r)| w * w * r / (t.value * a.g));
     if a.json {
