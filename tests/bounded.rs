@@ -195,3 +195,29 @@ fn integrator_step_steps_from_the_current_state() {
     assert!(sim.now().tau > tau, "{} {tau}", sim.now().tau);
     assert_eq!(sim.now(), sim.run.state());
 }
+
+/// Issue 18 item 18: the pages' runs are held to PIECE_STEPS steps each, whatever the
+/// scene's step: rk2 at dt 1e-7 needed 1e11 steps a run and `Tab Tab` never finished. Now a
+/// run stops at the budget, its piece is unknown, and the page is complete.
+#[test]
+fn page_pieces_are_bounded_whatever_the_step() {
+    use turntable::analysis::{PIECE_STEPS, settings_for};
+    use turntable::engine::method::Method;
+    use turntable::engine::{Run, RunError, Settings};
+    let tiny = Settings::fixed(Method::Rk2, 1e-7);
+    let s = settings_for(tiny);
+    assert_eq!(s.max_steps, PIECE_STEPS);
+    let mut run = Run::new(Initial::velocity(0.5, 0.0, 0.3), s).unwrap();
+    let r = run.run(turntable::engine::solve::CLASSIFY_TAU, true);
+    assert!(matches!(r, Err(RunError::Budget { .. })), "{r:?}");
+    assert!(run.cost.steps + run.cost.rejected <= PIECE_STEPS);
+    let mut scene = Scene::preset("C").unwrap();
+    scene.settings = tiny;
+    let app = App::new(scene, Theme::builtin("mono").unwrap());
+    let mut s = Session::headless(app, 80, 24, false);
+    s.key(KeyEvent::new(KeyCode::Char(' '), KeyModifiers::NONE));
+    s.key(KeyEvent::new(KeyCode::Tab, KeyModifiers::NONE));
+    s.key(KeyEvent::new(KeyCode::Tab, KeyModifiers::NONE));
+    assert!(!s.app.analysis.busy());
+    assert_eq!(s.app.settings, tiny);
+}

@@ -312,10 +312,21 @@ fn solvers_refuse_unreachable_brackets_and_advise_their_own_flags() {
         assert!(err.contains("must lie in [1e-12, 1]"), "{err}");
     }
     let (code, _, err) = turntable(&[
-        "escape", "--xi0", "0.5", "--phi", "1", "--vtol", "1e-12", "--max-steps", "1000",
+        "escape",
+        "--xi0",
+        "0.5",
+        "--phi",
+        "1",
+        "--vtol",
+        "1e-12",
+        "--max-steps",
+        "1000",
     ]);
     assert_eq!(code, 1);
-    assert!(err.contains("raise --max-steps, or loosen --vtol or --tol"), "{err}");
+    assert!(
+        err.contains("raise --max-steps, or loosen --vtol or --tol"),
+        "{err}"
+    );
     assert!(!err.contains("tau-max"), "{err}");
 }
 
