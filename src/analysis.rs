@@ -64,13 +64,24 @@ pub struct Cell {
     pub rest: Option<(f64, f64)>,
 }
 
+/// Most integrator steps one run of a page's piece may take. A piece is then bounded
+/// whatever the scene's step (rk2 at dt 1e-7 took 1e11 steps to [`CLASSIFY_TAU`] per run, and
+/// the pages never finished), so a newer request waits for at most one bounded piece. A run
+/// over budget leaves its piece unknown, as any failed run does.
+pub const PIECE_STEPS: u64 = 20_000;
+
 /// The settings the analysis runs with: the explorer's method if it has stick events, else
-/// the default (the paper's raw RK2 never stops, so it cannot classify).
+/// the default (the paper's raw RK2 never stops, so it cannot classify); at most
+/// [`PIECE_STEPS`] steps a run.
 pub fn settings_for(s: Settings) -> Settings {
-    if s.method().stick_events() {
+    let s = if s.method().stick_events() {
         s
     } else {
         Settings::default()
+    };
+    Settings {
+        max_steps: s.max_steps.min(PIECE_STEPS),
+        ..s
     }
 }
 

@@ -140,6 +140,20 @@ impl Write for Output {
     }
 }
 
+/// `path` itself for n = 1, else `NAME-n.EXT`: the names tried, in turn, for a new file.
+pub fn numbered(path: &Path, n: u32) -> PathBuf {
+    if n == 1 {
+        return path.to_path_buf();
+    }
+    let stem = path
+        .file_stem()
+        .map_or("file".into(), |s| s.to_string_lossy());
+    path.with_file_name(match path.extension() {
+        Some(e) => format!("{stem}-{n}.{}", e.to_string_lossy()),
+        None => format!("{stem}-{n}"),
+    })
+}
+
 /// Writes `contents` to `path` as [`Output`] does.
 pub fn write_atomic(path: &Path, contents: &[u8]) -> io::Result<()> {
     let mut out = Output::create(path)?;

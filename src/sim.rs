@@ -20,6 +20,14 @@ pub const TRAIL_MAX: usize = 200_000;
 /// screen: the sample then lags behind the tick's target time.
 pub const STEPS_PER_TICK: u64 = 200_000;
 
+/// What a [`Sim`] has computed: the integrator steps it took and the trail points it
+/// evaluated. Ticks and keys are held to bounds on these, not on clocks.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Work {
+    pub steps: u64,
+    pub points: u64,
+}
+
 #[derive(Clone, Debug)]
 pub struct Sim {
     pub run: Run,
@@ -39,6 +47,8 @@ pub struct Sim {
     pub view_radius: f64,
     /// Why the run stopped early, if it did.
     pub error: Option<RunError>,
+    /// The work done for the screen so far, counted.
+    pub work: Work,
     /// Once the outcome is decided: whether the run's own error could flip it.
     pub doubt: Option<Doubt>,
 }
@@ -57,6 +67,7 @@ impl Sim {
             cursor: 0,
             view_radius,
             error: None,
+            work: Work::default(),
             doubt: None,
         })
     }
@@ -81,9 +92,23 @@ impl Sim {
             // All the latest step covers: its dense output is gone after the next step.
             Status::Slipping => self.run.tau(),
         };
+        // Points older than the newest TRAIL_MAX would be dropped as soon as made: skip
+        // them (one μ = 0 stride of 1000 τ holds 40,000).
+        let last_k = (end / TRAIL_DT).floor() as u64;
+        if last_k >= self.next_k + TRAIL_MAX as u64 {
+            self.path.clear();
+            self.next_k = last_k + 1 - TRAIL_MAX as u64;
+        }
         while self.next_k as f64 * TRAIL_DT <= end {
             match self.run.state_at(self.next_k as f64 * TRAIL_DT) {
-                Ok(s) => self.path.push(s),
+                Ok(s) => {
+                    // Trimmed as it grows, so it never holds more than TRAIL_MAX points.
+                    if self.path.len() == TRAIL_MAX {
+                        self.path.drain(..TRAIL_MAX / 10);
+                    }
+                    self.path.push(s);
+                    self.work.points += 1;
+                }
                 Err(e) => {
                     self.error = Some(e);
                     return;
@@ -96,12 +121,12 @@ impl Sim {
             && ts <= end
         {
             // The stop itself, exactly, in its place on the grid.
+            if self.path.len() == TRAIL_MAX {
+                self.path.drain(..TRAIL_MAX / 10);
+            }
             let at = self.path.partition_point(|s| s.tau < ts);
             self.path.insert(at, State::riding(q, ts));
             self.stop_in_path = true;
-        }
-        if self.path.len() > TRAIL_MAX {
-            self.path.drain(..TRAIL_MAX / 10);
         }
     }
 
@@ -140,12 +165,16 @@ impl Sim {
             if self.run.cost.steps + self.run.cost.rejected >= budget {
                 break;
             }
+            self.work.steps += 1;
             if let Err(e) = self.run.step(f64::INFINITY) {
                 self.error = Some(e);
                 break;
             }
-            // Each step's dense output covers only that step: take its grid points now.
-            self.extend_path(target);
+            // Each step's dense output covers only that step: take its grid points now
+            // (μ = 0 has a closed form at every τ: its points are taken once, below).
+            if !self.run.initial.frictionless {
+                self.extend_path(target);
+            }
             self.note_outcome();
         }
         let t = target.min(match self.run.status {
@@ -177,22 +206,17 @@ impl Sim {
             Status::Slipping => self.run.tau() > tau,
         };
         if ahead {
-            // Ticks integrate past the screen: take the run again (the same steps) only up
-            // to the step that holds the τ on screen, and show that step's end.
-            let mut run = Run::new(self.run.initial, self.run.settings)
-                .expect("the run's own initial conditions and settings");
-            while run.status == Status::Slipping && run.tau() < tau {
-                if let Err(e) = run.step(f64::INFINITY) {
-                    self.error = Some(e);
-                    return false;
-                }
-            }
-            self.run = run;
+            // Ticks integrate past the screen, but stop at the first step that reaches their
+            // target: the run's latest step holds the τ on screen. Show its end, stepping
+            // nothing (re-integrating from τ = 0 took seconds on a long run).
         } else if !self.live() || self.run.status != Status::Slipping {
             return false;
-        } else if let Err(e) = self.run.step(f64::INFINITY) {
-            self.error = Some(e);
-            return false;
+        } else {
+            self.work.steps += 1;
+            if let Err(e) = self.run.step(f64::INFINITY) {
+                self.error = Some(e);
+                return false;
+            }
         }
         self.note_outcome();
         self.extend_path(self.run.tau());

@@ -1,11 +1,12 @@
-//! The terminal: raw mode, alternate screen, mouse capture; always restored (quit, panic,
-//! SIGTERM, SIGHUP). The event loop ticks at a capped frame rate while playing and blocks
+//! The terminal: raw mode, alternate screen, mouse capture, bracketed paste; always restored
+//! (quit, panic, SIGTERM, SIGHUP) and taken back on SIGCONT. The event loop ticks at a capped frame rate while playing and blocks
 //! when paused (no redraw when idle).
 
 use crate::app::App;
 use crate::session::{Session, SharedRecorder, lock, new_recorder};
 use crossterm::event::{
-    self, DisableMouseCapture, EnableMouseCapture, Event, KeyCode, KeyModifiers,
+    self, DisableBracketedPaste, DisableMouseCapture, EnableBracketedPaste, EnableMouseCapture,
+    Event, KeyCode, KeyModifiers,
 };
 use crossterm::terminal::{
     BeginSynchronizedUpdate, EndSynchronizedUpdate, EnterAlternateScreen, LeaveAlternateScreen,
@@ -15,7 +16,7 @@ use crossterm::{cursor, execute};
 use ratatui::backend::CrosstermBackend;
 use std::io::{self, Stdout, Write};
 use std::sync::Arc;
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicI32, Ordering};
 use std::time::{Duration, Instant};
 
 /// Puts the terminal back as it was. Safe to call more than once and on a dead terminal.
@@ -25,6 +26,7 @@ pub fn restore() {
         out,
         EndSynchronizedUpdate,
         DisableMouseCapture,
+        DisableBracketedPaste,
         LeaveAlternateScreen,
         cursor::Show
     );
@@ -42,11 +44,17 @@ fn setup(mouse: bool) -> io::Result<CrosstermBackend<Stdout>> {
     Ok(CrosstermBackend::new(io::stdout()))
 }
 
-/// Raw mode, the alternate screen, no cursor, and mouse capture if asked.
+/// Raw mode, the alternate screen, no cursor, bracketed paste (pasted text arrives as one
+/// event, never as keys), and mouse capture if asked.
 fn enter(mouse: bool) -> io::Result<()> {
     enable_raw_mode()?;
     let mut out = io::stdout();
-    execute!(out, EnterAlternateScreen, cursor::Hide)?;
+    execute!(
+        out,
+        EnterAlternateScreen,
+        cursor::Hide,
+        EnableBracketedPaste
+    )?;
     if mouse {
         execute!(out, EnableMouseCapture)?;
     }
@@ -87,8 +95,15 @@ fn hung_up() -> bool {
 fn suspend(session: &mut Session<CrosstermBackend<Stdout>>) -> io::Result<()> {
     restore();
     signal_hook::low_level::emulate_default_handler(libc::SIGTSTP)?;
-    // Continued (SIGCONT): raw mode again, and a full redraw of a screen that may hold
-    // anything now.
+    resume(session)
+}
+
+/// Continued (SIGCONT, also after a SIGSTOP this process never saw, whose shell put the
+/// terminal back in cooked mode): raw mode again, and a full redraw of a screen that may hold
+/// anything now.
+fn resume(session: &mut Session<CrosstermBackend<Stdout>>) -> io::Result<()> {
+    // crossterm skips enabling raw mode while it believes it on: forget that belief first.
+    disable_raw_mode()?;
     enter(session.app.mouse_capture())?;
     // Clear, and forget the last frame so the next draw repaints every cell (ratatui's own
     // clear would query the cursor position and wait for the terminal's answer).
@@ -105,14 +120,14 @@ fn suspend(session: &mut Session<CrosstermBackend<Stdout>>) -> io::Result<()> {
 pub type SaveRecording = Box<dyn FnOnce(String) + Send>;
 
 /// Runs the explorer until quit or a terminating signal. `fps` caps the frame rate.
-/// Returns whether a signal (SIGTERM, SIGHUP, SIGINT) ended it, and with `record` the
+/// Returns the signal (SIGTERM, SIGHUP, SIGINT, …) that ended it, if one did, and with `record` the
 /// session as a key script (also after a signal or an error, as far as it got). If the
 /// terminal is gone and the process must end without returning, `record` gets that script.
 pub fn run(
     mut app: App,
     fps: u32,
     record: Option<SaveRecording>,
-) -> (io::Result<bool>, Option<String>) {
+) -> (io::Result<Option<i32>>, Option<String>) {
     let flags = Arc::new(Flags::default());
     let finished = Arc::new(AtomicBool::new(false));
     let recorder = record.is_some().then(new_recorder);
@@ -139,7 +154,10 @@ pub fn run(
     finished.store(true, Ordering::Relaxed);
     restore();
     (
-        result.map(|()| flags.stop.load(Ordering::Relaxed)),
+        result.map(|()| match flags.signal.load(Ordering::Relaxed) {
+            0 => None,
+            n => Some(n),
+        }),
         session.take_recording(),
     )
 }
@@ -164,7 +182,10 @@ const TERMINATING: [i32; 11] = [
 #[derive(Default)]
 struct Flags {
     stop: AtomicBool,
+    /// The terminating signal's number (0: none).
+    signal: AtomicI32,
     suspend: AtomicBool,
+    resume: AtomicBool,
 }
 
 /// What the signal watcher needs if the event loop never comes back.
@@ -179,17 +200,20 @@ struct Lost {
 /// then, after a grace period, this thread restores what it can, saves the recording so far
 /// and ends the process.
 fn watch_signals(flags: Arc<Flags>, lost: Lost) -> io::Result<()> {
-    let mut signals =
-        signal_hook::iterator::Signals::new(TERMINATING.iter().chain(&[libc::SIGTSTP]))?;
+    let mut signals = signal_hook::iterator::Signals::new(
+        TERMINATING.iter().chain(&[libc::SIGTSTP, libc::SIGCONT]),
+    )?;
     std::thread::spawn(move || {
         let mut pending = signals.forever();
         let terminating = loop {
             match pending.next() {
                 Some(libc::SIGTSTP) => flags.suspend.store(true, Ordering::Relaxed),
+                Some(libc::SIGCONT) => flags.resume.store(true, Ordering::Relaxed),
                 other => break other,
             }
         };
-        if terminating.is_some() {
+        if let Some(n) = terminating {
+            flags.signal.store(n, Ordering::Relaxed);
             flags.stop.store(true, Ordering::Relaxed);
             std::thread::sleep(Duration::from_millis(600));
             if !lost.finished.load(Ordering::Relaxed) {
@@ -198,8 +222,8 @@ fn watch_signals(flags: Arc<Flags>, lost: Lost) -> io::Result<()> {
                     save(lock(&r).clone().finish());
                 }
                 // The terminal may be gone: a failed write must not panic this thread.
-                let _ = writeln!(io::stderr(), "turntable: ended by a signal");
-                std::process::exit(1);
+                let _ = writeln!(io::stderr(), "turntable: ended by signal {n}");
+                std::process::exit(128 + n);
             }
         }
     });
@@ -218,6 +242,9 @@ fn event_loop(
         if flags.suspend.swap(false, Ordering::Relaxed) {
             suspend(session)?;
             next_tick = Instant::now() + frame;
+        }
+        if flags.resume.swap(false, Ordering::Relaxed) {
+            resume(session)?;
         }
         if session.app.mouse_capture() != mouse_on {
             mouse_on = session.app.mouse_capture();
@@ -252,6 +279,9 @@ fn event_loop(
                     Event::Key(k) => session.key(k),
                     Event::Mouse(m) => session.mouse(m)?,
                     Event::Resize(w, h) => session.resized(w, h),
+                    // Pasted text is not keys (a `q` in it would quit): ignored, and left out
+                    // of the recording as it leaves the screen alone.
+                    Event::Paste(_) => {}
                     _ => {}
                 }
                 if !event::poll(Duration::ZERO)? {

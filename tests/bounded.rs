@@ -108,3 +108,116 @@ fn error_estimate_is_bounded() {
         ),
     }
 }
+
+fn keys(s: &mut Session<ratatui::backend::TestBackend>, keys: &str) {
+    for c in keys.chars() {
+        s.key(key(c));
+    }
+}
+
+/// Issue 18 item 16: a frictionless step strides 1000 τ (40,000 trail points); a long μ = 0
+/// session and `c` after it (the paper's run catching up 100,000 τ) used to build millions of
+/// points (26 s, 499 MB). Now the trail never holds more than TRAIL_MAX points nor allocates
+/// for more, and no tick or key evaluates more than TRAIL_MAX of them.
+#[test]
+fn frictionless_trail_is_bounded_per_point_and_per_tick() {
+    use turntable::sim::{Sim, TRAIL_MAX};
+    let bounded = |sim: &Sim, before: u64| {
+        assert!(sim.path.len() <= TRAIL_MAX, "{}", sim.path.len());
+        assert!(
+            sim.path.capacity() <= TRAIL_MAX.next_power_of_two(),
+            "{}",
+            sim.path.capacity()
+        );
+        assert!(
+            sim.work.points - before <= TRAIL_MAX as u64,
+            "{:?}",
+            sim.work
+        );
+    };
+    let mut s = session("A");
+    keys(&mut s, "FRR]]]]]]]]");
+    assert!(s.app.initial.frictionless);
+    for _ in 0..40_000 {
+        let before = s.app.sim.work.points;
+        s.tick();
+        bounded(&s.app.sim, before);
+    }
+    assert!(s.app.now().tau > 100_000.0, "{}", s.app.now().tau);
+    keys(&mut s, "[[[[[[[[[[[[[[");
+    s.key(key('c'));
+    let p = s.app.paper.as_ref().unwrap();
+    bounded(p, 0);
+    assert!((p.now().tau - s.app.now().tau).abs() < 1e-9);
+    for _ in 0..100 {
+        let before = s.app.paper.as_ref().unwrap().work.points;
+        s.tick();
+        bounded(s.app.paper.as_ref().unwrap(), before);
+    }
+    // `n` strides on 1000 τ at a time: 40,000 points each, never more kept.
+    let mut s = session("A");
+    keys(&mut s, "FRR");
+    for _ in 0..500 {
+        let before = s.app.sim.work.points;
+        s.key(key('n'));
+        bounded(&s.app.sim, before);
+    }
+    assert!(s.app.now().tau >= 400_000.0, "{}", s.app.now().tau);
+}
+
+/// Issue 18 item 17: `n` with the run integrated past the screen showed the step holding the
+/// τ on screen by integrating the whole run again from τ = 0 (1.5 s at τ = 150 with rk2). Now
+/// the run's latest step is that step: the key steps nothing, and the next one steps once.
+#[test]
+fn integrator_step_steps_from_the_current_state() {
+    // dp54 → the paper's raw rk2: no stick event, so A's stop chatters on, slipping.
+    let mut s = session("A");
+    s.key(key('m'));
+    for _ in 0..8 {
+        s.key(key(']'));
+    }
+    let mut ticks = 0;
+    while s.app.now().tau < 150.0 && s.app.sim.live() {
+        s.tick();
+        ticks += 1;
+        assert!(ticks < 10_000);
+    }
+    s.key(key(' '));
+    let tau = s.app.now().tau;
+    let steps = s.app.sim.work.steps;
+    assert!(tau >= 150.0 && s.app.sim.run.tau() > tau, "{tau}");
+    s.key(key('n'));
+    // The step holding the screen's τ is the run's latest: nothing to integrate.
+    assert_eq!(s.app.sim.work.steps, steps);
+    s.key(key('n'));
+    let sim = &s.app.sim;
+    assert_eq!(sim.work.steps - steps, 1, "{:?}", sim.work);
+    assert!(sim.now().tau > tau, "{} {tau}", sim.now().tau);
+    assert_eq!(sim.now(), sim.run.state());
+}
+
+/// Issue 18 item 18: the pages' runs are held to PIECE_STEPS steps each, whatever the
+/// scene's step: rk2 at dt 1e-7 needed 1e11 steps a run and `Tab Tab` never finished. Now a
+/// run stops at the budget, its piece is unknown, and the page is complete.
+#[test]
+fn page_pieces_are_bounded_whatever_the_step() {
+    use turntable::analysis::{PIECE_STEPS, settings_for};
+    use turntable::engine::method::Method;
+    use turntable::engine::{Run, RunError, Settings};
+    let tiny = Settings::fixed(Method::Rk2, 1e-7);
+    let s = settings_for(tiny);
+    assert_eq!(s.max_steps, PIECE_STEPS);
+    let mut run = Run::new(Initial::velocity(0.5, 0.0, 0.3), s).unwrap();
+    let r = run.run(turntable::engine::solve::CLASSIFY_TAU, true);
+    assert!(matches!(r, Err(RunError::Budget { .. })), "{r:?}");
+    assert!(run.cost.steps + run.cost.rejected <= PIECE_STEPS);
+    let mut scene = Scene::preset("C").unwrap();
+    scene.settings = tiny;
+    let app = App::new(scene, Theme::builtin("mono").unwrap());
+    let mut s = Session::headless(app, 80, 24, false);
+    s.key(KeyEvent::new(KeyCode::Char(' '), KeyModifiers::NONE));
+    s.key(KeyEvent::new(KeyCode::Tab, KeyModifiers::NONE));
+    s.key(KeyEvent::new(KeyCode::Tab, KeyModifiers::NONE));
+    assert!(!s.app.analysis.busy());
+    assert_eq!(s.app.settings, tiny);
+}

@@ -365,3 +365,83 @@ fn completions_and_man_page() {
         assert!(out.contains(section), "no {section}");
     }
 }
+
+/// Issue 18 item 22: bracket widths no run can certify are refused up front (`sweep fig5
+/// --vtol 1e-308` ran on and then advised `--tau-max`, which sweep does not take); a budget
+/// spent inside a solver advises the solver's own flags.
+#[test]
+fn solvers_refuse_unreachable_brackets_and_advise_their_own_flags() {
+    for args in [
+        &["sweep", "fig5", "--vtol", "1e-308"][..],
+        &["escape", "--xi0", "0.5", "--vtol", "1e-20"],
+        &["critical", "--xtol", "1e-300"],
+    ] {
+        let (code, out, err) = turntable(args);
+        assert_eq!(code, 2, "{args:?}: {err}");
+        assert!(out.is_empty());
+        assert!(err.contains("must lie in [1e-12, 1]"), "{err}");
+    }
+    let (code, _, err) = turntable(&[
+        "escape",
+        "--xi0",
+        "0.5",
+        "--phi",
+        "1",
+        "--vtol",
+        "1e-12",
+        "--max-steps",
+        "1000",
+    ]);
+    assert_eq!(code, 1);
+    assert!(
+        err.contains("raise --max-steps, or loosen --vtol or --tol"),
+        "{err}"
+    );
+    assert!(!err.contains("tau-max"), "{err}");
+}
+
+/// Issue 18 item 22: a write error on `--out` names the file.
+#[test]
+fn a_failed_out_names_its_file() {
+    if !std::path::Path::new("/dev/full").exists() {
+        eprintln!("skipped: no /dev/full here");
+        return;
+    }
+    let (code, _, err) = turntable(&["sweep", "fig6", "--points", "3", "--out", "/dev/full"]);
+    assert_eq!(code, 1);
+    assert!(err.starts_with("error: --out /dev/full: "), "{err}");
+}
+
+/// Issue 18 item 22: φ beyond ±1e6 rad is refused (its remainder mod 2π has no digits left);
+/// CSV numbers never print as 300-digit decimals, nor as −0, and JSON gives no −0.
+#[test]
+fn angles_are_bounded_and_numbers_print_short() {
+    let (code, _, err) = turntable(&["run", "--phi", "1e300"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("phi must lie in [-1e6, 1e6]"), "{err}");
+    let (code, out, _) = turntable(&["sweep", "fig6", "--points", "2", "--xi0-max", "1e-300"]);
+    assert_eq!(code, 0);
+    assert_eq!(out, "xi0,outcome,xi,angle\n0,stuck,0,0\n1e-300,stuck,0,0\n");
+    let (code, out, _) = turntable(&["sweep", "fig5", "--xi0", "-0", "--points", "1"]);
+    assert_eq!(code, 0);
+    assert!(out.lines().nth(1).unwrap().starts_with("0,0,"), "{out}");
+    let (code, out, _) = turntable(&["escape", "--xi0", "0.5", "--phi", "-0", "--json"]);
+    assert_eq!(code, 0);
+    assert_eq!(field(&out, "phi"), "0.0");
+    let path = std::env::temp_dir().join(format!("turntable-tiny-{}.csv", std::process::id()));
+    let (code, _, err) = turntable(&[
+        "run",
+        "--v0",
+        "1e-300",
+        "--tau-max",
+        "1",
+        "--trajectory",
+        path.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let csv = std::fs::read_to_string(&path).unwrap();
+    std::fs::remove_file(&path).unwrap();
+    let longest = csv.split([',', '\n']).map(str::len).max().unwrap();
+    assert!(longest <= 24, "{longest}: {csv}");
+    assert!(!csv.contains("-0,") && !csv.contains("-0\n"), "{csv}");
+}

@@ -3,6 +3,7 @@
 
 use std::io::Read;
 use std::os::fd::{AsRawFd, FromRawFd, OwnedFd};
+use std::os::unix::fs::OpenOptionsExt;
 use std::os::unix::process::CommandExt;
 use std::process::{Child, Command, Stdio};
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -50,6 +51,11 @@ impl std::ops::DerefMut for Reap {
 type Seen = Arc<Mutex<Vec<u8>>>;
 
 fn spawn(rec: &std::path::Path) -> Option<(Reap, Pty, Seen)> {
+    spawn_in(rec, &std::env::temp_dir())
+}
+
+/// As [`spawn`], in the folder `cwd` (where `s` saves scenes).
+fn spawn_in(rec: &std::path::Path, cwd: &std::path::Path) -> Option<(Reap, Pty, Seen)> {
     // Other tests fork too: no child may inherit this master (it would keep the pty up).
     static FORK: Mutex<()> = Mutex::new(());
     let _one_at_a_time = FORK.lock().unwrap();
@@ -83,6 +89,7 @@ fn spawn(rec: &std::path::Path) -> Option<(Reap, Pty, Seen)> {
     let (master, slave) = unsafe { (OwnedFd::from_raw_fd(master), OwnedFd::from_raw_fd(slave)) };
     let mut cmd = Command::new(env!("CARGO_BIN_EXE_turntable"));
     cmd.args(["--record", rec.to_str().unwrap()])
+        .current_dir(cwd)
         .stdin(slave.try_clone().unwrap())
         .stdout(slave.try_clone().unwrap())
         .stderr(slave);
@@ -198,7 +205,8 @@ fn a_hung_up_terminal_ends_the_explorer_and_saves_the_recording() {
     );
 }
 
-/// SIGQUIT (like SIGTERM) restores the terminal first: alternate screen and mouse off.
+/// SIGQUIT (like SIGTERM) restores the terminal first: alternate screen and mouse off; the
+/// exit status is 128 + the signal's number.
 #[test]
 fn sigquit_restores_the_terminal() {
     let path = rec("quit");
@@ -214,6 +222,8 @@ fn sigquit_restores_the_terminal() {
         contains(&seen, mark, ALT_OFF) && contains(&seen, mark, MOUSE_OFF)
     });
     assert!(path.exists());
+    // As a shell reports a process a signal ended (issue 18 item 22): 128 + 3.
+    assert_eq!(child.wait().unwrap().code(), Some(131));
 }
 
 /// SIGTSTP hands the terminal back (cooked, main screen) before stopping; SIGCONT takes it
@@ -244,4 +254,149 @@ fn suspend_and_continue() {
     pty.type_keys(b"q");
     wait_for("quit", || child.try_wait().unwrap().is_some());
     assert_eq!(child.wait().unwrap().code(), Some(0));
+}
+
+const PASTE_ON: &[u8] = b"\x1b[?2004h";
+const PASTE_OFF: &[u8] = b"\x1b[?2004l";
+
+/// Issue 18 item 19: the explorer asks for bracketed paste (and gives it back), so a paste
+/// arrives as one event, not as keys: a pasted `q` does not quit, the keys after it still
+/// work.
+#[test]
+fn pasted_text_is_not_keys() {
+    let path = rec("paste");
+    let Some((mut child, pty, seen)) = spawn(&path) else {
+        return;
+    };
+    wait_for("the first frame", || contains(&seen, 0, ALT_ON));
+    assert!(contains(&seen, 0, PASTE_ON));
+    let mark = seen.lock().unwrap().len();
+    pty.type_keys(b"\x1b[200~sq\x1b[201~?");
+    // Keys are taken in order: had the `q` quit, no help would be drawn.
+    wait_for("the help", || contains(&seen, mark, b"help"));
+    assert!(child.try_wait().unwrap().is_none());
+    let mark = seen.lock().unwrap().len();
+    pty.type_keys(b"?q");
+    wait_for("quit", || child.try_wait().unwrap().is_some());
+    assert_eq!(child.wait().unwrap().code(), Some(0));
+    assert!(contains(&seen, mark, PASTE_OFF));
+    let script = std::fs::read_to_string(&path).unwrap();
+    assert!(!script.contains("\ns\n"), "{script}");
+}
+
+/// Whether the pty's line discipline is cooked (canonical input, echo).
+fn cooked(fd: i32) -> bool {
+    // SAFETY: a valid descriptor and an out-pointer to a termios.
+    let mut t: libc::termios = unsafe { std::mem::zeroed() };
+    assert_eq!(unsafe { libc::tcgetattr(fd, &mut t) }, 0);
+    t.c_lflag & (libc::ICANON | libc::ECHO) != 0
+}
+
+/// Issue 18 item 20: SIGSTOP cannot be caught, and the shell puts the terminal back in cooked
+/// mode while the job is stopped; SIGCONT (`fg`) takes raw mode back and redraws.
+#[test]
+fn sigstop_then_sigcont_takes_raw_mode_back() {
+    let path = rec("stop");
+    let Some((mut child, pty, seen)) = spawn(&path) else {
+        return;
+    };
+    let pid = child.id() as i32;
+    wait_for("the first frame", || contains(&seen, 0, ALT_ON));
+    assert!(!cooked(pty.fd));
+    // SAFETY: signals to our child; termios of our pty (through its master, as a shell's
+    // own tcsetattr on the slave).
+    unsafe { libc::kill(pid, libc::SIGSTOP) };
+    let mut t: libc::termios = unsafe { std::mem::zeroed() };
+    assert_eq!(unsafe { libc::tcgetattr(pty.fd, &mut t) }, 0);
+    t.c_lflag |= libc::ICANON | libc::ECHO;
+    assert_eq!(unsafe { libc::tcsetattr(pty.fd, libc::TCSANOW, &t) }, 0);
+    assert!(cooked(pty.fd));
+    let mark = seen.lock().unwrap().len();
+    unsafe { libc::kill(pid, libc::SIGCONT) };
+    wait_for("raw mode back", || !cooked(pty.fd));
+    wait_for("a redraw", || contains(&seen, mark, "ξ0".as_bytes()));
+    // One key, no Enter: raw.
+    pty.type_keys(b"q");
+    wait_for("quit", || child.try_wait().unwrap().is_some());
+    assert_eq!(child.wait().unwrap().code(), Some(0));
+}
+
+/// Issue 18 item 21: `--record` to a FIFO with a reader (as `cat FIFO`: it reads until the
+/// last writer closes). The start-up check used to open and close it, ending the reader, so
+/// the recording was lost; now the FIFO stays open and the reader gets the whole script.
+#[test]
+fn record_to_a_fifo_reaches_its_reader() {
+    let fifo = rec("fifo");
+    let c = std::ffi::CString::new(fifo.to_str().unwrap()).unwrap();
+    // SAFETY: a valid path.
+    assert_eq!(unsafe { libc::mkfifo(c.as_ptr(), 0o600) }, 0);
+    // Non-blocking, so this reader is there before the explorer opens the FIFO.
+    let reader = std::fs::OpenOptions::new()
+        .read(true)
+        .custom_flags(libc::O_NONBLOCK)
+        .open(&fifo)
+        .unwrap();
+    let got = Arc::new(Mutex::new((Vec::new(), false)));
+    let sink = Arc::clone(&got);
+    std::thread::spawn(move || {
+        let mut reader = reader;
+        let mut buf = [0; 4096];
+        loop {
+            let mut p = libc::pollfd {
+                fd: reader.as_raw_fd(),
+                events: libc::POLLIN,
+                revents: 0,
+            };
+            // SAFETY: one valid pollfd; it wakes on data or once the last writer closes.
+            unsafe { libc::poll(&mut p, 1, -1) };
+            match reader.read(&mut buf) {
+                Ok(0) => break,
+                Ok(n) => sink.lock().unwrap().0.extend_from_slice(&buf[..n]),
+                Err(e) if e.kind() == std::io::ErrorKind::WouldBlock => {}
+                Err(_) => break,
+            }
+        }
+        sink.lock().unwrap().1 = true;
+    });
+    let Some((mut child, pty, seen)) = spawn(&fifo) else {
+        return;
+    };
+    wait_for("the first frame", || contains(&seen, 0, ALT_ON));
+    pty.type_keys(b"q");
+    wait_for("quit", || child.try_wait().unwrap().is_some());
+    let code = child.wait().unwrap().code();
+    wait_for("the reader's end of file", || got.lock().unwrap().1);
+    let text = String::from_utf8(got.lock().unwrap().0.clone()).unwrap();
+    assert!(text.starts_with("# turntable key script\n"), "{text:?}");
+    assert_eq!(code, Some(0));
+    std::fs::remove_file(&fifo).unwrap();
+}
+
+/// Issue 18 item 21: `--record turntable-scene.toml` then `s`: `s` saves the scene there
+/// (nothing stood there), and the recording must not replace it: it goes to the next free
+/// name, and says so.
+#[test]
+fn a_recording_never_replaces_a_file_made_during_the_session() {
+    let dir = std::env::temp_dir().join(format!("turntable-rec-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir(&dir).unwrap();
+    let scene = dir.join("turntable-scene.toml");
+    let Some((mut child, pty, seen)) = spawn_in(&scene, &dir) else {
+        return;
+    };
+    wait_for("the first frame", || contains(&seen, 0, ALT_ON));
+    pty.type_keys(b"s");
+    wait_for("the scene saved", || scene.exists());
+    let saved = std::fs::read_to_string(&scene).unwrap();
+    pty.type_keys(b"q");
+    wait_for("quit", || child.try_wait().unwrap().is_some());
+    assert_eq!(child.wait().unwrap().code(), Some(0));
+    assert_eq!(std::fs::read_to_string(&scene).unwrap(), saved);
+    assert!(!saved.starts_with("# turntable key script"), "{saved}");
+    let script = std::fs::read_to_string(dir.join("turntable-scene-2.toml")).unwrap();
+    assert!(script.starts_with("# turntable key script\n"), "{script}");
+    wait_for("the notice", || {
+        contains(&seen, 0, b"turntable-scene-2.toml")
+    });
+    std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -19,12 +19,61 @@ pub use args::*;
 pub type CmdResult = Result<(), Error>;
 
 pub fn check_initial(i: &Initial) -> Result<(), Error> {
-    Ok(i.validate()?)
+    i.validate()?;
+    if i.phi.abs() > PHI_MAX {
+        return Err(Error::Invalid(format!(
+            "phi must lie in [-{PHI_MAX:e}, {PHI_MAX:e}] rad, got {}",
+            Initial::show(i.phi)
+        )));
+    }
+    Ok(())
+}
+
+/// A number as the CSV outputs write it: the shortest digits that read back exactly, in
+/// exponent form outside 1e-5..1e16 (never a 300-digit decimal), and −0 as 0.
+pub(crate) fn num(x: f64) -> String {
+    if x == 0.0 {
+        "0".into()
+    } else if (1e-5..1e16).contains(&x.abs()) {
+        format!("{x}")
+    } else {
+        format!("{x:e}")
+    }
+}
+
+/// Largest |φ| taken (rad): beyond it the angle's remainder mod 2π has lost its digits.
+pub const PHI_MAX: f64 = 1e6;
+
+/// The narrowest bracket `--vtol`/`--xtol` may ask for: a threshold of order 1 resolved to a few
+/// thousand ulps, which the runs' own accuracy (dp54 at tol 1e-14) can still certify.
+pub const BRACKET_MIN: f64 = 1e-12;
+
+/// A bracket width: in [[`BRACKET_MIN`], 1].
+pub(crate) fn bracket_width(name: &str, x: f64) -> Result<(), Error> {
+    if (BRACKET_MIN..=1.0).contains(&x) {
+        Ok(())
+    } else {
+        Err(Error::Invalid(format!(
+            "{name} must lie in [{BRACKET_MIN:e}, 1] (narrower than the runs can certify), got {}",
+            Initial::show(x)
+        )))
+    }
+}
+
+/// A step budget exhausted inside a solver: the advice names the solver's own flags (the
+/// run's message names --tau-max, which the solvers do not take).
+pub(crate) fn solver_budget<E: Into<Error>>(tol_flag: &'static str) -> impl Fn(E) -> Error {
+    move |e| match e.into() {
+        Error::Run(crate::engine::RunError::Budget { steps, tau }) => Error::Failed(format!(
+            "step budget of {steps} steps exhausted at tau = {tau:.6} (raise --max-steps, or loosen {tol_flag} or --tol)"
+        )),
+        e => e,
+    }
 }
 
 /// Opens the explorer. Bad scenes, themes and `--record` paths fail before the terminal is
-/// touched.
-fn explore(cli: &Cli) -> CmdResult {
+/// touched. Returns the signal that ended it, if one did.
+fn explore(cli: &Cli) -> Result<Option<i32>, Error> {
     let (scene, theme) = (&cli.look.scene, &cli.look.theme);
     let scene = match scene {
         Some(s) => crate::scene::Scene::load(s)?,
@@ -36,9 +85,17 @@ fn explore(cli: &Cli) -> CmdResult {
         .with_depth(crate::theme::Depth::from_colorterm(colorterm.as_deref()));
     let units = cli.units.units()?;
     let scene_ref = cli.look.scene.as_deref().map(scene_reference);
-    if let Some(path) = &cli.record {
-        check_record_path(path, [&cli.look.scene, &cli.look.theme])?;
-    }
+    let recording = match &cli.record {
+        Some(path) => Some(std::sync::Arc::new(Recording {
+            out: std::sync::Mutex::new(Some(check_record_path(
+                path,
+                [&cli.look.scene, &cli.look.theme],
+            )?)),
+            path: path.clone(),
+            scene: scene_ref,
+        })),
+        None => None,
+    };
     use std::io::IsTerminal;
     if !(std::io::stdin().is_terminal() && std::io::stdout().is_terminal()) {
         return Err(Error::Invalid(
@@ -52,22 +109,26 @@ fn explore(cli: &Cli) -> CmdResult {
     if cli.no_mouse {
         app.mouse = false;
     }
-    let save = cli.record.clone().map(|path| {
-        let scene = scene_ref.clone();
+    let save = recording.clone().map(|r| {
         Box::new(move |script: String| {
-            let _ = save_recording(&path, scene.as_deref(), script);
+            let _ = r.save(script);
         }) as crate::terminal::SaveRecording
     });
-    let (result, recording) = crate::terminal::run(app, cli.fps, save);
-    if let (Some(path), Some(script)) = (&cli.record, recording) {
-        save_recording(path, scene_ref.as_deref(), script)
+    let (result, script) = crate::terminal::run(app, cli.fps, save);
+    if let (Some(r), Some(script)) = (recording, script) {
+        let saved = r
+            .save(script)
             .map_err(|e| Error::Failed(format!("--record: {e}")))?;
+        if let Some(path) = cli.record.as_deref().filter(|p| *p != saved) {
+            let _ = writeln!(
+                std::io::stderr(),
+                "--record: {} appeared during the session (kept); the recording is in {}",
+                crate::files::escape_controls(&path.display().to_string()),
+                crate::files::escape_controls(&saved.display().to_string())
+            );
+        }
     }
-    match result {
-        Ok(false) => Ok(()),
-        Ok(true) => Err(Error::Failed("ended by a signal".into())),
-        Err(e) => Err(Error::Failed(format!("terminal: {e}"))),
-    }
+    result.map_err(|e| Error::Failed(format!("terminal: {e}")))
 }
 
 /// How a recording names its scene: a preset by name, a file by its absolute path, so that
@@ -79,23 +140,61 @@ fn scene_reference(scene: &str) -> String {
     std::fs::canonicalize(scene).map_or_else(|_| scene.to_string(), |p| p.display().to_string())
 }
 
-/// Writes a recorded session atomically. It names its scene, so that `replay FILE` alone
-/// opens the same one.
-fn save_recording(
-    path: &std::path::Path,
-    scene: Option<&str>,
-    mut script: String,
-) -> std::io::Result<()> {
-    if let Some(s) = scene {
-        let at = script.find('\n').map_or(0, |i| i + 1);
-        script.insert_str(at, &crate::script::scene_line(s));
+/// A `--record` file, opened before the session and written once at its end (or by the
+/// signal watcher if the terminal dies): a FIFO's reader stays connected throughout.
+struct Recording {
+    /// The output, and whether a file stood there before the session.
+    out: std::sync::Mutex<Option<(crate::files::Output, bool)>>,
+    path: std::path::PathBuf,
+    /// The scene the recording names, so that `replay FILE` alone opens the same one.
+    scene: Option<String>,
+}
+
+impl Recording {
+    /// Writes the script atomically; returns where. A file that was not there before the
+    /// session is never replaced (`s` may have saved a scene there meanwhile): the recording
+    /// then goes to the first free `NAME-N`.
+    fn save(&self, mut script: String) -> std::io::Result<std::path::PathBuf> {
+        use crate::files::Output;
+        let taken = self.out.lock().unwrap_or_else(|e| e.into_inner()).take();
+        let (mut out, existed) =
+            taken.ok_or_else(|| std::io::Error::other("the recording was already saved"))?;
+        if let Some(s) = &self.scene {
+            let at = script.find('\n').map_or(0, |i| i + 1);
+            script.insert_str(at, &crate::script::scene_line(s));
+        }
+        out.write_all(script.as_bytes())?;
+        match out {
+            Output::Replace { mut tmp, .. } if !existed => {
+                let dest = &self.path;
+                tmp.as_file().sync_all()?;
+                for n in 1..=99 {
+                    let to = crate::files::numbered(dest, n);
+                    match tmp.persist_noclobber(&to) {
+                        Ok(_) => return Ok(to),
+                        Err(e) if e.error.kind() == std::io::ErrorKind::AlreadyExists => {
+                            tmp = e.file;
+                        }
+                        Err(e) => return Err(e.error),
+                    }
+                }
+                Err(std::io::Error::other(format!(
+                    "{} and 98 numbered names all taken",
+                    dest.display()
+                )))
+            }
+            out => out.finish().map(|()| self.path.clone()),
+        }
     }
-    crate::files::write_atomic(path, script.as_bytes())
 }
 
 /// A `--record` file must be writable where it is named, and must not be one of the files
-/// the session reads: fail before the session, not after.
-fn check_record_path(path: &std::path::Path, inputs: [&Option<String>; 2]) -> Result<(), Error> {
+/// the session reads: fail before the session, not after. Returns it opened (a FIFO stays
+/// open: closing it would end its reader), and whether a file stood there.
+fn check_record_path(
+    path: &std::path::Path,
+    inputs: [&Option<String>; 2],
+) -> Result<(crate::files::Output, bool), Error> {
     let usage = |e: String| Error::Invalid(format!("--record {e}"));
     if let Ok(rec) = std::fs::canonicalize(path) {
         for input in inputs.into_iter().flatten() {
@@ -107,9 +206,9 @@ fn check_record_path(path: &std::path::Path, inputs: [&Option<String>; 2]) -> Re
             }
         }
     }
-    // Opening it is the test: the temporary file is created and removed again.
-    drop(crate::files::Output::create(path).map_err(|e| usage(e.to_string()))?);
-    Ok(())
+    let existed = path.symlink_metadata().is_ok();
+    let out = crate::files::Output::create(path).map_err(|e| usage(e.to_string()))?;
+    Ok((out, existed))
 }
 
 /// A completion script for `shell`, from the clap definitions.
@@ -145,7 +244,14 @@ fn man() -> CmdResult {
 pub fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
-        None => explore(&cli),
+        None => match explore(&cli) {
+            // As the shell reports a process a signal killed: 128 + its number.
+            Ok(Some(n)) => {
+                let _ = writeln!(std::io::stderr(), "turntable: ended by signal {n}");
+                return ExitCode::from(128 + n as u8);
+            }
+            r => r.map(|_| ()),
+        },
         Some(Command::Run(a)) => numerics::run(a),
         Some(Command::Escape(a)) => numerics::escape(a),
         Some(Command::Critical(a)) => numerics::critical(a),

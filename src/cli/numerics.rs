@@ -1,7 +1,10 @@
 //! The headless numerical commands: run, escape, critical (sweep is in `sweep`).
 
 use super::report::{CriticalReport, EscapeReport, RunReport};
-use super::{CmdResult, CriticalArgs, Error, EscapeArgs, RunArgs, check_initial};
+use super::{
+    CmdResult, CriticalArgs, Error, EscapeArgs, RunArgs, bracket_width, check_initial, num,
+    solver_budget,
+};
 use crate::engine::solve::{check_escape_xi0, critical_radius, escape_speed, solve_certified};
 use crate::engine::{Initial, Limit, Outcome, Run, State, Status};
 use crate::files::{Output, emit};
@@ -62,15 +65,15 @@ impl Rows {
         writeln!(
             csv,
             "{},{},{},{},{},{},{},{},{},{}",
-            s.tau,
-            s.r.x,
-            s.r.y,
-            q.x,
-            q.y,
-            u,
+            num(s.tau),
+            num(s.r.x),
+            num(s.r.y),
+            num(q.x),
+            num(q.y),
+            num(u),
             u8::from(stuck),
-            s.energy(),
-            self.work,
+            num(s.energy()),
+            num(self.work),
             approx.map_or(String::new(), |x| x.to_string())
         )
     }
@@ -211,9 +214,9 @@ pub(super) fn positive(name: &str, x: f64) -> Result<(), Error> {
 pub fn escape(a: EscapeArgs) -> CmdResult {
     check_initial(&Initial::velocity(a.xi0, a.phi, 0.0))?;
     check_escape_xi0(a.xi0)?;
-    positive("vtol", a.vtol)?;
+    bracket_width("vtol", a.vtol)?;
     let settings = solver_settings(&a.numerics)?;
-    let solve = |s| escape_speed(a.xi0, a.phi, s, a.vtol);
+    let solve = |s| escape_speed(a.xi0, a.phi, s, a.vtol).map_err(solver_budget("--vtol"));
     let (t, certified) = if a.no_check {
         (solve(settings)?, None)
     } else {
@@ -232,7 +235,7 @@ pub fn escape(a: EscapeArgs) -> CmdResult {
 }
 
 pub fn critical(a: CriticalArgs) -> CmdResult {
-    positive("xtol", a.xtol)?;
+    bracket_width("xtol", a.xtol)?;
     positive("g", a.g)?;
     if let (Some(w), Some(r)) = (a.omega, a.r0c) {
         positive("omega", w)?;
@@ -248,7 +251,7 @@ pub fn critical(a: CriticalArgs) -> CmdResult {
         }
     }
     let settings = solver_settings(&a.numerics)?;
-    let solve = |s| critical_radius(s, a.xtol);
+    let solve = |s| critical_radius(s, a.xtol).map_err(solver_budget("--xtol"));
     let (t, certified) = if a.no_check {
         (solve(settings)?, None)
     } else {

@@ -265,7 +265,8 @@ impl EscapeReport {
     pub fn new(xi0: f64, phi: f64, t: &Threshold, certified: Option<bool>) -> EscapeReport {
         EscapeReport {
             xi0,
-            phi: turn_angle(phi),
+            // + 0.0: −0 reads 0.
+            phi: turn_angle(phi) + 0.0,
             v_escape: t.value,
             stuck_at: t.stuck_at,
             escapes_at: t.escapes_at,

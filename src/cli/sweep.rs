@@ -1,7 +1,7 @@
 //! `turntable sweep`: the data of Figs. 5 and 6 and of the outcome map, as CSV.
 
 use super::numerics::{positive, solver_settings};
-use super::{CmdResult, SweepArgs, check_initial};
+use super::{CmdResult, SweepArgs, bracket_width, check_initial, num, solver_budget};
 use crate::engine::Initial;
 use crate::engine::solve::{check_escape_xi0, sweep_escape, sweep_rest};
 use crate::error::Error;
@@ -10,7 +10,7 @@ use std::fmt::Write as _;
 use std::io::Write as _;
 
 pub fn sweep(a: SweepArgs) -> CmdResult {
-    positive("vtol", a.vtol)?;
+    bracket_width("vtol", a.vtol)?;
     if a.points == 0 || a.points > 100_000 {
         return Err(Error::Invalid(format!(
             "points must lie in 1..=100000, got {}",
@@ -37,8 +37,10 @@ pub fn sweep(a: SweepArgs) -> CmdResult {
             check_escape_xi0(xi0)?;
         }
         csv.push_str("xi0,phi,v_escape\n");
-        for p in sweep_escape(&xi0s, a.points, settings, a.vtol)? {
-            let _ = writeln!(csv, "{},{},{}", p.xi0, p.phi, p.v_escape);
+        let curves =
+            sweep_escape(&xi0s, a.points, settings, a.vtol).map_err(solver_budget("--vtol"))?;
+        for p in curves {
+            let _ = writeln!(csv, "{},{},{}", num(p.xi0), num(p.phi), num(p.v_escape));
         }
     } else {
         positive("xi0-max", a.xi0_max)?;
@@ -48,23 +50,32 @@ pub fn sweep(a: SweepArgs) -> CmdResult {
             .collect();
         csv.push_str("xi0,outcome,xi,angle\n");
         for p in sweep_rest(&xi0s, settings)? {
-            let f = |x: Option<f64>| x.map_or(String::new(), |x| x.to_string());
+            let f = |x: Option<f64>| x.map_or(String::new(), num);
             let _ = writeln!(
                 csv,
                 "{},{},{},{}",
-                p.xi0,
+                num(p.xi0),
                 p.outcome.name(),
                 f(p.xi),
                 f(p.angle)
             );
         }
     }
-    match out {
-        Some(mut f) => {
-            f.write_all(csv.as_bytes())?;
-            f.finish()?;
-        }
-        None => emit(None, &csv)?,
+    match (out, &a.out) {
+        (Some(mut f), Some(path)) => f
+            .write_all(csv.as_bytes())
+            .and_then(|()| f.finish())
+            .map_err(|e| {
+                let path = crate::files::escape_controls(&path.display().to_string());
+                // Errors from the file layer name it already.
+                let e = e.to_string();
+                Error::Failed(if e.contains(&path) {
+                    format!("--out {e}")
+                } else {
+                    format!("--out {path}: {e}")
+                })
+            })?,
+        _ => emit(None, &csv)?,
     }
     Ok(())
 }
@@ -92,7 +103,8 @@ fn sweep_map(a: &SweepArgs, settings: crate::engine::Settings) -> Result<String,
             v
         }
         None => {
-            let curve = sweep_escape(&[xi0], a.phi_points, settings, a.vtol)?;
+            let curve = sweep_escape(&[xi0], a.phi_points, settings, a.vtol)
+                .map_err(solver_budget("--vtol"))?;
             let top = curve.iter().map(|p| p.v_escape).fold(0.0, f64::max);
             let lab = if a.release == crate::engine::Release::LabRest {
                 xi0
@@ -114,14 +126,12 @@ fn sweep_map(a: &SweepArgs, settings: crate::engine::Settings) -> Result<String,
         let (xi, angle) = r
             .cell
             .rest
-            .map_or((String::new(), String::new()), |(x, t)| {
-                (x.to_string(), t.to_string())
-            });
+            .map_or((String::new(), String::new()), |(x, t)| (num(x), num(t)));
         let _ = writeln!(
             csv,
             "{},{},{},{xi},{angle}",
-            r.phi,
-            r.v0,
+            num(r.phi),
+            num(r.v0),
             r.cell.outcome.name()
         );
     }

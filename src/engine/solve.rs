@@ -93,11 +93,11 @@ pub fn certify(
 /// again with dp54 100× tighter (twice at most, not below 1e-14): a run misplaces the threshold
 /// by about its tolerance, so an end placed within that of it may lie on the wrong side. The
 /// answer (its cost counting every attempt), and whether its bracket is certified.
-pub fn solve_certified(
+pub fn solve_certified<E: From<Error>>(
     settings: Settings,
-    solve: impl Fn(Settings) -> Result<Threshold, Error>,
+    solve: impl Fn(Settings) -> Result<Threshold, E>,
     at: impl Fn(f64) -> Initial,
-) -> Result<(Threshold, bool), Error> {
+) -> Result<(Threshold, bool), E> {
     let mut t = solve(settings)?;
     for _ in 0..2 {
         if certify(&mut t, settings, &at)? {
