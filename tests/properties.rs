@@ -228,3 +228,31 @@ fn a_state_outside_the_dense_output_is_an_error() {
     assert_eq!(run.outcome(), Outcome::Stuck);
     assert!(run.state_at(1e6).is_ok());
 }
+
+/// `Run::step` says where each step left the run: `Escaped` once, when the certificate first
+/// holds (then `Stepped` while it is followed), `Stuck` from the stop on, `End` at τ-max; and
+/// `goes_on` is the one loop condition.
+#[test]
+fn each_step_says_where_it_left_the_run() {
+    use turntable::engine::Stop;
+    let mut run = Run::new(Initial::velocity(0.5, 0.4, 1.5), Settings::default()).unwrap();
+    let mut seen = vec![];
+    while run.goes_on(50.0, false) {
+        let why = run.step(50.0).unwrap();
+        if seen.last() != Some(&why) {
+            seen.push(why);
+        }
+    }
+    assert_eq!(
+        seen,
+        [Stop::Stepped, Stop::Escaped, Stop::Stepped, Stop::End]
+    );
+    assert!(!run.goes_on(50.0, false) && run.goes_on(60.0, false) && !run.goes_on(60.0, true));
+    let mut run = Run::new(Initial::velocity(0.5, 0.0, 0.3), Settings::default()).unwrap();
+    let mut last = Stop::Stepped;
+    while run.goes_on(50.0, true) {
+        last = run.step(50.0).unwrap();
+    }
+    assert_eq!(last, Stop::Stuck);
+    assert_eq!(run.step(50.0).unwrap(), Stop::Stuck);
+}

@@ -140,10 +140,7 @@ fn integrate(
         rows.write(csv, &run.state(), run.status != Status::Slipping)
             .map_err(write_err)?;
     }
-    while run.status == Status::Slipping
-        && run.tau() < tau_max
-        && !(stop_on_escape && run.escape.is_some())
-    {
+    while run.goes_on(tau_max, stop_on_escape) {
         let (before, before_energy) = (run.tau(), run.state().energy());
         run.step(tau_max)?;
         if let Some(csv) = csv.as_mut() {

@@ -17,5 +17,5 @@ pub mod units;
 
 pub use method::{Method, Settings};
 pub use model::{Frame, Initial, Release, State};
-pub use run::{Certificate, Escape, Limit, Outcome, Run, RunError, Status, StepInfo};
+pub use run::{Certificate, Escape, Limit, Outcome, Run, RunError, Status, StepInfo, Stop};
 pub use stepper::Cost;

@@ -16,6 +16,20 @@ mod outcome;
 use outcome::certificate;
 pub use outcome::{Certificate, Escape, Outcome, RunError, Status, raw_at_rest};
 
+/// Where a step left the run (as diffsol's `step() -> StopReason`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Stop {
+    /// Still slipping, before τ-max.
+    Stepped,
+    /// The escape certificate first held in this step (later steps, following an escaped
+    /// particle, are `Stepped`).
+    Escaped,
+    /// At rest on the table: it rides the table from now on.
+    Stuck,
+    /// τ-max reached.
+    End,
+}
+
 /// What bounded a step (shown by the explorer's integrator step mode).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Limit {
@@ -215,13 +229,19 @@ impl Run {
 
     /// Integrates until stuck, until escape is certified (if `stop_on_escape`), or `tau_max`.
     pub fn run(&mut self, tau_max: f64, stop_on_escape: bool) -> Result<Outcome, RunError> {
-        while self.status == Status::Slipping && self.stepper.t < tau_max {
-            if stop_on_escape && self.escape.is_some() {
-                break;
-            }
+        while self.goes_on(tau_max, stop_on_escape) {
             self.step(tau_max)?;
         }
         Ok(self.outcome())
+    }
+
+    /// Whether a run stepping to its outcome takes another step: slipping, before `tau_max`,
+    /// and, if it stops at escape, not yet certified to escape. The one condition of every
+    /// loop over [`Run::step`].
+    pub fn goes_on(&self, tau_max: f64, stop_on_escape: bool) -> bool {
+        self.status == Status::Slipping
+            && self.stepper.t < tau_max
+            && !(stop_on_escape && self.escape.is_some())
     }
 
     /// Runs as [`Run::run`] and returns the state at the outcome's time: the stop, the escape
@@ -235,12 +255,23 @@ impl Run {
         Ok((outcome, s))
     }
 
-    /// Advances by one accepted step, or one located stop, without passing `tau_max`.
-    /// Does nothing once stuck.
-    pub fn step(&mut self, tau_max: f64) -> Result<(), RunError> {
-        if self.status != Status::Slipping || self.stepper.t >= tau_max {
-            return Ok(());
+    /// Advances by one accepted step, or one located stop, without passing `tau_max`, and says
+    /// where that leaves the run. Does nothing once stuck or at `tau_max`.
+    pub fn step(&mut self, tau_max: f64) -> Result<Stop, RunError> {
+        let certified = self.escape.is_some();
+        if self.status == Status::Slipping && self.stepper.t < tau_max {
+            self.advance(tau_max)?;
         }
+        Ok(match self.status {
+            Status::Stuck { .. } => Stop::Stuck,
+            _ if self.escape.is_some() && !certified => Stop::Escaped,
+            _ if self.stepper.t >= tau_max => Stop::End,
+            _ => Stop::Stepped,
+        })
+    }
+
+    /// One step of [`Run::step`].
+    fn advance(&mut self, tau_max: f64) -> Result<(), RunError> {
         if self.cost.steps + self.cost.rejected >= self.settings.max_steps {
             return Err(RunError::Budget {
                 steps: self.settings.max_steps,
