@@ -56,7 +56,7 @@ pub enum Command {
     Escape(EscapeArgs),
     /// Find the critical radius xi0c for release at rest in the lab (Fig. 6).
     Critical(CriticalArgs),
-    /// CSV for Fig. 5 (v_e over phi) or Fig. 6 (final rest xi over xi0).
+    /// CSV for Fig. 5 (v_e over phi), Fig. 6 (final rest xi over xi0) or the outcome map.
     Sweep(SweepArgs),
     /// Work–precision measurements: error against cost for every method, and the speed goals.
     Bench(BenchArgs),
@@ -233,37 +233,83 @@ pub struct CriticalArgs {
 
 #[derive(Args, Debug)]
 pub struct SweepArgs {
-    /// fig5: v_e over phi for each --xi0; fig6: final rest xi over xi0 in [0, --xi0-max];
-    /// map: stuck or escaped over (phi, v0) at one --xi0 (the explorer's outcome map).
-    #[arg(value_parser = ["fig5", "fig6", "map"])]
-    pub figure: String,
-    /// Release radii for fig5 [default: 0.8,0.5,0.2,0.001]; the one radius of map.
-    #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
+    #[command(subcommand)]
+    pub figure: SweepFigure,
+}
+
+/// What `sweep` computes: each takes only the flags that mean something to it.
+#[derive(Subcommand, Debug)]
+pub enum SweepFigure {
+    /// Fig. 5: v_e over phi for each --xi0, as CSV `xi0,phi,v_escape`.
+    Fig5(Fig5Args),
+    /// Fig. 6: final rest xi over xi0 in [0, --xi0-max] for release at rest in the lab, as CSV
+    /// `xi0,outcome,xi,angle`.
+    Fig6(Fig6Args),
+    /// The explorer's outcome map: stuck or escaped over (phi, v0) at one --xi0, as CSV
+    /// `phi,v0,outcome,xi,angle`.
+    Map(MapArgs),
+}
+
+#[derive(Args, Debug)]
+pub struct Fig5Args {
+    /// Release radii.
+    #[arg(long, value_delimiter = ',', allow_hyphen_values = true, default_values_t = [0.8, 0.5, 0.2, 0.001])]
     pub xi0: Vec<f64>,
-    /// map: how phi and v0 are meant: velocity or table-rest, the speed relative to the
-    /// table; lab-rest, the lab velocity (thrown from the lab, u0 = v − Ω×r).
-    #[arg(long, default_value = "velocity", value_parser = variant::<Release>())]
-    pub release: Release,
-    /// map: number of angles phi in [0, 2π).
-    #[arg(long, default_value_t = 72)]
-    pub phi_points: usize,
-    /// map: number of speeds v0 in (0, --v0-max].
-    #[arg(long, default_value_t = 60)]
-    pub v0_points: usize,
-    /// map: largest v0 [default: 1.3 × the largest v_e over phi, plus xi0 for lab-rest].
-    #[arg(long, allow_hyphen_values = true)]
-    pub v0_max: Option<f64>,
-    /// Number of angles (fig5) or radii (fig6).
+    /// Number of angles phi in [0, 2π).
     #[arg(long, default_value_t = 72)]
     pub points: usize,
-    /// Largest release radius for fig6.
-    #[arg(long, default_value_t = 1.0, allow_hyphen_values = true)]
-    pub xi0_max: f64,
-    /// Width of the final bracket on each escape speed (fig5).
+    /// Width of the final bracket on each escape speed.
     #[arg(long = "vtol", default_value_t = 1e-6, allow_hyphen_values = true)]
     pub vtol: f64,
     #[command(flatten)]
     pub numerics: NumericsArgs,
+    #[command(flatten)]
+    pub out: OutArg,
+}
+
+#[derive(Args, Debug)]
+pub struct Fig6Args {
+    /// Number of release radii in [0, --xi0-max].
+    #[arg(long, default_value_t = 72)]
+    pub points: usize,
+    /// Largest release radius.
+    #[arg(long, default_value_t = 1.0, allow_hyphen_values = true)]
+    pub xi0_max: f64,
+    #[command(flatten)]
+    pub numerics: NumericsArgs,
+    #[command(flatten)]
+    pub out: OutArg,
+}
+
+#[derive(Args, Debug)]
+pub struct MapArgs {
+    /// The release radius.
+    #[arg(long, allow_hyphen_values = true)]
+    pub xi0: f64,
+    /// How phi and v0 are meant: velocity or table-rest, the speed relative to the table;
+    /// lab-rest, the lab velocity (thrown from the lab, u0 = v − Ω×r).
+    #[arg(long, default_value = "velocity", value_parser = variant::<Release>())]
+    pub release: Release,
+    /// Number of angles phi in [0, 2π).
+    #[arg(long, default_value_t = 72)]
+    pub phi_points: usize,
+    /// Number of speeds v0 in (0, --v0-max].
+    #[arg(long, default_value_t = 60)]
+    pub v0_points: usize,
+    /// Largest v0 [default: 1.3 × the largest v_e over phi, plus xi0 for lab-rest].
+    #[arg(long, allow_hyphen_values = true)]
+    pub v0_max: Option<f64>,
+    /// Width of the bracket on the escape speeds that set the default --v0-max.
+    #[arg(long = "vtol", default_value_t = 1e-6, allow_hyphen_values = true)]
+    pub vtol: f64,
+    #[command(flatten)]
+    pub numerics: NumericsArgs,
+    #[command(flatten)]
+    pub out: OutArg,
+}
+
+#[derive(Args, Debug)]
+pub struct OutArg {
     /// Write the CSV here instead of stdout.
     #[arg(long)]
     pub out: Option<PathBuf>,

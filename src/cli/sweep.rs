@@ -1,7 +1,10 @@
 //! `turntable sweep`: the data of Figs. 5 and 6 and of the outcome map, as CSV.
 
 use super::numerics::{positive, solver_settings};
-use super::{CmdResult, SweepArgs, bracket_width, check_initial, num, solver_budget};
+use super::{
+    CmdResult, Fig5Args, Fig6Args, MapArgs, OutArg, SweepArgs, SweepFigure, bracket_width,
+    check_initial, num, solver_budget,
+};
 use crate::engine::Initial;
 use crate::engine::solve::{check_escape_xi0, sweep_escape, sweep_rest};
 use crate::error::Error;
@@ -10,58 +13,35 @@ use std::fmt::Write as _;
 use std::io::Write as _;
 
 pub fn sweep(a: SweepArgs) -> CmdResult {
-    bracket_width("vtol", a.vtol)?;
-    if a.points == 0 || a.points > 100_000 {
+    match a.figure {
+        SweepFigure::Fig5(f) => fig5(&f),
+        SweepFigure::Fig6(f) => fig6(&f),
+        SweepFigure::Map(m) => sweep_map(&m),
+    }
+}
+
+/// How many points a sweep may take.
+fn points(n: usize) -> Result<(), Error> {
+    if n == 0 || n > 100_000 {
         return Err(Error::Invalid(format!(
-            "points must lie in 1..=100000, got {}",
-            a.points
+            "points must lie in 1..=100000, got {n}"
         )));
     }
-    let settings = solver_settings(&a.numerics)?;
-    let out = a
-        .out
+    Ok(())
+}
+
+/// Opens `--out` (refusing a bad path) before any work.
+fn open_out(out: &OutArg) -> Result<Option<Output>, Error> {
+    out.out
         .as_deref()
         .map(Output::create)
         .transpose()
-        .map_err(|e| Error::Invalid(format!("--out: {e}")))?;
-    let mut csv = String::new();
-    if a.figure == "map" {
-        csv = sweep_map(&a, settings)?;
-    } else if a.figure == "fig5" {
-        let xi0s = if a.xi0.is_empty() {
-            crate::analysis::PAPER_XI0.to_vec()
-        } else {
-            a.xi0.clone()
-        };
-        for &xi0 in &xi0s {
-            check_escape_xi0(xi0)?;
-        }
-        csv.push_str("xi0,phi,v_escape\n");
-        let curves =
-            sweep_escape(&xi0s, a.points, settings, a.vtol).map_err(solver_budget("--vtol"))?;
-        for p in curves {
-            let _ = writeln!(csv, "{},{},{}", num(p.xi0), num(p.phi), num(p.v_escape));
-        }
-    } else {
-        positive("xi0-max", a.xi0_max)?;
-        check_initial(&Initial::velocity(a.xi0_max, 0.0, 0.0))?;
-        let xi0s: Vec<f64> = (0..a.points)
-            .map(|i| a.xi0_max * i as f64 / (a.points - 1).max(1) as f64)
-            .collect();
-        csv.push_str("xi0,outcome,xi,angle\n");
-        for p in sweep_rest(&xi0s, settings)? {
-            let f = |x: Option<f64>| x.map_or(String::new(), num);
-            let _ = writeln!(
-                csv,
-                "{},{},{},{}",
-                num(p.xi0),
-                p.outcome.name(),
-                f(p.xi),
-                f(p.angle)
-            );
-        }
-    }
-    match (out, &a.out) {
+        .map_err(|e| Error::Invalid(format!("--out: {e}")))
+}
+
+/// Writes the CSV to the output opened by [`open_out`], or to stdout.
+fn write_csv(csv: &str, out: Option<Output>, arg: &OutArg) -> CmdResult {
+    match (out, &arg.out) {
         (Some(mut f), Some(path)) => f
             .write_all(csv.as_bytes())
             .and_then(|()| f.finish())
@@ -75,19 +55,59 @@ pub fn sweep(a: SweepArgs) -> CmdResult {
                     format!("--out {path}: {e}")
                 })
             })?,
-        _ => emit(None, &csv)?,
+        _ => emit(None, csv)?,
     }
     Ok(())
 }
 
+/// `sweep fig5`: v_e over φ for each ξ0.
+fn fig5(a: &Fig5Args) -> CmdResult {
+    bracket_width("vtol", a.vtol)?;
+    points(a.points)?;
+    let settings = solver_settings(&a.numerics)?;
+    for &xi0 in &a.xi0 {
+        check_escape_xi0(xi0)?;
+    }
+    let out = open_out(&a.out)?;
+    let mut csv = String::from("xi0,phi,v_escape\n");
+    let curves =
+        sweep_escape(&a.xi0, a.points, settings, a.vtol).map_err(solver_budget("--vtol"))?;
+    for p in curves {
+        let _ = writeln!(csv, "{},{},{}", num(p.xi0), num(p.phi), num(p.v_escape));
+    }
+    write_csv(&csv, out, &a.out)
+}
+
+/// `sweep fig6`: where a release at rest in the lab ends, over ξ0.
+fn fig6(a: &Fig6Args) -> CmdResult {
+    points(a.points)?;
+    positive("xi0-max", a.xi0_max)?;
+    check_initial(&Initial::velocity(a.xi0_max, 0.0, 0.0))?;
+    let settings = solver_settings(&a.numerics)?;
+    let out = open_out(&a.out)?;
+    let xi0s: Vec<f64> = (0..a.points)
+        .map(|i| a.xi0_max * i as f64 / (a.points - 1).max(1) as f64)
+        .collect();
+    let mut csv = String::from("xi0,outcome,xi,angle\n");
+    for p in sweep_rest(&xi0s, settings)? {
+        let f = |x: Option<f64>| x.map_or(String::new(), num);
+        let _ = writeln!(
+            csv,
+            "{},{},{},{}",
+            num(p.xi0),
+            p.outcome.name(),
+            f(p.xi),
+            f(p.angle)
+        );
+    }
+    write_csv(&csv, out, &a.out)
+}
+
 /// `sweep map`: one row per (phi, v0) cell, as the explorer's outcome map classifies it.
-fn sweep_map(a: &SweepArgs, settings: crate::engine::Settings) -> Result<String, Error> {
-    let [xi0] = a.xi0[..] else {
-        return Err(Error::invalid(format!(
-            "sweep map takes one --xi0, got {}",
-            a.xi0.len()
-        )));
-    };
+fn sweep_map(a: &MapArgs) -> CmdResult {
+    let xi0 = a.xi0;
+    bracket_width("vtol", a.vtol)?;
+    let settings = solver_settings(&a.numerics)?;
     check_escape_xi0(xi0)?;
     for (name, n) in [("phi-points", a.phi_points), ("v0-points", a.v0_points)] {
         if !(1..=2000).contains(&n) {
@@ -96,12 +116,13 @@ fn sweep_map(a: &SweepArgs, settings: crate::engine::Settings) -> Result<String,
             )));
         }
     }
+    if let Some(v) = a.v0_max {
+        positive("v0-max", v)?;
+        check_initial(&Initial::velocity(xi0, 0.0, v))?;
+    }
+    let out = open_out(&a.out)?;
     let v0_max = match a.v0_max {
-        Some(v) => {
-            positive("v0-max", v)?;
-            check_initial(&Initial::velocity(xi0, 0.0, v))?;
-            v
-        }
+        Some(v) => v,
         None => {
             let curve = sweep_escape(&[xi0], a.phi_points, settings, a.vtol)
                 .map_err(solver_budget("--vtol"))?;
@@ -135,5 +156,5 @@ fn sweep_map(a: &SweepArgs, settings: crate::engine::Settings) -> Result<String,
             r.cell.outcome.name()
         );
     }
-    Ok(csv)
+    write_csv(&csv, out, &a.out)
 }
