@@ -769,3 +769,20 @@ fn unit_keys_give_si_readouts_and_axes() {
     let screen = render(&mut a, 100, 30);
     assert!(!screen.contains("(1 ="), "{screen}");
 }
+
+/// A preset loads as itself: D's φ = 1.2π is held as −0.8π, the same angle, so the title keeps
+/// the preset's words and `s` saves it under its own name (issue 18).
+#[test]
+fn every_preset_loads_unedited() {
+    for name in PRESETS {
+        let a = app(name);
+        assert!(!a.edited(), "{name}");
+        let scene = a.current_scene();
+        assert_eq!(scene.name, name);
+        assert_eq!(scene.about, Scene::preset(name).unwrap().about);
+    }
+    let mut d = app("D");
+    assert!(render(&mut d, 100, 30).contains("Fig. 3 D: thrown from outside"));
+    key(&mut d, 'p');
+    assert!(d.edited() && d.current_scene().name == "D (edited)");
+}

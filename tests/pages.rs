@@ -76,7 +76,7 @@ fn the_escape_speed_page_holds_the_solver_s_curves() {
         let v = escape_speed(0.5, phi, Settings::dp54(1e-12), 1e-10)
             .unwrap()
             .value;
-        let got = c.ve[i].unwrap().unwrap();
+        let got = c.ve[i].unwrap().hi().unwrap();
         assert!(
             (got - v).abs() <= 0.5 * CURVE_VTOL + 1e-10,
             "φ {phi}: {got} vs {v}"
@@ -95,7 +95,7 @@ fn the_escape_speed_page_holds_the_solver_s_curves() {
     let note = format!("min {}, max {}", label(vmin, pmin), label(vmax, pmax));
     assert!(screen.contains(&note), "{note}\n{screen}");
     // C's v0 = 0.6078 at φ = 0 is below v_e(0) there: the page says it sticks.
-    assert!(c.ve[0].unwrap().unwrap() > a.initial.v0);
+    assert!(c.ve[0].unwrap().hi().unwrap() > a.initial.v0);
     assert!(screen.contains("release sticks (below v_e)"), "{screen}");
 }
 
@@ -127,7 +127,7 @@ fn the_outcome_map_agrees_with_the_escape_speeds() {
             // v_e at the cell's angle lies between the curve's neighbours there.
             let k = (phi / TAU * c as f64) as usize;
             let (a, b) = (curve.ve[k], curve.ve[(k + 1) % c]);
-            let (a, b) = (a.unwrap().unwrap(), b.unwrap().unwrap());
+            let (a, b) = (a.unwrap().hi().unwrap(), b.unwrap().hi().unwrap());
             let (ve_lo, ve_hi) = (a.min(b), a.max(b));
             if v0 < ve_lo - 1e-3 {
                 assert_eq!(cell.outcome, Outcome::Stuck, "φ_{i} v0 {v0} < {ve_lo}");
@@ -309,7 +309,10 @@ fn the_escape_page_does_not_guess_between_its_angles() {
     let s = settings_for(a.settings);
     let c = a.charts.curve(0.5, s).unwrap().clone();
     let n = c.ve.len();
-    let (v1, v2) = (c.ve[1].unwrap().unwrap(), c.ve[2].unwrap().unwrap());
+    let (v1, v2) = (
+        c.ve[1].unwrap().hi().unwrap(),
+        c.ve[2].unwrap().hi().unwrap(),
+    );
     a.initial.phi = 1.5 * TAU / n as f64;
     for (v0, words) in [
         (0.5 * (v1 + v2), "release ≈ v_e: Enter runs it to see"),
@@ -320,4 +323,102 @@ fn the_escape_page_does_not_guess_between_its_angles() {
         let screen = render(&mut a, 100, 30);
         assert!(screen.contains(words), "{v0}: {words}\n{screen}");
     }
+}
+
+/// Outside ξ = 1 a throw too slow escapes as well as one too fast (Fig. 3 D): the escape page
+/// draws the sticking window's two edges, each a certified bracket of outcomes, judges the
+/// release against it, and the outcome map's speeds cover it.
+#[test]
+fn outside_xi_1_the_pages_show_the_sticking_window() {
+    let s = settings_for(Settings::default());
+    let ends = |xi0: f64, phi: f64, v0: f64| {
+        turntable::analysis::classify(turntable::engine::Initial::velocity(xi0, phi, v0), s)
+            .unwrap()
+            .outcome
+    };
+    let mut a = app("D");
+    for xi0 in [1.1, 1.05, 1.3, 2.0] {
+        a.initial.xi0 = xi0;
+        a.page = Page::EscapeSpeed;
+        a.sync_analysis();
+        let c = a.charts.curve(xi0, s).expect("curve").clone();
+        assert!(c.complete(), "{xi0}");
+        let windows: Vec<(usize, f64, f64)> = (0..c.ve.len())
+            .filter_map(|k| match c.ve[k].unwrap() {
+                analysis::Speeds::Stick { lo, hi } => Some((k, lo, hi)),
+                _ => None,
+            })
+            .collect();
+        // Inward throws only: about a quarter of the angles at most, and some at every ξ0.
+        assert!(
+            !windows.is_empty() && windows.len() < 24,
+            "{xi0}: {windows:?}"
+        );
+        for &(k, lo, hi) in windows.iter().step_by(3) {
+            let phi = analysis::angle(k, c.ve.len());
+            assert!(lo > 0.0 && hi > lo + 0.05, "{xi0} φ {phi}: {lo} {hi}");
+            let d = CURVE_VTOL;
+            assert_eq!(
+                ends(xi0, phi, lo - d),
+                Outcome::Escaped,
+                "{xi0} φ {phi} {lo}"
+            );
+            assert_eq!(ends(xi0, phi, lo + d), Outcome::Stuck, "{xi0} φ {phi} {lo}");
+            assert_eq!(ends(xi0, phi, hi - d), Outcome::Stuck, "{xi0} φ {phi} {hi}");
+            assert_eq!(
+                ends(xi0, phi, hi + d),
+                Outcome::Escaped,
+                "{xi0} φ {phi} {hi}"
+            );
+        }
+        let screen = render(&mut a, 100, 30);
+        assert!(screen.contains("sticking window (Fig. 3 D)"), "{screen}");
+        assert!(screen.contains("widest: sticks for "), "{screen}");
+        assert!(
+            !screen.contains("min 0.0000") && !screen.contains("(above v_e)"),
+            "{screen}"
+        );
+        // The map's speeds reach past the window's top, and it has stuck cells.
+        a.page = Page::OutcomeMap;
+        a.sync_analysis();
+        let top = windows.iter().map(|w| w.2).fold(0.0, f64::max);
+        let map = a.charts.map.clone().expect("map");
+        let analysis::Job::Map { v0_max, .. } = map.job else {
+            panic!()
+        };
+        assert!(v0_max > top, "{xi0}: {v0_max} {top}");
+        let stuck = map
+            .cells
+            .iter()
+            .flatten()
+            .filter(|c| c.outcome == Outcome::Stuck);
+        assert!(stuck.count() > 5, "{xi0}");
+    }
+    // D itself: thrown at 1.3 at 1.2π from ξ0 = 1.1 it sticks (at ξ = 0.67495); slower than
+    // the window's floor it escapes.
+    let mut d = app("D");
+    d.page = Page::EscapeSpeed;
+    let screen = render(&mut d, 100, 30);
+    assert!(
+        screen.contains("release sticks (in the window)"),
+        "{screen}"
+    );
+    d.initial.v0 = 0.3;
+    let screen = render(&mut d, 100, 30);
+    assert!(
+        screen.contains("release escapes (below the window)"),
+        "{screen}"
+    );
+    d.initial.v0 = 3.0;
+    let screen = render(&mut d, 100, 30);
+    assert!(
+        screen.contains("release escapes (above the window)"),
+        "{screen}"
+    );
+    d.initial.phi = 0.0;
+    let screen = render(&mut d, 100, 30);
+    assert!(
+        screen.contains("release escapes (no window at this φ)"),
+        "{screen}"
+    );
 }

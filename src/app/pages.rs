@@ -2,7 +2,7 @@
 //! what it lacks ([`wanted`]); results arrive piece by piece ([`Charts::apply`]).
 
 use crate::analysis::{
-    CURVE_POINTS, Cell, Job, PAPER_XI0, Piece, REST_POINTS, pieces, settings_for,
+    CURVE_POINTS, Cell, Job, PAPER_XI0, Piece, REST_POINTS, Speeds, pieces, settings_for,
 };
 use crate::engine::{Initial, Release, Settings};
 
@@ -48,13 +48,13 @@ impl Page {
     }
 }
 
-/// v_e(φ) at one ξ0, filled in as it arrives (`None`: not yet; `Some(None)`: no escape speed
-/// could be bracketed there).
+/// The sticking speeds over φ at one ξ0 (v_e(φ) inside ξ = 1), filled in as they arrive
+/// (`None`: not yet).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Curve {
     pub xi0: f64,
     pub settings: Settings,
-    pub ve: Vec<Option<Option<f64>>>,
+    pub ve: Vec<Option<Speeds>>,
 }
 
 impl Curve {
@@ -62,15 +62,27 @@ impl Curve {
         self.ve.iter().all(Option::is_some)
     }
 
-    /// The computed points (φ, v_e).
+    /// The computed points (φ, v_e): the greatest sticking speed at each angle.
     pub fn points(&self) -> Vec<(f64, f64)> {
+        self.edge(|lo, hi| (hi, lo))
+    }
+
+    /// Outside ξ = 1, the least sticking speed at each angle (φ, lo): the window's floor.
+    pub fn floor(&self) -> Vec<(f64, f64)> {
+        self.edge(|lo, hi| (lo, hi))
+    }
+
+    fn edge(&self, pick: impl Fn(f64, f64) -> (f64, f64)) -> Vec<(f64, f64)> {
         let n = self.ve.len();
         (0..n)
-            .filter_map(|i| Some((crate::analysis::angle(i, n), self.ve[i]??)))
+            .filter_map(|i| match self.ve[i]? {
+                Speeds::Stick { lo, hi } => Some((crate::analysis::angle(i, n), pick(lo, hi).0)),
+                _ => None,
+            })
             .collect()
     }
 
-    /// The least and greatest v_e found, with their angles.
+    /// The least and greatest v_e found (the window's top outside ξ = 1), with their angles.
     pub fn extremes(&self) -> Option<((f64, f64), (f64, f64))> {
         let pts = self.points();
         let min = pts.iter().copied().min_by(|a, b| a.1.total_cmp(&b.1))?;

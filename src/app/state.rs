@@ -234,9 +234,10 @@ impl App {
         )
     }
 
-    /// Whether the initial conditions or settings differ from the scene as loaded.
+    /// Whether the initial conditions or settings differ from the scene as loaded, the scene
+    /// taken as the app holds it (φ modulo 2π: D's 1.2π is −0.8π on screen, not an edit).
     pub fn edited(&self) -> bool {
-        self.initial != self.scene.initial || self.settings != self.scene.settings
+        self.initial != sanitize(self.scene.initial) || self.settings != self.scene.settings
     }
 
     /// What the scene shows, one line: the scene's own words until it is edited, then what

@@ -352,10 +352,12 @@ pub fn render_bare(
                     }
                     Mark::Point { x: px, y: py, .. } | Mark::Text { x: px, y: py, .. } => {
                         let r0 = i64::from(dot_row(py));
-                        let a = if matches!(m, Mark::Point { .. }) {
-                            px + col
-                        } else {
-                            px
+                        // A point's words right of its dot, or left of it when they would run
+                        // past the plot's edge (never cut).
+                        let a = match m {
+                            Mark::Point { .. } if px + col + w > x[1] && px - w >= x[0] => px - w,
+                            Mark::Point { .. } => px + col,
+                            _ => px,
                         };
                         let r = place(a, w, &mut [r0, r0 - 1, r0 + 1, r0 - 2, r0 + 2].into_iter());
                         ctx.print(a, at_row(r), Span::styled(label.clone(), style));
