@@ -21,7 +21,7 @@ pub const CURVE_VTOL: f64 = 1e-6;
 /// The paper's Fig. 5 radii.
 pub const PAPER_XI0: [f64; 4] = [0.8, 0.5, 0.2, 0.001];
 /// The largest outcome map asked for, whatever the terminal (it is the plot's size, one cell a
-/// character: see `App::map_size`).
+/// character: see `ui::pages::map_grid`).
 pub const MAP_MAX: (usize, usize) = (400, 200);
 /// Radii of the rest-radius curve (Fig. 6), over [0, [`REST_XI0_MAX`]].
 pub const REST_POINTS: usize = 101;

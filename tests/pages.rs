@@ -422,3 +422,56 @@ fn outside_xi_1_the_pages_show_the_sticking_window() {
         "{screen}"
     );
 }
+
+/// One layout for drawing, the map's grid and the mouse (issue 18): at every size the map has
+/// a cell per character of the plot drawn, and a click on a character picks that cell's
+/// release; where no plot fits, no map is computed and a click does nothing.
+#[test]
+fn the_map_grid_is_the_drawn_plot_at_every_size() {
+    use turntable::analysis::Job;
+    for (w, h) in [(40, 12), (56, 30), (59, 24), (60, 20), (80, 24), (200, 60)] {
+        let mut a = app("C");
+        a.page = Page::OutcomeMap;
+        a.resize(w, h);
+        render(&mut a, w, h);
+        let job = a.charts.map.as_ref().map(|m| m.job);
+        let Some(g) = a.geom_for_tests() else {
+            assert_eq!((w, h), (40, 12), "no plot at {w}×{h}");
+            assert_eq!(job, None, "a map no one sees at {w}×{h}");
+            continue;
+        };
+        let Some(Job::Map { size, v0_max, .. }) = job else {
+            panic!("{w}×{h}: {job:?}")
+        };
+        assert_eq!(
+            size,
+            (usize::from(g.area.width), usize::from(g.area.height)),
+            "{w}×{h}"
+        );
+        assert!(
+            a.charts
+                .map
+                .as_ref()
+                .unwrap()
+                .cells
+                .iter()
+                .all(Option::is_some)
+        );
+        // A click on the plot's character (3, 2) picks the release of cell (3, rows − 3).
+        let (n, m) = size;
+        let k = (m - 3) * n + 3;
+        let (phi, v0) = map_cell(k, size, v0_max);
+        a.handle_mouse(MouseEvent {
+            kind: MouseEventKind::Down(MouseButton::Left),
+            column: g.area.x + 3,
+            row: g.area.y + 2,
+            modifiers: KeyModifiers::NONE,
+        });
+        assert!(
+            (a.initial.phi.rem_euclid(TAU) - phi).abs() < 1e-6 && (a.initial.v0 - v0).abs() < 1e-6,
+            "{w}×{h}: {} {} vs {phi} {v0}",
+            a.initial.phi,
+            a.initial.v0
+        );
+    }
+}

@@ -243,13 +243,13 @@ impl Charts {
 }
 
 /// The next job `page` needs and lacks for these initial conditions and settings, if any; an
-/// outcome map of `map_size` cells.
+/// outcome map of the grid `map_grid` gives for its speed range (none when no plot fits).
 pub fn wanted(
     page: Page,
     charts: &Charts,
     initial: &Initial,
     settings: Settings,
-    map_size: (usize, usize),
+    map_grid: impl Fn(f64) -> Option<(usize, usize)>,
 ) -> Option<Job> {
     let settings = settings_for(settings);
     let missing_curve = |xi0: f64| {
@@ -266,11 +266,12 @@ pub fn wanted(
                 return Some(job);
             }
             let curve = charts.curve(initial.xi0, settings)?;
+            let v0_max = Charts::map_v0_max(curve, initial.release, initial.xi0);
             let job = Job::Map {
                 xi0: initial.xi0,
                 release: initial.release,
-                v0_max: Charts::map_v0_max(curve, initial.release, initial.xi0),
-                size: map_size,
+                v0_max,
+                size: map_grid(v0_max)?,
             };
             let done = charts.map.as_ref().is_some_and(|m| {
                 m.job == job && m.settings == settings && m.cells.iter().all(Option::is_some)

@@ -201,7 +201,7 @@ impl App {
                 &self.charts,
                 &self.initial,
                 self.settings,
-                self.map_size(),
+                |v0_max| crate::ui::pages::map_grid(self, v0_max),
             );
             let Some(job) = wanted else {
                 // Nothing is computed for a page that is not on screen.
@@ -220,18 +220,11 @@ impl App {
         moved
     }
 
-    /// The outcome map's grid: one cell a character of its plot at this terminal size (the
-    /// plot of the wide layout: the body less the panel, the box, a four-column tick gutter,
-    /// the legend and the two axis lines). A function of the size, not of when frames were
-    /// drawn, so that the same keys give the same map.
-    fn map_size(&self) -> (usize, usize) {
-        use crate::analysis::MAP_MAX;
-        let (w, h) = self.screen;
-        let body = (w.saturating_sub(PANEL_W), h.saturating_sub(3));
-        (
-            usize::from(body.0.saturating_sub(2 + 4)).clamp(8, MAP_MAX.0),
-            usize::from(body.1.saturating_sub(2 + 3)).clamp(4, MAP_MAX.1),
-        )
+    /// The terminal's size as its session last said: the outcome map's grid follows it (see
+    /// `ui::pages::map_grid`), a function of the size, not of when frames were drawn, so that
+    /// the same keys give the same map.
+    pub fn screen(&self) -> (u16, u16) {
+        self.screen
     }
 
     /// Whether the initial conditions or settings differ from the scene as loaded, the scene

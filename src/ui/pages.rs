@@ -275,11 +275,6 @@ fn outcome_map(f: &mut TuiFrame, area: Rect, app: &App) -> Option<CanvasGeom> {
             .curve(i.xi0, settings)
             .map_or(1.0, |c| Charts::map_v0_max(c, i.release, i.xi0)),
     };
-    let frame_word = if i.release == Release::LabRest {
-        "lab"
-    } else {
-        "table"
-    };
     let progress = match map {
         Some(m) => {
             let (done, all) = map_filled(m);
@@ -291,49 +286,7 @@ fn outcome_map(f: &mut TuiFrame, area: Rect, app: &App) -> Option<CanvasGeom> {
         }
         None => " computing…".into(),
     };
-    let mut series = Vec::new();
-    if i.release != Release::LabRest
-        && let Some(c) = app.charts.curve(i.xi0, settings)
-    {
-        let window = i.xi0 > 1.0;
-        series.push(Series {
-            name: if window { "sticking window" } else { "v_e(φ)" }.into(),
-            color: th.accent,
-            points: c.points(),
-            joined: true,
-        });
-        if window {
-            series.push(Series {
-                name: String::new(),
-                color: th.accent,
-                points: c.floor(),
-                joined: true,
-            });
-        }
-    }
-    let (phi, v0) = match i.release {
-        Release::Velocity => (turn_angle(i.phi), i.v0),
-        _ => (0.0, 0.0),
-    };
-    let c = Chart {
-        title: format!(
-            "outcome map, ξ0 = {}, {} release{progress}",
-            num(i.xi0, 3),
-            i.release
-        ),
-        note: String::new(),
-        x_label: format!("φ ({frame_word} frame)  blank: escapes  ·:▒▓ stuck at ξ <¼ <½ <¾ ≤1"),
-        y_label: chart::axis("v0", Quantity::Speed, app.units),
-        x: [0.0, TAU],
-        y: [0.0, v0_max],
-        series,
-        marks: vec![Mark::Point {
-            x: phi,
-            y: v0,
-            label: "release".into(),
-            color: th.particle,
-        }],
-    };
+    let c = map_chart(app, v0_max, progress);
     // The cells first, then the chart's braille over them.
     let plot = chart::plot_area(area, &c)?;
     if let Some(m) = map
@@ -372,6 +325,74 @@ fn outcome_map(f: &mut TuiFrame, area: Rect, app: &App) -> Option<CanvasGeom> {
     }
     let plot = chart::render(f, area, th, &c)?;
     Some(geom(plot, &c, Page::OutcomeMap, app))
+}
+
+/// The outcome map's chart (without its cells) for speeds up to `v0_max`.
+fn map_chart(app: &App, v0_max: f64, progress: String) -> Chart {
+    let th = &app.theme;
+    let i = app.initial;
+    let settings = crate::analysis::settings_for(app.settings);
+    let frame_word = if i.release == Release::LabRest {
+        "lab"
+    } else {
+        "table"
+    };
+    let mut series = Vec::new();
+    if i.release != Release::LabRest
+        && let Some(c) = app.charts.curve(i.xi0, settings)
+    {
+        let window = i.xi0 > 1.0;
+        series.push(Series {
+            name: if window { "sticking window" } else { "v_e(φ)" }.into(),
+            color: th.accent,
+            points: c.points(),
+            joined: true,
+        });
+        if window {
+            series.push(Series {
+                name: String::new(),
+                color: th.accent,
+                points: c.floor(),
+                joined: true,
+            });
+        }
+    }
+    let (phi, v0) = match i.release {
+        Release::Velocity => (turn_angle(i.phi), i.v0),
+        _ => (0.0, 0.0),
+    };
+    Chart {
+        title: format!(
+            "outcome map, ξ0 = {}, {} release{progress}",
+            num(i.xi0, 3),
+            i.release
+        ),
+        note: String::new(),
+        x_label: format!("φ ({frame_word} frame)  blank: escapes  ·:▒▓ stuck at ξ <¼ <½ <¾ ≤1"),
+        y_label: chart::axis("v0", Quantity::Speed, app.units),
+        x: [0.0, TAU],
+        y: [0.0, v0_max],
+        series,
+        marks: vec![Mark::Point {
+            x: phi,
+            y: v0,
+            label: "release".into(),
+            color: th.particle,
+        }],
+    }
+}
+
+/// The outcome map's grid at the app's terminal size for speeds up to `v0_max`: one cell a
+/// character of the plot the page draws (the same layout and chart), none when no plot fits.
+pub fn map_grid(app: &App, v0_max: f64) -> Option<(usize, usize)> {
+    use crate::analysis::MAP_MAX;
+    let (w, h) = app.screen();
+    let canvas = super::layout::regions(w, h)?.canvas;
+    let plot = chart::plot_area(canvas, &map_chart(app, v0_max, String::new()))?;
+    Some((
+        usize::from(plot.width).min(MAP_MAX.0),
+        usize::from(plot.height).min(MAP_MAX.1),
+    ))
 }
 
 /// Fig. 6: where a particle released at rest in the lab comes to rest, against ξ0, with ξ0c;
