@@ -373,7 +373,7 @@ fn outside_xi_1_the_pages_show_the_sticking_window() {
         }
         let screen = render(&mut a, 100, 30);
         assert!(screen.contains("sticking window (Fig. 3 D)"), "{screen}");
-        assert!(screen.contains("widest: sticks for "), "{screen}");
+        assert!(screen.contains("widest window: sticks for v0 "), "{screen}");
         assert!(
             !screen.contains("min 0.0000") && !screen.contains("(above v_e)"),
             "{screen}"
@@ -473,5 +473,54 @@ fn the_map_grid_is_the_drawn_plot_at_every_size() {
             a.initial.phi,
             a.initial.v0
         );
+    }
+}
+
+/// Narrow screens drop whole fields, never digits (issue 18): the escape page's ξ0 and its
+/// min/max, the status hint at every width (the long one only where it fits, measured).
+#[test]
+fn no_number_is_cut_at_any_width() {
+    let mut a = app("C");
+    a.page = Page::EscapeSpeed;
+    a.sync_analysis();
+    let s = settings_for(a.settings);
+    let ((_, vmin), (_, vmax)) = a.charts.curve(0.5, s).unwrap().extremes().unwrap();
+    let (min, max) = (
+        turntable::ui::panel::num(vmin, 4),
+        turntable::ui::panel::num(vmax, 4),
+    );
+    let long = " ? help  Space play  .,  step  [] speed  f frame  m method  c compare  a forces  1-6 presets  x/p/v edit  q quit";
+    let short = " ? help  q quit  Space play  ., step  f frame  m method  c compare  1-6 presets";
+    for w in 40..=130u16 {
+        let screen = render(&mut a, w, 20);
+        let lines: Vec<&str> = screen.lines().collect();
+        let title = lines[1];
+        assert!(
+            title.contains("ξ0 = 0.500") || !title.contains("ξ0 ="),
+            "{w}: {title}"
+        );
+        let note = lines
+            .iter()
+            .rev()
+            .find(|l| l.contains("min"))
+            .copied()
+            .unwrap_or("");
+        assert!(
+            note.is_empty() || note.contains(&format!("min {min} at")),
+            "{w}: {note}"
+        );
+        assert!(
+            !note.contains("max") || note.contains(&format!("max {max} at")),
+            "{w}: {note}"
+        );
+        // The hint: whole hints of one of the two, ending where a hint ends.
+        let hint = lines[19].trim_end();
+        let whole = |full: &str| {
+            full.starts_with(hint)
+                && (full.len() == hint.len() || full[hint.len()..].starts_with("  "))
+        };
+        assert!(whole(long) || whole(short), "{w}: '{hint}'");
+        assert_eq!(hint == long, usize::from(w) >= long.chars().count(), "{w}");
+        assert!(hint.contains("q quit"), "{w}: {hint}");
     }
 }

@@ -1,6 +1,7 @@
 //! A braille chart with labelled axes, tick values and a legend: what every analysis page
 //! draws with. The plot area it returns maps mouse cells back to data (see `CanvasGeom`).
 
+use super::fit::{fit, fit_label};
 use crate::engine::units::{Quantity, Units};
 use crate::theme::Theme;
 use ratatui::Frame as TuiFrame;
@@ -10,6 +11,7 @@ use ratatui::symbols::Marker;
 use ratatui::text::{Line, Span};
 use ratatui::widgets::canvas::{Canvas, Line as Seg, Points};
 use ratatui::widgets::{Block, Borders, Paragraph};
+use unicode_width::UnicodeWidthStr;
 
 /// One curve or point set.
 #[derive(Clone, Debug)]
@@ -132,7 +134,9 @@ pub fn extent(points: impl Iterator<Item = f64>) -> [f64; 2] {
 /// Draws `chart` in `area`: a titled block around [`render_bare`] with its τ axis. Returns
 /// the plot area (None when `area` is too small to hold one).
 pub fn render(f: &mut TuiFrame, area: Rect, th: &Theme, chart: &Chart) -> Option<Rect> {
-    let block = super::titled(format!(" {} ", chart.title), th);
+    // Fields of the title (", ") drop whole when the box is narrow: never part of a number.
+    let room = usize::from(area.width).saturating_sub(4);
+    let block = super::titled(format!(" {} ", fit(&chart.title, ", ", room)), th);
     let inner = block.inner(area);
     f.render_widget(block, area);
     render_bare(f, inner, th, chart, true)
@@ -184,12 +188,16 @@ pub fn render_bare(
     let ylabels: Vec<String> = yt.iter().map(|v| tick_label(*v)).collect();
     let muted = Style::default().fg(th.muted);
     // Legend: every series and mark by name, in its colour, after the y axis name.
+    // A name that does not fit is left out whole.
     let mut legend = vec![Span::styled(format!("{} ", chart.y_label), muted)];
+    let mut used = legend[0].width();
     for s in chart.series.iter().filter(|s| !s.name.is_empty()) {
-        legend.push(Span::styled(
-            format!("━ {}  ", s.name),
-            Style::default().fg(s.color),
-        ));
+        let text = format!("━ {}  ", s.name);
+        if used + text.trim_end().width() > usize::from(inner.width) {
+            break;
+        }
+        used += text.width();
+        legend.push(Span::styled(text, Style::default().fg(s.color)));
     }
     f.render_widget(
         Paragraph::new(Line::from(legend)),
@@ -249,8 +257,10 @@ pub fn render_bare(
     }
     if x_axis {
         let row = Rect::new(inner.x, axis_row + 1, inner.width, 1);
-        let room = (inner.width as usize).saturating_sub(chart.x_label.chars().count() + 1);
-        let note: String = chart.note.chars().take(room).collect();
+        // The axis name's fields first, then the note's that still fit beside it.
+        let x_label = fit(&chart.x_label, "  ", usize::from(plot.width));
+        let room = usize::from(inner.width).saturating_sub(x_label.width() + 1);
+        let note = fit(&chart.note, ", ", room);
         f.render_widget(
             Paragraph::new(Line::from(vec![Span::styled(
                 note,
@@ -259,7 +269,7 @@ pub fn render_bare(
             row,
         );
         f.render_widget(
-            Paragraph::new(Span::styled(chart.x_label.clone(), muted)).right_aligned(),
+            Paragraph::new(Span::styled(x_label, muted)).right_aligned(),
             Rect::new(plot.x, axis_row + 1, plot.width, 1),
         );
     }
@@ -338,7 +348,15 @@ pub fn render_bare(
                     | Mark::Point { label, color, .. } => (label, *color),
                 };
                 let style = Style::default().fg(color);
-                let w = (label.chars().count() + 1) as f64 * col;
+                // Whole words only, as many as the wider side of a point has room for.
+                let label = match *m {
+                    Mark::Point { x: px, .. } => {
+                        let side = (x[1] - px - col).max(px - x[0]) / col;
+                        fit_label(label, (side.max(0.0) as usize).saturating_sub(1))
+                    }
+                    _ => label.clone(),
+                };
+                let w = (label.width() + 1) as f64 * col;
                 match *m {
                     Mark::VLine { x: mx, .. } => {
                         // Right of the line, or left of it in the right half.

@@ -3,6 +3,7 @@
 pub mod canvas;
 pub mod chart;
 pub mod export;
+pub mod fit;
 pub mod help;
 pub mod layout;
 pub mod pages;
@@ -16,6 +17,7 @@ use ratatui::layout::{Alignment, Rect};
 use ratatui::style::Style;
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Paragraph, Wrap};
+use unicode_width::UnicodeWidthStr;
 
 pub use layout::{MIN_SIZE, PANEL_W};
 
@@ -44,7 +46,10 @@ pub fn draw(frame: &mut Frame, app: &App) -> Option<CanvasGeom> {
     frame.render_widget(
         Paragraph::new(Line::from(vec![
             Span::styled(" turntable ", Style::default().fg(th.accent)),
-            Span::styled(app.about(), Style::default().fg(th.muted)),
+            Span::styled(
+                fit::fit(&app.about(), ", ", usize::from(area.width) - 11),
+                Style::default().fg(th.muted),
+            ),
         ])),
         r.title,
     );
@@ -56,7 +61,7 @@ pub fn draw(frame: &mut Frame, app: &App) -> Option<CanvasGeom> {
     panel::render(frame, panel_area, app);
     frame.render_widget(
         Paragraph::new(Span::styled(
-            lesson_line(app),
+            fit::fit(&lesson_line(app), "\0", usize::from(area.width)),
             Style::default().fg(th.notice),
         )),
         lesson,
@@ -117,14 +122,22 @@ fn status_line(app: &App, width: u16) -> Line<'static> {
             Style::default().fg(th.notice),
         ));
     }
-    let keys = if width >= 100 {
-        " ? help  Space play  .,  step  [] speed  f frame  m method  c compare  a forces  1-6 presets  x/p/v edit  q quit"
-    } else {
-        " ? help  Space play  ., step  f frame  m method  c compare  1-6 presets  q quit"
-    };
     let mouse = if app.mouse { "" } else { "  [mouse off]" };
+    // The long hint where it fits, measured; else the short one, whole hints dropped from
+    // its end.
+    let room = usize::from(width).saturating_sub(mouse.width());
+    let long = " ? help  Space play  .,  step  [] speed  f frame  m method  c compare  a forces  1-6 presets  x/p/v edit  q quit";
+    let keys = if long.width() <= room {
+        long.to_string()
+    } else {
+        fit::fit(
+            " ? help  q quit  Space play  ., step  f frame  m method  c compare  1-6 presets",
+            "  ",
+            room,
+        )
+    };
     Line::from(vec![
-        Span::styled(keys.to_string(), Style::default().fg(th.muted)),
+        Span::styled(keys, Style::default().fg(th.muted)),
         Span::styled(mouse.to_string(), Style::default().fg(th.notice)),
     ])
 }

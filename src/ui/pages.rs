@@ -125,10 +125,10 @@ fn escape_speed(f: &mut TuiFrame, area: Rect, app: &App) -> Option<CanvasGeom> {
         }
         let done = c.ve.iter().filter(|v| v.is_some()).count();
         if done < c.ve.len() {
-            progress = format!(" {done}/{} angles", c.ve.len());
+            progress = format!(", {done}/{} angles", c.ve.len());
         }
     } else {
-        progress = " computing…".into();
+        progress = ", computing…".into();
     }
     let phi = turn_angle(i.phi);
     let judged = match i.release {
@@ -197,7 +197,7 @@ fn widest(c: &crate::app::pages::Curve) -> String {
         .max_by(|a, b| (a.2 - a.1).total_cmp(&(b.2 - b.1)));
     match best {
         Some((p, lo, hi)) => format!(
-            "widest: sticks for {} ≤ v0 < {} at {}π",
+            "widest window: sticks for v0 {}–{}, at φ = {}π",
             num(lo, 4),
             num(hi, 4),
             num(p / PI, 2)
@@ -279,12 +279,12 @@ fn outcome_map(f: &mut TuiFrame, area: Rect, app: &App) -> Option<CanvasGeom> {
         Some(m) => {
             let (done, all) = map_filled(m);
             if done < all {
-                format!(" {done}/{all} cells")
+                format!(", {done}/{all} cells")
             } else {
                 String::new()
             }
         }
-        None => " computing…".into(),
+        None => ", computing…".into(),
     };
     let c = map_chart(app, v0_max, progress);
     // The cells first, then the chart's braille over them.
@@ -405,7 +405,7 @@ fn rest_radius(f: &mut TuiFrame, area: Rect, app: &App) {
     let mut points = Vec::new();
     let mut escaped = Vec::new();
     let mut marks = Vec::new();
-    let mut progress = " computing…".to_string();
+    let mut progress = ", computing…".to_string();
     let xi0c = rest.and_then(|r| r.critical.flatten());
     if let Some(r) = rest {
         for (k, v) in r.xi.iter().enumerate() {
@@ -418,7 +418,7 @@ fn rest_radius(f: &mut TuiFrame, area: Rect, app: &App) {
         }
         let done = r.xi.iter().filter(|v| v.is_some()).count();
         progress = if done < r.xi.len() || r.critical.is_none() {
-            format!(" {done}/{} radii", r.xi.len())
+            format!(", {done}/{} radii", r.xi.len())
         } else {
             String::new()
         };
