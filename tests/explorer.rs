@@ -147,6 +147,10 @@ fn every_key_in_the_keymap_does_what_its_help_says() {
         if b.action == Action::Dismiss {
             a.help = true;
         }
+        if matches!(b.action, Action::HelpScroll(_) | Action::HelpPage(_)) {
+            a.help = true;
+            a.help_scroll = 5;
+        }
         let before = render(&mut a, 80, 24);
         let (tau, init, set) = (a.sim.now().tau, a.initial, a.settings);
         let (speed, zoom, pan) = (a.speed, a.zoom, a.pan);
@@ -162,6 +166,9 @@ fn every_key_in_the_keymap_does_what_its_help_says() {
             Action::Quit => a.should_quit(),
             Action::Dismiss => !a.help && !a.should_quit(),
             Action::ToggleHelp => a.help && after.contains("help"),
+            // 80×24 shows rows 1–21 of the help's 30: 9 to scroll, a page is 21.
+            Action::HelpScroll(d) => i32::from(a.help_scroll) == 5 + i32::from(d),
+            Action::HelpPage(d) => a.help_scroll == if d > 0 { 9 } else { 0 },
             Action::PlayPause => !a.is_playing() && after.contains("❚❚"),
             Action::StepForward => now > tau && !a.is_playing(),
             Action::StepBack => now < tau,
@@ -298,9 +305,12 @@ fn help_overlay_lists_every_binding() {
             b.chord.label()
         );
     }
-    // 80×24 fits it too.
+    // 80×24 shows it in two pages.
     let small = render(&mut a, 80, 24);
-    assert!(small.contains("presets A B C D fig1 fig2") && small.contains("q/Ctrl-c       quit"));
+    assert!(small.contains("presets A B C D fig1") && small.contains("rows 1–21 of 30, ↓ more"));
+    a.handle_key(KeyEvent::new(KeyCode::PageDown, KeyModifiers::NONE));
+    let small = render(&mut a, 80, 24);
+    assert!(small.contains("q/Ctrl-c       quit") && small.contains("rows 10–30 of 30"));
     assert!(
         small.contains("Esc            close help / notice"),
         "{small}"
@@ -309,6 +319,58 @@ fn help_overlay_lists_every_binding() {
         !small.contains("/ onM") && !small.contains("fig2q"),
         "{small}"
     );
+}
+
+/// Help scrolls at every size (↓ and the wheel) until every key, the mouse and the glyphs
+/// have been on screen, and it says where the reader is (issue 18).
+#[test]
+fn help_scrolls_to_everything_at_every_size() {
+    let labels: Vec<String> = turntable::ui::help::rows()
+        .into_iter()
+        .flat_map(|(_, rs)| rs.into_iter().map(|(l, _)| l))
+        .chain(["click", "drag", "wheel", "●", "○", "■", "×", "·", "↺"].map(String::from))
+        .collect();
+    for (w, h) in [(40, 12), (56, 30), (59, 24), (60, 20), (80, 24), (200, 60)] {
+        let mut a = app("C");
+        key(&mut a, '?');
+        let mut seen = render(&mut a, w, h);
+        assert!(
+            seen.contains("↑ ↓ PgUp PgDn wheel scroll") || w < 60,
+            "{w}×{h}\n{seen}"
+        );
+        let first = seen.clone();
+        for i in 0..100 {
+            let before = a.help_scroll;
+            if i % 2 == 0 {
+                a.handle_key(KeyEvent::new(KeyCode::Down, KeyModifiers::NONE));
+            } else {
+                a.handle_mouse(MouseEvent {
+                    kind: MouseEventKind::ScrollDown,
+                    column: w / 2,
+                    row: h / 2,
+                    modifiers: KeyModifiers::NONE,
+                });
+            }
+            seen += &render(&mut a, w, h);
+            if a.help_scroll == before {
+                break;
+            }
+        }
+        for l in &labels {
+            assert!(
+                seen.contains(&format!(" {l} ")),
+                "{w}×{h}: '{l}' never shown"
+            );
+        }
+        if first.contains("↓ more") {
+            assert!(a.help_scroll > 0 && !render(&mut a, w, h).contains("↓ more"));
+        }
+        // Back to the top with PgUp.
+        for _ in 0..20 {
+            a.handle_key(KeyEvent::new(KeyCode::PageUp, KeyModifiers::NONE));
+        }
+        assert_eq!(render(&mut a, w, h), first, "{w}×{h}");
+    }
 }
 
 #[test]

@@ -7,6 +7,9 @@ pub enum Action {
     /// Close the help or a notice (never quits).
     Dismiss,
     ToggleHelp,
+    /// Scroll the help by this many rows, or pages (down positive).
+    HelpScroll(i16),
+    HelpPage(i16),
     PlayPause,
     StepForward,
     StepBack,

@@ -78,6 +78,8 @@ pub struct App {
     /// Integrator step mode (`n`): step ends marked, step size and error shown.
     pub step_mode: bool,
     pub help: bool,
+    /// The help's first row shown.
+    pub help_scroll: u16,
     pub zoom: f64,
     /// The picture's turn (rad): the model releases on +x, the picture shows the release
     /// where it was clicked.
@@ -135,6 +137,7 @@ impl App {
             forces: false,
             step_mode: false,
             help: false,
+            help_scroll: 0,
             zoom: 1.0,
             turn: 0.0,
             pan: glam::DVec2::ZERO,

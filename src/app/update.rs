@@ -8,6 +8,16 @@ use crate::engine::{Frame, Method, Release, Settings};
 use crate::scene::{PRESETS, Scene};
 use strum::VariantArray;
 
+/// Moves the help by `rows` (no further than its end at this size); nothing when it is shut.
+fn scroll_help(app: &mut App, rows: i32) {
+    if app.help {
+        let (w, h) = app.screen();
+        let end = i32::from(crate::ui::help::max_scroll(w, h, &app.theme));
+        let to = (i32::from(app.help_scroll) + rows).clamp(0, end);
+        app.help_scroll = u16::try_from(to).unwrap_or(0);
+    }
+}
+
 pub fn update(app: &mut App, action: Action) {
     if action == Action::EndDrag {
         // Letting go of the mouse changes nothing on screen (the notice stays).
@@ -26,7 +36,15 @@ pub fn update(app: &mut App, action: Action) {
         }
         // The notice is already cleared above.
         Action::Dismiss => app.help = false,
-        Action::ToggleHelp => app.help = !app.help,
+        Action::ToggleHelp => {
+            app.help = !app.help;
+            app.help_scroll = 0;
+        }
+        Action::HelpScroll(rows) => scroll_help(app, i32::from(rows)),
+        Action::HelpPage(pages) => {
+            let page = crate::ui::help::page(app.screen().1);
+            scroll_help(app, i32::from(pages) * i32::from(page));
+        }
         Action::PlayPause => {
             app.playing = !app.playing;
             app.step_mode &= !app.playing;
