@@ -848,3 +848,27 @@ fn every_preset_loads_unedited() {
     key(&mut d, 'p');
     assert!(d.edited() && d.current_scene().name == "D (edited)");
 }
+
+/// The initial-velocity arrow lies beneath the trail (issue 18): in the rotating frame D's
+/// path runs along its arrow, and every cell the arrow shares with the trail shows the trail.
+#[test]
+fn the_trail_is_drawn_over_the_initial_velocity_arrow() {
+    let th = theme();
+    assert_ne!(th.trail, th.arrow);
+    let mut a = app("D");
+    key(&mut a, 'f');
+    for _ in 0..40 {
+        a.tick();
+    }
+    let mut t = ratatui::Terminal::new(ratatui::backend::TestBackend::new(80, 24)).unwrap();
+    a.resize(80, 24);
+    t.draw(|f| {
+        turntable::ui::draw(f, &a);
+    })
+    .unwrap();
+    let buf = t.backend().buffer().clone();
+    let count = |c| buf.content.iter().filter(|x| x.fg == c).count();
+    let (trail, arrow) = (count(th.trail), count(th.arrow));
+    // Before, the arrow covered the whole path: 0 trail cells against the arrow's 8.
+    assert!(trail >= 4 && trail >= arrow, "trail {trail} arrow {arrow}");
+}

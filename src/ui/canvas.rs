@@ -290,12 +290,15 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) -> CanvasGeom {
                 );
             }
             ctx.layer();
+            // The initial velocity beneath the trails: where they cross, the trail shows (in
+            // the rotating frame D's whole path lies along its arrow).
+            arrow(ctx, x0, v_init * arrow_scale, th.arrow);
+            ctx.layer();
             if let Some(p) = paper {
                 trail(ctx, p, view, turn, th.accent);
             }
             trail(ctx, sim, view, turn, th.trail);
             ctx.layer();
-            arrow(ctx, x0, v_init * arrow_scale, th.arrow);
             if let Some((at, tau)) = stuck {
                 ctx.print(
                     at.x,
