@@ -147,6 +147,10 @@ fn every_key_in_the_keymap_does_what_its_help_says() {
         if b.action == Action::Dismiss {
             a.help = true;
         }
+        if let Action::TauWindow(narrow) = b.action {
+            a.page = Page::TimePlots;
+            a.tau_window = (!narrow).then_some(1e-2);
+        }
         if matches!(b.action, Action::HelpScroll(_) | Action::HelpPage(_)) {
             a.help = true;
             a.help_scroll = 5;
@@ -166,9 +170,11 @@ fn every_key_in_the_keymap_does_what_its_help_says() {
             Action::Quit => a.should_quit(),
             Action::Dismiss => !a.help && !a.should_quit(),
             Action::ToggleHelp => a.help && after.contains("help"),
-            // 80×24 shows rows 1–21 of the help's 30: 9 to scroll, a page is 21.
+            // 80×24 shows 21 rows of the help's 31: 10 to scroll, a page is 21.
             Action::HelpScroll(d) => i32::from(a.help_scroll) == 5 + i32::from(d),
-            Action::HelpPage(d) => a.help_scroll == if d > 0 { 9 } else { 0 },
+            Action::TauWindow(true) => a.tau_window.is_some_and(|w| w < now),
+            Action::TauWindow(false) => a.tau_window == Some(2e-2),
+            Action::HelpPage(d) => a.help_scroll == if d > 0 { 10 } else { 0 },
             Action::PlayPause => !a.is_playing() && after.contains("❚❚"),
             Action::StepForward => now > tau && !a.is_playing(),
             Action::StepBack => now < tau,
@@ -307,10 +313,10 @@ fn help_overlay_lists_every_binding() {
     }
     // 80×24 shows it in two pages.
     let small = render(&mut a, 80, 24);
-    assert!(small.contains("presets A B C D fig1") && small.contains("rows 1–21 of 30, ↓ more"));
+    assert!(small.contains("presets A B C D fig1") && small.contains("rows 1–21 of 31, ↓ more"));
     a.handle_key(KeyEvent::new(KeyCode::PageDown, KeyModifiers::NONE));
     let small = render(&mut a, 80, 24);
-    assert!(small.contains("q/Ctrl-c       quit") && small.contains("rows 10–30 of 30"));
+    assert!(small.contains("q/Ctrl-c       quit") && small.contains("rows 11–31 of 31"));
     assert!(
         small.contains("Esc            close help / notice"),
         "{small}"

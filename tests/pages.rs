@@ -524,3 +524,40 @@ fn no_number_is_cut_at_any_width() {
         assert!(hint.contains("q quit"), "{w}: {hint}");
     }
 }
+
+/// The time plots share one τ axis (τ = 0 in one column in every plot, whatever its tick
+/// labels' width), plot θ as Figs. 1–2 do, and `t`/`T` fix the τ window (issue 18).
+#[test]
+fn the_time_plots_share_one_tau_axis_and_a_fixed_window() {
+    let mut a = App::new(
+        Scene::preset("fig2").unwrap(),
+        Theme::builtin("dark").unwrap(),
+    );
+    for _ in 0..60 {
+        a.tick();
+    }
+    a.page = Page::TimePlots;
+    let screen = render(&mut a, 100, 34);
+    // fig2 is certified to escape at τ = 0: its line's label starts one column right of τ = 0.
+    let cols: Vec<usize> = screen
+        .lines()
+        .filter_map(|l| l.find("escape cert.").map(|b| l[..b].chars().count()))
+        .collect();
+    assert_eq!(cols.len(), 5, "{screen}");
+    assert!(cols.iter().all(|c| *c == cols[0]), "{cols:?}\n{screen}");
+    assert!(screen.contains("θ ━ θ  ━ Sec. III approx."), "{screen}");
+    let ticks = |s: &str| s.lines().rev().nth(4).unwrap_or("").to_string();
+    assert!(ticks(&screen).contains("2.5"), "{screen}");
+    press(&mut a, KeyCode::Char('t'));
+    press(&mut a, KeyCode::Char('t'));
+    assert!((a.tau_window.unwrap() - 0.75).abs() < 1e-12);
+    let narrow = render(&mut a, 100, 34);
+    assert!(
+        ticks(&narrow).contains("0.6") && !ticks(&narrow).contains("2.5"),
+        "{narrow}"
+    );
+    press(&mut a, KeyCode::Char('T'));
+    press(&mut a, KeyCode::Char('T'));
+    assert_eq!(a.tau_window, None);
+    assert_eq!(render(&mut a, 100, 34), screen);
+}

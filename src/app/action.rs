@@ -10,6 +10,9 @@ pub enum Action {
     /// Scroll the help by this many rows, or pages (down positive).
     HelpScroll(i16),
     HelpPage(i16),
+    /// The time plots' τ window: halve it (fixing it), or double it (back to the whole run
+    /// once it reaches the τ on screen).
+    TauWindow(bool),
     PlayPause,
     StepForward,
     StepBack,

@@ -103,6 +103,8 @@ pub const KEYMAP: &[Binding] = &[
     b(KeyCode::Up, S, Action::Pan(0.0, 0.2), "pan (arrows)", "view"),
     b(KeyCode::Right, S, Action::Pan(0.2, 0.0), "pan (arrows)", "view"),
     b(ch('z'), N, Action::ResetView, "reset zoom and pan", "view"),
+    b(ch('t'), N, Action::TauWindow(true), "time plots' τ window ÷2 / ×2", "view"),
+    b(ch('T'), N, Action::TauWindow(false), "time plots' τ window ÷2 / ×2", "view"),
     b(KeyCode::Tab, N, Action::NextPage, "pages (5)", "view"),
     b(KeyCode::BackTab, N, Action::PrevPage, "pages (5)", "view"),
     b(KeyCode::Enter, N, Action::Choose, "run chosen release", "view"),

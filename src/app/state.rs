@@ -80,6 +80,8 @@ pub struct App {
     pub help: bool,
     /// The help's first row shown.
     pub help_scroll: u16,
+    /// The time plots' τ span when fixed (`t`/`T`); None: the run so far.
+    pub tau_window: Option<f64>,
     pub zoom: f64,
     /// The picture's turn (rad): the model releases on +x, the picture shows the release
     /// where it was clicked.
@@ -138,6 +140,7 @@ impl App {
             step_mode: false,
             help: false,
             help_scroll: 0,
+            tau_window: None,
             zoom: 1.0,
             turn: 0.0,
             pan: glam::DVec2::ZERO,

@@ -40,6 +40,15 @@ pub fn update(app: &mut App, action: Action) {
             app.help = !app.help;
             app.help_scroll = 0;
         }
+        Action::TauWindow(narrow) => {
+            let now = app.sim.now().tau.max(1e-3);
+            let span = app.tau_window.unwrap_or(now);
+            app.tau_window = if narrow {
+                Some((0.5 * span).max(1e-3))
+            } else {
+                Some(2.0 * span).filter(|s| *s < now)
+            };
+        }
         Action::HelpScroll(rows) => scroll_help(app, i32::from(rows)),
         Action::HelpPage(pages) => {
             let page = crate::ui::help::page(app.screen().1);

@@ -139,17 +139,28 @@ pub fn render(f: &mut TuiFrame, area: Rect, th: &Theme, chart: &Chart) -> Option
     let block = super::titled(format!(" {} ", fit(&chart.title, ", ", room)), th);
     let inner = block.inner(area);
     f.render_widget(block, area);
-    render_bare(f, inner, th, chart, true)
+    render_bare(f, inner, th, chart, true, 0)
 }
 
 /// Where [`render`] puts the plot in `area`, to draw beneath it first.
 pub fn plot_area(area: Rect, chart: &Chart) -> Option<Rect> {
     let inner = Block::default().borders(Borders::ALL).inner(area);
-    layout(inner, chart, true).map(|l| l.0)
+    layout(inner, chart, true, 0).map(|l| l.0)
 }
 
-/// The plot rectangle, the y-tick gutter's width, and the y ticks.
-fn layout(inner: Rect, chart: &Chart, x_axis: bool) -> Option<(Rect, u16, Vec<f64>)> {
+/// The width of the y-tick gutter [`render_bare`] gives `chart` in `inner` (charts stacked on
+/// one x axis take the widest, so that their x values line up).
+pub fn gutter(inner: Rect, chart: &Chart, x_axis: bool) -> u16 {
+    layout(inner, chart, x_axis, 0).map_or(0, |l| l.1)
+}
+
+/// The plot rectangle, the y-tick gutter's width (at least `min_gutter`), and the y ticks.
+fn layout(
+    inner: Rect,
+    chart: &Chart,
+    x_axis: bool,
+    min_gutter: u16,
+) -> Option<(Rect, u16, Vec<f64>)> {
     let y = sane(chart.y);
     let below = if x_axis { 2 } else { 0 };
     let rows = inner.height.checked_sub(1 + below).filter(|r| *r >= 2)?;
@@ -162,6 +173,7 @@ fn layout(inner: Rect, chart: &Chart, x_axis: bool) -> Option<(Rect, u16, Vec<f6
         .max()
         .unwrap_or(1) as u16
         + 1;
+    let gutter = gutter.max(min_gutter);
     if inner.width < gutter + 8 {
         return None;
     }
@@ -174,17 +186,19 @@ fn layout(inner: Rect, chart: &Chart, x_axis: bool) -> Option<(Rect, u16, Vec<f6
     Some((plot, gutter, yt))
 }
 
-/// Draws `chart` in `area` with no border: the legend line, the y ticks in a left gutter, the
-/// plot, and (with `x_axis`) the x ticks and the x axis name below. Returns the plot area.
+/// Draws `chart` in `area` with no border: the legend line, the y ticks in a left gutter (at
+/// least `min_gutter` wide), the plot, and (with `x_axis`) the x ticks and the x axis name
+/// below. Returns the plot area.
 pub fn render_bare(
     f: &mut TuiFrame,
     inner: Rect,
     th: &Theme,
     chart: &Chart,
     x_axis: bool,
+    min_gutter: u16,
 ) -> Option<Rect> {
     let (x, y) = (sane(chart.x), sane(chart.y));
-    let (plot, gutter, yt) = layout(inner, chart, x_axis)?;
+    let (plot, gutter, yt) = layout(inner, chart, x_axis, min_gutter)?;
     let ylabels: Vec<String> = yt.iter().map(|v| tick_label(*v)).collect();
     let muted = Style::default().fg(th.muted);
     // Legend: every series and mark by name, in its colour, after the y axis name.
