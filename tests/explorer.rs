@@ -878,3 +878,53 @@ fn the_trail_is_drawn_over_the_initial_velocity_arrow() {
     // Before, the arrow covered the whole path: 0 trail cells against the arrow's 8.
     assert!(trail >= 4 && trail >= arrow, "trail {trail} arrow {arrow}");
 }
+
+/// A step is one tick at the speed now, through history too (issue 18): after ×64 play and
+/// back to ×1, `,` goes back 0.05 in τ (it went back a ×64 tick, 3.2), `.` forward again.
+#[test]
+fn steps_through_fast_history_are_one_tick_at_the_speed_now() {
+    let mut a = app("A");
+    key(&mut a, 'c');
+    for _ in 0..6 {
+        key(&mut a, ']');
+    }
+    for _ in 0..3 {
+        a.tick();
+    }
+    for _ in 0..6 {
+        key(&mut a, '[');
+    }
+    assert_eq!(a.speed, 1.0);
+    let t0 = a.sim.now().tau;
+    assert!((t0 - 9.6).abs() < 1e-9, "{t0}");
+    key(&mut a, ',');
+    let t1 = a.sim.now().tau;
+    assert!((t0 - t1 - 0.05).abs() < 1e-9, "{t0} → {t1}");
+    assert!((a.paper.as_ref().unwrap().now().tau - t1).abs() < 1e-9);
+    // The state there is the run's own (at rest, riding the table), not a copy of another.
+    let Status::Stuck { q, .. } = a.sim.run.status else {
+        panic!("A sticks")
+    };
+    assert_eq!(a.sim.now(), turntable::engine::State::riding(q, t1));
+    key(&mut a, ',');
+    assert!((a.sim.now().tau - (t0 - 0.1)).abs() < 1e-9);
+    key(&mut a, '.');
+    assert!((a.sim.now().tau - (t0 - 0.05)).abs() < 1e-9);
+    key(&mut a, '.');
+    key(&mut a, '.');
+    assert!((a.sim.now().tau - (t0 + 0.05)).abs() < 1e-9);
+    a.check_invariants().unwrap();
+    // Still sliding, the state a tick back is the path's, on its τ grid.
+    let mut c = app("C");
+    key(&mut c, ']');
+    key(&mut c, ']');
+    for _ in 0..3 {
+        c.tick();
+    }
+    key(&mut c, '[');
+    key(&mut c, '[');
+    key(&mut c, ',');
+    let now = c.sim.now();
+    assert!((now.tau - 0.55).abs() < 1e-9 && c.sim.run.status == Status::Slipping);
+    assert!(c.sim.path.contains(&now));
+}

@@ -4,7 +4,7 @@ use super::action::{Action, UnitKnob};
 use super::pages::Page;
 use super::state::{App, SPEED_RANGE, ZOOM_RANGE, make_sim};
 use crate::engine::method::{DT_RANGE, TOL_RANGE};
-use crate::engine::{Frame, Method, Release, Settings};
+use crate::engine::{Frame, Method, Release, Settings, State};
 use crate::scene::{PRESETS, Scene};
 use strum::VariantArray;
 
@@ -67,13 +67,19 @@ pub fn update(app: &mut App, action: Action) {
         }
         Action::StepForward => {
             app.playing = false;
-            step(app);
+            let dtau = super::state::TICK_DT * app.speed;
+            if !step_through_history(&mut app.sim, dtau) {
+                step(app);
+            } else if let Some(p) = app.paper.as_mut() {
+                step_through_history(p, dtau);
+            }
         }
         Action::StepBack => {
             app.playing = false;
-            app.sim.back();
+            let dtau = -super::state::TICK_DT * app.speed;
+            step_through_history(&mut app.sim, dtau);
             if let Some(p) = app.paper.as_mut() {
-                p.back();
+                step_through_history(p, dtau);
             }
         }
         Action::Faster => app.speed = (app.speed * 2.0).min(SPEED_RANGE.1),
@@ -332,6 +338,51 @@ pub fn step(app: &mut App) -> bool {
     moved |= app.catch_up();
     app.dirty |= moved;
     moved
+}
+
+/// One tick at today's speed through the history (`dtau` < 0 back): history kept at a faster
+/// speed has samples further apart, so the state a tick away comes from the path (the run's
+/// dense output on its τ grid) and joins the history. False at the latest sample going
+/// forward (time then advances by integrating).
+fn step_through_history(sim: &mut crate::sim::Sim, dtau: f64) -> bool {
+    let (now, k) = (sim.now().tau, sim.cursor);
+    let next = if dtau < 0.0 {
+        k.checked_sub(1)
+    } else {
+        Some(k + 1).filter(|&n| n < sim.samples.len())
+    };
+    let Some(n) = next else {
+        return false;
+    };
+    let target = now + dtau;
+    let neighbour = sim.samples[n].tau;
+    // Further than a tick: the path's state nearest the target, if strictly between.
+    let between = if (neighbour - now).abs() > dtau.abs() + 1e-9 {
+        match sim.run.status {
+            // At rest it rides the table: the path keeps one turn of it, the closed form all.
+            crate::engine::Status::Stuck { tau, q } if target >= tau => {
+                Some(State::riding(q, target))
+            }
+            _ => {
+                let i = sim.path.partition_point(|s| s.tau < target - 1e-9);
+                sim.path
+                    .get(i)
+                    .filter(|s| (s.tau - target).abs() < 1e-9)
+                    .copied()
+            }
+        }
+    } else {
+        None
+    };
+    match between {
+        Some(s) if dtau < 0.0 => sim.samples.insert(k, s),
+        Some(s) => {
+            sim.samples.insert(n, s);
+            sim.cursor = n;
+        }
+        None => sim.cursor = n,
+    }
+    true
 }
 
 /// Rounds to 12 significant digits so that ×√10 twice gives exactly ×10 on screen.
