@@ -928,3 +928,68 @@ fn steps_through_fast_history_are_one_tick_at_the_speed_now() {
     assert!((now.tau - 0.55).abs() < 1e-9 && c.sim.run.status == Status::Slipping);
     assert!(c.sim.path.contains(&now));
 }
+
+/// The title tells what is on screen at the τ on screen, in the panel's notation; `s` saves
+/// how the run ends (nothing while undecided) and the view (issue 18).
+#[test]
+fn the_title_and_a_saved_scene_tell_what_is_on_screen() {
+    let dir = std::env::temp_dir().join(format!("turntable-about-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let mut a = app("C");
+    key(&mut a, 'V');
+    a.tick();
+    a.tick();
+    // The integrator looks ahead of the screen; the title reads the screen's τ.
+    let shown = a.sim.now().tau;
+    assert!(a.sim.run.tau() > shown, "{} {shown}", a.sim.run.tau());
+    let screen = render(&mut a, 100, 30);
+    let title = screen.lines().next().unwrap().to_string();
+    assert!(
+        title.contains(&format!("C, edited: sliding at τ = {}", num(shown, 3))),
+        "{title}"
+    );
+    assert!(!title.contains("tau") && !title.contains("xi"), "{title}");
+    // Undecided: saved with no words about its end.
+    a.save_path = dir.join("undecided.toml");
+    key(&mut a, 's');
+    let saved = Scene::load(dir.join("undecided.toml").to_str().unwrap()).unwrap();
+    assert_eq!(
+        (saved.name.as_str(), saved.about.as_str()),
+        ("C (edited)", "")
+    );
+    // Decided: how it ends, and the view it was shown in.
+    for _ in 0..200 {
+        a.tick();
+    }
+    let Status::Stuck { tau, q } = a.sim.run.status else {
+        panic!("C with v0 − 0.001 sticks")
+    };
+    key(&mut a, 'f');
+    key(&mut a, 'a');
+    key(&mut a, '+');
+    key(&mut a, 'x');
+    key(&mut a, 'X');
+    a.save_path = dir.join("decided.toml");
+    // x then X: the edit is undone, the run restarted; play it to its end again.
+    for _ in 0..200 {
+        a.tick();
+    }
+    key(&mut a, 's');
+    let saved = Scene::load(dir.join("decided.toml").to_str().unwrap()).unwrap();
+    assert_eq!(
+        saved.about,
+        format!("sticks at ξ = {} (τ = {})", num(q.length(), 4), num(tau, 3))
+    );
+    let view = saved.view.unwrap();
+    assert_eq!(
+        (view.frame, view.forces, view.zoom),
+        (Frame::Table, true, a.zoom)
+    );
+    assert!(view.zoom > 1.0);
+    let back = App::new(saved, theme());
+    assert_eq!(
+        (back.view, back.forces, back.zoom),
+        (Frame::Table, true, a.zoom)
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -7,7 +7,8 @@ use crate::analysis::{
 use crate::engine::{Initial, Release, Settings};
 
 /// What the body of the screen shows, in `Tab` order.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
 pub enum Page {
     #[default]
     Turntable,

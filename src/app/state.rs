@@ -7,6 +7,7 @@ use crate::engine::{Frame, Initial, Settings, State};
 use crate::scene::Scene;
 use crate::sim::Sim;
 use crate::theme::Theme;
+use crate::ui::panel::num;
 use ratatui::layout::Rect;
 use std::path::PathBuf;
 
@@ -126,6 +127,7 @@ impl App {
         };
         let sim = make_sim(initial, settings);
         let units = scene.units;
+        let view = scene.view.filter(|v| v.zoom.is_finite() && v.zoom > 0.0);
         App {
             scene,
             initial,
@@ -135,13 +137,13 @@ impl App {
             theme,
             playing: true,
             speed: 1.0,
-            view: Frame::Lab,
-            forces: false,
+            view: view.map_or(Frame::Lab, |v| v.frame),
+            forces: view.is_some_and(|v| v.forces),
             step_mode: false,
             help: false,
             help_scroll: 0,
             tau_window: None,
-            zoom: 1.0,
+            zoom: view.map_or(1.0, |v| v.zoom.clamp(ZOOM_RANGE.0, ZOOM_RANGE.1)),
             turn: 0.0,
             pan: glam::DVec2::ZERO,
             mouse: true,
@@ -149,7 +151,7 @@ impl App {
             save_path: PathBuf::from(SAVE_PATH),
             writes_files: true,
             quit: false,
-            page: Page::Turntable,
+            page: view.map_or(Page::Turntable, |v| v.page),
             charts: Charts::default(),
             analysis: Analysis::inline(),
             mu_probe: MU_PROBE,
@@ -240,23 +242,36 @@ impl App {
     }
 
     /// What the scene shows, one line: the scene's own words until it is edited, then what
-    /// the run on screen does (never a preset's text about another release).
+    /// the run on screen does at the τ on screen, in the panel's notation.
     pub fn about(&self) -> String {
         if !self.edited() {
             return self.scene.about.clone();
         }
         let base = self.scene.name.trim_end_matches(" (edited)");
-        let what = match (self.sim.run.outcome(), self.sim.run.status) {
-            (crate::engine::Outcome::Stuck, crate::engine::Status::Stuck { tau, q }) => {
-                format!("sticks at xi = {:.4} (tau = {tau:.3})", q.length())
+        let sim = &self.sim;
+        let what = match sim.outcome_now() {
+            crate::engine::Outcome::Running => {
+                format!("sliding at τ = {}", num(sim.now().tau, 3))
             }
-            (crate::engine::Outcome::Escaped, _) => "escapes".to_string(),
-            _ => format!("still sliding at tau = {:.3}", self.sim.run.tau()),
+            _ => self.ending(),
         };
         format!("{base}, edited: {what}")
     }
 
-    /// The current initial conditions and settings as a scene (what `s` saves).
+    /// How the run ends, once it is decided (whatever τ is on screen): empty before.
+    fn ending(&self) -> String {
+        let run = &self.sim.run;
+        match (run.status, run.escape) {
+            (crate::engine::Status::Stuck { tau, q }, _) => {
+                format!("sticks at ξ = {} (τ = {})", num(q.length(), 4), num(tau, 3))
+            }
+            (_, Some(e)) => format!("escapes (certified at τ = {})", num(e.tau, 3)),
+            _ => String::new(),
+        }
+    }
+
+    /// The current initial conditions, settings and view as a scene (what `s` saves); its
+    /// words say how the run ends, or nothing while that is undecided.
     pub fn current_scene(&self) -> Scene {
         let changed = self.edited();
         Scene {
@@ -265,10 +280,20 @@ impl App {
             } else {
                 self.scene.name.clone()
             },
-            about: self.about(),
+            about: if changed {
+                self.ending()
+            } else {
+                self.scene.about.clone()
+            },
             initial: self.initial,
             settings: self.settings,
             units: self.units,
+            view: Some(crate::scene::View {
+                page: self.page,
+                frame: self.view,
+                forces: self.forces,
+                zoom: self.zoom,
+            }),
         }
     }
 }
