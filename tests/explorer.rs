@@ -6,7 +6,6 @@ use crossterm::event::{KeyCode, KeyEvent, KeyModifiers, MouseButton, MouseEvent,
 use turntable::app::keymap::KEYMAP;
 use turntable::app::pages::Page;
 use turntable::app::{Action, App};
-use turntable::engine::units::Units;
 use turntable::engine::{Frame, Outcome, Run, Settings, Status};
 use turntable::scene::{PRESETS, Scene};
 use turntable::theme::Theme;
@@ -210,9 +209,10 @@ fn every_key_in_the_keymap_does_what_its_help_says() {
                 a.forces && after.contains("friction") && !after.contains("Coriolis")
             }
             Action::EstimateError => after.contains("|Δr| ="),
-            // Off at first: the first press turns SI units on at the paper's table.
+            // Off at first: the first press turns SI units on at a record player's.
             Action::Unit(..) => {
-                a.units == Some(Units::paper()) && after.contains("SI units: μ 0.15")
+                a.units == Some(turntable::app::state::record_player())
+                    && after.contains("SI units: μ 0.15")
             }
             Action::UnitsOff => a.units.is_none() && after.contains("SI units off"),
             Action::ZoomIn => a.zoom > zoom,
@@ -803,7 +803,7 @@ fn integrator_steps_one_at_a_time() {
     assert_eq!(a.sim.run.outcome(), Outcome::Running);
 }
 
-/// SI units from the keys: the first press turns them on at the paper's table, the next change
+/// SI units from the keys: the first press turns them on at a record player's (33⅓ rpm), the next change
 /// μ, rpm and g; the panel and the time plots' axes show SI values; Alt-u turns them off.
 #[test]
 fn unit_keys_give_si_readouts_and_axes() {
@@ -812,12 +812,12 @@ fn unit_keys_give_si_readouts_and_axes() {
         a.handle_key(KeyEvent::new(KeyCode::Char(c), m));
     };
     press(&mut a, 'u', KeyModifiers::NONE);
-    assert_eq!(a.units, Some(Units::paper()));
+    assert_eq!(a.units, Some(turntable::app::state::record_player()));
     press(&mut a, 'u', KeyModifiers::NONE);
     press(&mut a, 'w', KeyModifiers::NONE);
     press(&mut a, 'G', KeyModifiers::NONE);
     let u = a.units.unwrap();
-    let paper = Units::paper();
+    let paper = turntable::app::state::record_player();
     assert!((u.mu - 0.16).abs() < 1e-12, "{u:?}");
     assert!((u.rpm - (paper.rpm + 1.0)).abs() < 1e-9, "{u:?}");
     assert!((u.g - 9.8).abs() < 1e-12, "{u:?}");

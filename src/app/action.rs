@@ -66,7 +66,7 @@ pub enum Action {
     Omega(f64),
     R0c(f64),
     /// SI units: change μ, the table's rpm or g by this much (turning units on, from the
-    /// paper's table, if they were off).
+    /// record player of `state::record_player`, if they were off).
     Unit(UnitKnob, f64),
     /// Dimensionless readouts only.
     UnitsOff,

@@ -293,7 +293,7 @@ pub fn update(app: &mut App, action: Action) {
         Action::Unit(knob, d) => {
             use crate::engine::units::Units;
             let was = app.units;
-            let mut u = was.unwrap_or(Units::paper());
+            let mut u = was.unwrap_or_else(super::state::record_player);
             if was.is_some() {
                 let (x, lo, hi) = match knob {
                     UnitKnob::Mu => (&mut u.mu, 0.01, 10.0),
