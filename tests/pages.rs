@@ -561,3 +561,40 @@ fn the_time_plots_share_one_tau_axis_and_a_fixed_window() {
     assert_eq!(a.tau_window, None);
     assert_eq!(render(&mut a, 100, 34), screen);
 }
+
+/// A theme that sets a background sets it on every cell of every page, help open or not
+/// (issue 18): chart interiors kept the terminal's own.
+#[test]
+fn a_theme_s_background_covers_every_cell() {
+    for theme in ["dark", "light", "high-contrast"] {
+        let th = Theme::builtin(theme).unwrap();
+        let mut a = App::new(Scene::preset("C").unwrap(), th.clone());
+        for help in [false, true] {
+            a.help = help;
+            for page in [
+                Page::Turntable,
+                Page::TimePlots,
+                Page::EscapeSpeed,
+                Page::OutcomeMap,
+                Page::RestRadius,
+            ] {
+                a.page = page;
+                a.sync_analysis();
+                let mut t =
+                    ratatui::Terminal::new(ratatui::backend::TestBackend::new(80, 24)).unwrap();
+                a.resize(80, 24);
+                t.draw(|f| {
+                    turntable::ui::draw(f, &a);
+                })
+                .unwrap();
+                let bad = t
+                    .backend()
+                    .buffer()
+                    .content
+                    .iter()
+                    .filter(|c| c.bg != th.background);
+                assert_eq!(bad.count(), 0, "{theme} {page:?} help {help}");
+            }
+        }
+    }
+}

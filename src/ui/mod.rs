@@ -70,6 +70,15 @@ pub fn draw(frame: &mut Frame, app: &App) -> Option<CanvasGeom> {
     if app.help {
         help::render(frame, r.help, app);
     }
+    // A theme that sets a background sets it on every cell: widgets that paint none (chart
+    // interiors, cleared cells) would show the terminal's own, white boxes on a dark theme.
+    if th.background != ratatui::style::Color::Reset {
+        for cell in &mut frame.buffer_mut().content {
+            if cell.bg == ratatui::style::Color::Reset {
+                cell.bg = th.background;
+            }
+        }
+    }
     geom
 }
 
