@@ -88,7 +88,7 @@ fn the_escape_speed_page_holds_the_solver_s_curves() {
     let label = |v: f64, p: f64| {
         format!(
             "{} at {}π",
-            turntable::ui::panel::num(v, 4),
+            turntable::ui::panel::speed(v),
             turntable::ui::panel::num(p / std::f64::consts::PI, 2)
         )
     };
@@ -486,8 +486,8 @@ fn no_number_is_cut_at_any_width() {
     let s = settings_for(a.settings);
     let ((_, vmin), (_, vmax)) = a.charts.curve(0.5, s).unwrap().extremes().unwrap();
     let (min, max) = (
-        turntable::ui::panel::num(vmin, 4),
-        turntable::ui::panel::num(vmax, 4),
+        turntable::ui::panel::speed(vmin),
+        turntable::ui::panel::speed(vmax),
     );
     let long = " ? help  Space play  .,  step  [] speed  f frame  m method  c compare  a forces  1-6 presets  x/p/v edit  q quit";
     let short = " ? help  q quit  Space play  ., step  f frame  m method  c compare  1-6 presets";
@@ -545,7 +545,7 @@ fn the_time_plots_share_one_tau_axis_and_a_fixed_window() {
         .collect();
     assert_eq!(cols.len(), 5, "{screen}");
     assert!(cols.iter().all(|c| *c == cols[0]), "{cols:?}\n{screen}");
-    assert!(screen.contains("θ ━ θ  ━ Sec. III approx."), "{screen}");
+    assert!(screen.contains("θ ━ θ  ·· Sec. III approx."), "{screen}");
     let ticks = |s: &str| s.lines().rev().nth(4).unwrap_or("").to_string();
     assert!(ticks(&screen).contains("2.5"), "{screen}");
     press(&mut a, KeyCode::Char('t'));
@@ -596,5 +596,29 @@ fn a_theme_s_background_covers_every_cell() {
                 assert_eq!(bad.count(), 0, "{theme} {page:?} help {help}");
             }
         }
+    }
+}
+
+/// Told apart without colour (issue 18): a release speed shows the decimals that tell C's
+/// v0 from its escape speed, and the time plots' dotted series (the approximation, −∫|u|dτ)
+/// are named with dots in their legend.
+#[test]
+fn speeds_and_legends_read_without_colour() {
+    use turntable::ui::panel::speed;
+    assert_eq!(speed(0.6078), "0.6078");
+    assert_eq!(speed(1.3), "1.3000");
+    assert_eq!(speed(0.6077971), "0.607797");
+    assert_eq!(speed(f64::NAN), "—");
+    let mut a = App::new(
+        Scene::preset("fig2").unwrap(),
+        Theme::builtin("mono").unwrap(),
+    );
+    for _ in 0..20 {
+        a.tick();
+    }
+    a.page = Page::TimePlots;
+    let screen = render(&mut a, 100, 34);
+    for words in ["━ ξ  ·· Sec. III approx.", "━ E − E(0)  ·· −∫|u|dτ"] {
+        assert!(screen.contains(words), "{words}\n{screen}");
     }
 }

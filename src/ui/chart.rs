@@ -206,7 +206,8 @@ pub fn render_bare(
     let mut legend = vec![Span::styled(format!("{} ", chart.y_label), muted)];
     let mut used = legend[0].width();
     for s in chart.series.iter().filter(|s| !s.name.is_empty()) {
-        let text = format!("━ {}  ", s.name);
+        // Lines and dots named by their own mark, not by colour alone (mono, NO_COLOR).
+        let text = format!("{} {}  ", if s.joined { "━" } else { "··" }, s.name);
         if used + text.trim_end().width() > usize::from(inner.width) {
             break;
         }

@@ -9,7 +9,7 @@ use crate::app::{App, CanvasGeom};
 use crate::engine::model::turn_angle;
 use crate::engine::units::Quantity;
 use crate::engine::{Outcome, Release};
-use crate::ui::panel::num;
+use crate::ui::panel::{num, speed};
 use ratatui::Frame as TuiFrame;
 use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::style::Style;
@@ -117,9 +117,9 @@ fn escape_speed(f: &mut TuiFrame, area: Rect, app: &App) -> Option<CanvasGeom> {
             });
             note = format!(
                 "min {} at {}π, max {} at {}π",
-                num(v0, 4),
+                speed(v0),
                 num(p0 / PI, 2),
-                num(v1, 4),
+                speed(v1),
                 num(p1 / PI, 2)
             );
         }
@@ -198,8 +198,8 @@ fn widest(c: &crate::app::pages::Curve) -> String {
     match best {
         Some((p, lo, hi)) => format!(
             "widest window: sticks for v0 {}–{}, at φ = {}π",
-            num(lo, 4),
-            num(hi, 4),
+            speed(lo),
+            speed(hi),
             num(p / PI, 2)
         ),
         None if c.complete() => "escapes at every speed and angle".into(),

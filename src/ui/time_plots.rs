@@ -113,11 +113,12 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) {
             .map(|k| now * k as f64 / n as f64)
             .filter_map(|t| y(t).map(|v| (t, v)))
             .collect();
+        // Dots: told from the run's line without colour.
         Some(Series {
             name: "Sec. III approx.".into(),
             color: th.muted,
             points: pts,
-            joined: true,
+            joined: false,
         })
     };
     let rotating = app.view == Frame::Table;
@@ -199,7 +200,7 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) {
             name: "Sec. III approx.".into(),
             color: th.muted,
             points: pts,
-            joined: true,
+            joined: false,
         });
     }
     let mut u_s = vec![series("|u|", th.trail, &p, u_of)];
