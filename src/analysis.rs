@@ -6,6 +6,7 @@
 //! of the keys.
 
 use crate::engine::method::Scheme;
+use crate::engine::model::turn_angle;
 use crate::engine::roots::bisect;
 use crate::engine::solve::{CLASSIFY_TAU, critical_radius, escape_speed};
 use crate::engine::{Initial, Outcome, Release, Run, Settings};
@@ -131,7 +132,7 @@ pub fn sticking_speeds(xi0: f64, phi: f64, settings: Settings, tol: f64) -> Spee
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Cell {
     pub outcome: Outcome,
-    /// Final rest ξ and angle (table frame) when stuck.
+    /// Final rest ξ and angle (table frame, in [0, 2π) as every output gives angles) when stuck.
     pub rest: Option<(f64, f64)>,
 }
 
@@ -194,7 +195,7 @@ pub fn classify(initial: Initial, settings: Settings) -> Result<Cell, Error> {
     let q = s.q();
     Ok(Cell {
         outcome,
-        rest: (outcome == Outcome::Stuck).then(|| (q.length(), q.y.atan2(q.x))),
+        rest: (outcome == Outcome::Stuck).then(|| (q.length(), turn_angle(q.y.atan2(q.x)))),
     })
 }
 

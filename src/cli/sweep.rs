@@ -55,7 +55,8 @@ pub fn sweep(a: SweepArgs) -> CmdResult {
                 p.xi0,
                 p.outcome.name(),
                 f(p.xi),
-                f(p.angle)
+                // Angles in [0, 2π), as `run` and `sweep map` give them.
+                f(p.angle.map(crate::engine::model::turn_angle))
             );
         }
     }
