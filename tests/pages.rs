@@ -523,6 +523,18 @@ fn no_number_is_cut_at_any_width() {
         assert_eq!(hint == long, usize::from(w) >= long.chars().count(), "{w}");
         assert!(hint.contains("q quit"), "{w}: {hint}");
     }
+    // A notice too long for the line loses whole words.
+    press(&mut a, KeyCode::Char('3'));
+    let notice = render(&mut a, 60, 20)
+        .lines()
+        .nth(19)
+        .unwrap()
+        .trim_end()
+        .to_string();
+    assert_eq!(
+        notice,
+        " preset C: Fig. 3 C: escapes in the paper; a converged run"
+    );
 }
 
 /// The time plots share one τ axis (τ = 0 in one column in every plot, whatever its tick

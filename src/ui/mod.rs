@@ -127,7 +127,7 @@ fn status_line(app: &App, width: u16) -> Line<'static> {
     let th = &app.theme;
     if let Some(n) = &app.notice {
         return Line::from(Span::styled(
-            format!(" {n}"),
+            fit::fit(&format!(" {n}"), "\0", usize::from(width)),
             Style::default().fg(th.notice),
         ));
     }
