@@ -6,6 +6,8 @@
 //! of the keys.
 
 use crate::engine::method::Scheme;
+use crate::engine::model::turn_angle;
+use crate::engine::roots::bisect;
 use crate::engine::solve::{CLASSIFY_TAU, critical_radius, escape_speed};
 use crate::engine::{Initial, Outcome, Release, Run, Settings};
 use crate::error::Error;
@@ -20,7 +22,7 @@ pub const CURVE_VTOL: f64 = 1e-6;
 /// The paper's Fig. 5 radii.
 pub const PAPER_XI0: [f64; 4] = [0.8, 0.5, 0.2, 0.001];
 /// The largest outcome map asked for, whatever the terminal (it is the plot's size, one cell a
-/// character: see `App::map_size`).
+/// character: see `ui::pages::map_grid`).
 pub const MAP_MAX: (usize, usize) = (400, 200);
 /// Radii of the rest-radius curve (Fig. 6), over [0, [`REST_XI0_MAX`]].
 pub const REST_POINTS: usize = 101;
@@ -46,8 +48,8 @@ pub enum Job {
 /// One computed piece of a job.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Piece {
-    /// Escape speed at angle index `i` (`None`: it could not be bracketed).
-    Escape { i: usize, v: Option<f64> },
+    /// The sticking speeds at angle index `i`.
+    Escape { i: usize, v: Speeds },
     /// Outcome-map cell `i` (row-major, φ fastest).
     Cell { i: usize, cell: Cell },
     /// Fig. 6 point `i`: the final rest ξ (`None`: it escaped).
@@ -56,11 +58,81 @@ pub enum Piece {
     Critical(f64),
 }
 
+/// The release speeds at one angle that end stuck.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Speeds {
+    /// Thrown with lo ≤ v0 < hi it comes to rest, outside that it escapes. Inside ξ = 1,
+    /// lo = 0 and hi is the escape speed v_e; outside, too slow a throw escapes too (Fig. 3 D).
+    Stick { lo: f64, hi: f64 },
+    /// Every speed escapes (outside ξ = 1 only).
+    Escapes,
+    /// The solver could not bracket it.
+    Unknown,
+}
+
+impl Speeds {
+    /// The greatest sticking speed (v_e inside ξ = 1), if there is one.
+    pub fn hi(self) -> Option<f64> {
+        match self {
+            Speeds::Stick { hi, .. } => Some(hi),
+            _ => None,
+        }
+    }
+}
+
+/// Speeds scanned for a sticking window outside ξ = 1: windows are 0.8 wide or more at ξ0 ≤ 3
+/// and the scan's step is 0.04 at ξ0 = 2 (one narrower than a step is missed).
+const WINDOW_SCAN: usize = 200;
+
+/// The speeds at (ξ0, φ) that end stuck, to `tol`. Inside ξ = 1: below the escape speed (the
+/// engine's certified solver). Outside: a scan of [`WINDOW_SCAN`] speeds up to the solver's
+/// ceiling 2(1 + ξ0) + 2 finds the window, bisection on the outcome sets each edge.
+pub fn sticking_speeds(xi0: f64, phi: f64, settings: Settings, tol: f64) -> Speeds {
+    if xi0 <= 1.0 {
+        return escape_speed(xi0, phi, settings, tol).map_or(Speeds::Unknown, |t| Speeds::Stick {
+            lo: 0.0,
+            hi: t.value,
+        });
+    }
+    let sticks = |v0: f64| {
+        classify(Initial::velocity(xi0, phi, v0), settings).map(|c| c.outcome == Outcome::Stuck)
+    };
+    let top = 2.0 * (1.0 + xi0) + 2.0;
+    let grid: Vec<f64> = (0..=WINDOW_SCAN)
+        .map(|k| top * k as f64 / WINDOW_SCAN as f64)
+        .collect();
+    let Ok(stuck) = grid
+        .iter()
+        .map(|&v| sticks(v))
+        .collect::<Result<Vec<_>, _>>()
+    else {
+        return Speeds::Unknown;
+    };
+    let (Some(first), Some(last)) = (
+        stuck.iter().position(|s| *s),
+        stuck.iter().rposition(|s| *s),
+    ) else {
+        return Speeds::Escapes;
+    };
+    if first == 0 || last + 1 == grid.len() {
+        return Speeds::Unknown;
+    }
+    let lo = bisect(grid[first - 1], grid[first], tol, sticks);
+    let hi = bisect(grid[last], grid[last + 1], tol, |v| sticks(v).map(|s| !s));
+    match (lo, hi) {
+        (Ok((a, b, _)), Ok((c, d, _))) => Speeds::Stick {
+            lo: 0.5 * (a + b),
+            hi: 0.5 * (c + d),
+        },
+        _ => Speeds::Unknown,
+    }
+}
+
 /// One cell of the outcome map: how a release there ends, and where it rests if it sticks.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Cell {
     pub outcome: Outcome,
-    /// Final rest ξ and angle (table frame) when stuck.
+    /// Final rest ξ and angle (table frame, in [0, 2π) as every output gives angles) when stuck.
     pub rest: Option<(f64, f64)>,
 }
 
@@ -134,7 +206,7 @@ pub fn classify(initial: Initial, settings: Settings) -> Result<Cell, Error> {
     let q = s.q();
     Ok(Cell {
         outcome,
-        rest: (outcome == Outcome::Stuck).then(|| (q.length(), q.y.atan2(q.x))),
+        rest: (outcome == Outcome::Stuck).then(|| (q.length(), turn_angle(q.y.atan2(q.x)))),
     })
 }
 
@@ -178,9 +250,7 @@ pub fn piece(job: &Job, k: usize, settings: Settings) -> Piece {
     match *job {
         Job::Curve { xi0 } => {
             let phi = angle(k, CURVE_POINTS);
-            let v = escape_speed(xi0, phi, curve_settings(settings), CURVE_VTOL)
-                .ok()
-                .map(|t| t.value);
+            let v = sticking_speeds(xi0, phi, curve_settings(settings), CURVE_VTOL);
             Piece::Escape { i: k, v }
         }
         Job::Map {

@@ -20,6 +20,19 @@ pub struct Scene {
     /// A real table (μ, rpm, g): readouts in SI too.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub units: Option<crate::engine::units::Units>,
+    /// How the explorer showed it when saved.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub view: Option<View>,
+}
+
+/// The explorer's view of a scene: the page, the frame drawn, force arrows, zoom.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct View {
+    pub page: crate::app::pages::Page,
+    pub frame: crate::engine::Frame,
+    pub forces: bool,
+    pub zoom: f64,
 }
 
 /// The paper's reference cases (CONVENTIONS.md), in the order of their keys.
@@ -64,6 +77,7 @@ impl Scene {
             initial,
             settings: Settings::default(),
             units: None,
+            view: None,
         })
     }
 

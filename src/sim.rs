@@ -254,11 +254,6 @@ impl Sim {
         }
         before != (self.cursor, self.samples.len())
     }
-
-    /// One tick back through history.
-    pub fn back(&mut self) {
-        self.cursor = self.cursor.saturating_sub(1);
-    }
 }
 
 /// How far the state on screen is from a shadow run at a tighter setting.

@@ -465,3 +465,42 @@ fn each_sweep_takes_only_its_own_flags() {
         assert!(err.contains("unexpected argument"), "{args:?}: {err}");
     }
 }
+
+/// One angle convention on every output (issue 18): `sweep map` and `sweep fig6` give rest
+/// angles in [0, 2π), as `run` does (they wrote raw atan2, some negative).
+#[test]
+fn sweep_angles_lie_in_zero_to_two_pi() {
+    let runs = [
+        vec![
+            "sweep",
+            "map",
+            "--xi0",
+            "0.5",
+            "--phi-points",
+            "12",
+            "--v0-points",
+            "6",
+            "--v0-max",
+            "1",
+        ],
+        vec!["sweep", "fig6", "--points", "12"],
+    ];
+    for args in runs {
+        let (code, out, err) = turntable(&args);
+        assert_eq!(code, 0, "{err}");
+        let mut n = 0;
+        for line in out.lines().skip(1) {
+            let angle = line.rsplit(',').next().unwrap();
+            if angle.is_empty() {
+                continue;
+            }
+            let a: f64 = angle.parse().unwrap();
+            assert!(
+                (0.0..std::f64::consts::TAU).contains(&a),
+                "{args:?}: {line}"
+            );
+            n += 1;
+        }
+        assert!(n >= 6, "{args:?}: {out}");
+    }
+}

@@ -6,7 +6,6 @@ use crossterm::event::{KeyCode, KeyEvent, KeyModifiers, MouseButton, MouseEvent,
 use turntable::app::keymap::KEYMAP;
 use turntable::app::pages::Page;
 use turntable::app::{Action, App};
-use turntable::engine::units::Units;
 use turntable::engine::{Frame, Outcome, Run, Settings, Status};
 use turntable::scene::{PRESETS, Scene};
 use turntable::theme::Theme;
@@ -147,6 +146,14 @@ fn every_key_in_the_keymap_does_what_its_help_says() {
         if b.action == Action::Dismiss {
             a.help = true;
         }
+        if let Action::TauWindow(narrow) = b.action {
+            a.page = Page::TimePlots;
+            a.tau_window = (!narrow).then_some(1e-2);
+        }
+        if matches!(b.action, Action::HelpScroll(_) | Action::HelpPage(_)) {
+            a.help = true;
+            a.help_scroll = 5;
+        }
         let before = render(&mut a, 80, 24);
         let (tau, init, set) = (a.sim.now().tau, a.initial, a.settings);
         let (speed, zoom, pan) = (a.speed, a.zoom, a.pan);
@@ -162,6 +169,11 @@ fn every_key_in_the_keymap_does_what_its_help_says() {
             Action::Quit => a.should_quit(),
             Action::Dismiss => !a.help && !a.should_quit(),
             Action::ToggleHelp => a.help && after.contains("help"),
+            // 80×24 shows 21 rows of the help's 31: 10 to scroll, a page is 21.
+            Action::HelpScroll(d) => i32::from(a.help_scroll) == 5 + i32::from(d),
+            Action::TauWindow(true) => a.tau_window.is_some_and(|w| w < now),
+            Action::TauWindow(false) => a.tau_window == Some(2e-2),
+            Action::HelpPage(d) => a.help_scroll == if d > 0 { 10 } else { 0 },
             Action::PlayPause => !a.is_playing() && after.contains("❚❚"),
             Action::StepForward => now > tau && !a.is_playing(),
             Action::StepBack => now < tau,
@@ -197,9 +209,10 @@ fn every_key_in_the_keymap_does_what_its_help_says() {
                 a.forces && after.contains("friction") && !after.contains("Coriolis")
             }
             Action::EstimateError => after.contains("|Δr| ="),
-            // Off at first: the first press turns SI units on at the paper's table.
+            // Off at first: the first press turns SI units on at a record player's.
             Action::Unit(..) => {
-                a.units == Some(Units::paper()) && after.contains("SI units: μ 0.15")
+                a.units == Some(turntable::app::state::record_player())
+                    && after.contains("SI units: μ 0.15")
             }
             Action::UnitsOff => a.units.is_none() && after.contains("SI units off"),
             Action::ZoomIn => a.zoom > zoom,
@@ -298,9 +311,12 @@ fn help_overlay_lists_every_binding() {
             b.chord.label()
         );
     }
-    // 80×24 fits it too.
+    // 80×24 shows it in two pages.
     let small = render(&mut a, 80, 24);
-    assert!(small.contains("presets A B C D fig1 fig2") && small.contains("q/Ctrl-c       quit"));
+    assert!(small.contains("presets A B C D fig1") && small.contains("rows 1–21 of 31, ↓ more"));
+    a.handle_key(KeyEvent::new(KeyCode::PageDown, KeyModifiers::NONE));
+    let small = render(&mut a, 80, 24);
+    assert!(small.contains("q/Ctrl-c       quit") && small.contains("rows 11–31 of 31"));
     assert!(
         small.contains("Esc            close help / notice"),
         "{small}"
@@ -309,6 +325,58 @@ fn help_overlay_lists_every_binding() {
         !small.contains("/ onM") && !small.contains("fig2q"),
         "{small}"
     );
+}
+
+/// Help scrolls at every size (↓ and the wheel) until every key, the mouse and the glyphs
+/// have been on screen, and it says where the reader is (issue 18).
+#[test]
+fn help_scrolls_to_everything_at_every_size() {
+    let labels: Vec<String> = turntable::ui::help::rows()
+        .into_iter()
+        .flat_map(|(_, rs)| rs.into_iter().map(|(l, _)| l))
+        .chain(["click", "drag", "wheel", "●", "○", "■", "×", "·", "↺"].map(String::from))
+        .collect();
+    for (w, h) in [(40, 12), (56, 30), (59, 24), (60, 20), (80, 24), (200, 60)] {
+        let mut a = app("C");
+        key(&mut a, '?');
+        let mut seen = render(&mut a, w, h);
+        assert!(
+            seen.contains("↑ ↓ PgUp PgDn wheel scroll") || w < 60,
+            "{w}×{h}\n{seen}"
+        );
+        let first = seen.clone();
+        for i in 0..100 {
+            let before = a.help_scroll;
+            if i % 2 == 0 {
+                a.handle_key(KeyEvent::new(KeyCode::Down, KeyModifiers::NONE));
+            } else {
+                a.handle_mouse(MouseEvent {
+                    kind: MouseEventKind::ScrollDown,
+                    column: w / 2,
+                    row: h / 2,
+                    modifiers: KeyModifiers::NONE,
+                });
+            }
+            seen += &render(&mut a, w, h);
+            if a.help_scroll == before {
+                break;
+            }
+        }
+        for l in &labels {
+            assert!(
+                seen.contains(&format!(" {l} ")),
+                "{w}×{h}: '{l}' never shown"
+            );
+        }
+        if first.contains("↓ more") {
+            assert!(a.help_scroll > 0 && !render(&mut a, w, h).contains("↓ more"));
+        }
+        // Back to the top with PgUp.
+        for _ in 0..20 {
+            a.handle_key(KeyEvent::new(KeyCode::PageUp, KeyModifiers::NONE));
+        }
+        assert_eq!(render(&mut a, w, h), first, "{w}×{h}");
+    }
 }
 
 #[test]
@@ -735,7 +803,7 @@ fn integrator_steps_one_at_a_time() {
     assert_eq!(a.sim.run.outcome(), Outcome::Running);
 }
 
-/// SI units from the keys: the first press turns them on at the paper's table, the next change
+/// SI units from the keys: the first press turns them on at a record player's (33⅓ rpm), the next change
 /// μ, rpm and g; the panel and the time plots' axes show SI values; Alt-u turns them off.
 #[test]
 fn unit_keys_give_si_readouts_and_axes() {
@@ -744,12 +812,12 @@ fn unit_keys_give_si_readouts_and_axes() {
         a.handle_key(KeyEvent::new(KeyCode::Char(c), m));
     };
     press(&mut a, 'u', KeyModifiers::NONE);
-    assert_eq!(a.units, Some(Units::paper()));
+    assert_eq!(a.units, Some(turntable::app::state::record_player()));
     press(&mut a, 'u', KeyModifiers::NONE);
     press(&mut a, 'w', KeyModifiers::NONE);
     press(&mut a, 'G', KeyModifiers::NONE);
     let u = a.units.unwrap();
-    let paper = Units::paper();
+    let paper = turntable::app::state::record_player();
     assert!((u.mu - 0.16).abs() < 1e-12, "{u:?}");
     assert!((u.rpm - (paper.rpm + 1.0)).abs() < 1e-9, "{u:?}");
     assert!((u.g - 9.8).abs() < 1e-12, "{u:?}");
@@ -768,4 +836,160 @@ fn unit_keys_give_si_readouts_and_axes() {
     assert_eq!(a.units, None);
     let screen = render(&mut a, 100, 30);
     assert!(!screen.contains("(1 ="), "{screen}");
+}
+
+/// A preset loads as itself: D's φ = 1.2π is held as −0.8π, the same angle, so the title keeps
+/// the preset's words and `s` saves it under its own name (issue 18).
+#[test]
+fn every_preset_loads_unedited() {
+    for name in PRESETS {
+        let a = app(name);
+        assert!(!a.edited(), "{name}");
+        let scene = a.current_scene();
+        assert_eq!(scene.name, name);
+        assert_eq!(scene.about, Scene::preset(name).unwrap().about);
+    }
+    let mut d = app("D");
+    assert!(render(&mut d, 100, 30).contains("Fig. 3 D: thrown from outside"));
+    key(&mut d, 'p');
+    assert!(d.edited() && d.current_scene().name == "D (edited)");
+}
+
+/// The initial-velocity arrow lies beneath the trail (issue 18): in the rotating frame D's
+/// path runs along its arrow, and every cell the arrow shares with the trail shows the trail.
+#[test]
+fn the_trail_is_drawn_over_the_initial_velocity_arrow() {
+    let th = theme();
+    assert_ne!(th.trail, th.arrow);
+    let mut a = app("D");
+    key(&mut a, 'f');
+    for _ in 0..40 {
+        a.tick();
+    }
+    let mut t = ratatui::Terminal::new(ratatui::backend::TestBackend::new(80, 24)).unwrap();
+    a.resize(80, 24);
+    t.draw(|f| {
+        turntable::ui::draw(f, &a);
+    })
+    .unwrap();
+    let buf = t.backend().buffer().clone();
+    let count = |c| buf.content.iter().filter(|x| x.fg == c).count();
+    let (trail, arrow) = (count(th.trail), count(th.arrow));
+    // Before, the arrow covered the whole path: 0 trail cells against the arrow's 8.
+    assert!(trail >= 4 && trail >= arrow, "trail {trail} arrow {arrow}");
+}
+
+/// A step is one tick at the speed now, through history too (issue 18): after ×64 play and
+/// back to ×1, `,` goes back 0.05 in τ (it went back a ×64 tick, 3.2), `.` forward again.
+#[test]
+fn steps_through_fast_history_are_one_tick_at_the_speed_now() {
+    let mut a = app("A");
+    key(&mut a, 'c');
+    for _ in 0..6 {
+        key(&mut a, ']');
+    }
+    for _ in 0..3 {
+        a.tick();
+    }
+    for _ in 0..6 {
+        key(&mut a, '[');
+    }
+    assert_eq!(a.speed, 1.0);
+    let t0 = a.sim.now().tau;
+    assert!((t0 - 9.6).abs() < 1e-9, "{t0}");
+    key(&mut a, ',');
+    let t1 = a.sim.now().tau;
+    assert!((t0 - t1 - 0.05).abs() < 1e-9, "{t0} → {t1}");
+    assert!((a.paper.as_ref().unwrap().now().tau - t1).abs() < 1e-9);
+    // The state there is the run's own (at rest, riding the table), not a copy of another.
+    let Status::Stuck { q, .. } = a.sim.run.status else {
+        panic!("A sticks")
+    };
+    assert_eq!(a.sim.now(), turntable::engine::State::riding(q, t1));
+    key(&mut a, ',');
+    assert!((a.sim.now().tau - (t0 - 0.1)).abs() < 1e-9);
+    key(&mut a, '.');
+    assert!((a.sim.now().tau - (t0 - 0.05)).abs() < 1e-9);
+    key(&mut a, '.');
+    key(&mut a, '.');
+    assert!((a.sim.now().tau - (t0 + 0.05)).abs() < 1e-9);
+    a.check_invariants().unwrap();
+    // Still sliding, the state a tick back is the path's, on its τ grid.
+    let mut c = app("C");
+    key(&mut c, ']');
+    key(&mut c, ']');
+    for _ in 0..3 {
+        c.tick();
+    }
+    key(&mut c, '[');
+    key(&mut c, '[');
+    key(&mut c, ',');
+    let now = c.sim.now();
+    assert!((now.tau - 0.55).abs() < 1e-9 && c.sim.run.status == Status::Slipping);
+    assert!(c.sim.path.contains(&now));
+}
+
+/// The title tells what is on screen at the τ on screen, in the panel's notation; `s` saves
+/// how the run ends (nothing while undecided) and the view (issue 18).
+#[test]
+fn the_title_and_a_saved_scene_tell_what_is_on_screen() {
+    let dir = std::env::temp_dir().join(format!("turntable-about-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let mut a = app("C");
+    key(&mut a, 'V');
+    a.tick();
+    a.tick();
+    // The integrator looks ahead of the screen; the title reads the screen's τ.
+    let shown = a.sim.now().tau;
+    assert!(a.sim.run.tau() > shown, "{} {shown}", a.sim.run.tau());
+    let screen = render(&mut a, 100, 30);
+    let title = screen.lines().next().unwrap().to_string();
+    assert!(
+        title.contains(&format!("C, edited: sliding at τ = {}", num(shown, 3))),
+        "{title}"
+    );
+    assert!(!title.contains("tau") && !title.contains("xi"), "{title}");
+    // Undecided: saved with no words about its end.
+    a.save_path = dir.join("undecided.toml");
+    key(&mut a, 's');
+    let saved = Scene::load(dir.join("undecided.toml").to_str().unwrap()).unwrap();
+    assert_eq!(
+        (saved.name.as_str(), saved.about.as_str()),
+        ("C (edited)", "")
+    );
+    // Decided: how it ends, and the view it was shown in.
+    for _ in 0..200 {
+        a.tick();
+    }
+    let Status::Stuck { tau, q } = a.sim.run.status else {
+        panic!("C with v0 − 0.001 sticks")
+    };
+    key(&mut a, 'f');
+    key(&mut a, 'a');
+    key(&mut a, '+');
+    key(&mut a, 'x');
+    key(&mut a, 'X');
+    a.save_path = dir.join("decided.toml");
+    // x then X: the edit is undone, the run restarted; play it to its end again.
+    for _ in 0..200 {
+        a.tick();
+    }
+    key(&mut a, 's');
+    let saved = Scene::load(dir.join("decided.toml").to_str().unwrap()).unwrap();
+    assert_eq!(
+        saved.about,
+        format!("sticks at ξ = {} (τ = {})", num(q.length(), 4), num(tau, 3))
+    );
+    let view = saved.view.unwrap();
+    assert_eq!(
+        (view.frame, view.forces, view.zoom),
+        (Frame::Table, true, a.zoom)
+    );
+    assert!(view.zoom > 1.0);
+    let back = App::new(saved, theme());
+    assert_eq!(
+        (back.view, back.forces, back.zoom),
+        (Frame::Table, true, a.zoom)
+    );
+    let _ = std::fs::remove_dir_all(&dir);
 }

@@ -76,7 +76,7 @@ fn the_escape_speed_page_holds_the_solver_s_curves() {
         let v = escape_speed(0.5, phi, Settings::dp54(1e-12), 1e-10)
             .unwrap()
             .value;
-        let got = c.ve[i].unwrap().unwrap();
+        let got = c.ve[i].unwrap().hi().unwrap();
         assert!(
             (got - v).abs() <= 0.5 * CURVE_VTOL + 1e-10,
             "φ {phi}: {got} vs {v}"
@@ -88,14 +88,14 @@ fn the_escape_speed_page_holds_the_solver_s_curves() {
     let label = |v: f64, p: f64| {
         format!(
             "{} at {}π",
-            turntable::ui::panel::num(v, 4),
+            turntable::ui::panel::speed(v),
             turntable::ui::panel::num(p / std::f64::consts::PI, 2)
         )
     };
     let note = format!("min {}, max {}", label(vmin, pmin), label(vmax, pmax));
     assert!(screen.contains(&note), "{note}\n{screen}");
     // C's v0 = 0.6078 at φ = 0 is below v_e(0) there: the page says it sticks.
-    assert!(c.ve[0].unwrap().unwrap() > a.initial.v0);
+    assert!(c.ve[0].unwrap().hi().unwrap() > a.initial.v0);
     assert!(screen.contains("release sticks (below v_e)"), "{screen}");
 }
 
@@ -127,7 +127,7 @@ fn the_outcome_map_agrees_with_the_escape_speeds() {
             // v_e at the cell's angle lies between the curve's neighbours there.
             let k = (phi / TAU * c as f64) as usize;
             let (a, b) = (curve.ve[k], curve.ve[(k + 1) % c]);
-            let (a, b) = (a.unwrap().unwrap(), b.unwrap().unwrap());
+            let (a, b) = (a.unwrap().hi().unwrap(), b.unwrap().hi().unwrap());
             let (ve_lo, ve_hi) = (a.min(b), a.max(b));
             if v0 < ve_lo - 1e-3 {
                 assert_eq!(cell.outcome, Outcome::Stuck, "φ_{i} v0 {v0} < {ve_lo}");
@@ -309,7 +309,10 @@ fn the_escape_page_does_not_guess_between_its_angles() {
     let s = settings_for(a.settings);
     let c = a.charts.curve(0.5, s).unwrap().clone();
     let n = c.ve.len();
-    let (v1, v2) = (c.ve[1].unwrap().unwrap(), c.ve[2].unwrap().unwrap());
+    let (v1, v2) = (
+        c.ve[1].unwrap().hi().unwrap(),
+        c.ve[2].unwrap().hi().unwrap(),
+    );
     a.initial.phi = 1.5 * TAU / n as f64;
     for (v0, words) in [
         (0.5 * (v1 + v2), "release ≈ v_e: Enter runs it to see"),
@@ -319,5 +322,315 @@ fn the_escape_page_does_not_guess_between_its_angles() {
         a.initial.v0 = v0;
         let screen = render(&mut a, 100, 30);
         assert!(screen.contains(words), "{v0}: {words}\n{screen}");
+    }
+}
+
+/// Outside ξ = 1 a throw too slow escapes as well as one too fast (Fig. 3 D): the escape page
+/// draws the sticking window's two edges, each a certified bracket of outcomes, judges the
+/// release against it, and the outcome map's speeds cover it.
+#[test]
+fn outside_xi_1_the_pages_show_the_sticking_window() {
+    let s = settings_for(Settings::default());
+    let ends = |xi0: f64, phi: f64, v0: f64| {
+        turntable::analysis::classify(turntable::engine::Initial::velocity(xi0, phi, v0), s)
+            .unwrap()
+            .outcome
+    };
+    let mut a = app("D");
+    for xi0 in [1.1, 1.05, 1.3, 2.0] {
+        a.initial.xi0 = xi0;
+        a.page = Page::EscapeSpeed;
+        a.sync_analysis();
+        let c = a.charts.curve(xi0, s).expect("curve").clone();
+        assert!(c.complete(), "{xi0}");
+        let windows: Vec<(usize, f64, f64)> = (0..c.ve.len())
+            .filter_map(|k| match c.ve[k].unwrap() {
+                analysis::Speeds::Stick { lo, hi } => Some((k, lo, hi)),
+                _ => None,
+            })
+            .collect();
+        // Inward throws only: about a quarter of the angles at most, and some at every ξ0.
+        assert!(
+            !windows.is_empty() && windows.len() < 24,
+            "{xi0}: {windows:?}"
+        );
+        for &(k, lo, hi) in windows.iter().step_by(3) {
+            let phi = analysis::angle(k, c.ve.len());
+            assert!(lo > 0.0 && hi > lo + 0.05, "{xi0} φ {phi}: {lo} {hi}");
+            let d = CURVE_VTOL;
+            assert_eq!(
+                ends(xi0, phi, lo - d),
+                Outcome::Escaped,
+                "{xi0} φ {phi} {lo}"
+            );
+            assert_eq!(ends(xi0, phi, lo + d), Outcome::Stuck, "{xi0} φ {phi} {lo}");
+            assert_eq!(ends(xi0, phi, hi - d), Outcome::Stuck, "{xi0} φ {phi} {hi}");
+            assert_eq!(
+                ends(xi0, phi, hi + d),
+                Outcome::Escaped,
+                "{xi0} φ {phi} {hi}"
+            );
+        }
+        let screen = render(&mut a, 100, 30);
+        assert!(screen.contains("sticking window (Fig. 3 D)"), "{screen}");
+        assert!(screen.contains("widest window: sticks for v0 "), "{screen}");
+        assert!(
+            !screen.contains("min 0.0000") && !screen.contains("(above v_e)"),
+            "{screen}"
+        );
+        // The map's speeds reach past the window's top, and it has stuck cells.
+        a.page = Page::OutcomeMap;
+        a.sync_analysis();
+        let top = windows.iter().map(|w| w.2).fold(0.0, f64::max);
+        let map = a.charts.map.clone().expect("map");
+        let analysis::Job::Map { v0_max, .. } = map.job else {
+            panic!()
+        };
+        assert!(v0_max > top, "{xi0}: {v0_max} {top}");
+        let stuck = map
+            .cells
+            .iter()
+            .flatten()
+            .filter(|c| c.outcome == Outcome::Stuck);
+        assert!(stuck.count() > 5, "{xi0}");
+    }
+    // D itself: thrown at 1.3 at 1.2π from ξ0 = 1.1 it sticks (at ξ = 0.67495); slower than
+    // the window's floor it escapes.
+    let mut d = app("D");
+    d.page = Page::EscapeSpeed;
+    let screen = render(&mut d, 100, 30);
+    assert!(
+        screen.contains("release sticks (in the window)"),
+        "{screen}"
+    );
+    d.initial.v0 = 0.3;
+    let screen = render(&mut d, 100, 30);
+    assert!(
+        screen.contains("release escapes (below the window)"),
+        "{screen}"
+    );
+    d.initial.v0 = 3.0;
+    let screen = render(&mut d, 100, 30);
+    assert!(
+        screen.contains("release escapes (above the window)"),
+        "{screen}"
+    );
+    d.initial.phi = 0.0;
+    let screen = render(&mut d, 100, 30);
+    assert!(
+        screen.contains("release escapes (no window at this φ)"),
+        "{screen}"
+    );
+}
+
+/// One layout for drawing, the map's grid and the mouse (issue 18): at every size the map has
+/// a cell per character of the plot drawn, and a click on a character picks that cell's
+/// release; where no plot fits, no map is computed and a click does nothing.
+#[test]
+fn the_map_grid_is_the_drawn_plot_at_every_size() {
+    use turntable::analysis::Job;
+    for (w, h) in [(40, 12), (56, 30), (59, 24), (60, 20), (80, 24), (200, 60)] {
+        let mut a = app("C");
+        a.page = Page::OutcomeMap;
+        a.resize(w, h);
+        render(&mut a, w, h);
+        let job = a.charts.map.as_ref().map(|m| m.job);
+        let Some(g) = a.geom_for_tests() else {
+            assert_eq!((w, h), (40, 12), "no plot at {w}×{h}");
+            assert_eq!(job, None, "a map no one sees at {w}×{h}");
+            continue;
+        };
+        let Some(Job::Map { size, v0_max, .. }) = job else {
+            panic!("{w}×{h}: {job:?}")
+        };
+        assert_eq!(
+            size,
+            (usize::from(g.area.width), usize::from(g.area.height)),
+            "{w}×{h}"
+        );
+        assert!(
+            a.charts
+                .map
+                .as_ref()
+                .unwrap()
+                .cells
+                .iter()
+                .all(Option::is_some)
+        );
+        // A click on the plot's character (3, 2) picks the release of cell (3, rows − 3).
+        let (n, m) = size;
+        let k = (m - 3) * n + 3;
+        let (phi, v0) = map_cell(k, size, v0_max);
+        a.handle_mouse(MouseEvent {
+            kind: MouseEventKind::Down(MouseButton::Left),
+            column: g.area.x + 3,
+            row: g.area.y + 2,
+            modifiers: KeyModifiers::NONE,
+        });
+        assert!(
+            (a.initial.phi.rem_euclid(TAU) - phi).abs() < 1e-6 && (a.initial.v0 - v0).abs() < 1e-6,
+            "{w}×{h}: {} {} vs {phi} {v0}",
+            a.initial.phi,
+            a.initial.v0
+        );
+    }
+}
+
+/// Narrow screens drop whole fields, never digits (issue 18): the escape page's ξ0 and its
+/// min/max, the status hint at every width (the long one only where it fits, measured).
+#[test]
+fn no_number_is_cut_at_any_width() {
+    let mut a = app("C");
+    a.page = Page::EscapeSpeed;
+    a.sync_analysis();
+    let s = settings_for(a.settings);
+    let ((_, vmin), (_, vmax)) = a.charts.curve(0.5, s).unwrap().extremes().unwrap();
+    let (min, max) = (
+        turntable::ui::panel::speed(vmin),
+        turntable::ui::panel::speed(vmax),
+    );
+    let long = " ? help  Space play  .,  step  [] speed  f frame  m method  c compare  a forces  1-6 presets  x/p/v edit  q quit";
+    let short = " ? help  q quit  Space play  ., step  f frame  m method  c compare  1-6 presets";
+    for w in 40..=130u16 {
+        let screen = render(&mut a, w, 20);
+        let lines: Vec<&str> = screen.lines().collect();
+        let title = lines[1];
+        assert!(
+            title.contains("ξ0 = 0.500") || !title.contains("ξ0 ="),
+            "{w}: {title}"
+        );
+        let note = lines
+            .iter()
+            .rev()
+            .find(|l| l.contains("min"))
+            .copied()
+            .unwrap_or("");
+        assert!(
+            note.is_empty() || note.contains(&format!("min {min} at")),
+            "{w}: {note}"
+        );
+        assert!(
+            !note.contains("max") || note.contains(&format!("max {max} at")),
+            "{w}: {note}"
+        );
+        // The hint: whole hints of one of the two, ending where a hint ends.
+        let hint = lines[19].trim_end();
+        let whole = |full: &str| {
+            full.starts_with(hint)
+                && (full.len() == hint.len() || full[hint.len()..].starts_with("  "))
+        };
+        assert!(whole(long) || whole(short), "{w}: '{hint}'");
+        assert_eq!(hint == long, usize::from(w) >= long.chars().count(), "{w}");
+        assert!(hint.contains("q quit"), "{w}: {hint}");
+    }
+    // A notice too long for the line loses whole words.
+    press(&mut a, KeyCode::Char('3'));
+    let notice = render(&mut a, 60, 20)
+        .lines()
+        .nth(19)
+        .unwrap()
+        .trim_end()
+        .to_string();
+    assert_eq!(
+        notice,
+        " preset C: Fig. 3 C: escapes in the paper; a converged run"
+    );
+}
+
+/// The time plots share one τ axis (τ = 0 in one column in every plot, whatever its tick
+/// labels' width), plot θ as Figs. 1–2 do, and `t`/`T` fix the τ window (issue 18).
+#[test]
+fn the_time_plots_share_one_tau_axis_and_a_fixed_window() {
+    let mut a = App::new(
+        Scene::preset("fig2").unwrap(),
+        Theme::builtin("dark").unwrap(),
+    );
+    for _ in 0..60 {
+        a.tick();
+    }
+    a.page = Page::TimePlots;
+    let screen = render(&mut a, 100, 34);
+    // fig2 is certified to escape at τ = 0: its line's label starts one column right of τ = 0.
+    let cols: Vec<usize> = screen
+        .lines()
+        .filter_map(|l| l.find("escape cert.").map(|b| l[..b].chars().count()))
+        .collect();
+    assert_eq!(cols.len(), 5, "{screen}");
+    assert!(cols.iter().all(|c| *c == cols[0]), "{cols:?}\n{screen}");
+    assert!(screen.contains("θ ━ θ  ·· Sec. III approx."), "{screen}");
+    let ticks = |s: &str| s.lines().rev().nth(4).unwrap_or("").to_string();
+    assert!(ticks(&screen).contains("2.5"), "{screen}");
+    press(&mut a, KeyCode::Char('t'));
+    press(&mut a, KeyCode::Char('t'));
+    assert!((a.tau_window.unwrap() - 0.75).abs() < 1e-12);
+    let narrow = render(&mut a, 100, 34);
+    assert!(
+        ticks(&narrow).contains("0.6") && !ticks(&narrow).contains("2.5"),
+        "{narrow}"
+    );
+    press(&mut a, KeyCode::Char('T'));
+    press(&mut a, KeyCode::Char('T'));
+    assert_eq!(a.tau_window, None);
+    assert_eq!(render(&mut a, 100, 34), screen);
+}
+
+/// A theme that sets a background sets it on every cell of every page, help open or not
+/// (issue 18): chart interiors kept the terminal's own.
+#[test]
+fn a_theme_s_background_covers_every_cell() {
+    for theme in ["dark", "light", "high-contrast"] {
+        let th = Theme::builtin(theme).unwrap();
+        let mut a = App::new(Scene::preset("C").unwrap(), th.clone());
+        for help in [false, true] {
+            a.help = help;
+            for page in [
+                Page::Turntable,
+                Page::TimePlots,
+                Page::EscapeSpeed,
+                Page::OutcomeMap,
+                Page::RestRadius,
+            ] {
+                a.page = page;
+                a.sync_analysis();
+                let mut t =
+                    ratatui::Terminal::new(ratatui::backend::TestBackend::new(80, 24)).unwrap();
+                a.resize(80, 24);
+                t.draw(|f| {
+                    turntable::ui::draw(f, &a);
+                })
+                .unwrap();
+                let bad = t
+                    .backend()
+                    .buffer()
+                    .content
+                    .iter()
+                    .filter(|c| c.bg != th.background);
+                assert_eq!(bad.count(), 0, "{theme} {page:?} help {help}");
+            }
+        }
+    }
+}
+
+/// Told apart without colour (issue 18): a release speed shows the decimals that tell C's
+/// v0 from its escape speed, and the time plots' dotted series (the approximation, −∫|u|dτ)
+/// are named with dots in their legend.
+#[test]
+fn speeds_and_legends_read_without_colour() {
+    use turntable::ui::panel::speed;
+    assert_eq!(speed(0.6078), "0.6078");
+    assert_eq!(speed(1.3), "1.3000");
+    assert_eq!(speed(0.6077971), "0.607797");
+    assert_eq!(speed(f64::NAN), "—");
+    let mut a = App::new(
+        Scene::preset("fig2").unwrap(),
+        Theme::builtin("mono").unwrap(),
+    );
+    for _ in 0..20 {
+        a.tick();
+    }
+    a.page = Page::TimePlots;
+    let screen = render(&mut a, 100, 34);
+    for words in ["━ ξ  ·· Sec. III approx.", "━ E − E(0)  ·· −∫|u|dτ"] {
+        assert!(screen.contains(words), "{words}\n{screen}");
     }
 }

@@ -7,6 +7,12 @@ pub enum Action {
     /// Close the help or a notice (never quits).
     Dismiss,
     ToggleHelp,
+    /// Scroll the help by this many rows, or pages (down positive).
+    HelpScroll(i16),
+    HelpPage(i16),
+    /// The time plots' τ window: halve it (fixing it), or double it (back to the whole run
+    /// once it reaches the τ on screen).
+    TauWindow(bool),
     PlayPause,
     StepForward,
     StepBack,
@@ -60,7 +66,7 @@ pub enum Action {
     Omega(f64),
     R0c(f64),
     /// SI units: change μ, the table's rpm or g by this much (turning units on, from the
-    /// paper's table, if they were off).
+    /// record player of `state::record_player`, if they were off).
     Unit(UnitKnob, f64),
     /// Dimensionless readouts only.
     UnitsOff,

@@ -110,6 +110,8 @@ impl Chord {
             KeyCode::Right => "→".into(),
             KeyCode::Up => "↑".into(),
             KeyCode::Down => "↓".into(),
+            KeyCode::PageUp => "PgUp".into(),
+            KeyCode::PageDown => "PgDn".into(),
             other => format!("{other}"),
         }
     }

@@ -41,7 +41,15 @@ impl App {
     /// The mouse as actions, through the canvas as last drawn: a click places the release
     /// point, a drag sets the initial velocity, the wheel zooms.
     pub fn handle_mouse(&mut self, ev: MouseEvent) {
-        if !self.mouse || self.help {
+        if !self.mouse {
+            return;
+        }
+        if self.help {
+            match ev.kind {
+                MouseEventKind::ScrollUp => update(self, Action::HelpScroll(-3)),
+                MouseEventKind::ScrollDown => update(self, Action::HelpScroll(3)),
+                _ => {}
+            }
             return;
         }
         let Some(g) = self.geom else { return };

@@ -2,12 +2,13 @@
 //! what it lacks ([`wanted`]); results arrive piece by piece ([`Charts::apply`]).
 
 use crate::analysis::{
-    CURVE_POINTS, Cell, Job, PAPER_XI0, Piece, REST_POINTS, pieces, settings_for,
+    CURVE_POINTS, Cell, Job, PAPER_XI0, Piece, REST_POINTS, Speeds, pieces, settings_for,
 };
 use crate::engine::{Initial, Release, Settings};
 
 /// What the body of the screen shows, in `Tab` order.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
 pub enum Page {
     #[default]
     Turntable,
@@ -48,13 +49,13 @@ impl Page {
     }
 }
 
-/// v_e(φ) at one ξ0, filled in as it arrives (`None`: not yet; `Some(None)`: no escape speed
-/// could be bracketed there).
+/// The sticking speeds over φ at one ξ0 (v_e(φ) inside ξ = 1), filled in as they arrive
+/// (`None`: not yet).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Curve {
     pub xi0: f64,
     pub settings: Settings,
-    pub ve: Vec<Option<Option<f64>>>,
+    pub ve: Vec<Option<Speeds>>,
 }
 
 impl Curve {
@@ -62,15 +63,27 @@ impl Curve {
         self.ve.iter().all(Option::is_some)
     }
 
-    /// The computed points (φ, v_e).
+    /// The computed points (φ, v_e): the greatest sticking speed at each angle.
     pub fn points(&self) -> Vec<(f64, f64)> {
+        self.edge(|lo, hi| (hi, lo))
+    }
+
+    /// Outside ξ = 1, the least sticking speed at each angle (φ, lo): the window's floor.
+    pub fn floor(&self) -> Vec<(f64, f64)> {
+        self.edge(|lo, hi| (lo, hi))
+    }
+
+    fn edge(&self, pick: impl Fn(f64, f64) -> (f64, f64)) -> Vec<(f64, f64)> {
         let n = self.ve.len();
         (0..n)
-            .filter_map(|i| Some((crate::analysis::angle(i, n), self.ve[i]??)))
+            .filter_map(|i| match self.ve[i]? {
+                Speeds::Stick { lo, hi } => Some((crate::analysis::angle(i, n), pick(lo, hi).0)),
+                _ => None,
+            })
             .collect()
     }
 
-    /// The least and greatest v_e found, with their angles.
+    /// The least and greatest v_e found (the window's top outside ξ = 1), with their angles.
     pub fn extremes(&self) -> Option<((f64, f64), (f64, f64))> {
         let pts = self.points();
         let min = pts.iter().copied().min_by(|a, b| a.1.total_cmp(&b.1))?;
@@ -231,13 +244,13 @@ impl Charts {
 }
 
 /// The next job `page` needs and lacks for these initial conditions and settings, if any; an
-/// outcome map of `map_size` cells.
+/// outcome map of the grid `map_grid` gives for its speed range (none when no plot fits).
 pub fn wanted(
     page: Page,
     charts: &Charts,
     initial: &Initial,
     settings: Settings,
-    map_size: (usize, usize),
+    map_grid: impl Fn(f64) -> Option<(usize, usize)>,
 ) -> Option<Job> {
     let settings = settings_for(settings);
     let missing_curve = |xi0: f64| {
@@ -254,11 +267,12 @@ pub fn wanted(
                 return Some(job);
             }
             let curve = charts.curve(initial.xi0, settings)?;
+            let v0_max = Charts::map_v0_max(curve, initial.release, initial.xi0);
             let job = Job::Map {
                 xi0: initial.xi0,
                 release: initial.release,
-                v0_max: Charts::map_v0_max(curve, initial.release, initial.xi0),
-                size: map_size,
+                v0_max,
+                size: map_grid(v0_max)?,
             };
             let done = charts.map.as_ref().is_some_and(|m| {
                 m.job == job && m.settings == settings && m.cells.iter().all(Option::is_some)

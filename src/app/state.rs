@@ -7,6 +7,7 @@ use crate::engine::{Frame, Initial, Settings, State};
 use crate::scene::Scene;
 use crate::sim::Sim;
 use crate::theme::Theme;
+use crate::ui::panel::num;
 use ratatui::layout::Rect;
 use std::path::PathBuf;
 
@@ -17,8 +18,16 @@ pub const SPEED_RANGE: (f64, f64) = (1.0 / 64.0, 256.0);
 pub const ZOOM_RANGE: (f64, f64) = (1.0 / 64.0, 1024.0);
 /// Gravity for the SI readouts unless a scene or flag says otherwise (m/s²).
 pub const G_DEFAULT: f64 = 9.81;
-/// The μ measurement's starting values: the paper's Ω = 3.3 rad/s and r0c = 0.12 m (Sec. IV).
+/// The μ measurement's starting values, an example (the paper gives Eq. 22, no table):
+/// Ω = 3.3 rad/s and r0c = 0.12 m.
 pub const MU_PROBE: (f64, f64) = (3.3, 0.12);
+
+/// The table SI units start from (`u`, `w`, `g`): a record player at 33⅓ rpm with μ = 0.15.
+/// An everyday example, not the paper's: it names no table speed and no μ.
+pub fn record_player() -> crate::engine::units::Units {
+    crate::engine::units::Units::new(0.15, 100.0 / 3.0, G_DEFAULT)
+        .expect("a record player's values are in range")
+}
 /// Width of the readout panel beside the picture (wide terminals).
 pub const PANEL_W: u16 = 30;
 /// Where `s` saves the scene.
@@ -78,6 +87,10 @@ pub struct App {
     /// Integrator step mode (`n`): step ends marked, step size and error shown.
     pub step_mode: bool,
     pub help: bool,
+    /// The help's first row shown.
+    pub help_scroll: u16,
+    /// The time plots' τ span when fixed (`t`/`T`); None: the run so far.
+    pub tau_window: Option<f64>,
     pub zoom: f64,
     /// The picture's turn (rad): the model releases on +x, the picture shows the release
     /// where it was clicked.
@@ -122,6 +135,7 @@ impl App {
         };
         let sim = make_sim(initial, settings);
         let units = scene.units;
+        let view = scene.view.filter(|v| v.zoom.is_finite() && v.zoom > 0.0);
         App {
             scene,
             initial,
@@ -131,11 +145,13 @@ impl App {
             theme,
             playing: true,
             speed: 1.0,
-            view: Frame::Lab,
-            forces: false,
+            view: view.map_or(Frame::Lab, |v| v.frame),
+            forces: view.is_some_and(|v| v.forces),
             step_mode: false,
             help: false,
-            zoom: 1.0,
+            help_scroll: 0,
+            tau_window: None,
+            zoom: view.map_or(1.0, |v| v.zoom.clamp(ZOOM_RANGE.0, ZOOM_RANGE.1)),
             turn: 0.0,
             pan: glam::DVec2::ZERO,
             mouse: true,
@@ -143,7 +159,7 @@ impl App {
             save_path: PathBuf::from(SAVE_PATH),
             writes_files: true,
             quit: false,
-            page: Page::Turntable,
+            page: view.map_or(Page::Turntable, |v| v.page),
             charts: Charts::default(),
             analysis: Analysis::inline(),
             mu_probe: MU_PROBE,
@@ -201,7 +217,7 @@ impl App {
                 &self.charts,
                 &self.initial,
                 self.settings,
-                self.map_size(),
+                |v0_max| crate::ui::pages::map_grid(self, v0_max),
             );
             let Some(job) = wanted else {
                 // Nothing is computed for a page that is not on screen.
@@ -220,43 +236,50 @@ impl App {
         moved
     }
 
-    /// The outcome map's grid: one cell a character of its plot at this terminal size (the
-    /// plot of the wide layout: the body less the panel, the box, a four-column tick gutter,
-    /// the legend and the two axis lines). A function of the size, not of when frames were
-    /// drawn, so that the same keys give the same map.
-    fn map_size(&self) -> (usize, usize) {
-        use crate::analysis::MAP_MAX;
-        let (w, h) = self.screen;
-        let body = (w.saturating_sub(PANEL_W), h.saturating_sub(3));
-        (
-            usize::from(body.0.saturating_sub(2 + 4)).clamp(8, MAP_MAX.0),
-            usize::from(body.1.saturating_sub(2 + 3)).clamp(4, MAP_MAX.1),
-        )
+    /// The terminal's size as its session last said: the outcome map's grid follows it (see
+    /// `ui::pages::map_grid`), a function of the size, not of when frames were drawn, so that
+    /// the same keys give the same map.
+    pub fn screen(&self) -> (u16, u16) {
+        self.screen
     }
 
-    /// Whether the initial conditions or settings differ from the scene as loaded.
+    /// Whether the initial conditions or settings differ from the scene as loaded, the scene
+    /// taken as the app holds it (φ modulo 2π: D's 1.2π is −0.8π on screen, not an edit).
     pub fn edited(&self) -> bool {
-        self.initial != self.scene.initial || self.settings != self.scene.settings
+        self.initial != sanitize(self.scene.initial) || self.settings != self.scene.settings
     }
 
     /// What the scene shows, one line: the scene's own words until it is edited, then what
-    /// the run on screen does (never a preset's text about another release).
+    /// the run on screen does at the τ on screen, in the panel's notation.
     pub fn about(&self) -> String {
         if !self.edited() {
             return self.scene.about.clone();
         }
         let base = self.scene.name.trim_end_matches(" (edited)");
-        let what = match (self.sim.run.outcome(), self.sim.run.status) {
-            (crate::engine::Outcome::Stuck, crate::engine::Status::Stuck { tau, q }) => {
-                format!("sticks at xi = {:.4} (tau = {tau:.3})", q.length())
+        let sim = &self.sim;
+        let what = match sim.outcome_now() {
+            crate::engine::Outcome::Running => {
+                format!("sliding at τ = {}", num(sim.now().tau, 3))
             }
-            (crate::engine::Outcome::Escaped, _) => "escapes".to_string(),
-            _ => format!("still sliding at tau = {:.3}", self.sim.run.tau()),
+            _ => self.ending(),
         };
         format!("{base}, edited: {what}")
     }
 
-    /// The current initial conditions and settings as a scene (what `s` saves).
+    /// How the run ends, once it is decided (whatever τ is on screen): empty before.
+    fn ending(&self) -> String {
+        let run = &self.sim.run;
+        match (run.status, run.escape) {
+            (crate::engine::Status::Stuck { tau, q }, _) => {
+                format!("sticks at ξ = {} (τ = {})", num(q.length(), 4), num(tau, 3))
+            }
+            (_, Some(e)) => format!("escapes (certified at τ = {})", num(e.tau, 3)),
+            _ => String::new(),
+        }
+    }
+
+    /// The current initial conditions, settings and view as a scene (what `s` saves); its
+    /// words say how the run ends, or nothing while that is undecided.
     pub fn current_scene(&self) -> Scene {
         let changed = self.edited();
         Scene {
@@ -265,10 +288,20 @@ impl App {
             } else {
                 self.scene.name.clone()
             },
-            about: self.about(),
+            about: if changed {
+                self.ending()
+            } else {
+                self.scene.about.clone()
+            },
             initial: self.initial,
             settings: self.settings,
             units: self.units,
+            view: Some(crate::scene::View {
+                page: self.page,
+                frame: self.view,
+                forces: self.forces,
+                zoom: self.zoom,
+            }),
         }
     }
 }

@@ -4,9 +4,19 @@ use super::action::{Action, UnitKnob};
 use super::pages::Page;
 use super::state::{App, SPEED_RANGE, ZOOM_RANGE, make_sim};
 use crate::engine::method::{DT_RANGE, TOL_RANGE};
-use crate::engine::{Frame, Method, Release, Settings};
+use crate::engine::{Frame, Method, Release, Settings, State};
 use crate::scene::{PRESETS, Scene};
 use strum::VariantArray;
+
+/// Moves the help by `rows` (no further than its end at this size); nothing when it is shut.
+fn scroll_help(app: &mut App, rows: i32) {
+    if app.help {
+        let (w, h) = app.screen();
+        let end = i32::from(crate::ui::help::max_scroll(w, h, &app.theme));
+        let to = (i32::from(app.help_scroll) + rows).clamp(0, end);
+        app.help_scroll = u16::try_from(to).unwrap_or(0);
+    }
+}
 
 pub fn update(app: &mut App, action: Action) {
     if action == Action::EndDrag {
@@ -26,7 +36,24 @@ pub fn update(app: &mut App, action: Action) {
         }
         // The notice is already cleared above.
         Action::Dismiss => app.help = false,
-        Action::ToggleHelp => app.help = !app.help,
+        Action::ToggleHelp => {
+            app.help = !app.help;
+            app.help_scroll = 0;
+        }
+        Action::TauWindow(narrow) => {
+            let now = app.sim.now().tau.max(1e-3);
+            let span = app.tau_window.unwrap_or(now);
+            app.tau_window = if narrow {
+                Some((0.5 * span).max(1e-3))
+            } else {
+                Some(2.0 * span).filter(|s| *s < now)
+            };
+        }
+        Action::HelpScroll(rows) => scroll_help(app, i32::from(rows)),
+        Action::HelpPage(pages) => {
+            let page = crate::ui::help::page(app.screen().1);
+            scroll_help(app, i32::from(pages) * i32::from(page));
+        }
         Action::PlayPause => {
             app.playing = !app.playing;
             app.step_mode &= !app.playing;
@@ -40,13 +67,19 @@ pub fn update(app: &mut App, action: Action) {
         }
         Action::StepForward => {
             app.playing = false;
-            step(app);
+            let dtau = super::state::TICK_DT * app.speed;
+            if !step_through_history(&mut app.sim, dtau) {
+                step(app);
+            } else if let Some(p) = app.paper.as_mut() {
+                step_through_history(p, dtau);
+            }
         }
         Action::StepBack => {
             app.playing = false;
-            app.sim.back();
+            let dtau = -super::state::TICK_DT * app.speed;
+            step_through_history(&mut app.sim, dtau);
             if let Some(p) = app.paper.as_mut() {
-                p.back();
+                step_through_history(p, dtau);
             }
         }
         Action::Faster => app.speed = (app.speed * 2.0).min(SPEED_RANGE.1),
@@ -260,7 +293,7 @@ pub fn update(app: &mut App, action: Action) {
         Action::Unit(knob, d) => {
             use crate::engine::units::Units;
             let was = app.units;
-            let mut u = was.unwrap_or(Units::paper());
+            let mut u = was.unwrap_or_else(super::state::record_player);
             if was.is_some() {
                 let (x, lo, hi) = match knob {
                     UnitKnob::Mu => (&mut u.mu, 0.01, 10.0),
@@ -305,6 +338,51 @@ pub fn step(app: &mut App) -> bool {
     moved |= app.catch_up();
     app.dirty |= moved;
     moved
+}
+
+/// One tick at today's speed through the history (`dtau` < 0 back): history kept at a faster
+/// speed has samples further apart, so the state a tick away comes from the path (the run's
+/// dense output on its τ grid) and joins the history. False at the latest sample going
+/// forward (time then advances by integrating).
+fn step_through_history(sim: &mut crate::sim::Sim, dtau: f64) -> bool {
+    let (now, k) = (sim.now().tau, sim.cursor);
+    let next = if dtau < 0.0 {
+        k.checked_sub(1)
+    } else {
+        Some(k + 1).filter(|&n| n < sim.samples.len())
+    };
+    let Some(n) = next else {
+        return false;
+    };
+    let target = now + dtau;
+    let neighbour = sim.samples[n].tau;
+    // Further than a tick: the path's state nearest the target, if strictly between.
+    let between = if (neighbour - now).abs() > dtau.abs() + 1e-9 {
+        match sim.run.status {
+            // At rest it rides the table: the path keeps one turn of it, the closed form all.
+            crate::engine::Status::Stuck { tau, q } if target >= tau => {
+                Some(State::riding(q, target))
+            }
+            _ => {
+                let i = sim.path.partition_point(|s| s.tau < target - 1e-9);
+                sim.path
+                    .get(i)
+                    .filter(|s| (s.tau - target).abs() < 1e-9)
+                    .copied()
+            }
+        }
+    } else {
+        None
+    };
+    match between {
+        Some(s) if dtau < 0.0 => sim.samples.insert(k, s),
+        Some(s) => {
+            sim.samples.insert(n, s);
+            sim.cursor = n;
+        }
+        None => sim.cursor = n,
+    }
+    true
 }
 
 /// Rounds to 12 significant digits so that ×√10 twice gives exactly ×10 on screen.

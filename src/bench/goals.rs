@@ -116,7 +116,10 @@ pub(super) fn speed(cfg: &Config, all: &[Initial], refs: &[Measure]) -> Result<S
     let (r, curve_ms) = timed(cfg.reps.min(2), || {
         (0..pieces(&curve))
             .map(|k| match piece(&curve, k, Settings::default()) {
-                Piece::Escape { v: Some(v), .. } => Ok(v),
+                Piece::Escape {
+                    v: crate::analysis::Speeds::Stick { hi, .. },
+                    ..
+                } => Ok(hi),
                 _ => Err(Error::Failed(format!("no escape speed at angle {k}"))),
             })
             .collect::<Result<Vec<f64>, Error>>()

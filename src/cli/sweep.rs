@@ -97,7 +97,8 @@ fn fig6(a: &Fig6Args) -> CmdResult {
             num(p.xi0),
             p.outcome.name(),
             f(p.xi),
-            f(p.angle)
+            // Angles in [0, 2π), as `run` and `sweep map` give them.
+            f(p.angle.map(crate::engine::model::turn_angle))
         );
     }
     write_csv(&csv, out, &a.out)

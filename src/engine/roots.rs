@@ -42,12 +42,12 @@ pub fn illinois(g: impl Fn(f64) -> f64, mut a: f64, mut b: f64, xtol: f64) -> f6
 
 /// Bisection on a monotone outcome: `escapes(x)` false at `lo`, true at `hi`, down to width
 /// `tol`. Runs that never settle count as escaping (the saddle is the threshold itself).
-pub fn bisect(
+pub fn bisect<E>(
     mut lo: f64,
     mut hi: f64,
     tol: f64,
-    mut escapes: impl FnMut(f64) -> Result<bool, Error>,
-) -> Result<(f64, f64, u32), Error> {
+    mut escapes: impl FnMut(f64) -> Result<bool, E>,
+) -> Result<(f64, f64, u32), E> {
     let mut runs = 0;
     while hi - lo > tol {
         let mid = 0.5 * (lo + hi);
@@ -92,7 +92,7 @@ mod tests {
     fn each_finder_lands_on_its_answer() {
         let x = illinois(|t| t * t - 2.0, 0.0, 2.0, 1e-14);
         assert!((x - 2f64.sqrt()).abs() < 1e-13 && x * x > 2.0);
-        let (lo, hi, _) = bisect(0.0, 1.0, 1e-9, |t| Ok(t > 0.3)).unwrap();
+        let (lo, hi, _) = bisect(0.0, 1.0, 1e-9, |t| Ok::<_, Error>(t > 0.3)).unwrap();
         assert!(lo <= 0.3 && hi > 0.3 && hi - lo <= 1e-9);
         let m = golden_min(&mut |t: f64| Ok((t - 0.7).powi(2)), 0.0, 2.0, 1e-8).unwrap();
         assert!((m - 0.7).abs() < 1e-8);

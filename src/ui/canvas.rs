@@ -238,6 +238,11 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) -> CanvasGeom {
     } else {
         Vec::new()
     };
+    // One terminal cell in world units.
+    let cell = DVec2::new(
+        (xb[1] - xb[0]) / f64::from(inner.width.max(1)),
+        (yb[1] - yb[0]) / f64::from(inner.height.max(1)),
+    );
     // Words on the canvas only where there is room for them beside the drawing.
     let words = inner.width >= 40 && inner.height >= 10;
     let sense = DVec2::new(-0.8, 0.62) * table_r;
@@ -290,12 +295,15 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) -> CanvasGeom {
                 );
             }
             ctx.layer();
+            // The initial velocity beneath the trails: where they cross, the trail shows (in
+            // the rotating frame D's whole path lies along its arrow).
+            arrow(ctx, x0, v_init * arrow_scale, th.arrow);
+            ctx.layer();
             if let Some(p) = paper {
                 trail(ctx, p, view, turn, th.accent);
             }
             trail(ctx, sim, view, turn, th.trail);
             ctx.layer();
-            arrow(ctx, x0, v_init * arrow_scale, th.arrow);
             if let Some((at, tau)) = stuck {
                 ctx.print(
                     at.x,
@@ -319,7 +327,12 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) -> CanvasGeom {
             for fa in &forces {
                 let vec = rotate(fa.vec, turn);
                 arrow(ctx, at, vec, fa.color);
-                let head = at + vec * 1.15;
+                let mut head = at + vec * 1.15;
+                // Never under the particle's glyph (`co` read `●o`): right of it instead.
+                let len = fa.label.chars().count() as f64 * cell.x;
+                if (head.y - at.y).abs() < cell.y && head.x - cell.x < at.x && at.x < head.x + len {
+                    head.x = at.x + cell.x;
+                }
                 ctx.print(
                     head.x,
                     head.y,

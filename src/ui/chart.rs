@@ -1,6 +1,7 @@
 //! A braille chart with labelled axes, tick values and a legend: what every analysis page
 //! draws with. The plot area it returns maps mouse cells back to data (see `CanvasGeom`).
 
+use super::fit::{fit, fit_label};
 use crate::engine::units::{Quantity, Units};
 use crate::theme::Theme;
 use ratatui::Frame as TuiFrame;
@@ -10,6 +11,7 @@ use ratatui::symbols::Marker;
 use ratatui::text::{Line, Span};
 use ratatui::widgets::canvas::{Canvas, Line as Seg, Points};
 use ratatui::widgets::{Block, Borders, Paragraph};
+use unicode_width::UnicodeWidthStr;
 
 /// One curve or point set.
 #[derive(Clone, Debug)]
@@ -132,20 +134,33 @@ pub fn extent(points: impl Iterator<Item = f64>) -> [f64; 2] {
 /// Draws `chart` in `area`: a titled block around [`render_bare`] with its τ axis. Returns
 /// the plot area (None when `area` is too small to hold one).
 pub fn render(f: &mut TuiFrame, area: Rect, th: &Theme, chart: &Chart) -> Option<Rect> {
-    let block = super::titled(format!(" {} ", chart.title), th);
+    // Fields of the title (", ") drop whole when the box is narrow: never part of a number.
+    let room = usize::from(area.width).saturating_sub(4);
+    let block = super::titled(format!(" {} ", fit(&chart.title, ", ", room)), th);
     let inner = block.inner(area);
     f.render_widget(block, area);
-    render_bare(f, inner, th, chart, true)
+    render_bare(f, inner, th, chart, true, 0)
 }
 
 /// Where [`render`] puts the plot in `area`, to draw beneath it first.
 pub fn plot_area(area: Rect, chart: &Chart) -> Option<Rect> {
     let inner = Block::default().borders(Borders::ALL).inner(area);
-    layout(inner, chart, true).map(|l| l.0)
+    layout(inner, chart, true, 0).map(|l| l.0)
 }
 
-/// The plot rectangle, the y-tick gutter's width, and the y ticks.
-fn layout(inner: Rect, chart: &Chart, x_axis: bool) -> Option<(Rect, u16, Vec<f64>)> {
+/// The width of the y-tick gutter [`render_bare`] gives `chart` in `inner` (charts stacked on
+/// one x axis take the widest, so that their x values line up).
+pub fn gutter(inner: Rect, chart: &Chart, x_axis: bool) -> u16 {
+    layout(inner, chart, x_axis, 0).map_or(0, |l| l.1)
+}
+
+/// The plot rectangle, the y-tick gutter's width (at least `min_gutter`), and the y ticks.
+fn layout(
+    inner: Rect,
+    chart: &Chart,
+    x_axis: bool,
+    min_gutter: u16,
+) -> Option<(Rect, u16, Vec<f64>)> {
     let y = sane(chart.y);
     let below = if x_axis { 2 } else { 0 };
     let rows = inner.height.checked_sub(1 + below).filter(|r| *r >= 2)?;
@@ -158,6 +173,7 @@ fn layout(inner: Rect, chart: &Chart, x_axis: bool) -> Option<(Rect, u16, Vec<f6
         .max()
         .unwrap_or(1) as u16
         + 1;
+    let gutter = gutter.max(min_gutter);
     if inner.width < gutter + 8 {
         return None;
     }
@@ -170,26 +186,33 @@ fn layout(inner: Rect, chart: &Chart, x_axis: bool) -> Option<(Rect, u16, Vec<f6
     Some((plot, gutter, yt))
 }
 
-/// Draws `chart` in `area` with no border: the legend line, the y ticks in a left gutter, the
-/// plot, and (with `x_axis`) the x ticks and the x axis name below. Returns the plot area.
+/// Draws `chart` in `area` with no border: the legend line, the y ticks in a left gutter (at
+/// least `min_gutter` wide), the plot, and (with `x_axis`) the x ticks and the x axis name
+/// below. Returns the plot area.
 pub fn render_bare(
     f: &mut TuiFrame,
     inner: Rect,
     th: &Theme,
     chart: &Chart,
     x_axis: bool,
+    min_gutter: u16,
 ) -> Option<Rect> {
     let (x, y) = (sane(chart.x), sane(chart.y));
-    let (plot, gutter, yt) = layout(inner, chart, x_axis)?;
+    let (plot, gutter, yt) = layout(inner, chart, x_axis, min_gutter)?;
     let ylabels: Vec<String> = yt.iter().map(|v| tick_label(*v)).collect();
     let muted = Style::default().fg(th.muted);
     // Legend: every series and mark by name, in its colour, after the y axis name.
+    // A name that does not fit is left out whole.
     let mut legend = vec![Span::styled(format!("{} ", chart.y_label), muted)];
+    let mut used = legend[0].width();
     for s in chart.series.iter().filter(|s| !s.name.is_empty()) {
-        legend.push(Span::styled(
-            format!("━ {}  ", s.name),
-            Style::default().fg(s.color),
-        ));
+        // Lines and dots named by their own mark, not by colour alone (mono, NO_COLOR).
+        let text = format!("{} {}  ", if s.joined { "━" } else { "··" }, s.name);
+        if used + text.trim_end().width() > usize::from(inner.width) {
+            break;
+        }
+        used += text.width();
+        legend.push(Span::styled(text, Style::default().fg(s.color)));
     }
     f.render_widget(
         Paragraph::new(Line::from(legend)),
@@ -249,8 +272,10 @@ pub fn render_bare(
     }
     if x_axis {
         let row = Rect::new(inner.x, axis_row + 1, inner.width, 1);
-        let room = (inner.width as usize).saturating_sub(chart.x_label.chars().count() + 1);
-        let note: String = chart.note.chars().take(room).collect();
+        // The axis name's fields first, then the note's that still fit beside it.
+        let x_label = fit(&chart.x_label, "  ", usize::from(plot.width));
+        let room = usize::from(inner.width).saturating_sub(x_label.width() + 1);
+        let note = fit(&chart.note, ", ", room);
         f.render_widget(
             Paragraph::new(Line::from(vec![Span::styled(
                 note,
@@ -259,7 +284,7 @@ pub fn render_bare(
             row,
         );
         f.render_widget(
-            Paragraph::new(Span::styled(chart.x_label.clone(), muted)).right_aligned(),
+            Paragraph::new(Span::styled(x_label, muted)).right_aligned(),
             Rect::new(plot.x, axis_row + 1, plot.width, 1),
         );
     }
@@ -338,7 +363,15 @@ pub fn render_bare(
                     | Mark::Point { label, color, .. } => (label, *color),
                 };
                 let style = Style::default().fg(color);
-                let w = (label.chars().count() + 1) as f64 * col;
+                // Whole words only, as many as the wider side of a point has room for.
+                let label = match *m {
+                    Mark::Point { x: px, .. } => {
+                        let side = (x[1] - px - col).max(px - x[0]) / col;
+                        fit_label(label, (side.max(0.0) as usize).saturating_sub(1))
+                    }
+                    _ => label.clone(),
+                };
+                let w = (label.width() + 1) as f64 * col;
                 match *m {
                     Mark::VLine { x: mx, .. } => {
                         // Right of the line, or left of it in the right half.
@@ -352,10 +385,12 @@ pub fn render_bare(
                     }
                     Mark::Point { x: px, y: py, .. } | Mark::Text { x: px, y: py, .. } => {
                         let r0 = i64::from(dot_row(py));
-                        let a = if matches!(m, Mark::Point { .. }) {
-                            px + col
-                        } else {
-                            px
+                        // A point's words right of its dot, or left of it when they would run
+                        // past the plot's edge (never cut).
+                        let a = match m {
+                            Mark::Point { .. } if px + col + w > x[1] && px - w >= x[0] => px - w,
+                            Mark::Point { .. } => px + col,
+                            _ => px,
                         };
                         let r = place(a, w, &mut [r0, r0 - 1, r0 + 1, r0 - 2, r0 + 2].into_iter());
                         ctx.print(a, at_row(r), Span::styled(label.clone(), style));

@@ -1,12 +1,14 @@
 //! The help overlay, generated from `KEYMAP` (the table the keys dispatch on).
 
+use super::fit::fit;
 use crate::app::App;
 use crate::app::keymap::{GROUPS, KEYMAP};
+use crate::theme::Theme;
 use ratatui::Frame as TuiFrame;
-use ratatui::layout::{Constraint, Layout, Rect};
+use ratatui::layout::Rect;
 use ratatui::style::{Modifier, Style};
 use ratatui::text::{Line, Span};
-use ratatui::widgets::{Block, Borders, Clear, Paragraph, Wrap};
+use ratatui::widgets::{Block, Borders, Clear, Paragraph};
 use unicode_width::UnicodeWidthStr;
 
 /// Help rows per group: bindings with the same help text share a row, keys joined by `/`
@@ -58,69 +60,181 @@ pub fn rows() -> Vec<(&'static str, Vec<(String, &'static str)>)> {
         .collect()
 }
 
-pub fn render(f: &mut TuiFrame, area: Rect, app: &App) {
-    let th = &app.theme;
-    let w = area.width.min(100);
-    let h = area.height;
-    let popup = Rect {
-        x: area.x + (area.width - w) / 2,
-        y: area.y,
-        width: w,
-        height: h,
-    };
-    f.render_widget(Clear, popup);
-    let block = Block::default()
-        .borders(Borders::ALL)
-        .border_style(Style::default().fg(th.accent))
-        .title(Span::styled(
-            " help — ? or Esc closes ",
-            Style::default().fg(th.accent),
-        ))
-        .style(Style::default().bg(th.background).fg(th.foreground));
-    let inner = block.inner(popup);
-    f.render_widget(block, popup);
-    // Two columns of equal height; a long group may run on into the second. In each column
-    // labels take its widest label's width and two blanks, so no help text is glued to its
-    // keys.
-    let mut items: Vec<(Option<&str>, String, &str)> = Vec::new();
+/// What the mouse does, listed after the keys.
+const MOUSE: [(&str, &str); 3] = [
+    (
+        "click",
+        "place the release; on the v_e and map pages, pick (φ, v0)",
+    ),
+    ("drag", "aim the initial velocity"),
+    ("wheel", "zoom; in this help, scroll"),
+];
+
+/// The glyphs of the picture.
+const GLYPHS: [(&str, &str); 6] = [
+    ("●", "particle (converged run)"),
+    ("○", "paper's RK2 run (c)"),
+    ("■", "particle at rest"),
+    ("×", "where it stopped"),
+    ("·", "step ends (n)"),
+    ("↺", "table's sense of rotation"),
+];
+
+/// One entry: a group header, or a key (or glyph) and its help.
+type Item = (Option<&'static str>, String, &'static str);
+
+fn items() -> Vec<Item> {
+    let mut items: Vec<Item> = Vec::new();
     for (g, rs) in rows() {
         items.push((Some(g), String::new(), ""));
         items.extend(rs.into_iter().map(|(k, h)| (None, k, h)));
     }
-    let mut half = items.len().div_ceil(2);
-    if items[half - 1].0.is_some() {
-        half -= 1; // no header left alone at the foot of a column
+    for (g, rs) in [("mouse", &MOUSE[..]), ("glyphs", &GLYPHS[..])] {
+        items.push((Some(g), String::new(), ""));
+        items.extend(rs.iter().map(|(k, h)| (None, k.to_string(), *h)));
     }
-    let column = |items: &[(Option<&str>, String, &str)]| -> Vec<Line> {
-        let lw = items.iter().map(|(_, k, _)| k.width()).max().unwrap_or(0) + 2;
-        items
-            .iter()
-            .map(|(g, k, help)| match g {
-                Some(g) => Line::from(Span::styled(
-                    g.to_string(),
-                    Style::default().fg(th.accent).add_modifier(Modifier::BOLD),
-                )),
-                None => Line::from(vec![
-                    Span::styled(
-                        format!(" {k}{}", " ".repeat(lw - k.width())),
-                        Style::default().fg(th.notice),
-                    ),
-                    Span::styled(help.to_string(), Style::default().fg(th.foreground)),
-                ]),
-            })
-            .collect()
+    items
+}
+
+/// The help's box in `area` (the help region of the layout), at most 100 wide.
+fn popup(area: Rect) -> Rect {
+    let w = area.width.min(100);
+    Rect {
+        x: area.x + (area.width - w) / 2,
+        width: w,
+        ..area
+    }
+}
+
+/// The help's columns for a box whose inside is `width` wide: two from 60 cells, else one.
+/// Each is its lines, a help text too long for the column wrapped at words under itself.
+fn columns(width: u16, th: &Theme) -> Vec<Vec<Line<'static>>> {
+    let items = items();
+    if width < 60 {
+        return vec![column(&items, usize::from(width), th)];
+    }
+    // Two columns, split where the taller is shortest (wrapped rows counted), never leaving
+    // a header alone at the foot of the first.
+    let colw = usize::from((width - 1) / 2);
+    (1..items.len())
+        .filter(|&k| items[k - 1].0.is_none())
+        .map(|k| vec![column(&items[..k], colw, th), column(&items[k..], colw, th)])
+        .min_by_key(|cols| cols.iter().map(Vec::len).max())
+        .unwrap_or_default()
+}
+
+/// One column: labels take its widest label's width and two blanks, so no help text is glued
+/// to its keys.
+fn column(items: &[Item], width: usize, th: &Theme) -> Vec<Line<'static>> {
+    let lw = items.iter().map(|(_, k, _)| k.width()).max().unwrap_or(0) + 2;
+    let room = width.saturating_sub(1 + lw).max(8);
+    let mut out = Vec::new();
+    for (g, k, help) in items {
+        if let Some(g) = g {
+            out.push(Line::from(Span::styled(
+                g.to_string(),
+                Style::default().fg(th.accent).add_modifier(Modifier::BOLD),
+            )));
+            continue;
+        }
+        let mut chunks = vec![String::new()];
+        for word in help.split(' ') {
+            let last = chunks.last_mut().expect("one chunk");
+            if last.is_empty() {
+                last.push_str(word);
+            } else if last.width() + 1 + word.width() <= room {
+                last.push(' ');
+                last.push_str(word);
+            } else {
+                chunks.push(word.to_string());
+            }
+        }
+        for (i, chunk) in chunks.into_iter().enumerate() {
+            let key = if i == 0 { k.as_str() } else { "" };
+            out.push(Line::from(vec![
+                Span::styled(
+                    format!(" {key}{}", " ".repeat(lw - key.width())),
+                    Style::default().fg(th.notice),
+                ),
+                Span::styled(chunk, Style::default().fg(th.foreground)),
+            ]));
+        }
+    }
+    out
+}
+
+/// How far the help scrolls at a `width` × `height` terminal: its rows less those shown.
+pub fn max_scroll(width: u16, height: u16, th: &Theme) -> u16 {
+    let Some(r) = super::layout::regions(width, height) else {
+        return 0;
     };
-    // Narrow columns wrap at word boundaries rather than cut a word; below 60 cells one
-    // column.
-    let wrap = Wrap { trim: false };
-    if inner.width < 60 {
-        f.render_widget(Paragraph::new(column(&items)).wrap(wrap), inner);
+    let p = popup(r.help);
+    let rows = columns(p.width.saturating_sub(2), th)
+        .iter()
+        .map(Vec::len)
+        .max()
+        .unwrap_or(0);
+    u16::try_from(rows)
+        .unwrap_or(u16::MAX)
+        .saturating_sub(p.height.saturating_sub(2))
+}
+
+/// Rows one PgUp/PgDn scrolls at this size: the help's visible rows.
+pub fn page(height: u16) -> u16 {
+    height.saturating_sub(3).max(1)
+}
+
+pub fn render(f: &mut TuiFrame, area: Rect, app: &App) {
+    let th = &app.theme;
+    let popup = popup(area);
+    f.render_widget(Clear, popup);
+    let cols = columns(popup.width.saturating_sub(2), th);
+    let rows = cols.iter().map(Vec::len).max().unwrap_or(0);
+    let shown = usize::from(popup.height.saturating_sub(2));
+    let top = usize::from(app.help_scroll).min(rows.saturating_sub(shown));
+    let title = fit(
+        " help: ? or Esc closes, ↑ ↓ PgUp PgDn wheel scroll ",
+        ", ",
+        usize::from(popup.width).saturating_sub(2),
+    );
+    // Where the reader is, when not all of it fits.
+    let place = if rows > shown {
+        format!(
+            " rows {}–{} of {}{} ",
+            top + 1,
+            (top + shown).min(rows),
+            rows,
+            if top + shown < rows { ", ↓ more" } else { "" }
+        )
+    } else {
+        String::new()
+    };
+    let block = Block::default()
+        .borders(Borders::ALL)
+        .border_style(Style::default().fg(th.accent))
+        .title(Span::styled(title, Style::default().fg(th.accent)))
+        .title_bottom(
+            Line::from(Span::styled(place, Style::default().fg(th.notice))).right_aligned(),
+        )
+        .style(Style::default().bg(th.background).fg(th.foreground));
+    let inner = block.inner(popup);
+    f.render_widget(block, popup);
+    let scroll = (u16::try_from(top).unwrap_or(u16::MAX), 0);
+    if cols.len() == 1 {
+        f.render_widget(Paragraph::new(cols[0].clone()).scroll(scroll), inner);
         return;
     }
-    let (a, b) = (column(&items[..half]), column(&items[half..]));
-    let halves = Layout::horizontal([Constraint::Percentage(50), Constraint::Percentage(50)])
-        .spacing(1)
-        .split(inner);
-    f.render_widget(Paragraph::new(a).wrap(wrap), halves[0]);
-    f.render_widget(Paragraph::new(b).wrap(wrap), halves[1]);
+    // The widths `columns` wrapped to, a blank between.
+    let w = (inner.width - 1) / 2;
+    let halves = [
+        Rect { width: w, ..inner },
+        Rect {
+            x: inner.x + w + 1,
+            width: inner.width - w - 1,
+            ..inner
+        },
+    ];
+    for (col, area) in cols.into_iter().zip(halves) {
+        f.render_widget(Paragraph::new(col).scroll(scroll), area);
+    }
 }

@@ -3,7 +3,9 @@
 pub mod canvas;
 pub mod chart;
 pub mod export;
+pub mod fit;
 pub mod help;
+pub mod layout;
 pub mod pages;
 pub mod panel;
 pub mod time_plots;
@@ -11,14 +13,13 @@ pub mod time_plots;
 use crate::app::{App, CanvasGeom};
 use crate::engine::Outcome;
 use ratatui::Frame;
-use ratatui::layout::{Alignment, Constraint, Layout, Rect};
+use ratatui::layout::{Alignment, Rect};
 use ratatui::style::Style;
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Paragraph, Wrap};
+use unicode_width::UnicodeWidthStr;
 
-/// Below this the explorer shows a "too small" notice instead.
-pub const MIN_SIZE: (u16, u16) = (40, 12);
-pub use crate::app::state::PANEL_W;
+pub use layout::{MIN_SIZE, PANEL_W};
 
 /// Draws the whole screen and returns where the canvas went (None when there is none), for
 /// the caller to hand to [`App::drawn`] so mouse cells map to the table. Pure: it reads the
@@ -27,7 +28,7 @@ pub fn draw(frame: &mut Frame, app: &App) -> Option<CanvasGeom> {
     let area = frame.area();
     let th = app.theme.clone();
     let base = Style::default().bg(th.background).fg(th.foreground);
-    if area.width < MIN_SIZE.0 || area.height < MIN_SIZE.1 {
+    let Some(r) = layout::regions(area.width, area.height) else {
         let msg = format!(
             "terminal too small ({}×{}): need ≥ {}×{}",
             area.width, area.height, MIN_SIZE.0, MIN_SIZE.1
@@ -40,32 +41,19 @@ pub fn draw(frame: &mut Frame, app: &App) -> Option<CanvasGeom> {
             area,
         );
         return None;
-    }
+    };
     frame.render_widget(Paragraph::new("").style(base), area);
-    let [title, body, lesson, status] = Layout::vertical([
-        Constraint::Length(1),
-        Constraint::Min(1),
-        Constraint::Length(1),
-        Constraint::Length(1),
-    ])
-    .areas(area);
     frame.render_widget(
         Paragraph::new(Line::from(vec![
             Span::styled(" turntable ", Style::default().fg(th.accent)),
-            Span::styled(app.about(), Style::default().fg(th.muted)),
+            Span::styled(
+                fit::fit(&app.about(), ", ", usize::from(area.width) - 11),
+                Style::default().fg(th.muted),
+            ),
         ])),
-        title,
+        r.title,
     );
-    let (canvas_area, panel_area) = if body.width >= 60 {
-        let [c, p] =
-            Layout::horizontal([Constraint::Min(10), Constraint::Length(PANEL_W)]).areas(body);
-        (c, p)
-    } else {
-        // At least status, ξ and τ (see panel::lines_in), however short the screen.
-        let ph = (panel::lines(app).len() as u16 + 2).min((body.height / 2).max(5));
-        let [c, p] = Layout::vertical([Constraint::Min(3), Constraint::Length(ph)]).areas(body);
-        (c, p)
-    };
+    let (canvas_area, panel_area, lesson, status) = (r.canvas, r.panel, r.lesson, r.status);
     let geom = match app.page {
         crate::app::pages::Page::Turntable => Some(canvas::render(frame, canvas_area, app)),
         _ => pages::render(frame, canvas_area, app),
@@ -73,19 +61,23 @@ pub fn draw(frame: &mut Frame, app: &App) -> Option<CanvasGeom> {
     panel::render(frame, panel_area, app);
     frame.render_widget(
         Paragraph::new(Span::styled(
-            lesson_line(app),
+            fit::fit(&lesson_line(app), "\0", usize::from(area.width)),
             Style::default().fg(th.notice),
         )),
         lesson,
     );
     frame.render_widget(Paragraph::new(status_line(app, status.width)), status);
     if app.help {
-        // Over the body and the two lines below it: the whole keymap fits at 80×24.
-        let below = Rect {
-            height: body.height + lesson.height + status.height,
-            ..body
-        };
-        help::render(frame, below, app);
+        help::render(frame, r.help, app);
+    }
+    // A theme that sets a background sets it on every cell: widgets that paint none (chart
+    // interiors, cleared cells) would show the terminal's own, white boxes on a dark theme.
+    if th.background != ratatui::style::Color::Reset {
+        for cell in &mut frame.buffer_mut().content {
+            if cell.bg == ratatui::style::Color::Reset {
+                cell.bg = th.background;
+            }
+        }
     }
     geom
 }
@@ -135,18 +127,26 @@ fn status_line(app: &App, width: u16) -> Line<'static> {
     let th = &app.theme;
     if let Some(n) = &app.notice {
         return Line::from(Span::styled(
-            format!(" {n}"),
+            fit::fit(&format!(" {n}"), "\0", usize::from(width)),
             Style::default().fg(th.notice),
         ));
     }
-    let keys = if width >= 100 {
-        " ? help  Space play  .,  step  [] speed  f frame  m method  c compare  a forces  1-6 presets  x/p/v edit  q quit"
-    } else {
-        " ? help  Space play  ., step  f frame  m method  c compare  1-6 presets  q quit"
-    };
     let mouse = if app.mouse { "" } else { "  [mouse off]" };
+    // The long hint where it fits, measured; else the short one, whole hints dropped from
+    // its end.
+    let room = usize::from(width).saturating_sub(mouse.width());
+    let long = " ? help  Space play  .,  step  [] speed  f frame  m method  c compare  a forces  1-6 presets  x/p/v edit  q quit";
+    let keys = if long.width() <= room {
+        long.to_string()
+    } else {
+        fit::fit(
+            " ? help  q quit  Space play  ., step  f frame  m method  c compare  1-6 presets",
+            "  ",
+            room,
+        )
+    };
     Line::from(vec![
-        Span::styled(keys.to_string(), Style::default().fg(th.muted)),
+        Span::styled(keys, Style::default().fg(th.muted)),
         Span::styled(mouse.to_string(), Style::default().fg(th.notice)),
     ])
 }

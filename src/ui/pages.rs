@@ -3,13 +3,13 @@
 //! in `time_plots`. Pure: they draw what the app holds and never compute a run.
 
 use super::chart::{self, Chart, Mark, Series};
-use crate::analysis::{PAPER_XI0, REST_POINTS, REST_XI0_MAX};
+use crate::analysis::{PAPER_XI0, REST_POINTS, REST_XI0_MAX, Speeds};
 use crate::app::pages::{Charts, Page, map_filled};
 use crate::app::{App, CanvasGeom};
 use crate::engine::model::turn_angle;
 use crate::engine::units::Quantity;
 use crate::engine::{Outcome, Release};
-use crate::ui::panel::num;
+use crate::ui::panel::{num, speed};
 use ratatui::Frame as TuiFrame;
 use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::style::Style;
@@ -55,7 +55,11 @@ fn escape_speed(f: &mut TuiFrame, area: Rect, app: &App) -> Option<CanvasGeom> {
     let mine = charts.curve(i.xi0, settings);
     let mut series = Vec::new();
     let mut marks = Vec::new();
-    for xi0 in PAPER_XI0.into_iter().filter(|x| *x != i.xi0) {
+    // Outside ξ = 1 a throw too slow escapes too: the sticking speeds are a window, and the
+    // paper's v_e curves (Fig. 5, inside ξ = 1) are another quantity.
+    let window = i.xi0 > 1.0;
+    let others = if window { &[][..] } else { &PAPER_XI0[..] };
+    for &xi0 in others.iter().filter(|x| **x != i.xi0) {
         if let Some(c) = charts.curve(xi0, settings) {
             let points = c.points();
             // Named at its peak rather than in the legend (their faint colours are all one),
@@ -79,13 +83,26 @@ fn escape_speed(f: &mut TuiFrame, area: Rect, app: &App) -> Option<CanvasGeom> {
     let mut progress = String::new();
     let mut note = String::new();
     if let Some(c) = mine {
+        let name = if window {
+            format!("ξ0={}: sticks between", num(i.xi0, 3))
+        } else {
+            format!("ξ0={} (now)", num(i.xi0, 3))
+        };
         series.push(Series {
-            name: format!("ξ0={} (now)", num(i.xi0, 3)),
+            name,
             color: th.trail,
             points: c.points(),
             joined: true,
         });
-        if let Some(((p0, v0), (p1, v1))) = c.extremes() {
+        if window {
+            series.push(Series {
+                name: String::new(),
+                color: th.trail,
+                points: c.floor(),
+                joined: true,
+            });
+            note = widest(c);
+        } else if let Some(((p0, v0), (p1, v1))) = c.extremes() {
             marks.push(Mark::Point {
                 x: p0,
                 y: v0,
@@ -100,27 +117,36 @@ fn escape_speed(f: &mut TuiFrame, area: Rect, app: &App) -> Option<CanvasGeom> {
             });
             note = format!(
                 "min {} at {}π, max {} at {}π",
-                num(v0, 4),
+                speed(v0),
                 num(p0 / PI, 2),
-                num(v1, 4),
+                speed(v1),
                 num(p1 / PI, 2)
             );
         }
         let done = c.ve.iter().filter(|v| v.is_some()).count();
         if done < c.ve.len() {
-            progress = format!(" {done}/{} angles", c.ve.len());
+            progress = format!(", {done}/{} angles", c.ve.len());
         }
     } else {
-        progress = " computing…".into();
+        progress = ", computing…".into();
     }
     let phi = turn_angle(i.phi);
-    let (verdict, color) = match (i.release, mine.and_then(|c| v_e_range(c, phi))) {
-        (Release::Velocity, Some((_, hi))) if i.v0 > hi => (" escapes (above v_e)", th.escaped),
-        (Release::Velocity, Some((lo, _))) if i.v0 < lo => (" sticks (below v_e)", th.stuck),
+    let judged = match i.release {
+        Release::Velocity => mine.and_then(|c| judge(c, phi, i.v0)),
+        _ => None,
+    };
+    let (verdict, color) = match (judged, window) {
+        (Some(Verdict::Above), false) => (" escapes (above v_e)", th.escaped),
+        (Some(Verdict::Inside), false) => (" sticks (below v_e)", th.stuck),
         // Between the computed angles' values: the chart cannot tell; the run can.
-        (Release::Velocity, Some(_)) => (" ≈ v_e: Enter runs it to see", th.notice),
-        (Release::Velocity, None) => ("", th.particle),
-        _ => (" (release at rest: v0 = 0)", th.particle),
+        (Some(Verdict::Near), false) => (" ≈ v_e: Enter runs it to see", th.notice),
+        (Some(Verdict::Above), true) => (" escapes (above the window)", th.escaped),
+        (Some(Verdict::Below), _) => (" escapes (below the window)", th.escaped),
+        (Some(Verdict::Inside), true) => (" sticks (in the window)", th.stuck),
+        (Some(Verdict::Never), _) => (" escapes (no window at this φ)", th.escaped),
+        (Some(Verdict::Near), true) => (" ≈ window's edge: Enter runs it", th.notice),
+        (None, _) if i.release == Release::Velocity => ("", th.particle),
+        (None, _) => (" (release at rest: v0 = 0)", th.particle),
     };
     let v_now = if i.release == Release::Velocity {
         i.v0
@@ -137,11 +163,20 @@ fn escape_speed(f: &mut TuiFrame, area: Rect, app: &App) -> Option<CanvasGeom> {
         .iter()
         .flat_map(|s| s.points.iter().map(|p| p.1))
         .fold(v_now, f64::max);
+    let title = if window {
+        "sticking window (Fig. 3 D)"
+    } else {
+        "escape speed v_e(φ)"
+    };
     let c = Chart {
-        title: format!("escape speed v_e(φ), ξ0 = {}{progress}", num(i.xi0, 3)),
+        title: format!("{title}, ξ0 = {}{progress}", num(i.xi0, 3)),
         note,
         x_label: "φ".into(),
-        y_label: chart::axis("v_e", Quantity::Speed, app.units),
+        y_label: chart::axis(
+            if window { "v0" } else { "v_e" },
+            Quantity::Speed,
+            app.units,
+        ),
         x: [0.0, TAU],
         y: [0.0, (1.1 * top).max(0.1)],
         series,
@@ -151,22 +186,75 @@ fn escape_speed(f: &mut TuiFrame, area: Rect, app: &App) -> Option<CanvasGeom> {
     Some(geom(plot, &c, Page::EscapeSpeed, app))
 }
 
-/// Where v_e at φ can lie, from the curve: at a computed angle its value, between two the
-/// range of theirs (v_e is monotone between neighbours but at its extremes, where it is flat),
-/// each widened by its bracket's half-width.
-fn v_e_range(c: &crate::app::pages::Curve, phi: f64) -> Option<(f64, f64)> {
+/// The widest sticking window of a curve outside ξ = 1, in words.
+fn widest(c: &crate::app::pages::Curve) -> String {
+    let n = c.ve.len();
+    let best = (0..n)
+        .filter_map(|k| match c.ve[k]? {
+            Speeds::Stick { lo, hi } => Some((crate::analysis::angle(k, n), lo, hi)),
+            _ => None,
+        })
+        .max_by(|a, b| (a.2 - a.1).total_cmp(&(b.2 - b.1)));
+    match best {
+        Some((p, lo, hi)) => format!(
+            "widest window: sticks for v0 {}–{}, at φ = {}π",
+            speed(lo),
+            speed(hi),
+            num(p / PI, 2)
+        ),
+        None if c.complete() => "escapes at every speed and angle".into(),
+        None => String::new(),
+    }
+}
+
+/// How a release at (φ, v0) ends, read off the curve.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Verdict {
+    /// Below the window (outside ξ = 1): escapes.
+    Below,
+    /// Sticks.
+    Inside,
+    /// Above v_e or the window: escapes.
+    Above,
+    /// No speed sticks at this angle.
+    Never,
+    /// Too close to an edge for the chart to tell.
+    Near,
+}
+
+/// The verdict at φ from the curve: at a computed angle its own window, between two the span
+/// of their edges (v_e is monotone between neighbours but at its extremes, where it is flat),
+/// each widened by its bracket's half-width. `None` until both neighbours are known.
+fn judge(c: &crate::app::pages::Curve, phi: f64, v0: f64) -> Option<Verdict> {
     let n = c.ve.len();
     let x = phi / TAU * n as f64;
-    let i = x.floor() as usize % n;
     let on_grid = (x - x.round()).abs() < 1e-9;
     let (a, b) = if on_grid {
         let k = x.round() as usize % n;
-        (c.ve[k]??, c.ve[k]??)
+        (c.ve[k]?, c.ve[k]?)
     } else {
-        (c.ve[i]??, c.ve[(i + 1) % n]??)
+        let k = x.floor() as usize % n;
+        (c.ve[k]?, c.ve[(k + 1) % n]?)
     };
     let pad = 0.5 * crate::analysis::CURVE_VTOL;
-    Some((a.min(b) - pad, a.max(b) + pad))
+    match (a, b) {
+        (Speeds::Escapes, Speeds::Escapes) => Some(Verdict::Never),
+        (Speeds::Stick { lo: l1, hi: h1 }, Speeds::Stick { lo: l2, hi: h2 }) => {
+            // A floor of 0 (inside ξ = 1) is exact: no speed is below it.
+            let lo = |x: f64| if x > 0.0 { x + pad } else { 0.0 };
+            Some(if v0 > h1.max(h2) + pad {
+                Verdict::Above
+            } else if l1.min(l2) > 0.0 && v0 < l1.min(l2) - pad {
+                Verdict::Below
+            } else if v0 >= lo(l1.max(l2)) && v0 < h1.min(h2) - pad {
+                Verdict::Inside
+            } else {
+                Verdict::Near
+            })
+        }
+        (Speeds::Unknown, _) | (_, Speeds::Unknown) => None,
+        _ => Some(Verdict::Near),
+    }
 }
 
 /// Stuck or escaped over (φ, v0), stuck cells shaded by their rest radius, the v_e curve on it.
@@ -187,56 +275,18 @@ fn outcome_map(f: &mut TuiFrame, area: Rect, app: &App) -> Option<CanvasGeom> {
             .curve(i.xi0, settings)
             .map_or(1.0, |c| Charts::map_v0_max(c, i.release, i.xi0)),
     };
-    let frame_word = if i.release == Release::LabRest {
-        "lab"
-    } else {
-        "table"
-    };
     let progress = match map {
         Some(m) => {
             let (done, all) = map_filled(m);
             if done < all {
-                format!(" {done}/{all} cells")
+                format!(", {done}/{all} cells")
             } else {
                 String::new()
             }
         }
-        None => " computing…".into(),
+        None => ", computing…".into(),
     };
-    let mut series = Vec::new();
-    if i.release != Release::LabRest
-        && let Some(c) = app.charts.curve(i.xi0, settings)
-    {
-        series.push(Series {
-            name: "v_e(φ)".into(),
-            color: th.accent,
-            points: c.points(),
-            joined: true,
-        });
-    }
-    let (phi, v0) = match i.release {
-        Release::Velocity => (turn_angle(i.phi), i.v0),
-        _ => (0.0, 0.0),
-    };
-    let c = Chart {
-        title: format!(
-            "outcome map, ξ0 = {}, {} release{progress}",
-            num(i.xi0, 3),
-            i.release
-        ),
-        note: String::new(),
-        x_label: format!("φ ({frame_word} frame)  blank: escapes  ·:▒▓ stuck at ξ <¼ <½ <¾ ≤1"),
-        y_label: chart::axis("v0", Quantity::Speed, app.units),
-        x: [0.0, TAU],
-        y: [0.0, v0_max],
-        series,
-        marks: vec![Mark::Point {
-            x: phi,
-            y: v0,
-            label: "release".into(),
-            color: th.particle,
-        }],
-    };
+    let c = map_chart(app, v0_max, progress);
     // The cells first, then the chart's braille over them.
     let plot = chart::plot_area(area, &c)?;
     if let Some(m) = map
@@ -277,6 +327,74 @@ fn outcome_map(f: &mut TuiFrame, area: Rect, app: &App) -> Option<CanvasGeom> {
     Some(geom(plot, &c, Page::OutcomeMap, app))
 }
 
+/// The outcome map's chart (without its cells) for speeds up to `v0_max`.
+fn map_chart(app: &App, v0_max: f64, progress: String) -> Chart {
+    let th = &app.theme;
+    let i = app.initial;
+    let settings = crate::analysis::settings_for(app.settings);
+    let frame_word = if i.release == Release::LabRest {
+        "lab"
+    } else {
+        "table"
+    };
+    let mut series = Vec::new();
+    if i.release != Release::LabRest
+        && let Some(c) = app.charts.curve(i.xi0, settings)
+    {
+        let window = i.xi0 > 1.0;
+        series.push(Series {
+            name: if window { "sticking window" } else { "v_e(φ)" }.into(),
+            color: th.accent,
+            points: c.points(),
+            joined: true,
+        });
+        if window {
+            series.push(Series {
+                name: String::new(),
+                color: th.accent,
+                points: c.floor(),
+                joined: true,
+            });
+        }
+    }
+    let (phi, v0) = match i.release {
+        Release::Velocity => (turn_angle(i.phi), i.v0),
+        _ => (0.0, 0.0),
+    };
+    Chart {
+        title: format!(
+            "outcome map, ξ0 = {}, {} release{progress}",
+            num(i.xi0, 3),
+            i.release
+        ),
+        note: String::new(),
+        x_label: format!("φ ({frame_word} frame)  blank: escapes  ·:▒▓ stuck at ξ <¼ <½ <¾ ≤1"),
+        y_label: chart::axis("v0", Quantity::Speed, app.units),
+        x: [0.0, TAU],
+        y: [0.0, v0_max],
+        series,
+        marks: vec![Mark::Point {
+            x: phi,
+            y: v0,
+            label: "release".into(),
+            color: th.particle,
+        }],
+    }
+}
+
+/// The outcome map's grid at the app's terminal size for speeds up to `v0_max`: one cell a
+/// character of the plot the page draws (the same layout and chart), none when no plot fits.
+pub fn map_grid(app: &App, v0_max: f64) -> Option<(usize, usize)> {
+    use crate::analysis::MAP_MAX;
+    let (w, h) = app.screen();
+    let canvas = super::layout::regions(w, h)?.canvas;
+    let plot = chart::plot_area(canvas, &map_chart(app, v0_max, String::new()))?;
+    Some((
+        usize::from(plot.width).min(MAP_MAX.0),
+        usize::from(plot.height).min(MAP_MAX.1),
+    ))
+}
+
 /// Fig. 6: where a particle released at rest in the lab comes to rest, against ξ0, with ξ0c;
 /// beside it Eq. 22, μ = Ω² r0c / (g ξ0c), from an Ω and r0c the user enters.
 fn rest_radius(f: &mut TuiFrame, area: Rect, app: &App) {
@@ -287,7 +405,7 @@ fn rest_radius(f: &mut TuiFrame, area: Rect, app: &App) {
     let mut points = Vec::new();
     let mut escaped = Vec::new();
     let mut marks = Vec::new();
-    let mut progress = " computing…".to_string();
+    let mut progress = ", computing…".to_string();
     let xi0c = rest.and_then(|r| r.critical.flatten());
     if let Some(r) = rest {
         for (k, v) in r.xi.iter().enumerate() {
@@ -300,7 +418,7 @@ fn rest_radius(f: &mut TuiFrame, area: Rect, app: &App) {
         }
         let done = r.xi.iter().filter(|v| v.is_some()).count();
         progress = if done < r.xi.len() || r.critical.is_none() {
-            format!(" {done}/{} radii", r.xi.len())
+            format!(", {done}/{} radii", r.xi.len())
         } else {
             String::new()
         };

@@ -31,6 +31,19 @@ pub fn num(x: f64, prec: usize) -> String {
     }
 }
 
+/// A release speed: four decimals, up to six where they are not zeros (C's v0 = 0.6078 and
+/// its escape speed 0.607797… differ in the sixth).
+pub fn speed(v: f64) -> String {
+    let s = num(v, 6);
+    match s.find('.') {
+        Some(dot) => {
+            let keep = (dot + 5).max(s.trim_end_matches('0').len());
+            s[..keep.min(s.len())].to_string()
+        }
+        None => s,
+    }
+}
+
 /// Status of a run at the sample on screen, and its colour.
 pub fn status_text(sim: &Sim, th: &Theme) -> (String, ratatui::style::Color) {
     if let Some(e) = &sim.error {
@@ -135,7 +148,7 @@ fn readouts(app: &App) -> (Vec<Line<'static>>, std::ops::Range<usize>) {
             "ξ0 {} φ {}π v0 {}",
             num(i.xi0, 3),
             num(turn_angle(i.phi) / PI, 2),
-            num(i.v0, 4)
+            speed(i.v0)
         ),
         crate::engine::Release::TableRest => format!("ξ0 {} rest on table", num(i.xi0, 3)),
         crate::engine::Release::LabRest => format!("ξ0 {} rest in lab", num(i.xi0, 3)),

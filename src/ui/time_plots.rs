@@ -57,13 +57,18 @@ pub fn energy_pair(path: &[State]) -> [Vec<(f64, f64)>; 2] {
 /// paper's Sec. III approximations over their window for releases at rest.
 pub fn render(f: &mut TuiFrame, area: Rect, app: &App) {
     let th = &app.theme;
-    let block = super::titled(" time plots: ξ, θ′, |u|, energy against τ ".into(), th);
+    let block = super::titled(
+        " time plots: ξ, θ, θ′, |u|, energy against τ (t/T: τ window) ".into(),
+        th,
+    );
     let inner = block.inner(area);
     f.render_widget(block, area);
     let p = path(&app.sim);
     let paper = app.paper.as_ref().map(path);
     let now = app.sim.now().tau;
-    let x = [0.0, now.max(1e-3)];
+    // The τ window: the run so far, or a span the user fixed (t / T).
+    let span = app.tau_window.unwrap_or(now).max(1e-3);
+    let x = [0.0, span];
     let mut marks = vec![Mark::VLine {
         x: now,
         label: format!("τ={}", num(now, 2)),
@@ -108,11 +113,12 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) {
             .map(|k| now * k as f64 / n as f64)
             .filter_map(|t| y(t).map(|v| (t, v)))
             .collect();
+        // Dots: told from the run's line without colour.
         Some(Series {
             name: "Sec. III approx.".into(),
             color: th.muted,
             points: pts,
-            joined: true,
+            joined: false,
         })
     };
     let rotating = app.view == Frame::Table;
@@ -132,6 +138,22 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) {
     let xi_of = |s: &State| s.xi();
     let th_of = move |s: &State| s.theta_dot().map_or(f64::NAN, |t| t - shift);
     let u_of = |s: &State| s.u_lab().length();
+    // θ unwrapped along the path (Figs. 1–2), Θ = θ − τ in the rotating view.
+    let angle = |path: &[State]| -> Vec<(f64, f64)> {
+        let mut out: Vec<(f64, f64)> = Vec::with_capacity(path.len());
+        let mut last = 0.0;
+        let mut turns = 0.0;
+        for (k, s) in path.iter().enumerate() {
+            let a = s.r.y.atan2(s.r.x);
+            if k > 0 {
+                let d = a - last;
+                turns -= std::f64::consts::TAU * (d / std::f64::consts::TAU).round();
+            }
+            last = a;
+            out.push((s.tau, a + turns - shift * s.tau));
+        }
+        out
+    };
     let mut xi_s = vec![series("ξ", th.trail, &p, xi_of)];
     xi_s.extend(paper_series("ξ", &xi_of));
     xi_s.extend(approx(&|t| match i.release {
@@ -146,6 +168,41 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) {
         // Θ′ = 2 ln(ξ0/ξ) (Eq. 25), table frame.
         _ => Some(table_rest(i.xi0, t).1 + 1.0 - shift),
     }));
+    let angle_name = if rotating { "Θ" } else { "θ" };
+    let mut a_s = vec![Series {
+        name: angle_name.into(),
+        color: th.trail,
+        points: angle(&p),
+        joined: true,
+    }];
+    a_s.extend(paper.as_ref().map(|pp| Series {
+        name: format!("{angle_name} paper RK2"),
+        color: th.spokes,
+        points: angle(pp),
+        joined: true,
+    }));
+    // The approximation's θ: its θ′ integrated (trapezoids on its own 200 points).
+    if let Some(rate) = th_s.iter().find(|s| s.name == "Sec. III approx.") {
+        let mut acc = 0.0;
+        let pts = rate
+            .points
+            .iter()
+            .enumerate()
+            .map(|(k, &(t, v))| {
+                if k > 0 {
+                    let (t0, v0) = rate.points[k - 1];
+                    acc += 0.5 * (t - t0) * (v + v0);
+                }
+                (t, acc)
+            })
+            .collect();
+        a_s.push(Series {
+            name: "Sec. III approx.".into(),
+            color: th.muted,
+            points: pts,
+            joined: false,
+        });
+    }
     let mut u_s = vec![series("|u|", th.trail, &p, u_of)];
     u_s.extend(paper_series("|u|", &u_of));
     let [e, w] = energy_pair(&p);
@@ -165,13 +222,14 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) {
     ];
     let plots = [
         ("ξ", Some(Quantity::Length), xi_s),
+        (angle_name, None, a_s),
         (theta_name, Some(Quantity::Rate), th_s),
         ("|u|", Some(Quantity::Speed), u_s),
         ("dE/dτ = −|u|:", None, e_s),
     ];
     // As many plots as fit (ξ first), each at least a legend line and three rows; the τ axis
     // under the last.
-    let fit = ((inner.height.saturating_sub(2)) / 4).clamp(0, 4) as usize;
+    let fit = ((inner.height.saturating_sub(2)) / 4).clamp(0, plots.len() as u16) as usize;
     if fit == 0 {
         return;
     }
@@ -181,25 +239,43 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) {
             .collect::<Vec<_>>(),
     )
     .split(inner);
-    for (k, (name, quantity, s)) in plots.into_iter().take(fit).enumerate() {
-        let y = extent(s.iter().flat_map(|s| s.points.iter().map(|p| p.1)));
-        let c = Chart {
-            title: String::new(),
-            note: String::new(),
-            x_label: if k + 1 == fit {
-                chart::axis("τ", Quantity::Time, app.units)
-            } else {
-                String::new()
-            },
-            y_label: match quantity {
-                Some(q) => chart::axis(name, q, app.units),
-                None => name.into(),
-            },
-            x,
-            y,
-            series: s,
-            marks: marks.clone(),
-        };
-        chart::render_bare(f, rows[k], th, &c, k + 1 == fit);
+    let charts: Vec<Chart> = plots
+        .into_iter()
+        .take(fit)
+        .enumerate()
+        .map(|(k, (name, quantity, s))| {
+            // The y range of what the τ window shows.
+            let y = extent(
+                s.iter()
+                    .flat_map(|s| s.points.iter().filter(|p| p.0 <= span).map(|p| p.1)),
+            );
+            Chart {
+                title: String::new(),
+                note: String::new(),
+                x_label: if k + 1 == fit {
+                    chart::axis("τ", Quantity::Time, app.units)
+                } else {
+                    String::new()
+                },
+                y_label: match quantity {
+                    Some(q) => chart::axis(name, q, app.units),
+                    None => name.into(),
+                },
+                x,
+                y,
+                series: s,
+                marks: marks.clone(),
+            }
+        })
+        .collect();
+    // One τ axis: every plot's gutter as wide as the widest, so τ = 0 is one column.
+    let gutter = charts
+        .iter()
+        .enumerate()
+        .map(|(k, c)| chart::gutter(rows[k], c, k + 1 == fit))
+        .max()
+        .unwrap_or(0);
+    for (k, c) in charts.iter().enumerate() {
+        chart::render_bare(f, rows[k], th, c, k + 1 == fit, gutter);
     }
 }
