@@ -47,9 +47,11 @@ impl Drop for Reap {
     }
 }
 
-/// The explorer at 120×40 on a new pty behind a slow link. Returns the child, what the link
-/// saw, and the master to type on.
-fn spawn() -> Option<(Reap, Arc<Mutex<Link>>, i32, Arc<AtomicBool>)> {
+/// The explorer, what the link saw, the master to type on, and the flag that stops the link.
+type Spawned = (Reap, Arc<Mutex<Link>>, i32, Arc<AtomicBool>);
+
+/// The explorer at 120×40 on a new pty behind a slow link.
+fn spawn() -> Option<Spawned> {
     let (mut master, mut slave) = (0, 0);
     let ws = libc::winsize {
         ws_row: 40,

@@ -30,13 +30,25 @@ fn explore(cli: &Cli) -> CmdResult {
         None => crate::scene::Scene::default_scene(),
     };
     let no_color = std::env::var_os("NO_COLOR").is_some_and(|v| !v.is_empty());
-    let colorterm = std::env::var("COLORTERM").ok();
+    let (term, colorterm) = (std::env::var("TERM").ok(), std::env::var("COLORTERM").ok());
+    let marker = cli
+        .marker
+        .unwrap_or_else(|| MarkerArg::from_locale(|v| std::env::var(v).ok()));
     let theme = crate::theme::Theme::resolve(theme.as_deref(), no_color)?
-        .with_depth(crate::theme::Depth::from_colorterm(colorterm.as_deref()));
+        .with_depth(crate::theme::Depth::detect(
+            term.as_deref(),
+            colorterm.as_deref(),
+        ))
+        .with_marker(marker.marker());
     let units = cli.units.units()?;
     let scene_ref = cli.look.scene.as_deref().map(scene_reference);
     if let Some(path) = &cli.record {
         check_record_path(path, [&cli.look.scene, &cli.look.theme])?;
+    }
+    if term.as_deref() == Some("dumb") {
+        return Err(Error::Invalid(
+            "TERM=dumb cannot show the explorer (it needs cursor movement); set TERM to your terminal's type (e.g. xterm), or use `turntable replay SCRIPT` or a subcommand".into(),
+        ));
     }
     use std::io::IsTerminal;
     if !(std::io::stdin().is_terminal() && std::io::stdout().is_terminal()) {
