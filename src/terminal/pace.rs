@@ -9,9 +9,10 @@ use std::time::{Duration, Instant};
 
 /// The app's clock rate: each tick is `TICK_DT × speed` of sim time.
 pub const TICKS_PER_SECOND: u32 = 30;
-/// Ticks caught up at once. A longer gap is a stall (a stopped process, a slow machine), not
-/// a slow link, and its time is dropped rather than integrated in one burst.
-pub const MAX_CATCH_UP: u32 = 2 * TICKS_PER_SECOND;
+/// Ticks caught up at once: more than a wait for an answer (2 s) or the first screen over a
+/// 4 KB/s link (4 s). A longer gap is a stall (a stopped process, a slow machine), and its
+/// time is dropped rather than integrated in one burst.
+pub const MAX_CATCH_UP: u32 = 5 * TICKS_PER_SECOND;
 /// Frames per second for a terminal that never answers its cursor-position query.
 pub const FALLBACK_FPS: u32 = 4;
 /// Unanswered queries (each waits crossterm's 2 s) before a terminal that has never answered
@@ -160,10 +161,10 @@ mod tests {
         assert_eq!(c.due(t0 + ms(1030)), 0);
         assert_eq!(c.due(t0 + ms(1040)), 1);
         assert_eq!(c.next(), t0 + Duration::from_secs(1) / 30 * 32);
-        // 3 s at once is a stall: two seconds' ticks, the rest dropped.
-        assert_eq!(c.due(t0 + ms(4040)), MAX_CATCH_UP);
-        assert_eq!(c.due(t0 + ms(4050)), 0);
-        assert_eq!(c.due(t0 + ms(4080)), 1);
+        // 6 s at once is a stall: five seconds' ticks, the rest dropped.
+        assert_eq!(c.due(t0 + ms(7040)), MAX_CATCH_UP);
+        assert_eq!(c.due(t0 + ms(7050)), 0);
+        assert_eq!(c.due(t0 + ms(7080)), 1);
         c.restart(t0 + ms(9000));
         assert_eq!(c.due(t0 + ms(9020)), 0);
     }
