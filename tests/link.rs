@@ -51,7 +51,7 @@ impl Drop for Reap {
 type Spawned = (Reap, Arc<Mutex<Link>>, i32, Arc<AtomicBool>);
 
 /// The explorer at 120×40 on a new pty behind a slow link.
-fn spawn() -> Option<Spawned> {
+fn spawn(rec: &std::path::Path) -> Option<Spawned> {
     let (mut master, mut slave) = (0, 0);
     let ws = libc::winsize {
         ws_row: 40,
@@ -81,7 +81,8 @@ fn spawn() -> Option<Spawned> {
     // SAFETY: fresh descriptors we now own.
     let (master, slave) = unsafe { (OwnedFd::from_raw_fd(master), OwnedFd::from_raw_fd(slave)) };
     let mut cmd = Command::new(env!("CARGO_BIN_EXE_turntable"));
-    cmd.env("TERM", "xterm-256color")
+    cmd.args(["--record", rec.to_str().unwrap()])
+        .env("TERM", "xterm-256color")
         .env("LANG", "C.UTF-8")
         .env_remove("COLORTERM")
         .env_remove("NO_COLOR")
@@ -160,7 +161,8 @@ const HELP: &[u8] = b"? or Esc closes";
 
 #[test]
 fn over_a_slow_link_one_frame_is_in_flight_and_keys_show_within_two_frames() {
-    let Some((mut child, link, fd, done)) = spawn() else {
+    let rec = std::env::temp_dir().join(format!("turntable-link-{}.keys", std::process::id()));
+    let Some((mut child, link, fd, done)) = spawn(&rec) else {
         return;
     };
     wait_for("30 frames delivered", &link, |l| l.frames_delivered >= 30);
@@ -205,6 +207,7 @@ fn over_a_slow_link_one_frame_is_in_flight_and_keys_show_within_two_frames() {
     wait_for("the queue to drain", &link, |l| {
         l.produced == l.delivered.len()
     });
+    let frames = link.lock().unwrap().frames_delivered;
     std::thread::sleep(Duration::from_millis(500));
     let paused = link.lock().unwrap().produced;
     std::thread::sleep(Duration::from_millis(1000));
@@ -228,4 +231,17 @@ fn over_a_slow_link_one_frame_is_in_flight_and_keys_show_within_two_frames() {
     }
     done.store(true, Ordering::Relaxed);
     assert_eq!(child.0.wait().unwrap().code(), Some(0));
+    // Time kept real time: the ticks (30 a second, all recorded) outnumber the frames the
+    // link could carry (about 15 a second), where they used to be one a frame.
+    let script = std::fs::read_to_string(&rec).unwrap();
+    let _ = std::fs::remove_file(&rec);
+    let ticks: usize = script
+        .lines()
+        .filter_map(|l| l.strip_prefix("tick"))
+        .map(|n| n.trim().parse().unwrap_or(1))
+        .sum();
+    assert!(
+        ticks * 10 > frames * 13,
+        "{ticks} ticks for {frames} frames"
+    );
 }
