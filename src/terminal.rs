@@ -268,8 +268,12 @@ fn event_loop(
         };
         if got_input {
             // Take everything queued before drawing again, so held keys cannot lag.
-            loop {
-                match event::read()? {
+            let mut queued = vec![event::read()?];
+            while event::poll(Duration::ZERO)? {
+                queued.push(event::read()?);
+            }
+            for ev in pace::coalesce_drags(queued) {
+                match ev {
                     // Raw mode turns off the terminal's own Ctrl-Z: suspend as it would.
                     Event::Key(k)
                         if k.code == KeyCode::Char('z')
@@ -278,12 +282,22 @@ fn event_loop(
                         flags.suspend.store(true, Ordering::Relaxed);
                     }
                     Event::Key(k) => session.key(k),
-                    Event::Mouse(m) => session.mouse(m)?,
+                    Event::Mouse(m) => {
+                        // The mouse maps through the canvas as drawn, so a changed screen is
+                        // drawn first: a frame in flight like any other.
+                        let draws = session.app.needs_redraw();
+                        if draws {
+                            execute!(session.term.backend_mut(), BeginSynchronizedUpdate)?;
+                        }
+                        session.mouse(m)?;
+                        if draws {
+                            execute!(session.term.backend_mut(), EndSynchronizedUpdate)?;
+                            last_frame = Some(Instant::now());
+                            flight.sent();
+                        }
+                    }
                     Event::Resize(w, h) => session.resized(w, h),
                     _ => {}
-                }
-                if !event::poll(Duration::ZERO)? {
-                    break;
                 }
             }
         }

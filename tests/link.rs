@@ -223,6 +223,28 @@ fn over_a_slow_link_one_frame_is_in_flight_and_keys_show_within_two_frames() {
         l.most_in_flight
     );
     drop(l);
+    // A drag that the link cannot keep up with: a press, 30 drags and a release in one
+    // burst are at most three frames (the drags fold into the last), not thirty.
+    let at = link.lock().unwrap().frames_delivered;
+    let mut burst = b"\x1b[<0;40;20M".to_vec();
+    for c in 41..71 {
+        burst.extend_from_slice(format!("\x1b[<32;{c};22M").as_bytes());
+    }
+    burst.extend_from_slice(b"\x1b[<0;70;22m");
+    // SAFETY: the master is open while the link runs.
+    let n = unsafe { libc::write(fd, burst.as_ptr().cast(), burst.len()) };
+    assert_eq!(n, burst.len() as isize);
+    wait_for("the drag drawn", &link, |l| {
+        l.frames_delivered > at && l.produced == l.delivered.len()
+    });
+    std::thread::sleep(Duration::from_millis(500));
+    let l = link.lock().unwrap();
+    assert!(
+        l.most_in_flight <= 3,
+        "{} frames in flight",
+        l.most_in_flight
+    );
+    drop(l);
     type_key(fd, b'q');
     let start = Instant::now();
     while child.0.try_wait().unwrap().is_none() {

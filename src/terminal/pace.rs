@@ -5,6 +5,7 @@
 //! Over ssh (whose buffers never push back on `write`) a key then waits for one frame at
 //! most, not for a backlog of them.
 
+use crossterm::event::{Event, MouseEventKind};
 use std::time::{Duration, Instant};
 
 /// The app's clock rate: each tick is `TICK_DT × speed` of sim time.
@@ -130,6 +131,22 @@ impl Flight {
     }
 }
 
+/// Events queued together, each run of mouse drags folded into its last: a drag redraws
+/// before it applies (see `Session::mouse`), and a backlog of drags would be a backlog of
+/// frames.
+pub fn coalesce_drags(events: Vec<Event>) -> Vec<Event> {
+    let drag =
+        |e: &Event| matches!(e, Event::Mouse(m) if matches!(m.kind, MouseEventKind::Drag(_)));
+    let mut out: Vec<Event> = Vec::with_capacity(events.len());
+    for e in events {
+        if drag(&e) && out.last().is_some_and(drag) {
+            out.pop();
+        }
+        out.push(e);
+    }
+    out
+}
+
 /// Asks the terminal where its cursor is and waits (up to crossterm's 2 s) for an answer,
 /// keeping any keys that come meanwhile queued for the event loop.
 pub fn ask(flight: &mut Flight) -> std::io::Result<()> {
@@ -193,6 +210,31 @@ mod tests {
         f.answered();
         assert!(!f.awaiting());
         assert!(!f.fallback());
+    }
+
+    #[test]
+    fn runs_of_drags_fold_into_their_last() {
+        use crossterm::event::{KeyModifiers, MouseButton, MouseEvent};
+        let m = |kind, column| {
+            Event::Mouse(MouseEvent {
+                kind,
+                column,
+                row: 5,
+                modifiers: KeyModifiers::NONE,
+            })
+        };
+        let drag = |c| m(MouseEventKind::Drag(MouseButton::Left), c);
+        let down = m(MouseEventKind::Down(MouseButton::Left), 1);
+        let up = m(MouseEventKind::Up(MouseButton::Left), 9);
+        let got = coalesce_drags(vec![
+            down.clone(),
+            drag(2),
+            drag(3),
+            drag(4),
+            up.clone(),
+            drag(7),
+        ]);
+        assert_eq!(got, vec![down, drag(4), up, drag(7)]);
     }
 
     #[test]
