@@ -9,6 +9,7 @@ use crossterm::event::{KeyEvent, MouseEvent};
 use ratatui::Terminal;
 use ratatui::backend::{Backend, TestBackend};
 use ratatui::buffer::Buffer;
+use ratatui::symbols::Marker;
 use std::convert::Infallible;
 use std::sync::{Arc, Mutex, MutexGuard};
 
@@ -98,7 +99,13 @@ impl<B: Backend> Session<B> {
 
     pub fn draw(&mut self) -> Result<(), B::Error> {
         let mut geom = None;
-        self.term.draw(|f| geom = crate::ui::draw(f, &self.app))?;
+        let ascii = self.app.theme.marker == Marker::Dot;
+        self.term.draw(|f| {
+            geom = crate::ui::draw(f, &self.app);
+            if ascii {
+                ascii_dots(f.buffer_mut());
+            }
+        })?;
         self.app.drawn(geom);
         Ok(())
     }
@@ -115,6 +122,16 @@ impl<B: Backend> Session<B> {
     /// The script recorded so far (None when not recording); recording stops here.
     pub fn take_recording(&mut self) -> Option<String> {
         self.recorder.take().map(|r| lock(&r).clone().finish())
+    }
+}
+
+/// ratatui's dot marker is `•`, which a non-UTF-8 terminal cannot show: `--marker ascii`
+/// draws its dots as `*`.
+fn ascii_dots(buf: &mut Buffer) {
+    for cell in &mut buf.content {
+        if cell.symbol() == ratatui::symbols::DOT {
+            cell.set_symbol("*");
+        }
     }
 }
 

@@ -1,6 +1,7 @@
 //! The terminal: raw mode, alternate screen, mouse capture, bracketed paste; always restored
-//! (quit, panic, SIGTERM, SIGHUP) and taken back on SIGCONT. The event loop ticks at a capped frame rate while playing and blocks
-//! when paused (no redraw when idle).
+//! (quit, panic, SIGTERM, SIGHUP) and taken back on SIGCONT. The event loop ticks in wall-clock
+//! time while playing, draws at most one frame in flight (see [`pace`]) and blocks when paused
+//! (no redraw when idle).
 
 use crate::app::App;
 use crate::session::{Session, SharedRecorder, lock, new_recorder};
@@ -18,6 +19,9 @@ use std::io::{self, Stdout, Write};
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, AtomicI32, Ordering};
 use std::time::{Duration, Instant};
+
+pub mod pace;
+use pace::{Clock, Flight};
 
 /// Puts the terminal back as it was. Safe to call more than once and on a dead terminal.
 pub fn restore() {
@@ -119,7 +123,8 @@ fn resume(session: &mut Session<CrosstermBackend<Stdout>>) -> io::Result<()> {
 /// Saves a recording: called with the script so far if the terminal dies under the explorer.
 pub type SaveRecording = Box<dyn FnOnce(String) + Send>;
 
-/// Runs the explorer until quit or a terminating signal. `fps` caps the frame rate.
+/// Runs the explorer until quit or a terminating signal. `fps` caps the frame rate (not the
+/// speed of time).
 /// Returns the signal (SIGTERM, SIGHUP, SIGINT, …) that ended it, if one did, and with `record` the
 /// session as a key script (also after a signal or an error, as far as it got). If the
 /// terminal is gone and the process must end without returning, `record` gets that script.
@@ -235,13 +240,14 @@ fn event_loop(
     fps: u32,
     flags: &Flags,
 ) -> io::Result<()> {
-    let frame = Duration::from_secs(1) / fps;
-    let mut next_tick = Instant::now() + frame;
+    let mut clock = Clock::new(Instant::now());
+    let mut flight = Flight::default();
+    let mut last_frame: Option<Instant> = None;
     let mut mouse_on = session.app.mouse_capture();
     while !session.app.should_quit() && !flags.stop.load(Ordering::Relaxed) {
         if flags.suspend.swap(false, Ordering::Relaxed) {
             suspend(session)?;
-            next_tick = Instant::now() + frame;
+            clock.restart(Instant::now());
         }
         if flags.resume.swap(false, Ordering::Relaxed) {
             resume(session)?;
@@ -254,21 +260,48 @@ fn event_loop(
                 execute!(session.term.backend_mut(), DisableMouseCapture)?;
             }
         }
-        if session.app.needs_redraw() {
+        // Time passes only through ticks, and a recording counts them (a replay of it needs
+        // no clock); as many are due as wall-clock time says, however few frames get drawn.
+        if session.app.is_playing() {
+            for _ in 0..clock.due(Instant::now()) {
+                if !session.app.is_playing() {
+                    break;
+                }
+                session.tick();
+            }
+        }
+        let gap = flight.gap(fps);
+        let frame_due = last_frame.map_or(Instant::now(), |t| t + gap);
+        if session.app.needs_redraw() && !flight.awaiting() && Instant::now() >= frame_due {
             execute!(session.term.backend_mut(), BeginSynchronizedUpdate)?;
             session.draw()?;
             execute!(session.term.backend_mut(), EndSynchronizedUpdate)?;
+            last_frame = Some(Instant::now());
+            flight.sent();
         }
-        // Paused: wait for input (waking now and then only to notice signals).
-        let timeout = if session.app.is_playing() {
-            next_tick.saturating_duration_since(Instant::now())
+        let got_input = if flight.awaiting() {
+            // Nothing more is written until the frame has arrived; keys stay queued.
+            pace::ask(&mut flight)?;
+            event::poll(Duration::ZERO)?
         } else {
-            Duration::from_millis(250)
+            // Paused and drawn: wait for input (waking now and then only to notice signals).
+            let mut wake = Instant::now() + Duration::from_millis(250);
+            if session.app.is_playing() {
+                wake = wake.min(clock.next());
+            }
+            if session.app.needs_redraw() {
+                wake = wake.min(frame_due.max(Instant::now()));
+            }
+            event::poll(wake.saturating_duration_since(Instant::now()))?
         };
-        if event::poll(timeout)? {
+        if got_input {
             // Take everything queued before drawing again, so held keys cannot lag.
-            loop {
-                match event::read()? {
+            let mut queued = vec![event::read()?];
+            while event::poll(Duration::ZERO)? {
+                queued.push(event::read()?);
+            }
+            for ev in pace::coalesce_drags(queued) {
+                match ev {
                     // Raw mode turns off the terminal's own Ctrl-Z: suspend as it would.
                     Event::Key(k)
                         if k.code == KeyCode::Char('z')
@@ -277,31 +310,30 @@ fn event_loop(
                         flags.suspend.store(true, Ordering::Relaxed);
                     }
                     Event::Key(k) => session.key(k),
-                    Event::Mouse(m) => session.mouse(m)?,
+                    Event::Mouse(m) => {
+                        // The mouse maps through the canvas as drawn, so a changed screen is
+                        // drawn first: a frame in flight like any other.
+                        let draws = session.app.needs_redraw();
+                        if draws {
+                            execute!(session.term.backend_mut(), BeginSynchronizedUpdate)?;
+                        }
+                        session.mouse(m)?;
+                        if draws {
+                            execute!(session.term.backend_mut(), EndSynchronizedUpdate)?;
+                            last_frame = Some(Instant::now());
+                            flight.sent();
+                        }
+                    }
                     Event::Resize(w, h) => session.resized(w, h),
                     // Pasted text is not keys (a `q` in it would quit): ignored, and left out
                     // of the recording as it leaves the screen alone.
                     Event::Paste(_) => {}
                     _ => {}
                 }
-                if !event::poll(Duration::ZERO)? {
-                    break;
-                }
             }
         }
-        // Time passes only through ticks, and a recording counts them: a replay of it
-        // needs no clock.
-        let now = Instant::now();
-        if session.app.is_playing() {
-            if now >= next_tick {
-                session.tick();
-                next_tick += frame;
-                if next_tick < now {
-                    next_tick = now + frame;
-                }
-            }
-        } else {
-            next_tick = now + frame;
+        if !session.app.is_playing() {
+            clock.restart(Instant::now());
         }
     }
     Ok(())

@@ -7,6 +7,9 @@ use crate::error::Error;
 use std::str::FromStr;
 
 use ratatui::style::Color;
+use ratatui::symbols::Marker;
+
+pub mod ansi16;
 use serde::de::Error as _;
 use serde::{Deserialize, Deserializer};
 
@@ -19,6 +22,10 @@ pub const BUILTIN: [&str; 4] = ["dark", "light", "high-contrast", "mono"];
 #[serde(deny_unknown_fields)]
 pub struct Theme {
     pub name: String,
+    /// How plots and the canvas draw points: braille unless the locale or `--marker` says
+    /// otherwise (not a theme file's choice).
+    #[serde(skip, default = "braille")]
+    pub marker: Marker,
     #[serde(deserialize_with = "colour")]
     pub background: Color,
     #[serde(deserialize_with = "colour")]
@@ -78,6 +85,8 @@ fn colour<'de, D: Deserializer<'de>>(deserializer: D) -> Result<Color, D::Error>
 pub enum Depth {
     TrueColor,
     Ansi256,
+    /// The 8/16 colours of `TERM=xterm`, `screen`, `linux` (see [`ansi16`]).
+    Ansi16,
 }
 
 impl Depth {
@@ -92,10 +101,32 @@ impl Depth {
         }
     }
 
+    /// From TERM and COLORTERM: 24-bit only where COLORTERM promises it; 16 colours for the
+    /// terminal types that do not promise 256 (`xterm`, `screen`, `tmux`, `linux`, `vt100`…
+    /// without `256color`); else the 256-colour palette every modern terminal has.
+    pub fn detect(term: Option<&str>, colorterm: Option<&str>) -> Depth {
+        const SIXTEEN: [&str; 10] = [
+            "xterm", "screen", "tmux", "linux", "rxvt", "vt100", "vt102", "vt220", "ansi", "cygwin",
+        ];
+        match Depth::from_colorterm(colorterm) {
+            Depth::TrueColor => Depth::TrueColor,
+            _ => {
+                let term = term.unwrap_or_default();
+                let family = term.split(['-', '.']).next().unwrap_or_default();
+                if !term.contains("256") && SIXTEEN.contains(&family) {
+                    Depth::Ansi16
+                } else {
+                    Depth::Ansi256
+                }
+            }
+        }
+    }
+
     pub fn name(self) -> &'static str {
         match self {
             Depth::TrueColor => "24-bit",
             Depth::Ansi256 => "256",
+            Depth::Ansi16 => "16",
         }
     }
 }
@@ -123,9 +154,21 @@ pub fn nearest_256(r: u8, g: u8, b: u8) -> u8 {
     }
 }
 
+fn braille() -> Marker {
+    Marker::Braille
+}
+
 impl Theme {
+    pub fn with_marker(mut self, marker: Marker) -> Theme {
+        self.marker = marker;
+        self
+    }
+
     /// The theme with every colour as the terminal's depth shows it.
     pub fn with_depth(mut self, depth: Depth) -> Theme {
+        if depth == Depth::Ansi16 {
+            ansi16::map(&mut self);
+        }
         if depth == Depth::Ansi256 {
             for c in [
                 &mut self.background,
@@ -209,35 +252,23 @@ fn parse(text: &str) -> Result<Theme, String> {
 mod tests {
     use super::*;
 
-    /// WCAG 2 relative luminance of an sRGB colour.
-    fn luminance(c: Color) -> f64 {
-        let Color::Rgb(r, g, b) = c else {
-            panic!("not an RGB colour: {c:?}")
-        };
-        let lin = |v: u8| {
-            let x = f64::from(v) / 255.0;
-            if x <= 0.03928 {
-                x / 12.92
-            } else {
-                ((x + 0.055) / 1.055).powf(2.4)
-            }
-        };
-        0.2126 * lin(r) + 0.7152 * lin(g) + 0.0722 * lin(b)
-    }
-
+    /// WCAG contrast of two colours (RGB, or one of the 16 as xterm shows it).
     fn contrast(a: Color, b: Color) -> f64 {
-        let (la, lb) = (luminance(a), luminance(b));
-        (la.max(lb) + 0.05) / (la.min(lb) + 0.05)
+        let rgb = |c| ansi16::rgb(c).unwrap_or_else(|| panic!("no RGB for {c:?}"));
+        ansi16::contrast(rgb(a), rgb(b))
     }
 
     /// Legible from the back of the room: WCAG contrast against the background, computed
     /// from the theme files. The data (trail, particle) and all text ≥ 4.5:1, the drawing
     /// (table edge, ξ = 1, arrows, forces) ≥ 3:1; in high-contrast everything ≥ 7:1. Spokes
-    /// may stay faint. (mono uses the terminal's own colours.)
+    /// may stay faint. (mono uses the terminal's own colours.) The same in 16 colours.
     #[test]
     fn built_in_themes_are_legible() {
-        for name in ["dark", "light", "high-contrast"] {
-            let t = Theme::builtin(name).unwrap();
+        for (name, depth) in ["dark", "light", "high-contrast"]
+            .into_iter()
+            .flat_map(|n| [(n, Depth::TrueColor), (n, Depth::Ansi16)])
+        {
+            let t = Theme::builtin(name).unwrap().with_depth(depth);
             let strict = name == "high-contrast";
             let text = [
                 ("trail", t.trail),
@@ -265,10 +296,12 @@ mod tests {
             {
                 let min = if strict { 7.0 } else { min };
                 let k = contrast(c, t.background);
-                assert!(k >= min, "{name} {role}: {k:.2} < {min}");
+                assert!(k >= min, "{name} {depth:?} {role}: {k:.2} < {min}");
             }
-            // The data stands out from the furniture.
-            assert!(contrast(t.trail, t.background) > contrast(t.table_edge, t.background));
+            // The data stands out from the furniture (in 16 colours, by its hue alone).
+            if depth == Depth::TrueColor {
+                assert!(contrast(t.trail, t.background) > contrast(t.table_edge, t.background));
+            }
         }
         assert!((contrast(Color::Rgb(0, 0, 0), Color::Rgb(255, 255, 255)) - 21.0).abs() < 1e-9);
     }
@@ -355,6 +388,46 @@ mod tests {
             t.escaped,
             t.notice,
         ]
+    }
+
+    #[test]
+    fn terminals_that_promise_16_colours_get_16() {
+        let d = |term, ct| Depth::detect(Some(term), ct);
+        for term in [
+            "xterm",
+            "screen",
+            "screen.xterm-new",
+            "linux",
+            "tmux",
+            "vt100",
+        ] {
+            assert_eq!(d(term, None), Depth::Ansi16, "{term}");
+        }
+        for term in [
+            "xterm-256color",
+            "screen-256color",
+            "tmux-256color",
+            "alacritty",
+        ] {
+            assert_eq!(d(term, None), Depth::Ansi256, "{term}");
+        }
+        assert_eq!(d("xterm", Some("truecolor")), Depth::TrueColor);
+        assert_eq!(d("xterm-256color", Some("yes")), Depth::Ansi256);
+        assert_eq!(Depth::detect(None, None), Depth::Ansi256);
+        for name in BUILTIN {
+            let t = Theme::builtin(name).unwrap().with_depth(Depth::Ansi16);
+            for c in all_colours(&t) {
+                assert!(
+                    !matches!(c, Color::Rgb(..) | Color::Indexed(_)),
+                    "{name}: {c:?}"
+                );
+            }
+        }
+        let dark = Theme::builtin("dark").unwrap().with_depth(Depth::Ansi16);
+        assert_eq!(
+            (dark.background, dark.foreground),
+            (Color::Black, Color::Gray)
+        );
     }
 
     #[test]

@@ -201,3 +201,28 @@ fn terminal_bytes_fit_a_slow_link() {
     };
     assert!(dark("256").bytes_per_frame < 0.9 * dark("24-bit").bytes_per_frame);
 }
+
+/// Over a 4 and a 16 KB/s link (simulated in link time, frames measured through the real
+/// backend): one frame in flight where drawing every tick leaves dozens queued, keys within
+/// the bounds, and sim time kept.
+#[test]
+fn over_a_slow_link_one_frame_is_in_flight() {
+    use turntable::bench::link::simulate;
+    let slow = simulate(4096.0, 10.0).unwrap();
+    let fast = simulate(16384.0, 10.0).unwrap();
+    for l in [&slow, &fast] {
+        assert_eq!(l.in_flight, 1, "{l:?}");
+        assert!(l.time_kept > 0.95 && l.time_kept <= 1.0, "{l:?}");
+        assert!(l.bytes_per_frame > 50.0, "{l:?}");
+    }
+    assert!(slow.unpaced_in_flight > 30, "{slow:?}");
+    // The first screen alone takes ~3.6 s at 4 KB/s; after it a key waits for two frames.
+    assert!(
+        slow.frames_per_s > 2.0 && fast.frames_per_s > 10.0,
+        "{slow:?} {fast:?}"
+    );
+    assert!(
+        slow.worst_key_s < 1.5 && fast.worst_key_s < 0.5,
+        "{slow:?} {fast:?}"
+    );
+}

@@ -18,7 +18,30 @@ pub const FPS: f64 = 30.0;
 pub const GOAL_KB_PER_S: f64 = 30.0;
 
 /// A writer that only counts, into a counter the caller keeps.
-struct Count(Rc<Cell<usize>>);
+pub(super) struct Count(Rc<Cell<usize>>);
+
+/// A terminal of `size` drawing through the real crossterm backend into a byte counter.
+pub(super) type Counted = Terminal<CrosstermBackend<Count>>;
+
+pub(super) fn counted(size: (u16, u16)) -> Result<(Counted, Rc<Cell<usize>>), Error> {
+    let count = Rc::new(Cell::new(0));
+    let backend = CrosstermBackend::new(Count(Rc::clone(&count)));
+    let term = Terminal::with_options(
+        backend,
+        ratatui::TerminalOptions {
+            viewport: ratatui::Viewport::Fixed(ratatui::layout::Rect::new(0, 0, size.0, size.1)),
+        },
+    )?;
+    Ok((term, count))
+}
+
+/// Draws `app` as the explorer does.
+pub(super) fn draw(term: &mut Counted, app: &mut App) -> Result<(), Error> {
+    let mut geom = None;
+    term.draw(|f| geom = crate::ui::draw(f, app))?;
+    app.drawn(geom);
+    Ok(())
+}
 
 impl Write for Count {
     fn write(&mut self, buf: &[u8]) -> io::Result<usize> {
@@ -49,20 +72,7 @@ pub fn measure(theme: &str, depth: Depth, size: (u16, u16), frames: usize) -> Re
         .ok_or_else(|| Error::invalid(format!("no theme {theme}")))?
         .with_depth(depth);
     let mut app = App::new(Scene::default_scene(), th);
-    let count = Rc::new(Cell::new(0));
-    let backend = CrosstermBackend::new(Count(Rc::clone(&count)));
-    let mut term = Terminal::with_options(
-        backend,
-        ratatui::TerminalOptions {
-            viewport: ratatui::Viewport::Fixed(ratatui::layout::Rect::new(0, 0, size.0, size.1)),
-        },
-    )?;
-    let draw = |term: &mut Terminal<CrosstermBackend<Count>>, app: &mut App| {
-        let mut geom = None;
-        term.draw(|f| geom = crate::ui::draw(f, app))?;
-        app.drawn(geom);
-        Ok::<(), Error>(())
-    };
+    let (mut term, count) = counted(size)?;
     draw(&mut term, &mut app)?;
     let start = count.get();
     for _ in 0..frames {

@@ -141,6 +141,11 @@ pub(super) fn speed(cfg: &Config, all: &[Initial], refs: &[Measure]) -> Result<S
     let (frame_ms, frame_trail) = frame_time(cfg.reps)?;
     // Ten seconds of play (three in --quick).
     let terminal_bytes = super::bytes::all(if cfg.quick { 90 } else { 300 })?;
+    // Ten seconds: the first screen alone takes 3.6 s at 4 KB/s.
+    let links = super::link::RATES
+        .iter()
+        .map(|&r| super::link::simulate(r, 10.0))
+        .collect::<Result<Vec<_>, _>>()?;
     // The rk2 (stick events) dt = 1e-3 accuracy on the rest task, and the loosest dp54 tol
     // that matches it, on a grid of four tolerances per decade.
     let rest = |s: Settings| -> Result<Vec<Measure>, Error> {
@@ -190,6 +195,7 @@ pub(super) fn speed(cfg: &Config, all: &[Initial], refs: &[Measure]) -> Result<S
         frame_ms,
         frame_trail,
         terminal_bytes,
+        links,
     })
 }
 

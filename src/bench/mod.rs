@@ -5,6 +5,7 @@
 
 pub mod bytes;
 mod goals;
+pub mod link;
 mod output;
 mod runs;
 mod tasks;
@@ -138,6 +139,8 @@ pub struct Speed {
     /// Bytes written to the terminal while the default scene plays at 120×40, per theme and
     /// colour depth.
     pub terminal_bytes: Vec<bytes::Bytes>,
+    /// The same over a 4 and a 16 KB/s link: paced frames, and the backlog unpaced.
+    pub links: Vec<link::Link>,
 }
 
 /// dp54 against rk2 (with stick events) at dt = 1e-3 on one task: the loosest dp54 tolerance

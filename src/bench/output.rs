@@ -194,6 +194,20 @@ pub fn table(r: &Report) -> String {
             super::bytes::GOAL_KB_PER_S
         );
     }
+    for l in &sp.links {
+        let _ = writeln!(
+            o,
+            "  over a {:>2.0} KB/s link ({:.0} s): {:>5.0} B/frame, {:>4.1} frames/s, {} frame in flight (unpaced: {}), a key shows within {:.2} s (after the first screen), time kept {:.0} %",
+            l.rate_kb_per_s,
+            l.seconds,
+            l.bytes_per_frame,
+            l.frames_per_s,
+            l.in_flight,
+            l.unpaced_in_flight,
+            l.worst_key_s,
+            100.0 * l.time_kept
+        );
+    }
     o
 }
 

@@ -23,6 +23,11 @@ pub struct Cli {
     /// Explorer: frame-rate cap while playing.
     #[arg(long, default_value_t = 30, value_parser = clap::value_parser!(u32).range(1..=240))]
     pub fps: u32,
+    /// Explorer: how plots draw points: braille (2×4 dots a cell), block (half blocks) or
+    /// ascii (`*`). Default: braille, or ascii where the locale (LC_ALL, LC_CTYPE, LANG) is
+    /// not UTF-8.
+    #[arg(long, value_enum, value_name = "KIND")]
+    pub marker: Option<MarkerArg>,
     /// Explorer: do not capture the mouse (M toggles it inside).
     #[arg(long)]
     pub no_mouse: bool,
@@ -32,6 +37,38 @@ pub struct Cli {
     pub record: Option<PathBuf>,
     #[command(flatten)]
     pub units: UnitsArgs,
+}
+
+/// How plots draw points (`--marker`).
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MarkerArg {
+    Braille,
+    Block,
+    Ascii,
+}
+
+impl MarkerArg {
+    /// Braille, unless the locale's character set is named and is not UTF-8 (`LANG=C`).
+    pub fn from_locale(lookup: impl Fn(&str) -> Option<String>) -> MarkerArg {
+        let set = ["LC_ALL", "LC_CTYPE", "LANG"]
+            .into_iter()
+            .find_map(|v| lookup(v).filter(|s| !s.is_empty()));
+        match set {
+            Some(s) if !s.to_ascii_lowercase().replace('-', "").contains("utf8") => {
+                MarkerArg::Ascii
+            }
+            _ => MarkerArg::Braille,
+        }
+    }
+
+    pub fn marker(self) -> ratatui::symbols::Marker {
+        use ratatui::symbols::Marker;
+        match self {
+            MarkerArg::Braille => Marker::Braille,
+            MarkerArg::Block => Marker::HalfBlock,
+            MarkerArg::Ascii => Marker::Dot,
+        }
+    }
 }
 
 /// What the explorer shows, for the explorer and for `replay`.

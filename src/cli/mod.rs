@@ -80,11 +80,23 @@ fn explore(cli: &Cli) -> Result<Option<i32>, Error> {
         None => crate::scene::Scene::default_scene(),
     };
     let no_color = std::env::var_os("NO_COLOR").is_some_and(|v| !v.is_empty());
-    let colorterm = std::env::var("COLORTERM").ok();
+    let (term, colorterm) = (std::env::var("TERM").ok(), std::env::var("COLORTERM").ok());
+    let marker = cli
+        .marker
+        .unwrap_or_else(|| MarkerArg::from_locale(|v| std::env::var(v).ok()));
     let theme = crate::theme::Theme::resolve(theme.as_deref(), no_color)?
-        .with_depth(crate::theme::Depth::from_colorterm(colorterm.as_deref()));
+        .with_depth(crate::theme::Depth::detect(
+            term.as_deref(),
+            colorterm.as_deref(),
+        ))
+        .with_marker(marker.marker());
     let units = cli.units.units()?;
     let scene_ref = cli.look.scene.as_deref().map(scene_reference);
+    if term.as_deref() == Some("dumb") {
+        return Err(Error::Invalid(
+            "TERM=dumb cannot show the explorer (it needs cursor movement); set TERM to your terminal's type (e.g. xterm), or use `turntable replay SCRIPT` or a subcommand".into(),
+        ));
+    }
     let recording = match &cli.record {
         Some(path) => Some(std::sync::Arc::new(Recording {
             out: std::sync::Mutex::new(Some(check_record_path(

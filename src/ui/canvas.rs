@@ -8,7 +8,6 @@ use glam::DVec2;
 use ratatui::Frame as TuiFrame;
 use ratatui::layout::Rect;
 use ratatui::style::{Color, Style};
-use ratatui::symbols::Marker;
 use ratatui::text::Span;
 use ratatui::widgets::canvas::{Canvas, Circle, Context, Line};
 
@@ -248,7 +247,7 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) -> CanvasGeom {
     let sense = DVec2::new(-0.8, 0.62) * table_r;
     let canvas = Canvas::default()
         .block(block)
-        .marker(Marker::Braille)
+        .marker(th.marker)
         .background_color(th.background)
         .x_bounds(xb)
         .y_bounds(yb)

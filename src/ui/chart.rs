@@ -7,7 +7,6 @@ use crate::theme::Theme;
 use ratatui::Frame as TuiFrame;
 use ratatui::layout::Rect;
 use ratatui::style::{Color, Style};
-use ratatui::symbols::Marker;
 use ratatui::text::{Line, Span};
 use ratatui::widgets::canvas::{Canvas, Line as Seg, Points};
 use ratatui::widgets::{Block, Borders, Paragraph};
@@ -291,7 +290,7 @@ pub fn render_bare(
     // One terminal column in x units.
     let col = (x[1] - x[0]) / f64::from(plot.width.max(1));
     let canvas = Canvas::default()
-        .marker(Marker::Braille)
+        .marker(th.marker)
         .x_bounds(x)
         .y_bounds(y)
         .paint(|ctx| {
