@@ -198,6 +198,7 @@ fn mark(m: Method) -> char {
         Method::Rk2 => '2',
         Method::Rk4 => '4',
         Method::Dp54 => 'd',
+        Method::Dop853 => '8',
     }
 }
 
