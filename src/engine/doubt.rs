@@ -55,7 +55,7 @@ pub fn doubt(run: &Run, tau_max: f64) -> Doubt {
         };
     }
     let tol = match run.settings.method() {
-        Method::Dp54 => (run.settings.scheme.knob() * 1e-3).max(TOL_RANGE.0),
+        Method::Dp54 | Method::Dop853 => (run.settings.scheme.knob() * 1e-3).max(TOL_RANGE.0),
         _ => 1e-12,
     };
     let settings = Settings {

@@ -170,10 +170,8 @@ pub fn escape_speed(xi0: f64, phi: f64, settings: Settings, tol: f64) -> Result<
     let mut evals = 0;
     let at = |v0: f64| Initial::velocity(xi0, phi, v0);
     let scan_settings = match settings.scheme {
-        Scheme::Dp54 { tol } => Settings {
-            scheme: Scheme::Dp54 {
-                tol: tol.max(SCAN_TOL),
-            },
+        Scheme::Dp54 { tol } | Scheme::Dop853 { tol } => Settings {
+            scheme: settings.scheme.with_knob(tol.max(SCAN_TOL)),
             ..settings
         },
         _ => settings,
