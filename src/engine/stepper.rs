@@ -183,7 +183,9 @@ fn initial_step(rhs: impl Fn(Y) -> Y, y: Y, f0: Y, tol: f64, order: i32) -> f64 
 
 /// Hairer's step-size controllers, with their codes' defaults (safety 0.9): DOPRI5's PI
 /// control (β = 0.04, exponent 1/5 − 0.75β, factor in [0.2, 10]) and DOP853's (β = 0,
-/// exponent 1/8, factor in [1/3, 6]).
+/// exponent 1/8, factor in [1/3, 6]), the latter with Gustafsson's predictive step (as in
+/// Hairer's RADAU5): closing in on a stop its error grows ~10× per step at equal h, and
+/// without the prediction nearly every step was first rejected (11 evaluations lost each).
 #[derive(Clone, Copy, Debug)]
 struct Controller {
     facold: f64,
@@ -193,6 +195,9 @@ struct Controller {
     /// Bounds of h/h_new: the largest shrink and the largest growth.
     shrink: f64,
     grow: f64,
+    predictive: bool,
+    /// The last accepted step and its error (predictive control only).
+    last_accepted: Option<(f64, f64)>,
 }
 
 impl Controller {
@@ -205,6 +210,8 @@ impl Controller {
             expo: 0.2 - 0.04 * 0.75,
             shrink: 5.0,
             grow: 0.1,
+            predictive: false,
+            last_accepted: None,
         }
     }
     fn dop853() -> Self {
@@ -213,6 +220,7 @@ impl Controller {
             expo: 1.0 / 8.0,
             shrink: 1.0 / 0.333,
             grow: 1.0 / 6.0,
+            predictive: true,
             ..Controller::dp54()
         }
     }
@@ -223,6 +231,15 @@ impl Controller {
             let fac =
                 (fac11 / self.facold.powf(self.beta) / Self::SAFE).clamp(self.grow, self.shrink);
             let mut hnew = h / fac;
+            if let Some((hacc, erracc)) = self.last_accepted {
+                // Gustafsson's predictive control: an error growing from step to step
+                // (a stop ahead) shrinks the next step before it is rejected.
+                let gus = (hacc / h) * (err * err / erracc).powf(self.expo) / Self::SAFE;
+                hnew = hnew.min(h / gus.clamp(self.grow, self.shrink));
+            }
+            if self.predictive {
+                self.last_accepted = Some((h, err.max(1e-2)));
+            }
             if self.rejected_last {
                 hnew = hnew.min(h);
             }
