@@ -5,7 +5,6 @@
 //! Headless (tests, replay) the same pieces are computed inline, so screens stay a function
 //! of the keys.
 
-use crate::engine::method::Scheme;
 use crate::engine::model::turn_angle;
 use crate::engine::roots::bisect;
 use crate::engine::solve::{CLASSIFY_TAU, critical_radius, escape_speed};
@@ -157,19 +156,18 @@ pub fn settings_for(s: Settings) -> Settings {
     }
 }
 
-/// The integration behind a curve's escape speeds: dp54 no tighter than [`CURVE_VTOL`]/100.
+/// The integration behind a curve's escape speeds: an adaptive method no tighter than
+/// [`CURVE_VTOL`]/100.
 /// Its own error in v_e is about its tol (the v_e rows of `turntable bench`), so a tighter
 /// explorer tol would cost time and change no digit the chart can show.
 pub fn curve_settings(s: Settings) -> Settings {
     let s = settings_for(s);
-    match s.scheme {
-        Scheme::Dp54 { tol } => Settings {
-            scheme: Scheme::Dp54 {
-                tol: tol.max(1e-2 * CURVE_VTOL),
-            },
+    match s.scheme.tol() {
+        Some(tol) => Settings {
+            scheme: s.scheme.with_knob(tol.max(1e-2 * CURVE_VTOL)),
             ..s
         },
-        _ => s,
+        None => s,
     }
 }
 

@@ -188,6 +188,23 @@ mod tests {
         )
         .unwrap();
         assert_eq!(bare.settings.scheme, Scheme::Rk2 { dt: 1e-3 });
+        // dop853 carries a tol (its default 1e-10), as dp54 does.
+        s.settings.scheme = Scheme::Dop853 { tol: 1e-12 };
+        let text = s.to_toml();
+        assert!(
+            text.contains("method = \"dop853\"")
+                && text.contains("\ntol = ")
+                && !text.contains("\ndt = "),
+            "{text}"
+        );
+        let back: Scene = toml::from_str(&text).unwrap();
+        assert_eq!(back.settings.scheme, Scheme::Dop853 { tol: 1e-12 });
+        let bare: Scene = toml::from_str(
+            "name = \"x\"\n[initial]\nxi0 = 0.5\nphi = 0.0\nv0 = 0.6\n[settings]\nmethod = \"dop853\"\n",
+        )
+        .unwrap();
+        assert_eq!(bare.settings.scheme, Scheme::Dop853 { tol: 1e-10 });
+        assert_eq!(bare.settings.accuracy_label(), "tol=1e-10");
         assert!(
             toml::from_str::<Scene>(
                 "name = \"x\"\n[initial]\nxi0 = 0.5\nphi = 0.0\nv0 = 0.6\n[settings]\nmethod = \"rk2\"\ntoll = 1\n"

@@ -71,7 +71,7 @@ fn quick_bench_rows_are_finite_and_converge() {
     // Every method gets the outcome right once accurate: dt ≤ 1e-2, or tol ≤ 1e-6 (looser
     // dp54 tolerances misjudge releases near the escape threshold).
     for r in report.rows.iter().filter(|r| r.task == Task::Rest) {
-        if r.knob <= if r.method == M::Dp54 { 1e-6 } else { 1e-2 } {
+        if r.knob <= if r.method.adaptive() { 1e-6 } else { 1e-2 } {
             assert_eq!(r.wrong, 0, "{} {}", r.method, r.setting);
         }
         // The raw scheme has no stop of its own (`run --method rk2-raw` never stops): the
@@ -95,11 +95,24 @@ fn quick_bench_rows_are_finite_and_converge() {
         .unwrap();
     assert!(smooth.ratio > 20.0, "{smooth:?}");
     assert!(bench::table(&report).contains("rest"));
+    // dop853 has its rows, and at tight tolerances on the rest task it needs fewer RHS
+    // evaluations than dp54 at the same error: the bench names where that starts.
+    let rest = report
+        .crossovers
+        .iter()
+        .find(|c| c.task == Task::Rest)
+        .unwrap();
+    let tight = rest.points.last().unwrap();
+    assert!(tight.tol <= 1e-10 && tight.ratio > 1.3, "{rest:?}");
+    let (tol, _) = rest.from.unwrap();
+    assert!(tol >= 1e-8, "{rest:?}");
+    assert!(bench::table(&report).contains("dop853 cheaper from tol="));
     // The chart marks each method's points and names its axes.
     let plot = bench::plot(&report, Task::Rest, 72, 20).unwrap();
     for want in [
         "r rk2-raw",
         "d dp54",
+        "8 dop853",
         "log10 RHS evaluations per case",
         "rest",
     ] {

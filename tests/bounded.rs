@@ -75,9 +75,10 @@ fn compare_after_a_long_session_catches_up_over_ticks() {
 #[test]
 fn restart_work_is_bounded_per_tick() {
     let mut s = session("C");
-    s.key(key('m'));
-    s.key(key('m'));
-    s.key(key('m'));
+    // dp54 → dop853 → rk2-raw → rk2 → rk4
+    for _ in 0..4 {
+        s.key(key('m'));
+    }
     for _ in 0..200 {
         s.key(key('r'));
         s.tick();
@@ -170,9 +171,14 @@ fn frictionless_trail_is_bounded_per_point_and_per_tick() {
 /// the run's latest step is that step: the key steps nothing, and the next one steps once.
 #[test]
 fn integrator_step_steps_from_the_current_state() {
-    // dp54 → the paper's raw rk2: no stick event, so A's stop chatters on, slipping.
+    // dp54 → dop853 → the paper's raw rk2: no stick event, so A's stop chatters on, slipping.
     let mut s = session("A");
     s.key(key('m'));
+    s.key(key('m'));
+    assert_eq!(
+        s.app.sim.run.settings.method(),
+        turntable::engine::Method::Rk2Raw
+    );
     for _ in 0..8 {
         s.key(key(']'));
     }

@@ -148,7 +148,7 @@ fn enum_flags_list_their_values_and_take_aliases() {
     let (code, _, err) = turntable(&["run", "--method", "rk3"]);
     assert_eq!(code, 2);
     assert!(
-        err.contains("[possible values: rk2-raw, rk2, rk4, dp54]"),
+        err.contains("[possible values: rk2-raw, rk2, rk4, dp54, dop853]"),
         "{err}"
     );
     let (code, out, err) = turntable(&["run", "--frame", "rotating", "--json"]);
@@ -503,4 +503,33 @@ fn sweep_angles_lie_in_zero_to_two_pi() {
         }
         assert!(n >= 6, "{args:?}: {out}");
     }
+}
+
+#[test]
+fn dop853_takes_tol_and_rests_where_dp54_does() {
+    let args = [
+        "run",
+        "--xi0",
+        "0.5",
+        "--phi",
+        "3.141592653589793",
+        "--v0",
+        "1",
+        "--json",
+    ];
+    let xi = |extra: &[&str]| {
+        let (code, out, err) = turntable(&[&args[..], extra].concat());
+        assert_eq!(code, 0, "{err}");
+        (field(&out, "method"), field(&out, "tol"), field(&out, "xi"))
+    };
+    let (m, tol, x8) = xi(&["--method", "dop853", "--tol", "1e-12"]);
+    assert_eq!((m.as_str(), tol.as_str()), ("\"dop853\"", "1e-12"));
+    let (_, _, x5) = xi(&["--method", "dp54", "--tol", "1e-12"]);
+    let (x8, x5): (f64, f64) = (x8.parse().unwrap(), x5.parse().unwrap());
+    assert!((x8 - x5).abs() < 1e-10, "{x8} vs {x5}");
+    // Its default knob is a tolerance too; a dt is refused.
+    assert_eq!(xi(&["--method", "dop853"]).1, "1e-10");
+    let (code, _, err) = turntable(&["run", "--method", "dop853", "--dt", "0.01"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("dop853 takes --tol"), "{err}");
 }

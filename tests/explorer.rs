@@ -791,6 +791,7 @@ fn integrator_steps_one_at_a_time() {
     );
 
     let mut a = app("C");
+    key(&mut a, 'm'); // dop853
     key(&mut a, 'm'); // rk2-raw
     for _ in 0..112 {
         a.tick();
@@ -992,4 +993,25 @@ fn the_title_and_a_saved_scene_tell_what_is_on_screen() {
         (Frame::Table, true, a.zoom)
     );
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// `m` goes from dp54 to dop853 keeping the tolerance (both adaptive), then to the fixed-step
+/// methods at the paper's dt; the panel names the method and its knob.
+#[test]
+fn method_key_reaches_dop853_with_the_same_tol() {
+    use turntable::engine::method::Scheme;
+    let mut a = app("C");
+    key(&mut a, '>');
+    key(&mut a, '>');
+    assert_eq!(a.settings.scheme, Scheme::Dp54 { tol: 1e-11 });
+    key(&mut a, 'm');
+    assert_eq!(a.settings.scheme, Scheme::Dop853 { tol: 1e-11 });
+    let screen = render(&mut a, 100, 30);
+    assert!(screen.contains("dop853"), "{screen}");
+    for _ in 0..400 {
+        a.tick();
+    }
+    assert_eq!(a.sim.run.outcome(), Outcome::Stuck);
+    key(&mut a, 'm');
+    assert_eq!(a.settings.scheme, Scheme::Rk2Raw { dt: 1e-3 });
 }

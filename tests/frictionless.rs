@@ -2,7 +2,8 @@
 //! form, checked against integrating the frictionless equations in the rotating frame.
 
 use glam::DVec2;
-use turntable::engine::stepper::dp54_plain;
+use turntable::engine::method::Scheme;
+use turntable::engine::stepper::adaptive_plain;
 use turntable::engine::{Frame, Initial, Outcome, Release, Run, Settings};
 
 fn free(i: Initial) -> Initial {
@@ -22,11 +23,11 @@ fn the_closed_form_is_what_the_rotating_frame_equations_give() {
     ] {
         let i = free(i);
         let tau = 5.0;
-        let (y, _) = dp54_plain(
+        let (y, _) = adaptive_plain(
             |y| Frame::Table.rhs_free(y),
             Frame::Table.from_state(&i.state()),
             tau,
-            1e-12,
+            Scheme::Dp54 { tol: 1e-12 },
         )
         .unwrap();
         let integrated = Frame::Table.to_state(y, tau);

@@ -97,10 +97,10 @@ fn property_4_escaping_runs_end_with_theta_dot_between_0_and_1() {
     assert!(escaped > 20, "only {escaped} escaped");
 }
 
-/// E(τ) − E(0) = −∫|u| dτ along every dp54 run, the integral by 5-point Gauss–Legendre on each
-/// step's dense output.
+/// E(τ) − E(0) = −∫|u| dτ along every dp54 and dop853 run, the integral by 5-point
+/// Gauss–Legendre on each quarter of each step's dense output (dop853's steps are long).
 #[test]
-fn energy_identity_holds_on_every_dp54_run() {
+fn energy_identity_holds_on_every_adaptive_run() {
     const X: [f64; 5] = [
         -0.906_179_845_938_664,
         -0.538_469_310_105_683,
@@ -116,10 +116,18 @@ fn energy_identity_holds_on_every_dp54_run() {
         0.236_926_885_056_189,
     ];
     let mut rng = Rng(5);
-    for tol in [1e-10, 1e-12] {
+    for (method, tol) in [
+        (Method::Dp54, 1e-10),
+        (Method::Dp54, 1e-12),
+        (Method::Dop853, 1e-12),
+    ] {
         for _ in 0..50 {
             let i = random_release(&mut rng);
-            let mut run = Run::new(i, Settings::dp54(tol)).unwrap();
+            let s = Settings {
+                scheme: method.with(tol),
+                ..Settings::default()
+            };
+            let mut run = Run::new(i, s).unwrap();
             let e0 = run.state().energy();
             let mut work = 0.0;
             while run.status == Status::Slipping && run.tau() < 20.0 {
@@ -130,13 +138,14 @@ fn energy_identity_holds_on_every_dp54_run() {
                 work += match seg.dense {
                     // A stop taken in closed form: a straight stretch in the table frame.
                     Dense::Hermite { .. } => (state(seg.t1()).q() - state(seg.t0).q()).length(),
-                    Dense::Dp5(_) => {
-                        0.5 * seg.h
-                            * (0..5)
-                                .map(|k| {
-                                    W[k] * state(seg.t0 + 0.5 * seg.h * (1.0 + X[k]))
-                                        .u_lab()
-                                        .length()
+                    Dense::Dp5(_) | Dense::Dop853(_) => {
+                        let h = 0.25 * seg.h;
+                        0.5 * h
+                            * (0..20)
+                                .map(|j| {
+                                    let (q, k) = (j / 5, j % 5);
+                                    let t = seg.t0 + h * (q as f64 + 0.5 * (1.0 + X[k]));
+                                    W[k] * state(t).u_lab().length()
                                 })
                                 .sum::<f64>()
                     }
@@ -145,7 +154,7 @@ fn energy_identity_holds_on_every_dp54_run() {
             let e1 = run.state().energy();
             assert!(
                 (e1 - e0 + work).abs() < 1e-9,
-                "{i:?} tol {tol}: ΔE = {}, −∫|u| = {}",
+                "{i:?} {method} tol {tol}: ΔE = {}, −∫|u| = {}",
                 e1 - e0,
                 -work
             );

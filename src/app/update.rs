@@ -96,9 +96,11 @@ pub fn update(app: &mut App, action: Action) {
                 app.settings.scheme,
                 next_of(Method::VARIANTS, app.settings.method()),
             );
-            // A fixed step carries over between the fixed-step methods; else the default.
-            let knob = match now.fixed() {
-                Some((_, dt)) if !next.adaptive() => dt,
+            // A fixed step carries over between the fixed-step methods, a tolerance between
+            // the adaptive ones; else the default.
+            let knob = match now.tol() {
+                Some(tol) if next.adaptive() => tol,
+                None if !next.adaptive() => now.knob(),
                 _ => next.default_knob(),
             };
             app.settings.scheme = next.with(knob);

@@ -4,8 +4,9 @@ use super::runs::state_at;
 use super::tasks::{ESCAPE_VTOL, Measure, Task, value_error};
 use super::{Config, FAR_TAU, FREE_TAU, Row, Saving, Speed, TaskRatio, median, timed};
 use crate::analysis::{Job, Piece, piece, pieces};
+use crate::engine::method::Scheme;
 use crate::engine::solve::{escape_speed, sweep_escape};
-use crate::engine::stepper::dp54_plain;
+use crate::engine::stepper::adaptive_plain;
 use crate::engine::{Frame, Initial, Method, Release, Run, Settings};
 use crate::error::Error;
 use std::time::Instant;
@@ -71,11 +72,11 @@ pub(super) fn savings(cs: &[Initial]) -> Result<Vec<Saving>, Error> {
         ..Initial::velocity(0.5, 0.0, 0.6078)
     };
     let s = free.state();
-    let (y, evals) = dp54_plain(
+    let (y, evals) = adaptive_plain(
         |y| Frame::Table.rhs_free(y),
         Frame::Table.from_state(&s),
         FREE_TAU,
-        1e-10,
+        Scheme::Dp54 { tol: 1e-10 },
     )
     .ok_or(Error::Failed(
         "dp54 on the frictionless equations: step size underflow".into(),

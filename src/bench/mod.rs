@@ -4,6 +4,7 @@
 //! the explorer's frame and its terminal output.
 
 pub mod bytes;
+mod crossover;
 mod goals;
 pub mod link;
 mod output;
@@ -18,6 +19,7 @@ use std::time::Instant;
 use strum::VariantArray;
 use tasks::{ESCAPE_VTOL, Measure, apart, distance, label};
 
+pub use crossover::{Crossover, Versus};
 pub use output::{plot, table};
 pub use runs::cases;
 pub use tasks::{Task, position_error};
@@ -167,6 +169,8 @@ pub struct Report {
     pub savings: Vec<Saving>,
     pub speed: Speed,
     pub ratios: Vec<TaskRatio>,
+    /// dop853 against dp54 at equal error, task by task.
+    pub crossovers: Vec<Crossover>,
 }
 
 fn median(v: &mut [f64]) -> f64 {
@@ -260,6 +264,7 @@ pub fn run(cfg: &Config, mut progress: impl FnMut(&str)) -> Result<Report, Error
         load,
         reference: agreement,
         ratios: task_ratios(&rows),
+        crossovers: crossover::crossovers(&rows),
         rows,
         savings,
         speed,

@@ -174,6 +174,30 @@ pub fn table(r: &Report) -> String {
             );
         }
     }
+    if !r.crossovers.is_empty() {
+        let _ = writeln!(
+            o,
+            "  dop853 against dp54 at equal median error (dp54's RHS per case interpolated log–log; ratio = dp54 / dop853):"
+        );
+        for c in &r.crossovers {
+            let from = c
+                .from
+                .map_or("never to the end of the grid".into(), |(tol, err)| {
+                    format!("from tol={tol:.0e} (error {})", sci(err))
+                });
+            let pts: Vec<String> = c
+                .points
+                .iter()
+                .map(|p| format!("{:.0e}:{:.1}×", p.tol, p.ratio))
+                .collect();
+            let _ = writeln!(
+                o,
+                "    {:<20} dop853 cheaper {from}   by tol {}",
+                c.task.to_string(),
+                pts.join(" ")
+            );
+        }
+    }
     let _ = writeln!(
         o,
         "  explorer frame at 160×48, {}-point trail, paper's run beside it (tick + draw): {:.2} ms   (goal ≤ 2 ms)",
@@ -218,6 +242,7 @@ fn mark(m: Method) -> char {
         Method::Rk2 => '2',
         Method::Rk4 => '4',
         Method::Dp54 => 'd',
+        Method::Dop853 => '8',
     }
 }
 

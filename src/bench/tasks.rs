@@ -134,11 +134,19 @@ impl Task {
                 .flat_map(|&m| dts.iter().map(move |&dt| Settings::fixed(m, dt)))
                 .collect()
         };
+        // Both adaptive methods over the same tolerances, for their crossover.
         let dp54 = |keep: &dyn Fn(f64) -> bool| -> Vec<Settings> {
-            cfg.tols()
+            [Method::Dp54, Method::Dop853]
                 .into_iter()
-                .filter(|t| keep(*t))
-                .map(Settings::dp54)
+                .flat_map(|m| {
+                    cfg.tols()
+                        .into_iter()
+                        .filter(|t| keep(*t))
+                        .map(move |t| Settings {
+                            scheme: m.with(t),
+                            ..Settings::default()
+                        })
+                })
                 .collect()
         };
         let all = [Method::Rk2Raw, Method::Rk2, Method::Rk4];

@@ -134,10 +134,10 @@ pub struct BenchArgs {
 /// The integrator, shared by every command.
 #[derive(Args, Debug, Clone)]
 pub struct NumericsArgs {
-    /// dp54 (adaptive), rk4, rk2 (with stick events) or rk2-raw (the paper's scheme).
+    /// dp54 or dop853 (adaptive), rk4, rk2 (with stick events) or rk2-raw (the paper's scheme).
     #[arg(long, default_value = "dp54", value_parser = variant::<Method>())]
     pub method: Method,
-    /// Tolerance of dp54.
+    /// Tolerance of dp54 and dop853.
     #[arg(long, allow_hyphen_values = true)]
     pub tol: Option<f64>,
     /// Step of the fixed-step methods.
@@ -384,14 +384,14 @@ impl NumericsArgs {
         };
         match (self.method.adaptive(), self.tol, self.dt) {
             (true, _, Some(_)) => {
-                return Err(Error::Invalid(
-                    "--dt applies to the fixed-step methods (rk4, rk2, rk2-raw); dp54 takes --tol"
-                        .into(),
-                ));
+                return Err(Error::Invalid(format!(
+                    "--dt applies to the fixed-step methods (rk4, rk2, rk2-raw); {} takes --tol",
+                    self.method
+                )));
             }
             (false, Some(_), _) => {
                 return Err(Error::Invalid(format!(
-                    "--tol applies to dp54; {} takes --dt",
+                    "--tol applies to dp54 and dop853; {} takes --dt",
                     self.method
                 )));
             }

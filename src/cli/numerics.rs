@@ -190,7 +190,7 @@ pub(super) fn solver_settings(n: &super::NumericsArgs) -> Result<crate::engine::
     let s = n.settings()?;
     if !s.method().stick_events() {
         return Err(Error::Invalid(format!(
-            "{} has no stick event, so its runs never come to rest: the solvers need dp54, rk4 or rk2",
+            "{} has no stick event, so its runs never come to rest: the solvers need dp54, dop853, rk4 or rk2",
             s.method()
         )));
     }

@@ -12,7 +12,7 @@
 //! [`Doubt::q_error`]), which near a threshold can be large while the outcome is sure.
 
 use super::State;
-use super::method::{Method, Settings, TOL_RANGE};
+use super::method::{Settings, TOL_RANGE};
 use super::model::Frame;
 use super::run::{Outcome, Run};
 use super::saddle::saddle_h;
@@ -44,12 +44,13 @@ pub struct Doubt {
     pub check_evals: u64,
 }
 
-/// The second opinion on `run`: dp54 at 1000× its tolerance (fixed-step runs: tol 1e-12), at
-/// least 1e-14, in the other frame.
+/// The second opinion on `run`: dp54 at 1000× its tolerance (dp54's or dop853's; fixed-step
+/// runs: tol 1e-12), at least 1e-14, in the other frame.
 pub fn second_opinion(run: &Run) -> Settings {
-    let tol = match run.settings.method() {
-        Method::Dp54 => (run.settings.scheme.knob() * 1e-3).max(TOL_RANGE.0),
-        _ => 1e-12,
+    let tol = if run.settings.method().adaptive() {
+        (run.settings.scheme.knob() * 1e-3).max(TOL_RANGE.0)
+    } else {
+        1e-12
     };
     let frame = match run.settings.frame {
         Frame::Lab => Frame::Table,

@@ -1,6 +1,6 @@
 //! Integrators: the paper's fixed-step RK2 (Sec. IV, δt = 1e-3), classical RK4, and
-//! Dormand–Prince 5(4) with PI step control and dense output (Hairer, Nørsett & Wanner,
-//! *Solving ODEs I*, II.5 and the DOPRI5 code).
+//! Dormand–Prince 5(4) and 8(5,3) with step control and dense output (Hairer, Nørsett &
+//! Wanner, *Solving ODEs I*, II.5 and the DOPRI5 and DOP853 codes).
 
 use super::model::{Frame, Initial};
 use crate::engine::error::Error;
@@ -22,11 +22,14 @@ pub enum Method {
     /// Adaptive Dormand–Prince 5(4), with stick events.
     #[default]
     Dp54,
+    /// Adaptive Dormand–Prince 8(5,3) with seventh-order dense output, with stick events.
+    Dop853,
 }
 
 impl Method {
+    /// Whether the method sets its steps from a tolerance (dp54, dop853).
     pub fn adaptive(self) -> bool {
-        self == Method::Dp54
+        matches!(self, Method::Dp54 | Method::Dop853)
     }
     /// Whether stops are located as events (all but the paper's raw scheme).
     pub fn stick_events(self) -> bool {
@@ -39,13 +42,14 @@ pub const DT_RANGE: (f64, f64) = (1e-7, 0.5);
 pub const TOL_RANGE: (f64, f64) = (1e-14, 1e-2);
 
 /// The integrator and the one knob that sets its accuracy: a fixed step dt for the
-/// Runge–Kutta schemes, a tolerance for dp54. No setting carries a value its method ignores.
+/// Runge–Kutta schemes, a tolerance for dp54 and dop853. No setting carries a value its method ignores.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Scheme {
     Rk2Raw { dt: f64 },
     Rk2 { dt: f64 },
     Rk4 { dt: f64 },
     Dp54 { tol: f64 },
+    Dop853 { tol: f64 },
 }
 
 /// The fixed-step Runge–Kutta rules.
@@ -58,9 +62,10 @@ pub enum FixedRk {
 }
 
 impl Method {
-    /// The default knob: tol 1e-10 for dp54, dt 1e-3 (the paper's) for the others.
+    /// The default knob: tol 1e-10 for the adaptive methods, dt 1e-3 (the paper's) for the
+    /// others.
     pub fn default_knob(self) -> f64 {
-        if self == Method::Dp54 { 1e-10 } else { 1e-3 }
+        if self.adaptive() { 1e-10 } else { 1e-3 }
     }
     /// This method with `knob` as its dt or tol.
     pub fn with(self, knob: f64) -> Scheme {
@@ -69,6 +74,7 @@ impl Method {
             Method::Rk2 => Scheme::Rk2 { dt: knob },
             Method::Rk4 => Scheme::Rk4 { dt: knob },
             Method::Dp54 => Scheme::Dp54 { tol: knob },
+            Method::Dop853 => Scheme::Dop853 { tol: knob },
         }
     }
 }
@@ -80,31 +86,32 @@ impl Scheme {
             Scheme::Rk2 { .. } => Method::Rk2,
             Scheme::Rk4 { .. } => Method::Rk4,
             Scheme::Dp54 { .. } => Method::Dp54,
+            Scheme::Dop853 { .. } => Method::Dop853,
         }
     }
     /// The dt or the tol.
     pub fn knob(self) -> f64 {
         match self {
             Scheme::Rk2Raw { dt } | Scheme::Rk2 { dt } | Scheme::Rk4 { dt } => dt,
-            Scheme::Dp54 { tol } => tol,
+            Scheme::Dp54 { tol } | Scheme::Dop853 { tol } => tol,
         }
     }
     pub fn with_knob(self, knob: f64) -> Scheme {
         self.method().with(knob)
     }
-    /// dp54's tolerance (None for the fixed-step schemes).
+    /// The adaptive method's tolerance (None for the fixed-step schemes).
     pub fn tol(self) -> Option<f64> {
         match self {
-            Scheme::Dp54 { tol } => Some(tol),
+            Scheme::Dp54 { tol } | Scheme::Dop853 { tol } => Some(tol),
             _ => None,
         }
     }
-    /// The fixed-step rule and its dt (None for dp54).
+    /// The fixed-step rule and its dt (None for the adaptive methods).
     pub fn fixed(self) -> Option<(FixedRk, f64)> {
         match self {
             Scheme::Rk2Raw { dt } | Scheme::Rk2 { dt } => Some((FixedRk::Midpoint, dt)),
             Scheme::Rk4 { dt } => Some((FixedRk::Classic, dt)),
-            Scheme::Dp54 { .. } => None,
+            Scheme::Dp54 { .. } | Scheme::Dop853 { .. } => None,
         }
     }
 }
@@ -141,10 +148,7 @@ fn default_max_steps() -> u64 {
 
 impl From<SettingsFile> for Settings {
     fn from(f: SettingsFile) -> Self {
-        let knob = match f.method {
-            Method::Dp54 => f.tol,
-            _ => f.dt,
-        };
+        let knob = if f.method.adaptive() { f.tol } else { f.dt };
         Settings {
             scheme: f.method.with(knob.unwrap_or(f.method.default_knob())),
             frame: f.frame,
@@ -196,9 +200,9 @@ impl Settings {
         self.scheme.method()
     }
     pub fn validate(&self) -> Result<(), Error> {
-        let (name, (lo, hi), k) = match self.scheme {
-            Scheme::Dp54 { tol } => ("tol", TOL_RANGE, tol),
-            s => ("dt", DT_RANGE, s.knob()),
+        let (name, (lo, hi), k) = match self.scheme.tol() {
+            Some(tol) => ("tol", TOL_RANGE, tol),
+            None => ("dt", DT_RANGE, self.scheme.knob()),
         };
         if !(k.is_finite() && (lo..=hi).contains(&k)) {
             return Err(Error::invalid(format!(
@@ -213,9 +217,9 @@ impl Settings {
     }
     /// "dt=1e-3" or "tol=1e-10": the knob that sets this method's accuracy.
     pub fn accuracy_label(&self) -> String {
-        match self.scheme {
-            Scheme::Dp54 { tol } => format!("tol={tol:.0e}"),
-            s => format!("dt={:.0e}", s.knob()),
+        match self.scheme.tol() {
+            Some(tol) => format!("tol={tol:.0e}"),
+            None => format!("dt={:.0e}", self.scheme.knob()),
         }
     }
 }

@@ -36,28 +36,25 @@ pub struct Threshold {
     pub run_tol: Option<f64>,
 }
 
-/// `settings` run by dp54 at `tol` (not below 1e-14).
+/// `settings` with its adaptive method at `tol` (not below 1e-14); fixed-step settings as
+/// they are.
 fn with_tol(settings: Settings, tol: f64) -> Settings {
-    Settings {
-        scheme: Scheme::Dp54 {
-            tol: tol.max(TOL_RANGE.0),
+    match settings.scheme.tol() {
+        Some(_) => Settings {
+            scheme: settings.scheme.with_knob(tol.max(TOL_RANGE.0)),
+            ..settings
         },
-        ..settings
+        None => settings,
     }
 }
 
-/// `settings` with dp54's tolerance no looser than 1/100 of a bracket `width`: near a threshold
-/// a run's error moves the threshold by about its tolerance (measured on Fig. 5's points), and
-/// up to ~15× that near the rim.
+/// `settings` with an adaptive method's tolerance no looser than 1/100 of a bracket `width`:
+/// near a threshold a run's error moves the threshold by about its tolerance (measured on
+/// Fig. 5's points), and up to ~15× that near the rim.
 pub fn floor_tol(settings: Settings, width: f64) -> Settings {
-    match settings.scheme {
-        Scheme::Dp54 { tol } => Settings {
-            scheme: Scheme::Dp54 {
-                tol: tol.min(1e-2 * width).max(TOL_RANGE.0),
-            },
-            ..settings
-        },
-        _ => settings,
+    match settings.scheme.tol() {
+        Some(tol) => with_tol(settings, tol.min(1e-2 * width)),
+        None => settings,
     }
 }
 
@@ -269,10 +266,8 @@ pub fn escape_speed(xi0: f64, phi: f64, settings: Settings, tol: f64) -> Result<
     let mut evals = 0;
     let at = |v0: f64| Initial::velocity(xi0, phi, v0);
     let scan_settings = match settings.scheme {
-        Scheme::Dp54 { tol } => Settings {
-            scheme: Scheme::Dp54 {
-                tol: tol.max(SCAN_TOL),
-            },
+        Scheme::Dp54 { tol } | Scheme::Dop853 { tol } => Settings {
+            scheme: settings.scheme.with_knob(tol.max(SCAN_TOL)),
             ..settings
         },
         _ => settings,

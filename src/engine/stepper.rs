@@ -1,8 +1,9 @@
 //! One integrator step and its dense output, for every method: the fixed-step RK2 and RK4,
-//! and Dormand–Prince 5(4) with PI step control (Hairer, Nørsett & Wanner, *Solving ODEs I*,
-//! II.4–II.6 and the DOPRI5 code). [`Stepper`] is the one accept/reject loop; what a run does
-//! around its steps (stops, certificates) is in `run`.
+//! Dormand–Prince 5(4) with PI step control (Hairer, Nørsett & Wanner, *Solving ODEs I*,
+//! II.4–II.6 and the DOPRI5 code) and DOP853 (its tableau in `dop853`). [`Stepper`] is the
+//! one accept/reject loop; what a run does around its steps (stops, certificates) is in `run`.
 
+use super::dop853;
 use super::method::{FixedRk, Scheme};
 use super::model::Y;
 use serde::Serialize;
@@ -20,6 +21,8 @@ pub struct Cost {
 pub enum Dense {
     /// DOPRI5's fourth-order interpolant (Hairer's `contd5` coefficients).
     Dp5([Y; 5]),
+    /// DOP853's seventh-order interpolant (Hairer's `contd8` coefficients).
+    Dop853([Y; 8]),
     /// Cubic Hermite from the end values and slopes (fixed-step methods).
     Hermite { f0: Y, f1: Y },
 }
@@ -47,6 +50,7 @@ impl Segment {
         let s1 = 1.0 - s;
         match self.dense {
             Dense::Dp5(r) => r[0] + (r[1] + (r[2] + (r[3] + r[4] * s1) * s) * s1) * s,
+            Dense::Dop853(r) => dop853::at(&r, s),
             Dense::Hermite { f0, f1 } => {
                 let (h00, h10) = ((1.0 + 2.0 * s) * s1 * s1, s * s1 * s1);
                 let (h01, h11) = (s * s * (3.0 - 2.0 * s), -s * s * s1);
@@ -155,10 +159,11 @@ fn dp5_step(rhs: impl Fn(Y) -> Y, y: Y, k1: Y, h: f64, tol: f64) -> Dp5Trial {
     }
 }
 
-/// Hairer's starting step (`hinit` of DOPRI5; Hairer, Nørsett & Wanner, Sec. II.4): an Euler
-/// probe of size h0 = 0.01·|y|/|f| measures how fast f changes, and the first step is sized so
-/// that its fifth-order error would be 0.01·tol. One right-hand-side evaluation.
-fn initial_step(rhs: impl Fn(Y) -> Y, y: Y, f0: Y, tol: f64) -> f64 {
+/// Hairer's starting step (`hinit` of DOPRI5 and DOP853; Hairer, Nørsett & Wanner, Sec. II.4):
+/// an Euler probe of size h0 = 0.01·|y|/|f| measures how fast f changes, and the first step is
+/// sized so that its error of the method's `order` would be 0.01·tol. One right-hand-side
+/// evaluation.
+fn initial_step(rhs: impl Fn(Y) -> Y, y: Y, f0: Y, tol: f64, order: i32) -> f64 {
     let norm = |v: Y| err_norm(y, y, v, tol);
     let (d0, d1) = (norm(y), norm(f0));
     let h0 = if d0 < 1e-5 || d1 < 1e-5 {
@@ -171,37 +176,70 @@ fn initial_step(rhs: impl Fn(Y) -> Y, y: Y, f0: Y, tol: f64) -> f64 {
     let h1 = if d <= 1e-15 {
         (h0 * 1e-3).max(1e-6)
     } else {
-        (0.01 / d).powf(0.2)
+        (0.01 / d).powf(1.0 / f64::from(order))
     };
     (100.0 * h0).min(h1)
 }
 
-/// Hairer's PI step-size controller (β = 0.04, safety 0.9, factor in [0.2, 10]).
+/// Hairer's step-size controllers, with their codes' defaults (safety 0.9): DOPRI5's PI
+/// control (β = 0.04, exponent 1/5 − 0.75β, factor in [0.2, 10]) and DOP853's (β = 0,
+/// exponent 1/8, factor in [1/3, 6]), the latter with Gustafsson's predictive step (as in
+/// Hairer's RADAU5): closing in on a stop its error grows ~10× per step at equal h, and
+/// without the prediction nearly every step was first rejected (11 evaluations lost each).
 #[derive(Clone, Copy, Debug)]
 struct Controller {
     facold: f64,
     rejected_last: bool,
-}
-
-impl Default for Controller {
-    fn default() -> Self {
-        Controller {
-            facold: 1e-4,
-            rejected_last: false,
-        }
-    }
+    beta: f64,
+    expo: f64,
+    /// Bounds of h/h_new: the largest shrink and the largest growth.
+    shrink: f64,
+    grow: f64,
+    predictive: bool,
+    /// The last accepted step and its error (predictive control only).
+    last_accepted: Option<(f64, f64)>,
 }
 
 impl Controller {
-    const BETA: f64 = 0.04;
     const SAFE: f64 = 0.9;
+    fn dp54() -> Self {
+        Controller {
+            facold: 1e-4,
+            rejected_last: false,
+            beta: 0.04,
+            expo: 0.2 - 0.04 * 0.75,
+            shrink: 5.0,
+            grow: 0.1,
+            predictive: false,
+            last_accepted: None,
+        }
+    }
+    fn dop853() -> Self {
+        Controller {
+            beta: 0.0,
+            expo: 1.0 / 8.0,
+            shrink: 1.0 / 0.333,
+            grow: 1.0 / 6.0,
+            predictive: true,
+            ..Controller::dp54()
+        }
+    }
     /// The next step size after a trial of size `h` with error `err`; `true` if accepted.
     fn next(&mut self, h: f64, err: f64) -> (f64, bool) {
-        let expo1 = 0.2 - Self::BETA * 0.75;
-        let fac11 = err.max(1e-300).powf(expo1);
+        let fac11 = err.max(1e-300).powf(self.expo);
         if err <= 1.0 {
-            let fac = (fac11 / self.facold.powf(Self::BETA) / Self::SAFE).clamp(0.1, 5.0);
+            let fac =
+                (fac11 / self.facold.powf(self.beta) / Self::SAFE).clamp(self.grow, self.shrink);
             let mut hnew = h / fac;
+            if let Some((hacc, erracc)) = self.last_accepted {
+                // Gustafsson's predictive control: an error growing from step to step
+                // (a stop ahead) shrinks the next step before it is rejected.
+                let gus = (hacc / h) * (err * err / erracc).powf(self.expo) / Self::SAFE;
+                hnew = hnew.min(h / gus.clamp(self.grow, self.shrink));
+            }
+            if self.predictive {
+                self.last_accepted = Some((h, err.max(1e-2)));
+            }
             if self.rejected_last {
                 hnew = hnew.min(h);
             }
@@ -210,7 +248,7 @@ impl Controller {
             (hnew, true)
         } else {
             self.rejected_last = true;
-            (h / (fac11 / Self::SAFE).min(5.0), false)
+            (h / (fac11 / Self::SAFE).min(self.shrink), false)
         }
     }
 }
@@ -223,43 +261,47 @@ pub fn too_short(h: f64, t: f64) -> bool {
 /// Why a step could not be taken.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum StepError {
-    /// dp54's step size shrank below what τ can resolve.
+    /// The adaptive step size shrank below what τ can resolve.
     Underflow,
     /// Accepted and rejected steps reached the run's budget.
     Budget,
 }
 
-/// The integrator between steps: time, point and its slope (first same as last), and dp54's
-/// next step size and controller. Every step and every closed-form stretch ends in a
+/// The integrator between steps: time, point and its slope (first same as last), and the
+/// adaptive method's next step size and controller. Every step and every closed-form stretch ends in a
 /// [`Segment`] built here.
 #[derive(Clone, Copy, Debug)]
 pub struct Stepper {
     pub t: f64,
     pub y: Y,
     pub f: Y,
-    /// dp54's next step size (unused by the fixed-step methods).
+    /// The adaptive method's next step size (unused by the fixed-step methods).
     h: f64,
     ctrl: Controller,
 }
 
 impl Stepper {
-    /// At `y` at t = 0: its slope and, for dp54, Hairer's starting step.
+    /// At `y` at t = 0: its slope and, for the adaptive methods, Hairer's starting step.
     pub fn new(rhs: impl Fn(Y) -> Y, y: Y, scheme: Scheme, cost: &mut Cost) -> Stepper {
         let f = rhs(y);
         cost.rhs_evals += 1;
-        let h = match scheme {
+        let (h, ctrl) = match scheme {
             Scheme::Dp54 { tol } => {
                 cost.rhs_evals += 1;
-                initial_step(&rhs, y, f, tol)
+                (initial_step(&rhs, y, f, tol, 5), Controller::dp54())
             }
-            _ => 0.0,
+            Scheme::Dop853 { tol } => {
+                cost.rhs_evals += 1;
+                (initial_step(&rhs, y, f, tol, 8), Controller::dop853())
+            }
+            _ => (0.0, Controller::dp54()),
         };
         Stepper {
             t: 0.0,
             y,
             f,
             h,
-            ctrl: Controller::default(),
+            ctrl,
         }
     }
 
@@ -268,7 +310,7 @@ impl Stepper {
         scheme.fixed().map_or(self.h, |(_, dt)| dt)
     }
 
-    /// One accepted step of at most `cap`, and dp54's error against its tolerance (≤ 1).
+    /// One accepted step of at most `cap`, and the adaptive error against its tolerance (≤ 1).
     /// Rejected tries are counted in `cost`; accepted and rejected together stay below
     /// `max_steps`.
     pub fn step(
@@ -279,24 +321,20 @@ impl Stepper {
         cost: &mut Cost,
         max_steps: u64,
     ) -> Result<(Segment, Option<f64>), StepError> {
-        let (tol, fixed) = match scheme {
-            Scheme::Dp54 { tol } => (tol, None),
-            _ => (0.0, scheme.fixed()),
-        };
-        if let Some((rk, dt)) = fixed {
+        let Some(tol) = scheme.tol() else {
+            let (rk, dt) = scheme.fixed().expect("a scheme is adaptive or fixed-step");
             let h = dt.min(cap);
             let y1 = fixed_step(rk, &rhs, self.y, self.f, h, &mut cost.rhs_evals);
             cost.steps += 1;
             return Ok((self.advance(&rhs, h, y1, None, cost), None));
-        }
+        };
         loop {
             let h = self.h.min(cap);
             if too_short(h, self.t) {
                 return Err(StepError::Underflow);
             }
-            let trial = dp5_step(&rhs, self.y, self.f, h, tol);
-            cost.rhs_evals += 6;
-            let (hnew, accepted) = self.ctrl.next(h, trial.err);
+            let trial = Trial::try_step(&rhs, scheme, self.y, self.f, h, tol, cost);
+            let (hnew, accepted) = self.ctrl.next(h, trial.err());
             // A capped step says nothing about how large the next free step may be.
             self.h = if h < self.h && accepted {
                 self.h.max(hnew)
@@ -305,21 +343,37 @@ impl Stepper {
             };
             if accepted {
                 cost.steps += 1;
-                let seg = Segment {
-                    t0: self.t,
-                    h,
-                    y0: self.y,
-                    y1: trial.y1,
-                    dense: trial.dense,
-                };
-                (self.t, self.y, self.f) = (seg.t1(), trial.y1, trial.f1);
-                return Ok((seg, Some(trial.err)));
+                let err = trial.err();
+                return Ok((self.accept(&rhs, h, trial, cost), Some(err)));
             }
             cost.rejected += 1;
             if cost.steps + cost.rejected >= max_steps {
                 return Err(StepError::Budget);
             }
         }
+    }
+
+    /// Moves to the end of an accepted `trial` of size `h`, with its dense output.
+    fn accept(&mut self, rhs: impl Fn(Y) -> Y, h: f64, trial: Trial, cost: &mut Cost) -> Segment {
+        let (y1, f1, dense) = trial.finish(rhs, cost);
+        let seg = Segment {
+            t0: self.t,
+            h,
+            y0: self.y,
+            y1,
+            dense,
+        };
+        (self.t, self.y, self.f) = (seg.t1(), y1, f1);
+        seg
+    }
+
+    /// One step of exactly `h` through the adaptive scheme's tableau, accepted whatever its
+    /// error: what the measured orders of convergence and of the dense output are taken on.
+    pub fn forced(&mut self, rhs: impl Fn(Y) -> Y, scheme: Scheme, h: f64) -> Segment {
+        let mut cost = Cost::default();
+        let tol = scheme.tol().unwrap_or(1.0);
+        let trial = Trial::try_step(&rhs, scheme, self.y, self.f, h, tol, &mut cost);
+        self.accept(&rhs, h, trial, &mut cost)
     }
 
     /// Moves to `y1` after `h`, with a cubic Hermite segment between (fixed steps, and the
@@ -348,11 +402,60 @@ impl Stepper {
     }
 }
 
-/// Plain DOPRI5 from `y` over `[0, t_end]`, with no events: for smooth systems such as the
-/// frictionless equations ([`super::model::Frame::rhs_free`]). Returns the end point and the
-/// number of right-hand-side evaluations, or `None` if the step size underflows.
-pub fn dp54_plain(rhs: impl Fn(Y) -> Y, y: Y, t_end: f64, tol: f64) -> Option<(Y, u64)> {
-    let scheme = Scheme::Dp54 { tol };
+/// A trial step of either adaptive method: DOPRI5's is complete, DOP853's dense output waits
+/// until the step is accepted (a rejected step does not pay for it).
+enum Trial {
+    Dp5(Dp5Trial),
+    Dop853 { t: dop853::Trial, err: f64 },
+}
+
+impl Trial {
+    fn try_step(
+        rhs: impl Fn(Y) -> Y,
+        scheme: Scheme,
+        y: Y,
+        f: Y,
+        h: f64,
+        tol: f64,
+        cost: &mut Cost,
+    ) -> Trial {
+        if let Scheme::Dop853 { .. } = scheme {
+            cost.rhs_evals += 11;
+            let t = dop853::trial(rhs, y, f, h);
+            let err = dop853::combined_err(
+                err_norm(y, t.y1, t.err5, tol),
+                err_norm(y, t.y1, t.err3, tol),
+            );
+            Trial::Dop853 { t, err }
+        } else {
+            cost.rhs_evals += 6;
+            Trial::Dp5(dp5_step(rhs, y, f, h, tol))
+        }
+    }
+    fn err(&self) -> f64 {
+        match self {
+            Trial::Dp5(t) => t.err,
+            Trial::Dop853 { err, .. } => *err,
+        }
+    }
+    /// The end point, its slope and the dense output.
+    fn finish(self, rhs: impl Fn(Y) -> Y, cost: &mut Cost) -> (Y, Y, Dense) {
+        match self {
+            Trial::Dp5(t) => (t.y1, t.f1, t.dense),
+            Trial::Dop853 { t, .. } => {
+                cost.rhs_evals += 4;
+                let (f1, r) = t.dense(rhs);
+                (t.y1, f1, Dense::Dop853(r))
+            }
+        }
+    }
+}
+
+/// Plain adaptive integration (dp54 or dop853) from `y` over `[0, t_end]`, with no events: for
+/// smooth systems such as the frictionless equations ([`super::model::Frame::rhs_free`]).
+/// Returns the end point and the number of right-hand-side evaluations, or `None` if the step
+/// size underflows.
+pub fn adaptive_plain(rhs: impl Fn(Y) -> Y, y: Y, t_end: f64, scheme: Scheme) -> Option<(Y, u64)> {
     let mut cost = Cost::default();
     let mut st = Stepper::new(&rhs, y, scheme, &mut cost);
     while !too_short(t_end - st.t, st.t) {
