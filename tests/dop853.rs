@@ -1,4 +1,4 @@
-//! DOP853 (issue 17, item 8): its orders measured on the frictionless table-frame equations,
+//! DOP853 (and DOPRI5 beside it): their orders measured on the frictionless table-frame equations,
 //! whose solution is known in closed form, and its stick/escape verdicts against dp54's.
 
 use std::f64::consts::{PI, TAU};
@@ -30,15 +30,50 @@ fn rhs(y: Y) -> Y {
     Frame::Table.rhs_free(y)
 }
 
-/// The global error at τ = 2 after `n` steps of exactly 2/n through the tableau.
-fn global_error(n: u32) -> f64 {
+/// The global error at τ = 2 after `n` steps of exactly 2/n through `scheme`'s tableau.
+fn global_error_of(scheme: Scheme, n: u32) -> f64 {
     let i = free();
-    let mut st = Stepper::new(rhs, exact(i, 0.0), DOP853, &mut Cost::default());
+    let mut st = Stepper::new(rhs, exact(i, 0.0), scheme, &mut Cost::default());
     let h = 2.0 / f64::from(n);
     for _ in 0..n {
-        st.forced(rhs, DOP853, h);
+        st.forced(rhs, scheme, h);
     }
     dist(st.y, exact(i, 2.0))
+}
+
+fn global_error(n: u32) -> f64 {
+    global_error_of(DOP853, n)
+}
+
+const DP54: Scheme = Scheme::Dp54 { tol: 1e-10 };
+
+/// DOPRI5 beside it: fifth order, and its dense output (Hairer's contd5) fourth order, whose
+/// error within a step is O(h⁵).
+#[test]
+fn dopri5_is_fifth_order_and_its_dense_output_fourth() {
+    let errs: Vec<f64> = [4, 8, 16]
+        .into_iter()
+        .map(|n| global_error_of(DP54, n))
+        .collect();
+    for w in errs.windows(2) {
+        let order = (w[0] / w[1]).log2();
+        assert!((4.6..5.6).contains(&order), "order {order} from {errs:?}");
+    }
+    let mid = |h: f64| {
+        let i = free();
+        let mut st = Stepper::new(rhs, exact(i, 0.3), DP54, &mut Cost::default());
+        let seg = st.forced(rhs, DP54, h);
+        assert!(matches!(seg.dense, Dense::Dp5(_)));
+        dist(seg.at(0.5 * h), exact(i, 0.3 + 0.5 * h))
+    };
+    let errs: Vec<f64> = [0.4, 0.2, 0.1].into_iter().map(mid).collect();
+    for w in errs.windows(2) {
+        let order = (w[0] / w[1]).log2();
+        assert!(
+            (4.6..5.6).contains(&order),
+            "dense order {order} from {errs:?}"
+        );
+    }
 }
 
 #[test]

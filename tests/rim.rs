@@ -148,3 +148,35 @@ fn inward_motion_is_never_taken_for_outward() {
         }
     }
 }
+
+/// Near the threshold the stop time is ill-conditioned: v0 = v_e − 1e-8 at (0.99, 3.93) stops at
+/// τ ≈ 8.84 (tol 1e-14 in both frames agree to 1e-3), but the default run says 13.1 and was
+/// "certain" with nothing to show its doubt. The outcome is certain; the time comes with its
+/// measured difference from the second opinion, which holds the converged time (to within the
+/// second opinion's own error, a few per cent of it here).
+#[test]
+fn a_near_threshold_stop_time_comes_with_its_error() {
+    let ve = escape_speed(0.99, 3.93, Settings::dp54(1e-13), 1e-11)
+        .unwrap()
+        .value;
+    let i = Initial::velocity(0.99, 3.93, ve - 1e-8);
+    for s in [
+        Settings::default(),
+        Settings::dp54(1e-12),
+        Settings::dp54(1e-14),
+    ] {
+        let r = run(i, s);
+        assert_eq!(r.outcome(), Outcome::Stuck, "{s:?}");
+        let d = doubt(&r, CLASSIFY_TAU);
+        assert!(d.certain, "{s:?}");
+        let off = (r.tau() - 8.838).abs();
+        assert!(
+            // 1e-2: the reference's own spread (v_e here is known to 1e-11, which moves this
+            // stop time by a few 1e-3).
+            off <= 1.1 * d.tau_error + 1e-2,
+            "{s:?}: τ {} is {off} off, said ±{}",
+            r.tau(),
+            d.tau_error
+        );
+    }
+}
