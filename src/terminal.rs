@@ -73,8 +73,7 @@ fn watch_hangup(finished: Arc<AtomicBool>) {
     std::thread::spawn(move || {
         while !finished.load(Ordering::Relaxed) {
             if hung_up() {
-                // SAFETY: a signal to this process, which handles SIGHUP.
-                unsafe { libc::kill(libc::getpid(), libc::SIGHUP) };
+                let _ = signal_hook::low_level::raise(libc::SIGHUP);
                 return;
             }
             std::thread::sleep(Duration::from_millis(200));
@@ -84,14 +83,17 @@ fn watch_hangup(finished: Arc<AtomicBool>) {
 
 /// Whether the terminal on stdin has hung up.
 fn hung_up() -> bool {
-    let mut fd = libc::pollfd {
-        fd: libc::STDIN_FILENO,
-        events: libc::POLLIN,
-        revents: 0,
+    use rustix::event::{PollFd, PollFlags, Timespec, poll};
+    let stdin = io::stdin();
+    let mut fds = [PollFd::new(&stdin, PollFlags::IN)];
+    let now = Timespec {
+        tv_sec: 0,
+        tv_nsec: 0,
     };
-    // SAFETY: one valid pollfd, no wait.
-    let n = unsafe { libc::poll(&mut fd, 1, 0) };
-    n > 0 && fd.revents & (libc::POLLHUP | libc::POLLERR | libc::POLLNVAL) != 0
+    poll(&mut fds, Some(&now)).is_ok_and(|n| n > 0)
+        && fds[0]
+            .revents()
+            .intersects(PollFlags::HUP | PollFlags::ERR | PollFlags::NVAL)
 }
 
 /// Suspends the process (SIGTSTP's default action) with the terminal as it was, and takes
