@@ -103,7 +103,7 @@ impl<B: Backend> Session<B> {
         self.term.draw(|f| {
             geom = crate::ui::draw(f, &self.app);
             if ascii {
-                ascii_dots(f.buffer_mut());
+                ascii_cells(f.buffer_mut());
             }
         })?;
         self.app.drawn(geom);
@@ -125,13 +125,51 @@ impl<B: Backend> Session<B> {
     }
 }
 
-/// ratatui's dot marker is `•`, which a non-UTF-8 terminal cannot show: `--marker ascii`
-/// draws its dots as `*`.
-fn ascii_dots(buf: &mut Buffer) {
+/// A terminal that is not UTF-8 (`--marker ascii`, or a locale that says so) gets ASCII only:
+/// each cell's symbol becomes one ASCII character, so the layout holds — box drawing as
+/// `+ - |`, ratatui's dot marker as `*`, the glyphs and Greek letters as their nearest letter,
+/// anything else `?`.
+fn ascii_cells(buf: &mut Buffer) {
     for cell in &mut buf.content {
-        if cell.symbol() == ratatui::symbols::DOT {
-            cell.set_symbol("*");
+        let sym = cell.symbol();
+        if sym.is_ascii() {
+            continue;
         }
+        let c = sym.chars().next().map_or('?', ascii_of);
+        cell.set_char(c);
+    }
+}
+
+/// The nearest ASCII character to `c`.
+fn ascii_of(c: char) -> char {
+    match c {
+        '─' | '━' | '┄' | '═' | '–' | '—' => '-',
+        '│' | '┃' | '║' | '❚' => '|',
+        '┌' | '┐' | '└' | '┘' | '├' | '┤' | '┬' | '┴' | '┼' | '╭' | '╮' | '╯' | '╰' => {
+            '+'
+        }
+        '•' | '∙' => '*',
+        '●' | '○' | '◦' => 'o',
+        '■' | '▪' | '█' | '▓' | '▒' => '#',
+        '░' | '·' | '…' => '.',
+        '×' => 'x',
+        '↺' => '@',
+        '▶' | '→' | '≥' | '›' => '>',
+        '←' | '≤' | '‹' => '<',
+        '↑' => '^',
+        '↓' => 'v',
+        '≈' | '∼' => '~',
+        '′' | '’' | '‘' => '\'',
+        '²' => '2',
+        'τ' => 't',
+        'ξ' => 'x',
+        'θ' | 'Θ' => 'o',
+        'φ' | 'π' => 'p',
+        'μ' => 'u',
+        'Ω' => 'W',
+        'α' => 'a',
+        'Δ' => 'D',
+        _ => '?',
     }
 }
 

@@ -77,3 +77,35 @@ fn the_marker_decides_the_glyphs_of_the_drawing() {
     assert_eq!(braille(&block), 0);
     assert!(block.matches(['▀', '▄', '█']).count() > 50);
 }
+
+/// A terminal that is not UTF-8 gets ASCII only, on every page and the help (box drawing,
+/// glyphs and Greek letters were sent as UTF-8 to a `LANG=C` terminal), cell for cell so the
+/// layout holds.
+#[test]
+fn an_ascii_terminal_gets_only_ascii() {
+    let theme = Theme::builtin("dark")
+        .unwrap()
+        .with_marker(MarkerArg::Ascii.marker());
+    let mut s = Session::headless(App::new(Scene::preset("D").unwrap(), theme), 100, 30, false);
+    let mut seen = 0;
+    for keys in ["", "\t", "\t", "\t", "\t", "?"] {
+        for k in keys.chars() {
+            let code = if k == '\t' {
+                crossterm::event::KeyCode::Tab
+            } else {
+                crossterm::event::KeyCode::Char(k)
+            };
+            s.key(crossterm::event::KeyEvent::from(code));
+        }
+        for _ in 0..10 {
+            s.tick();
+        }
+        s.draw().unwrap();
+        let text: String = s.screen().content.iter().map(|c| c.symbol()).collect();
+        let bad: String = text.chars().filter(|c| !c.is_ascii()).collect();
+        assert!(bad.is_empty(), "after {keys:?}: {bad}");
+        assert!(text.contains("+--") && text.contains('|'), "{text}");
+        seen += 1;
+    }
+    assert_eq!(seen, 6);
+}
