@@ -1015,3 +1015,31 @@ fn method_key_reaches_dop853_with_the_same_tol() {
     key(&mut a, 'm');
     assert_eq!(a.settings.scheme, Scheme::Rk2Raw { dt: 1e-3 });
 }
+
+/// `update` dispatches on the action's group: every key is listed in help under the group
+/// whose module handles it, and every group is one the help shows.
+#[test]
+fn every_binding_is_listed_under_its_actions_group() {
+    use turntable::app::action::Group;
+    use turntable::app::keymap::GROUPS;
+    for b in KEYMAP {
+        assert_eq!(b.group, b.action.group().name(), "{}", b.chord.label());
+    }
+    let all = [
+        Group::Time,
+        Group::InitialConditions,
+        Group::Integrator,
+        Group::View,
+        Group::App,
+    ];
+    assert_eq!(all.map(Group::name), GROUPS);
+    // The mouse sets the release: its actions are initial conditions.
+    let p = glam::DVec2::new(0.5, 0.1);
+    for a in [
+        Action::PlaceRelease(p),
+        Action::AimVelocity(p),
+        Action::PickRelease(p),
+    ] {
+        assert_eq!(a.group(), Group::InitialConditions);
+    }
+}
