@@ -87,7 +87,7 @@ impl Sim {
     /// Extends the path on its τ grid through the latest step, from its dense output (or the
     /// closed form once stuck, where one turn of the table draws the whole circle).
     fn extend_path(&mut self, tau: f64) {
-        let end = match self.run.status {
+        let end = match self.run.status() {
             Status::Stuck { tau: ts, .. } => tau.min(ts + std::f64::consts::TAU),
             // All the latest step covers: its dense output is gone after the next step.
             Status::Slipping => self.run.tau(),
@@ -116,7 +116,7 @@ impl Sim {
             }
             self.next_k += 1;
         }
-        if let Status::Stuck { tau: ts, q } = self.run.status
+        if let Status::Stuck { tau: ts, q } = self.run.status()
             && !self.stop_in_path
             && ts <= end
         {
@@ -137,13 +137,13 @@ impl Sim {
     /// Whether more time can pass: not once escaped and out of view, nor after an error.
     pub fn live(&self) -> bool {
         let s = self.samples[self.samples.len() - 1];
-        self.error.is_none() && !(self.run.escape.is_some() && s.xi() > self.view_radius)
+        self.error.is_none() && !(self.run.escape().is_some() && s.xi() > self.view_radius)
     }
 
     /// The status at the sample on screen.
     pub fn outcome_now(&self) -> Outcome {
         let tau = self.now().tau;
-        match (self.run.status, self.run.escape) {
+        match (self.run.status(), self.run.escape()) {
             (Status::Stuck { tau: ts, .. }, _) if tau >= ts => Outcome::Stuck,
             (_, Some(e)) if tau >= e.tau => Outcome::Escaped,
             _ => Outcome::Running,
@@ -160,9 +160,9 @@ impl Sim {
             return;
         }
         let target = self.now().tau + dtau;
-        let budget = self.run.cost.steps + self.run.cost.rejected + STEPS_PER_TICK;
-        while self.run.status == Status::Slipping && self.run.tau() < target {
-            if self.run.cost.steps + self.run.cost.rejected >= budget {
+        let budget = self.run.cost().steps + self.run.cost().rejected + STEPS_PER_TICK;
+        while self.run.goes_on(target, false) {
+            if self.run.cost().steps + self.run.cost().rejected >= budget {
                 break;
             }
             self.work.steps += 1;
@@ -172,12 +172,12 @@ impl Sim {
             }
             // Each step's dense output covers only that step: take its grid points now
             // (μ = 0 has a closed form at every τ: its points are taken once, below).
-            if !self.run.initial.frictionless {
+            if !self.run.initial().frictionless {
                 self.extend_path(target);
             }
             self.note_outcome();
         }
-        let t = target.min(match self.run.status {
+        let t = target.min(match self.run.status() {
             Status::Stuck { .. } => f64::INFINITY,
             Status::Slipping => self.run.tau(),
         });
@@ -201,7 +201,7 @@ impl Sim {
             return true;
         }
         let tau = self.now().tau;
-        let ahead = match self.run.status {
+        let ahead = match self.run.status() {
             Status::Stuck { tau: ts, .. } => ts > tau,
             Status::Slipping => self.run.tau() > tau,
         };
@@ -209,7 +209,7 @@ impl Sim {
             // Ticks integrate past the screen, but stop at the first step that reaches their
             // target: the run's latest step holds the τ on screen. Show its end, stepping
             // nothing (re-integrating from τ = 0 took seconds on a long run).
-        } else if !self.live() || self.run.status != Status::Slipping {
+        } else if !self.live() || !self.run.goes_on(f64::INFINITY, false) {
             return false;
         } else {
             self.work.steps += 1;
@@ -271,12 +271,12 @@ impl Sim {
     /// An error estimate for the state on screen, from a shadow run with dp54 at a tolerance
     /// 1000× tighter than the run's own (at most 1e-13). Computed only when asked.
     pub fn error_estimate(&self) -> Result<ErrorEstimate, Error> {
-        let own = self.run.settings.scheme.tol().unwrap_or(1e-10);
+        let own = self.run.settings().scheme.tol().unwrap_or(1e-10);
         let tol = (own * 1e-3).clamp(TOL_RANGE.0, 1e-13);
         let now = self.now();
         // Within one tick's budget, so the key never waits long.
         let mut shadow = Run::new(
-            self.run.initial,
+            self.run.initial(),
             Settings {
                 max_steps: STEPS_PER_TICK,
                 ..Settings::dp54(tol)
@@ -288,7 +288,7 @@ impl Sim {
             tau: now.tau,
             error,
             tol,
-            rhs_evals: shadow.cost.rhs_evals,
+            rhs_evals: shadow.cost().rhs_evals,
         })
     }
 }

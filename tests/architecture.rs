@@ -107,3 +107,23 @@ fn the_ui_never_integrates() {
     }
     assert!(bad.is_empty(), "{}", bad.join("\n"));
 }
+
+/// A run is advanced only by `Run::step` and read through its accessors: its fields are
+/// private, so no caller can set a status or an escape of its own.
+#[test]
+fn runs_fields_are_private() {
+    let text = std::fs::read_to_string(src().join("engine/run/mod.rs")).unwrap();
+    let body = text
+        .split("pub struct Run {")
+        .nth(1)
+        .and_then(|rest| rest.split("\n}").next())
+        .unwrap();
+    let fields: Vec<&str> = body
+        .lines()
+        .map(str::trim)
+        .filter(|l| !l.is_empty() && !l.starts_with("//"))
+        .collect();
+    assert!(fields.len() >= 8, "{fields:?}");
+    let public: Vec<_> = fields.iter().filter(|l| l.starts_with("pub")).collect();
+    assert!(public.is_empty(), "{public:?}");
+}

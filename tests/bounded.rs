@@ -53,10 +53,10 @@ fn compare_after_a_long_session_catches_up_over_ticks() {
         assert_eq!(s.app.is_playing(), friction);
         let mut ticks = 0;
         while s.app.paper_lags() {
-            let before = s.app.paper.as_ref().unwrap().run.cost.steps;
+            let before = s.app.paper.as_ref().unwrap().run.cost().steps;
             s.tick();
             let p = s.app.paper.as_ref().unwrap();
-            assert!(p.run.cost.steps - before <= STEPS_PER_TICK);
+            assert!(p.run.cost().steps - before <= STEPS_PER_TICK);
             ticks += 1;
             assert!(ticks < 1000, "never caught up");
         }
@@ -82,7 +82,7 @@ fn restart_work_is_bounded_per_tick() {
     for _ in 0..200 {
         s.key(key('r'));
         s.tick();
-        let c = s.app.sim.run.cost;
+        let c = s.app.sim.run.cost();
         assert!(c.steps + c.rejected <= STEPS_PER_TICK + 1, "{c:?}");
     }
 }
@@ -176,7 +176,7 @@ fn integrator_step_steps_from_the_current_state() {
     s.key(key('m'));
     s.key(key('m'));
     assert_eq!(
-        s.app.sim.run.settings.method(),
+        s.app.sim.run.settings().method(),
         turntable::engine::Method::Rk2Raw
     );
     for _ in 0..8 {
@@ -216,7 +216,7 @@ fn page_pieces_are_bounded_whatever_the_step() {
     let mut run = Run::new(Initial::velocity(0.5, 0.0, 0.3), s).unwrap();
     let r = run.run(turntable::engine::solve::CLASSIFY_TAU, true);
     assert!(matches!(r, Err(RunError::Budget { .. })), "{r:?}");
-    assert!(run.cost.steps + run.cost.rejected <= PIECE_STEPS);
+    assert!(run.cost().steps + run.cost().rejected <= PIECE_STEPS);
     let mut scene = Scene::preset("C").unwrap();
     scene.settings = tiny;
     let app = App::new(scene, Theme::builtin("mono").unwrap());

@@ -141,7 +141,7 @@ fn the_approach_to_a_stop_is_not_a_string_of_rejections() {
     };
     let mut run = Run::new(a, s).unwrap();
     assert_eq!(run.finish(10.0).unwrap().0, Outcome::Stuck);
-    let c = run.cost;
+    let c = run.cost();
     assert!(4 * c.rejected <= c.steps, "{c:?}");
     assert!(c.rhs_evals < 400, "{c:?}");
 }

@@ -49,7 +49,7 @@ fn a_free_particle_escapes_where_its_line_leaves_the_unit_circle() {
     assert_eq!(outcome, Outcome::Escaped);
     assert!((s.tau - 3f64.sqrt()).abs() < 1e-12, "{}", s.tau);
     assert!((s.xi() - 1.0).abs() < 1e-12);
-    assert_eq!(run.cost.rhs_evals, 0);
+    assert_eq!(run.cost().rhs_evals, 0);
     // Already outside and moving out: certified at once.
     let mut run = Run::new(free(Initial::velocity(1.5, 0.0, 0.1)), Settings::default()).unwrap();
     assert_eq!(run.finish(100.0).unwrap().1.tau, 0.0);
@@ -77,7 +77,7 @@ fn at_rest_in_the_lab_it_stays_put_while_the_table_turns_beneath() {
         );
         // Seen from the table it circles backwards at ξ0, at relative speed ξ0.
         assert!((s.u().length() - xi0).abs() < 1e-12);
-        assert_eq!(run.cost.rhs_evals, 0);
+        assert_eq!(run.cost().rhs_evals, 0);
     }
 }
 

@@ -85,14 +85,14 @@ fn c_sticks_when_converged_and_escapes_with_the_papers_scheme() {
 
     let mut raw = Run::new(C, Settings::paper()).unwrap();
     assert_eq!(raw.run(50.0, true).unwrap(), Outcome::Escaped);
-    let e = raw.escape.unwrap();
+    let e = raw.escape().unwrap();
     assert!(
         (e.tau - 17.33).abs() < 0.05,
         "paper's scheme certified escape at {}",
         e.tau
     );
     // Before it escapes it had crept with |u| ~ δt instead of stopping.
-    assert!(raw.cost.steps > 17_000);
+    assert!(raw.cost().steps > 17_000);
 }
 
 #[test]

@@ -21,7 +21,7 @@ fn sampled(i: Initial, tau_max: f64) -> Vec<Sample> {
     let mut out = vec![];
     let mut t = 0.0;
     while t <= tau_max {
-        while run.status == Status::Slipping && run.tau() < t {
+        while run.status() == Status::Slipping && run.tau() < t {
             run.step(f64::INFINITY).unwrap();
         }
         let s = run.state_at(t).unwrap();
@@ -130,9 +130,9 @@ fn energy_identity_holds_on_every_adaptive_run() {
             let mut run = Run::new(i, s).unwrap();
             let e0 = run.state().energy();
             let mut work = 0.0;
-            while run.status == Status::Slipping && run.tau() < 20.0 {
+            while run.status() == Status::Slipping && run.tau() < 20.0 {
                 run.step(20.0).unwrap();
-                let seg = run.last.unwrap();
+                let seg = run.last().unwrap();
                 let f = Frame::Lab;
                 let state = |t: f64| f.to_state(seg.at(t), t);
                 work += match seg.dense {
@@ -222,7 +222,7 @@ fn a_state_outside_the_dense_output_is_an_error() {
     for _ in 0..5 {
         run.step(f64::INFINITY).unwrap();
     }
-    let seg = run.last.unwrap();
+    let seg = run.last().unwrap();
     let mid = 0.5 * (seg.t0 + seg.t1());
     assert!(run.state_at(mid).is_ok() && run.state_at(run.tau()).is_ok());
     for tau in [0.5 * seg.t0, seg.t1() + 1e-3, 1e3] {

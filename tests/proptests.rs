@@ -85,7 +85,7 @@ proptest! {
         let s = Settings { frame: f, ..Settings::dp54(1e-12) };
         let mut run = Run::new(i, s).unwrap();
         run.run(t1, false).unwrap();
-        prop_assume!(run.status == Status::Slipping && run.escape.is_none());
+        prop_assume!(run.status() == Status::Slipping && run.escape().is_none());
         let mid: State = run.state_at(t1).unwrap();
         let (q, u) = (mid.q(), mid.u());
         let turn = q.y.atan2(q.x);

@@ -79,3 +79,49 @@ pub enum UnitKnob {
     Rpm,
     G,
 }
+
+/// The help group an action belongs to: `update` dispatches on it, and every binding of
+/// [`super::keymap::KEYMAP`] is listed under its action's group.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Group {
+    Time,
+    InitialConditions,
+    Integrator,
+    View,
+    App,
+}
+
+impl Group {
+    /// The name the help overlay shows (one of [`super::keymap::GROUPS`]).
+    pub fn name(self) -> &'static str {
+        match self {
+            Group::Time => "time",
+            Group::InitialConditions => "initial conditions",
+            Group::Integrator => "integrator",
+            Group::View => "view",
+            Group::App => "app",
+        }
+    }
+}
+
+impl Action {
+    pub fn group(self) -> Group {
+        use Action::*;
+        match self {
+            PlayPause | StepForward | StepBack | IntegratorStep | Faster | Slower | Restart => {
+                Group::Time
+            }
+            // The mouse sets the release too.
+            Xi0(_) | Phi(_) | V0(_) | CycleRelease | ToggleFriction | ResetScene | Preset(_)
+            | PlaceRelease(_) | AimVelocity(_) | EndDrag | PickRelease(_) => {
+                Group::InitialConditions
+            }
+            CycleMethod | Loosen | Tighten | ToggleCompare | EstimateError => Group::Integrator,
+            ToggleFrame | ToggleForces | ZoomIn | ZoomOut | Pan(..) | ResetView | TauWindow(_)
+            | NextPage | PrevPage | Choose | Omega(_) | R0c(_) | Unit(..) | UnitsOff => Group::View,
+            Quit | Dismiss | ToggleHelp | HelpScroll(_) | HelpPage(_) | Save | ToggleMouse => {
+                Group::App
+            }
+        }
+    }
+}

@@ -160,13 +160,13 @@ impl App {
         check_sim("run", &self.sim)?;
         if let Some(p) = &self.paper {
             check_sim("paper", p)?;
-            if p.run.settings != Settings::paper() {
+            if p.run.settings() != Settings::paper() {
                 return Err("paper run does not use the paper's settings".into());
             }
         }
         self.initial.validate().map_err(|e| e.to_string())?;
         self.settings.validate().map_err(|e| e.to_string())?;
-        if self.sim.run.initial != self.initial || self.sim.run.settings != self.settings {
+        if self.sim.run.initial() != self.initial || self.sim.run.settings() != self.settings {
             return Err("run is not from the current initial conditions".into());
         }
         if !(state::SPEED_RANGE.0..=state::SPEED_RANGE.1).contains(&self.speed) {

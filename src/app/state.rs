@@ -269,7 +269,7 @@ impl App {
     /// How the run ends, once it is decided (whatever τ is on screen): empty before.
     fn ending(&self) -> String {
         let run = &self.sim.run;
-        match (run.status, run.escape) {
+        match (run.status(), run.escape()) {
             (crate::engine::Status::Stuck { tau, q }, _) => {
                 format!("sticks at ξ = {} (τ = {})", num(q.length(), 4), num(tau, 3))
             }

@@ -42,10 +42,10 @@ pub(super) fn savings(cs: &[Initial]) -> Result<Vec<Saving>, Error> {
     out.push(Saving {
         what: "far escape (0.5, 0.4, 1.5): stop at the certificate".into(),
         baseline: "dp54 followed to τ = 400".into(),
-        baseline_evals: follow.cost.rhs_evals,
+        baseline_evals: follow.cost().rhs_evals,
         lean: "dp54 stopped once certified".into(),
-        lean_evals: stop.cost.rhs_evals,
-        factor: follow.cost.rhs_evals as f64 / stop.cost.rhs_evals as f64,
+        lean_evals: stop.cost().rhs_evals,
+        factor: follow.cost().rhs_evals as f64 / stop.cost().rhs_evals as f64,
     });
     // Frame far out: ξ0 = 500 released at rest in the lab, to τ = 30 (Fig. 1).
     let fig1 = Initial::at_rest(500.0, Release::LabRest);

@@ -45,47 +45,34 @@ pub fn finish(initial: Initial, settings: Settings, tau_max: f64) -> Result<End,
             outcome,
             tau: s.tau,
             q: s.q(),
-            evals: run.cost.rhs_evals,
+            evals: run.cost().rhs_evals,
         });
     }
-    loop {
-        let s = run.state();
-        if let Some(e) = run.escape {
-            return Ok(End {
-                outcome: Outcome::Escaped,
-                tau: e.tau,
-                q: e.state.q(),
-                evals: run.cost.rhs_evals,
-            });
-        }
-        let dt = settings.scheme.knob();
-        if raw_at_rest(&s, dt) {
-            return Ok(End {
-                outcome: Outcome::Stuck,
-                tau: s.tau,
-                q: s.q(),
-                evals: run.cost.rhs_evals,
-            });
-        }
-        if s.tau >= tau_max {
-            return Ok(End {
-                outcome: Outcome::Running,
-                tau: s.tau,
-                q: s.q(),
-                evals: run.cost.rhs_evals,
-            });
-        }
+    let dt = settings.scheme.knob();
+    while run.goes_on(tau_max, true) && !raw_at_rest(&run.state(), dt) {
         run.step(tau_max)?;
     }
+    let s = run.state();
+    let (outcome, tau, q) = match run.escape() {
+        Some(e) => (Outcome::Escaped, e.tau, e.state.q()),
+        None if raw_at_rest(&s, dt) => (Outcome::Stuck, s.tau, s.q()),
+        None => (Outcome::Running, s.tau, s.q()),
+    };
+    Ok(End {
+        outcome,
+        tau,
+        q,
+        evals: run.cost().rhs_evals,
+    })
 }
 
 /// The lab state at exactly `tau` (no stopping at escape), and the cost.
 pub fn state_at(initial: Initial, settings: Settings, tau: f64) -> Result<(State, u64), Error> {
     let mut run = Run::new(initial, settings)?;
     run.run(tau, false)?;
-    let s = match run.status {
+    let s = match run.status() {
         Status::Stuck { .. } => run.state_at(tau)?,
         Status::Slipping => run.state(),
     };
-    Ok((s, run.cost.rhs_evals))
+    Ok((s, run.cost().rhs_evals))
 }

@@ -132,12 +132,12 @@ fn integrate(
     stop_on_escape: bool,
     mut csv: Option<BufWriter<Output>>,
 ) -> Result<State, Error> {
-    let initial = run.initial;
+    let initial = run.initial();
     let write_err = |e: std::io::Error| Error::Failed(format!("--trajectory: {e}"));
     let mut rows = Rows { initial, work: 0.0 };
     if let Some(csv) = csv.as_mut() {
         csv.write_all(TRAJECTORY_HEADER).map_err(write_err)?;
-        rows.write(csv, &run.state(), run.status != Status::Slipping)
+        rows.write(csv, &run.state(), run.status() != Status::Slipping)
             .map_err(write_err)?;
     }
     while run.goes_on(tau_max, stop_on_escape) {
@@ -153,7 +153,7 @@ fn integrate(
                     rows.write(csv, &s, false).map_err(write_err)?;
                 }
             }
-            rows.work += match run.last_step.map(|l| l.limit) {
+            rows.work += match run.last_step().map(|l| l.limit) {
                 // μ = 0: nothing does work.
                 _ if initial.frictionless => 0.0,
                 // A stretch taken in closed form has no dense output of its own (its segment
@@ -161,7 +161,7 @@ fn integrate(
                 Some(Limit::ClosedForm) => run.state().energy() - before_energy,
                 _ => step_work(run, before, run.tau())?,
             };
-            rows.write(csv, &run.state(), run.status != Status::Slipping)
+            rows.write(csv, &run.state(), run.status() != Status::Slipping)
                 .map_err(write_err)?;
         }
     }
@@ -171,7 +171,7 @@ fn integrate(
             .finish()
             .map_err(write_err)?;
     }
-    Ok(match (run.outcome(), run.escape) {
+    Ok(match (run.outcome(), run.escape()) {
         (Outcome::Escaped, Some(e)) if stop_on_escape => e.state,
         _ => run.state(),
     })

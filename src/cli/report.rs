@@ -94,7 +94,7 @@ impl RunReport {
     /// The report of `run`, ended at `end`, with its second opinion if one was asked for.
     pub fn new(run: &Run, end: &State, doubt: Option<Doubt>, units: Option<Units>) -> RunReport {
         let (q, speed) = (end.q(), end.u_lab().length());
-        let settings: Settings = run.settings;
+        let settings: Settings = run.settings();
         RunReport {
             outcome: run.outcome(),
             certain: doubt.map(|d| d.certain),
@@ -103,12 +103,12 @@ impl RunReport {
             xi: q.length(),
             angle: turn_angle(q.y.atan2(q.x)),
             speed,
-            certificate: run.escape.map(|e| e.by),
-            escape_tau: run.escape.map(|e| e.tau),
-            steps: run.cost.steps,
-            rejected: run.cost.rejected,
-            rhs_evals: run.cost.rhs_evals,
-            frictionless: run.initial.frictionless,
+            certificate: run.escape().map(|e| e.by),
+            escape_tau: run.escape().map(|e| e.tau),
+            steps: run.cost().steps,
+            rejected: run.cost().rejected,
+            rhs_evals: run.cost().rhs_evals,
+            frictionless: run.initial().frictionless,
             method: settings.method(),
             frame: settings.frame,
             tol: settings.scheme.tol(),
@@ -124,7 +124,7 @@ impl RunReport {
                     tau_s: end.tau * t,
                     xi_m: q.length() * l,
                     speed_m_s: speed * u.speed_m_s(),
-                    escape_tau_s: run.escape.map(|e| e.tau * t),
+                    escape_tau_s: run.escape().map(|e| e.tau * t),
                 }
             }),
         }

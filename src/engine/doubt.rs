@@ -47,12 +47,12 @@ pub struct Doubt {
 /// The second opinion on `run`: dp54 at 1000× its tolerance (dp54's or dop853's; fixed-step
 /// runs: tol 1e-12), at least 1e-14, in the other frame.
 pub fn second_opinion(run: &Run) -> Settings {
-    let tol = if run.settings.method().adaptive() {
-        (run.settings.scheme.knob() * 1e-3).max(TOL_RANGE.0)
+    let tol = if run.settings().method().adaptive() {
+        (run.settings().scheme.knob() * 1e-3).max(TOL_RANGE.0)
     } else {
         1e-12
     };
-    let frame = match run.settings.frame {
+    let frame = match run.settings().frame {
         Frame::Lab => Frame::Table,
         Frame::Table => Frame::Lab,
     };
@@ -66,7 +66,7 @@ pub fn second_opinion(run: &Run) -> Settings {
 /// The state at which a run's outcome was decided: the stop, the escape certificate, or its
 /// latest state.
 pub fn decided_state(run: &Run) -> State {
-    match (run.outcome(), run.escape) {
+    match (run.outcome(), run.escape()) {
         (Outcome::Escaped, Some(e)) => e.state,
         _ => run.state(),
     }
@@ -79,7 +79,7 @@ pub fn doubt(run: &Run, tau_max: f64) -> Doubt {
     let end = decided_state(run);
     let margin = saddle_h(&end).abs();
     let check = second_opinion(run);
-    if run.initial.frictionless {
+    if run.initial().frictionless {
         // Closed form: exact.
         return Doubt {
             certain: true,
@@ -98,9 +98,9 @@ pub fn doubt(run: &Run, tau_max: f64) -> Doubt {
         _ => (2.0 * end.tau + 10.0).min(tau_max.max(end.tau)),
     };
     let mut check_evals = 0;
-    let shadow = Run::new(run.initial, check).ok().and_then(|mut s| {
+    let shadow = Run::new(run.initial(), check).ok().and_then(|mut s| {
         let o = s.run(limit, true);
-        check_evals = s.cost.rhs_evals;
+        check_evals = s.cost().rhs_evals;
         o.ok().map(|o| (o, decided_state(&s)))
     });
     match shadow {

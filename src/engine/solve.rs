@@ -124,7 +124,10 @@ pub fn confirmed(
     let mut run = Run::new(initial, settings)?;
     let own = run.run(CLASSIFY_TAU, true)?;
     let d = doubt(&run, CLASSIFY_TAU);
-    Ok((own == want && d.certain, run.cost.rhs_evals + d.check_evals))
+    Ok((
+        own == want && d.certain,
+        run.cost().rhs_evals + d.check_evals,
+    ))
 }
 
 /// Runs every value of `grid`: the index of the first that escapes, whether all after it
@@ -165,14 +168,14 @@ fn probe(
     use super::run::Status;
     let mut run = Run::new(initial, settings)?;
     let result = loop {
-        if let Status::Stuck { q, .. } = run.status {
+        if let Status::Stuck { q, .. } = run.status() {
             let gap = 1.0 - q.length();
             break Probe {
                 escapes: false,
                 h: Some(-0.5 * gap * gap),
             };
         }
-        if let Some(e) = run.escape {
+        if let Some(e) = run.escape() {
             let s = e.state;
             let h = saddle_h(&s);
             break Probe {
@@ -206,11 +209,11 @@ fn probe(
             };
         }
         if let Err(e) = run.step(CLASSIFY_TAU) {
-            *evals += run.cost.rhs_evals;
+            *evals += run.cost().rhs_evals;
             return Err(e.into());
         }
     };
-    *evals += run.cost.rhs_evals;
+    *evals += run.cost().rhs_evals;
     Ok(result)
 }
 
@@ -450,7 +453,7 @@ pub fn critical_radius(settings: Settings, tol: f64) -> Result<Threshold, Error>
     let mut classify = |xi0: f64| -> Result<bool, Error> {
         let mut run = Run::new(Initial::at_rest(xi0, Release::LabRest), settings)?;
         let outcome = run.run(CLASSIFY_TAU, true)?;
-        evals += run.cost.rhs_evals;
+        evals += run.cost().rhs_evals;
         Ok(outcome != Outcome::Stuck)
     };
     let grid: Vec<f64> = (0..=30).map(|i| 1.5 * i as f64 / 30.0).collect();

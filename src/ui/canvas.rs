@@ -199,7 +199,7 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) -> CanvasGeom {
     let spin = turn + if view == Frame::Lab { now.tau } else { 0.0 };
     // Where and when it stuck: the rest point in the frame shown (in the lab, where it was at
     // the stop; it rides the table from there).
-    let stuck = match app.sim.run.status {
+    let stuck = match app.sim.run.status() {
         crate::engine::Status::Stuck { tau, q } if now.tau >= tau => {
             let at = match view {
                 Frame::Lab => rotate(q, tau),

@@ -51,7 +51,7 @@ pub fn status_text(sim: &Sim, th: &Theme) -> (String, ratatui::style::Color) {
         return ("stopped: step budget / underflow".into(), th.escaped);
     }
     let (text, colour) = match sim.outcome_now() {
-        Outcome::Stuck => match sim.run.status {
+        Outcome::Stuck => match sim.run.status() {
             Status::Stuck { tau, q } => (
                 format!(
                     "stuck at ξ = {}\n  since τ = {}",
@@ -62,7 +62,7 @@ pub fn status_text(sim: &Sim, th: &Theme) -> (String, ratatui::style::Color) {
             ),
             Status::Slipping => ("stuck".into(), th.stuck),
         },
-        Outcome::Escaped => match sim.run.escape {
+        Outcome::Escaped => match sim.run.escape() {
             // What is certified, true from that instant on, before the particle leaves.
             Some(e) => (
                 format!(
@@ -79,8 +79,8 @@ pub fn status_text(sim: &Sim, th: &Theme) -> (String, ratatui::style::Color) {
         },
         Outcome::Running => {
             let s = sim.now();
-            let raw = sim.run.settings.method() == Method::Rk2Raw;
-            if raw && raw_at_rest(&s, sim.run.settings.scheme.knob()) {
+            let raw = sim.run.settings().method() == Method::Rk2Raw;
+            if raw && raw_at_rest(&s, sim.run.settings().scheme.knob()) {
                 ("≈ at rest (raw RK2 chatters)".into(), th.slipping)
             } else {
                 ("slipping".into(), th.slipping)
@@ -225,7 +225,7 @@ fn readouts(app: &App) -> (Vec<Line<'static>>, std::ops::Range<usize>) {
         )));
     }
     let status = status_start..out.len();
-    let c = app.sim.run.cost;
+    let c = app.sim.run.cost();
     if i.frictionless {
         out.push(kv("μ = 0", "closed form".into(), th));
     } else {
@@ -237,7 +237,7 @@ fn readouts(app: &App) -> (Vec<Line<'static>>, std::ops::Range<usize>) {
     }
     out.push(kv("steps", format!("{} rej {}", c.steps, c.rejected), th));
     if app.step_mode
-        && let Some(st) = app.sim.run.last_step
+        && let Some(st) = app.sim.run.last_step()
     {
         out.push(kv("h", format!("{:.1e} {}", st.h, st.limit.describe()), th));
         if let Some(e) = st.err_ratio {

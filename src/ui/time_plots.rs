@@ -74,7 +74,7 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) {
         label: format!("τ={}", num(now, 2)),
         color: th.accent,
     }];
-    if let Status::Stuck { tau, .. } = app.sim.run.status
+    if let Status::Stuck { tau, .. } = app.sim.run.status()
         && tau <= now
     {
         marks.push(Mark::VLine {
@@ -83,7 +83,7 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) {
             color: th.stuck,
         });
     }
-    if let Some(e) = app.sim.run.escape
+    if let Some(e) = app.sim.run.escape()
         && e.tau <= now
     {
         marks.push(Mark::VLine {

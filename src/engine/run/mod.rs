@@ -116,20 +116,21 @@ enum Ahead {
     },
 }
 
-/// A run from given initial conditions with given settings.
+/// A run from given initial conditions with given settings. Its fields are private: it is
+/// advanced only by [`Run::step`] (and the loops over it), and read through its accessors.
 #[derive(Clone, Debug)]
 pub struct Run {
-    pub initial: Initial,
-    pub settings: Settings,
-    pub cost: Cost,
-    pub status: Status,
-    pub escape: Option<Escape>,
+    initial: Initial,
+    settings: Settings,
+    cost: Cost,
+    status: Status,
+    escape: Option<Escape>,
     /// The latest step (or stop), for dense sampling between its ends.
-    pub last: Option<Segment>,
+    last: Option<Segment>,
     /// Momentary stops at ξ > 1 after which the particle slipped on.
-    pub slip_restarts: u32,
+    slip_restarts: u32,
     /// The latest step, for the explorer's integrator step mode.
-    pub last_step: Option<StepInfo>,
+    last_step: Option<StepInfo>,
     /// Consecutive steps longer than the time |u|/|q| in which û turns, and |u| when they
     /// began.
     stiff_steps: u32,
@@ -183,6 +184,43 @@ impl Run {
             });
         }
         Ok(run)
+    }
+
+    pub fn initial(&self) -> Initial {
+        self.initial
+    }
+
+    pub fn settings(&self) -> Settings {
+        self.settings
+    }
+
+    /// What the run has cost so far.
+    pub fn cost(&self) -> Cost {
+        self.cost
+    }
+
+    pub fn status(&self) -> Status {
+        self.status
+    }
+
+    /// Where the escape certificate first held, if it has.
+    pub fn escape(&self) -> Option<Escape> {
+        self.escape
+    }
+
+    /// The latest step (or stop), for dense sampling between its ends.
+    pub fn last(&self) -> Option<Segment> {
+        self.last
+    }
+
+    /// The latest step, for the explorer's integrator step mode.
+    pub fn last_step(&self) -> Option<StepInfo> {
+        self.last_step
+    }
+
+    /// Momentary stops at ξ > 1 after which the particle slipped on.
+    pub fn slip_restarts(&self) -> u32 {
+        self.slip_restarts
     }
 
     pub fn tau(&self) -> f64 {

@@ -1,0 +1,70 @@
+//! The "integrator" group: the method, its dt or tol, the paper's RK2 beside it, the error
+//! estimate.
+
+use super::super::action::Action;
+use super::super::state::{App, make_sim};
+use super::{next_of, round_sig};
+use crate::engine::method::{DT_RANGE, TOL_RANGE};
+use crate::engine::{Method, Settings};
+use strum::VariantArray;
+
+pub(super) fn apply(app: &mut App, action: Action) {
+    match action {
+        Action::CycleMethod => {
+            let (now, next) = (
+                app.settings.scheme,
+                next_of(Method::VARIANTS, app.settings.method()),
+            );
+            // A fixed step carries over between the fixed-step methods, a tolerance between
+            // the adaptive ones; else the default.
+            let knob = match now.tol() {
+                Some(tol) if next.adaptive() => tol,
+                None if !next.adaptive() => now.knob(),
+                _ => next.default_knob(),
+            };
+            app.settings.scheme = next.with(knob);
+            app.restart();
+        }
+        Action::Loosen | Action::Tighten => {
+            let k = if action == Action::Loosen {
+                10f64.sqrt()
+            } else {
+                1.0 / 10f64.sqrt()
+            };
+            let s = &mut app.settings.scheme;
+            let range = if s.method().adaptive() {
+                TOL_RANGE
+            } else {
+                DT_RANGE
+            };
+            *s = s.with_knob(round_sig(s.knob() * k).clamp(range.0, range.1));
+            app.restart();
+        }
+        Action::ToggleCompare => {
+            app.paper = match app.paper {
+                Some(_) => None,
+                None => {
+                    // It catches up with the run on screen over the next ticks, within each
+                    // tick's step budget: the key itself does no integration.
+                    Some(make_sim(app.initial, Settings::paper()))
+                }
+            };
+            app.catch_up();
+        }
+        Action::EstimateError if app.initial.frictionless => {
+            app.notice =
+                Some("μ = 0 is computed in closed form: exact, no error to estimate".into());
+        }
+        Action::EstimateError => {
+            app.notice = Some(match app.sim.error_estimate() {
+                Ok(e) => format!(
+                    "error at τ = {:.3}: |Δr| = {:.1e} against dp54 tol={:.0e} ({} RHS)",
+                    e.tau, e.error, e.tol, e.rhs_evals
+                ),
+                Err(e) => format!("no estimate: {e}"),
+            });
+        }
+        // Other groups' actions: `update` never sends them here.
+        _ => {}
+    }
+}

@@ -1,0 +1,56 @@
+//! The pure update: an action applied to the state. No I/O but `Save`, no clock. One module
+//! per help group (as the keymap lists them); `update` dispatches on the action's group.
+
+mod app;
+mod initial;
+mod integrator;
+mod time;
+mod view;
+
+use super::action::{Action, Group};
+use super::state::App;
+
+pub fn update(app: &mut App, action: Action) {
+    if action == Action::EndDrag {
+        // Letting go of the mouse changes nothing on screen (the notice stays).
+        app.dragging = false;
+        return;
+    }
+    app.dirty = true;
+    app.notice = None;
+    match action.group() {
+        Group::Time => time::apply(app, action),
+        Group::InitialConditions => initial::apply(app, action),
+        Group::Integrator => integrator::apply(app, action),
+        Group::View => view::apply(app, action),
+        Group::App => app::apply(app, action),
+    }
+    app.sync_analysis();
+}
+
+/// One tick of sim time (× speed) for both runs. Marks the screen dirty only if time moved.
+pub fn step(app: &mut App) -> bool {
+    let dtau = super::state::TICK_DT * app.speed;
+    let before = (app.sim.cursor, app.sim.samples.len());
+    app.sim.advance(dtau);
+    let mut moved = before != (app.sim.cursor, app.sim.samples.len());
+    moved |= app.catch_up();
+    app.dirty |= moved;
+    moved
+}
+
+/// Rounds to 12 significant digits so that ×√10 twice gives exactly ×10 on screen.
+fn round_sig(x: f64) -> f64 {
+    if x == 0.0 || !x.is_finite() {
+        return x;
+    }
+    let e = x.abs().log10().floor() as i32;
+    let m = 10f64.powi(11 - e);
+    (x * m).round() / m
+}
+
+/// The item after `x` in `all`, wrapping round.
+fn next_of<T: Copy + PartialEq>(all: &[T], x: T) -> T {
+    let i = all.iter().position(|a| *a == x).unwrap_or(0);
+    all[(i + 1) % all.len()]
+}

@@ -1,0 +1,87 @@
+//! The "view" group: frame, forces, zoom and pan, the τ window, pages, the μ probe and the
+//! SI units.
+
+use super::super::action::{Action, UnitKnob};
+use super::super::pages::Page;
+use super::super::state::{App, ZOOM_RANGE, record_player};
+use super::round_sig;
+use crate::engine::Frame;
+use crate::engine::units::Units;
+
+pub(super) fn apply(app: &mut App, action: Action) {
+    match action {
+        Action::ToggleFrame => {
+            app.view = match app.view {
+                Frame::Lab => Frame::Table,
+                Frame::Table => Frame::Lab,
+            }
+        }
+        Action::ToggleForces => app.forces = !app.forces,
+        Action::ZoomIn => app.zoom = (app.zoom * 1.5).min(ZOOM_RANGE.1),
+        Action::ZoomOut => app.zoom = (app.zoom / 1.5).max(ZOOM_RANGE.0),
+        Action::Pan(dx, dy) => app.pan += glam::DVec2::new(dx, dy) / app.zoom,
+        Action::ResetView => {
+            app.zoom = 1.0;
+            app.pan = glam::DVec2::ZERO;
+        }
+        Action::TauWindow(narrow) => {
+            let now = app.sim.now().tau.max(1e-3);
+            let span = app.tau_window.unwrap_or(now);
+            app.tau_window = if narrow {
+                Some((0.5 * span).max(1e-3))
+            } else {
+                Some(2.0 * span).filter(|s| *s < now)
+            };
+        }
+        Action::NextPage => app.page = app.page.next(),
+        Action::PrevPage => app.page = app.page.prev(),
+        Action::Choose => {
+            if matches!(app.page, Page::EscapeSpeed | Page::OutcomeMap) {
+                app.page = Page::Turntable;
+                app.playing = true;
+                app.restart();
+            } else {
+                app.notice = Some(
+                    "Enter runs the release chosen on the escape-speed or outcome-map page (Tab)"
+                        .into(),
+                );
+            }
+        }
+        Action::Omega(d) | Action::R0c(d) => {
+            let (omega, r0c) = &mut app.mu_probe;
+            if matches!(action, Action::Omega(_)) {
+                *omega = round_sig((*omega + d).clamp(0.1, 100.0));
+            } else {
+                *r0c = round_sig((*r0c + d).clamp(0.001, 10.0));
+            }
+            if app.page != Page::RestRadius {
+                app.notice = Some(format!(
+                    "μ probe: Ω = {} rad/s, r0c = {} m (the rest-radius page reads μ)",
+                    app.mu_probe.0, app.mu_probe.1
+                ));
+            }
+        }
+        Action::Unit(knob, d) => {
+            let was = app.units;
+            let mut u = was.unwrap_or_else(record_player);
+            if was.is_some() {
+                let (x, lo, hi) = match knob {
+                    UnitKnob::Mu => (&mut u.mu, 0.01, 10.0),
+                    UnitKnob::Rpm => (&mut u.rpm, 1.0, 1e4),
+                    UnitKnob::G => (&mut u.g, 0.01, 1e3),
+                };
+                *x = round_sig((*x + d).clamp(lo, hi));
+            }
+            if let Ok(u) = Units::new(u.mu, u.rpm, u.g) {
+                app.units = Some(u);
+                app.notice = Some(format!("SI units: {}", u.describe()));
+            }
+        }
+        Action::UnitsOff => {
+            app.units = None;
+            app.notice = Some("SI units off: dimensionless readouts only".into());
+        }
+        // Other groups' actions: `update` never sends them here.
+        _ => {}
+    }
+}
