@@ -1015,3 +1015,19 @@ fn method_key_reaches_dop853_with_the_same_tol() {
     key(&mut a, 'm');
     assert_eq!(a.settings.scheme, Scheme::Rk2Raw { dt: 1e-3 });
 }
+
+/// The footer says what Space does now: pause while playing, play while paused.
+#[test]
+fn footer_names_what_space_does_now() {
+    for (w, h) in [(80, 24), (140, 40)] {
+        let mut a = app("C");
+        assert!(a.playing);
+        let last = |a: &mut App| render(a, w, h).lines().last().unwrap().to_string();
+        let playing = last(&mut a);
+        assert!(playing.contains("Space pause"), "{playing}");
+        assert!(!playing.contains("Space play"), "{playing}");
+        key(&mut a, ' ');
+        let paused = last(&mut a);
+        assert!(paused.contains("Space play"), "{paused}");
+    }
+}
