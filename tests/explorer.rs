@@ -1044,3 +1044,19 @@ fn every_binding_is_listed_under_its_actions_group() {
         assert_eq!(a.group(), Group::InitialConditions);
     }
 }
+
+/// The footer says what Space does now: pause while playing, play while paused.
+#[test]
+fn footer_names_what_space_does_now() {
+    for (w, h) in [(80, 24), (140, 40)] {
+        let mut a = app("C");
+        assert!(a.playing);
+        let last = |a: &mut App| render(a, w, h).lines().last().unwrap().to_string();
+        let playing = last(&mut a);
+        assert!(playing.contains("Space pause"), "{playing}");
+        assert!(!playing.contains("Space play"), "{playing}");
+        key(&mut a, ' ');
+        let paused = last(&mut a);
+        assert!(paused.contains("Space play"), "{paused}");
+    }
+}

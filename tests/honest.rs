@@ -18,7 +18,7 @@ fn outcome(i: Initial, s: Settings) -> (Outcome, Run) {
     (o, run)
 }
 
-/// The escape speed at ξ0 = 0.5, φ = 0 (README; `escape --vtol 1e-10`).
+/// The escape speed at ξ0 = 0.5, φ = 0 (docs/numerics.md; `escape --vtol 1e-10`).
 const VE: f64 = 0.607_823_64;
 
 /// Never wrong and certain: around the escape speed, a loose run whose outcome differs from a

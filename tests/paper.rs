@@ -75,7 +75,7 @@ fn rest_positions_agree_between_tolerances_to_nine_digits() {
 
 /// C lies within 1e-4 of the escape speed, so its fate depends on the method: converged, it
 /// stops just inside ξ = 1; the paper's raw RK2 chatters near the stop, creeps out past ξ = 1
-/// and escapes (README, "Case C").
+/// and escapes (docs/numerics.md, "Case C").
 #[test]
 fn c_sticks_when_converged_and_escapes_with_the_papers_scheme() {
     let (o, t, x, _) = finish(C, Settings::dp54(1e-12), 50.0);
@@ -133,7 +133,7 @@ fn critical_radius_is_0_87() {
 }
 
 /// Fig. 5: the curves peak near φ ≈ 4. The minimum does not sit near 0.4 for every ξ0, as
-/// the paper says: it moves from ≈ 0.31 at ξ0 = 0.8 to ≈ 0.76 at ξ0 = 0.001 (README).
+/// the paper says: it moves from ≈ 0.31 at ξ0 = 0.8 to ≈ 0.76 at ξ0 = 0.001 (docs/numerics.md).
 #[test]
 fn fig5_peaks_near_4_and_the_minimum_moves_with_xi0() {
     let s = Settings::dp54(1e-10);

@@ -135,12 +135,18 @@ fn status_line(app: &App, width: u16) -> Line<'static> {
     // The long hint where it fits, measured; else the short one, whole hints dropped from
     // its end.
     let room = usize::from(width).saturating_sub(mouse.width());
-    let long = " ? help  Space play  .,  step  [] speed  f frame  m method  c compare  a forces  1-6 presets  x/p/v edit  q quit";
+    // Space's hint says what it does now.
+    let space = if app.playing { "pause" } else { "play" };
+    let long = format!(
+        " ? help  Space {space}  .,  step  [] speed  f frame  m method  c compare  a forces  1-6 presets  x/p/v edit  q quit"
+    );
     let keys = if long.width() <= room {
-        long.to_string()
+        long
     } else {
         fit::fit(
-            " ? help  q quit  Space play  ., step  f frame  m method  c compare  1-6 presets",
+            &format!(
+                " ? help  q quit  Space {space}  ., step  f frame  m method  c compare  1-6 presets"
+            ),
             "  ",
             room,
         )
