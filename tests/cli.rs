@@ -533,3 +533,28 @@ fn dop853_takes_tol_and_rests_where_dp54_does() {
     assert_eq!(code, 2);
     assert!(err.contains("dop853 takes --tol"), "{err}");
 }
+
+/// `replay --help` documents the script grammar itself (an installed binary has no README), and
+/// its example replays as printed.
+#[test]
+fn replay_help_carries_a_working_example() {
+    let (code, help, _) = turntable(&["replay", "--help"]);
+    assert_eq!(code, 0);
+    assert!(!help.contains("README"), "{help}");
+    let script: String = help
+        .lines()
+        .skip_while(|l| !l.trim_start().starts_with("resize"))
+        .take_while(|l| l.starts_with("    "))
+        .map(|l| format!("{}\n", l.trim()))
+        .collect();
+    assert!(script.contains("mouse click"), "{script}");
+    let path = std::env::temp_dir().join(format!("turntable-help-{}.keys", std::process::id()));
+    std::fs::write(&path, &script).unwrap();
+    let (code, out, err) = turntable(&["replay", path.to_str().unwrap()]);
+    std::fs::remove_file(&path).unwrap();
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        out.starts_with("--- snapshot 1: after 80 ticks (80x24"),
+        "{out}"
+    );
+}

@@ -85,6 +85,26 @@ pub struct Look {
     pub theme: Option<String>,
 }
 
+/// `replay --help`: the script grammar, so that an installed binary documents it.
+const REPLAY_ABOUT: &str = "Run a key script headlessly and print its snapshots.
+
+A key script drives the explorer without a terminal: one step per token, top to bottom; a `#` that
+begins a token starts a comment.
+
+    resize 80x24                 # the off-screen terminal is now 80x24
+    2 x*3 alt-v                  # keys by name; Name*N repeats a key N times
+    tick 80                      # let 80 ticks pass (a tick is 0.05 of tau at speed 1)
+    snapshot after 80 ticks
+    space Right*5 ? esc          # pause, step five times, help on and off
+    mouse click 20 8             # click|drag|up|scrollup|scrolldown COLUMN ROW (0-based)
+
+`snapshot LABEL` prints the screen (the rest of the line is its label). Keys: any single
+character, space, hash, enter, esc, tab, backtab, backspace, delete, up, down, left, right, home,
+end, pgup, pgdn, f1-f12, each with optional ctrl-, alt-, shift- prefixes. A first line
+`# replay: [--size WxH] [--ansi] [--scene S] [--theme T]` sets options (flags win). The output
+is byte-identical on every run: there is no clock, only ticks. `turntable --record FILE` writes
+such a script from an interactive session.";
+
 #[derive(Subcommand, Debug)]
 pub enum Command {
     /// Integrate one trajectory and report how it ends.
@@ -97,7 +117,8 @@ pub enum Command {
     Sweep(SweepArgs),
     /// Work–precision measurements: error against cost for every method, and the speed goals.
     Bench(BenchArgs),
-    /// Run a key script headlessly and print its snapshots (see README, "Key scripts").
+    /// Run a key script headlessly and print its snapshots.
+    #[command(long_about = REPLAY_ABOUT)]
     Replay(super::replay::ReplayArgs),
     /// Print a shell completion script: `turntable completions bash > ~/.local/share/bash-completion/completions/turntable`.
     Completions(CompletionsArgs),
