@@ -1,6 +1,6 @@
 //! The headless numerical commands: run, escape, critical (sweep is in `sweep`).
 
-use super::report::{CriticalReport, EscapeReport, RunReport};
+use super::report::{CriticalReport, EscapeReport, Report, RunReport};
 use super::{
     CmdResult, CriticalArgs, Error, EscapeArgs, RunArgs, bracket_width, check_initial, num,
     solver_budget,
@@ -95,14 +95,7 @@ pub fn run(a: RunArgs) -> CmdResult {
     let mut run = Run::new(initial, settings)?;
     let end = integrate(&mut run, a.tau_max, !a.follow, csv)?;
     let doubt = (!a.no_check).then(|| crate::engine::doubt::doubt(&run, a.tau_max));
-    let report = RunReport::new(&run, &end, doubt, units);
-    let out = if a.json {
-        json_line(&report)?
-    } else {
-        report.text()
-    };
-    emit(None, &out)?;
-    Ok(())
+    print(&RunReport::new(&run, &end, doubt, units), a.json)
 }
 
 /// The release and settings `run` was asked for, checked.
@@ -177,11 +170,15 @@ fn integrate(
     })
 }
 
-/// A report as one line of JSON.
-fn json_line(report: &impl serde::Serialize) -> Result<String, Error> {
-    serde_json::to_string(report)
-        .map(|s| s + "\n")
-        .map_err(|e| Error::Failed(e.to_string()))
+/// Prints a report: one line of JSON, or its text.
+fn print(report: &(impl Report + serde::Serialize), json: bool) -> CmdResult {
+    let out = if json {
+        serde_json::to_string(report).map_err(|e| Error::Failed(e.to_string()))? + "\n"
+    } else {
+        report.text()
+    };
+    emit(None, &out)?;
+    Ok(())
 }
 
 /// Settings for the solvers, which classify runs by how they end: the paper's raw scheme never
@@ -221,14 +218,7 @@ pub fn escape(a: EscapeArgs) -> CmdResult {
         let (t, c) = solve_certified(settings, solve, at)?;
         (t, Some(c))
     };
-    let report = EscapeReport::new(a.xi0, a.phi, &t, certified);
-    let out = if a.json {
-        json_line(&report)?
-    } else {
-        report.text()
-    };
-    emit(None, &out)?;
-    Ok(())
+    print(&EscapeReport::new(a.xi0, a.phi, &t, certified), a.json)
 }
 
 pub fn critical(a: CriticalArgs) -> CmdResult {
@@ -258,12 +248,5 @@ pub fn critical(a: CriticalArgs) -> CmdResult {
     };
     // The paper's Eq. 22: mu = Omega² r0c / (xi0c g), friction measured by the critical radius.
     let mu = a.omega.zip(a.r0c).map(|(w, r)| w * w * r / (t.value * a.g));
-    let report = CriticalReport::new(&t, certified, mu);
-    let out = if a.json {
-        json_line(&report)?
-    } else {
-        report.text()
-    };
-    emit(None, &out)?;
-    Ok(())
+    print(&CriticalReport::new(&t, certified, mu), a.json)
 }

@@ -10,6 +10,11 @@ use crate::engine::{Certificate, Frame, Method, Outcome, Run, Settings, State};
 use serde::Serialize;
 use std::fmt::Write as _;
 
+/// A command's report: its fields are its JSON; this is its plain output.
+pub trait Report {
+    fn text(&self) -> String;
+}
+
 /// `run --json`.
 #[derive(Debug, Serialize)]
 pub struct RunReport {
@@ -129,8 +134,10 @@ impl RunReport {
             }),
         }
     }
+}
 
-    pub fn text(&self) -> String {
+impl Report for RunReport {
+    fn text(&self) -> String {
         let how = match (self.outcome, self.certificate) {
             (Outcome::Stuck, _) => "stuck: at rest on the table from tau on".to_string(),
             (Outcome::Escaped, Some(by)) => {
@@ -283,25 +290,6 @@ impl EscapeReport {
         }
     }
 
-    pub fn text(&self) -> String {
-        let mut text = match self.stuck_at {
-            Some(lo) => format!(
-                "v_escape {:.10}  (the least escaping speed)\nbracket  stuck at {lo:.10}, escapes at {:.10}\n",
-                self.v_escape, self.escapes_at
-            ),
-            None => "v_escape 0  (released at rest on the table here, it already escapes)\n".into(),
-        };
-        text.push_str(&self.solve.text());
-        if !self.interval {
-            let _ = writeln!(
-                text,
-                "note     the escaping speeds are not one interval: some faster releases come to rest.\n         scanned v0: {}",
-                self.scan_summary()
-            );
-        }
-        text
-    }
-
     /// The scan as runs of equal outcome: "0 to 1.2 escape; 1.35 to 2.4 stick; …" (what is
     /// known where the escaping values are not one interval).
     fn scan_summary(&self) -> String {
@@ -324,6 +312,27 @@ impl EscapeReport {
     }
 }
 
+impl Report for EscapeReport {
+    fn text(&self) -> String {
+        let mut text = match self.stuck_at {
+            Some(lo) => format!(
+                "v_escape {:.10}  (the least escaping speed)\nbracket  stuck at {lo:.10}, escapes at {:.10}\n",
+                self.v_escape, self.escapes_at
+            ),
+            None => "v_escape 0  (released at rest on the table here, it already escapes)\n".into(),
+        };
+        text.push_str(&self.solve.text());
+        if !self.interval {
+            let _ = writeln!(
+                text,
+                "note     the escaping speeds are not one interval: some faster releases come to rest.\n         scanned v0: {}",
+                self.scan_summary()
+            );
+        }
+        text
+    }
+}
+
 impl CriticalReport {
     pub fn new(t: &Threshold, certified: Option<bool>, mu: Option<f64>) -> CriticalReport {
         CriticalReport {
@@ -335,8 +344,10 @@ impl CriticalReport {
             solve: SolveReport::new(t, certified),
         }
     }
+}
 
-    pub fn text(&self) -> String {
+impl Report for CriticalReport {
+    fn text(&self) -> String {
         let mut text = format!(
             "xi0c     {:.10}\nbracket  stuck at {:.10}, escapes at {:.10}\n{}",
             self.xi0c,
