@@ -10,6 +10,7 @@ pub mod engine;
 pub mod error;
 pub mod files;
 pub mod replay;
+pub mod pin;
 pub mod rng;
 pub mod scene;
 pub mod script;

@@ -23,6 +23,10 @@ pub struct Scene {
     /// How the explorer showed it when saved.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub view: Option<View>,
+    /// Runs pinned beside this one (`b`), oldest first: each as its release, recomputed
+    /// when loaded.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub pins: Vec<crate::pin::PinSpec>,
 }
 
 /// The explorer's view of a scene: the page, the frame drawn, force arrows, zoom.
@@ -78,6 +82,7 @@ impl Scene {
             settings: Settings::default(),
             units: None,
             view: None,
+            pins: Vec::new(),
         })
     }
 
@@ -112,6 +117,27 @@ impl Scene {
             .settings
             .validate()
             .map_err(|e| Error::from(e).context(&file))?;
+        if scene.pins.len() > crate::pin::MAX_PINS {
+            return Err(Error::Invalid(format!(
+                "{file}: {} pins, at most {} are kept",
+                scene.pins.len(),
+                crate::pin::MAX_PINS
+            )));
+        }
+        for (k, p) in scene.pins.iter().enumerate() {
+            let what = format!("{file}: pin {} ({:?})", k + 1, p.label);
+            if p.label.chars().count() > crate::pin::LABEL_MAX || p.label.chars().any(char::is_control) {
+                return Err(Error::Invalid(format!(
+                    "{what}: a label is at most {} printable characters",
+                    crate::pin::LABEL_MAX
+                )));
+            }
+            if !p.turn.is_finite() {
+                return Err(Error::Invalid(format!("{what}: turn must be finite")));
+            }
+            p.initial.validate().map_err(|e| Error::from(e).context(&what))?;
+            p.settings.validate().map_err(|e| Error::from(e).context(&what))?;
+        }
         if let Some(u) = scene.units {
             crate::engine::units::Units::new(u.mu, u.rpm, u.g)
                 .map_err(|e| Error::Invalid(format!("{file}: [units] {e}")))?;

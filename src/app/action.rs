@@ -70,6 +70,9 @@ pub enum Action {
     Unit(UnitKnob, f64),
     /// Dimensionless readouts only.
     UnitsOff,
+    /// Pin the run on screen beside later ones; clear the pins.
+    PinRun,
+    ClearPins,
 }
 
 /// The physical constants the SI readouts rest on.
@@ -118,7 +121,8 @@ impl Action {
             }
             CycleMethod | Loosen | Tighten | ToggleCompare | EstimateError => Group::Integrator,
             ToggleFrame | ToggleForces | ZoomIn | ZoomOut | Pan(..) | ResetView | TauWindow(_)
-            | NextPage | PrevPage | Choose | Omega(_) | R0c(_) | Unit(..) | UnitsOff => Group::View,
+            | NextPage | PrevPage | Choose | Omega(_) | R0c(_) | Unit(..) | UnitsOff | PinRun
+            | ClearPins => Group::View,
             Quit | Dismiss | ToggleHelp | HelpScroll(_) | HelpPage(_) | Save | ToggleMouse => {
                 Group::App
             }

@@ -119,6 +119,8 @@ pub const KEYMAP: &[Binding] = &[
     b(ch('g'), N, Action::Unit(UnitKnob::G, 0.01), "g ±0.01 m/s²", "view"),
     b(ch('G'), N, Action::Unit(UnitKnob::G, -0.01), "g ±0.01 m/s²", "view"),
     b(ch('u'), A, Action::UnitsOff, "SI units off", "view"),
+    b(ch('b'), N, Action::PinRun, "pin this run (up to 6)", "view"),
+    b(ch('B'), N, Action::ClearPins, "clear the pins", "view"),
     b(ch('?'), N, Action::ToggleHelp, "help on / off", "app"),
     b(KeyCode::Up, N, Action::HelpScroll(-1), "scroll help", "app"),
     b(KeyCode::Down, N, Action::HelpScroll(1), "scroll help", "app"),

@@ -32,6 +32,11 @@ pub fn auto_extent(app: &App) -> f64 {
         .paper
         .as_ref()
         .map_or(own, |p| own.max(reach(p).min(1.5 * own)));
+    // Pins widen it as the paper's run does, so a pinned D (from ξ0 = 1.1) stays in view.
+    let m = app.pins.iter().fold(m, |m, p| {
+        let r = p.path.iter().fold(0.0, |m: f64, s| m.max(s.xi()));
+        m.max(r.min(1.5 * own))
+    });
     (m * 1.1)
         .max(1.5)
         .min(crate::app::state::view_radius(&app.initial) * 1.1)
@@ -74,20 +79,22 @@ fn arrow(ctx: &mut Context, from: DVec2, vec: DVec2, color: Color) {
     }
 }
 
-/// The trail of `sim` up to the τ on screen, from its path (a fixed τ grid, see
-/// [`crate::sim::TRAIL_DT`]), joined to the particle where the path is still growing.
-fn trail(ctx: &mut Context, sim: &crate::sim::Sim, frame: Frame, turn: f64, color: Color) {
-    let path = sim.trail();
-    let now = sim.now();
-    let tail = path
-        .last()
-        .filter(|l| now.tau > l.tau && now.tau - l.tau <= crate::sim::TRAIL_DT)
-        .map(|_| now);
-    let samples: Vec<&State> = path.iter().chain(tail.as_ref()).collect();
-    let stride = samples.len().div_ceil(MAX_SEGMENTS).max(1);
+/// Markers along a pin's path: at its quarters (and its end, with the label).
+const PIN_MARKS: usize = 4;
+
+/// The `n` states of `path` as a line in the frame shown, thinned to at most
+/// [`MAX_SEGMENTS`] segments.
+fn polyline<'a>(
+    ctx: &mut Context,
+    path: impl Iterator<Item = &'a State>,
+    n: usize,
+    frame: Frame,
+    turn: f64,
+    color: Color,
+) {
+    let stride = n.div_ceil(MAX_SEGMENTS).max(1);
     let mut prev: Option<DVec2> = None;
-    let n = samples.len();
-    for (i, s) in samples.into_iter().enumerate() {
+    for (i, s) in path.enumerate() {
         if i % stride != 0 && i + 1 != n {
             continue;
         }
@@ -103,6 +110,19 @@ fn trail(ctx: &mut Context, sim: &crate::sim::Sim, frame: Frame, turn: f64, colo
         }
         prev = Some(p);
     }
+}
+
+/// The trail of `sim` up to the τ on screen, from its path (a fixed τ grid, see
+/// [`crate::sim::TRAIL_DT`]), joined to the particle where the path is still growing.
+fn trail(ctx: &mut Context, sim: &crate::sim::Sim, frame: Frame, turn: f64, color: Color) {
+    let path = sim.trail();
+    let now = sim.now();
+    let tail = path
+        .last()
+        .filter(|l| now.tau > l.tau && now.tau - l.tau <= crate::sim::TRAIL_DT)
+        .map(|_| now);
+    let n = path.len() + usize::from(tail.is_some());
+    polyline(ctx, path.iter().chain(tail.as_ref()), n, frame, turn, color);
 }
 
 /// A force arrow as drawn: its label at the head (so it reads without colour), the word the
@@ -219,6 +239,8 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) -> CanvasGeom {
     let v_init = rotate(v_init, turn);
     let sim = &app.sim;
     let paper = app.paper.as_ref();
+    let pins = &app.pins;
+    let pin_style = Style::default().fg(th.muted);
     let half_width = 0.5 * (xb[1] - xb[0]).min(yb[1] - yb[0]);
     let forces = if app.forces {
         force_arrows(app, half_width)
@@ -278,6 +300,23 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) -> CanvasGeom {
                 radius: 1.0,
                 color: th.limit_circle,
             });
+            // Each pin: its marker along its path, and at its end the marker and its label,
+            // so pins read without colour (printed first: the words printed later win).
+            for p in pins {
+                let at = |s: &State| rotate(in_frame(s, view), p.spec.turn);
+                let n = p.path.len();
+                for k in 1..PIN_MARKS {
+                    let s = &p.path[k * (n - 1) / PIN_MARKS];
+                    let m = at(s);
+                    ctx.print(m.x, m.y, Span::styled(p.marker.to_string(), pin_style));
+                }
+                let e = at(&p.end());
+                ctx.print(
+                    e.x,
+                    e.y,
+                    Span::styled(format!("{}{}", p.marker, p.spec.label), pin_style),
+                );
+            }
             if words {
                 // ξ = 1 is R_max = μg/Ω², the whole story: inside it friction can hold the
                 // particle.
@@ -298,6 +337,9 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) -> CanvasGeom {
             // the rotating frame D's whole path lies along its arrow).
             arrow(ctx, x0, v_init * arrow_scale, th.arrow);
             ctx.layer();
+            for p in pins {
+                polyline(ctx, p.path.iter(), p.path.len(), view, p.spec.turn, th.muted);
+            }
             if let Some(p) = paper {
                 trail(ctx, p, view, turn, th.accent);
             }

@@ -266,6 +266,14 @@ fn readouts(app: &App) -> (Vec<Line<'static>>, std::ops::Range<usize>) {
         }
         out.push(kv("  ξ", num(p.now().xi(), 5), th));
     }
+    if !app.pins.is_empty() {
+        let names: Vec<String> = app
+            .pins
+            .iter()
+            .map(|p| format!("{}{}", p.marker, p.spec.label))
+            .collect();
+        out.push(kv("pins", names.join(" "), th));
+    }
     if app.forces {
         // The legend names exactly the arrows drawn, by their head labels.
         let drawn = crate::ui::canvas::force_arrows(app, 1.0);

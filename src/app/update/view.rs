@@ -25,7 +25,7 @@ pub(super) fn apply(app: &mut App, action: Action) {
             app.pan = glam::DVec2::ZERO;
         }
         Action::TauWindow(narrow) => {
-            let now = app.sim.now().tau.max(1e-3);
+            let now = app.plot_span().max(1e-3);
             let span = app.tau_window.unwrap_or(now);
             app.tau_window = if narrow {
                 Some((0.5 * span).max(1e-3))
@@ -76,6 +76,14 @@ pub(super) fn apply(app: &mut App, action: Action) {
                 app.units = Some(u);
                 app.notice = Some(format!("SI units: {}", u.describe()));
             }
+        }
+        Action::PinRun => app.pin_run(),
+        Action::ClearPins => {
+            app.notice = Some(match app.pins.len() {
+                0 => "no pins to clear (b pins the run on screen)".into(),
+                n => format!("{n} pins cleared"),
+            });
+            app.pins.clear();
         }
         Action::UnitsOff => {
             app.units = None;
