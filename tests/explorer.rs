@@ -210,6 +210,12 @@ fn every_key_in_the_keymap_does_what_its_help_says() {
                 a.forces && after.contains("friction") && !after.contains("Coriolis")
             }
             Action::EstimateError => after.contains("|Δr| ="),
+            Action::ToggleNetForce => a.net_force && after.contains("net net force"),
+            Action::ToggleVelocity => a.velocity && after.contains("v  velocity (lab)"),
+            Action::PinRun => {
+                a.pins.len() == 1 && after.contains("pinned ◆C") && after.contains("pins   ◆C")
+            }
+            Action::ClearPins => a.pins.is_empty() && after.contains("no pins to clear"),
             // Off at first: the first press turns SI units on at a record player's.
             Action::Unit(..) => {
                 a.units == Some(turntable::app::state::record_player())

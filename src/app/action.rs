@@ -41,6 +41,9 @@ pub enum Action {
     Preset(usize),
     ToggleCompare,
     ToggleForces,
+    /// The net force's arrow; the velocity's.
+    ToggleNetForce,
+    ToggleVelocity,
     /// Estimate the error of the state on screen from a shadow run at a tighter setting.
     EstimateError,
     ZoomIn,
@@ -120,7 +123,7 @@ impl Action {
                 Group::InitialConditions
             }
             CycleMethod | Loosen | Tighten | ToggleCompare | EstimateError => Group::Integrator,
-            ToggleFrame | ToggleForces | ZoomIn | ZoomOut | Pan(..) | ResetView | TauWindow(_)
+            ToggleFrame | ToggleForces | ToggleNetForce | ToggleVelocity | ZoomIn | ZoomOut | Pan(..) | ResetView | TauWindow(_)
             | NextPage | PrevPage | Choose | Omega(_) | R0c(_) | Unit(..) | UnitsOff | PinRun
             | ClearPins => Group::View,
             Quit | Dismiss | ToggleHelp | HelpScroll(_) | HelpPage(_) | Save | ToggleMouse => {

@@ -90,6 +90,8 @@ pub const KEYMAP: &[Binding] = &[
     b(ch('c'), N, Action::ToggleCompare, "compare: paper's RK2", "integrator"),
     b(ch('f'), N, Action::ToggleFrame, "frame lab ↔ rotating", "view"),
     b(ch('a'), N, Action::ToggleForces, "force arrows", "view"),
+    b(ch('A'), N, Action::ToggleNetForce, "net force arrow", "view"),
+    b(ch('i'), N, Action::ToggleVelocity, "velocity arrow", "view"),
     b(ch('e'), N, Action::EstimateError, "error estimate", "integrator"),
     b(ch('+'), N, Action::ZoomIn, "zoom in / out", "view"),
     b(ch('='), N, Action::ZoomIn, "zoom in / out", "view"),

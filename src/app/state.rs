@@ -84,6 +84,9 @@ pub struct App {
     /// The frame the picture is drawn in (lab or rotating).
     pub view: Frame,
     pub forces: bool,
+    /// The net force's arrow (`A`) and the velocity's (`i`).
+    pub net_force: bool,
+    pub velocity: bool,
     /// Integrator step mode (`n`): step ends marked, step size and error shown.
     pub step_mode: bool,
     pub help: bool,
@@ -157,6 +160,8 @@ impl App {
             speed: 1.0,
             view: view.map_or(Frame::Lab, |v| v.frame),
             forces: view.is_some_and(|v| v.forces),
+            net_force: false,
+            velocity: false,
             step_mode: false,
             help: false,
             help_scroll: 0,

@@ -143,6 +143,12 @@ pub const FORCE_SHARE: f64 = 0.2;
 /// does). In the rotating frame the fictitious Coriolis and centrifugal forces act too. All
 /// are scaled together so the longest is [`FORCE_SHARE`] of `half_width`.
 pub fn force_arrows(app: &App, half_width: f64) -> Vec<ForceArrow> {
+    forces(app, half_width).0
+}
+
+/// [`force_arrows`], and the net force at their scale (their sum: du/dτ in the rotating
+/// frame, dv/dτ in the lab).
+fn forces(app: &App, half_width: f64) -> (Vec<ForceArrow>, DVec2) {
     let th = &app.theme;
     let now = app.sim.now();
     let [fr, co, ce] = table_forces(&now, app.initial.frictionless);
@@ -165,14 +171,59 @@ pub fn force_arrows(app: &App, half_width: f64) -> Vec<ForceArrow> {
             push("cf", "centrifugal", ce, th.centrifugal);
         }
     }
+    let mut net: DVec2 = out.iter().map(|f| f.vec).sum();
     let longest = out.iter().fold(0.0, |m: f64, f| m.max(f.vec.length()));
     if longest > 0.0 {
         let k = FORCE_SHARE * half_width / longest;
         for f in &mut out {
             f.vec *= k;
         }
+        net *= k;
+    }
+    (out, net)
+}
+
+/// The arrows the canvas draws at the particle, each labelled at its head: the forces (`a`),
+/// the net force (`A`, at the forces' scale) and the velocity (`i`: relative to the table in
+/// the rotating frame, the lab velocity in the lab; `speed_scale` world units per unit speed,
+/// as the initial velocity's arrow). A zero vector is not drawn.
+pub fn arrows(app: &App, half_width: f64, speed_scale: f64) -> Vec<ForceArrow> {
+    let th = &app.theme;
+    let (mut out, net) = forces(app, half_width);
+    if !app.forces {
+        out.clear();
+    }
+    // Below this the sum is rounding: the forces balance (stuck).
+    let balanced = 1e-9 * half_width;
+    if app.net_force && net.length() > balanced {
+        out.push(ForceArrow {
+            label: "net",
+            word: "net force",
+            vec: net,
+            color: th.foreground,
+        });
+    }
+    if app.velocity {
+        let (label, word, v) = velocity(app);
+        if v.length() > 0.0 {
+            out.push(ForceArrow {
+                label,
+                word,
+                vec: v * speed_scale,
+                color: th.arrow,
+            });
+        }
     }
     out
+}
+
+/// The velocity the frame shown sees: `u` relative to the table (rotating), `v` (lab).
+pub fn velocity(app: &App) -> (&'static str, &'static str, DVec2) {
+    let now = app.sim.now();
+    match app.view {
+        Frame::Lab => ("v", "velocity (lab)", now.v),
+        Frame::Table => ("u", "velocity rel. table", now.u()),
+    }
 }
 
 /// Draws the canvas and returns its geometry (where it is and which world it shows).
@@ -242,11 +293,7 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) -> CanvasGeom {
     let pins = &app.pins;
     let pin_style = Style::default().fg(th.muted);
     let half_width = 0.5 * (xb[1] - xb[0]).min(yb[1] - yb[0]);
-    let forces = if app.forces {
-        force_arrows(app, half_width)
-    } else {
-        Vec::new()
-    };
+    let forces = arrows(app, half_width, arrow_scale);
     let ring_label = rotate(DVec2::new(-0.95, -0.72), turn);
     let tau_now = now.tau;
     let marks: Vec<State> = if app.step_mode {
@@ -365,15 +412,39 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) -> CanvasGeom {
                 ctx.print(p.x, p.y, Span::styled("·", Style::default().fg(th.notice)));
             }
             let at = rotate(in_frame(&now, view), turn);
+            // The cells a label covers (row, first column, past the last): labels never
+            // cover the particle or one another (in the lab `net` is `fr`, at one head).
+            // (As ratatui's canvas places text: (x − left)·(width − 1)/(right − left).)
+            let cells = |p: DVec2, n: usize| {
+                let (w, h) = (f64::from(inner.width.max(1) - 1), f64::from(inner.height.max(1) - 1));
+                let col = ((p.x - xb[0]) * w / (xb[1] - xb[0])).floor() as i64;
+                let row = ((yb[1] - p.y) * h / (yb[1] - yb[0])).floor() as i64;
+                (row, col, col + n as i64)
+            };
+            let mut taken = vec![cells(at, 1)];
             for fa in &forces {
                 let vec = rotate(fa.vec, turn);
                 arrow(ctx, at, vec, fa.color);
                 let mut head = at + vec * 1.15;
                 // Never under the particle's glyph (`co` read `●o`): right of it instead.
-                let len = fa.label.chars().count() as f64 * cell.x;
+                let n = fa.label.chars().count();
+                let len = n as f64 * cell.x;
                 if (head.y - at.y).abs() < cell.y && head.x - cell.x < at.x && at.x < head.x + len {
                     head.x = at.x + cell.x;
                 }
+                // Else a row off, above or below.
+                let free = |h: DVec2, taken: &[(i64, i64, i64)]| {
+                    let (r, a, b) = cells(h, n);
+                    !taken.iter().any(|&(tr, ta, tb)| tr == r && a < tb && ta < b)
+                };
+                if let Some(h) = [0.0, 1.0, -1.0, 2.0, -2.0]
+                    .into_iter()
+                    .map(|k| head + DVec2::Y * (k * cell.y))
+                    .find(|h| free(*h, &taken))
+                {
+                    head = h;
+                }
+                taken.push(cells(head, n));
                 ctx.print(
                     head.x,
                     head.y,

@@ -274,10 +274,12 @@ fn readouts(app: &App) -> (Vec<Line<'static>>, std::ops::Range<usize>) {
             .collect();
         out.push(kv("pins", names.join(" "), th));
     }
-    if app.forces {
-        // The legend names exactly the arrows drawn, by their head labels.
-        let drawn = crate::ui::canvas::force_arrows(app, 1.0);
-        if drawn.is_empty() {
+    if app.forces || app.net_force || app.velocity {
+        // The legend names exactly the arrows drawn, by their head labels; what is not drawn
+        // for being zero says so.
+        let drawn = crate::ui::canvas::arrows(app, 1.0, 1.0);
+        let has = |l: &str| drawn.iter().any(|a| a.label == l);
+        if app.forces && !drawn.iter().any(|a| ["fr", "co", "cf"].contains(&a.label)) {
             out.push(Line::from(Span::styled(
                 "forces: none in the plane",
                 Style::default().fg(th.muted),
@@ -285,9 +287,22 @@ fn readouts(app: &App) -> (Vec<Line<'static>>, std::ops::Range<usize>) {
         }
         for fa in &drawn {
             out.push(Line::from(vec![
-                Span::styled(format!("{:<3}", fa.label), Style::default().fg(fa.color)),
+                Span::styled(format!("{:<2} ", fa.label), Style::default().fg(fa.color)),
                 Span::styled(fa.word, Style::default().fg(fa.color)),
             ]));
+        }
+        if app.net_force && !has("net") {
+            out.push(Line::from(Span::styled(
+                "net force 0: balanced",
+                Style::default().fg(th.muted),
+            )));
+        }
+        let (label, _, _) = crate::ui::canvas::velocity(app);
+        if app.velocity && !has(label) {
+            out.push(Line::from(Span::styled(
+                format!("{label} = 0"),
+                Style::default().fg(th.muted),
+            )));
         }
     }
     (out, status)

@@ -17,6 +17,8 @@ pub(super) fn apply(app: &mut App, action: Action) {
             }
         }
         Action::ToggleForces => app.forces = !app.forces,
+        Action::ToggleNetForce => app.net_force = !app.net_force,
+        Action::ToggleVelocity => app.velocity = !app.velocity,
         Action::ZoomIn => app.zoom = (app.zoom * 1.5).min(ZOOM_RANGE.1),
         Action::ZoomOut => app.zoom = (app.zoom / 1.5).max(ZOOM_RANGE.0),
         Action::Pan(dx, dy) => app.pan += glam::DVec2::new(dx, dy) / app.zoom,
