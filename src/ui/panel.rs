@@ -225,6 +225,22 @@ fn readouts(app: &App) -> (Vec<Line<'static>>, std::ops::Range<usize>) {
         )));
     }
     let status = status_start..out.len();
+    if let Some(u) = app.units {
+        // The table and the release in SI, while units are on: what μ, rpm and g change.
+        use crate::engine::units::show_length as len;
+        let deg = turn_angle(i.phi).to_degrees();
+        let r0 = match i.release {
+            crate::engine::Release::Velocity => format!("{} φ {}°", len(i.xi0 * u.r_max_m()), num(deg, 0)),
+            _ => format!("{} at rest", len(i.xi0 * u.r_max_m())),
+        };
+        out.push(kv("r0", r0, th));
+        if i.release == crate::engine::Release::Velocity {
+            out.push(kv("v0", show_speed(i.v0 * u.speed_m_s()), th));
+        }
+        out.push(kv("μ g", format!("{}, {} m/s²", num(u.mu, 2), num(u.g, 2)), th));
+        out.push(kv("Ω", format!("{} {} rpm", show_rate(u.omega()), num(u.rpm, 1)), th));
+        out.push(kv("R_max", u.unit_of(crate::engine::units::Quantity::Length), th));
+    }
     let c = app.sim.run.cost();
     if i.frictionless {
         out.push(kv("μ = 0", "closed form".into(), th));
