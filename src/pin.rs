@@ -47,7 +47,11 @@ pub struct Pin {
 impl Pin {
     /// Runs `spec` to its end at bounded cost: stuck, escaped past `view_radius`, [`PIN_TAU_MAX`]
     /// or [`PIN_STEPS`], whichever comes first.
-    pub fn compute(spec: PinSpec, marker: char, view_radius: f64) -> Result<Pin, crate::error::Error> {
+    pub fn compute(
+        spec: PinSpec,
+        marker: char,
+        view_radius: f64,
+    ) -> Result<Pin, crate::error::Error> {
         let settings = Settings {
             max_steps: spec.settings.max_steps.min(PIN_STEPS),
             ..spec.settings
@@ -177,7 +181,12 @@ mod tests {
         assert!(d.points.len() < 2 * PIN_POINTS && d.points.len() >= PIN_POINTS / 2);
         for s in &d.points {
             let k = s.tau / d.dt;
-            assert!((k - k.round()).abs() < 1e-6, "{} off the grid {}", s.tau, d.dt);
+            assert!(
+                (k - k.round()).abs() < 1e-6,
+                "{} off the grid {}",
+                s.tau,
+                d.dt
+            );
         }
         let last = d.points.last().unwrap().tau;
         assert!(1000.0 - last < d.dt + 1e-9, "{last}");

@@ -126,7 +126,9 @@ impl Scene {
         }
         for (k, p) in scene.pins.iter().enumerate() {
             let what = format!("{file}: pin {} ({:?})", k + 1, p.label);
-            if p.label.chars().count() > crate::pin::LABEL_MAX || p.label.chars().any(char::is_control) {
+            if p.label.chars().count() > crate::pin::LABEL_MAX
+                || p.label.chars().any(char::is_control)
+            {
                 return Err(Error::Invalid(format!(
                     "{what}: a label is at most {} printable characters",
                     crate::pin::LABEL_MAX
@@ -135,8 +137,12 @@ impl Scene {
             if !p.turn.is_finite() {
                 return Err(Error::Invalid(format!("{what}: turn must be finite")));
             }
-            p.initial.validate().map_err(|e| Error::from(e).context(&what))?;
-            p.settings.validate().map_err(|e| Error::from(e).context(&what))?;
+            p.initial
+                .validate()
+                .map_err(|e| Error::from(e).context(&what))?;
+            p.settings
+                .validate()
+                .map_err(|e| Error::from(e).context(&what))?;
         }
         if let Some(u) = scene.units {
             crate::engine::units::Units::new(u.mu, u.rpm, u.g)

@@ -41,7 +41,12 @@ fn friction_opposes_the_slip_velocity_and_the_net_force_is_the_acceleration() {
     let y = Frame::Table.from_state(&s);
     let accel = Frame::Table.rhs(y).w;
     let k = fr.vec.length(); // |friction| = 1 while slipping
-    assert!((net.vec - accel * k).length() < 1e-12, "{:?} vs {:?}", net.vec, accel * k);
+    assert!(
+        (net.vec - accel * k).length() < 1e-12,
+        "{:?} vs {:?}",
+        net.vec,
+        accel * k
+    );
     let sum: glam::DVec2 = ["fr", "co", "cf"].iter().map(|l| find(&all, l).vec).sum();
     assert!((sum - net.vec).length() < 1e-12);
     // Labelled on screen and named in the legend, colour aside (the mono theme).
@@ -57,7 +62,10 @@ fn friction_opposes_the_slip_velocity_and_the_net_force_is_the_acceleration() {
     let screen = render(&mut a, 100, 30);
     assert!(screen.contains("v  velocity (lab)"), "{screen}");
     // Both labels at one head: neither covers the other.
-    let canvas: String = screen.lines().map(|l| l.chars().take(70).collect::<String>()).collect();
+    let canvas: String = screen
+        .lines()
+        .map(|l| l.chars().take(70).collect::<String>())
+        .collect();
     assert!(canvas.contains("net") && canvas.contains("fr"), "{screen}");
 }
 
@@ -76,7 +84,10 @@ fn stuck_the_forces_balance_and_nothing_moves_on_the_table() {
     // Static friction holds the centrifugal pull: no Coriolis, no net force, no u.
     assert_eq!(labels, ["fr", "cf"]);
     let screen = render(&mut a, 80, 24);
-    assert!(screen.contains("net force 0: balanced") && screen.contains("u = 0"), "{screen}");
+    assert!(
+        screen.contains("net force 0: balanced") && screen.contains("u = 0"),
+        "{screen}"
+    );
     // The lab sees it ride the table: v = Ω × r, net force centripetal (friction).
     key(&mut a, 'f');
     let all = arrows(&a, 2.0, 0.5);

@@ -17,7 +17,11 @@ fn key(app: &mut App, c: char) {
 }
 
 fn outcome(a: &App) -> Outcome {
-    Run::new(a.initial, a.settings).unwrap().finish(1e3).unwrap().0
+    Run::new(a.initial, a.settings)
+        .unwrap()
+        .finish(1e3)
+        .unwrap()
+        .0
 }
 
 #[test]
@@ -29,7 +33,10 @@ fn doubling_mu_doubles_r_max_and_halves_xi0_for_the_same_metres() {
     assert_eq!(outcome(&a), Outcome::Escaped);
     key(&mut a, 'u');
     let u0 = a.units.unwrap();
-    assert_eq!(a.initial.xi0, 0.5, "turning units on changes nothing but labels");
+    assert_eq!(
+        a.initial.xi0, 0.5,
+        "turning units on changes nothing but labels"
+    );
     let (r0, v0) = (a.initial.xi0 * u0.r_max_m(), a.initial.v0 * u0.speed_m_s());
     for _ in 0..15 {
         key(&mut a, 'u');
@@ -92,11 +99,21 @@ fn the_table_stays_in_the_panel_and_the_mu_probe_reads_its_omega() {
     // The rest page's Eq. 22 uses the table's Ω, and `o` turns the table.
     a.page = Page::RestRadius;
     let screen = render(&mut a, 100, 40);
-    assert!(screen.contains("Ω = 3.595 rad/s (34.3 rpm, the table's)"), "{screen}");
+    assert!(
+        screen.contains("Ω = 3.595 rad/s (34.3 rpm, the table's)"),
+        "{screen}"
+    );
     let xi0 = a.initial.xi0;
     key(&mut a, 'o');
     let v = a.units.unwrap();
     assert!((v.omega() - (u.omega() + 0.1)).abs() < 1e-9, "{v:?}");
-    assert!(a.initial.xi0 > xi0, "a faster table: a smaller R_max, a larger ξ0");
-    assert_eq!(a.mu_probe, turntable::app::MU_PROBE, "the probe's own Ω is left alone");
+    assert!(
+        a.initial.xi0 > xi0,
+        "a faster table: a smaller R_max, a larger ξ0"
+    );
+    assert_eq!(
+        a.mu_probe,
+        turntable::app::MU_PROBE,
+        "the probe's own Ω is left alone"
+    );
 }

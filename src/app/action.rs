@@ -123,9 +123,9 @@ impl Action {
                 Group::InitialConditions
             }
             CycleMethod | Loosen | Tighten | ToggleCompare | EstimateError => Group::Integrator,
-            ToggleFrame | ToggleForces | ToggleNetForce | ToggleVelocity | ZoomIn | ZoomOut | Pan(..) | ResetView | TauWindow(_)
-            | NextPage | PrevPage | Choose | Omega(_) | R0c(_) | Unit(..) | UnitsOff | PinRun
-            | ClearPins => Group::View,
+            ToggleFrame | ToggleForces | ToggleNetForce | ToggleVelocity | ZoomIn | ZoomOut
+            | Pan(..) | ResetView | TauWindow(_) | NextPage | PrevPage | Choose | Omega(_)
+            | R0c(_) | Unit(..) | UnitsOff | PinRun | ClearPins => Group::View,
             Quit | Dismiss | ToggleHelp | HelpScroll(_) | HelpPage(_) | Save | ToggleMouse => {
                 Group::App
             }

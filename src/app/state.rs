@@ -334,7 +334,11 @@ impl App {
             let used = |c: char| self.pins.iter().any(|p| p.spec.label == c.to_string());
             ('A'..='Z').find(|c| !used(*c)).unwrap_or('?').to_string()
         } else {
-            self.scene.name.chars().take(crate::pin::LABEL_MAX).collect()
+            self.scene
+                .name
+                .chars()
+                .take(crate::pin::LABEL_MAX)
+                .collect()
         };
         let spec = crate::pin::PinSpec {
             label,

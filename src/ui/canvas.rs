@@ -385,7 +385,14 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) -> CanvasGeom {
             arrow(ctx, x0, v_init * arrow_scale, th.arrow);
             ctx.layer();
             for p in pins {
-                polyline(ctx, p.path.iter(), p.path.len(), view, p.spec.turn, th.muted);
+                polyline(
+                    ctx,
+                    p.path.iter(),
+                    p.path.len(),
+                    view,
+                    p.spec.turn,
+                    th.muted,
+                );
             }
             if let Some(p) = paper {
                 trail(ctx, p, view, turn, th.accent);
@@ -416,7 +423,10 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) -> CanvasGeom {
             // cover the particle or one another (in the lab `net` is `fr`, at one head).
             // (As ratatui's canvas places text: (x − left)·(width − 1)/(right − left).)
             let cells = |p: DVec2, n: usize| {
-                let (w, h) = (f64::from(inner.width.max(1) - 1), f64::from(inner.height.max(1) - 1));
+                let (w, h) = (
+                    f64::from(inner.width.max(1) - 1),
+                    f64::from(inner.height.max(1) - 1),
+                );
                 let col = ((p.x - xb[0]) * w / (xb[1] - xb[0])).floor() as i64;
                 let row = ((yb[1] - p.y) * h / (yb[1] - yb[0])).floor() as i64;
                 (row, col, col + n as i64)
@@ -435,7 +445,9 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) -> CanvasGeom {
                 // Else a row off, above or below.
                 let free = |h: DVec2, taken: &[(i64, i64, i64)]| {
                     let (r, a, b) = cells(h, n);
-                    !taken.iter().any(|&(tr, ta, tb)| tr == r && a < tb && ta < b)
+                    !taken
+                        .iter()
+                        .any(|&(tr, ta, tb)| tr == r && a < tb && ta < b)
                 };
                 if let Some(h) = [0.0, 1.0, -1.0, 2.0, -2.0]
                     .into_iter()

@@ -230,16 +230,30 @@ fn readouts(app: &App) -> (Vec<Line<'static>>, std::ops::Range<usize>) {
         use crate::engine::units::show_length as len;
         let deg = turn_angle(i.phi).to_degrees();
         let r0 = match i.release {
-            crate::engine::Release::Velocity => format!("{} φ {}°", len(i.xi0 * u.r_max_m()), num(deg, 0)),
+            crate::engine::Release::Velocity => {
+                format!("{} φ {}°", len(i.xi0 * u.r_max_m()), num(deg, 0))
+            }
             _ => format!("{} at rest", len(i.xi0 * u.r_max_m())),
         };
         out.push(kv("r0", r0, th));
         if i.release == crate::engine::Release::Velocity {
             out.push(kv("v0", show_speed(i.v0 * u.speed_m_s()), th));
         }
-        out.push(kv("μ g", format!("{}, {} m/s²", num(u.mu, 2), num(u.g, 2)), th));
-        out.push(kv("Ω", format!("{} {} rpm", show_rate(u.omega()), num(u.rpm, 1)), th));
-        out.push(kv("R_max", u.unit_of(crate::engine::units::Quantity::Length), th));
+        out.push(kv(
+            "μ g",
+            format!("{}, {} m/s²", num(u.mu, 2), num(u.g, 2)),
+            th,
+        ));
+        out.push(kv(
+            "Ω",
+            format!("{} {} rpm", show_rate(u.omega()), num(u.rpm, 1)),
+            th,
+        ));
+        out.push(kv(
+            "R_max",
+            u.unit_of(crate::engine::units::Quantity::Length),
+            th,
+        ));
     }
     let c = app.sim.run.cost();
     if i.frictionless {

@@ -55,7 +55,13 @@ pub(super) fn apply(app: &mut App, action: Action) {
             if let Some(u) = app.units {
                 // Within the rpm knob's range (1 to 10⁴ rpm).
                 let omega = (u.omega() + d).clamp(TAU / 60.0, 1e4 * TAU / 60.0);
-                set_units(app, Units { rpm: round_sig(omega * 60.0 / TAU), ..u });
+                set_units(
+                    app,
+                    Units {
+                        rpm: round_sig(omega * 60.0 / TAU),
+                        ..u
+                    },
+                );
             }
         }
         Action::Omega(d) | Action::R0c(d) => {
