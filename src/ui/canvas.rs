@@ -399,18 +399,19 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) -> CanvasGeom {
             }
             trail(ctx, sim, view, turn, th.trail);
             ctx.layer();
-            if let Some((at, tau)) = stuck {
+            let stuck_label = stuck.map(|(at, tau)| {
+                let text = if words {
+                    format!("× stuck τ={}", crate::ui::panel::num(tau, 2))
+                } else {
+                    "×".into()
+                };
+                (at, text)
+            });
+            if let Some((at, text)) = &stuck_label {
                 ctx.print(
                     at.x,
                     at.y,
-                    Span::styled(
-                        if words {
-                            format!("× stuck τ={}", crate::ui::panel::num(tau, 2))
-                        } else {
-                            "×".into()
-                        },
-                        Style::default().fg(th.stuck),
-                    ),
+                    Span::styled(text.clone(), Style::default().fg(th.stuck)),
                 );
             }
             // Integrator step mode: each step's end on the trail (the latest 500).
@@ -432,6 +433,7 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) -> CanvasGeom {
                 (row, col, col + n as i64)
             };
             let mut taken = vec![cells(at, 1)];
+            taken.extend(stuck_label.map(|(p, text)| cells(p, text.chars().count())));
             for fa in &forces {
                 let vec = rotate(fa.vec, turn);
                 arrow(ctx, at, vec, fa.color);
