@@ -311,8 +311,9 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) {
                 x,
                 y,
                 series: s,
-                // The pins' labels first: the run's own marks are placed before them.
-                marks: pm.into_iter().chain(marks.iter().cloned()).collect(),
+                // The pins' labels last: placed first, so where a short plot has no room
+                // for all, the run's own (τ, stop, escape) are drawn over them.
+                marks: marks.iter().cloned().chain(pm).collect(),
             }
         })
         .collect();
