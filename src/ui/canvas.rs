@@ -347,8 +347,8 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) -> CanvasGeom {
                 radius: 1.0,
                 color: th.limit_circle,
             });
-            // Each pin: its marker along its path, and at its end the marker and its label,
-            // so pins read without colour (printed first: the words printed later win).
+            // Each pin: its marker along its path (printed first: words printed later win),
+            // and at its end (below) the marker and its label, so pins read without colour.
             for p in pins {
                 let at = |s: &State| rotate(in_frame(s, view), p.spec.turn);
                 let n = p.path.len();
@@ -357,12 +357,6 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) -> CanvasGeom {
                     let m = at(s);
                     ctx.print(m.x, m.y, Span::styled(p.marker.to_string(), pin_style));
                 }
-                let e = at(&p.end());
-                ctx.print(
-                    e.x,
-                    e.y,
-                    Span::styled(format!("{}{}", p.marker, p.spec.label), pin_style),
-                );
             }
             if words {
                 // ξ = 1 is R_max = μg/Ω², the whole story: inside it friction can hold the
@@ -434,6 +428,16 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) -> CanvasGeom {
             };
             let mut taken = vec![cells(at, 1)];
             taken.extend(stuck_label.map(|(p, text)| cells(p, text.chars().count())));
+            if words {
+                taken.push(cells(ring_label, 11));
+                taken.push(cells(sense, 7));
+            }
+            let free = |h: DVec2, n: usize, taken: &[(i64, i64, i64)]| {
+                let (r, a, b) = cells(h, n);
+                !taken
+                    .iter()
+                    .any(|&(tr, ta, tb)| tr == r && a < tb && ta < b)
+            };
             for fa in &forces {
                 let vec = rotate(fa.vec, turn);
                 arrow(ctx, at, vec, fa.color);
@@ -445,16 +449,10 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) -> CanvasGeom {
                     head.x = at.x + cell.x;
                 }
                 // Else a row off, above or below.
-                let free = |h: DVec2, taken: &[(i64, i64, i64)]| {
-                    let (r, a, b) = cells(h, n);
-                    !taken
-                        .iter()
-                        .any(|&(tr, ta, tb)| tr == r && a < tb && ta < b)
-                };
                 if let Some(h) = [0.0, 1.0, -1.0, 2.0, -2.0]
                     .into_iter()
                     .map(|k| head + DVec2::Y * (k * cell.y))
-                    .find(|h| free(*h, &taken))
+                    .find(|h| free(*h, n, &taken))
                 {
                     head = h;
                 }
@@ -464,6 +462,23 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) -> CanvasGeom {
                     head.y,
                     Span::styled(fa.label, Style::default().fg(fa.color)),
                 );
+            }
+            // Each pin's end: its marker and label, beside the end where the run's own
+            // words leave room (else the marker along the path and the panel name it).
+            for p in pins {
+                let e = rotate(in_frame(&p.end(), view), p.spec.turn);
+                let text = format!("{}{}", p.marker, p.spec.label);
+                let n = text.chars().count();
+                let back = n as f64 - 1.0;
+                let spot = [(0.0, 0.0), (0.0, 1.0), (0.0, -1.0), (-back, 0.0)]
+                    .into_iter()
+                    .chain([(-back, 1.0), (-back, -1.0), (0.0, 2.0), (0.0, -2.0)])
+                    .map(|(dx, dy)| e + DVec2::new(dx * cell.x, dy * cell.y))
+                    .find(|h| free(*h, n, &taken));
+                if let Some(h) = spot {
+                    taken.push(cells(h, n));
+                    ctx.print(h.x, h.y, Span::styled(text, pin_style));
+                }
             }
             if let Some(p) = paper {
                 let q = rotate(in_frame(&p.now(), view), turn);
