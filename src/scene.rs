@@ -29,7 +29,7 @@ pub struct Scene {
     pub pins: Vec<crate::pin::PinSpec>,
 }
 
-/// The explorer's view of a scene: the page, the frame drawn, force arrows, zoom.
+/// The explorer's view of a scene: the page, the frame drawn, the arrows, zoom.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct View {
@@ -37,6 +37,11 @@ pub struct View {
     pub frame: crate::engine::Frame,
     pub forces: bool,
     pub zoom: f64,
+    /// The net force's arrow (`A`) and the velocity's (`i`).
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub net_force: bool,
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub velocity: bool,
 }
 
 /// The paper's reference cases (CONVENTIONS.md), in the order of their keys.

@@ -96,5 +96,15 @@ fn stuck_the_forces_balance_and_nothing_moves_on_the_table() {
     assert!(net.normalize().dot(a.sim.now().r.normalize()) < -1.0 + 1e-9);
     for (w, h) in [(40, 12), (80, 24), (200, 60)] {
         render(&mut a, w, h);
+        a.check_invariants().unwrap();
     }
+    // The arrows shown are saved with the scene's view.
+    let text = a.current_scene().to_toml();
+    assert!(
+        text.contains("net_force = true") && text.contains("velocity = true"),
+        "{text}"
+    );
+    let back: Scene = toml::from_str(&text).unwrap();
+    let b = App::new(back, Theme::builtin("dark").unwrap());
+    assert!(b.forces && b.net_force && b.velocity);
 }

@@ -175,9 +175,9 @@ fn pins_are_saved_with_the_scene_and_load_back() {
     );
     assert_eq!(back.pins, a.pins, "the same paths, recomputed");
     // Too many pins, or a label that is not one, are refused with the file's name.
-    let seven = text.clone() + &text[text.find("[[pins]]").unwrap()..].repeat(1);
-    std::fs::write(dir.join("seven.toml"), &seven).unwrap();
-    let e = Scene::load(dir.join("seven.toml").to_str().unwrap()).unwrap_err();
+    let eight = text.clone() + &text[text.find("[[pins]]").unwrap()..];
+    std::fs::write(dir.join("eight.toml"), &eight).unwrap();
+    let e = Scene::load(dir.join("eight.toml").to_str().unwrap()).unwrap_err();
     assert!(e.to_string().contains("8 pins, at most 6"), "{e}");
     let bad = text.replacen("label = \"A\"", "label = \"A\\u0007\"", 1);
     std::fs::write(dir.join("bad.toml"), &bad).unwrap();

@@ -24,6 +24,9 @@ fn path(sim: &crate::sim::Sim) -> Vec<State> {
     p
 }
 
+/// What a plot draws of a path: its points (τ, y).
+type PathPoints<'a> = dyn Fn(&[State]) -> Vec<(f64, f64)> + 'a;
+
 /// One quantity of a path against τ, as points.
 fn along(path: &[State], y: &dyn Fn(&State) -> f64) -> Vec<(f64, f64)> {
     path.iter().map(|s| (s.tau, y(s))).collect()
@@ -146,7 +149,7 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) {
     // Each pin dimmer, named in the legend by its marker and label, the marker along its
     // line and the label at its end: told apart without colour.
     let mut pin_marks: [Vec<Mark>; 4] = Default::default();
-    let mut pin_series = |k: usize, y: &dyn Fn(&[State]) -> Vec<(f64, f64)>| -> Vec<Series> {
+    let mut pin_series = |k: usize, y: &PathPoints<'_>| -> Vec<Series> {
         app.pins
             .iter()
             .map(|pin| {
