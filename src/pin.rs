@@ -2,6 +2,7 @@
 //! computed once, when pinned, from its release and settings (never while drawing). A scene
 //! saves a pin as its release; loading computes the path again, the same path.
 
+use crate::engine::units::Units;
 use crate::engine::{Initial, Outcome, Run, Settings, State, Status};
 use serde::{Deserialize, Serialize};
 
@@ -30,6 +31,10 @@ pub struct PinSpec {
     /// How far the picture was turned when pinned (see `App::turn`).
     #[serde(default)]
     pub turn: f64,
+    /// The real table it ran on, if SI units were on: drawn beside a run on another table,
+    /// its lengths and times are converted to that table's units.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub units: Option<Units>,
 }
 
 /// A pinned run: its path on a τ grid (spacing 0.025 doubled as often as the bound needs),
@@ -87,6 +92,16 @@ impl Pin {
             path: path.points,
             outcome: run.outcome(),
         })
+    }
+
+    /// Its lengths and times in the units of the table `now` (R_max and 1/Ω ratios): 1 and 1
+    /// unless both it and `now` are real tables. (Each pin is drawn in its own table's
+    /// rotating frame.)
+    pub fn scale(&self, now: Option<Units>) -> (f64, f64) {
+        match (self.spec.units, now) {
+            (Some(p), Some(n)) => (p.r_max_m() / n.r_max_m(), p.t_s() / n.t_s()),
+            _ => (1.0, 1.0),
+        }
     }
 
     /// Where the run ended: its stop, or the last point followed.

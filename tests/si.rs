@@ -117,3 +117,36 @@ fn the_table_stays_in_the_panel_and_the_mu_probe_reads_its_omega() {
         "the probe's own Ω is left alone"
     );
 }
+
+/// A run pinned on one table and compared with the same release on another (μ doubled) is
+/// drawn in the new table's units: the same metres start at the same point.
+#[test]
+fn a_pin_from_another_table_is_drawn_in_this_ones_units() {
+    let mut a = App::new(Scene::preset("C").unwrap(), Theme::builtin("dark").unwrap());
+    a.initial = Initial::velocity(0.5, 0.0, 0.7);
+    a.restart();
+    key(&mut a, 'u');
+    key(&mut a, 'b');
+    let before = a.units;
+    for _ in 0..15 {
+        key(&mut a, 'u');
+    }
+    let pin = &a.pins[0];
+    assert_eq!(pin.spec.units, before);
+    assert_eq!(pin.outcome, Outcome::Escaped);
+    let (kl, kt) = pin.scale(a.units);
+    assert!(
+        (kl - 0.5).abs() < 1e-12 && (kt - 1.0).abs() < 1e-12,
+        "{kl} {kt}"
+    );
+    assert!((pin.path[0].xi() * kl - a.initial.xi0).abs() < 1e-9);
+    // Units off: nothing to convert by.
+    assert_eq!(pin.scale(None), (1.0, 1.0));
+    for page in [Page::Turntable, Page::TimePlots] {
+        a.page = page;
+        for (w, h) in [(40, 12), (80, 24), (200, 60)] {
+            render(&mut a, w, h);
+            a.check_invariants().unwrap();
+        }
+    }
+}

@@ -347,6 +347,7 @@ impl App {
             initial: self.initial,
             settings: self.settings,
             turn: self.turn,
+            units: self.units,
         };
         match pin_of(spec, &self.pins) {
             Ok(p) => {
@@ -385,7 +386,7 @@ impl App {
     pub fn plot_span(&self) -> f64 {
         self.pins
             .iter()
-            .map(|p| p.end().tau)
+            .map(|p| p.end().tau * p.scale(self.units).1)
             .fold(self.sim.now().tau, f64::max)
     }
 }

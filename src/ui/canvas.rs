@@ -34,7 +34,7 @@ pub fn auto_extent(app: &App) -> f64 {
         .map_or(own, |p| own.max(reach(p).min(1.5 * own)));
     // Pins widen it as the paper's run does, so a pinned D (from ξ0 = 1.1) stays in view.
     let m = app.pins.iter().fold(m, |m, p| {
-        let r = p.path.iter().fold(0.0, |m: f64, s| m.max(s.xi()));
+        let r = p.path.iter().fold(0.0, |m: f64, s| m.max(s.xi())) * p.scale(app.units).0;
         m.max(r.min(1.5 * own))
     });
     (m * 1.1)
@@ -82,14 +82,13 @@ fn arrow(ctx: &mut Context, from: DVec2, vec: DVec2, color: Color) {
 /// Markers along a pin's path: at its quarters (and its end, with the label).
 const PIN_MARKS: usize = 4;
 
-/// The `n` states of `path` as a line in the frame shown, thinned to at most
-/// [`MAX_SEGMENTS`] segments.
+/// The `n` states of `path` as a line in the frame shown, turned and scaled, thinned to at
+/// most [`MAX_SEGMENTS`] segments.
 fn polyline<'a>(
     ctx: &mut Context,
     path: impl Iterator<Item = &'a State>,
     n: usize,
-    frame: Frame,
-    turn: f64,
+    (frame, turn, scale): (Frame, f64, f64),
     color: Color,
 ) {
     let stride = n.div_ceil(MAX_SEGMENTS).max(1);
@@ -98,7 +97,7 @@ fn polyline<'a>(
         if i % stride != 0 && i + 1 != n {
             continue;
         }
-        let p = rotate(in_frame(s, frame), turn);
+        let p = rotate(in_frame(s, frame), turn) * scale;
         if let Some(a) = prev {
             ctx.draw(&Line {
                 x1: a.x,
@@ -122,7 +121,13 @@ fn trail(ctx: &mut Context, sim: &crate::sim::Sim, frame: Frame, turn: f64, colo
         .filter(|l| now.tau > l.tau && now.tau - l.tau <= crate::sim::TRAIL_DT)
         .map(|_| now);
     let n = path.len() + usize::from(tail.is_some());
-    polyline(ctx, path.iter().chain(tail.as_ref()), n, frame, turn, color);
+    polyline(
+        ctx,
+        path.iter().chain(tail.as_ref()),
+        n,
+        (frame, turn, 1.0),
+        color,
+    );
 }
 
 /// A force arrow as drawn: its label at the head (so it reads without colour), the word the
@@ -291,6 +296,7 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) -> CanvasGeom {
     let sim = &app.sim;
     let paper = app.paper.as_ref();
     let pins = &app.pins;
+    let units = app.units;
     let pin_style = Style::default().fg(th.muted);
     let half_width = 0.5 * (xb[1] - xb[0]).min(yb[1] - yb[0]);
     let forces = arrows(app, half_width, arrow_scale);
@@ -350,7 +356,8 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) -> CanvasGeom {
             // Each pin: its marker along its path (printed first: words printed later win),
             // and at its end (below) the marker and its label, so pins read without colour.
             for p in pins {
-                let at = |s: &State| rotate(in_frame(s, view), p.spec.turn);
+                let k = p.scale(units).0;
+                let at = |s: &State| rotate(in_frame(s, view), p.spec.turn) * k;
                 let n = p.path.len();
                 for k in 1..PIN_MARKS {
                     let s = &p.path[k * (n - 1) / PIN_MARKS];
@@ -379,14 +386,8 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) -> CanvasGeom {
             arrow(ctx, x0, v_init * arrow_scale, th.arrow);
             ctx.layer();
             for p in pins {
-                polyline(
-                    ctx,
-                    p.path.iter(),
-                    p.path.len(),
-                    view,
-                    p.spec.turn,
-                    th.muted,
-                );
+                let look = (view, p.spec.turn, p.scale(units).0);
+                polyline(ctx, p.path.iter(), p.path.len(), look, th.muted);
             }
             if let Some(p) = paper {
                 trail(ctx, p, view, turn, th.accent);
@@ -466,7 +467,7 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) -> CanvasGeom {
             // Each pin's end: its marker and label, beside the end where the run's own
             // words leave room (else the marker along the path and the panel name it).
             for p in pins {
-                let e = rotate(in_frame(&p.end(), view), p.spec.turn);
+                let e = rotate(in_frame(&p.end(), view), p.spec.turn) * p.scale(units).0;
                 let text = format!("{}{}", p.marker, p.spec.label);
                 let n = text.chars().count();
                 let back = n as f64 - 1.0;

@@ -149,11 +149,18 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) {
     // Each pin dimmer, named in the legend by its marker and label, the marker along its
     // line and the label at its end: told apart without colour.
     let mut pin_marks: [Vec<Mark>; 4] = Default::default();
-    let mut pin_series = |k: usize, y: &PathPoints<'_>| -> Vec<Series> {
+    // `dims`: the powers of length and time in the plot's y, to convert a pin run on
+    // another table (ξ: length; θ′: 1/time; |u|: length/time).
+    let mut pin_series = |k: usize, dims: (i32, i32), y: &PathPoints<'_>| -> Vec<Series> {
         app.pins
             .iter()
             .map(|pin| {
-                let points = y(&pin.path);
+                let (kl, kt) = pin.scale(app.units);
+                let ky = kl.powi(dims.0) * kt.powi(dims.1);
+                let points: Vec<(f64, f64)> = y(&pin.path)
+                    .into_iter()
+                    .map(|(x, y)| (x * kt, y * ky))
+                    .collect();
                 let n = points.len();
                 for j in 1..PIN_MARKS {
                     let (x, y) = points[j * (n - 1) / PIN_MARKS];
@@ -201,14 +208,14 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) {
     };
     let mut xi_s = vec![series("ξ", th.trail, &p, xi_of)];
     xi_s.extend(paper_series("ξ", &xi_of));
-    xi_s.extend(pin_series(0, &|p| along(p, &xi_of)));
+    xi_s.extend(pin_series(0, (1, 0), &|p| along(p, &xi_of)));
     xi_s.extend(approx(&|t| match i.release {
         Release::LabRest => Some(lab_rest(i.xi0, t).0),
         _ => Some(table_rest(i.xi0, t).0),
     }));
     let mut th_s = vec![series(theta_name, th.trail, &p, th_of)];
     th_s.extend(paper_series(theta_name, &th_of));
-    th_s.extend(pin_series(2, &|p| along(p, &th_of)));
+    th_s.extend(pin_series(2, (0, -1), &|p| along(p, &th_of)));
     th_s.extend(approx(&|t| match i.release {
         // θ = τ²/(2ξ0) (Eq. 16): θ′ = τ/ξ0 in the lab.
         Release::LabRest => Some(t / i.xi0 - shift),
@@ -228,7 +235,7 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) {
         points: angle(pp),
         joined: true,
     }));
-    a_s.extend(pin_series(1, &angle));
+    a_s.extend(pin_series(1, (0, 0), &angle));
     // The approximation's θ: its θ′ integrated (trapezoids on its own 200 points).
     if let Some(rate) = th_s.iter().find(|s| s.name == "Sec. III approx.") {
         let mut acc = 0.0;
@@ -253,7 +260,7 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) {
     }
     let mut u_s = vec![series("|u|", th.trail, &p, u_of)];
     u_s.extend(paper_series("|u|", &u_of));
-    u_s.extend(pin_series(3, &|p| along(p, &u_of)));
+    u_s.extend(pin_series(3, (1, -1), &|p| along(p, &u_of)));
     let [e, w] = energy_pair(&p);
     let e_s = vec![
         Series {
