@@ -142,6 +142,10 @@ impl Scene {
             if !p.turn.is_finite() {
                 return Err(Error::Invalid(format!("{what}: turn must be finite")));
             }
+            if let Some(u) = p.units {
+                crate::engine::units::Units::new(u.mu, u.rpm, u.g)
+                    .map_err(|e| Error::Invalid(format!("{what}: units: {e}")))?;
+            }
             p.initial
                 .validate()
                 .map_err(|e| Error::from(e).context(&what))?;

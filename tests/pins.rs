@@ -183,5 +183,19 @@ fn pins_are_saved_with_the_scene_and_load_back() {
     std::fs::write(dir.join("bad.toml"), &bad).unwrap();
     let e = Scene::load(dir.join("bad.toml").to_str().unwrap()).unwrap_err();
     assert!(e.to_string().contains("pin 1"), "{e}");
+    // The second pin's table, with μ = 0.
+    let second = text.match_indices("[[pins]]").nth(1).unwrap().0;
+    let bad = text[..second].to_string()
+        + &text[second..].replacen(
+            "[pins.initial]",
+            "[pins.units]\nmu = 0.0\nrpm = 33.0\n\n[pins.initial]",
+            1,
+        );
+    std::fs::write(dir.join("units.toml"), &bad).unwrap();
+    let e = Scene::load(dir.join("units.toml").to_str().unwrap()).unwrap_err();
+    assert!(
+        e.to_string().contains("pin 2 (\"B\"): units: mu must lie"),
+        "{e}\n{bad}"
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }
