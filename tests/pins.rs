@@ -98,6 +98,16 @@ fn an_escaping_pin_is_followed_out_of_view_and_a_long_one_is_bounded() {
     let p = &a.pins[2];
     assert!(p.path.len() <= 2 * PIN_POINTS, "{}", p.path.len());
     assert!(p.end().tau <= turntable::pin::PIN_TAU_MAX);
+    // At dt = 1e-6 the step budget ends it first, and the notice says so.
+    for _ in 0..6 {
+        key(&mut a, '>');
+    }
+    key(&mut a, 'b');
+    let p = &a.pins[3];
+    assert_eq!(p.outcome, Outcome::Running);
+    assert!(p.end().tau < 1.0, "{}", p.end().tau);
+    let n = a.notice.clone().unwrap();
+    assert!(n.contains("where a pin's 200000 steps ran out"), "{n}");
 }
 
 #[test]

@@ -356,6 +356,13 @@ impl App {
                         format!("sticks at ξ = {}", num(p.end().xi(), 4))
                     }
                     crate::engine::Outcome::Escaped => "escapes".into(),
+                    crate::engine::Outcome::Running if p.end().tau < crate::pin::PIN_TAU_MAX => {
+                        format!(
+                            "still slides at τ = {}, where a pin's {} steps ran out",
+                            num(p.end().tau, 3),
+                            crate::pin::PIN_STEPS
+                        )
+                    }
                     crate::engine::Outcome::Running => {
                         format!("still slides at τ = {}", num(p.end().tau, 1))
                     }
