@@ -81,6 +81,13 @@ fn an_escaping_pin_is_followed_out_of_view_and_a_long_one_is_bounded() {
     assert_eq!(p.outcome, Outcome::Escaped);
     assert!(p.end().xi() > turntable::app::state::view_radius(&p.spec.initial));
     assert_eq!(p.spec.label, "A", "an edited run is lettered");
+    // Its end is out of view: labelled where it leaves (on the canvas, left of the panel).
+    let screen = render(&mut a, 80, 24);
+    let canvas: String = screen
+        .lines()
+        .map(|l| l.chars().take(50).collect::<String>())
+        .collect();
+    assert!(canvas.contains("◆A"), "{screen}");
     // μ = 0 at rest in the lab never moves: followed to τ = 200, still bounded.
     key(&mut a, '5');
     key(&mut a, 'F');

@@ -465,9 +465,16 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) -> CanvasGeom {
                 );
             }
             // Each pin's end: its marker and label, beside the end where the run's own
-            // words leave room (else the marker along the path and the panel name it).
+            // words leave room (else the marker along the path and the panel name it). An
+            // escape ends out of view: labelled where it leaves.
+            let inside =
+                |q: DVec2| (xb[0]..=xb[1]).contains(&q.x) && (yb[0]..=yb[1]).contains(&q.y);
             for p in pins {
-                let e = rotate(in_frame(&p.end(), view), p.spec.turn) * p.scale(units).0;
+                let k = p.scale(units).0;
+                let place = |s: &State| rotate(in_frame(s, view), p.spec.turn) * k;
+                let Some(e) = p.path.iter().rev().map(place).find(|q| inside(*q)) else {
+                    continue;
+                };
                 let text = format!("{}{}", p.marker, p.spec.label);
                 let n = text.chars().count();
                 let back = n as f64 - 1.0;
