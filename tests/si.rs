@@ -96,6 +96,16 @@ fn the_table_stays_in_the_panel_and_the_mu_probe_reads_its_omega() {
             }
         }
     }
+    // The largest table the knobs reach still fits the panel whole.
+    let mut big = App::new(Scene::preset("B").unwrap(), Theme::builtin("dark").unwrap());
+    big.units = Some(Units::new(10.0, 1e4, 1000.0).unwrap());
+    let screen = render(&mut big, 80, 24);
+    for want in [
+        "Ω      1047 rad/s 10000 rpm │",
+        "μ g    10.00, 1000.00 m/s²",
+    ] {
+        assert!(screen.contains(want), "{want}\n{screen}");
+    }
     // The rest page's Eq. 22 uses the table's Ω, and `o` turns the table.
     a.page = Page::RestRadius;
     let screen = render(&mut a, 100, 40);

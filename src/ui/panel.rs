@@ -246,7 +246,11 @@ fn readouts(app: &App) -> (Vec<Line<'static>>, std::ops::Range<usize>) {
         ));
         out.push(kv(
             "Ω",
-            format!("{} {} rpm", show_rate(u.omega()), num(u.rpm, 1)),
+            format!(
+                "{} {} rpm",
+                show_rate(u.omega()),
+                num(u.rpm, if u.rpm < 100.0 { 1 } else { 0 })
+            ),
             th,
         ));
         out.push(kv(
