@@ -170,11 +170,11 @@ fn every_key_in_the_keymap_does_what_its_help_says() {
             Action::Quit => a.should_quit(),
             Action::Dismiss => !a.help && !a.should_quit(),
             Action::ToggleHelp => a.help && after.contains("help"),
-            // 80×24 shows 21 rows of the help's 33: 12 to scroll, a page is 21.
+            // 80×24 shows 21 rows of the help's 35: 14 to scroll, a page is 21.
             Action::HelpScroll(d) => i32::from(a.help_scroll) == 5 + i32::from(d),
             Action::TauWindow(true) => a.tau_window.is_some_and(|w| w < now),
             Action::TauWindow(false) => a.tau_window == Some(2e-2),
-            Action::HelpPage(d) => a.help_scroll == if d > 0 { 12 } else { 0 },
+            Action::HelpPage(d) => a.help_scroll == if d > 0 { 14 } else { 0 },
             Action::PlayPause => !a.is_playing() && after.contains("❚❚"),
             Action::StepForward => now > tau && !a.is_playing(),
             Action::StepBack => now < tau,
@@ -320,10 +320,8 @@ fn help_overlay_lists_every_binding() {
     }
     // 80×24 shows it in two pages.
     let small = render(&mut a, 80, 24);
-    assert!(small.contains("presets A B C D fig1") && small.contains("rows 1–21 of 33, ↓ more"));
-    a.handle_key(KeyEvent::new(KeyCode::PageDown, KeyModifiers::NONE));
-    let small = render(&mut a, 80, 24);
-    assert!(small.contains("q/Ctrl-c       quit") && small.contains("rows 13–33 of 33"));
+    assert!(small.contains("presets A B C D fig1") && small.contains("rows 1–21 of 35, ↓ more"));
+    assert!(small.contains("q/Ctrl-c       quit"), "{small}");
     assert!(
         small.contains("Esc            close help / notice"),
         "{small}"
@@ -332,6 +330,9 @@ fn help_overlay_lists_every_binding() {
         !small.contains("/ onM") && !small.contains("fig2q"),
         "{small}"
     );
+    a.handle_key(KeyEvent::new(KeyCode::PageDown, KeyModifiers::NONE));
+    let small = render(&mut a, 80, 24);
+    assert!(small.contains("◆▲▼◇△▽         pinned runs (b)") && small.contains("rows 15–35 of 35"));
 }
 
 /// Help scrolls at every size (↓ and the wheel) until every key, the mouse and the glyphs
