@@ -97,7 +97,9 @@ impl<B: Backend> Session<B> {
         self.app.resize(width, height);
     }
 
+    /// Draws the app, its analysis pages brought up to date first (headless, computed now).
     pub fn draw(&mut self) -> Result<(), B::Error> {
+        self.app.sync_analysis();
         let mut geom = None;
         let ascii = self.app.theme.marker == Marker::Dot;
         self.term.draw(|f| {

@@ -286,6 +286,8 @@ fn the_map_fills_the_plot_and_a_return_computes_only_what_is_missing() {
     assert_eq!(charts.missing(&map.job, s), vec![3, 17]);
     let mut an = Analysis::inline();
     an.request(map.job, s, charts.missing(&map.job, s));
+    assert!(an.take().is_empty(), "inline, a request waits for compute");
+    an.compute();
     let got = an.take();
     assert_eq!(got.len(), 2);
     for (p, k) in got.into_iter().zip([3, 17]) {

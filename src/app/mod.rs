@@ -76,7 +76,7 @@ impl App {
 
     /// One tick: advances the run(s) by `TICK_DT × speed` of sim time if playing.
     pub fn tick(&mut self) {
-        self.sync_analysis();
+        self.ask_analysis();
         if self.playing {
             update::step(self);
         } else if self.catch_up() {
@@ -109,7 +109,7 @@ impl App {
     pub fn resize(&mut self, width: u16, height: u16) {
         self.screen = (width, height);
         self.dirty = true;
-        self.sync_analysis();
+        self.ask_analysis();
     }
 
     /// The canvas geometry of the last draw (where mouse cells land in world coordinates).

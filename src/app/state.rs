@@ -199,12 +199,26 @@ impl App {
         self.sim.now()
     }
 
-    /// Takes the analysis pieces that arrived and asks for what the page on screen still lacks
-    /// (nothing for a page not on screen). Returns whether anything arrived or was asked.
+    /// Brings the analysis pages up to date for a frame: takes the pieces that arrived and
+    /// asks for what the page on screen still lacks, computing it now when inline (headless).
+    /// Returns whether anything arrived or was asked.
     pub fn sync_analysis(&mut self) -> bool {
+        self.sync(true)
+    }
+
+    /// As [`App::sync_analysis`], but an inline request is only noted: keys and ticks call
+    /// this, so fifty edits before a frame compute one page, not fifty.
+    pub(crate) fn ask_analysis(&mut self) -> bool {
+        self.sync(false)
+    }
+
+    fn sync(&mut self, compute: bool) -> bool {
         let mut moved = false;
-        // Inline, each request completes at once: a page needs at most five jobs.
+        // Inline, each request completes when computed: a page needs at most five jobs.
         for _ in 0..8 {
+            if compute {
+                self.analysis.compute();
+            }
             if let Some((job, settings)) = self.analysis.current() {
                 for p in self.analysis.take() {
                     self.charts.apply(&job, settings, p);

@@ -383,15 +383,15 @@ fn map_chart(app: &App, v0_max: f64, progress: String) -> Chart {
 }
 
 /// The outcome map's grid at the app's terminal size for speeds up to `v0_max`: one cell a
-/// character of the plot the page draws (the same layout and chart), none when no plot fits.
+/// character of the plot the page draws (the same layout and chart) up to
+/// [`crate::analysis::MAP_CELLS`], none when no plot fits.
 pub fn map_grid(app: &App, v0_max: f64) -> Option<(usize, usize)> {
-    use crate::analysis::MAP_MAX;
     let (w, h) = app.screen();
     let canvas = super::layout::regions(w, h)?.canvas;
     let plot = chart::plot_area(canvas, &map_chart(app, v0_max, String::new()))?;
-    Some((
-        usize::from(plot.width).min(MAP_MAX.0),
-        usize::from(plot.height).min(MAP_MAX.1),
+    Some(crate::analysis::map_grid_for(
+        usize::from(plot.width),
+        usize::from(plot.height),
     ))
 }
 

@@ -22,6 +22,7 @@ pub fn turntable(args: &[&str]) -> (i32, String, String) {
 pub fn render(app: &mut turntable::app::App, w: u16, h: u16) -> String {
     let mut t = ratatui::Terminal::new(ratatui::backend::TestBackend::new(w, h)).unwrap();
     app.resize(w, h);
+    app.sync_analysis();
     let mut geom = None;
     t.draw(|f| geom = turntable::ui::draw(f, app)).unwrap();
     app.drawn(geom);

@@ -25,7 +25,7 @@ pub fn update(app: &mut App, action: Action) {
         Group::View => view::apply(app, action),
         Group::App => app::apply(app, action),
     }
-    app.sync_analysis();
+    app.ask_analysis();
 }
 
 /// One tick of sim time (× speed) for both runs. Marks the screen dirty only if time moved.
