@@ -46,6 +46,8 @@ pub const REST_XI0_MAX: f64 = 1.5;
 pub enum Job {
     /// v_e(φ) at ξ0 (Fig. 5).
     Curve { xi0: f64 },
+    /// The least v_e at ξ0 (inside ξ = 1), refined from a curve's least angle `near`.
+    Least { xi0: f64, near: f64 },
     /// Stuck or escaped over (φ, v0) at ξ0 in a release mode, speeds up to `v0_max`, on a
     /// grid of `size` = angles × speeds.
     Map {
@@ -69,6 +71,8 @@ pub enum Piece {
     Rest { i: usize, xi: Option<f64> },
     /// The critical radius ξ0c.
     Critical(f64),
+    /// Where v_e is least and its value (φ, v_e); `None` if the search failed.
+    Least(Option<(f64, f64)>),
 }
 
 /// The release speeds at one angle that end stuck.
@@ -196,6 +200,23 @@ pub fn curve_settings(s: Settings) -> Settings {
     }
 }
 
+/// The least v_e is sought to this width in φ (rad): 3e-4 π, the page's third decimal in π.
+pub const LEAST_PHI_TOL: f64 = 1e-3;
+/// ... with escape speeds to this width: v_e is quadratic at its minimum, so φ is resolved to
+/// about √(vtol / v_e″) ≈ 3e-4 rad there (v_e″ ≈ 0.1 at ξ0 = 0.5).
+pub const LEAST_VTOL: f64 = 1e-8;
+
+/// Where v_e(φ) is least at `xi0` (Fig. 5's minimum) between the neighbours of a curve's least
+/// angle `near`, by golden-section search: (φ in [0, 2π), v_e).
+fn least(xi0: f64, near: f64, settings: Settings, go_on: GoOn) -> Option<(f64, f64)> {
+    let ve = |phi: f64| escape_speed_until(xi0, phi, settings, LEAST_VTOL, go_on).map(|t| t.value);
+    let step = angle(1, CURVE_POINTS);
+    let phi =
+        crate::engine::roots::golden_min(&mut |p| ve(p), near - step, near + step, LEAST_PHI_TOL)
+            .ok()?;
+    Some((turn_angle(phi), ve(phi).ok()?))
+}
+
 /// The angles of a curve: φ_i = 2π i / n.
 pub fn angle(i: usize, n: usize) -> f64 {
     std::f64::consts::TAU * i as f64 / n as f64
@@ -263,6 +284,7 @@ pub fn outcome_map(
 pub fn pieces(job: &Job) -> usize {
     match job {
         Job::Curve { .. } => CURVE_POINTS,
+        Job::Least { .. } => 1,
         Job::Map { size, .. } => size.0 * size.1,
         Job::Rest => REST_POINTS + 1,
     }
@@ -282,6 +304,7 @@ pub fn piece_until(job: &Job, k: usize, settings: Settings, go_on: GoOn) -> Opti
             let v = sticking_speeds_until(xi0, phi, curve_settings(settings), CURVE_VTOL, go_on);
             Piece::Escape { i: k, v }
         }
+        Job::Least { xi0, near } => Piece::Least(least(xi0, near, curve_settings(settings), go_on)),
         Job::Map {
             xi0,
             release,

@@ -103,6 +103,12 @@ fn escape_speed(f: &mut TuiFrame, area: Rect, app: &App) -> Option<CanvasGeom> {
             });
             note = widest(c);
         } else if let Some(((p0, v0), (p1, v1))) = c.extremes() {
+            // The least v_e refined between the angles once it arrives (π to three decimals),
+            // the grid's least until then (to two: it is only good to the grid's 0.03π).
+            let (p0, v0, digits) = match c.least {
+                Some(Some((p, v))) => (p, v, 3),
+                _ => (p0, v0, 2),
+            };
             marks.push(Mark::Point {
                 x: p0,
                 y: v0,
@@ -118,7 +124,7 @@ fn escape_speed(f: &mut TuiFrame, area: Rect, app: &App) -> Option<CanvasGeom> {
             note = format!(
                 "min {} at {}π, max {} at {}π",
                 speed(v0),
-                num(p0 / PI, 2),
+                num(p0 / PI, digits),
                 speed(v1),
                 num(p1 / PI, 2)
             );
@@ -126,6 +132,8 @@ fn escape_speed(f: &mut TuiFrame, area: Rect, app: &App) -> Option<CanvasGeom> {
         let done = c.ve.iter().filter(|v| v.is_some()).count();
         if done < c.ve.len() {
             progress = format!(", {done}/{} angles", c.ve.len());
+        } else if !window && c.least.is_none() {
+            progress = ", refining min…".into();
         }
     } else {
         progress = ", computing…".into();
