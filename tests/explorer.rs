@@ -170,11 +170,11 @@ fn every_key_in_the_keymap_does_what_its_help_says() {
             Action::Quit => a.should_quit(),
             Action::Dismiss => !a.help && !a.should_quit(),
             Action::ToggleHelp => a.help && after.contains("help"),
-            // 80×24 shows 21 rows of the help's 31: 10 to scroll, a page is 21.
+            // 80×24 shows 21 rows of the help's 32: 11 to scroll, a page is 21.
             Action::HelpScroll(d) => i32::from(a.help_scroll) == 5 + i32::from(d),
             Action::TauWindow(true) => a.tau_window.is_some_and(|w| w < now),
             Action::TauWindow(false) => a.tau_window == Some(2e-2),
-            Action::HelpPage(d) => a.help_scroll == if d > 0 { 10 } else { 0 },
+            Action::HelpPage(d) => a.help_scroll == if d > 0 { 11 } else { 0 },
             Action::PlayPause => !a.is_playing() && after.contains("❚❚"),
             Action::StepForward => now > tau && !a.is_playing(),
             Action::StepBack => now < tau,
@@ -223,8 +223,10 @@ fn every_key_in_the_keymap_does_what_its_help_says() {
                 d.x * dx > 0.0 || d.y * dy > 0.0
             }
             Action::ResetView => a.zoom == 1.0 && a.pan == glam::DVec2::ZERO,
+            Action::SaveAs => a.naming.as_deref() == Some("") && after.contains("save as: ▏"),
+            Action::Name(_) => unreachable!("typed at the prompt, bound to no key"),
             Action::Save => {
-                after.contains("saved scene")
+                after.contains("saved \"")
                     && Scene::load(a.save_path.to_str().unwrap()).unwrap().initial == a.initial
             }
             Action::ToggleMouse => !a.mouse_capture() && after.contains("mouse off"),
@@ -314,10 +316,10 @@ fn help_overlay_lists_every_binding() {
     }
     // 80×24 shows it in two pages.
     let small = render(&mut a, 80, 24);
-    assert!(small.contains("presets A B C D fig1") && small.contains("rows 1–21 of 31, ↓ more"));
+    assert!(small.contains("presets A B C D fig1") && small.contains("rows 1–21 of 32, ↓ more"));
     a.handle_key(KeyEvent::new(KeyCode::PageDown, KeyModifiers::NONE));
     let small = render(&mut a, 80, 24);
-    assert!(small.contains("q/Ctrl-c       quit") && small.contains("rows 11–31 of 31"));
+    assert!(small.contains("q/Ctrl-c       quit") && small.contains("rows 12–32 of 32"));
     assert!(
         small.contains("Esc            close help / notice"),
         "{small}"
@@ -1059,4 +1061,68 @@ fn footer_names_what_space_does_now() {
         let paused = last(&mut a);
         assert!(paused.contains("Space play"), "{paused}");
     }
+}
+
+/// `S` names the scene before saving (issue 18 item 7): while the prompt is open keys are the
+/// name's letters (`q` quits nothing, `x` edits nothing), Backspace takes one back, Enter
+/// saves to a file named after it, Esc saves nothing. The prompt shows what is typed.
+#[test]
+fn s_names_the_scene_it_saves() {
+    let dir = std::env::temp_dir().join(format!("turntable-name-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let mut a = app("D");
+    a.save_path = dir.join("turntable-scene.toml");
+    let xi0 = a.initial.xi0;
+    key(&mut a, 'S');
+    for c in "Case Dx, μ × 2q".chars() {
+        key(&mut a, c);
+    }
+    a.handle_key(KeyEvent::new(KeyCode::Backspace, KeyModifiers::NONE));
+    assert!(!a.should_quit());
+    assert_eq!(a.initial.xi0, xi0, "x typed a letter, no edit");
+    assert_eq!(a.naming.as_deref(), Some("Case Dx, μ × 2"));
+    let screen = render(&mut a, 40, 12);
+    assert!(
+        screen.contains(" save as: Case Dx, μ × 2▏"),
+        "the prompt shows what is typed:\n{screen}"
+    );
+    a.handle_key(KeyEvent::new(KeyCode::Enter, KeyModifiers::NONE));
+    assert_eq!(a.naming, None);
+    let path = dir.join("case-dx-μ-2.toml");
+    let saved = Scene::load(path.to_str().unwrap()).unwrap();
+    assert_eq!(saved.name, "Case Dx, μ × 2");
+    assert_eq!(saved.initial, a.initial);
+    assert!(a.notice.as_deref().unwrap().contains("case-dx-μ-2.toml"));
+    // The same name again: a new file beside it, never a replaced one.
+    key(&mut a, 'S');
+    for c in "case dx μ 2".chars() {
+        key(&mut a, c);
+    }
+    a.handle_key(KeyEvent::new(KeyCode::Enter, KeyModifiers::NONE));
+    assert!(dir.join("case-dx-μ-2-2.toml").exists());
+    // Esc: nothing saved, and keys are keys again.
+    key(&mut a, 'S');
+    key(&mut a, 'z');
+    a.handle_key(KeyEvent::new(KeyCode::Esc, KeyModifiers::NONE));
+    assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 2);
+    key(&mut a, 'x');
+    assert!(a.initial.xi0 > xi0);
+    // A name is at most NAME_MAX characters.
+    key(&mut a, 'S');
+    for _ in 0..60 {
+        key(&mut a, 'n');
+    }
+    assert_eq!(a.naming.as_ref().unwrap().chars().count(), 40);
+    // Too long for 40 columns: its end stays in sight, by the cursor.
+    let screen = render(&mut a, 40, 12);
+    let prompt = screen.lines().last().unwrap();
+    assert!(
+        prompt.starts_with(" save as: nnnn") && prompt.trim_end().ends_with("n▏"),
+        "{prompt}"
+    );
+    // Ctrl-C still quits from the prompt.
+    a.handle_key(KeyEvent::new(KeyCode::Char('c'), KeyModifiers::CONTROL));
+    assert!(a.should_quit());
+    let _ = std::fs::remove_dir_all(&dir);
 }

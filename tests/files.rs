@@ -241,7 +241,7 @@ fn a_replay_writes_no_files() {
     std::fs::write(d.join("save.keys"), "s\nsnapshot\n").unwrap();
     let (code, out, _) = turntable_in(&d, &["replay", "save.keys"]);
     assert_eq!(code, 0);
-    assert!(out.contains("replay writes no files"), "{out}");
+    assert!(out.contains("replay saves nothing"), "{out}");
     assert_eq!(std::fs::read_dir(&d).unwrap().count(), 1, "only the script");
 }
 

@@ -49,6 +49,10 @@ pub enum Action {
     Pan(f64, f64),
     ResetView,
     Save,
+    /// Opens the prompt for a name, then saves the scene under it.
+    SaveAs,
+    /// An edit of the name being typed (only while the prompt is open).
+    Name(NameEdit),
     ToggleMouse,
     /// Mouse: the release point here (model coordinates, as the canvas maps the click).
     PlaceRelease(glam::DVec2),
@@ -119,9 +123,32 @@ impl Action {
             CycleMethod | Loosen | Tighten | ToggleCompare | EstimateError => Group::Integrator,
             ToggleFrame | ToggleForces | ZoomIn | ZoomOut | Pan(..) | ResetView | TauWindow(_)
             | NextPage | PrevPage | Choose | Omega(_) | R0c(_) | Unit(..) | UnitsOff => Group::View,
-            Quit | Dismiss | ToggleHelp | HelpScroll(_) | HelpPage(_) | Save | ToggleMouse => {
-                Group::App
-            }
+            Quit | Dismiss | ToggleHelp | HelpScroll(_) | HelpPage(_) | Save | SaveAs | Name(_)
+            | ToggleMouse => Group::App,
+        }
+    }
+}
+
+/// What a key does to the name typed at the save prompt.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum NameEdit {
+    Char(char),
+    Back,
+    Done,
+    Cancel,
+}
+
+impl NameEdit {
+    /// The edit a key makes at the prompt (none for keys it ignores: arrows, Tab, chords).
+    pub fn of(chord: super::Chord) -> Option<NameEdit> {
+        use crossterm::event::{KeyCode, KeyModifiers};
+        let plain = chord.mods.difference(KeyModifiers::SHIFT).is_empty();
+        match chord.code {
+            KeyCode::Char(c) if plain && !c.is_control() => Some(NameEdit::Char(c)),
+            KeyCode::Backspace => Some(NameEdit::Back),
+            KeyCode::Enter => Some(NameEdit::Done),
+            KeyCode::Esc => Some(NameEdit::Cancel),
+            _ => None,
         }
     }
 }

@@ -17,7 +17,7 @@ pub use update::update;
 use crate::engine::Settings;
 use crate::scene::Scene;
 use crate::theme::Theme;
-use crossterm::event::{KeyEvent, MouseButton, MouseEvent, MouseEventKind};
+use crossterm::event::{KeyCode, KeyEvent, KeyModifiers, MouseButton, MouseEvent, MouseEventKind};
 
 impl App {
     pub fn new(scene: Scene, theme: Theme) -> App {
@@ -33,7 +33,13 @@ impl App {
 
     /// Keymap → action → update.
     pub fn press(&mut self, chord: Chord) {
-        if let Some(a) = keymap::lookup(chord) {
+        // While a name is typed, keys are its letters; only Ctrl-C keeps its meaning (quit).
+        let ctrl_c = Chord::new(KeyCode::Char('c'), KeyModifiers::CONTROL);
+        let action = match &self.naming {
+            Some(_) if chord != ctrl_c => action::NameEdit::of(chord).map(Action::Name),
+            _ => keymap::lookup(chord),
+        };
+        if let Some(a) = action {
             update(self, a);
         }
     }

@@ -99,6 +99,8 @@ pub struct App {
     pub pan: glam::DVec2,
     pub mouse: bool,
     pub notice: Option<String>,
+    /// The name being typed at the save prompt (`S`), while it is open.
+    pub naming: Option<String>,
     pub save_path: PathBuf,
     /// False in a headless replay: `s` then says what it would save and writes nothing.
     pub writes_files: bool,
@@ -158,6 +160,7 @@ impl App {
             notice: None,
             save_path: PathBuf::from(SAVE_PATH),
             writes_files: true,
+            naming: None,
             quit: false,
             page: view.map_or(Page::Turntable, |v| v.page),
             charts: Charts::default(),
@@ -295,9 +298,17 @@ impl App {
     /// The current initial conditions, settings and view as a scene (what `s` saves); its
     /// words say how the run ends, or nothing while that is undecided.
     pub fn current_scene(&self) -> Scene {
-        let changed = self.edited();
+        self.scene_named(None)
+    }
+
+    /// The scene on screen as [`App::current_scene`], under the name `name` if given: a named
+    /// scene is the user's own, so its description is what the run does.
+    pub fn scene_named(&self, name: Option<&str>) -> Scene {
+        let changed = self.edited() || name.is_some();
         Scene {
-            name: if changed {
+            name: if let Some(n) = name {
+                n.to_string()
+            } else if changed {
                 format!("{} (edited)", self.scene.name.trim_end_matches(" (edited)"))
             } else {
                 self.scene.name.clone()

@@ -125,6 +125,29 @@ pub fn lesson_line(app: &App) -> String {
 
 fn status_line(app: &App, width: u16) -> Line<'static> {
     let th = &app.theme;
+    if let Some(name) = &app.naming {
+        // The end of a long name stays in sight: what is typed is what shows.
+        let room = usize::from(width).saturating_sub(" save as: ▏".width());
+        // The hint only where it leaves room for a name.
+        let hint = "  Enter saves · Esc cancels";
+        let (hint, room) = match room.checked_sub(hint.width()) {
+            Some(r) if r >= 20 => (hint, r),
+            _ => ("", room),
+        };
+        let mut shown: Vec<char> = name.chars().rev().collect();
+        while shown.iter().collect::<String>().width() > room {
+            shown.pop();
+        }
+        let shown: String = shown.into_iter().rev().collect();
+        return Line::from(Span::styled(
+            fit::fit(
+                &format!(" save as: {shown}▏{hint}"),
+                "\0",
+                usize::from(width),
+            ),
+            Style::default().fg(th.notice),
+        ));
+    }
     if let Some(n) = &app.notice {
         return Line::from(Span::styled(
             fit::fit(&format!(" {n}"), "\0", usize::from(width)),

@@ -1,6 +1,6 @@
 //! The "app" group: help, notices, saving, the mouse, quitting.
 
-use super::super::action::Action;
+use super::super::action::{Action, NameEdit};
 use super::super::state::App;
 
 pub(super) fn apply(app: &mut App, action: Action) {
@@ -23,19 +23,9 @@ pub(super) fn apply(app: &mut App, action: Action) {
             let page = crate::ui::help::page(app.screen().1);
             scroll_help(app, i32::from(pages) * i32::from(page));
         }
-        Action::Save if !app.writes_files => {
-            app.notice = Some(format!(
-                "replay writes no files: s would save this scene to {} (or the next free name)",
-                app.save_path.display()
-            ));
-        }
-        Action::Save => {
-            let scene = app.current_scene();
-            app.notice = Some(match scene.save_new(&app.save_path) {
-                Ok(p) => format!("saved scene to {}", p.display()),
-                Err(e) => format!("could not save {}: {e}", app.save_path.display()),
-            });
-        }
+        Action::Save => save(app, None),
+        Action::SaveAs => app.naming = Some(String::new()),
+        Action::Name(edit) => name(app, edit),
         Action::ToggleMouse => {
             app.mouse = !app.mouse;
             app.notice = Some(
@@ -49,6 +39,72 @@ pub(super) fn apply(app: &mut App, action: Action) {
         }
         // Other groups' actions: `update` never sends them here.
         _ => {}
+    }
+}
+
+/// Longest name the prompt takes (a scene's name is one line of its panel).
+pub const NAME_MAX: usize = 40;
+
+/// An edit at the save prompt: letters up to [`NAME_MAX`], Enter saves under the name (an
+/// empty name is the scene's own), Esc closes the prompt without saving.
+fn name(app: &mut App, edit: NameEdit) {
+    let Some(typed) = app.naming.as_mut() else {
+        return;
+    };
+    match edit {
+        NameEdit::Char(c) if typed.chars().count() < NAME_MAX => typed.push(c),
+        NameEdit::Char(_) => app.notice = Some(format!("a name has at most {NAME_MAX} characters")),
+        NameEdit::Back => {
+            typed.pop();
+        }
+        NameEdit::Cancel => {
+            app.naming = None;
+            app.notice = Some("not saved".into());
+        }
+        NameEdit::Done => {
+            let typed = app.naming.take().unwrap_or_default();
+            let typed = typed.trim();
+            save(app, (!typed.is_empty()).then_some(typed));
+        }
+    }
+}
+
+/// Saves the scene on screen (under `name`, in a file named after it) to a new file; replay
+/// writes none and says where it would have.
+fn save(app: &mut App, name: Option<&str>) {
+    let path = match name {
+        Some(n) => app
+            .save_path
+            .with_file_name(format!("{}.toml", file_stem(n))),
+        None => app.save_path.clone(),
+    };
+    let scene = app.scene_named(name);
+    app.notice = Some(if !app.writes_files {
+        format!(
+            "replay saves nothing: \"{}\" → {} (or the next free name)",
+            scene.name,
+            path.display()
+        )
+    } else {
+        match scene.save_new(&path) {
+            Ok(p) => format!("saved \"{}\" to {}", scene.name, p.display()),
+            Err(e) => format!("could not save {}: {e}", path.display()),
+        }
+    });
+}
+
+/// A file name for a scene called `name`: its letters and digits, lower case, words joined by
+/// `-` ("Case D, μ × 2" → `case-d-μ-2`); `scene` when nothing is left.
+fn file_stem(name: &str) -> String {
+    let words: Vec<String> = name
+        .split(|c: char| !c.is_alphanumeric())
+        .filter(|w| !w.is_empty())
+        .map(str::to_lowercase)
+        .collect();
+    if words.is_empty() {
+        "scene".into()
+    } else {
+        words.join("-")
     }
 }
 
