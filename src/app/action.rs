@@ -70,6 +70,10 @@ pub enum Action {
     Unit(UnitKnob, f64),
     /// Dimensionless readouts only.
     UnitsOff,
+    /// A lesson's prediction: yes (it escapes) or no.
+    Answer(bool),
+    /// A lesson waiting for Space or Enter goes on.
+    GoOn,
 }
 
 /// The physical constants the SI readouts rest on.
@@ -89,6 +93,7 @@ pub enum Group {
     Integrator,
     View,
     App,
+    Lesson,
 }
 
 impl Group {
@@ -100,6 +105,7 @@ impl Group {
             Group::Integrator => "integrator",
             Group::View => "view",
             Group::App => "app",
+            Group::Lesson => "lesson",
         }
     }
 }
@@ -122,6 +128,7 @@ impl Action {
             Quit | Dismiss | ToggleHelp | HelpScroll(_) | HelpPage(_) | Save | ToggleMouse => {
                 Group::App
             }
+            Answer(_) | GoOn => Group::Lesson,
         }
     }
 }

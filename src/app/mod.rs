@@ -4,6 +4,7 @@
 pub mod action;
 pub mod chord;
 pub mod keymap;
+pub mod lesson;
 pub mod pages;
 pub mod state;
 pub mod update;
@@ -33,7 +34,7 @@ impl App {
 
     /// Keymap → action → update.
     pub fn press(&mut self, chord: Chord) {
-        if let Some(a) = keymap::lookup(chord) {
+        if let Some(a) = keymap::lookup_when(chord, self.lesson.prompt()) {
             update(self, a);
         }
     }

@@ -1,6 +1,7 @@
 //! Pure rendering of the explorer's state into a ratatui frame.
 
 pub mod canvas;
+pub mod caption;
 pub mod chart;
 pub mod export;
 pub mod fit;
@@ -67,6 +68,7 @@ pub fn draw(frame: &mut Frame, app: &App) -> Option<CanvasGeom> {
         lesson,
     );
     frame.render_widget(Paragraph::new(status_line(app, status.width)), status);
+    caption::render(frame, &r, app);
     if app.help {
         help::render(frame, r.help, app);
     }
