@@ -69,7 +69,7 @@ impl Driver {
     }
 
     /// The next step (a `tick N` still counting is given up).
-    pub fn next(&mut self) -> Option<Step> {
+    pub fn next_step(&mut self) -> Option<Step> {
         self.ticks = 0;
         let step = self.steps.get(self.at).cloned();
         self.at += usize::from(step.is_some());

@@ -119,7 +119,7 @@ impl<B: Backend> Session<B> {
             if d.counting() && self.app.is_playing() {
                 return Ok(());
             }
-            let Some(step) = d.next() else {
+            let Some(step) = d.next_step() else {
                 if !self.app.lesson.done {
                     self.app.lesson.done = true;
                     self.app.invalidate();

@@ -10,7 +10,7 @@ use clap::Args;
 #[derive(Args, Debug, Default)]
 pub struct LessonArgs {
     /// The lesson to take (see --list).
-    #[arg(value_name = "NAME", required_unless_present = "list")]
+    #[arg(value_name = "NAME")]
     pub name: Option<String>,
     /// List the lessons.
     #[arg(long, conflicts_with_all = ["name", "headless"])]
@@ -42,7 +42,12 @@ pub fn run(a: &LessonArgs) -> Result<Option<(Look, Driver)>, Error> {
         crate::files::emit(None, &list)?;
         return Ok(None);
     }
-    let name = a.name.as_deref().unwrap_or_default();
+    let Some(name) = a.name.as_deref() else {
+        return Err(Error::Invalid(format!(
+            "name a lesson: {} (`turntable lesson --list` says what each covers)",
+            names()
+        )));
+    };
     let lesson = find(name).ok_or_else(|| {
         Error::Invalid(format!(
             "unknown lesson '{name}' (lessons: {}; `turntable lesson --list` says what each covers)",
