@@ -319,6 +319,8 @@ fn claims(lesson: &str) -> Vec<Claim> {
                     Box::new(|| {
                         let t = critical_radius(Settings::dp54(1e-11), 1e-8).unwrap();
                         assert!(shows(t.value, "0.87204"), "{}", t.value);
+                        // "Up to ξ0c it comes to rest; from further out it escapes."
+                        assert!(t.interval);
                     }),
                 ),
                 c(
@@ -609,4 +611,33 @@ fn the_lesson_command() {
     let out = turntable(&["lesson", "cases"]);
     assert_eq!(out.status.code(), Some(2));
     assert!(out.stdout.is_empty());
+}
+
+/// The caption at every size from the smallest up, with more words than fit: never a panic,
+/// whole words on every row of the box, and `…` where the rest is left out.
+#[test]
+fn a_long_caption_at_every_size() {
+    let words = "Friction alone holds a particle on the turning table; ".repeat(80);
+    for (w, h) in (40..=120).step_by(9).flat_map(|w| (12..=40).step_by(7).map(move |h| (w, h))) {
+        let mut s = Session::headless(app(), w, h, false);
+        s.app.say(Some(words.clone()));
+        let screen = turntable::ui::export::plain_text(s.screen());
+        let rows: Vec<&str> = screen
+            .lines()
+            .filter_map(|l| l.strip_prefix('│'))
+            .filter_map(|l| l.split('│').next())
+            .filter(|l| l.starts_with("Friction") || l.starts_with("alone") || l.contains("table;"))
+            .collect();
+        assert!(!rows.is_empty(), "{w}×{h}:\n{screen}");
+        for r in &rows {
+            for word in r.split_whitespace() {
+                assert!(words.contains(word) || word == "…", "{w}×{h}: '{word}' cut in\n{screen}");
+            }
+        }
+        assert!(screen.contains(" …"), "{w}×{h}:\n{screen}");
+    }
+    // Too small for the explorer: its notice, and no caption.
+    let mut s = Session::headless(app(), 39, 11, false);
+    s.app.say(Some(words));
+    assert!(turntable::ui::export::plain_text(s.screen()).contains("too small"));
 }
