@@ -618,7 +618,11 @@ fn the_lesson_command() {
 #[test]
 fn a_long_caption_at_every_size() {
     let words = "Friction alone holds a particle on the turning table; ".repeat(80);
-    for (w, h) in (40..=120).step_by(9).flat_map(|w| (12..=40).step_by(7).map(move |h| (w, h))) {
+    let whole: std::collections::HashSet<&str> = words.split_whitespace().collect();
+    for (w, h) in (40..=120)
+        .step_by(9)
+        .flat_map(|w| (12..=40).step_by(7).map(move |h| (w, h)))
+    {
         let mut s = Session::headless(app(), w, h, false);
         s.app.say(Some(words.clone()));
         let screen = turntable::ui::export::plain_text(s.screen());
@@ -631,7 +635,10 @@ fn a_long_caption_at_every_size() {
         assert!(!rows.is_empty(), "{w}×{h}:\n{screen}");
         for r in &rows {
             for word in r.split_whitespace() {
-                assert!(words.contains(word) || word == "…", "{w}×{h}: '{word}' cut in\n{screen}");
+                assert!(
+                    whole.contains(word) || word == "…",
+                    "{w}×{h}: '{word}' cut in\n{screen}"
+                );
             }
         }
         assert!(screen.contains(" …"), "{w}×{h}:\n{screen}");
