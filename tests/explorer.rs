@@ -155,9 +155,16 @@ fn every_key_in_the_keymap_does_what_its_help_says() {
             a.help = true;
             a.help_scroll = 5;
         }
+        // The lesson's keys are live only while it asks or waits.
+        match b.action {
+            Action::Answer(_) => a.ask("Will it escape? (y/n)".into()),
+            Action::GoOn => a.wait(),
+            _ => {}
+        }
         let before = render(&mut a, 80, 24);
         let (tau, init, set) = (a.sim.now().tau, a.initial, a.settings);
         let (speed, zoom, pan) = (a.speed, a.zoom, a.pan);
+        let init_playing = a.playing;
         a.handle_key(b.chord.event());
         let after = render(&mut a, 80, 24);
         let what = format!("{} ({})", b.chord.label(), b.help);
@@ -170,11 +177,11 @@ fn every_key_in_the_keymap_does_what_its_help_says() {
             Action::Quit => a.should_quit(),
             Action::Dismiss => !a.help && !a.should_quit(),
             Action::ToggleHelp => a.help && after.contains("help"),
-            // 80×24 shows 21 rows of the help's 32: 11 to scroll, a page is 21.
+            // 80×24 shows 21 rows of the help's 34: 13 to scroll, a page is 21.
             Action::HelpScroll(d) => i32::from(a.help_scroll) == 5 + i32::from(d),
             Action::TauWindow(true) => a.tau_window.is_some_and(|w| w < now),
             Action::TauWindow(false) => a.tau_window == Some(2e-2),
-            Action::HelpPage(d) => a.help_scroll == if d > 0 { 11 } else { 0 },
+            Action::HelpPage(d) => a.help_scroll == if d > 0 { 13 } else { 0 },
             Action::PlayPause => !a.is_playing() && after.contains("❚❚"),
             Action::StepForward => now > tau && !a.is_playing(),
             Action::StepBack => now < tau,
@@ -234,6 +241,16 @@ fn every_key_in_the_keymap_does_what_its_help_says() {
             Action::PrevPage => a.page == Page::RestRadius && after.contains("rest radius"),
             Action::Choose => a.page == Page::Turntable && after.contains("Enter runs"),
             Action::PickRelease(_) => unreachable!("mouse actions have no key"),
+            Action::Answer(yes) => {
+                let q = a.lesson.question.as_ref().unwrap();
+                q.answer == Some(yes)
+                    && after.contains(if yes {
+                        "You said it escapes"
+                    } else {
+                        "You said it does not"
+                    })
+            }
+            Action::GoOn => !a.lesson.waiting && a.playing == init_playing,
             Action::Omega(d) => {
                 (a.mu_probe.0 - (turntable::app::MU_PROBE.0 + d)).abs() < 1e-12
                     && after.contains("Ω = ")
@@ -316,10 +333,12 @@ fn help_overlay_lists_every_binding() {
     }
     // 80×24 shows it in two pages.
     let small = render(&mut a, 80, 24);
-    assert!(small.contains("presets A B C D fig1") && small.contains("rows 1–21 of 32, ↓ more"));
+    assert!(small.contains("presets A B C D fig1") && small.contains("rows 1–21 of 34, ↓ more"));
     a.handle_key(KeyEvent::new(KeyCode::PageDown, KeyModifiers::NONE));
     let small = render(&mut a, 80, 24);
-    assert!(small.contains("q/Ctrl-c       quit") && small.contains("rows 12–32 of 32"));
+    assert!(
+        small.contains("Space/Enter    go on when it waits") && small.contains("rows 14–34 of 34")
+    );
     assert!(
         small.contains("Esc            close help / notice"),
         "{small}"
@@ -516,20 +535,39 @@ fn bad_scene_or_theme_exits_2_before_touching_the_terminal() {
     }
 }
 
+/// No key is bound twice in one mode: a lesson's bindings (y/n while it asks, Space/Enter
+/// while it waits) take their keys only then.
 #[test]
 fn no_key_is_bound_twice() {
+    use turntable::app::action::Group;
+    use turntable::app::keymap::lookup_when;
+    use turntable::app::lesson::Prompt;
+    let mode = |a: Action| match a {
+        Action::Answer(_) => Prompt::Answer,
+        Action::GoOn => Prompt::GoOn,
+        _ => Prompt::None,
+    };
     for (i, a) in KEYMAP.iter().enumerate() {
         for b in &KEYMAP[i + 1..] {
-            assert!(a.chord != b.chord, "{} bound twice", a.chord.label());
+            let lesson = |x: &turntable::app::Binding| x.action.group() == Group::Lesson;
+            let apart = lesson(a) != lesson(b) || mode(a.action) != mode(b.action);
+            assert!(
+                a.chord != b.chord || apart,
+                "{} bound twice",
+                a.chord.label()
+            );
         }
         let sent = turntable::app::Chord::from_event(&a.chord.event());
         assert_eq!(sent, Some(a.chord), "{} is not in normal form", a.chord);
         assert_eq!(
-            turntable::app::keymap::lookup(a.chord),
+            lookup_when(a.chord, mode(a.action)),
             Some(a.action),
             "{} does not dispatch to its own action",
             a.chord.label()
         );
+        if mode(a.action) != Prompt::None {
+            assert_ne!(turntable::app::keymap::lookup(a.chord), Some(a.action));
+        }
     }
 }
 
@@ -1034,6 +1072,7 @@ fn every_binding_is_listed_under_its_actions_group() {
         Group::Integrator,
         Group::View,
         Group::App,
+        Group::Lesson,
     ];
     assert_eq!(all.map(Group::name), GROUPS);
     // The mouse sets the release: its actions are initial conditions.

@@ -74,6 +74,10 @@ pub enum Action {
     Unit(UnitKnob, f64),
     /// Dimensionless readouts only.
     UnitsOff,
+    /// A lesson's prediction: yes (it escapes) or no.
+    Answer(bool),
+    /// A lesson waiting for Space or Enter goes on.
+    GoOn,
 }
 
 /// The physical constants the SI readouts rest on.
@@ -93,6 +97,7 @@ pub enum Group {
     Integrator,
     View,
     App,
+    Lesson,
 }
 
 impl Group {
@@ -104,6 +109,7 @@ impl Group {
             Group::Integrator => "integrator",
             Group::View => "view",
             Group::App => "app",
+            Group::Lesson => "lesson",
         }
     }
 }
@@ -125,6 +131,7 @@ impl Action {
             | NextPage | PrevPage | Choose | Omega(_) | R0c(_) | Unit(..) | UnitsOff => Group::View,
             Quit | Dismiss | ToggleHelp | HelpScroll(_) | HelpPage(_) | Save | SaveAs | Name(_)
             | ToggleMouse => Group::App,
+            Answer(_) | GoOn => Group::Lesson,
         }
     }
 }

@@ -4,6 +4,7 @@
 pub mod action;
 pub mod chord;
 pub mod keymap;
+pub mod lesson;
 pub mod pages;
 pub mod state;
 pub mod update;
@@ -37,7 +38,7 @@ impl App {
         let ctrl_c = Chord::new(KeyCode::Char('c'), KeyModifiers::CONTROL);
         let action = match &self.naming {
             Some(_) if chord != ctrl_c => action::NameEdit::of(chord).map(Action::Name),
-            _ => keymap::lookup(chord),
+            _ => keymap::lookup_when(chord, self.lesson.prompt()),
         };
         if let Some(a) = action {
             update(self, a);

@@ -114,6 +114,8 @@ pub struct App {
     pub units: Option<crate::engine::units::Units>,
     /// The μ measurement of the rest-radius page (Eq. 22): Ω in rad/s and r0c in metres.
     pub mu_probe: (f64, f64),
+    /// A narrated lesson's caption, question and wait.
+    pub lesson: super::lesson::Lesson,
     pub(crate) dirty: bool,
     pub(crate) geom: Option<CanvasGeom>,
     /// The terminal's size, as its session last said (the outcome map's grid follows it).
@@ -167,6 +169,7 @@ impl App {
             analysis: Analysis::inline(),
             mu_probe: MU_PROBE,
             units,
+            lesson: Default::default(),
             dirty: true,
             geom: None,
             screen: (80, 24),
@@ -284,7 +287,7 @@ impl App {
     }
 
     /// How the run ends, once it is decided (whatever τ is on screen): empty before.
-    fn ending(&self) -> String {
+    pub(crate) fn ending(&self) -> String {
         let run = &self.sim.run;
         match (run.status(), run.escape()) {
             (crate::engine::Status::Stuck { tau, q }, _) => {

@@ -97,13 +97,32 @@ begins a token starts a comment.
     snapshot after 80 ticks
     space Right*5 ? esc          # pause, step five times, help on and off
     mouse click 20 8             # click|drag|up|scrollup|scrolldown COLUMN ROW (0-based)
+    say C sticks.                # a caption over the scene (say alone clears it)
 
-`snapshot LABEL` prints the screen (the rest of the line is its label). Keys: any single
+`snapshot LABEL` prints the screen (the rest of the line is its label). `say TEXT`, `ask TEXT`
+(a prediction: y or n, yes meaning the run escapes) and `wait` narrate a lesson (see
+`turntable lesson --help`). Keys: any single
 character, space, hash, enter, esc, tab, backtab, backspace, delete, up, down, left, right, home,
 end, pgup, pgdn, f1-f12, each with optional ctrl-, alt-, shift- prefixes. A first line
 `# replay: [--size WxH] [--ansi] [--scene S] [--theme T]` sets options (flags win). The output
 is byte-identical on every run: there is no clock, only ticks. `turntable --record FILE` writes
 such a script from an interactive session.";
+
+/// `lesson --help`: what a lesson is and how one runs.
+const LESSON_ABOUT: &str = "Narrated lessons through the paper, shipped in the binary.
+
+`turntable lesson --list` lists them; `turntable lesson NAME` runs one in the explorer, with a
+caption over the scene: Space or Enter goes on where it waits, y or n answers its predictions
+(\"Will it escape?\"), and the run then says whether the prediction was right; every other key
+works as in the explorer. `turntable lesson NAME --headless [--size WxH]` prints its snapshots as
+`replay` does (a wait goes on, a question stays unanswered).
+
+A lesson is a key script (see `turntable replay --help`) with three more commands, which any key
+script may use:
+
+    say TEXT        # a caption over the scene until the next say or ask (say alone clears it)
+    ask TEXT        # a prediction, y or n: yes means the run on screen escapes
+    wait            # interactive: hold until Space or Enter; headless: go on";
 
 #[derive(Subcommand, Debug)]
 pub enum Command {
@@ -120,6 +139,9 @@ pub enum Command {
     /// Run a key script headlessly and print its snapshots.
     #[command(long_about = REPLAY_ABOUT)]
     Replay(super::replay::ReplayArgs),
+    /// Narrated lessons through the paper: --list, NAME (in the explorer), NAME --headless.
+    #[command(long_about = LESSON_ABOUT)]
+    Lesson(super::lesson::LessonArgs),
     /// Print a shell completion script: `turntable completions bash > ~/.local/share/bash-completion/completions/turntable`.
     Completions(CompletionsArgs),
     /// Print the manual page (roff): `turntable man > ~/.local/share/man/man1/turntable.1`.

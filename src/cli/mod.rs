@@ -3,6 +3,7 @@
 
 mod args;
 mod bench;
+pub mod lesson;
 mod numerics;
 pub mod replay;
 mod report;
@@ -73,8 +74,13 @@ pub(crate) fn solver_budget<E: Into<Error>>(tol_flag: &'static str) -> impl Fn(E
 
 /// Opens the explorer. Bad scenes, themes and `--record` paths fail before the terminal is
 /// touched. Returns the signal that ended it, if one did.
-fn explore(cli: &Cli) -> Result<Option<i32>, Error> {
-    let (scene, theme) = (&cli.look.scene, &cli.look.theme);
+/// With `lesson`, the explorer runs it (`turntable lesson NAME`).
+fn explore(
+    cli: &Cli,
+    look: &Look,
+    lesson: Option<crate::lesson::Driver>,
+) -> Result<Option<i32>, Error> {
+    let (scene, theme) = (&look.scene, &look.theme);
     let scene = match scene {
         Some(s) => crate::scene::Scene::load(s)?,
         None => crate::scene::Scene::default_scene(),
@@ -91,7 +97,7 @@ fn explore(cli: &Cli) -> Result<Option<i32>, Error> {
         ))
         .with_marker(marker.marker());
     let units = cli.units.units()?;
-    let scene_ref = cli.look.scene.as_deref().map(scene_reference);
+    let scene_ref = look.scene.as_deref().map(scene_reference);
     if term.as_deref() == Some("dumb") {
         return Err(Error::Invalid(
             "TERM=dumb cannot show the explorer (it needs cursor movement); set TERM to your terminal's type (e.g. xterm), or use `turntable replay SCRIPT` or a subcommand".into(),
@@ -99,10 +105,7 @@ fn explore(cli: &Cli) -> Result<Option<i32>, Error> {
     }
     let recording = match &cli.record {
         Some(path) => Some(std::sync::Arc::new(Recording {
-            out: std::sync::Mutex::new(Some(check_record_path(
-                path,
-                [&cli.look.scene, &cli.look.theme],
-            )?)),
+            out: std::sync::Mutex::new(Some(check_record_path(path, [&look.scene, &look.theme])?)),
             path: path.clone(),
             scene: scene_ref,
         })),
@@ -126,7 +129,7 @@ fn explore(cli: &Cli) -> Result<Option<i32>, Error> {
             let _ = r.save(script);
         }) as crate::terminal::SaveRecording
     });
-    let (result, script) = crate::terminal::run(app, cli.fps, save);
+    let (result, script) = crate::terminal::run(app, cli.fps, save, lesson);
     if let (Some(r), Some(script)) = (recording, script) {
         let saved = r
             .save(script)
@@ -252,16 +255,25 @@ fn man() -> CmdResult {
     Ok(())
 }
 
+/// The explorer ended by signal `n`: as the shell reports a process a signal killed, 128 + n.
+fn signalled(n: i32) -> ExitCode {
+    let _ = writeln!(std::io::stderr(), "turntable: ended by signal {n}");
+    ExitCode::from(128 + n as u8)
+}
+
 /// Entry point of the binary.
 pub fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
-        None => match explore(&cli) {
-            // As the shell reports a process a signal killed: 128 + its number.
-            Ok(Some(n)) => {
-                let _ = writeln!(std::io::stderr(), "turntable: ended by signal {n}");
-                return ExitCode::from(128 + n as u8);
-            }
+        None => match explore(&cli, &cli.look, None) {
+            Ok(Some(n)) => return signalled(n),
+            r => r.map(|_| ()),
+        },
+        Some(Command::Lesson(ref a)) => match lesson::run(a) {
+            Ok(Some((look, driver))) => match explore(&cli, &look, Some(driver)) {
+                Ok(Some(n)) => return signalled(n),
+                r => r.map(|_| ()),
+            },
             r => r.map(|_| ()),
         },
         Some(Command::Run(a)) => numerics::run(a),

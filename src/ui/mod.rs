@@ -1,6 +1,7 @@
 //! Pure rendering of the explorer's state into a ratatui frame.
 
 pub mod canvas;
+pub mod caption;
 pub mod chart;
 pub mod export;
 pub mod fit;
@@ -67,6 +68,7 @@ pub fn draw(frame: &mut Frame, app: &App) -> Option<CanvasGeom> {
         lesson,
     );
     frame.render_widget(Paragraph::new(status_line(app, status.width)), status);
+    caption::render(frame, &r, app);
     if app.help {
         help::render(frame, r.help, app);
     }
@@ -158,8 +160,14 @@ fn status_line(app: &App, width: u16) -> Line<'static> {
     // The long hint where it fits, measured; else the short one, whole hints dropped from
     // its end.
     let room = usize::from(width).saturating_sub(mouse.width());
-    // Space's hint says what it does now.
-    let space = if app.playing { "pause" } else { "play" };
+    // Space's hint says what it does now (while a lesson waits, it goes on).
+    let space = if app.lesson.prompt() == crate::app::lesson::Prompt::GoOn {
+        "go on"
+    } else if app.playing {
+        "pause"
+    } else {
+        "play"
+    };
     let long = format!(
         " ? help  Space {space}  .,  step  [] speed  f frame  m method  c compare  a forces  1-6 presets  x/p/v edit  q quit"
     );

@@ -4,6 +4,7 @@
 mod app;
 mod initial;
 mod integrator;
+mod lesson;
 mod time;
 mod view;
 
@@ -24,6 +25,7 @@ pub fn update(app: &mut App, action: Action) {
         Group::Integrator => integrator::apply(app, action),
         Group::View => view::apply(app, action),
         Group::App => app::apply(app, action),
+        Group::Lesson => lesson::apply(app, action),
     }
     app.ask_analysis();
 }
