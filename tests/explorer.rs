@@ -505,7 +505,11 @@ fn random_keys_keep_the_invariants() {
 fn bad_scene_or_theme_exits_2_before_touching_the_terminal() {
     let bin = env!("CARGO_BIN_EXE_turntable");
     for args in [["--scene", "nope"], ["--theme", "nope"]] {
-        let out = std::process::Command::new(bin).args(args).output().unwrap();
+        let out = std::process::Command::new(bin)
+            .env("XDG_CONFIG_HOME", "/nonexistent/turntable-tests/config")
+            .args(args)
+            .output()
+            .unwrap();
         assert_eq!(out.status.code(), Some(2), "{args:?}");
         assert!(out.stdout.is_empty(), "no escape codes on stdout");
         let err = String::from_utf8(out.stderr).unwrap();

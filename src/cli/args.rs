@@ -13,24 +13,28 @@ use std::path::PathBuf;
     version,
     about = "A particle sliding with dry friction on a rotating table (Agha, Gupta & Joseph 2015)",
     // The explorer's flags mean nothing to a subcommand: `turntable --fps 5 run` is an error.
-    args_conflicts_with_subcommands = true
+    args_conflicts_with_subcommands = true,
+    after_help = CONFIG_HELP
 )]
 pub struct Cli {
     #[command(subcommand)]
     pub command: Option<Command>,
     #[command(flatten)]
     pub look: Look,
-    /// Explorer: frame-rate cap while playing.
-    #[arg(long, default_value_t = 30, value_parser = clap::value_parser!(u32).range(1..=240))]
-    pub fps: u32,
+    /// Explorer: frame-rate cap while playing [default: 30].
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=240))]
+    pub fps: Option<u32>,
     /// Explorer: how plots draw points: braille (2×4 dots a cell), block (half blocks) or
     /// ascii (`*`). Default: braille, or ascii where the locale (LC_ALL, LC_CTYPE, LANG) is
     /// not UTF-8.
     #[arg(long, value_enum, value_name = "KIND")]
     pub marker: Option<MarkerArg>,
     /// Explorer: do not capture the mouse (M toggles it inside).
-    #[arg(long)]
+    #[arg(long, overrides_with = "mouse")]
     pub no_mouse: bool,
+    /// Explorer: capture the mouse (the default, unless the configuration says `mouse = false`).
+    #[arg(long, overrides_with = "no_mouse")]
+    pub mouse: bool,
     /// Explorer: record the session (keys, ticks, resizes, mouse) as a key script to FILE,
     /// written when the explorer exits; `turntable replay FILE` shows the same screens.
     #[arg(long, value_name = "FILE")]
@@ -78,12 +82,30 @@ pub struct Look {
     /// the script's own `# replay: --scene` line first).
     #[arg(long, value_name = "NAME|PATH")]
     pub scene: Option<String>,
-    /// Colour theme: dark, light, high-contrast, mono, or a .toml file. The explorer respects
-    /// NO_COLOR; replay ignores it (its output depends on its arguments alone) and only --ansi
-    /// shows colour.
-    #[arg(long, value_name = "NAME|PATH")]
+    /// Colour theme: dark, light, high-contrast, mono, one of yours by name (explorer), or a
+    /// .toml file; without a name, lists them. The explorer respects NO_COLOR; replay ignores it
+    /// (its output depends on its arguments alone) and only --ansi shows colour.
+    #[arg(long, value_name = "NAME|PATH", num_args = 0..=1, default_missing_value = "")]
     pub theme: Option<String>,
 }
+
+/// `turntable --help`, after the flags: the configuration file.
+const CONFIG_HELP: &str = "Configuration (explorer only): $XDG_CONFIG_HOME/turntable/config.toml \
+(~/.config/turntable/config.toml when XDG_CONFIG_HOME is unset) sets defaults for the explorer's \
+flags, which win over it:
+
+    theme = \"light\"        # a built-in, one of yours, or a .toml path (relative: to this folder)
+    fps = 60
+    mouse = false
+    marker = \"block\"       # braille, block or ascii
+    [units]                # as --mu, --rpm, --g (a scene's own [units] wins over these)
+    mu = 0.15
+    rpm = 33.3
+    g = 9.81
+
+Your themes: $XDG_CONFIG_HOME/turntable/themes/NAME.toml, chosen by NAME (`--theme NAME`); one \
+named as a built-in replaces it. A bad file exits with code 2 naming the file and the key. \
+`replay` and the numerical commands read no configuration (name a theme of yours by its path).";
 
 /// `replay --help`: the script grammar, so that an installed binary documents it.
 const REPLAY_ABOUT: &str = "Run a key script headlessly and print its snapshots.

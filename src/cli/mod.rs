@@ -3,6 +3,7 @@
 
 mod args;
 mod bench;
+pub mod config;
 mod numerics;
 pub mod replay;
 mod report;
@@ -71,11 +72,16 @@ pub(crate) fn solver_budget<E: Into<Error>>(tol_flag: &'static str) -> impl Fn(E
     }
 }
 
-/// Opens the explorer. Bad scenes, themes and `--record` paths fail before the terminal is
-/// touched. Returns the signal that ended it, if one did.
+/// Opens the explorer. Bad scenes, themes, configuration files and `--record` paths fail
+/// before the terminal is touched. Returns the signal that ended it, if one did.
 fn explore(cli: &Cli) -> Result<Option<i32>, Error> {
-    let (scene, theme) = (&cli.look.scene, &cli.look.theme);
-    let scene = match scene {
+    let config_dir = config::dir(|v| std::env::var_os(v));
+    let config = match &config_dir {
+        Some(d) => config::Config::load(d)?,
+        None => config::Config::default(),
+    };
+    let user_themes = config_dir.as_ref().map(|d| d.join("themes"));
+    let scene = match &cli.look.scene {
         Some(s) => crate::scene::Scene::load(s)?,
         None => crate::scene::Scene::default_scene(),
     };
@@ -83,13 +89,21 @@ fn explore(cli: &Cli) -> Result<Option<i32>, Error> {
     let (term, colorterm) = (std::env::var("TERM").ok(), std::env::var("COLORTERM").ok());
     let marker = cli
         .marker
+        .or(config.marker)
         .unwrap_or_else(|| MarkerArg::from_locale(|v| std::env::var(v).ok()));
-    let theme = crate::theme::Theme::resolve(theme.as_deref(), no_color)?
-        .with_depth(crate::theme::Depth::detect(
-            term.as_deref(),
-            colorterm.as_deref(),
-        ))
-        .with_marker(marker.marker());
+    // The flag, else the configuration's (which, a user's choice, wins over NO_COLOR too).
+    let theme_name = cli.look.theme.clone().or(config.theme.clone());
+    let theme =
+        crate::theme::Theme::resolve_in(theme_name.as_deref(), no_color, user_themes.as_deref())
+            .map_err(|e| match cli.look.theme {
+                None if config.theme.is_some() => config.blame("theme", e),
+                _ => e,
+            })?
+            .with_depth(crate::theme::Depth::detect(
+                term.as_deref(),
+                colorterm.as_deref(),
+            ))
+            .with_marker(marker.marker());
     let units = cli.units.units()?;
     let scene_ref = cli.look.scene.as_deref().map(scene_reference);
     if term.as_deref() == Some("dumb") {
@@ -101,7 +115,7 @@ fn explore(cli: &Cli) -> Result<Option<i32>, Error> {
         Some(path) => Some(std::sync::Arc::new(Recording {
             out: std::sync::Mutex::new(Some(check_record_path(
                 path,
-                [&cli.look.scene, &cli.look.theme],
+                [&cli.look.scene, &theme_name],
             )?)),
             path: path.clone(),
             scene: scene_ref,
@@ -115,18 +129,24 @@ fn explore(cli: &Cli) -> Result<Option<i32>, Error> {
         ));
     }
     let mut app = crate::app::App::new(scene, theme);
+    // Units: the flags, else the scene's own, else the configuration's.
     if units.is_some() {
         app.units = units;
+    } else if app.units.is_none() {
+        app.units = config.units;
     }
-    if cli.no_mouse {
-        app.mouse = false;
-    }
+    app.mouse = match (cli.no_mouse, cli.mouse) {
+        (true, _) => false,
+        (_, true) => true,
+        _ => config.mouse.unwrap_or(true),
+    };
     let save = recording.clone().map(|r| {
         Box::new(move |script: String| {
             let _ = r.save(script);
         }) as crate::terminal::SaveRecording
     });
-    let (result, script) = crate::terminal::run(app, cli.fps, save);
+    let fps = cli.fps.or(config.fps).unwrap_or(30);
+    let (result, script) = crate::terminal::run(app, fps, save);
     if let (Some(r), Some(script)) = (recording, script) {
         let saved = r
             .save(script)
