@@ -220,8 +220,8 @@ pub struct RunArgs {
     /// Keep integrating after escape is certified, up to tau-max.
     #[arg(long)]
     pub follow: bool,
-    /// Skip the second opinion (a run 1000x tighter in the other frame, about 4x this run's
-    /// work): no `certain` then, nor measured errors.
+    /// Skip the second opinion (a run 1000x tighter in the other frame, dearer than this
+    /// run): no `certain` then, nor measured errors.
     #[arg(long)]
     pub no_check: bool,
     /// Print one JSON object instead of text.
