@@ -8,6 +8,7 @@ pub mod bench;
 pub mod cli;
 pub mod engine;
 pub mod error;
+pub mod figure;
 pub mod files;
 pub mod replay;
 pub mod rng;

@@ -137,6 +137,8 @@ pub enum Command {
     Critical(CriticalArgs),
     /// CSV for Fig. 5 (v_e over phi), Fig. 6 (final rest xi over xi0) or the outcome map.
     Sweep(SweepArgs),
+    /// A figure as SVG, for slides and notes: fig5, fig6, map, trajectory or time.
+    Plot(PlotArgs),
     /// Work–precision measurements: error against cost for every method, and the speed goals.
     Bench(BenchArgs),
     /// Run a key script headlessly and print its snapshots.
@@ -332,6 +334,15 @@ pub enum SweepFigure {
 
 #[derive(Args, Debug)]
 pub struct Fig5Args {
+    #[command(flatten)]
+    pub data: Fig5Data,
+    #[command(flatten)]
+    pub out: OutArg,
+}
+
+/// What Fig. 5 is computed from (`sweep fig5`, `plot fig5`).
+#[derive(Args, Debug)]
+pub struct Fig5Data {
     /// Release radii.
     #[arg(long, value_delimiter = ',', allow_hyphen_values = true, default_values_t = [0.8, 0.5, 0.2, 0.001])]
     pub xi0: Vec<f64>,
@@ -343,12 +354,19 @@ pub struct Fig5Args {
     pub vtol: f64,
     #[command(flatten)]
     pub numerics: NumericsArgs,
-    #[command(flatten)]
-    pub out: OutArg,
 }
 
 #[derive(Args, Debug)]
 pub struct Fig6Args {
+    #[command(flatten)]
+    pub data: Fig6Data,
+    #[command(flatten)]
+    pub out: OutArg,
+}
+
+/// What Fig. 6 is computed from (`sweep fig6`, `plot fig6`).
+#[derive(Args, Debug)]
+pub struct Fig6Data {
     /// Number of release radii in [0, --xi0-max].
     #[arg(long, default_value_t = 72)]
     pub points: usize,
@@ -357,12 +375,19 @@ pub struct Fig6Args {
     pub xi0_max: f64,
     #[command(flatten)]
     pub numerics: NumericsArgs,
-    #[command(flatten)]
-    pub out: OutArg,
 }
 
 #[derive(Args, Debug)]
 pub struct MapArgs {
+    #[command(flatten)]
+    pub data: MapData,
+    #[command(flatten)]
+    pub out: OutArg,
+}
+
+/// What the outcome map is computed from (`sweep map`, `plot map`).
+#[derive(Args, Debug)]
+pub struct MapData {
     /// The release radius.
     #[arg(long, allow_hyphen_values = true)]
     pub xi0: f64,
@@ -384,8 +409,6 @@ pub struct MapArgs {
     pub vtol: f64,
     #[command(flatten)]
     pub numerics: NumericsArgs,
-    #[command(flatten)]
-    pub out: OutArg,
 }
 
 #[derive(Args, Debug)]
@@ -393,6 +416,89 @@ pub struct OutArg {
     /// Write the CSV here instead of stdout.
     #[arg(long)]
     pub out: Option<PathBuf>,
+}
+
+#[derive(Args, Debug)]
+pub struct PlotArgs {
+    #[command(subcommand)]
+    pub figure: PlotFigure,
+}
+
+/// What `plot` draws: each takes only the flags that mean something to it.
+#[derive(Subcommand, Debug)]
+pub enum PlotFigure {
+    /// Fig. 5: v_e over phi, one curve per --xi0.
+    Fig5 {
+        #[command(flatten)]
+        data: Fig5Data,
+        #[command(flatten)]
+        svg: SvgOut,
+    },
+    /// Fig. 6: final rest xi over xi0 for release at rest in the lab, with xi0c marked.
+    Fig6 {
+        #[command(flatten)]
+        data: Fig6Data,
+        #[command(flatten)]
+        svg: SvgOut,
+    },
+    /// The outcome map over (phi, v0) at one --xi0, v_e(phi) drawn over it.
+    Map {
+        #[command(flatten)]
+        data: MapData,
+        #[command(flatten)]
+        svg: SvgOut,
+    },
+    /// One run's path in the lab or the rotating frame, with the rim xi = 1.
+    Trajectory {
+        #[command(flatten)]
+        run: PlotRun,
+        /// The frame the path is drawn in.
+        #[arg(long, default_value = "lab", value_parser = variant::<Frame>())]
+        frame: Frame,
+        #[command(flatten)]
+        svg: SvgOut,
+    },
+    /// One run's xi, theta', |u| and energy against tau (the explorer's time plots).
+    Time {
+        #[command(flatten)]
+        run: PlotRun,
+        #[command(flatten)]
+        svg: SvgOut,
+    },
+}
+
+/// The run a trajectory or time figure shows: a scene, its release changed by the flags.
+#[derive(Args, Debug)]
+pub struct PlotRun {
+    /// A preset (A, B, C, D, fig1, fig2) or a .toml scene file: its release and integrator.
+    #[arg(long, default_value = "C", value_name = "NAME|PATH")]
+    pub scene: String,
+    /// Release radius xi0, instead of the scene's.
+    #[arg(long, allow_hyphen_values = true)]
+    pub xi0: Option<f64>,
+    /// Direction of the initial velocity (rad), instead of the scene's.
+    #[arg(long, allow_hyphen_values = true)]
+    pub phi: Option<f64>,
+    /// Initial speed relative to the table, instead of the scene's.
+    #[arg(long, allow_hyphen_values = true)]
+    pub v0: Option<f64>,
+    /// How it is released, instead of the scene's: velocity, table-rest or lab-rest.
+    #[arg(long, value_parser = variant::<Release>())]
+    pub release: Option<Release>,
+    /// Draw up to this time if the particle has neither stuck nor escaped far.
+    #[arg(long, default_value_t = 100.0, allow_hyphen_values = true)]
+    pub tau_max: f64,
+}
+
+/// Where a figure goes.
+#[derive(Args, Debug)]
+pub struct SvgOut {
+    /// The SVG file to write (atomically; an existing file is kept unless --force).
+    #[arg(long, value_name = "FILE.svg")]
+    pub out: PathBuf,
+    /// Replace --out if it exists.
+    #[arg(long)]
+    pub force: bool,
 }
 
 /// A clap parser for an engine enum: its names (from the strum derives) as the possible

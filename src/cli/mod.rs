@@ -5,6 +5,7 @@ mod args;
 mod bench;
 pub mod config;
 mod numerics;
+mod plot;
 pub mod replay;
 mod report;
 mod sweep;
@@ -288,6 +289,7 @@ pub fn main() -> ExitCode {
         Some(Command::Escape(a)) => numerics::escape(a),
         Some(Command::Critical(a)) => numerics::critical(a),
         Some(Command::Sweep(a)) => sweep::sweep(a),
+        Some(Command::Plot(a)) => plot::plot(a),
         Some(Command::Bench(a)) => bench::bench(a),
         Some(Command::Replay(a)) => replay::run(a),
         Some(Command::Completions(a)) => completions(a.shell),
