@@ -363,3 +363,85 @@ fn plot_keeps_files_and_refuses_what_does_not_apply() {
         assert!(!f.exists(), "{args:?}");
     }
 }
+
+/// The explorer's `E`: the page on screen, from what the explorer holds, to a new file each
+/// time (never over one), with a notice naming it.
+#[test]
+fn the_explorer_writes_the_page_to_a_new_file() {
+    use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
+    use turntable::app::App;
+    let dir = std::env::temp_dir().join(format!("turntable-export-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let mut app = App::new(
+        turntable::scene::Scene::preset("B").unwrap(),
+        turntable::theme::Theme::builtin("dark").unwrap(),
+    );
+    app.save_path = dir.join("turntable-scene.toml");
+    let press = |app: &mut App, code| app.handle_key(KeyEvent::new(code, KeyModifiers::NONE));
+    // It plays from the start: 80 ticks are τ = 4, past B's stop.
+    for _ in 0..80 {
+        app.tick();
+    }
+    common::render(&mut app, 100, 30);
+    press(&mut app, KeyCode::Char('E'));
+    let first = dir.join("turntable-turntable-1.svg");
+    assert_eq!(
+        app.notice.as_deref(),
+        Some(format!("wrote this page to {}", first.display()).as_str())
+    );
+    let tags = parse(&std::fs::read_to_string(&first).unwrap());
+    let (x, y) = (axis(&tags, "x-tick"), axis(&tags, "y-tick"));
+    // The trail ends where the particle is on screen: B at rest (docs/numerics.md).
+    let end = *points(with_class(&tags, "series")[0]).last().unwrap();
+    let now = app.sim.now();
+    assert!((x(end.0) - now.r.x).abs() < 1e-5 && (y(end.1) - now.r.y).abs() < 1e-5);
+    assert!((now.xi() - 0.9452679655).abs() < 1e-8, "{}", now.xi());
+    // Never over a file: a second press, and a name taken meanwhile, give new names.
+    std::fs::write(dir.join("turntable-turntable-3.svg"), "mine").unwrap();
+    press(&mut app, KeyCode::Char('E'));
+    press(&mut app, KeyCode::Char('E'));
+    assert!(
+        app.notice
+            .as_deref()
+            .unwrap()
+            .ends_with("turntable-turntable-4.svg")
+    );
+    assert!(dir.join("turntable-turntable-2.svg").exists());
+    assert_eq!(
+        std::fs::read_to_string(dir.join("turntable-turntable-3.svg")).unwrap(),
+        "mine"
+    );
+    // The escape-speed page: the curves the page computed, v_e(0.5, 0) among them.
+    press(&mut app, KeyCode::Tab);
+    press(&mut app, KeyCode::Tab);
+    common::render(&mut app, 100, 30);
+    press(&mut app, KeyCode::Char('E'));
+    let svg = std::fs::read_to_string(dir.join("turntable-escape-speed-1.svg")).unwrap();
+    let tags = parse(&svg);
+    let lines = with_class(&tags, "series");
+    assert_eq!(lines.len(), 4, "ξ0 0.5 and the paper's 0.8, 0.2, 0.001");
+    let (x, y) = (axis(&tags, "x-tick"), axis(&tags, "y-tick"));
+    let mine = points(lines[0]);
+    assert_eq!(mine.len(), turntable::analysis::CURVE_POINTS);
+    assert!(x(mine[0].0).abs() < 1e-5);
+    assert!((y(mine[0].1) - 0.60782364).abs() < 2e-6, "{}", y(mine[0].1));
+    assert_eq!(legend(&tags)[0], "ξ0 = 0.5");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// A replay writes no files: `E` there says what it would write.
+#[test]
+fn a_replay_only_says_what_e_would_write() {
+    let keys = out("replay").with_extension("keys");
+    std::fs::write(&keys, "resize 100x24\ntab\nE\n").unwrap();
+    let (code, screen, err) = turntable(&["replay", keys.to_str().unwrap()]);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        screen.contains(
+            "replay writes no files: E would write this page to turntable-time-plots-N.svg"
+        ),
+        "{screen}"
+    );
+    std::fs::remove_file(&keys).unwrap();
+}

@@ -49,6 +49,8 @@ pub enum Action {
     Pan(f64, f64),
     ResetView,
     Save,
+    /// Write the page on screen as SVG to a new file.
+    ExportSvg,
     ToggleMouse,
     /// Mouse: the release point here (model coordinates, as the canvas maps the click).
     PlaceRelease(glam::DVec2),
@@ -119,9 +121,8 @@ impl Action {
             CycleMethod | Loosen | Tighten | ToggleCompare | EstimateError => Group::Integrator,
             ToggleFrame | ToggleForces | ZoomIn | ZoomOut | Pan(..) | ResetView | TauWindow(_)
             | NextPage | PrevPage | Choose | Omega(_) | R0c(_) | Unit(..) | UnitsOff => Group::View,
-            Quit | Dismiss | ToggleHelp | HelpScroll(_) | HelpPage(_) | Save | ToggleMouse => {
-                Group::App
-            }
+            Quit | Dismiss | ToggleHelp | HelpScroll(_) | HelpPage(_) | Save | ExportSvg
+            | ToggleMouse => Group::App,
         }
     }
 }

@@ -125,6 +125,7 @@ pub const KEYMAP: &[Binding] = &[
     b(KeyCode::PageUp, N, Action::HelpPage(-1), "scroll help", "app"),
     b(KeyCode::PageDown, N, Action::HelpPage(1), "scroll help", "app"),
     b(ch('s'), N, Action::Save, "save scene (toml)", "app"),
+    b(ch('E'), N, Action::ExportSvg, "page as SVG (new file)", "app"),
     b(ch('M'), N, Action::ToggleMouse, "mouse capture on/off", "app"),
     b(ch('q'), N, Action::Quit, "quit", "app"),
     b(KeyCode::Esc, N, Action::Dismiss, "close help / notice", "app"),
