@@ -9,6 +9,7 @@ pub mod bench;
 pub mod cli;
 pub mod engine;
 pub mod error;
+pub mod figure;
 pub mod files;
 pub mod lesson;
 pub mod replay;

@@ -177,11 +177,18 @@ fn every_key_in_the_keymap_does_what_its_help_says() {
             Action::Quit => a.should_quit(),
             Action::Dismiss => !a.help && !a.should_quit(),
             Action::ToggleHelp => a.help && after.contains("help"),
-            // 80×24 shows 21 rows of the help's 34: 13 to scroll, a page is 21.
             Action::HelpScroll(d) => i32::from(a.help_scroll) == 5 + i32::from(d),
             Action::TauWindow(true) => a.tau_window.is_some_and(|w| w < now),
             Action::TauWindow(false) => a.tau_window == Some(2e-2),
-            Action::HelpPage(d) => a.help_scroll == if d > 0 { 13 } else { 0 },
+            // A page down from 5 reaches the end of the help at 80x24 (as long as the keymap).
+            Action::HelpPage(d) => {
+                a.help_scroll
+                    == if d > 0 {
+                        turntable::ui::help::max_scroll(80, 24, &a.theme)
+                    } else {
+                        0
+                    }
+            }
             Action::PlayPause => !a.is_playing() && after.contains("❚❚"),
             Action::StepForward => now > tau && !a.is_playing(),
             Action::StepBack => now < tau,
@@ -235,6 +242,11 @@ fn every_key_in_the_keymap_does_what_its_help_says() {
             Action::Save => {
                 after.contains("saved \"")
                     && Scene::load(a.save_path.to_str().unwrap()).unwrap().initial == a.initial
+            }
+            Action::ExportSvg => {
+                after.contains("wrote this page to")
+                    && std::fs::read_to_string(dir.join("turntable-turntable-1.svg"))
+                        .is_ok_and(|s| s.starts_with("<?xml"))
             }
             Action::ToggleMouse => !a.mouse_capture() && after.contains("mouse off"),
             Action::NextPage => a.page == Page::TimePlots && after.contains("time plots"),
@@ -333,11 +345,18 @@ fn help_overlay_lists_every_binding() {
     }
     // 80×24 shows it in two pages.
     let small = render(&mut a, 80, 24);
-    assert!(small.contains("presets A B C D fig1") && small.contains("rows 1–21 of 34, ↓ more"));
+    // As many rows as the keymap makes: 21 on screen, the rest a page down.
+    let all = 21 + turntable::ui::help::max_scroll(80, 24, &a.theme);
+    assert!(all > 30, "{all}");
+    assert!(
+        small.contains("presets A B C D fig1")
+            && small.contains(&format!("rows 1–21 of {all}, ↓ more"))
+    );
     a.handle_key(KeyEvent::new(KeyCode::PageDown, KeyModifiers::NONE));
     let small = render(&mut a, 80, 24);
     assert!(
-        small.contains("Space/Enter    go on when it waits") && small.contains("rows 14–34 of 34")
+        small.contains("Space/Enter    go on when it waits")
+            && small.contains(&format!("rows {}–{all} of {all}", all - 20))
     );
     assert!(
         small.contains("Esc            close help / notice"),
@@ -526,7 +545,11 @@ fn random_keys_keep_the_invariants() {
 fn bad_scene_or_theme_exits_2_before_touching_the_terminal() {
     let bin = env!("CARGO_BIN_EXE_turntable");
     for args in [["--scene", "nope"], ["--theme", "nope"]] {
-        let out = std::process::Command::new(bin).args(args).output().unwrap();
+        let out = std::process::Command::new(bin)
+            .env("XDG_CONFIG_HOME", "/nonexistent/turntable-tests/config")
+            .args(args)
+            .output()
+            .unwrap();
         assert_eq!(out.status.code(), Some(2), "{args:?}");
         assert!(out.stdout.is_empty(), "no escape codes on stdout");
         let err = String::from_utf8(out.stderr).unwrap();

@@ -20,6 +20,7 @@ fn dir(tag: &str) -> PathBuf {
 /// failure, reported as exit -1).
 fn turntable_in(cwd: &Path, args: &[&str]) -> (i32, String, String) {
     let mut child = Command::new(env!("CARGO_BIN_EXE_turntable"))
+        .env("XDG_CONFIG_HOME", "/nonexistent/turntable-tests/config")
         .args(args)
         .current_dir(cwd)
         .stdin(Stdio::null())

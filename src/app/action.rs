@@ -53,6 +53,8 @@ pub enum Action {
     SaveAs,
     /// An edit of the name being typed (only while the prompt is open).
     Name(NameEdit),
+    /// Write the page on screen as SVG to a new file.
+    ExportSvg,
     ToggleMouse,
     /// Mouse: the release point here (model coordinates, as the canvas maps the click).
     PlaceRelease(glam::DVec2),
@@ -130,7 +132,7 @@ impl Action {
             ToggleFrame | ToggleForces | ZoomIn | ZoomOut | Pan(..) | ResetView | TauWindow(_)
             | NextPage | PrevPage | Choose | Omega(_) | R0c(_) | Unit(..) | UnitsOff => Group::View,
             Quit | Dismiss | ToggleHelp | HelpScroll(_) | HelpPage(_) | Save | SaveAs | Name(_)
-            | ToggleMouse => Group::App,
+            | ExportSvg | ToggleMouse => Group::App,
             Answer(_) | GoOn => Group::Lesson,
         }
     }

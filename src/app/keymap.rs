@@ -134,6 +134,7 @@ pub const KEYMAP: &[Binding] = &[
     b(KeyCode::PageDown, N, Action::HelpPage(1), "scroll help", "app"),
     b(ch('s'), N, Action::Save, "save scene (toml)", "app"),
     b(ch('S'), N, Action::SaveAs, "save scene as… (name, Enter)", "app"),
+    b(ch('E'), N, Action::ExportSvg, "page as SVG (new file)", "app"),
     b(ch('M'), N, Action::ToggleMouse, "mouse capture on/off", "app"),
     b(ch('q'), N, Action::Quit, "quit", "app"),
     b(KeyCode::Esc, N, Action::Dismiss, "close help / notice", "app"),

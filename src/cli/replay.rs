@@ -68,7 +68,14 @@ pub fn prepare(
         None => crate::scene::Scene::default_scene(),
     };
     let theme = a.look.theme.as_ref().or(own.theme.as_ref());
-    let theme = crate::theme::Theme::resolve(theme.map(String::as_str), false)?;
+    // No user themes by name: a replay reads no configuration.
+    let theme =
+        crate::theme::Theme::resolve(theme.map(String::as_str), false).map_err(|e| match e {
+            Error::Invalid(m) if !m.starts_with("theme file") => Error::Invalid(format!(
+                "{m}; replay reads no configuration: name a theme of yours by its path"
+            )),
+            e => e,
+        })?;
     let mut app = crate::app::App::new(scene, theme);
     app.writes_files = false;
     let opts = Options {

@@ -4,6 +4,7 @@ pub mod canvas;
 pub mod caption;
 pub mod chart;
 pub mod export;
+pub mod figure;
 pub mod fit;
 pub mod help;
 pub mod layout;

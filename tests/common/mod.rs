@@ -4,10 +4,14 @@
 
 use std::process::Command;
 
+/// An XDG_CONFIG_HOME with nothing in it: tests never read the user's configuration.
+pub const NO_CONFIG: &str = "/nonexistent/turntable-tests/config";
+
 /// Runs `turntable` with `args`: exit code, stdout, stderr.
 pub fn turntable(args: &[&str]) -> (i32, String, String) {
     let out = Command::new(env!("CARGO_BIN_EXE_turntable"))
         .args(args)
+        .env("XDG_CONFIG_HOME", NO_CONFIG)
         .output()
         .unwrap();
     (

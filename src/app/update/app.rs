@@ -26,6 +26,13 @@ pub(super) fn apply(app: &mut App, action: Action) {
         Action::Save => save(app, None),
         Action::SaveAs => app.naming = Some(String::new()),
         Action::Name(edit) => name(app, edit),
+        Action::ExportSvg if !app.writes_files => {
+            app.notice = Some(format!(
+                "replay saves nothing: this page → turntable-{}-N.svg (the first free N)",
+                crate::ui::figure::slug(app.page)
+            ));
+        }
+        Action::ExportSvg => app.notice = Some(export_svg(app)),
         Action::ToggleMouse => {
             app.mouse = !app.mouse;
             app.notice = Some(
@@ -106,6 +113,37 @@ fn file_stem(name: &str) -> String {
     } else {
         words.join("-")
     }
+}
+
+/// Writes the page on screen as SVG to the first free `turntable-PAGE-N.svg` in the folder
+/// scenes are saved to (the current one); never over a file. Says where, or why not.
+fn export_svg(app: &App) -> String {
+    use std::io::Write;
+    let (fig, whole) = crate::ui::figure::page(app);
+    let text = crate::figure::to_svg(&fig);
+    let slug = crate::ui::figure::slug(app.page);
+    let dir = app.save_path.parent().unwrap_or(std::path::Path::new(""));
+    for n in 1..=999 {
+        let path = dir.join(format!("turntable-{slug}-{n}.svg"));
+        if path.symlink_metadata().is_ok() {
+            continue;
+        }
+        let written = crate::files::Output::create(&path).and_then(|mut out| {
+            out.write_all(text.as_bytes())?;
+            out.finish_new()
+        });
+        return match written {
+            Ok(()) if whole => format!("wrote this page to {}", path.display()),
+            Ok(()) => format!(
+                "wrote this page to {} (partial: it is still computing)",
+                path.display()
+            ),
+            // Taken meanwhile: the next name.
+            Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => continue,
+            Err(e) => format!("could not write {}: {e}", path.display()),
+        };
+    }
+    format!("could not write turntable-{slug}-N.svg: 999 names taken")
 }
 
 /// Moves the help by `rows` (no further than its end at this size); nothing when it is shut.
