@@ -7,7 +7,7 @@
 
 use crate::engine::model::turn_angle;
 use crate::engine::roots::bisect;
-use crate::engine::solve::{CLASSIFY_TAU, critical_radius, escape_speed};
+use crate::engine::solve::{CLASSIFY_TAU, GoOn, always, critical_radius_until, escape_speed_until};
 use crate::engine::{Initial, Outcome, Release, Run, Settings};
 use crate::error::Error;
 use std::sync::Arc;
@@ -20,9 +20,23 @@ pub const CURVE_POINTS: usize = 72;
 pub const CURVE_VTOL: f64 = 1e-6;
 /// The paper's Fig. 5 radii.
 pub const PAPER_XI0: [f64; 4] = [0.8, 0.5, 0.2, 0.001];
-/// The largest outcome map asked for, whatever the terminal (it is the plot's size, one cell a
-/// character: see `ui::pages::map_grid`).
-pub const MAP_MAX: (usize, usize) = (400, 200);
+/// The most cells an outcome map has, whatever the terminal: up to this the grid is the plot's
+/// size, one cell a character (see `ui::pages::map_grid`); a larger plot gets a coarser grid of
+/// its shape, each cell drawn over several characters. A 1000×1000 terminal so costs what a
+/// 250×64 plot does (about 0.6 s of pieces), not 80 000 cells.
+pub const MAP_CELLS: usize = 16_000;
+
+/// The grid for a plot of `w` × `h` characters: the plot's own, scaled down to at most
+/// [`MAP_CELLS`] cells, keeping its shape.
+pub fn map_grid_for(w: usize, h: usize) -> (usize, usize) {
+    let cells = w * h;
+    if cells <= MAP_CELLS {
+        return (w, h);
+    }
+    let k = (MAP_CELLS as f64 / cells as f64).sqrt();
+    let scale = |n: usize| ((n as f64 * k) as usize).max(1);
+    (scale(w), scale(h))
+}
 /// Radii of the rest-radius curve (Fig. 6), over [0, [`REST_XI0_MAX`]].
 pub const REST_POINTS: usize = 101;
 pub const REST_XI0_MAX: f64 = 1.5;
@@ -32,6 +46,8 @@ pub const REST_XI0_MAX: f64 = 1.5;
 pub enum Job {
     /// v_e(φ) at ξ0 (Fig. 5).
     Curve { xi0: f64 },
+    /// The least v_e at ξ0 (inside ξ = 1), refined from a curve's least angle `near`.
+    Least { xi0: f64, near: f64 },
     /// Stuck or escaped over (φ, v0) at ξ0 in a release mode, speeds up to `v0_max`, on a
     /// grid of `size` = angles × speeds.
     Map {
@@ -55,6 +71,8 @@ pub enum Piece {
     Rest { i: usize, xi: Option<f64> },
     /// The critical radius ξ0c.
     Critical(f64),
+    /// Where v_e is least and its value (φ, v_e); `None` if the search failed.
+    Least(Option<(f64, f64)>),
 }
 
 /// The release speeds at one angle that end stuck.
@@ -87,13 +105,24 @@ const WINDOW_SCAN: usize = 200;
 /// engine's certified solver). Outside: a scan of [`WINDOW_SCAN`] speeds up to the solver's
 /// ceiling 2(1 + ξ0) + 2 finds the window, bisection on the outcome sets each edge.
 pub fn sticking_speeds(xi0: f64, phi: f64, settings: Settings, tol: f64) -> Speeds {
+    sticking_speeds_until(xi0, phi, settings, tol, &always)
+}
+
+/// [`sticking_speeds`], asking `go_on` before each run (once it says stop, what is left is
+/// `Unknown`).
+fn sticking_speeds_until(xi0: f64, phi: f64, settings: Settings, tol: f64, go_on: GoOn) -> Speeds {
     if xi0 <= 1.0 {
-        return escape_speed(xi0, phi, settings, tol).map_or(Speeds::Unknown, |t| Speeds::Stick {
-            lo: 0.0,
-            hi: t.value,
+        return escape_speed_until(xi0, phi, settings, tol, go_on).map_or(Speeds::Unknown, |t| {
+            Speeds::Stick {
+                lo: 0.0,
+                hi: t.value,
+            }
         });
     }
     let sticks = |v0: f64| {
+        if !go_on() {
+            return Err(Error::Failed("cancelled".into()));
+        }
         classify(Initial::velocity(xi0, phi, v0), settings).map(|c| c.outcome == Outcome::Stuck)
     };
     let top = 2.0 * (1.0 + xi0) + 2.0;
@@ -171,6 +200,23 @@ pub fn curve_settings(s: Settings) -> Settings {
     }
 }
 
+/// The least v_e is sought to this width in φ (rad): 3e-4 π, the page's third decimal in π.
+pub const LEAST_PHI_TOL: f64 = 1e-3;
+/// ... with escape speeds to this width: v_e is quadratic at its minimum, so φ is resolved to
+/// about √(vtol / v_e″) ≈ 3e-4 rad there (v_e″ ≈ 0.1 at ξ0 = 0.5).
+pub const LEAST_VTOL: f64 = 1e-8;
+
+/// Where v_e(φ) is least at `xi0` (Fig. 5's minimum) between the neighbours of a curve's least
+/// angle `near`, by golden-section search: (φ in [0, 2π), v_e).
+fn least(xi0: f64, near: f64, settings: Settings, go_on: GoOn) -> Option<(f64, f64)> {
+    let ve = |phi: f64| escape_speed_until(xi0, phi, settings, LEAST_VTOL, go_on).map(|t| t.value);
+    let step = angle(1, CURVE_POINTS);
+    let phi =
+        crate::engine::roots::golden_min(&mut |p| ve(p), near - step, near + step, LEAST_PHI_TOL)
+            .ok()?;
+    Some((turn_angle(phi), ve(phi).ok()?))
+}
+
 /// The angles of a curve: φ_i = 2π i / n.
 pub fn angle(i: usize, n: usize) -> f64 {
     std::f64::consts::TAU * i as f64 / n as f64
@@ -238,6 +284,7 @@ pub fn outcome_map(
 pub fn pieces(job: &Job) -> usize {
     match job {
         Job::Curve { .. } => CURVE_POINTS,
+        Job::Least { .. } => 1,
         Job::Map { size, .. } => size.0 * size.1,
         Job::Rest => REST_POINTS + 1,
     }
@@ -245,12 +292,19 @@ pub fn pieces(job: &Job) -> usize {
 
 /// Piece `k` of `job`.
 pub fn piece(job: &Job, k: usize, settings: Settings) -> Piece {
-    match *job {
+    piece_until(job, k, settings, &always).expect("never cancelled")
+}
+
+/// Piece `k` of `job`, asking `go_on` before each run: `None` once it said stop (the piece is
+/// then moot, and its partial answer is dropped). `go_on` must stay false once it is false.
+pub fn piece_until(job: &Job, k: usize, settings: Settings, go_on: GoOn) -> Option<Piece> {
+    let p = match *job {
         Job::Curve { xi0 } => {
             let phi = angle(k, CURVE_POINTS);
-            let v = sticking_speeds(xi0, phi, curve_settings(settings), CURVE_VTOL);
+            let v = sticking_speeds_until(xi0, phi, curve_settings(settings), CURVE_VTOL, go_on);
             Piece::Escape { i: k, v }
         }
+        Job::Least { xi0, near } => Piece::Least(least(xi0, near, curve_settings(settings), go_on)),
         Job::Map {
             xi0,
             release,
@@ -265,16 +319,17 @@ pub fn piece(job: &Job, k: usize, settings: Settings) -> Piece {
             });
             Piece::Cell { i: k, cell }
         }
-        Job::Rest if k == REST_POINTS => {
-            Piece::Critical(critical_radius(settings, 1e-6).map_or(f64::NAN, |t| t.value))
-        }
+        Job::Rest if k == REST_POINTS => Piece::Critical(
+            critical_radius_until(settings, 1e-6, go_on).map_or(f64::NAN, |t| t.value),
+        ),
         Job::Rest => {
             let xi0 = REST_XI0_MAX * k as f64 / (REST_POINTS - 1) as f64;
             let cell = classify(Initial::at_rest(xi0, Release::LabRest), settings);
             let xi = cell.ok().and_then(|c| c.rest).map(|r| r.0);
             Piece::Rest { i: k, xi }
         }
-    }
+    };
+    go_on().then_some(p)
 }
 
 /// A request in flight: which job, its generation, and the pieces received so far.
@@ -293,9 +348,14 @@ pub struct Analysis {
     pub progress: Option<Progress>,
     /// Pieces received and not yet taken by the app.
     inbox: Vec<Piece>,
+    /// Inline, the request not yet computed: it waits for [`Analysis::compute`] (before a
+    /// frame is drawn), so keys that supersede it cost nothing.
+    pending: Option<Request>,
+    /// Pieces computed inline so far: the work a headless session did, counted.
+    computed: u64,
 }
 
-/// A job for the worker: its generation, and the pieces still to compute.
+/// A job: its generation (for the worker), the job, and the pieces still to compute.
 type Request = (u64, Job, Settings, Vec<usize>);
 
 #[derive(Debug)]
@@ -312,6 +372,8 @@ impl Clone for Analysis {
             worker: None,
             progress: self.progress.clone(),
             inbox: self.inbox.clone(),
+            pending: self.pending.clone(),
+            computed: self.computed,
         }
     }
 }
@@ -323,16 +385,19 @@ impl Default for Analysis {
 }
 
 impl Analysis {
-    /// Pieces computed at the request, on the caller's thread.
+    /// Pieces computed on the caller's thread, when [`Analysis::compute`] asks.
     pub fn inline() -> Analysis {
         Analysis {
             worker: None,
             progress: None,
             inbox: Vec::new(),
+            pending: None,
+            computed: 0,
         }
     }
 
-    /// Pieces computed on a worker thread and streamed back.
+    /// Pieces computed on a worker thread and streamed back. A newer request stops the piece
+    /// running at its next run (see [`piece_until`]), so it waits for one bounded run at most.
     pub fn threaded() -> Analysis {
         let (jobs, inbox) = channel::<Request>();
         let (out, received) = channel();
@@ -340,11 +405,12 @@ impl Analysis {
         let current = Arc::clone(&generation);
         std::thread::spawn(move || {
             while let Ok((gen_id, job, settings, todo)) = inbox.recv() {
+                let go_on = || current.load(Ordering::Relaxed) == gen_id;
                 for k in todo {
-                    if current.load(Ordering::Relaxed) != gen_id {
+                    let Some(p) = piece_until(&job, k, settings, &go_on) else {
                         break;
-                    }
-                    if out.send((gen_id, piece(&job, k, settings))).is_err() {
+                    };
+                    if out.send((gen_id, p)).is_err() {
                         return;
                     }
                 }
@@ -358,47 +424,60 @@ impl Analysis {
             }),
             progress: None,
             inbox: Vec::new(),
+            pending: None,
+            computed: 0,
         }
     }
 
     /// Asks for the pieces `todo` of `job` (cancelling any other job in flight): those a
-    /// cancelled request left are not computed again. Inline, they are computed now.
+    /// cancelled request left are not computed again. Inline, they wait for
+    /// [`Analysis::compute`].
     pub fn request(&mut self, job: Job, settings: Settings, todo: Vec<usize>) {
         self.inbox.clear();
         let done = pieces(&job) - todo.len().min(pieces(&job));
+        self.progress = Some(Progress {
+            job,
+            settings,
+            done,
+        });
         match &self.worker {
             Some(w) => {
                 let id = w.generation.fetch_add(1, Ordering::Relaxed) + 1;
-                self.progress = Some(Progress {
-                    job,
-                    settings,
-                    done,
-                });
                 if let Err(e) = w.jobs.send((id, job, settings, todo)) {
                     self.worker = None;
                     self.request(job, settings, e.0.3);
                 }
             }
-            None => {
-                self.inbox = todo.iter().map(|&k| piece(&job, k, settings)).collect();
-                self.progress = Some(Progress {
-                    job,
-                    settings,
-                    done: pieces(&job),
-                });
+            None => self.pending = Some((0, job, settings, todo)),
+        }
+    }
+
+    /// Inline, computes the pending request now; with a worker, nothing (it computes as it goes).
+    pub fn compute(&mut self) {
+        if let Some((_, job, settings, todo)) = self.pending.take() {
+            self.inbox = todo.iter().map(|&k| piece(&job, k, settings)).collect();
+            self.computed += todo.len() as u64;
+            if let Some(p) = self.progress.as_mut() {
+                p.done = pieces(&job);
             }
         }
     }
 
     /// Stops the job in flight, if any (its pieces so far are kept by whoever took them).
     pub fn cancel(&mut self) {
-        if self.busy() {
+        if self.busy() || self.pending.is_some() {
             if let Some(w) = &self.worker {
                 w.generation.fetch_add(1, Ordering::Relaxed);
             }
             self.progress = None;
             self.inbox.clear();
+            self.pending = None;
         }
+    }
+
+    /// Pieces computed inline since this was made.
+    pub fn computed(&self) -> u64 {
+        self.computed
     }
 
     /// The job in flight (or last completed).
@@ -406,11 +485,14 @@ impl Analysis {
         self.progress.as_ref().map(|p| (p.job, p.settings))
     }
 
-    /// Whether pieces are still to come.
+    /// Whether pieces are still to come from the worker (inline, nothing comes with time:
+    /// [`Analysis::compute`] does it all).
     pub fn busy(&self) -> bool {
-        self.progress
-            .as_ref()
-            .is_some_and(|p| p.done < pieces(&p.job))
+        self.worker.is_some()
+            && self
+                .progress
+                .as_ref()
+                .is_some_and(|p| p.done < pieces(&p.job))
     }
 
     /// The pieces that arrived since the last call (none after a newer request).

@@ -49,6 +49,7 @@ impl From<crate::engine::error::Error> for Error {
             E::Invalid(m) => Error::Invalid(m),
             E::Run(r) => Error::Run(r),
             E::Failed(m) => Error::Failed(m),
+            E::Cancelled => Error::Failed("cancelled".into()),
         }
     }
 }

@@ -108,8 +108,11 @@ impl Output {
         match self {
             Output::Replace { tmp, dest } => {
                 tmp.as_file().sync_all().map_err(|e| err(&dest, e))?;
-                tmp.persist_noclobber(&dest)
-                    .map_err(|e| err(&dest, e.error))?;
+                // Keeps the kind: a caller tries the next name on AlreadyExists.
+                tmp.persist_noclobber(&dest).map_err(|e| {
+                    let kind = e.error.kind();
+                    io::Error::new(kind, err(&dest, e.error))
+                })?;
                 Ok(())
             }
             Output::Direct(_) => Err(io::Error::from(io::ErrorKind::AlreadyExists)),

@@ -4,11 +4,14 @@
 
 pub mod analysis;
 pub mod app;
+pub mod asciicast;
 pub mod bench;
 pub mod cli;
 pub mod engine;
 pub mod error;
+pub mod figure;
 pub mod files;
+pub mod lesson;
 pub mod pin;
 pub mod replay;
 pub mod rng;

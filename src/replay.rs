@@ -6,6 +6,7 @@
 //! output on every run and machine.
 
 use crate::app::App;
+use crate::asciicast::Cast;
 use crate::script::Step;
 use crate::session::Session;
 use crate::ui::export::{ansi_text, plain_text};
@@ -49,22 +50,78 @@ pub fn replay_to(
     opts: &Options,
     out: &mut dyn std::io::Write,
 ) -> std::io::Result<()> {
+    run(app, steps, opts, out, None)
+}
+
+/// Runs `steps` as [`replay_to`] does and records them as an asciicast v2 (see
+/// [`crate::asciicast`]) to `cast`: a frame after each key, tick, resize or mouse event that
+/// changed the screen, timed by the ticks passed.
+pub fn replay_cast(
+    app: App,
+    steps: &[Step],
+    opts: &Options,
+    out: &mut dyn std::io::Write,
+    cast: &mut dyn std::io::Write,
+    title: &str,
+) -> std::io::Result<()> {
+    let mut cast = Cast::new(cast, opts.size.0, opts.size.1, title)?;
+    run(app, steps, opts, out, Some(&mut cast))
+}
+
+fn run(
+    app: App,
+    steps: &[Step],
+    opts: &Options,
+    out: &mut dyn std::io::Write,
+    mut cast: Option<&mut Cast>,
+) -> std::io::Result<()> {
     let mut s = Session::headless(app, opts.size.0, opts.size.1, false);
     let mut shots = 0;
+    // Ticks passed: the recording's clock.
+    let mut ticks = 0;
+    if let Some(c) = cast.as_deref_mut() {
+        c.frame(ticks, s.screen())?;
+    }
     for step in steps {
         if s.app.should_quit() {
             break;
         }
-        match step {
-            Step::Snapshot(label) => {
+        match (step, cast.as_deref_mut()) {
+            (Step::Snapshot(label), c) => {
                 shots += 1;
                 snapshot(&mut s, out, shots, label.as_deref(), opts.ansi)?;
+                if let Some(c) = c {
+                    c.marker(ticks, label.as_deref().unwrap_or(""))?;
+                    c.frame(ticks, s.screen())?;
+                }
             }
-            step => s.apply(step),
+            (Step::Tick(n), Some(c)) => {
+                // Tick by tick, a frame each, as the explorer draws them.
+                for _ in 0..*n {
+                    if !s.app.is_playing() {
+                        break;
+                    }
+                    s.apply(&Step::Tick(1));
+                    ticks += 1;
+                    c.frame(ticks, s.screen())?;
+                }
+            }
+            (step, c) => {
+                s.apply(step);
+                if let Some(c) = c {
+                    if let Step::Resize(w, h) = step {
+                        c.resize(ticks, *w, *h)?;
+                    }
+                    c.frame(ticks, s.screen())?;
+                }
+            }
         }
     }
     if shots == 0 {
         snapshot(&mut s, out, 1, Some("final"), opts.ansi)?;
+    }
+    if let Some(c) = cast {
+        c.frame(ticks, s.screen())?;
     }
     out.flush()
 }

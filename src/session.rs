@@ -33,6 +33,8 @@ pub struct Session<B: Backend> {
     pub app: App,
     pub term: Terminal<B>,
     recorder: Option<SharedRecorder>,
+    /// An interactive lesson's script, fed in as time passes (see [`Session::pump_lesson`]).
+    lesson: Option<crate::lesson::Driver>,
 }
 
 impl<B: Backend> Session<B> {
@@ -50,6 +52,7 @@ impl<B: Backend> Session<B> {
             app,
             term,
             recorder,
+            lesson: None,
         })
     }
 
@@ -87,6 +90,53 @@ impl<B: Backend> Session<B> {
             lock(r).tick();
         }
         self.app.tick();
+        if let Some(d) = &mut self.lesson {
+            d.ticked();
+        }
+    }
+
+    /// Runs an interactive lesson: its steps are fed in by [`Session::pump_lesson`].
+    pub fn start_lesson(&mut self, driver: crate::lesson::Driver) {
+        self.app.lesson.name = Some(driver.name().to_string());
+        self.lesson = Some(driver);
+    }
+
+    /// Applies the lesson's steps that are due: all of them up to a `tick N` still counting
+    /// (it counts the session's own ticks, and ends at once while time stands still, as in a
+    /// replay), a `wait` or an unanswered `ask` (until the keys answer; the loop and the clock
+    /// go on meanwhile), or the end. `resize` and `snapshot` mean nothing here.
+    pub fn pump_lesson(&mut self) -> Result<(), B::Error> {
+        let Some(mut d) = self.lesson.take() else {
+            return Ok(());
+        };
+        let result = self.feed(&mut d);
+        self.lesson = Some(d);
+        result
+    }
+
+    fn feed(&mut self, d: &mut crate::lesson::Driver) -> Result<(), B::Error> {
+        while !(self.app.lesson.holds() || self.app.should_quit()) {
+            if d.counting() && self.app.is_playing() {
+                return Ok(());
+            }
+            let Some(step) = d.next_step() else {
+                if !self.app.lesson.done {
+                    self.app.lesson.done = true;
+                    self.app.invalidate();
+                }
+                return Ok(());
+            };
+            match step {
+                Step::Tick(n) => d.count(n),
+                Step::Wait => self.app.wait(),
+                Step::Mouse(m) => self.mouse(m)?,
+                Step::Resize(..) | Step::Snapshot(_) => {}
+                Step::Key(k) => self.press(k),
+                Step::Say(t) => self.app.say(t),
+                Step::Ask(t) => self.app.ask(t),
+            }
+        }
+        Ok(())
     }
 
     /// The terminal is now `width` × `height`: recorded, and the next frame is redrawn.
@@ -97,7 +147,9 @@ impl<B: Backend> Session<B> {
         self.app.resize(width, height);
     }
 
+    /// Draws the app, its analysis pages brought up to date first (headless, computed now).
     pub fn draw(&mut self) -> Result<(), B::Error> {
+        self.app.sync_analysis();
         let mut geom = None;
         let ascii = self.app.theme.marker == Marker::Dot;
         self.term.draw(|f| {
@@ -221,6 +273,10 @@ impl Session<TestBackend> {
                 self.screen();
             }
             Step::Mouse(m) => ok(self.mouse(*m)),
+            Step::Say(t) => self.app.say(t.clone()),
+            Step::Ask(t) => self.app.ask(t.clone()),
+            // Headless, a lesson goes on.
+            Step::Wait => {}
         }
     }
 }

@@ -130,10 +130,12 @@ pub type SaveRecording = Box<dyn FnOnce(String) + Send>;
 /// Returns the signal (SIGTERM, SIGHUP, SIGINT, …) that ended it, if one did, and with `record` the
 /// session as a key script (also after a signal or an error, as far as it got). If the
 /// terminal is gone and the process must end without returning, `record` gets that script.
+/// With `lesson`, its script is fed in as the session goes (`Session::pump_lesson`).
 pub fn run(
     mut app: App,
     fps: u32,
     record: Option<SaveRecording>,
+    lesson: Option<crate::lesson::Driver>,
 ) -> (io::Result<Option<i32>>, Option<String>) {
     let flags = Arc::new(Flags::default());
     let finished = Arc::new(AtomicBool::new(false));
@@ -157,6 +159,9 @@ pub fn run(
             return (Err(e), None);
         }
     };
+    if let Some(d) = lesson {
+        session.start_lesson(d);
+    }
     let result = event_loop(&mut session, fps.clamp(1, 240), &flags);
     finished.store(true, Ordering::Relaxed);
     restore();
@@ -254,6 +259,8 @@ fn event_loop(
         if flags.resume.swap(false, Ordering::Relaxed) {
             resume(session)?;
         }
+        // A lesson's steps that are due (never a wait: it holds as state, the loop goes on).
+        session.pump_lesson()?;
         if session.app.mouse_capture() != mouse_on {
             mouse_on = session.app.mouse_capture();
             if mouse_on {
@@ -270,6 +277,8 @@ fn event_loop(
                     break;
                 }
                 session.tick();
+                // A lesson's `tick N` ends on its own tick, not a frame later.
+                session.pump_lesson()?;
             }
         }
         let gap = flight.gap(fps);

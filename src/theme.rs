@@ -4,6 +4,7 @@
 //! `"reset"`, ...).
 
 use crate::error::Error;
+use std::path::Path;
 use std::str::FromStr;
 
 use ratatui::style::Color;
@@ -213,19 +214,38 @@ impl Theme {
     /// ending in `.toml`). Err is one human-readable line naming the file or
     /// name and the problem.
     pub fn load(name_or_path: &str) -> Result<Theme, Error> {
+        Self::load_in(name_or_path, None)
+    }
+
+    /// As [`Theme::load`], with the user's themes in `user` (`NAME.toml`) found by name too.
+    /// A user theme named as a built-in one replaces it, so a user can adjust `dark`.
+    pub fn load_in(name_or_path: &str, user: Option<&Path>) -> Result<Theme, Error> {
         if name_or_path.contains('/') || name_or_path.ends_with(".toml") {
-            let text = crate::files::read_bounded(
-                std::path::Path::new(name_or_path),
-                crate::files::READ_CAP,
-            )
-            .map_err(|e| Error::Invalid(format!("theme file {e}")))?;
-            return parse(&text)
-                .map_err(|p| Error::Invalid(format!("theme file {name_or_path}: {p}")));
+            return Self::read(Path::new(name_or_path));
+        }
+        if let Some(file) = user
+            .filter(|_| !name_or_path.is_empty())
+            .map(|d| d.join(format!("{name_or_path}.toml")))
+            .filter(|f| f.symlink_metadata().is_ok())
+        {
+            return Self::read(&file);
         }
         Self::builtin(name_or_path).ok_or_else(|| {
+            let what = match name_or_path {
+                "" => "a theme name is needed".to_string(),
+                n => format!("unknown theme '{n}'"),
+            };
+            Error::Invalid(format!("{what} ({})", available(user)))
+        })
+    }
+
+    fn read(path: &Path) -> Result<Theme, Error> {
+        let text = crate::files::read_bounded(path, crate::files::READ_CAP)
+            .map_err(|e| Error::Invalid(format!("theme file {e}")))?;
+        parse(&text).map_err(|p| {
             Error::Invalid(format!(
-                "unknown theme '{name_or_path}' (built-in: {}; or a path to a .toml file)",
-                BUILTIN.join(", ")
+                "theme file {}: {p}",
+                crate::files::escape_controls(&path.display().to_string())
             ))
         })
     }
@@ -234,9 +254,52 @@ impl Theme {
     /// `no_color` (the NO_COLOR environment variable is set and non-empty,
     /// see no-color.org) selects mono, and the default is dark.
     pub fn resolve(requested: Option<&str>, no_color: bool) -> Result<Theme, Error> {
-        match requested {
-            Some(name_or_path) => Self::load(name_or_path),
-            None => Self::load(if no_color { "mono" } else { "dark" }),
+        Self::resolve_in(requested, no_color, None)
+    }
+
+    /// As [`Theme::resolve`], with the user's themes in `user`.
+    pub fn resolve_in(
+        requested: Option<&str>,
+        no_color: bool,
+        user: Option<&Path>,
+    ) -> Result<Theme, Error> {
+        let name = requested.unwrap_or(if no_color { "mono" } else { "dark" });
+        Self::load_in(name, user)
+    }
+}
+
+/// The user's themes: the names of the `NAME.toml` files in `dir`, sorted.
+pub fn user_themes(dir: &Path) -> Vec<String> {
+    let mut names: Vec<String> = std::fs::read_dir(dir)
+        .into_iter()
+        .flatten()
+        .flatten()
+        .filter_map(|e| {
+            let p = e.path();
+            let stem = p.file_stem()?.to_str()?;
+            (p.extension()? == "toml" && !stem.is_empty() && !stem.starts_with('.'))
+                .then(|| stem.to_string())
+        })
+        .collect();
+    names.sort();
+    names
+}
+
+/// What `--theme` takes, for messages: the built-in names, the user's (with `user`), a path.
+pub fn available(user: Option<&Path>) -> String {
+    let builtin = format!("built-in: {}", BUILTIN.join(", "));
+    match user {
+        None => format!("{builtin}; or a path to a .toml file"),
+        Some(d) => {
+            let mine = user_themes(d);
+            let dir = crate::files::escape_controls(&d.display().to_string());
+            match mine.is_empty() {
+                true => format!("{builtin}; none of yours in {dir}; or a path to a .toml file"),
+                false => format!(
+                    "{builtin}; yours in {dir}: {}; or a path to a .toml file",
+                    crate::files::escape_controls(&mine.join(", "))
+                ),
+            }
         }
     }
 }

@@ -224,6 +224,130 @@ fn page_pieces_are_bounded_whatever_the_step() {
     s.key(KeyEvent::new(KeyCode::Char(' '), KeyModifiers::NONE));
     s.key(KeyEvent::new(KeyCode::Tab, KeyModifiers::NONE));
     s.key(KeyEvent::new(KeyCode::Tab, KeyModifiers::NONE));
+    s.screen();
     assert!(!s.app.analysis.busy());
     assert_eq!(s.app.settings, tiny);
+    // The page is complete: every curve's every piece arrived (unknown where over budget).
+    let curve = s
+        .app
+        .charts
+        .curve(0.5, settings_for(tiny))
+        .expect("C's curve");
+    assert!(curve.complete());
+}
+
+fn tab(s: &mut Session<ratatui::backend::TestBackend>, n: usize) {
+    for _ in 0..n {
+        s.key(KeyEvent::new(KeyCode::Tab, KeyModifiers::NONE));
+    }
+}
+
+/// Issue 18 item 18: headless, a page is computed for a frame, not for each key. Twenty edits
+/// of ξ0 on the outcome map and one snapshot compute one curve and one map (they computed
+/// twenty of each, 3.4 s an edit at 1000×1000).
+#[test]
+fn headless_pages_are_computed_for_frames_not_for_keys() {
+    use turntable::analysis::{CURVE_POINTS, MAP_CELLS};
+    let mut s = session("A");
+    tab(&mut s, 3);
+    s.screen();
+    let cells = s.app.charts.map.as_ref().expect("map").cells.len() as u64;
+    assert!(cells > 500, "{cells}");
+    let first = s.app.analysis.computed();
+    assert_eq!(first, CURVE_POINTS as u64 + cells);
+    for _ in 0..20 {
+        s.key(key('x'));
+    }
+    assert_eq!(s.app.analysis.computed(), first, "keys compute nothing");
+    s.screen();
+    let map = s.app.charts.map.as_ref().expect("map");
+    assert!(map.cells.iter().all(Option::is_some));
+    assert_eq!(
+        s.app.analysis.computed() - first,
+        CURVE_POINTS as u64 + map.cells.len() as u64
+    );
+    // However large the terminal, a map has at most MAP_CELLS cells, in the plot's shape.
+    s.resize(1000, 1000);
+    let v0_max = 1.0;
+    let (n, m) = turntable::ui::pages::map_grid(&s.app, v0_max).expect("a plot fits");
+    assert!(n * m <= MAP_CELLS && n * m > MAP_CELLS * 9 / 10, "{n}×{m}");
+    // Nearly square, as the plot of a square terminal is.
+    assert!(n.abs_diff(m) < n / 5, "{n}×{m}");
+}
+
+/// A coarser grid than the plot is drawn over every character of the plot: no holes.
+#[test]
+fn a_map_coarser_than_its_plot_covers_it() {
+    use turntable::analysis::MAP_CELLS;
+    let mut s = session("A");
+    s.resize(320, 120);
+    tab(&mut s, 3);
+    let screen = turntable::ui::export::plain_text(s.screen());
+    let map = s.app.charts.map.as_ref().expect("map");
+    let turntable::analysis::Job::Map { size: (n, m), .. } = map.job else {
+        panic!("{:?}", map.job)
+    };
+    let plot = s.app.geom_for_tests().expect("drawn").area;
+    assert!(
+        n * m <= MAP_CELLS && usize::from(plot.width) > n,
+        "{n}×{m} for {plot:?}"
+    );
+    // The plot shows cells: nothing unknown, and stuck glyphs all along its lowest speeds.
+    let rows: Vec<String> = screen
+        .lines()
+        .skip(usize::from(plot.y))
+        .take(usize::from(plot.height))
+        .map(|l| {
+            l.chars()
+                .skip(usize::from(plot.x))
+                .take(usize::from(plot.width))
+                .collect()
+        })
+        .collect();
+    assert!(rows.iter().all(|r| !r.contains('?')), "{rows:#?}");
+    let bottom = rows.last().unwrap();
+    let stuck = bottom
+        .chars()
+        .filter(|c| matches!(c, '·' | ':' | '▒' | '▓'))
+        .count();
+    assert!(stuck > usize::from(plot.width) / 2, "{bottom}");
+}
+
+/// A running piece stops at its next run once its caller says stop (the explorer's worker
+/// so waits at most one bounded run for a newer request), and its answer is dropped.
+#[test]
+fn a_running_piece_stops_at_its_next_run_once_cancelled() {
+    use std::cell::Cell;
+    use turntable::analysis::{Job, REST_POINTS, piece_until, settings_for};
+    use turntable::engine::Settings;
+    let s = settings_for(Settings::default());
+    for (job, k) in [
+        (Job::Curve { xi0: 0.5 }, 0),
+        (Job::Curve { xi0: 1.3 }, 40),
+        (Job::Rest, REST_POINTS),
+    ] {
+        let runs = Cell::new(0u32);
+        let all = piece_until(&job, k, s, &|| {
+            runs.set(runs.get() + 1);
+            true
+        });
+        assert!(all.is_some());
+        let n = runs.get();
+        assert!(n > 20, "{job:?}: {n} runs");
+        for stop_at in [1, n / 2, n - 1] {
+            let asked = Cell::new(0u32);
+            let got = piece_until(&job, k, s, &|| {
+                asked.set(asked.get() + 1);
+                asked.get() < stop_at
+            });
+            assert_eq!(got, None, "{job:?}");
+            // Asked once more at the end, and at most once by a second bisection: no run
+            // starts after the first no.
+            assert!(
+                asked.get() <= stop_at + 2,
+                "{job:?}: {} > {stop_at} + 2",
+                asked.get()
+            );
+        }
+    }
 }

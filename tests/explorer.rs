@@ -155,9 +155,16 @@ fn every_key_in_the_keymap_does_what_its_help_says() {
             a.help = true;
             a.help_scroll = 5;
         }
+        // The lesson's keys are live only while it asks or waits.
+        match b.action {
+            Action::Answer(_) => a.ask("Will it escape? (y/n)".into()),
+            Action::GoOn => a.wait(),
+            _ => {}
+        }
         let before = render(&mut a, 80, 24);
         let (tau, init, set) = (a.sim.now().tau, a.initial, a.settings);
         let (speed, zoom, pan) = (a.speed, a.zoom, a.pan);
+        let init_playing = a.playing;
         a.handle_key(b.chord.event());
         let after = render(&mut a, 80, 24);
         let what = format!("{} ({})", b.chord.label(), b.help);
@@ -170,11 +177,18 @@ fn every_key_in_the_keymap_does_what_its_help_says() {
             Action::Quit => a.should_quit(),
             Action::Dismiss => !a.help && !a.should_quit(),
             Action::ToggleHelp => a.help && after.contains("help"),
-            // 80×24 shows 21 rows of the help's 35: 14 to scroll, a page is 21.
             Action::HelpScroll(d) => i32::from(a.help_scroll) == 5 + i32::from(d),
             Action::TauWindow(true) => a.tau_window.is_some_and(|w| w < now),
             Action::TauWindow(false) => a.tau_window == Some(2e-2),
-            Action::HelpPage(d) => a.help_scroll == if d > 0 { 14 } else { 0 },
+            // A page down from 5 reaches the end of the help at 80x24 (as long as the keymap).
+            Action::HelpPage(d) => {
+                a.help_scroll
+                    == if d > 0 {
+                        turntable::ui::help::max_scroll(80, 24, &a.theme)
+                    } else {
+                        0
+                    }
+            }
             Action::PlayPause => !a.is_playing() && after.contains("❚❚"),
             Action::StepForward => now > tau && !a.is_playing(),
             Action::StepBack => now < tau,
@@ -229,15 +243,32 @@ fn every_key_in_the_keymap_does_what_its_help_says() {
                 d.x * dx > 0.0 || d.y * dy > 0.0
             }
             Action::ResetView => a.zoom == 1.0 && a.pan == glam::DVec2::ZERO,
+            Action::SaveAs => a.naming.as_deref() == Some("") && after.contains("save as: ▏"),
+            Action::Name(_) => unreachable!("typed at the prompt, bound to no key"),
             Action::Save => {
-                after.contains("saved scene")
+                after.contains("saved \"")
                     && Scene::load(a.save_path.to_str().unwrap()).unwrap().initial == a.initial
+            }
+            Action::ExportSvg => {
+                after.contains("wrote this page to")
+                    && std::fs::read_to_string(dir.join("turntable-turntable-1.svg"))
+                        .is_ok_and(|s| s.starts_with("<?xml"))
             }
             Action::ToggleMouse => !a.mouse_capture() && after.contains("mouse off"),
             Action::NextPage => a.page == Page::TimePlots && after.contains("time plots"),
             Action::PrevPage => a.page == Page::RestRadius && after.contains("rest radius"),
             Action::Choose => a.page == Page::Turntable && after.contains("Enter runs"),
             Action::PickRelease(_) => unreachable!("mouse actions have no key"),
+            Action::Answer(yes) => {
+                let q = a.lesson.question.as_ref().unwrap();
+                q.answer == Some(yes)
+                    && after.contains(if yes {
+                        "You said it escapes"
+                    } else {
+                        "You said it does not"
+                    })
+            }
+            Action::GoOn => !a.lesson.waiting && a.playing == init_playing,
             Action::Omega(d) => {
                 (a.mu_probe.0 - (turntable::app::MU_PROBE.0 + d)).abs() < 1e-12
                     && after.contains("Ω = ")
@@ -320,10 +351,17 @@ fn help_overlay_lists_every_binding() {
     }
     // 80×24 shows it in two pages.
     let small = render(&mut a, 80, 24);
-    assert!(small.contains("presets A B C D fig1") && small.contains("rows 1–21 of 35, ↓ more"));
-    assert!(small.contains("q/Ctrl-c       quit"), "{small}");
+    // As many rows as the keymap makes: 21 on screen, the rest a page down.
+    let all = 21 + turntable::ui::help::max_scroll(80, 24, &a.theme);
+    assert!(all > 30, "{all}");
     assert!(
-        small.contains("Esc            close help / notice"),
+        small.contains("presets A B C D fig1")
+            && small.contains(&format!("rows 1–21 of {all}, ↓ more"))
+    );
+    // The two columns put the lesson and app groups on the first page.
+    assert!(
+        small.contains("Space/Enter    go on when it waits")
+            && small.contains("Esc            close help / notice"),
         "{small}"
     );
     assert!(
@@ -332,7 +370,11 @@ fn help_overlay_lists_every_binding() {
     );
     a.handle_key(KeyEvent::new(KeyCode::PageDown, KeyModifiers::NONE));
     let small = render(&mut a, 80, 24);
-    assert!(small.contains("◆▲▼◇△▽         pinned runs (b)") && small.contains("rows 15–35 of 35"));
+    assert!(
+        small.contains("◆▲▼◇△▽         pinned runs (b)")
+            && small.contains(&format!("rows {}–{all} of {all}", all - 20)),
+        "{small}"
+    );
 }
 
 /// Help scrolls at every size (↓ and the wheel) until every key, the mouse and the glyphs
@@ -512,7 +554,11 @@ fn random_keys_keep_the_invariants() {
 fn bad_scene_or_theme_exits_2_before_touching_the_terminal() {
     let bin = env!("CARGO_BIN_EXE_turntable");
     for args in [["--scene", "nope"], ["--theme", "nope"]] {
-        let out = std::process::Command::new(bin).args(args).output().unwrap();
+        let out = std::process::Command::new(bin)
+            .env("XDG_CONFIG_HOME", "/nonexistent/turntable-tests/config")
+            .args(args)
+            .output()
+            .unwrap();
         assert_eq!(out.status.code(), Some(2), "{args:?}");
         assert!(out.stdout.is_empty(), "no escape codes on stdout");
         let err = String::from_utf8(out.stderr).unwrap();
@@ -521,20 +567,39 @@ fn bad_scene_or_theme_exits_2_before_touching_the_terminal() {
     }
 }
 
+/// No key is bound twice in one mode: a lesson's bindings (y/n while it asks, Space/Enter
+/// while it waits) take their keys only then.
 #[test]
 fn no_key_is_bound_twice() {
+    use turntable::app::action::Group;
+    use turntable::app::keymap::lookup_when;
+    use turntable::app::lesson::Prompt;
+    let mode = |a: Action| match a {
+        Action::Answer(_) => Prompt::Answer,
+        Action::GoOn => Prompt::GoOn,
+        _ => Prompt::None,
+    };
     for (i, a) in KEYMAP.iter().enumerate() {
         for b in &KEYMAP[i + 1..] {
-            assert!(a.chord != b.chord, "{} bound twice", a.chord.label());
+            let lesson = |x: &turntable::app::Binding| x.action.group() == Group::Lesson;
+            let apart = lesson(a) != lesson(b) || mode(a.action) != mode(b.action);
+            assert!(
+                a.chord != b.chord || apart,
+                "{} bound twice",
+                a.chord.label()
+            );
         }
         let sent = turntable::app::Chord::from_event(&a.chord.event());
         assert_eq!(sent, Some(a.chord), "{} is not in normal form", a.chord);
         assert_eq!(
-            turntable::app::keymap::lookup(a.chord),
+            lookup_when(a.chord, mode(a.action)),
             Some(a.action),
             "{} does not dispatch to its own action",
             a.chord.label()
         );
+        if mode(a.action) != Prompt::None {
+            assert_ne!(turntable::app::keymap::lookup(a.chord), Some(a.action));
+        }
     }
 }
 
@@ -1039,6 +1104,7 @@ fn every_binding_is_listed_under_its_actions_group() {
         Group::Integrator,
         Group::View,
         Group::App,
+        Group::Lesson,
     ];
     assert_eq!(all.map(Group::name), GROUPS);
     // The mouse sets the release: its actions are initial conditions.
@@ -1066,4 +1132,68 @@ fn footer_names_what_space_does_now() {
         let paused = last(&mut a);
         assert!(paused.contains("Space play"), "{paused}");
     }
+}
+
+/// `S` names the scene before saving (issue 18 item 7): while the prompt is open keys are the
+/// name's letters (`q` quits nothing, `x` edits nothing), Backspace takes one back, Enter
+/// saves to a file named after it, Esc saves nothing. The prompt shows what is typed.
+#[test]
+fn s_names_the_scene_it_saves() {
+    let dir = std::env::temp_dir().join(format!("turntable-name-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let mut a = app("D");
+    a.save_path = dir.join("turntable-scene.toml");
+    let xi0 = a.initial.xi0;
+    key(&mut a, 'S');
+    for c in "Case Dx, μ × 2q".chars() {
+        key(&mut a, c);
+    }
+    a.handle_key(KeyEvent::new(KeyCode::Backspace, KeyModifiers::NONE));
+    assert!(!a.should_quit());
+    assert_eq!(a.initial.xi0, xi0, "x typed a letter, no edit");
+    assert_eq!(a.naming.as_deref(), Some("Case Dx, μ × 2"));
+    let screen = render(&mut a, 40, 12);
+    assert!(
+        screen.contains(" save as: Case Dx, μ × 2▏"),
+        "the prompt shows what is typed:\n{screen}"
+    );
+    a.handle_key(KeyEvent::new(KeyCode::Enter, KeyModifiers::NONE));
+    assert_eq!(a.naming, None);
+    let path = dir.join("case-dx-μ-2.toml");
+    let saved = Scene::load(path.to_str().unwrap()).unwrap();
+    assert_eq!(saved.name, "Case Dx, μ × 2");
+    assert_eq!(saved.initial, a.initial);
+    assert!(a.notice.as_deref().unwrap().contains("case-dx-μ-2.toml"));
+    // The same name again: a new file beside it, never a replaced one.
+    key(&mut a, 'S');
+    for c in "case dx μ 2".chars() {
+        key(&mut a, c);
+    }
+    a.handle_key(KeyEvent::new(KeyCode::Enter, KeyModifiers::NONE));
+    assert!(dir.join("case-dx-μ-2-2.toml").exists());
+    // Esc: nothing saved, and keys are keys again.
+    key(&mut a, 'S');
+    key(&mut a, 'z');
+    a.handle_key(KeyEvent::new(KeyCode::Esc, KeyModifiers::NONE));
+    assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 2);
+    key(&mut a, 'x');
+    assert!(a.initial.xi0 > xi0);
+    // A name is at most NAME_MAX characters.
+    key(&mut a, 'S');
+    for _ in 0..60 {
+        key(&mut a, 'n');
+    }
+    assert_eq!(a.naming.as_ref().unwrap().chars().count(), 40);
+    // Too long for 40 columns: its end stays in sight, by the cursor.
+    let screen = render(&mut a, 40, 12);
+    let prompt = screen.lines().last().unwrap();
+    assert!(
+        prompt.starts_with(" save as: nnnn") && prompt.trim_end().ends_with("n▏"),
+        "{prompt}"
+    );
+    // Ctrl-C still quits from the prompt.
+    a.handle_key(KeyEvent::new(KeyCode::Char('c'), KeyModifiers::CONTROL));
+    assert!(a.should_quit());
+    let _ = std::fs::remove_dir_all(&dir);
 }

@@ -20,6 +20,7 @@ fn dir(tag: &str) -> PathBuf {
 /// failure, reported as exit -1).
 fn turntable_in(cwd: &Path, args: &[&str]) -> (i32, String, String) {
     let mut child = Command::new(env!("CARGO_BIN_EXE_turntable"))
+        .env("XDG_CONFIG_HOME", "/nonexistent/turntable-tests/config")
         .args(args)
         .current_dir(cwd)
         .stdin(Stdio::null())
@@ -241,7 +242,7 @@ fn a_replay_writes_no_files() {
     std::fs::write(d.join("save.keys"), "s\nsnapshot\n").unwrap();
     let (code, out, _) = turntable_in(&d, &["replay", "save.keys"]);
     assert_eq!(code, 0);
-    assert!(out.contains("replay writes no files"), "{out}");
+    assert!(out.contains("replay saves nothing"), "{out}");
     assert_eq!(std::fs::read_dir(&d).unwrap().count(), 1, "only the script");
 }
 

@@ -81,7 +81,9 @@ fn spawn(rec: &std::path::Path) -> Option<Spawned> {
     // SAFETY: fresh descriptors we now own.
     let (master, slave) = unsafe { (OwnedFd::from_raw_fd(master), OwnedFd::from_raw_fd(slave)) };
     let mut cmd = Command::new(env!("CARGO_BIN_EXE_turntable"));
-    cmd.args(["--record", rec.to_str().unwrap()])
+    // Never the user's configuration.
+    cmd.env("XDG_CONFIG_HOME", "/nonexistent/turntable-tests/config")
+        .args(["--record", rec.to_str().unwrap()])
         .env("TERM", "xterm-256color")
         .env("LANG", "C.UTF-8")
         .env_remove("COLORTERM")

@@ -82,17 +82,32 @@ fn the_escape_speed_page_holds_the_solver_s_curves() {
             "φ {phi}: {got} vs {v}"
         );
     }
-    let ((pmin, vmin), (pmax, vmax)) = c.extremes().unwrap();
+    let ((_, vmin), (pmax, vmax)) = c.extremes().unwrap();
     assert!(c.points().iter().all(|p| p.1 >= vmin && p.1 <= vmax));
+    // Fig. 5's minimum is refined between the angles (issue 18 item 10): the engine's own
+    // search at a tighter tolerance agrees to the page's third decimal in π.
+    let (pmin, vleast) = c.least.expect("refined").expect("found");
+    let (phi, v) =
+        turntable::engine::solve::easiest_angle(0.5, 72, Settings::dp54(1e-12), 1e-10, 1e-5)
+            .unwrap();
+    assert!((pmin - phi).abs() < 1e-3, "{pmin} vs {phi}");
+    assert!(
+        (vleast - v).abs() < 1e-7 && vleast <= vmin,
+        "{vleast} vs {v}, grid {vmin}"
+    );
     let screen = render(&mut a, 100, 30);
-    let label = |v: f64, p: f64| {
+    let label = |v: f64, p: f64, digits| {
         format!(
             "{} at {}π",
             turntable::ui::panel::speed(v),
-            turntable::ui::panel::num(p / std::f64::consts::PI, 2)
+            turntable::ui::panel::num(p / std::f64::consts::PI, digits)
         )
     };
-    let note = format!("min {}, max {}", label(vmin, pmin), label(vmax, pmax));
+    let note = format!(
+        "min {}, max {}",
+        label(vleast, pmin, 3),
+        label(vmax, pmax, 2)
+    );
     assert!(screen.contains(&note), "{note}\n{screen}");
     // C's v0 = 0.6078 at φ = 0 is below v_e(0) there: the page says it sticks.
     assert!(c.ve[0].unwrap().hi().unwrap() > a.initial.v0);
@@ -286,6 +301,8 @@ fn the_map_fills_the_plot_and_a_return_computes_only_what_is_missing() {
     assert_eq!(charts.missing(&map.job, s), vec![3, 17]);
     let mut an = Analysis::inline();
     an.request(map.job, s, charts.missing(&map.job, s));
+    assert!(an.take().is_empty(), "inline, a request waits for compute");
+    an.compute();
     let got = an.take();
     assert_eq!(got.len(), 2);
     for (p, k) in got.into_iter().zip([3, 17]) {
@@ -484,7 +501,9 @@ fn no_number_is_cut_at_any_width() {
     a.page = Page::EscapeSpeed;
     a.sync_analysis();
     let s = settings_for(a.settings);
-    let ((_, vmin), (_, vmax)) = a.charts.curve(0.5, s).unwrap().extremes().unwrap();
+    let c = a.charts.curve(0.5, s).unwrap();
+    let ((_, _), (_, vmax)) = c.extremes().unwrap();
+    let (_, vmin) = c.least.unwrap().unwrap();
     let (min, max) = (
         turntable::ui::panel::speed(vmin),
         turntable::ui::panel::speed(vmax),

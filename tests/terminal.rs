@@ -13,6 +13,7 @@ use std::time::{Duration, Instant};
 #[test]
 fn without_a_terminal_the_explorer_refuses() {
     let out = Command::new(env!("CARGO_BIN_EXE_turntable"))
+        .env("XDG_CONFIG_HOME", "/nonexistent/turntable-tests/config")
         .stdin(Stdio::null())
         .output()
         .unwrap();
@@ -88,7 +89,9 @@ fn spawn_in(rec: &std::path::Path, cwd: &std::path::Path) -> Option<(Reap, Pty, 
     // SAFETY: fresh descriptors we now own.
     let (master, slave) = unsafe { (OwnedFd::from_raw_fd(master), OwnedFd::from_raw_fd(slave)) };
     let mut cmd = Command::new(env!("CARGO_BIN_EXE_turntable"));
-    cmd.args(["--record", rec.to_str().unwrap()])
+    // Never the user's configuration.
+    cmd.env("XDG_CONFIG_HOME", "/nonexistent/turntable-tests/config")
+        .args(["--record", rec.to_str().unwrap()])
         .current_dir(cwd)
         .stdin(slave.try_clone().unwrap())
         .stdout(slave.try_clone().unwrap())

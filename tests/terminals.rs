@@ -12,6 +12,7 @@ use turntable::theme::Theme;
 #[test]
 fn term_dumb_is_refused_with_a_clear_message() {
     let out = Command::new(env!("CARGO_BIN_EXE_turntable"))
+        .env("XDG_CONFIG_HOME", "/nonexistent/turntable-tests/config")
         .env("TERM", "dumb")
         .stdin(Stdio::null())
         .output()

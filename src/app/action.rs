@@ -52,6 +52,12 @@ pub enum Action {
     Pan(f64, f64),
     ResetView,
     Save,
+    /// Opens the prompt for a name, then saves the scene under it.
+    SaveAs,
+    /// An edit of the name being typed (only while the prompt is open).
+    Name(NameEdit),
+    /// Write the page on screen as SVG to a new file.
+    ExportSvg,
     ToggleMouse,
     /// Mouse: the release point here (model coordinates, as the canvas maps the click).
     PlaceRelease(glam::DVec2),
@@ -76,6 +82,10 @@ pub enum Action {
     /// Pin the run on screen beside later ones; clear the pins.
     PinRun,
     ClearPins,
+    /// A lesson's prediction: yes (it escapes) or no.
+    Answer(bool),
+    /// A lesson waiting for Space or Enter goes on.
+    GoOn,
 }
 
 /// The physical constants the SI readouts rest on.
@@ -95,6 +105,7 @@ pub enum Group {
     Integrator,
     View,
     App,
+    Lesson,
 }
 
 impl Group {
@@ -106,6 +117,7 @@ impl Group {
             Group::Integrator => "integrator",
             Group::View => "view",
             Group::App => "app",
+            Group::Lesson => "lesson",
         }
     }
 }
@@ -126,9 +138,33 @@ impl Action {
             ToggleFrame | ToggleForces | ToggleNetForce | ToggleVelocity | ZoomIn | ZoomOut
             | Pan(..) | ResetView | TauWindow(_) | NextPage | PrevPage | Choose | Omega(_)
             | R0c(_) | Unit(..) | UnitsOff | PinRun | ClearPins => Group::View,
-            Quit | Dismiss | ToggleHelp | HelpScroll(_) | HelpPage(_) | Save | ToggleMouse => {
-                Group::App
-            }
+            Quit | Dismiss | ToggleHelp | HelpScroll(_) | HelpPage(_) | Save | SaveAs | Name(_)
+            | ExportSvg | ToggleMouse => Group::App,
+            Answer(_) | GoOn => Group::Lesson,
+        }
+    }
+}
+
+/// What a key does to the name typed at the save prompt.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum NameEdit {
+    Char(char),
+    Back,
+    Done,
+    Cancel,
+}
+
+impl NameEdit {
+    /// The edit a key makes at the prompt (none for keys it ignores: arrows, Tab, chords).
+    pub fn of(chord: super::Chord) -> Option<NameEdit> {
+        use crossterm::event::{KeyCode, KeyModifiers};
+        let plain = chord.mods.difference(KeyModifiers::SHIFT).is_empty();
+        match chord.code {
+            KeyCode::Char(c) if plain && !c.is_control() => Some(NameEdit::Char(c)),
+            KeyCode::Backspace => Some(NameEdit::Back),
+            KeyCode::Enter => Some(NameEdit::Done),
+            KeyCode::Esc => Some(NameEdit::Cancel),
+            _ => None,
         }
     }
 }

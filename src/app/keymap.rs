@@ -1,8 +1,9 @@
 //! The one key table: it dispatches keys and it generates the help overlay, so they cannot
 //! disagree.
 
-use super::action::{Action, UnitKnob};
+use super::action::{Action, Group, UnitKnob};
 use super::chord::Chord;
+use super::lesson::Prompt;
 use crossterm::event::{KeyCode, KeyModifiers};
 use std::f64::consts::PI;
 
@@ -48,7 +49,14 @@ pub const V0_FINE: f64 = 0.001;
 pub const V0_COARSE: f64 = 0.05;
 
 /// Help groups, in the order the overlay shows them.
-pub const GROUPS: [&str; 5] = ["time", "initial conditions", "integrator", "view", "app"];
+pub const GROUPS: [&str; 6] = [
+    "time",
+    "initial conditions",
+    "integrator",
+    "view",
+    "app",
+    "lesson",
+];
 
 #[rustfmt::skip]
 pub const KEYMAP: &[Binding] = &[
@@ -129,13 +137,38 @@ pub const KEYMAP: &[Binding] = &[
     b(KeyCode::PageUp, N, Action::HelpPage(-1), "scroll help", "app"),
     b(KeyCode::PageDown, N, Action::HelpPage(1), "scroll help", "app"),
     b(ch('s'), N, Action::Save, "save scene (toml)", "app"),
+    b(ch('S'), N, Action::SaveAs, "save scene as… (name, Enter)", "app"),
+    b(ch('E'), N, Action::ExportSvg, "page as SVG (new file)", "app"),
     b(ch('M'), N, Action::ToggleMouse, "mouse capture on/off", "app"),
     b(ch('q'), N, Action::Quit, "quit", "app"),
     b(KeyCode::Esc, N, Action::Dismiss, "close help / notice", "app"),
     b(ch('c'), C, Action::Quit, "quit", "app"),
+    // Only while a lesson asks or waits (see `lookup_when`): then these keys are the lesson's.
+    b(ch('y'), N, Action::Answer(true), "answer yes / no", "lesson"),
+    b(ch('n'), N, Action::Answer(false), "answer yes / no", "lesson"),
+    b(ch(' '), N, Action::GoOn, "go on when it waits", "lesson"),
+    b(KeyCode::Enter, N, Action::GoOn, "go on when it waits", "lesson"),
 ];
 
-/// The action bound to `chord`, if any.
+/// The action bound to `chord` outside a lesson's prompt, if any.
 pub fn lookup(chord: Chord) -> Option<Action> {
-    KEYMAP.iter().find(|b| b.chord == chord).map(|b| b.action)
+    lookup_when(chord, Prompt::None)
+}
+
+/// The action bound to `chord` while a lesson awaits `prompt`: y/n answer its question, Space
+/// and Enter let it go on; otherwise the lesson's bindings are passed over.
+pub fn lookup_when(chord: Chord, prompt: Prompt) -> Option<Action> {
+    let live = |a: Action| match a {
+        Action::Answer(_) => prompt == Prompt::Answer,
+        Action::GoOn => prompt == Prompt::GoOn,
+        _ => true,
+    };
+    let bound = |lesson: bool| {
+        KEYMAP
+            .iter()
+            .filter(|b| (b.action.group() == Group::Lesson) == lesson && live(b.action))
+            .find(|b| b.chord == chord)
+            .map(|b| b.action)
+    };
+    bound(true).or_else(|| bound(false))
 }

@@ -4,6 +4,7 @@
 pub mod action;
 pub mod chord;
 pub mod keymap;
+pub mod lesson;
 pub mod pages;
 pub mod state;
 pub mod update;
@@ -17,7 +18,7 @@ pub use update::update;
 use crate::engine::Settings;
 use crate::scene::Scene;
 use crate::theme::Theme;
-use crossterm::event::{KeyEvent, MouseButton, MouseEvent, MouseEventKind};
+use crossterm::event::{KeyCode, KeyEvent, KeyModifiers, MouseButton, MouseEvent, MouseEventKind};
 
 impl App {
     pub fn new(scene: Scene, theme: Theme) -> App {
@@ -33,7 +34,13 @@ impl App {
 
     /// Keymap → action → update.
     pub fn press(&mut self, chord: Chord) {
-        if let Some(a) = keymap::lookup(chord) {
+        // While a name is typed, keys are its letters; only Ctrl-C keeps its meaning (quit).
+        let ctrl_c = Chord::new(KeyCode::Char('c'), KeyModifiers::CONTROL);
+        let action = match &self.naming {
+            Some(_) if chord != ctrl_c => action::NameEdit::of(chord).map(Action::Name),
+            _ => keymap::lookup_when(chord, self.lesson.prompt()),
+        };
+        if let Some(a) = action {
             update(self, a);
         }
     }
@@ -76,7 +83,7 @@ impl App {
 
     /// One tick: advances the run(s) by `TICK_DT × speed` of sim time if playing.
     pub fn tick(&mut self) {
-        self.sync_analysis();
+        self.ask_analysis();
         if self.playing {
             update::step(self);
         } else if self.catch_up() {
@@ -109,7 +116,7 @@ impl App {
     pub fn resize(&mut self, width: u16, height: u16) {
         self.screen = (width, height);
         self.dirty = true;
-        self.sync_analysis();
+        self.ask_analysis();
     }
 
     /// The canvas geometry of the last draw (where mouse cells land in world coordinates).

@@ -56,6 +56,9 @@ pub struct Curve {
     pub xi0: f64,
     pub settings: Settings,
     pub ve: Vec<Option<Speeds>>,
+    /// Where v_e is least, refined between the angles (inside ξ = 1): `None` not yet,
+    /// `Some(None)` the search failed.
+    pub least: Option<Option<(f64, f64)>>,
 }
 
 impl Curve {
@@ -143,6 +146,7 @@ impl Charts {
                             xi0: *xi0,
                             settings,
                             ve: vec![None; CURVE_POINTS],
+                            least: None,
                         });
                         let extra = self
                             .curves
@@ -160,6 +164,15 @@ impl Charts {
                 };
                 if let Some(slot) = self.curves[at].ve.get_mut(i) {
                     *slot = Some(v);
+                }
+            }
+            (Job::Least { xi0, .. }, Piece::Least(at)) => {
+                if let Some(c) = self
+                    .curves
+                    .iter_mut()
+                    .find(|c| c.xi0 == *xi0 && c.settings == settings)
+                {
+                    c.least = Some(at);
                 }
             }
             (Job::Map { .. }, Piece::Cell { i, cell }) => {
@@ -197,6 +210,10 @@ impl Charts {
                 .curve(*xi0, settings)
                 .map(|c| c.ve.iter().map(Option::is_some).collect())
                 .unwrap_or_default(),
+            Job::Least { xi0, .. } => vec![
+                self.curve(*xi0, settings)
+                    .is_some_and(|c| c.least.is_some()),
+            ],
             Job::Map { .. } => self
                 .map
                 .as_ref()
@@ -261,7 +278,16 @@ pub fn wanted(
         Page::Turntable | Page::TimePlots => None,
         Page::EscapeSpeed => std::iter::once(initial.xi0)
             .chain(PAPER_XI0)
-            .find_map(missing_curve),
+            .find_map(missing_curve)
+            .or_else(|| {
+                // Then Fig. 5's minimum, refined (outside ξ = 1 the curve is a window's top).
+                let c = charts.curve(initial.xi0, settings)?;
+                let ((near, _), _) = c.extremes()?;
+                (initial.xi0 <= 1.0 && c.least.is_none()).then_some(Job::Least {
+                    xi0: initial.xi0,
+                    near,
+                })
+            }),
         Page::OutcomeMap => {
             if let Some(job) = missing_curve(initial.xi0) {
                 return Some(job);

@@ -102,6 +102,8 @@ pub struct App {
     pub pan: glam::DVec2,
     pub mouse: bool,
     pub notice: Option<String>,
+    /// The name being typed at the save prompt (`S`), while it is open.
+    pub naming: Option<String>,
     pub save_path: PathBuf,
     /// False in a headless replay: `s` then says what it would save and writes nothing.
     pub writes_files: bool,
@@ -118,6 +120,8 @@ pub struct App {
     /// Runs pinned beside the one on screen (`b`), oldest first, at most
     /// [`crate::pin::MAX_PINS`].
     pub pins: Vec<crate::pin::Pin>,
+    /// A narrated lesson's caption, question and wait.
+    pub lesson: super::lesson::Lesson,
     pub(crate) dirty: bool,
     pub(crate) geom: Option<CanvasGeom>,
     /// The terminal's size, as its session last said (the outcome map's grid follows it).
@@ -173,6 +177,7 @@ impl App {
             notice: None,
             save_path: PathBuf::from(SAVE_PATH),
             writes_files: true,
+            naming: None,
             quit: false,
             page: view.map_or(Page::Turntable, |v| v.page),
             charts: Charts::default(),
@@ -180,6 +185,7 @@ impl App {
             mu_probe: MU_PROBE,
             units,
             pins,
+            lesson: Default::default(),
             dirty: true,
             geom: None,
             screen: (80, 24),
@@ -215,12 +221,26 @@ impl App {
         self.sim.now()
     }
 
-    /// Takes the analysis pieces that arrived and asks for what the page on screen still lacks
-    /// (nothing for a page not on screen). Returns whether anything arrived or was asked.
+    /// Brings the analysis pages up to date for a frame: takes the pieces that arrived and
+    /// asks for what the page on screen still lacks, computing it now when inline (headless).
+    /// Returns whether anything arrived or was asked.
     pub fn sync_analysis(&mut self) -> bool {
+        self.sync(true)
+    }
+
+    /// As [`App::sync_analysis`], but an inline request is only noted: keys and ticks call
+    /// this, so fifty edits before a frame compute one page, not fifty.
+    pub(crate) fn ask_analysis(&mut self) -> bool {
+        self.sync(false)
+    }
+
+    fn sync(&mut self, compute: bool) -> bool {
         let mut moved = false;
-        // Inline, each request completes at once: a page needs at most five jobs.
+        // Inline, each request completes when computed: a page needs at most five jobs.
         for _ in 0..8 {
+            if compute {
+                self.analysis.compute();
+            }
             if let Some((job, settings)) = self.analysis.current() {
                 for p in self.analysis.take() {
                     self.charts.apply(&job, settings, p);
@@ -283,7 +303,7 @@ impl App {
     }
 
     /// How the run ends, once it is decided (whatever τ is on screen): empty before.
-    fn ending(&self) -> String {
+    pub(crate) fn ending(&self) -> String {
         let run = &self.sim.run;
         match (run.status(), run.escape()) {
             (crate::engine::Status::Stuck { tau, q }, _) => {
@@ -297,9 +317,17 @@ impl App {
     /// The current initial conditions, settings and view as a scene (what `s` saves); its
     /// words say how the run ends, or nothing while that is undecided.
     pub fn current_scene(&self) -> Scene {
-        let changed = self.edited();
+        self.scene_named(None)
+    }
+
+    /// The scene on screen as [`App::current_scene`], under the name `name` if given: a named
+    /// scene is the user's own, so its description is what the run does.
+    pub fn scene_named(&self, name: Option<&str>) -> Scene {
+        let changed = self.edited() || name.is_some();
         Scene {
-            name: if changed {
+            name: if let Some(n) = name {
+                n.to_string()
+            } else if changed {
                 format!("{} (edited)", self.scene.name.trim_end_matches(" (edited)"))
             } else {
                 self.scene.name.clone()

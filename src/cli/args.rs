@@ -13,24 +13,28 @@ use std::path::PathBuf;
     version,
     about = "A particle sliding with dry friction on a rotating table (Agha, Gupta & Joseph 2015)",
     // The explorer's flags mean nothing to a subcommand: `turntable --fps 5 run` is an error.
-    args_conflicts_with_subcommands = true
+    args_conflicts_with_subcommands = true,
+    after_help = CONFIG_HELP
 )]
 pub struct Cli {
     #[command(subcommand)]
     pub command: Option<Command>,
     #[command(flatten)]
     pub look: Look,
-    /// Explorer: frame-rate cap while playing.
-    #[arg(long, default_value_t = 30, value_parser = clap::value_parser!(u32).range(1..=240))]
-    pub fps: u32,
+    /// Explorer: frame-rate cap while playing [default: 30].
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=240))]
+    pub fps: Option<u32>,
     /// Explorer: how plots draw points: braille (2×4 dots a cell), block (half blocks) or
     /// ascii (`*`). Default: braille, or ascii where the locale (LC_ALL, LC_CTYPE, LANG) is
     /// not UTF-8.
     #[arg(long, value_enum, value_name = "KIND")]
     pub marker: Option<MarkerArg>,
     /// Explorer: do not capture the mouse (M toggles it inside).
-    #[arg(long)]
+    #[arg(long, overrides_with = "mouse")]
     pub no_mouse: bool,
+    /// Explorer: capture the mouse (the default, unless the configuration says `mouse = false`).
+    #[arg(long, overrides_with = "no_mouse")]
+    pub mouse: bool,
     /// Explorer: record the session (keys, ticks, resizes, mouse) as a key script to FILE,
     /// written when the explorer exits; `turntable replay FILE` shows the same screens.
     #[arg(long, value_name = "FILE")]
@@ -78,12 +82,30 @@ pub struct Look {
     /// the script's own `# replay: --scene` line first).
     #[arg(long, value_name = "NAME|PATH")]
     pub scene: Option<String>,
-    /// Colour theme: dark, light, high-contrast, mono, or a .toml file. The explorer respects
-    /// NO_COLOR; replay ignores it (its output depends on its arguments alone) and only --ansi
-    /// shows colour.
-    #[arg(long, value_name = "NAME|PATH")]
+    /// Colour theme: dark, light, high-contrast, mono, one of yours by name (explorer), or a
+    /// .toml file; without a name, lists them. The explorer respects NO_COLOR; replay ignores it
+    /// (its output depends on its arguments alone) and only --ansi shows colour.
+    #[arg(long, value_name = "NAME|PATH", num_args = 0..=1, default_missing_value = "")]
     pub theme: Option<String>,
 }
+
+/// `turntable --help`, after the flags: the configuration file.
+const CONFIG_HELP: &str = "Configuration (explorer only): $XDG_CONFIG_HOME/turntable/config.toml \
+(~/.config/turntable/config.toml when XDG_CONFIG_HOME is unset) sets defaults for the explorer's \
+flags, which win over it:
+
+    theme = \"light\"        # a built-in, one of yours, or a .toml path (relative: to this folder)
+    fps = 60
+    mouse = false
+    marker = \"block\"       # braille, block or ascii
+    [units]                # as --mu, --rpm, --g (a scene's own [units] wins over these)
+    mu = 0.15
+    rpm = 33.3
+    g = 9.81
+
+Your themes: $XDG_CONFIG_HOME/turntable/themes/NAME.toml, chosen by NAME (`--theme NAME`); one \
+named as a built-in replaces it. A bad file exits with code 2 naming the file and the key. \
+`replay` and the numerical commands read no configuration (name a theme of yours by its path).";
 
 /// `replay --help`: the script grammar, so that an installed binary documents it.
 const REPLAY_ABOUT: &str = "Run a key script headlessly and print its snapshots.
@@ -97,13 +119,32 @@ begins a token starts a comment.
     snapshot after 80 ticks
     space Right*5 ? esc          # pause, step five times, help on and off
     mouse click 20 8             # click|drag|up|scrollup|scrolldown COLUMN ROW (0-based)
+    say C sticks.                # a caption over the scene (say alone clears it)
 
-`snapshot LABEL` prints the screen (the rest of the line is its label). Keys: any single
+`snapshot LABEL` prints the screen (the rest of the line is its label). `say TEXT`, `ask TEXT`
+(a prediction: y or n, yes meaning the run escapes) and `wait` narrate a lesson (see
+`turntable lesson --help`). Keys: any single
 character, space, hash, enter, esc, tab, backtab, backspace, delete, up, down, left, right, home,
 end, pgup, pgdn, f1-f12, each with optional ctrl-, alt-, shift- prefixes. A first line
 `# replay: [--size WxH] [--ansi] [--scene S] [--theme T]` sets options (flags win). The output
 is byte-identical on every run: there is no clock, only ticks. `turntable --record FILE` writes
 such a script from an interactive session.";
+
+/// `lesson --help`: what a lesson is and how one runs.
+const LESSON_ABOUT: &str = "Narrated lessons through the paper, shipped in the binary.
+
+`turntable lesson --list` lists them; `turntable lesson NAME` runs one in the explorer, with a
+caption over the scene: Space or Enter goes on where it waits, y or n answers its predictions
+(\"Will it escape?\"), and the run then says whether the prediction was right; every other key
+works as in the explorer. `turntable lesson NAME --headless [--size WxH]` prints its snapshots as
+`replay` does (a wait goes on, a question stays unanswered).
+
+A lesson is a key script (see `turntable replay --help`) with three more commands, which any key
+script may use:
+
+    say TEXT        # a caption over the scene until the next say or ask (say alone clears it)
+    ask TEXT        # a prediction, y or n: yes means the run on screen escapes
+    wait            # interactive: hold until Space or Enter; headless: go on";
 
 #[derive(Subcommand, Debug)]
 pub enum Command {
@@ -115,11 +156,16 @@ pub enum Command {
     Critical(CriticalArgs),
     /// CSV for Fig. 5 (v_e over phi), Fig. 6 (final rest xi over xi0) or the outcome map.
     Sweep(SweepArgs),
+    /// A figure as SVG, for slides and notes: fig5, fig6, map, trajectory or time.
+    Plot(PlotArgs),
     /// Work–precision measurements: error against cost for every method, and the speed goals.
     Bench(BenchArgs),
     /// Run a key script headlessly and print its snapshots.
     #[command(long_about = REPLAY_ABOUT)]
     Replay(super::replay::ReplayArgs),
+    /// Narrated lessons through the paper: --list, NAME (in the explorer), NAME --headless.
+    #[command(long_about = LESSON_ABOUT)]
+    Lesson(super::lesson::LessonArgs),
     /// Print a shell completion script: `turntable completions bash > ~/.local/share/bash-completion/completions/turntable`.
     Completions(CompletionsArgs),
     /// Print the manual page (roff): `turntable man > ~/.local/share/man/man1/turntable.1`.
@@ -198,8 +244,8 @@ pub struct RunArgs {
     /// Keep integrating after escape is certified, up to tau-max.
     #[arg(long)]
     pub follow: bool,
-    /// Skip the second opinion (a run 1000x tighter in the other frame, about 4x this run's
-    /// work): no `certain` then, nor measured errors.
+    /// Skip the second opinion (a run 1000x tighter in the other frame, dearer than this
+    /// run): no `certain` then, nor measured errors.
     #[arg(long)]
     pub no_check: bool,
     /// Print one JSON object instead of text.
@@ -310,6 +356,15 @@ pub enum SweepFigure {
 
 #[derive(Args, Debug)]
 pub struct Fig5Args {
+    #[command(flatten)]
+    pub data: Fig5Data,
+    #[command(flatten)]
+    pub out: OutArg,
+}
+
+/// What Fig. 5 is computed from (`sweep fig5`, `plot fig5`).
+#[derive(Args, Debug)]
+pub struct Fig5Data {
     /// Release radii.
     #[arg(long, value_delimiter = ',', allow_hyphen_values = true, default_values_t = [0.8, 0.5, 0.2, 0.001])]
     pub xi0: Vec<f64>,
@@ -321,12 +376,19 @@ pub struct Fig5Args {
     pub vtol: f64,
     #[command(flatten)]
     pub numerics: NumericsArgs,
-    #[command(flatten)]
-    pub out: OutArg,
 }
 
 #[derive(Args, Debug)]
 pub struct Fig6Args {
+    #[command(flatten)]
+    pub data: Fig6Data,
+    #[command(flatten)]
+    pub out: OutArg,
+}
+
+/// What Fig. 6 is computed from (`sweep fig6`, `plot fig6`).
+#[derive(Args, Debug)]
+pub struct Fig6Data {
     /// Number of release radii in [0, --xi0-max].
     #[arg(long, default_value_t = 72)]
     pub points: usize,
@@ -335,12 +397,19 @@ pub struct Fig6Args {
     pub xi0_max: f64,
     #[command(flatten)]
     pub numerics: NumericsArgs,
-    #[command(flatten)]
-    pub out: OutArg,
 }
 
 #[derive(Args, Debug)]
 pub struct MapArgs {
+    #[command(flatten)]
+    pub data: MapData,
+    #[command(flatten)]
+    pub out: OutArg,
+}
+
+/// What the outcome map is computed from (`sweep map`, `plot map`).
+#[derive(Args, Debug)]
+pub struct MapData {
     /// The release radius.
     #[arg(long, allow_hyphen_values = true)]
     pub xi0: f64,
@@ -362,8 +431,6 @@ pub struct MapArgs {
     pub vtol: f64,
     #[command(flatten)]
     pub numerics: NumericsArgs,
-    #[command(flatten)]
-    pub out: OutArg,
 }
 
 #[derive(Args, Debug)]
@@ -371,6 +438,89 @@ pub struct OutArg {
     /// Write the CSV here instead of stdout.
     #[arg(long)]
     pub out: Option<PathBuf>,
+}
+
+#[derive(Args, Debug)]
+pub struct PlotArgs {
+    #[command(subcommand)]
+    pub figure: PlotFigure,
+}
+
+/// What `plot` draws: each takes only the flags that mean something to it.
+#[derive(Subcommand, Debug)]
+pub enum PlotFigure {
+    /// Fig. 5: v_e over phi, one curve per --xi0.
+    Fig5 {
+        #[command(flatten)]
+        data: Fig5Data,
+        #[command(flatten)]
+        svg: SvgOut,
+    },
+    /// Fig. 6: final rest xi over xi0 for release at rest in the lab, with xi0c marked.
+    Fig6 {
+        #[command(flatten)]
+        data: Fig6Data,
+        #[command(flatten)]
+        svg: SvgOut,
+    },
+    /// The outcome map over (phi, v0) at one --xi0, v_e(phi) drawn over it.
+    Map {
+        #[command(flatten)]
+        data: MapData,
+        #[command(flatten)]
+        svg: SvgOut,
+    },
+    /// One run's path in the lab or the rotating frame, with the rim xi = 1.
+    Trajectory {
+        #[command(flatten)]
+        run: PlotRun,
+        /// The frame the path is drawn in.
+        #[arg(long, default_value = "lab", value_parser = variant::<Frame>())]
+        frame: Frame,
+        #[command(flatten)]
+        svg: SvgOut,
+    },
+    /// One run's xi, theta', |u| and energy against tau (the explorer's time plots).
+    Time {
+        #[command(flatten)]
+        run: PlotRun,
+        #[command(flatten)]
+        svg: SvgOut,
+    },
+}
+
+/// The run a trajectory or time figure shows: a scene, its release changed by the flags.
+#[derive(Args, Debug)]
+pub struct PlotRun {
+    /// A preset (A, B, C, D, fig1, fig2) or a .toml scene file: its release and integrator.
+    #[arg(long, default_value = "C", value_name = "NAME|PATH")]
+    pub scene: String,
+    /// Release radius xi0, instead of the scene's.
+    #[arg(long, allow_hyphen_values = true)]
+    pub xi0: Option<f64>,
+    /// Direction of the initial velocity (rad), instead of the scene's.
+    #[arg(long, allow_hyphen_values = true)]
+    pub phi: Option<f64>,
+    /// Initial speed relative to the table, instead of the scene's.
+    #[arg(long, allow_hyphen_values = true)]
+    pub v0: Option<f64>,
+    /// How it is released, instead of the scene's: velocity, table-rest or lab-rest.
+    #[arg(long, value_parser = variant::<Release>())]
+    pub release: Option<Release>,
+    /// Draw up to this time if the particle has neither stuck nor escaped far.
+    #[arg(long, default_value_t = 100.0, allow_hyphen_values = true)]
+    pub tau_max: f64,
+}
+
+/// Where a figure goes.
+#[derive(Args, Debug)]
+pub struct SvgOut {
+    /// The SVG file to write (atomically; an existing file is kept unless --force).
+    #[arg(long, value_name = "FILE.svg")]
+    pub out: PathBuf,
+    /// Replace --out if it exists.
+    #[arg(long)]
+    pub force: bool,
 }
 
 /// A clap parser for an engine enum: its names (from the strum derives) as the possible

@@ -3,7 +3,10 @@
 
 mod args;
 mod bench;
+pub mod config;
+pub mod lesson;
 mod numerics;
+mod plot;
 pub mod replay;
 mod report;
 mod sweep;
@@ -71,11 +74,21 @@ pub(crate) fn solver_budget<E: Into<Error>>(tol_flag: &'static str) -> impl Fn(E
     }
 }
 
-/// Opens the explorer. Bad scenes, themes and `--record` paths fail before the terminal is
-/// touched. Returns the signal that ended it, if one did.
-fn explore(cli: &Cli) -> Result<Option<i32>, Error> {
-    let (scene, theme) = (&cli.look.scene, &cli.look.theme);
-    let scene = match scene {
+/// Opens the explorer. Bad scenes, themes, configuration files and `--record` paths fail
+/// before the terminal is touched. Returns the signal that ended it, if one did.
+/// With `lesson`, the explorer runs it (`turntable lesson NAME`).
+fn explore(
+    cli: &Cli,
+    look: &Look,
+    lesson: Option<crate::lesson::Driver>,
+) -> Result<Option<i32>, Error> {
+    let config_dir = config::dir(|v| std::env::var_os(v));
+    let config = match &config_dir {
+        Some(d) => config::Config::load(d)?,
+        None => config::Config::default(),
+    };
+    let user_themes = config_dir.as_ref().map(|d| d.join("themes"));
+    let scene = match &look.scene {
         Some(s) => crate::scene::Scene::load(s)?,
         None => crate::scene::Scene::default_scene(),
     };
@@ -83,15 +96,23 @@ fn explore(cli: &Cli) -> Result<Option<i32>, Error> {
     let (term, colorterm) = (std::env::var("TERM").ok(), std::env::var("COLORTERM").ok());
     let marker = cli
         .marker
+        .or(config.marker)
         .unwrap_or_else(|| MarkerArg::from_locale(|v| std::env::var(v).ok()));
-    let theme = crate::theme::Theme::resolve(theme.as_deref(), no_color)?
-        .with_depth(crate::theme::Depth::detect(
-            term.as_deref(),
-            colorterm.as_deref(),
-        ))
-        .with_marker(marker.marker());
+    // The flag, else the configuration's (which, a user's choice, wins over NO_COLOR too).
+    let theme_name = look.theme.clone().or(config.theme.clone());
+    let theme =
+        crate::theme::Theme::resolve_in(theme_name.as_deref(), no_color, user_themes.as_deref())
+            .map_err(|e| match look.theme {
+                None if config.theme.is_some() => config.blame("theme", e),
+                _ => e,
+            })?
+            .with_depth(crate::theme::Depth::detect(
+                term.as_deref(),
+                colorterm.as_deref(),
+            ))
+            .with_marker(marker.marker());
     let units = cli.units.units()?;
-    let scene_ref = cli.look.scene.as_deref().map(scene_reference);
+    let scene_ref = look.scene.as_deref().map(scene_reference);
     if term.as_deref() == Some("dumb") {
         return Err(Error::Invalid(
             "TERM=dumb cannot show the explorer (it needs cursor movement); set TERM to your terminal's type (e.g. xterm), or use `turntable replay SCRIPT` or a subcommand".into(),
@@ -99,10 +120,7 @@ fn explore(cli: &Cli) -> Result<Option<i32>, Error> {
     }
     let recording = match &cli.record {
         Some(path) => Some(std::sync::Arc::new(Recording {
-            out: std::sync::Mutex::new(Some(check_record_path(
-                path,
-                [&cli.look.scene, &cli.look.theme],
-            )?)),
+            out: std::sync::Mutex::new(Some(check_record_path(path, [&look.scene, &theme_name])?)),
             path: path.clone(),
             scene: scene_ref,
         })),
@@ -115,18 +133,24 @@ fn explore(cli: &Cli) -> Result<Option<i32>, Error> {
         ));
     }
     let mut app = crate::app::App::new(scene, theme);
+    // Units: the flags, else the scene's own, else the configuration's.
     if units.is_some() {
         app.units = units;
+    } else if app.units.is_none() {
+        app.units = config.units;
     }
-    if cli.no_mouse {
-        app.mouse = false;
-    }
+    app.mouse = match (cli.no_mouse, cli.mouse) {
+        (true, _) => false,
+        (_, true) => true,
+        _ => config.mouse.unwrap_or(true),
+    };
     let save = recording.clone().map(|r| {
         Box::new(move |script: String| {
             let _ = r.save(script);
         }) as crate::terminal::SaveRecording
     });
-    let (result, script) = crate::terminal::run(app, cli.fps, save);
+    let fps = cli.fps.or(config.fps).unwrap_or(30);
+    let (result, script) = crate::terminal::run(app, fps, save, lesson);
     if let (Some(r), Some(script)) = (recording, script) {
         let saved = r
             .save(script)
@@ -252,22 +276,32 @@ fn man() -> CmdResult {
     Ok(())
 }
 
+/// The explorer ended by signal `n`: as the shell reports a process a signal killed, 128 + n.
+fn signalled(n: i32) -> ExitCode {
+    let _ = writeln!(std::io::stderr(), "turntable: ended by signal {n}");
+    ExitCode::from(128 + n as u8)
+}
+
 /// Entry point of the binary.
 pub fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
-        None => match explore(&cli) {
-            // As the shell reports a process a signal killed: 128 + its number.
-            Ok(Some(n)) => {
-                let _ = writeln!(std::io::stderr(), "turntable: ended by signal {n}");
-                return ExitCode::from(128 + n as u8);
-            }
+        None => match explore(&cli, &cli.look, None) {
+            Ok(Some(n)) => return signalled(n),
+            r => r.map(|_| ()),
+        },
+        Some(Command::Lesson(ref a)) => match lesson::run(a) {
+            Ok(Some((look, driver))) => match explore(&cli, &look, Some(driver)) {
+                Ok(Some(n)) => return signalled(n),
+                r => r.map(|_| ()),
+            },
             r => r.map(|_| ()),
         },
         Some(Command::Run(a)) => numerics::run(a),
         Some(Command::Escape(a)) => numerics::escape(a),
         Some(Command::Critical(a)) => numerics::critical(a),
         Some(Command::Sweep(a)) => sweep::sweep(a),
+        Some(Command::Plot(a)) => plot::plot(a),
         Some(Command::Bench(a)) => bench::bench(a),
         Some(Command::Replay(a)) => replay::run(a),
         Some(Command::Completions(a)) => completions(a.shell),

@@ -1,7 +1,7 @@
 //! `turntable replay SCRIPT`: a key script run headlessly, its snapshots on stdout.
 
 use super::{CmdResult, Error};
-use crate::replay::{Options, replay_to};
+use crate::replay::{Options, replay_cast, replay_to};
 use crate::script::{parse_size, script_options};
 use clap::Args;
 
@@ -19,6 +19,10 @@ pub struct ReplayArgs {
     pub ansi: bool,
     #[command(flatten)]
     pub look: super::Look,
+    /// Also record the replay as an asciicast v2 file (asciinema's player plays it at the
+    /// pace of the ticks, 30 a second), written atomically.
+    #[arg(long, value_name = "OUT.cast")]
+    pub asciicast: Option<std::path::PathBuf>,
 }
 
 pub fn run(a: ReplayArgs) -> CmdResult {
@@ -29,8 +33,24 @@ pub fn run(a: ReplayArgs) -> CmdResult {
         crate::files::read_bounded(std::path::Path::new(&a.script), crate::files::READ_CAP)?
     };
     let (app, opts, steps) = prepare(&text, &a)?;
+    // Opened before the work, so a bad path fails at once.
+    let cast = match &a.asciicast {
+        Some(path) => Some(
+            crate::files::Output::create(path)
+                .map_err(|e| Error::Invalid(format!("--asciicast {e}")))?,
+        ),
+        None => None,
+    };
     let mut so = std::io::BufWriter::new(std::io::stdout().lock());
-    replay_to(app, &steps, &opts, &mut so)?;
+    match cast {
+        Some(out) => {
+            let mut file = std::io::BufWriter::new(out);
+            let title = format!("turntable replay {}", a.script);
+            replay_cast(app, &steps, &opts, &mut so, &mut file, &title)?;
+            file.into_inner().map_err(|e| e.into_error())?.finish()?;
+        }
+        None => replay_to(app, &steps, &opts, &mut so)?,
+    }
     Ok(())
 }
 
@@ -48,7 +68,14 @@ pub fn prepare(
         None => crate::scene::Scene::default_scene(),
     };
     let theme = a.look.theme.as_ref().or(own.theme.as_ref());
-    let theme = crate::theme::Theme::resolve(theme.map(String::as_str), false)?;
+    // No user themes by name: a replay reads no configuration.
+    let theme =
+        crate::theme::Theme::resolve(theme.map(String::as_str), false).map_err(|e| match e {
+            Error::Invalid(m) if !m.starts_with("theme file") => Error::Invalid(format!(
+                "{m}; replay reads no configuration: name a theme of yours by its path"
+            )),
+            e => e,
+        })?;
     let mut app = crate::app::App::new(scene, theme);
     app.writes_files = false;
     let opts = Options {

@@ -2,7 +2,7 @@
 
 use super::numerics::{positive, solver_settings};
 use super::{
-    CmdResult, Fig5Args, Fig6Args, MapArgs, OutArg, SweepArgs, SweepFigure, bracket_width,
+    CmdResult, Fig5Data, Fig6Data, MapData, OutArg, SweepArgs, SweepFigure, bracket_width,
     check_initial, num, solver_budget,
 };
 use crate::engine::Initial;
@@ -14,14 +14,14 @@ use std::io::Write as _;
 
 pub fn sweep(a: SweepArgs) -> CmdResult {
     match a.figure {
-        SweepFigure::Fig5(f) => fig5(&f),
-        SweepFigure::Fig6(f) => fig6(&f),
-        SweepFigure::Map(m) => sweep_map(&m),
+        SweepFigure::Fig5(f) => fig5(&f.data, &f.out),
+        SweepFigure::Fig6(f) => fig6(&f.data, &f.out),
+        SweepFigure::Map(m) => sweep_map(&m.data, &m.out),
     }
 }
 
 /// How many points a sweep may take.
-fn points(n: usize) -> Result<(), Error> {
+pub(super) fn points(n: usize) -> Result<(), Error> {
     if n == 0 || n > 100_000 {
         return Err(Error::Invalid(format!(
             "points must lie in 1..=100000, got {n}"
@@ -61,35 +61,41 @@ fn write_csv(csv: &str, out: Option<Output>, arg: &OutArg) -> CmdResult {
 }
 
 /// `sweep fig5`: v_e over φ for each ξ0.
-fn fig5(a: &Fig5Args) -> CmdResult {
+fn fig5(a: &Fig5Data, out_arg: &OutArg) -> CmdResult {
+    let settings = fig5_check(a)?;
+    let out = open_out(out_arg)?;
+    let mut csv = String::from("xi0,phi,v_escape\n");
+    for p in fig5_data(a, settings)? {
+        let _ = writeln!(csv, "{},{},{}", num(p.xi0), num(p.phi), num(p.v_escape));
+    }
+    write_csv(&csv, out, out_arg)
+}
+
+/// Fig. 5's flags checked: the solver's settings.
+pub(super) fn fig5_check(a: &Fig5Data) -> Result<crate::engine::Settings, Error> {
     bracket_width("vtol", a.vtol)?;
     points(a.points)?;
     let settings = solver_settings(&a.numerics)?;
     for &xi0 in &a.xi0 {
         check_escape_xi0(xi0)?;
     }
-    let out = open_out(&a.out)?;
-    let mut csv = String::from("xi0,phi,v_escape\n");
-    let curves =
-        sweep_escape(&a.xi0, a.points, settings, a.vtol).map_err(solver_budget("--vtol"))?;
-    for p in curves {
-        let _ = writeln!(csv, "{},{},{}", num(p.xi0), num(p.phi), num(p.v_escape));
-    }
-    write_csv(&csv, out, &a.out)
+    Ok(settings)
+}
+
+/// Fig. 5's points, every curve in turn.
+pub(super) fn fig5_data(
+    a: &Fig5Data,
+    settings: crate::engine::Settings,
+) -> Result<Vec<crate::engine::solve::EscapePoint>, Error> {
+    sweep_escape(&a.xi0, a.points, settings, a.vtol).map_err(solver_budget("--vtol"))
 }
 
 /// `sweep fig6`: where a release at rest in the lab ends, over ξ0.
-fn fig6(a: &Fig6Args) -> CmdResult {
-    points(a.points)?;
-    positive("xi0-max", a.xi0_max)?;
-    check_initial(&Initial::velocity(a.xi0_max, 0.0, 0.0))?;
-    let settings = solver_settings(&a.numerics)?;
-    let out = open_out(&a.out)?;
-    let xi0s: Vec<f64> = (0..a.points)
-        .map(|i| a.xi0_max * i as f64 / (a.points - 1).max(1) as f64)
-        .collect();
+fn fig6(a: &Fig6Data, out_arg: &OutArg) -> CmdResult {
+    let settings = fig6_check(a)?;
+    let out = open_out(out_arg)?;
     let mut csv = String::from("xi0,outcome,xi,angle\n");
-    for p in sweep_rest(&xi0s, settings)? {
+    for p in fig6_data(a, settings)? {
         let f = |x: Option<f64>| x.map_or(String::new(), num);
         let _ = writeln!(
             csv,
@@ -101,48 +107,33 @@ fn fig6(a: &Fig6Args) -> CmdResult {
             f(p.angle.map(crate::engine::model::turn_angle))
         );
     }
-    write_csv(&csv, out, &a.out)
+    write_csv(&csv, out, out_arg)
+}
+
+/// Fig. 6's flags checked: the solver's settings.
+pub(super) fn fig6_check(a: &Fig6Data) -> Result<crate::engine::Settings, Error> {
+    points(a.points)?;
+    positive("xi0-max", a.xi0_max)?;
+    check_initial(&Initial::velocity(a.xi0_max, 0.0, 0.0))?;
+    solver_settings(&a.numerics)
+}
+
+/// Fig. 6's points: `--points` radii evenly over [0, --xi0-max].
+pub(super) fn fig6_data(
+    a: &Fig6Data,
+    settings: crate::engine::Settings,
+) -> Result<Vec<crate::engine::solve::RestPoint>, Error> {
+    let xi0s: Vec<f64> = (0..a.points)
+        .map(|i| a.xi0_max * i as f64 / (a.points - 1).max(1) as f64)
+        .collect();
+    Ok(sweep_rest(&xi0s, settings)?)
 }
 
 /// `sweep map`: one row per (phi, v0) cell, as the explorer's outcome map classifies it.
-fn sweep_map(a: &MapArgs) -> CmdResult {
-    let xi0 = a.xi0;
-    bracket_width("vtol", a.vtol)?;
-    let settings = solver_settings(&a.numerics)?;
-    check_escape_xi0(xi0)?;
-    for (name, n) in [("phi-points", a.phi_points), ("v0-points", a.v0_points)] {
-        if !(1..=2000).contains(&n) {
-            return Err(Error::invalid(format!(
-                "{name} must lie in 1..=2000, got {n}"
-            )));
-        }
-    }
-    if let Some(v) = a.v0_max {
-        positive("v0-max", v)?;
-        check_initial(&Initial::velocity(xi0, 0.0, v))?;
-    }
-    let out = open_out(&a.out)?;
-    let v0_max = match a.v0_max {
-        Some(v) => v,
-        None => {
-            let curve = sweep_escape(&[xi0], a.phi_points, settings, a.vtol)
-                .map_err(solver_budget("--vtol"))?;
-            let top = curve.iter().map(|p| p.v_escape).fold(0.0, f64::max);
-            let lab = if a.release == crate::engine::Release::LabRest {
-                xi0
-            } else {
-                0.0
-            };
-            (1.3 * (top + lab)).max(0.2)
-        }
-    };
-    let rows = crate::analysis::outcome_map(
-        xi0,
-        a.release,
-        (a.phi_points, a.v0_points),
-        v0_max,
-        settings,
-    )?;
+fn sweep_map(a: &MapData, out_arg: &OutArg) -> CmdResult {
+    let settings = map_check(a)?;
+    let out = open_out(out_arg)?;
+    let rows = map_data(a, settings)?.rows;
     let mut csv = String::from("phi,v0,outcome,xi,angle\n");
     for r in rows {
         let (xi, angle) = r
@@ -157,5 +148,64 @@ fn sweep_map(a: &MapArgs) -> CmdResult {
             r.cell.outcome.name()
         );
     }
-    write_csv(&csv, out, &a.out)
+    write_csv(&csv, out, out_arg)
+}
+
+/// The map's flags checked: the solver's settings.
+pub(super) fn map_check(a: &MapData) -> Result<crate::engine::Settings, Error> {
+    bracket_width("vtol", a.vtol)?;
+    let settings = solver_settings(&a.numerics)?;
+    check_escape_xi0(a.xi0)?;
+    for (name, n) in [("phi-points", a.phi_points), ("v0-points", a.v0_points)] {
+        if !(1..=2000).contains(&n) {
+            return Err(Error::invalid(format!(
+                "{name} must lie in 1..=2000, got {n}"
+            )));
+        }
+    }
+    if let Some(v) = a.v0_max {
+        positive("v0-max", v)?;
+        check_initial(&Initial::velocity(a.xi0, 0.0, v))?;
+    }
+    Ok(settings)
+}
+
+/// The outcome map computed: its cells, its largest v0, and the escape-speed curve behind the
+/// default --v0-max (None when --v0-max was given).
+pub(super) struct MapComputed {
+    pub rows: Vec<crate::analysis::MapRow>,
+    pub v0_max: f64,
+    pub curve: Option<Vec<crate::engine::solve::EscapePoint>>,
+}
+
+pub(super) fn map_data(
+    a: &MapData,
+    settings: crate::engine::Settings,
+) -> Result<MapComputed, Error> {
+    let (v0_max, curve) = match a.v0_max {
+        Some(v) => (v, None),
+        None => {
+            let curve = sweep_escape(&[a.xi0], a.phi_points, settings, a.vtol)
+                .map_err(solver_budget("--vtol"))?;
+            let top = curve.iter().map(|p| p.v_escape).fold(0.0, f64::max);
+            let lab = if a.release == crate::engine::Release::LabRest {
+                a.xi0
+            } else {
+                0.0
+            };
+            ((1.3 * (top + lab)).max(0.2), Some(curve))
+        }
+    };
+    let rows = crate::analysis::outcome_map(
+        a.xi0,
+        a.release,
+        (a.phi_points, a.v0_points),
+        v0_max,
+        settings,
+    )?;
+    Ok(MapComputed {
+        rows,
+        v0_max,
+        curve,
+    })
 }

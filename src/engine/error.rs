@@ -14,6 +14,9 @@ pub enum Error {
     /// A solver that found no answer.
     #[error("{0}")]
     Failed(String),
+    /// A solver stopped by its caller between runs (see [`super::solve::GoOn`]).
+    #[error("cancelled")]
+    Cancelled,
 }
 
 impl Error {

@@ -11,6 +11,24 @@ use super::saddle::{Fate, fate, saddle_h};
 use crate::engine::error::Error;
 use serde::Serialize;
 
+/// Asked by a solver before each of its runs: `false` ends the solver with
+/// [`Error::Cancelled`]. A caller whose answer became moot (the explorer's page asked for
+/// another) so waits for at most one run, itself bounded by `Settings::max_steps`.
+pub type GoOn<'a> = &'a dyn Fn() -> bool;
+
+/// A [`GoOn`] that never cancels.
+pub fn always() -> bool {
+    true
+}
+
+fn check(go_on: GoOn) -> Result<(), Error> {
+    if go_on() {
+        Ok(())
+    } else {
+        Err(Error::Cancelled)
+    }
+}
+
 /// Time limit of one classifying run. Every run ends stuck or certified long before this except
 /// exactly at a threshold, where the particle lingers at the saddle ξ = 1, u = 0.
 pub const CLASSIFY_TAU: f64 = 1e4;
@@ -164,8 +182,10 @@ fn probe(
     settings: Settings,
     early: bool,
     evals: &mut u64,
+    go_on: GoOn,
 ) -> Result<Probe, Error> {
     use super::run::Status;
+    check(go_on)?;
     let mut run = Run::new(initial, settings)?;
     let result = loop {
         if let Status::Stuck { q, .. } = run.status() {
@@ -255,6 +275,17 @@ const CERTIFY_STEP: f64 = 1e3;
 /// the estimate by ±0.45 `tol` certifies it. Bisection on the outcome is the safeguard
 /// whenever H is unavailable or the secant makes poor progress.
 pub fn escape_speed(xi0: f64, phi: f64, settings: Settings, tol: f64) -> Result<Threshold, Error> {
+    escape_speed_until(xi0, phi, settings, tol, &always)
+}
+
+/// [`escape_speed`], asking `go_on` before each run.
+pub fn escape_speed_until(
+    xi0: f64,
+    phi: f64,
+    settings: Settings,
+    tol: f64,
+    go_on: GoOn,
+) -> Result<Threshold, Error> {
     if !(tol.is_finite() && tol > 0.0) {
         return Err(Error::invalid(format!("tol must be > 0, got {tol}")));
     }
@@ -279,7 +310,7 @@ pub fn escape_speed(xi0: f64, phi: f64, settings: Settings, tol: f64) -> Result<
     let top = escape_scan_top(xi0);
     let grid: Vec<f64> = (0..=40).map(|i| top * i as f64 / 40.0).collect();
     let (first, interval, scanned) = scan(&grid, |v0| {
-        probe(at(v0), scan_settings, true, &mut evals).map(|p| p.escapes)
+        probe(at(v0), scan_settings, true, &mut evals, go_on).map(|p| p.escapes)
     })?;
     let mut runs = scanned.len() as u32;
     if first == 0 {
@@ -299,8 +330,8 @@ pub fn escape_speed(xi0: f64, phi: f64, settings: Settings, tol: f64) -> Result<
     let (mut lo, mut glo, mut hi, mut ghi);
     loop {
         runs += 2;
-        let a = probe(at(grid[i - 1]), settings, false, &mut evals)?;
-        let b = probe(at(grid[i]), settings, false, &mut evals)?;
+        let a = probe(at(grid[i - 1]), settings, false, &mut evals, go_on)?;
+        let b = probe(at(grid[i]), settings, false, &mut evals, go_on)?;
         match (a.escapes, b.escapes) {
             (false, true) => {
                 (lo, glo, hi, ghi) = (grid[i - 1], a.h, grid[i], b.h);
@@ -341,7 +372,7 @@ pub fn escape_speed(xi0: f64, phi: f64, settings: Settings, tol: f64) -> Result<
             };
             let slope = (g2 - g1) / (v2 - v1);
             (lo, hi, runs) = close_in(lo, hi, v, slope, tol, runs, |x| {
-                probe(at(x), settings, true, &mut evals)
+                probe(at(x), settings, true, &mut evals, go_on)
             })?;
             glo = None;
             ghi = None;
@@ -368,7 +399,7 @@ pub fn escape_speed(xi0: f64, phi: f64, settings: Settings, tol: f64) -> Result<
         };
         runs += 1;
         // Once certification has been tried, only outcomes are needed: bisection.
-        let p = probe(at(v), settings, !certify, &mut evals)?;
+        let p = probe(at(v), settings, !certify, &mut evals, go_on)?;
         if let Some(g) = p.h {
             last2 = [last2[1], Some((v, g))];
         }
@@ -448,9 +479,19 @@ fn close_in(
 /// Critical radius ξ0c (Sec. IV, Fig. 6): the largest ξ0 at which a particle released at rest
 /// in the lab still ends stuck.
 pub fn critical_radius(settings: Settings, tol: f64) -> Result<Threshold, Error> {
+    critical_radius_until(settings, tol, &always)
+}
+
+/// [`critical_radius`], asking `go_on` before each run.
+pub fn critical_radius_until(
+    settings: Settings,
+    tol: f64,
+    go_on: GoOn,
+) -> Result<Threshold, Error> {
     let settings = floor_tol(settings, tol);
     let mut evals = 0;
     let mut classify = |xi0: f64| -> Result<bool, Error> {
+        check(go_on)?;
         let mut run = Run::new(Initial::at_rest(xi0, Release::LabRest), settings)?;
         let outcome = run.run(CLASSIFY_TAU, true)?;
         evals += run.cost().rhs_evals;

@@ -20,6 +20,18 @@ pub fn radial_stop(q: DVec2, s: f64, t: f64) -> DVec2 {
     rotate(q / rho, psi) * rest
 }
 
+/// The first, radial stretch out from rest at table-frame `q` (|q| = ρ > 1), `t` ahead:
+/// Filippov's rule points friction against q̂ at full strength, so it moves out along q̂ with
+/// ρ″ = ρ − 1 (Sec. II, Eq. 5 with û = q̂): ρ − 1 = g cosh t from g = ρ − 1. Coriolis turns u
+/// off q̂ by ≈ 2s/ρ, which changes ρ″ by O(s²): see `Run::launch_time` for the stretch this is
+/// good for. Returns the table-frame position and velocity at its end.
+pub fn radial_launch(q: DVec2, t: f64) -> (DVec2, DVec2) {
+    let rho = q.length();
+    let dir = q / rho;
+    let g = rho - 1.0;
+    (dir * (1.0 + g * t.cosh()), dir * (g * t.sinh()))
+}
+
 /// The stop from table-frame `q` (|q| = k < 1) at relative velocity `u`, in closed form:
 /// the time to it and the displacement on the way.
 ///

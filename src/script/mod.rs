@@ -14,6 +14,11 @@
 //!
 //! A `#` that begins a token starts a comment, so the `#` key is written
 //! `hash`.
+//!
+//! Three commands narrate a lesson (`crate::lesson`): `say TEXT` shows a caption over the
+//! scene (`say` alone clears it), `ask TEXT` asks a yes/no prediction (yes: the run on screen
+//! escapes) that the run then answers, and `wait` holds an interactive lesson until Space or
+//! Enter (headless it goes on).
 
 mod header;
 mod record;
@@ -60,6 +65,12 @@ pub enum Step {
     /// Emit the screen, with an optional label.
     Snapshot(Option<String>),
     Mouse(MouseEvent),
+    /// A caption over the scene (None: clear it).
+    Say(Option<String>),
+    /// A prediction to make: yes means the run on screen escapes.
+    Ask(String),
+    /// Interactive: hold the lesson until Space or Enter. Headless: nothing.
+    Wait,
 }
 
 /// Where and why a script failed to parse; `line` and `column` are 1-based
@@ -173,12 +184,22 @@ fn parse_line(line: &str, steps: &mut Vec<Step>, keys: &mut usize) -> Result<(),
             2
         }
         "snapshot" => {
-            let label = toks
-                .get(1)
-                .zip(toks.last())
-                .map(|(from, to)| line[from.start..to.start + to.text.len()].to_string());
-            steps.push(Step::Snapshot(label));
+            steps.push(Step::Snapshot(rest(line, &toks)));
             toks.len()
+        }
+        "say" => {
+            steps.push(Step::Say(rest(line, &toks)));
+            toks.len()
+        }
+        "ask" => {
+            let text = rest(line, &toks)
+                .ok_or_else(|| need("a question, e.g. `ask Will it escape? (y/n)`"))?;
+            steps.push(Step::Ask(text));
+            toks.len()
+        }
+        "wait" => {
+            steps.push(Step::Wait);
+            1
         }
         "mouse" => {
             let [_, action, x, y, ..] = toks.as_slice() else {
@@ -229,6 +250,14 @@ fn parse_line(line: &str, steps: &mut Vec<Step>, keys: &mut usize) -> Result<(),
         )),
         None => Ok(()),
     }
+}
+
+/// The line after its command, as written (inner blanks kept, a comment left out); None
+/// when there is nothing after it.
+fn rest(line: &str, toks: &[Token]) -> Option<String> {
+    toks.get(1)
+        .zip(toks.last())
+        .map(|(from, to)| line[from.start..to.start + to.text.len()].to_string())
 }
 
 /// Parses a key token with its optional `*N` repeat; `*` alone (or last)
@@ -424,6 +453,19 @@ mod tests {
     }
 
     #[test]
+    fn lesson_commands() {
+        assert_eq!(
+            parse("say  Friction  holds it. # note\nSAY\nask Will it escape? (y/n)\nwait\n"),
+            Ok(vec![
+                Step::Say(Some("Friction  holds it.".into())),
+                Step::Say(None),
+                Step::Ask("Will it escape? (y/n)".into()),
+                Step::Wait,
+            ])
+        );
+    }
+
+    #[test]
     fn comments_and_blank_lines() {
         let text = "# header\n\n   \n\ta # the rest is ignored\n  #indented\nb#c\n";
         let e = parse(text).unwrap_err();
@@ -441,7 +483,10 @@ mod tests {
     #[test]
     fn errors_name_line_and_column() {
         assert_err("a\n  b nope", 2, 5, "unknown key 'nope'");
-        assert_err("wait 5", 1, 1, "unknown command or key 'wait'");
+        assert_err("pause 5", 1, 1, "unknown command or key 'pause'");
+        assert_err("wait 5", 1, 6, "unexpected '5' after wait");
+        assert_err("ask", 1, 1, "ask needs a question");
+        assert_err("ask # only a comment", 1, 1, "ask needs a question");
         assert_err("ctrl-", 1, 1, "unknown key 'ctrl-'");
         assert_err("f13", 1, 1, "unknown key 'f13'");
         assert_err("f01", 1, 1, "unknown key");

@@ -51,9 +51,84 @@ pub fn fit_label(label: &str, width: usize) -> String {
     fit(bare, "\u{0}", width)
 }
 
+/// `text` wrapped to `width` columns in at most `rows` lines: paragraphs at `\n`, lines
+/// broken between words (a word wider than the line is broken where it must be). When the
+/// lines are more than `rows`, the last kept ends in `…`, whole words dropped to make room.
+pub fn wrap(text: &str, width: usize, rows: usize) -> Vec<String> {
+    let mut lines: Vec<String> = Vec::new();
+    if width == 0 || rows == 0 {
+        return lines;
+    }
+    for para in text.split('\n') {
+        let mut line = String::new();
+        for word in para.split(' ').filter(|w| !w.is_empty()) {
+            let joined = if line.is_empty() {
+                word.to_string()
+            } else {
+                format!("{line} {word}")
+            };
+            if joined.width() <= width {
+                line = joined;
+                continue;
+            }
+            if !line.is_empty() {
+                lines.push(std::mem::take(&mut line));
+            }
+            // A word wider than the line: broken by characters, as it must be.
+            for c in word.chars() {
+                if !line.is_empty() && (line.clone() + &c.to_string()).width() > width {
+                    lines.push(std::mem::take(&mut line));
+                }
+                line.push(c);
+            }
+        }
+        lines.push(line);
+    }
+    if lines.len() > rows {
+        lines.truncate(rows);
+        let last = lines.pop().unwrap_or_default();
+        let mut words: Vec<&str> = last.split(' ').collect();
+        loop {
+            let cut = match words.join(" ") {
+                kept if kept.is_empty() => "…".to_string(),
+                kept => format!("{kept} …"),
+            };
+            if cut.width() <= width || words.is_empty() {
+                lines.push(cut);
+                break;
+            }
+            words.pop();
+        }
+    }
+    lines
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn wrap_breaks_between_words_and_marks_what_is_left_out() {
+        let t = "Friction holds it inside ξ = 1.\nBeyond, it slides.";
+        assert_eq!(
+            wrap(t, 16, 9),
+            [
+                "Friction holds",
+                "it inside ξ = 1.",
+                "Beyond, it",
+                "slides."
+            ]
+        );
+        assert_eq!(wrap(t, 16, 2), ["Friction holds", "it inside ξ = …"]);
+        assert_eq!(wrap("abcdefgh ij", 3, 9), ["abc", "def", "gh", "ij"]);
+        assert_eq!(wrap("ab", 1, 1), ["…"]);
+        assert!(wrap(t, 0, 5).is_empty() && wrap(t, 5, 0).is_empty());
+        for w in 1..40 {
+            for l in wrap(t, w, 3) {
+                assert!(l.width() <= w.max(1), "{w}: {l:?}");
+            }
+        }
+    }
 
     #[test]
     fn fields_then_words_go_whole() {

@@ -1,8 +1,10 @@
 //! Pure rendering of the explorer's state into a ratatui frame.
 
 pub mod canvas;
+pub mod caption;
 pub mod chart;
 pub mod export;
+pub mod figure;
 pub mod fit;
 pub mod help;
 pub mod layout;
@@ -67,6 +69,7 @@ pub fn draw(frame: &mut Frame, app: &App) -> Option<CanvasGeom> {
         lesson,
     );
     frame.render_widget(Paragraph::new(status_line(app, status.width)), status);
+    caption::render(frame, &r, app);
     if app.help {
         help::render(frame, r.help, app);
     }
@@ -125,6 +128,29 @@ pub fn lesson_line(app: &App) -> String {
 
 fn status_line(app: &App, width: u16) -> Line<'static> {
     let th = &app.theme;
+    if let Some(name) = &app.naming {
+        // The end of a long name stays in sight: what is typed is what shows.
+        let room = usize::from(width).saturating_sub(" save as: ▏".width());
+        // The hint only where it leaves room for a name.
+        let hint = "  Enter saves · Esc cancels";
+        let (hint, room) = match room.checked_sub(hint.width()) {
+            Some(r) if r >= 20 => (hint, r),
+            _ => ("", room),
+        };
+        let mut shown: Vec<char> = name.chars().rev().collect();
+        while shown.iter().collect::<String>().width() > room {
+            shown.pop();
+        }
+        let shown: String = shown.into_iter().rev().collect();
+        return Line::from(Span::styled(
+            fit::fit(
+                &format!(" save as: {shown}▏{hint}"),
+                "\0",
+                usize::from(width),
+            ),
+            Style::default().fg(th.notice),
+        ));
+    }
     if let Some(n) = &app.notice {
         return Line::from(Span::styled(
             fit::fit(&format!(" {n}"), "\0", usize::from(width)),
@@ -135,8 +161,14 @@ fn status_line(app: &App, width: u16) -> Line<'static> {
     // The long hint where it fits, measured; else the short one, whole hints dropped from
     // its end.
     let room = usize::from(width).saturating_sub(mouse.width());
-    // Space's hint says what it does now.
-    let space = if app.playing { "pause" } else { "play" };
+    // Space's hint says what it does now (while a lesson waits, it goes on).
+    let space = if app.lesson.prompt() == crate::app::lesson::Prompt::GoOn {
+        "go on"
+    } else if app.playing {
+        "pause"
+    } else {
+        "play"
+    };
     let long = format!(
         " ? help  Space {space}  .,  step  [] speed  f frame  m method  c compare  a forces  1-6 presets  x/p/v edit  q quit"
     );

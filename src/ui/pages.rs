@@ -103,6 +103,12 @@ fn escape_speed(f: &mut TuiFrame, area: Rect, app: &App) -> Option<CanvasGeom> {
             });
             note = widest(c);
         } else if let Some(((p0, v0), (p1, v1))) = c.extremes() {
+            // The least v_e refined between the angles once it arrives (π to three decimals),
+            // the grid's least until then (to two: it is only good to the grid's 0.03π).
+            let (p0, v0, digits) = match c.least {
+                Some(Some((p, v))) => (p, v, 3),
+                _ => (p0, v0, 2),
+            };
             marks.push(Mark::Point {
                 x: p0,
                 y: v0,
@@ -118,7 +124,7 @@ fn escape_speed(f: &mut TuiFrame, area: Rect, app: &App) -> Option<CanvasGeom> {
             note = format!(
                 "min {} at {}π, max {} at {}π",
                 speed(v0),
-                num(p0 / PI, 2),
+                num(p0 / PI, digits),
                 speed(v1),
                 num(p1 / PI, 2)
             );
@@ -126,6 +132,8 @@ fn escape_speed(f: &mut TuiFrame, area: Rect, app: &App) -> Option<CanvasGeom> {
         let done = c.ve.iter().filter(|v| v.is_some()).count();
         if done < c.ve.len() {
             progress = format!(", {done}/{} angles", c.ve.len());
+        } else if !window && c.least.is_none() {
+            progress = ", refining min…".into();
         }
     } else {
         progress = ", computing…".into();
@@ -383,15 +391,15 @@ fn map_chart(app: &App, v0_max: f64, progress: String) -> Chart {
 }
 
 /// The outcome map's grid at the app's terminal size for speeds up to `v0_max`: one cell a
-/// character of the plot the page draws (the same layout and chart), none when no plot fits.
+/// character of the plot the page draws (the same layout and chart) up to
+/// [`crate::analysis::MAP_CELLS`], none when no plot fits.
 pub fn map_grid(app: &App, v0_max: f64) -> Option<(usize, usize)> {
-    use crate::analysis::MAP_MAX;
     let (w, h) = app.screen();
     let canvas = super::layout::regions(w, h)?.canvas;
     let plot = chart::plot_area(canvas, &map_chart(app, v0_max, String::new()))?;
-    Some((
-        usize::from(plot.width).min(MAP_MAX.0),
-        usize::from(plot.height).min(MAP_MAX.1),
+    Some(crate::analysis::map_grid_for(
+        usize::from(plot.width),
+        usize::from(plot.height),
     ))
 }
 

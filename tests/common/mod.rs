@@ -4,10 +4,14 @@
 
 use std::process::Command;
 
+/// An XDG_CONFIG_HOME with nothing in it: tests never read the user's configuration.
+pub const NO_CONFIG: &str = "/nonexistent/turntable-tests/config";
+
 /// Runs `turntable` with `args`: exit code, stdout, stderr.
 pub fn turntable(args: &[&str]) -> (i32, String, String) {
     let out = Command::new(env!("CARGO_BIN_EXE_turntable"))
         .args(args)
+        .env("XDG_CONFIG_HOME", NO_CONFIG)
         .output()
         .unwrap();
     (
@@ -22,6 +26,7 @@ pub fn turntable(args: &[&str]) -> (i32, String, String) {
 pub fn render(app: &mut turntable::app::App, w: u16, h: u16) -> String {
     let mut t = ratatui::Terminal::new(ratatui::backend::TestBackend::new(w, h)).unwrap();
     app.resize(w, h);
+    app.sync_analysis();
     let mut geom = None;
     t.draw(|f| geom = turntable::ui::draw(f, app)).unwrap();
     app.drawn(geom);

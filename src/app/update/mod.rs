@@ -4,6 +4,7 @@
 mod app;
 mod initial;
 mod integrator;
+mod lesson;
 mod time;
 mod view;
 
@@ -24,8 +25,9 @@ pub fn update(app: &mut App, action: Action) {
         Group::Integrator => integrator::apply(app, action),
         Group::View => view::apply(app, action),
         Group::App => app::apply(app, action),
+        Group::Lesson => lesson::apply(app, action),
     }
-    app.sync_analysis();
+    app.ask_analysis();
 }
 
 /// One tick of sim time (× speed) for both runs. Marks the screen dirty only if time moved.

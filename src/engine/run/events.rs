@@ -66,8 +66,9 @@ impl Run {
                     u: q * i.sqrt(),
                 };
             }
-        } else if hovering && gap <= 0.0 {
-            // At the saddle ξ ≈ 1 itself: stop here and let Filippov's rule decide.
+        } else if hovering && gap <= 0.0 && out <= 0.0 {
+            // At the saddle ξ ≈ 1 itself, not moving out: stop here and let Filippov's rule
+            // decide. (Moving out beyond it, it escapes: property 2; `launch_time` takes it.)
             return Ahead::Jump {
                 t: 0.0,
                 q: s.q(),
@@ -92,6 +93,23 @@ impl Run {
         } else {
             Ahead::Cap(STOP_CAP * t, Limit::StopAhead)
         }
+    }
+
+    /// At rest outside ξ = 1 (a release there, or a momentary stop): how long a stretch
+    /// [`radial_launch`] takes it out. There û is stiff (it relaxes onto q̂ at a rate ρ/|u|),
+    /// so explicit steps from rest are held to ~|u|/ρ and were rejected by the million: at
+    /// ξ0 = 1.02 the run took ten million steps to τ = 0.21 and, each hover taken as a stop,
+    /// never left ξ = 1.0200000. The launch neglects Coriolis' share of ρ″, −2ρs² (the loss of
+    /// I in `radial_stop`), which over t from rest moves ρ by ρg²t⁴/6: the stretch keeps that
+    /// within the travel tolerance. (Chained from a moving start the shares add up; explicit
+    /// steps take over instead.)
+    pub(super) fn launch_time(&self, s: &State) -> Option<f64> {
+        let rho = s.xi();
+        if rho <= 1.0 || s.u_lab() != DVec2::ZERO {
+            return None;
+        }
+        let g = rho - 1.0;
+        Some((6.0 * self.travel_tol() / (rho * g * g)).powf(0.25))
     }
 
     /// Whether the stop `t` ahead at constant deceleration may be taken in closed form: only
@@ -157,6 +175,9 @@ impl Run {
             rejected: 0,
         });
         self.stiff_steps = 0;
+        if self.escape.is_none() && certificate(&to).is_some() {
+            self.escape = Some(self.locate_escape(&seg));
+        }
         if u != DVec2::ZERO {
             return;
         }

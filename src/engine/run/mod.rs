@@ -6,7 +6,7 @@
 use super::method::Settings;
 use super::model::{Initial, State};
 use super::stepper::{Cost, Segment, StepError, Stepper, too_short};
-use super::stop::{frozen_stop, frozen_stop_error};
+use super::stop::{frozen_stop, frozen_stop_error, radial_launch};
 use crate::engine::error::Error;
 use glam::DVec2;
 
@@ -350,6 +350,13 @@ impl Run {
                 self.jump(t, q + dq, DVec2::ZERO);
                 return Ok(());
             }
+        }
+        if self.settings.method().stick_events()
+            && let Some(t) = self.launch_time(&s)
+        {
+            let (q, u) = radial_launch(q, t.min(cap));
+            self.jump(t.min(cap), q, u);
+            return Ok(());
         }
         if self.settings.method().stick_events() {
             match self.stop_ahead(&s) {

@@ -1,0 +1,153 @@
+//! A narrated lesson's part of the state: the caption over the scene, the prediction asked
+//! and its answer, and whether the lesson holds for Space or Enter. A lesson script sets them
+//! (`say`, `ask`, `wait`; see `crate::lesson`), the keys answer and go on; the caption's words,
+//! the verdict included, are a function of this state and the run on screen.
+
+use super::state::App;
+use crate::engine::Outcome;
+
+/// What a lesson shows and awaits.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Lesson {
+    /// The lesson's name, for the caption's title (None: a key script's own captions).
+    pub name: Option<String>,
+    pub caption: Option<String>,
+    pub question: Option<Question>,
+    /// Held until Space or Enter (interactive lessons only: headless, `wait` goes on).
+    pub waiting: bool,
+    /// The lesson's script has run to its end.
+    pub done: bool,
+}
+
+/// A prediction: yes means the run on screen escapes.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Question {
+    pub text: String,
+    pub answer: Option<bool>,
+    /// The τ on screen when it was asked: unanswered, the run answers only once time has
+    /// moved on from there (a run decided at once must not give the answer away).
+    pub asked_at: f64,
+}
+
+/// What the lesson waits for from the keys now: their bindings in the lesson group take
+/// these keys first (see [`super::keymap::lookup_when`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Prompt {
+    None,
+    /// y or n.
+    Answer,
+    /// Space or Enter.
+    GoOn,
+}
+
+/// The caption box's contents.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Caption {
+    pub title: String,
+    /// Paragraphs, separated by `\n`.
+    pub text: String,
+    /// What the keys do now, for the box's lower edge.
+    pub prompt: Option<&'static str>,
+}
+
+impl Lesson {
+    /// What the keys answer now: a question's y/n first, then a wait's Space/Enter.
+    pub fn prompt(&self) -> Prompt {
+        if self.question.as_ref().is_some_and(|q| q.answer.is_none()) {
+            Prompt::Answer
+        } else if self.waiting {
+            Prompt::GoOn
+        } else {
+            Prompt::None
+        }
+    }
+
+    /// Whether an interactive lesson holds here (an unanswered question or a wait).
+    pub fn holds(&self) -> bool {
+        self.prompt() != Prompt::None
+    }
+}
+
+impl App {
+    /// `say`: a caption over the scene until the next `say` or `ask` (None clears it).
+    pub fn say(&mut self, text: Option<String>) {
+        self.lesson.caption = text;
+        self.lesson.question = None;
+        self.dirty = true;
+    }
+
+    /// `ask`: a prediction for the user to make, y or n; the run then answers it.
+    pub fn ask(&mut self, text: String) {
+        self.lesson.caption = None;
+        self.lesson.question = Some(Question {
+            text,
+            answer: None,
+            asked_at: self.now().tau,
+        });
+        self.dirty = true;
+    }
+
+    /// `wait` in an interactive lesson: hold until Space or Enter.
+    pub fn wait(&mut self) {
+        self.lesson.waiting = true;
+        self.dirty = true;
+    }
+
+    /// The caption box, when there is something to say.
+    pub fn caption(&self) -> Option<Caption> {
+        let l = &self.lesson;
+        let text = match (&l.caption, &l.question) {
+            (_, Some(q)) => match self.verdict(q) {
+                Some(v) => format!("{}\n{v}", q.text),
+                None => q.text.clone(),
+            },
+            (Some(c), None) => c.clone(),
+            (None, None) if l.done && l.name.is_some() => "End of the lesson.".into(),
+            (None, None) if l.waiting => String::new(),
+            (None, None) => return None,
+        };
+        let prompt = match l.prompt() {
+            Prompt::Answer => Some("y / n"),
+            Prompt::GoOn => Some("Space: go on"),
+            Prompt::None if l.done => Some("end · q quits"),
+            Prompt::None => None,
+        };
+        let title = l
+            .name
+            .as_ref()
+            .map_or_else(|| "lesson".into(), |n| format!("lesson: {n}"));
+        Some(Caption {
+            title,
+            text,
+            prompt,
+        })
+    }
+
+    /// The line under a prediction: what was said while the run on screen is undecided, then
+    /// whether it was right and how the run ended.
+    fn verdict(&self, q: &Question) -> Option<String> {
+        let answer = q.answer;
+        if answer.is_none() && self.now().tau <= q.asked_at {
+            return None;
+        }
+        let said = |yes: bool| {
+            if yes {
+                "it escapes"
+            } else {
+                "it does not escape"
+            }
+        };
+        let escaped = match self.sim.outcome_now() {
+            Outcome::Running => {
+                return answer.map(|a| format!("You said {}. Watch the run.", said(a)));
+            }
+            o => o == Outcome::Escaped,
+        };
+        let ending = self.ending();
+        Some(match answer {
+            None => format!("The run: it {ending}."),
+            Some(a) if a == escaped => format!("Right: it {ending}."),
+            Some(a) => format!("Not so: you said {}, but it {ending}.", said(a)),
+        })
+    }
+}

@@ -1,0 +1,87 @@
+//! An asciicast v2 recording of a replay (asciinema's format): a header line
+//! `{"version": 2, "width": W, "height": H, ...}`, then one JSON array per event,
+//! `[time, "o", data]` for output, `[time, "r", "WxH"]` for a resize and `[time, "m", label]`
+//! for a marker (each snapshot). Every frame is the whole screen as ANSI text, written when it
+//! differs from the last one; its time is the ticks passed so far at the explorer's own rate
+//! (`TICKS_PER_SECOND`), so the recording plays at the pace of the session and is the same
+//! bytes on every run.
+
+use crate::terminal::pace::TICKS_PER_SECOND;
+use crate::ui::export::ansi_text;
+use ratatui::buffer::Buffer;
+use serde_json::json;
+use std::io::{self, Write};
+
+/// The recording as it is written.
+pub struct Cast<'a> {
+    out: &'a mut dyn Write,
+    /// The last frame written, to skip unchanged ones.
+    last: Option<String>,
+}
+
+/// Seconds after the start at `ticks`, to the microsecond (rounding keeps the order).
+fn time(ticks: u64) -> String {
+    format!("{:.6}", ticks as f64 / f64::from(TICKS_PER_SECOND))
+}
+
+impl<'a> Cast<'a> {
+    /// Writes the header for a `width` × `height` terminal.
+    pub fn new(out: &'a mut dyn Write, width: u16, height: u16, title: &str) -> io::Result<Self> {
+        let header = json!({
+            "version": 2,
+            "width": width,
+            "height": height,
+            "title": title,
+            "env": {"TERM": "xterm-256color"},
+        });
+        writeln!(out, "{header}")?;
+        Ok(Cast { out, last: None })
+    }
+
+    fn event(&mut self, ticks: u64, kind: &str, data: &str) -> io::Result<()> {
+        let data = serde_json::Value::from(data);
+        writeln!(self.out, "[{}, \"{kind}\", {data}]", time(ticks))
+    }
+
+    /// The screen at `ticks`, if it changed: cursor home, then every row (the first frame and
+    /// the first after a resize clear the screen and hide the cursor first).
+    pub fn frame(&mut self, ticks: u64, buf: &Buffer) -> io::Result<()> {
+        let rows = ansi_text(buf);
+        let screen = rows.trim_end_matches('\n').replace('\n', "\r\n");
+        if self.last.as_deref() == Some(screen.as_str()) {
+            return Ok(());
+        }
+        let clear = if self.last.is_none() {
+            "\x1b[?25l\x1b[2J"
+        } else {
+            ""
+        };
+        self.event(ticks, "o", &format!("{clear}\x1b[H{screen}"))?;
+        self.last = Some(screen);
+        Ok(())
+    }
+
+    /// The terminal is now `width` × `height`: the next frame is drawn on a cleared screen.
+    pub fn resize(&mut self, ticks: u64, width: u16, height: u16) -> io::Result<()> {
+        self.last = None;
+        self.event(ticks, "r", &format!("{width}x{height}"))
+    }
+
+    /// A marker (a snapshot's label): the player can jump to it.
+    pub fn marker(&mut self, ticks: u64, label: &str) -> io::Result<()> {
+        self.event(ticks, "m", label)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn times_are_ticks_at_the_explorers_rate() {
+        assert_eq!(time(0), "0.000000");
+        assert_eq!(time(30), "1.000000");
+        assert_eq!(time(1), "0.033333");
+        assert_eq!(time(2), "0.066667");
+    }
+}

@@ -1,0 +1,100 @@
+//! `turntable lesson`: the narrated lessons shipped in the binary, listed, run in the explorer
+//! or headless (snapshots as `replay` prints them).
+
+use super::replay::{ReplayArgs, prepare};
+use super::{Error, Look};
+use crate::lesson::{Driver, LESSONS, Lesson, find, names};
+use crate::script::parse_size;
+use clap::Args;
+
+#[derive(Args, Debug, Default)]
+pub struct LessonArgs {
+    /// The lesson to take (see --list).
+    #[arg(value_name = "NAME")]
+    pub name: Option<String>,
+    /// List the lessons.
+    #[arg(long, conflicts_with_all = ["name", "headless"])]
+    pub list: bool,
+    /// No terminal: run the lesson as `replay` runs a script and print its snapshots (a `wait`
+    /// goes on, a question stays unanswered and the run answers it).
+    #[arg(long)]
+    pub headless: bool,
+    /// With --headless: the off-screen terminal's size, WxH (default the lesson's own, 80x24).
+    #[arg(long, value_name = "WxH", value_parser = parse_size, requires = "headless")]
+    pub size: Option<(u16, u16)>,
+    /// With --headless: style the snapshots with ANSI colour escape sequences.
+    #[arg(long, requires = "headless")]
+    pub ansi: bool,
+    /// Colour theme: dark, light, high-contrast, mono, or a .toml file.
+    #[arg(long, value_name = "NAME|PATH")]
+    pub theme: Option<String>,
+}
+
+/// `lesson --list`, `lesson NAME --headless`, or what the explorer needs for `lesson NAME`:
+/// the look and the lesson's driver.
+pub fn run(a: &LessonArgs) -> Result<Option<(Look, Driver)>, Error> {
+    if a.list {
+        let width = LESSONS.iter().map(|l| l.name.len()).max().unwrap_or(0);
+        let list: String = LESSONS
+            .iter()
+            .map(|l| format!("{:width$}  {}\n", l.name, l.about))
+            .collect();
+        crate::files::emit(None, &list)?;
+        return Ok(None);
+    }
+    let Some(name) = a.name.as_deref() else {
+        return Err(Error::Invalid(format!(
+            "name a lesson: {} (`turntable lesson --list` says what each covers)",
+            names()
+        )));
+    };
+    let lesson = find(name).ok_or_else(|| {
+        Error::Invalid(format!(
+            "unknown lesson '{name}' (lessons: {}; `turntable lesson --list` says what each covers)",
+            names()
+        ))
+    })?;
+    let look = Look {
+        scene: None,
+        theme: a.theme.clone(),
+    };
+    let (app, opts, steps) = prepared(lesson, a.size, a.ansi, &look)?;
+    if !a.headless {
+        return Ok(Some((look, Driver::new(lesson.name, steps))));
+    }
+    let mut so = std::io::BufWriter::new(std::io::stdout().lock());
+    crate::replay::replay_to(app, &steps, &opts, &mut so)?;
+    Ok(None)
+}
+
+/// What `lesson NAME --headless` prints, at `size` (default the lesson's own).
+pub fn headless(lesson: Lesson, size: Option<(u16, u16)>) -> Result<String, Error> {
+    let (app, opts, steps) = prepared(lesson, size, false, &Look::default())?;
+    Ok(crate::replay::replay(app, &steps, &opts))
+}
+
+/// A lesson's app (its name on the caption), options and steps, as `replay` prepares a script.
+fn prepared(
+    lesson: Lesson,
+    size: Option<(u16, u16)>,
+    ansi: bool,
+    look: &Look,
+) -> Result<
+    (
+        crate::app::App,
+        crate::replay::Options,
+        Vec<crate::script::Step>,
+    ),
+    Error,
+> {
+    let replay = ReplayArgs {
+        script: format!("lesson {}", lesson.name),
+        size,
+        ansi,
+        look: look.clone(),
+        asciicast: None,
+    };
+    let (mut app, opts, steps) = prepare(lesson.script, &replay)?;
+    app.lesson.name = Some(lesson.name.to_string());
+    Ok((app, opts, steps))
+}

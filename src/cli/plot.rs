@@ -1,0 +1,181 @@
+//! `turntable plot`: a figure as SVG, its data from the same code as `sweep` (Figs. 5 and 6,
+//! the outcome map) or from one run as the explorer plays it (trajectory, time plots).
+
+use super::numerics::positive;
+use super::sweep::{fig5_check, fig5_data, fig6_check, fig6_data, map_check, map_data};
+use super::{CmdResult, PlotArgs, PlotFigure, PlotRun, SvgOut, check_initial};
+use crate::engine::solve::critical_radius;
+use crate::engine::{Initial, Release, State, Status};
+use crate::error::Error;
+use crate::figure::{Figure, build};
+use crate::files::Output;
+use std::io::Write as _;
+
+pub fn plot(a: PlotArgs) -> CmdResult {
+    match a.figure {
+        PlotFigure::Fig5 { data, svg } => {
+            let settings = fig5_check(&data)?;
+            let out = open(&svg)?;
+            let points = fig5_data(&data, settings)?;
+            let curves: Vec<(f64, Vec<(f64, f64)>)> = data
+                .xi0
+                .iter()
+                .map(|&xi0| {
+                    let pts = points.iter().filter(|p| p.xi0 == xi0);
+                    (xi0, pts.map(|p| (p.phi, p.v_escape)).collect())
+                })
+                .collect();
+            let title = "Escape speed v_e(φ): thrown slower than v_e at φ, the particle stops";
+            write(out, &svg, &build::escape_speed(title, &curves, None))
+        }
+        PlotFigure::Fig6 { data, svg } => {
+            let settings = fig6_check(&data)?;
+            let out = open(&svg)?;
+            let points: Vec<(f64, Option<f64>)> = fig6_data(&data, settings)?
+                .iter()
+                .map(|p| (p.xi0, p.xi))
+                .collect();
+            let xi0c = critical_radius(settings, 1e-6)
+                .map_err(super::solver_budget("--tol"))?
+                .value;
+            let title = "Released at rest in the lab: the final rest radius";
+            write(out, &svg, &build::rest_radius(title, &points, Some(xi0c)))
+        }
+        PlotFigure::Map { data, svg } => {
+            let settings = map_check(&data)?;
+            let out = open(&svg)?;
+            let super::sweep::MapComputed {
+                rows,
+                v0_max,
+                curve,
+            } = map_data(&data, settings)?;
+            let cells: Vec<_> = rows
+                .iter()
+                .map(|r| (r.phi, r.v0, r.cell.rest.map(|(xi, _)| xi)))
+                .collect();
+            // v_e is a speed relative to the table: drawn where the map's v0 means one.
+            let curve = curve
+                .filter(|_| data.release != Release::LabRest)
+                .map(|c| c.iter().map(|p| (p.phi, p.v_escape)).collect());
+            let v_axis = match data.release {
+                Release::LabRest => "v0, lab speed of the throw (μg/Ω)",
+                _ => "v0, speed relative to the table (μg/Ω)",
+            };
+            let title = format!("Outcome map at ξ0 = {}", data.xi0);
+            let size = (data.phi_points, data.v0_points);
+            let fig = build::outcome_map(&title, &cells, size, v0_max, curve, v_axis);
+            write(out, &svg, &fig)
+        }
+        PlotFigure::Trajectory { run, frame, svg } => {
+            let (initial, settings) = pick(&run)?;
+            let out = open(&svg)?;
+            let r = play(initial, settings, run.tau_max)?;
+            let fig = build::trajectory(&r.title, &r.path, frame, &r.end);
+            write(out, &svg, &fig)
+        }
+        PlotFigure::Time { run, svg } => {
+            let (initial, settings) = pick(&run)?;
+            let out = open(&svg)?;
+            let r = play(initial, settings, run.tau_max)?;
+            write(out, &svg, &build::time(&r.title, &r.path, r.stop))
+        }
+    }
+}
+
+/// Opens `--out` before any work: an existing file is refused unless `--force`.
+fn open(svg: &SvgOut) -> Result<Output, Error> {
+    let shown = crate::files::escape_controls(&svg.out.display().to_string());
+    if !svg.force && svg.out.symlink_metadata().is_ok() {
+        return Err(Error::Invalid(format!(
+            "--out {shown}: exists; --force replaces it"
+        )));
+    }
+    Output::create(&svg.out).map_err(|e| Error::Invalid(format!("--out {e}")))
+}
+
+/// Writes the figure and puts the file in place (never over a file that appeared meanwhile,
+/// unless `--force`).
+fn write(mut out: Output, svg: &SvgOut, fig: &Figure) -> CmdResult {
+    let text = crate::figure::to_svg(fig);
+    out.write_all(text.as_bytes())
+        .and_then(|()| match svg.force {
+            true => out.finish(),
+            false => out.finish_new(),
+        })
+        .map_err(|e| {
+            let shown = crate::files::escape_controls(&svg.out.display().to_string());
+            Error::Failed(format!("--out {shown}: {e}"))
+        })
+}
+
+/// The scene's release with the flags' changes, and its integrator.
+fn pick(r: &PlotRun) -> Result<(Initial, crate::engine::Settings), Error> {
+    let scene = crate::scene::Scene::load(&r.scene)?;
+    let mut i = scene.initial;
+    i.xi0 = r.xi0.unwrap_or(i.xi0);
+    i.phi = r.phi.unwrap_or(i.phi);
+    i.v0 = r.v0.unwrap_or(i.v0);
+    i.release = r.release.unwrap_or(i.release);
+    check_initial(&i)?;
+    scene.settings.validate()?;
+    positive("tau-max", r.tau_max)?;
+    Ok((i, scene.settings))
+}
+
+/// One run as the explorer plays it, tick by tick: its path on the explorer's τ grid up to
+/// the stop (or the escape out of view, or τ-max), how it ended, and a title.
+struct Played {
+    path: Vec<State>,
+    stop: Option<f64>,
+    end: String,
+    title: String,
+}
+
+fn play(i: Initial, settings: crate::engine::Settings, tau_max: f64) -> Result<Played, Error> {
+    let mut sim = crate::sim::Sim::new(i, settings, crate::app::state::view_radius(&i))?;
+    // Until the τ on screen passes the stop, so that the path holds the stop itself.
+    while sim.live()
+        && sim.now().tau < tau_max
+        && !matches!(sim.run.status(), Status::Stuck { tau, .. } if sim.now().tau >= tau)
+    {
+        sim.advance(crate::app::TICK_DT);
+    }
+    if let Some(e) = sim.error {
+        return Err(Error::Run(e));
+    }
+    let (stop, end) = match (sim.run.status(), sim.run.escape()) {
+        (Status::Stuck { tau, q }, _) => (
+            Some(tau),
+            format!("stuck at ξ = {:.5}, τ = {tau:.3}", q.length()),
+        ),
+        (_, Some(e)) => (None, format!("escaped (certified τ = {:.3})", e.tau)),
+        _ => (None, format!("τ = {}", sim.now().tau)),
+    };
+    let until = stop.unwrap_or(f64::INFINITY).min(tau_max);
+    let path: Vec<State> = sim
+        .path
+        .iter()
+        .copied()
+        .filter(|s| s.tau <= until)
+        .collect();
+    let release = match i.release {
+        Release::Velocity => format!("ξ0 = {}, φ = {}, v0 = {}", i.xi0, i.phi, i.v0),
+        Release::TableRest => format!("ξ0 = {}, at rest on the table", i.xi0),
+        Release::LabRest => format!("ξ0 = {}, at rest in the lab", i.xi0),
+    };
+    let knob = match settings.scheme.method().adaptive() {
+        true => "tol",
+        false => "dt",
+    };
+    let title = format!(
+        "Released at {release} ({} {knob} {:e})",
+        settings.scheme.method(),
+        settings.scheme.knob()
+    );
+    Ok(Played {
+        path,
+        stop,
+        end,
+        title,
+    })
+}

@@ -1,0 +1,249 @@
+//! The figures from their data, shared by `turntable plot` (which computes the data with the
+//! engine and the analysis) and the explorer's `E` (which takes what it already holds). Axis
+//! names carry the paper's units: lengths in R_max = μg/Ω², time in 1/Ω, speeds in μg/Ω.
+
+use super::{Figure, Mark, Panel, Series, Style, span};
+use crate::engine::{Frame, State};
+use std::f64::consts::TAU;
+
+const TAU_AXIS: &str = "τ (1/Ω)";
+const PHI_AXIS: &str = "φ, direction of the throw from radially outward (rad)";
+const VE_AXIS: &str = "v_e, escape speed (μg/Ω)";
+
+/// The circle ξ = 1, where friction can just hold a particle at rest on the table.
+fn rim() -> Series {
+    let pts = (0..=180)
+        .map(|k| {
+            let a = TAU * f64::from(k) / 180.0;
+            (a.cos(), a.sin())
+        })
+        .collect();
+    Series::line("ξ = 1 (R_max)", 2, pts)
+}
+
+/// A path in the plane of `frame` (lab: r; rotating: the table-frame position q), with the
+/// rim, the release and where the path ends, labelled `end`.
+pub fn trajectory(title: &str, path: &[State], frame: Frame, end: &str) -> Figure {
+    let at = |s: &State| {
+        let p = match frame {
+            Frame::Lab => s.r,
+            Frame::Table => s.q(),
+        };
+        (p.x, p.y)
+    };
+    let pts: Vec<(f64, f64)> = path.iter().map(at).collect();
+    let reach = pts
+        .iter()
+        .map(|(x, y)| x.abs().max(y.abs()))
+        .fold(1.0_f64, f64::max)
+        * 1.08;
+    let mut marks = Vec::new();
+    if let (Some(&first), Some(&last)) = (pts.first(), pts.last()) {
+        marks.push(Mark::Point {
+            x: first.0,
+            y: first.1,
+            label: "release".into(),
+        });
+        marks.push(Mark::Point {
+            x: last.0,
+            y: last.1,
+            label: end.into(),
+        });
+    }
+    let (name, axes) = match frame {
+        Frame::Lab => ("lab frame", ("x (R_max)", "y (R_max)")),
+        Frame::Table => (
+            "rotating frame (the table's)",
+            ("x on the table (R_max)", "y on the table (R_max)"),
+        ),
+    };
+    Figure {
+        title: title.into(),
+        panels: vec![Panel {
+            title: format!("path in the {name}"),
+            x_label: axes.0.into(),
+            y_label: axes.1.into(),
+            x: [-reach, reach],
+            y: [-reach, reach],
+            equal_aspect: true,
+            series: vec![Series::line("particle", 0, pts), rim()],
+            marks,
+        }],
+    }
+}
+
+/// The time plots: ξ, θ′, |u| and the energy identity E − E(0) = −∫|u|dτ against τ, with
+/// the stop marked at `stop` (if any).
+pub fn time(title: &str, path: &[State], stop: Option<f64>) -> Figure {
+    let over = |f: &dyn Fn(&State) -> f64| -> Vec<(f64, f64)> {
+        path.iter().map(|s| (s.tau, f(s))).collect()
+    };
+    let x = span(path.iter().map(|s| s.tau));
+    let x = [path.first().map_or(x[0], |s| s.tau), x[1]];
+    let marks: Vec<Mark> = stop
+        .map(|t| Mark::VLine {
+            x: t,
+            label: format!("stuck τ={t:.3}"),
+        })
+        .into_iter()
+        .collect();
+    let panel = |title: &str, y_label: &str, series: Vec<Series>| Panel {
+        title: title.into(),
+        x_label: TAU_AXIS.into(),
+        y_label: y_label.into(),
+        x,
+        y: span(series.iter().flat_map(|s| s.points.iter().map(|p| p.1))),
+        equal_aspect: false,
+        series,
+        marks: marks.clone(),
+    };
+    let [e, w] = crate::ui::time_plots::energy_pair(path);
+    Figure {
+        title: title.into(),
+        panels: vec![
+            panel(
+                "distance from the centre",
+                "ξ (R_max)",
+                vec![Series::line("ξ", 0, over(&State::xi))],
+            ),
+            panel(
+                "angular speed in the lab",
+                "θ′ (Ω)",
+                vec![Series::line(
+                    "θ′",
+                    0,
+                    over(&|s| s.theta_dot().unwrap_or(f64::NAN)),
+                )],
+            ),
+            panel(
+                "speed relative to the table",
+                "|u| (μg/Ω)",
+                vec![Series::line("|u|", 0, over(&|s| s.u_lab().length()))],
+            ),
+            panel(
+                "energy: dE/dτ = −|u|",
+                "(μg/Ω)²",
+                vec![
+                    Series::line("E − E(0)", 0, e),
+                    Series::line("−∫|u|dτ", 1, w),
+                ],
+            ),
+        ],
+    }
+}
+
+/// Fig. 5: v_e over φ, one curve per ξ0 (`curves`: ξ0 and its points), and a release
+/// marked if given (φ, v0, label).
+pub fn escape_speed(
+    title: &str,
+    curves: &[(f64, Vec<(f64, f64)>)],
+    release: Option<(f64, f64, String)>,
+) -> Figure {
+    let series: Vec<Series> = curves
+        .iter()
+        .enumerate()
+        .map(|(k, (xi0, pts))| Series::line(&format!("ξ0 = {xi0}"), k, pts.clone()))
+        .collect();
+    let top = series
+        .iter()
+        .flat_map(|s| s.points.iter().map(|p| p.1))
+        .chain(release.iter().map(|r| r.1))
+        .filter(|v| v.is_finite())
+        .fold(0.0_f64, f64::max);
+    Figure {
+        title: title.into(),
+        panels: vec![Panel {
+            title: "escape speed against the direction of the throw (Fig. 5)".into(),
+            x_label: PHI_AXIS.into(),
+            y_label: VE_AXIS.into(),
+            x: [0.0, TAU],
+            y: [0.0, (1.1 * top).max(0.1)],
+            equal_aspect: false,
+            series,
+            marks: release
+                .map(|(x, y, label)| Mark::Point { x, y, label })
+                .into_iter()
+                .collect(),
+        }],
+    }
+}
+
+/// Fig. 6: where a release at rest in the lab stops, against ξ0 (`None`: it escaped; the
+/// line breaks there), with ξ0c marked if known.
+pub fn rest_radius(title: &str, points: &[(f64, Option<f64>)], xi0c: Option<f64>) -> Figure {
+    let pts: Vec<(f64, f64)> = points
+        .iter()
+        .map(|&(x, r)| (x, r.unwrap_or(f64::NAN)))
+        .collect();
+    let x = [
+        0.0,
+        points.iter().map(|p| p.0).fold(0.0_f64, f64::max).max(1e-3),
+    ];
+    Figure {
+        title: title.into(),
+        panels: vec![Panel {
+            title: "released at rest in the lab: where it stops (Fig. 6); beyond ξ0c it escapes"
+                .into(),
+            x_label: "ξ0, release radius (R_max)".into(),
+            y_label: "ξ, final rest radius (R_max)".into(),
+            x,
+            y: [0.0, 1.05],
+            equal_aspect: false,
+            series: vec![Series::line("rest ξ", 0, pts)],
+            marks: xi0c
+                .map(|c| Mark::VLine {
+                    x: c,
+                    label: format!("ξ0c = {c:.6}"),
+                })
+                .into_iter()
+                .collect(),
+        }],
+    }
+}
+
+/// The outcome map over (φ, v0): cells of `size` = angles × speeds up to `v0_max`, shaded by
+/// where a stuck release rests (blank: it escapes), with the escape-speed curve over them.
+pub fn outcome_map(
+    title: &str,
+    cells: &[(f64, f64, Option<f64>)],
+    size: (usize, usize),
+    v0_max: f64,
+    curve: Option<Vec<(f64, f64)>>,
+    v_axis: &str,
+) -> Figure {
+    let (w, h) = (TAU / size.0.max(1) as f64, v0_max / size.1.max(1) as f64);
+    let bands = [
+        ("stuck, rest ξ < ¼", 0.0, 0.25, 0.12),
+        ("stuck, ¼ ≤ ξ < ½", 0.25, 0.5, 0.3),
+        ("stuck, ½ ≤ ξ < ¾", 0.5, 0.75, 0.5),
+        ("stuck, ξ ≥ ¾", 0.75, f64::INFINITY, 0.7),
+    ];
+    let mut series: Vec<Series> = bands
+        .iter()
+        .map(|&(name, lo, hi, shade)| Series {
+            name: name.into(),
+            points: cells
+                .iter()
+                .filter(|c| c.2.is_some_and(|xi| (lo..hi).contains(&xi)))
+                .map(|c| (c.0, c.1))
+                .collect(),
+            style: Style::Cells { w, h, shade },
+        })
+        .collect();
+    if let Some(pts) = curve {
+        series.push(Series::line("v_e(φ)", 0, pts));
+    }
+    Figure {
+        title: title.into(),
+        panels: vec![Panel {
+            title: "how a throw ends: shaded, it stops (by where); blank, it escapes".into(),
+            x_label: PHI_AXIS.into(),
+            y_label: v_axis.into(),
+            x: [0.0, TAU],
+            y: [0.0, v0_max],
+            equal_aspect: false,
+            series,
+            marks: vec![],
+        }],
+    }
+}
