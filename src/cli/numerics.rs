@@ -185,6 +185,13 @@ fn print(report: &(impl Report + serde::Serialize), json: bool) -> CmdResult {
 /// comes to rest, so it cannot.
 pub(super) fn solver_settings(n: &super::NumericsArgs) -> Result<crate::engine::Settings, Error> {
     let s = n.settings()?;
+    if let Some(gamma) = s.stokes() {
+        return Err(Error::Invalid(format!(
+            "under Stokes drag (gamma {}) there is no escape speed, critical radius or outcome map: every release leaves, at the rate {} (turntable run --coupling stokes says how)",
+            Initial::show(gamma),
+            crate::engine::stokes::growth_rate(gamma)
+        )));
+    }
     if !s.method().stick_events() {
         return Err(Error::Invalid(format!(
             "{} has no stick event, so its runs never come to rest: the solvers need dp54, dop853, rk4 or rk2",
@@ -218,7 +225,10 @@ pub fn escape(a: EscapeArgs) -> CmdResult {
         let (t, c) = solve_certified(settings, solve, at)?;
         (t, Some(c))
     };
-    print(&EscapeReport::new(a.xi0, a.phi, &t, certified), a.json)
+    print(
+        &EscapeReport::new(a.xi0, a.phi, &t, certified, &settings),
+        a.json,
+    )
 }
 
 pub fn critical(a: CriticalArgs) -> CmdResult {
@@ -248,5 +258,5 @@ pub fn critical(a: CriticalArgs) -> CmdResult {
     };
     // The paper's Eq. 22: mu = Omega² r0c / (xi0c g), friction measured by the critical radius.
     let mu = a.omega.zip(a.r0c).map(|(w, r)| w * w * r / (t.value * a.g));
-    print(&CriticalReport::new(&t, certified, mu), a.json)
+    print(&CriticalReport::new(&t, certified, mu, &settings), a.json)
 }
