@@ -46,22 +46,18 @@ fn cosh_sinhc(a: DVec2) -> (DVec2, DVec2) {
 /// The roots λ+ (growing) and λ− of λ² + (2i + γ)λ − 1 = 0, and Re λ+ computed without the
 /// cancellation of −γ/2 + Re d/2 at large γ (where it is ≈ 1/γ).
 pub fn roots(gamma: f64) -> (DVec2, DVec2, f64) {
-    let c = DVec2::new(-0.5 * gamma, -1.0);
-    // d = √(γ² + 4iγ): Re d = √((|w| + γ²)/2), Im d = 4γ/(2 Re d).
-    let w = gamma * (gamma * gamma + 16.0).sqrt();
-    let re = (0.5 * (w + gamma * gamma)).sqrt();
-    let half = if re > 0.0 {
-        DVec2::new(re, 2.0 * gamma / re) * 0.5
-    } else {
-        DVec2::ZERO
-    };
-    // Re λ+ = (Re d − γ)/2 = (Re d² − γ²)/(2(Re d + γ)), Re d² − γ² = 8γ/(√(γ² + 16) + γ).
-    let growth = if gamma > 0.0 {
-        4.0 * gamma / (((gamma * gamma + 16.0).sqrt() + gamma) * (re + gamma))
-    } else {
-        0.0
-    };
-    (c + half, c - half, growth)
+    if gamma == 0.0 {
+        return (-DVec2::Y, -DVec2::Y, 0.0);
+    }
+    // d = √(γ² + 4iγ): Re d = √((|w| + γ²)/2) with |w| = γ√(γ² + 16), Im d = 4γ/(2 Re d).
+    let root = (gamma * gamma + 16.0).sqrt();
+    let re = (0.5 * gamma * (root + gamma)).sqrt();
+    // Re λ+ = (Re d − γ)/2 = (Re d² − γ²)/(2(Re d + γ)), Re d² − γ² = 8γ/(√(γ² + 16) + γ),
+    // and Im λ+ = −1 + γ/Re d = −(Re d − γ)/Re d: both free of the cancellation at large γ.
+    let growth = 4.0 * gamma / ((root + gamma) * (re + gamma));
+    let plus = DVec2::new(growth, -2.0 * growth / re);
+    let minus = DVec2::new(-gamma - growth, -2.0 + 2.0 * growth / re);
+    (plus, minus, growth)
 }
 
 /// The growth rate Re λ+ of every Stokes release that leaves (module docs): ≈ √(γ/2) for
