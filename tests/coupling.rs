@@ -595,3 +595,80 @@ fn the_explorer_shows_the_coupling() {
     assert!(screen.contains("μs/μk"), "{screen}");
     assert!(screen.contains("stuck at ξ = 1.1"), "{screen}");
 }
+
+/// A stop outside ξ = 1 does happen, on the thin set of releases that approach it straight in:
+/// built by integrating back in time from rest at ξ = 1.3 (backward, the approach along −q̂
+/// is stable; RK4, 3000 steps). Forward, that release stops at ξ = 1.3: with μ_s/μ_k ≥ 1.3
+/// it sticks there, with the paper's 1, or 1.29, it slips on and escapes.
+#[test]
+fn a_stop_outside_the_rim_sticks_when_static_friction_can_hold_it() {
+    let zc = |a: DVec2| DVec2::new(-a.y, a.x);
+    // Backward in time: dq/ds = −u, du/ds = 2ẑ×u − q + û.
+    let f = |q: DVec2, u: DVec2| (-u, 2.0 * zc(u) - q + u.normalize());
+    let qs = DVec2::new(1.3, 0.0);
+    let (mut q, mut u) = (qs, -1e-12 * qs.normalize());
+    let h = 1e-4;
+    for _ in 0..3000 {
+        let (a1, b1) = f(q, u);
+        let (a2, b2) = f(q + 0.5 * h * a1, u + 0.5 * h * b1);
+        let (a3, b3) = f(q + 0.5 * h * a2, u + 0.5 * h * b2);
+        let (a4, b4) = f(q + h * a3, u + h * b3);
+        q += h / 6.0 * (a1 + 2.0 * a2 + 2.0 * a3 + a4);
+        u += h / 6.0 * (b1 + 2.0 * b2 + 2.0 * b3 + b4);
+    }
+    let turn = q.y.atan2(q.x);
+    let i = Initial::velocity(q.length(), u.y.atan2(u.x) - turn, u.length());
+    let rest = DVec2::from_angle(-turn).rotate(qs);
+    for (r, sticks) in [(1.5, true), (1.3 + 1e-6, true), (1.29, false), (1.0, false)] {
+        let mut run = Run::new(i, held(r)).unwrap();
+        let (o, end) = run.finish(200.0).unwrap();
+        if sticks {
+            assert_eq!(o, Outcome::Stuck, "R {r}");
+            assert!(
+                (end.q() - rest).length() < 1e-6,
+                "R {r}: {:?} vs {rest:?}",
+                end.q()
+            );
+            assert!((end.tau - 0.3).abs() < 1e-6, "R {r}: τ {}", end.tau);
+        } else {
+            // Certified (by energy) before the stop; followed on, it stops and slips on.
+            assert_eq!(o, Outcome::Escaped, "R {r}");
+            assert!(end.tau < 0.3, "R {r}: certified at {}", end.tau);
+            run.run(10.0, false).unwrap();
+            assert_eq!(run.status(), Status::Slipping, "R {r}");
+            assert!(run.slip_restarts() >= 1, "R {r}");
+            assert!(run.state().xi() > 3.0, "R {r}");
+        }
+    }
+}
+
+/// The outcome map outside the rim: releases at ξ0 = 1.5 that stick with μ_s/μ_k = 2 all come
+/// to rest inside ξ = 1 (there are some: thrown inward), none outside.
+#[test]
+fn no_release_of_a_map_sticks_outside_the_rim() {
+    let (code, out, err) = turntable(&[
+        "sweep",
+        "map",
+        "--xi0",
+        "1.5",
+        "--mu-static-ratio",
+        "2",
+        "--phi-points",
+        "36",
+        "--v0-points",
+        "30",
+        "--v0-max",
+        "4",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let stuck: Vec<f64> = out
+        .lines()
+        .skip(1)
+        .filter_map(|l| {
+            let c: Vec<&str> = l.split(',').collect();
+            (c[2] == "stuck").then(|| c[3].parse().unwrap())
+        })
+        .collect();
+    assert!(stuck.len() > 10, "{}", stuck.len());
+    assert!(stuck.iter().all(|&xi| xi < 1.0), "{stuck:?}");
+}
