@@ -585,6 +585,19 @@ fn the_explorer_shows_the_coupling() {
     assert!(screen.contains("e^0.2822τ"), "{screen}");
     assert_eq!(app.sim.run.cost().rhs_evals, 0);
     assert!(app.sim.now().tau > 1.0);
+    let tab = crossterm::event::KeyEvent::new(
+        crossterm::event::KeyCode::Tab,
+        crossterm::event::KeyModifiers::NONE,
+    );
+    app.handle_key(tab);
+    let screen = render(&mut app, 100, 32);
+    assert!(screen.contains("dE/dτ = −γ|u|²"), "{screen}");
+    for _ in 0..3 {
+        app.handle_key(tab);
+        let screen = render(&mut app, 100, 32);
+        assert!(screen.contains("no threshold"), "{screen}");
+        assert!(screen.contains("0.282161"), "{screen}");
+    }
     let mut scene = Scene::preset("fig2").unwrap();
     scene.settings.coupling = Coupling::Coulomb { hold: 1.2 };
     let mut app = App::new(scene, theme);
@@ -671,4 +684,46 @@ fn no_release_of_a_map_sticks_outside_the_rim() {
         .collect();
     assert!(stuck.len() > 10, "{}", stuck.len());
     assert!(stuck.iter().all(|&xi| xi < 1.0), "{stuck:?}");
+}
+
+/// `run --trajectory` under Stokes drag samples the closed form, and its `work` column,
+/// −γ∫|u|²dτ by Gauss–Legendre, is E − E(0) (dE/dτ = −γ|u|²).
+#[test]
+fn the_trajectory_of_stokes_drag_balances_its_energy() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("t.csv");
+    let (code, _, err) = turntable(&[
+        "run",
+        "--coupling",
+        "stokes",
+        "--gamma",
+        "0.8",
+        "--xi0",
+        "0.4",
+        "--phi",
+        "2",
+        "--v0",
+        "0.9",
+        "--trajectory",
+        path.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let text = std::fs::read_to_string(&path).unwrap();
+    let rows: Vec<Vec<f64>> = text
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').take(9).map(|x| x.parse().unwrap()).collect())
+        .collect();
+    assert!(rows.len() > 100, "{}", rows.len());
+    let e0 = rows[0][7];
+    for r in &rows {
+        assert!(
+            (r[7] - e0 - r[8]).abs() < 1e-9,
+            "τ {}: E − E0 {} vs work {}",
+            r[0],
+            r[7] - e0,
+            r[8]
+        );
+    }
+    assert!(rows.last().unwrap()[8] < -0.01);
 }

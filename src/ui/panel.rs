@@ -69,6 +69,9 @@ pub fn status_text(sim: &Sim, th: &Theme) -> (String, ratatui::style::Color) {
                     "escape certified\n  {}\n  at τ = {}",
                     match e.by {
                         Certificate::Radial => "ξ > 1, moving out",
+                        Certificate::Energy if sim.run.settings().hold() == 1.0 => {
+                            "E < −½: cannot rest"
+                        }
                         Certificate::Energy => "E < −½R²: cannot rest",
                         Certificate::Growing => "ξ > 1, growing mode",
                     },

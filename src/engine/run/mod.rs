@@ -270,7 +270,8 @@ impl Run {
     }
 
     /// The particle at a τ in the latest step (or the latest τ itself), at any τ after a stick
-    /// (closed-form rotation with the table), or at any τ at all when μ = 0 (closed form).
+    /// (closed-form rotation with the table), or at any τ at all when μ = 0 or under Stokes
+    /// drag (closed forms).
     /// Elsewhere the run holds no dense output: an error, never a nearby state.
     pub fn state_at(&self, tau: f64) -> Result<State, RunError> {
         if self.closed_form() {
