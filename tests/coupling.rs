@@ -239,10 +239,10 @@ fn gauss8() -> ([f64; 8], [f64; 8]) {
     let x = [
         -0.9602898564975363,
         -0.7966664774136267,
-        -0.5255324099163290,
+        -0.525532409916329,
         -0.1834346424956498,
         0.1834346424956498,
-        0.5255324099163290,
+        0.525532409916329,
         0.7966664774136267,
         0.9602898564975363,
     ];
@@ -250,8 +250,8 @@ fn gauss8() -> ([f64; 8], [f64; 8]) {
         0.1012285362903763,
         0.2223810344533745,
         0.3137066458778873,
-        0.3626837833783620,
-        0.3626837833783620,
+        0.362683783378362,
+        0.362683783378362,
         0.3137066458778873,
         0.2223810344533745,
         0.1012285362903763,
@@ -643,6 +643,13 @@ fn a_stop_outside_the_rim_sticks_when_static_friction_can_hold_it() {
                 end.q()
             );
             assert!((end.tau - 0.3).abs() < 1e-6, "R {r}: τ {}", end.tau);
+            // The second opinion (1000× tighter, other frame) stops there too; the margin is
+            // the room left to the static cone, R − ξ.
+            let d = doubt(&run, 200.0);
+            assert_eq!(d.shadow, Some(Outcome::Stuck), "R {r}");
+            assert!((d.margin - (r - end.xi())).abs() < 1e-12, "R {r}: {}", d.margin);
+            assert!(d.error < 1e-6, "R {r}: {}", d.error);
+            assert!(d.certain && d.error < 0.25 * d.margin, "R {r}: {d:?}");
         } else {
             // Certified (by energy) before the stop; followed on, it stops and slips on.
             assert_eq!(o, Outcome::Escaped, "R {r}");
