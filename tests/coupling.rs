@@ -375,6 +375,11 @@ fn stokes_without_drag_is_the_frictionless_line() {
     assert_eq!((oa, a.escape().unwrap().by), (ob, Certificate::Radial));
     assert!((ea.tau - eb.tau).abs() < 1e-12 && (ea.r - eb.r).length() < 1e-12);
     assert_eq!(a.cost().rhs_evals, 0);
+    // A little drag: certified where the line would be, to first order in γ.
+    let mut c = Run::new(i, stokes(1e-9)).unwrap();
+    let (oc, ec) = c.finish(100.0).unwrap();
+    assert_eq!(oc, Outcome::Escaped);
+    assert!((ec.tau - eb.tau).abs() < 1e-7, "{} vs {}", ec.tau, eb.tau);
 }
 
 /// The roots solve λ² + (2i + γ)λ − 1 = 0; Re λ+ is the rate at which |q| grows, ≈ √(γ/2) for
@@ -427,7 +432,8 @@ fn only_the_stable_manifold_stays() {
 }
 
 /// The Stokes certificate: from the τ it gives on, ξ > 1 and ξ only grows (checked on a fine
-/// grid of the closed form out to where |q| is 1e6 times larger).
+/// grid of the closed form out to where |q| is 1e6 times larger), and just before it, it did
+/// not yet hold (ξ ≤ 1 or ξ′ ≤ 0).
 #[test]
 fn stokes_escape_certificate_holds() {
     for gamma in [0.05, 0.5, 3.0] {
@@ -440,9 +446,16 @@ fn stokes_escape_certificate_holds() {
             let mut run = Run::new(i, stokes(gamma)).unwrap();
             let (o, end) = run.finish(1e4).unwrap();
             assert_eq!(o, Outcome::Escaped);
-            assert_eq!(run.escape().unwrap().by, Certificate::Growing);
+            assert_eq!(run.escape().unwrap().by, Certificate::Radial);
             assert!(end.xi() >= 1.0 - 1e-12, "γ {gamma}: {}", end.xi());
             let st = Stokes::new(gamma, i);
+            if end.tau > 0.0 {
+                let (q, u) = st.at(end.tau - 1e-9);
+                assert!(
+                    q.length() <= 1.0 || q.dot(u) <= 0.0,
+                    "γ {gamma}, {i:?}: held earlier"
+                );
+            }
             let span = (1e6f64).ln() / growth_rate(gamma);
             let mut prev = end.xi();
             for k in 1..=4000 {
@@ -542,7 +555,7 @@ fn run_reports_the_coupling() {
     assert_eq!(v["gamma"], 0.5);
     assert_eq!(v["mu_static_ratio"], serde_json::Value::Null);
     assert_eq!(v["growth_rate"].as_f64().unwrap(), growth_rate(0.5));
-    assert_eq!(v["certificate"], "growing");
+    assert_eq!(v["certificate"], "radial");
     assert_eq!(v["rhs_evals"], 0);
     let (code, out, err) = turntable(&[
         "run",
@@ -647,7 +660,11 @@ fn a_stop_outside_the_rim_sticks_when_static_friction_can_hold_it() {
             // the room left to the static cone, R − ξ.
             let d = doubt(&run, 200.0);
             assert_eq!(d.shadow, Some(Outcome::Stuck), "R {r}");
-            assert!((d.margin - (r - end.xi())).abs() < 1e-12, "R {r}: {}", d.margin);
+            assert!(
+                (d.margin - (r - end.xi())).abs() < 1e-12,
+                "R {r}: {}",
+                d.margin
+            );
             assert!(d.error < 1e-6, "R {r}: {}", d.error);
             assert!(d.certain && d.error < 0.25 * d.margin, "R {r}: {d:?}");
         } else {

@@ -154,6 +154,9 @@ impl Report for RunReport {
             (Outcome::Escaped, Some(by)) => {
                 format!("escaped: certified at tau ({})", by.describe())
             }
+            _ if self.gamma.is_some() => {
+                "running: not yet certified to leave at tau-max".to_string()
+            }
             _ => "running: still slipping at tau-max".to_string(),
         };
         let cost = if self.frictionless {
@@ -175,6 +178,9 @@ growth   {rate:.12}  (Re lambda+: every release leaves as e^(rate tau) but those
             )
         };
         let check = match (&self.check, self.certain) {
+            (Some(_), Some(true)) if self.gamma.is_some() => {
+                "check    closed form (Stokes drag): no integration error to check\n".to_string()
+            }
             (Some(c), Some(true)) => format!(
                 "check    outcome certain: {} agrees; tau differs from it by {:.1e}, position by {:.1e}\n",
                 c.who(),

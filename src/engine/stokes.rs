@@ -112,23 +112,9 @@ impl Stokes {
         }
     }
 
-    pub fn gamma(&self) -> f64 {
-        self.gamma
-    }
-
     /// Re λ+: the rate at which the particle leaves ([`growth_rate`]).
     pub fn growth(&self) -> f64 {
         self.growth
-    }
-
-    /// Whether the release has a growing part (A ≠ 0), so that it leaves; without one it
-    /// spirals into the centre (or stays there).
-    pub fn leaves(&self) -> bool {
-        if self.gamma == 0.0 {
-            self.initial.free_escape().is_some()
-        } else {
-            self.a != DVec2::ZERO
-        }
     }
 
     /// Table-frame position q and velocity u at τ. Near the double root (|d|τ small) the
@@ -164,14 +150,14 @@ impl Stokes {
         }
     }
 
-    /// When escape is certified: the first τ at which ξ > 1 and ξ only grows from then on.
-    /// `None` if it never leaves.
+    /// When escape is certified: the first τ with ξ > 1 and ξ′ > 0, as under Coulomb friction
+    /// (Sec. II, property 2). `None` if it never leaves.
     ///
-    /// With a = A e^{λ+τ}, b = B e^{λ−τ} and ρ = |b|/|a|, ½ d|z|²/dτ = Re(z̄z′) ≥
-    /// |a|²(Re λ+ − |Re λ−|ρ² − (|λ+| + |λ−|)ρ), positive once ρ < ρ* (the positive root);
-    /// and ρ only shrinks, as e^{(Re λ− − Re λ+)τ}. So from the τ at which ρ = ρ*/2 on, ξ grows
-    /// for ever (to infinity: |z| ≥ |a|(1 − ρ)), and the certificate holds from the first τ
-    /// after that with ξ > 1. At γ = 0 it is the straight line's ([`Initial::free_escape`]).
+    /// The drag's radial part is −γξ′ (the table moves tangentially), so Eq. (6) becomes
+    /// ξ″ = ξθ′² − γξ′ ≥ −γξ′, and ξ′ ≥ ξ′(τ0)e^{−γ(τ−τ0)} > 0 from then on: ξ only grows. It
+    /// grows without bound, as |z| ≥ |A e^{λ+τ}| − |B e^{λ−τ}| with A ≠ 0 (with A = 0, z → 0,
+    /// so this never holds). Once it holds it holds for ever, so the τ at which it first holds
+    /// is bracketed by doubling and located by Illinois.
     pub fn escape(&self) -> Option<f64> {
         if self.gamma == 0.0 {
             return self.initial.free_escape();
@@ -179,22 +165,22 @@ impl Stokes {
         if self.a == DVec2::ZERO {
             return None;
         }
-        let (gp, gm) = (self.growth, self.gamma + self.growth);
-        let l = self.plus.length() + self.minus.length();
-        let star = 2.0 * gp / (l + (l * l + 4.0 * gm * gp).sqrt());
-        let ratio = self.b.length() / self.a.length();
-        let from = ((2.0 * ratio / star).ln() / (gp + gm)).max(0.0);
-        let xi = |t: f64| self.at(t).0.length();
-        if xi(from) > 1.0 {
-            return Some(from);
+        let margin = |t: f64| {
+            let (q, u) = self.at(t);
+            let xi = q.length();
+            (xi - 1.0).min(q.dot(u) / xi)
+        };
+        if margin(0.0) > 0.0 {
+            return Some(0.0);
         }
-        let mut hi = from + 1.0;
-        while xi(hi) <= 1.0 {
-            hi = from + 2.0 * (hi - from);
-            if !hi.is_finite() {
+        let mut hi = 1.0;
+        while !(margin(hi) > 0.0) {
+            hi *= 2.0;
+            if !self.at(hi).0.is_finite() {
                 return None;
             }
         }
-        Some(illinois(|t| xi(t) - 1.0, from, hi, 1e-13))
+        let lo = if hi > 1.0 { 0.5 * hi } else { 0.0 };
+        Some(illinois(margin, lo, hi, 1e-13))
     }
 }

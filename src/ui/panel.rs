@@ -73,7 +73,6 @@ pub fn status_text(sim: &Sim, th: &Theme) -> (String, ratatui::style::Color) {
                             "E < −½: cannot rest"
                         }
                         Certificate::Energy => "E < −½R²: cannot rest",
-                        Certificate::Growing => "ξ > 1, growing mode",
                     },
                     num(e.tau, 3)
                 ),

@@ -180,7 +180,7 @@ impl Run {
             if st.escape() == Some(0.0) {
                 run.escape = Some(Escape {
                     tau: 0.0,
-                    by: run.closed_certificate(),
+                    by: Certificate::Radial,
                     state: s0,
                 });
             }
@@ -455,15 +455,6 @@ impl Run {
         }
     }
 
-    /// How a closed-form run's escape is certified: ξ > 1 moving out on a straight line
-    /// (μ = 0, and Stokes drag with γ = 0), or the growing Stokes mode in the lead.
-    fn closed_certificate(&self) -> Certificate {
-        match &self.stokes {
-            Some(st) if st.gamma() > 0.0 => Certificate::Growing,
-            _ => Certificate::Radial,
-        }
-    }
-
     /// μ = 0 or Stokes drag: one closed-form stride to `tau_max` (or [`FREE_STRIDE`] on when
     /// that is infinite), stopping at the escape certificate on the way.
     fn free_step(&mut self, tau_max: f64) -> Result<(), RunError> {
@@ -483,7 +474,7 @@ impl Run {
             end = te.max(self.stepper.t);
             self.escape = Some(Escape {
                 tau: te,
-                by: self.closed_certificate(),
+                by: Certificate::Radial,
                 state: self.exact_state(te),
             });
         }

@@ -9,14 +9,12 @@ use serde::Serialize;
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Certificate {
-    /// ξ > 1 and ξ′ > 0: ξ′ can never turn negative again, so it never comes back.
+    /// ξ > 1 and ξ′ > 0: ξ′ can never turn negative again, so it never comes back (under
+    /// Stokes drag too: `engine::stokes::Stokes::escape`).
     Radial,
     /// E = ½|u|² − ½ξ² < −½(μ_s/μ_k)² with dE/dτ = −|u|: it can never be at rest at
     /// ξ ≤ μ_s/μ_k (where it could hold) again.
     Energy,
-    /// Stokes drag (extends the paper): the growing mode leads, so ξ only grows, and ξ > 1
-    /// (`engine::stokes::Stokes::escape`).
-    Growing,
 }
 
 impl Certificate {
@@ -26,9 +24,6 @@ impl Certificate {
             Certificate::Radial => "radial: xi = 1 crossed moving out, never to turn back",
             Certificate::Energy => {
                 "energy: E < -R^2/2 (R = mu_s/mu_k), so it can never rest inside xi = R again (it may not have crossed xi = 1 yet)"
-            }
-            Certificate::Growing => {
-                "growing: under Stokes drag the growing mode leads, so xi > 1 only grows, exponentially"
             }
         }
     }
