@@ -525,6 +525,10 @@ fn the_command_line_refuses_bad_couplings() {
         &["critical", "--coupling", "stokes", "--gamma", "1"],
         &["sweep", "map", "--xi0", "0.5", "--gamma", "1"],
         &["escape", "--xi0", "0.5", "--mu-static-ratio", "0.9"],
+        // The explorer refuses them before it needs a terminal.
+        &["--mu-static-ratio", "0.5"],
+        &["--coupling", "stokes"],
+        &["--gamma", "1", "--record", "session.keys"],
     ] {
         let (code, _, err) = turntable(args);
         assert_eq!(code, 2, "{args:?}: {err}");
@@ -620,6 +624,23 @@ fn the_explorer_shows_the_coupling() {
     let screen = render(&mut app, 100, 32);
     assert!(screen.contains("μs/μk"), "{screen}");
     assert!(screen.contains("stuck at ξ = 1.1"), "{screen}");
+    // `m` cycles the methods but passes the paper's raw scheme by (μs = μk there).
+    let m = crossterm::event::KeyEvent::new(
+        crossterm::event::KeyCode::Char('m'),
+        crossterm::event::KeyModifiers::NONE,
+    );
+    let mut seen = Vec::new();
+    for _ in 0..5 {
+        app.handle_key(m);
+        seen.push(app.settings.method());
+        assert_eq!(app.sim.run.settings(), app.settings);
+        assert_eq!(app.settings.hold(), 1.2);
+    }
+    assert!(
+        !seen.contains(&turntable::engine::Method::Rk2Raw),
+        "{seen:?}"
+    );
+    assert_eq!(seen.len(), 5);
 }
 
 /// A stop outside ξ = 1 does happen, on the thin set of releases that approach it straight in:
