@@ -772,3 +772,45 @@ fn the_trajectory_of_stokes_drag_balances_its_energy() {
     }
     assert!(rows.last().unwrap()[8] < -0.01);
 }
+
+proptest! {
+    #![proptest_config(config(16))]
+
+    /// Near the escape threshold, where runs crawl up to the saddle and its end games act, a
+    /// run with μ_s/μ_k > 1 (any method, frame, tolerance) that says `certain` ends as the
+    /// paper's tight reference does — the threshold does not move with μ_s/μ_k (above).
+    #[test]
+    fn certain_is_never_wrong_near_the_threshold_with_static_friction(
+        xi0 in 0.0..0.999f64,
+        phi in 0.0..TAU,
+        e in -8.0..-4.0f64,
+        above in any::<bool>(),
+        r in 1.0..2.0f64,
+        knob in prop_oneof![
+            (-12.0..-6.0f64).prop_map(|e| Settings::dp54(10f64.powf(e))),
+            (-3.5..-2.5f64).prop_map(|e| Settings::fixed(turntable::engine::Method::Rk4, 10f64.powf(e))),
+        ],
+        frame in prop_oneof![Just(Frame::Lab), Just(Frame::Table)],
+    ) {
+        let ve = escape_speed(xi0, phi, Settings::dp54(1e-12), 1e-10).unwrap();
+        prop_assume!(ve.interval && ve.stuck_at.is_some());
+        let dv = if above { 10f64.powf(e) } else { -(10f64.powf(e)) };
+        let i = Initial::velocity(xi0, phi, (ve.value + dv).max(0.0));
+        let s = Settings {
+            frame,
+            max_steps: 2_000_000,
+            coupling: Coupling::Coulomb { hold: r },
+            ..knob
+        };
+        let mut run = Run::new(i, s).unwrap();
+        prop_assume!(run.run(1e4, true).is_ok());
+        let d = doubt(&run, 1e4);
+        let reference = Settings { frame: Frame::Table, ..Settings::dp54(1e-12) };
+        let mut reference = Run::new(i, reference).unwrap();
+        let want = reference.run(1e4, true).unwrap();
+        if d.certain {
+            prop_assert_eq!(run.outcome() == Outcome::Stuck, want == Outcome::Stuck,
+                "certain and wrong at v_e {:+e}, R {}", dv, r);
+        }
+    }
+}
