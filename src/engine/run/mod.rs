@@ -463,12 +463,11 @@ impl Run {
         } else {
             self.stepper.t + FREE_STRIDE
         };
-        let escape = match &self.stokes {
-            Some(st) => st.escape(),
-            None => self.initial.free_escape(),
-        };
         if self.escape.is_none()
-            && let Some(te) = escape
+            && let Some(te) = match &self.stokes {
+                Some(st) => st.escape(),
+                None => self.initial.free_escape(),
+            }
             && te <= end
         {
             end = te.max(self.stepper.t);
