@@ -174,7 +174,8 @@ impl Stokes {
             return Some(0.0);
         }
         let mut hi = 1.0;
-        while !(margin(hi) > 0.0) {
+        // A NaN margin (past f64's range) is not positive either: doubling then stops below.
+        while margin(hi).partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
             hi *= 2.0;
             if !self.at(hi).0.is_finite() {
                 return None;
