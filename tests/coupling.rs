@@ -525,6 +525,8 @@ fn the_command_line_refuses_bad_couplings() {
         &["critical", "--coupling", "stokes", "--gamma", "1"],
         &["sweep", "map", "--xi0", "0.5", "--gamma", "1"],
         &["escape", "--xi0", "0.5", "--mu-static-ratio", "0.9"],
+        &["run", "--frictionless", "--gamma", "1"],
+        &["run", "--frictionless", "--mu-static-ratio", "2"],
         // The explorer refuses them before it needs a terminal.
         &["--mu-static-ratio", "0.5"],
         &["--coupling", "stokes"],

@@ -122,7 +122,13 @@ fn run_inputs(a: &RunArgs) -> Result<(Initial, crate::engine::Settings), Error> 
             Initial::show(a.tau_max)
         )));
     }
-    Ok((initial, a.numerics.settings()?))
+    let settings = a.numerics.settings()?;
+    if a.frictionless && settings.coupling != crate::engine::Coupling::PAPER {
+        return Err(Error::invalid(
+            "--frictionless is mu = 0, no coupling to the table at all: drop --coupling, --gamma and --mu-static-ratio",
+        ));
+    }
+    Ok((initial, settings))
 }
 
 /// Runs to its outcome (past the escape certificate unless `stop_on_escape`) or `tau_max`,
