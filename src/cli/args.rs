@@ -53,7 +53,7 @@ pub struct CouplingArgs {
     /// particle holds out to xi = R, and slides at mu_k once loose.
     #[arg(long, value_name = "R", allow_hyphen_values = true)]
     pub mu_static_ratio: Option<f64>,
-    /// Stokes drag rate in units of Omega (with --coupling stokes).
+    /// Stokes drag rate in units of Omega, ≥ 0 (implies --coupling stokes).
     #[arg(long, value_name = "G", allow_hyphen_values = true)]
     pub gamma: Option<f64>,
 }
