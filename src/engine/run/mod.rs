@@ -140,8 +140,9 @@ pub struct Run {
     stiff_steps: u32,
     stiff_speed: f64,
     stepper: Stepper,
-    /// Stokes drag (with friction on): the run in closed form.
-    stokes: Option<Stokes>,
+    /// Stokes drag (with friction on): the run in closed form. Boxed: a point-model run
+    /// stays as small (and as fast) as it was.
+    stokes: Option<Box<Stokes>>,
 }
 
 impl Run {
@@ -172,9 +173,9 @@ impl Run {
             stokes: settings
                 .stokes()
                 .filter(|_| !initial.frictionless)
-                .map(|gamma| Stokes::new(gamma, initial)),
+                .map(|gamma| Box::new(Stokes::new(gamma, initial))),
         };
-        if let Some(st) = run.stokes {
+        if let Some(st) = &run.stokes {
             // Closed form throughout: nothing to evaluate.
             run.cost.rhs_evals = 0;
             if st.escape() == Some(0.0) {
@@ -254,7 +255,7 @@ impl Run {
 
     /// The Stokes solution, when the coupling is Stokes drag (and friction is on).
     pub fn stokes(&self) -> Option<&Stokes> {
-        self.stokes.as_ref()
+        self.stokes.as_deref()
     }
 
     pub fn tau(&self) -> f64 {
@@ -457,6 +458,8 @@ impl Run {
 
     /// μ = 0 or Stokes drag: one closed-form stride to `tau_max` (or [`FREE_STRIDE`] on when
     /// that is infinite), stopping at the escape certificate on the way.
+    #[cold]
+    #[inline(never)]
     fn free_step(&mut self, tau_max: f64) -> Result<(), RunError> {
         let mut end = if tau_max.is_finite() {
             tau_max
