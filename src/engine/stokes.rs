@@ -43,8 +43,9 @@ fn cosh_sinhc(a: DVec2) -> (DVec2, DVec2) {
     (cosh, sinhc)
 }
 
-/// The roots λ+ (growing) and λ− of λ² + (2i + γ)λ − 1 = 0, and Re λ+ computed without the
-/// cancellation of −γ/2 + Re d/2 at large γ (where it is ≈ 1/γ).
+/// The roots λ+ (growing) and λ− of λ² + (2i + γ)λ − 1 = 0 — the paper's Sec. IV Cartesian
+/// equations with Stokes drag for friction (extends the paper) — and Re λ+ computed without
+/// the cancellation of −γ/2 + Re d/2 at large γ (where it is ≈ 1/γ).
 pub fn roots(gamma: f64) -> (DVec2, DVec2, f64) {
     if gamma == 0.0 {
         return (-DVec2::Y, -DVec2::Y, 0.0);
@@ -66,7 +67,8 @@ pub fn growth_rate(gamma: f64) -> f64 {
     roots(gamma).2
 }
 
-/// One release under Stokes drag, in closed form (module docs).
+/// One release under Stokes drag, in closed form (extends the paper; module docs): the
+/// paper's release (Figs. 3–5) with F = −γ m u for Eq. (2).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Stokes {
     gamma: f64,
