@@ -1188,3 +1188,20 @@ fn s_names_the_scene_it_saves() {
     assert!(a.should_quit());
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A paste is the name at the save prompt (one line, recorded as the keys it typed) and
+/// nothing elsewhere: a `q` in it quits nothing.
+#[test]
+fn a_paste_types_the_name_at_the_prompt_only() {
+    use turntable::session::Session;
+    let mut s = Session::headless(app("B"), 80, 24, true);
+    s.paste("q x\nstill nothing");
+    assert!(!s.app.should_quit() && s.app.naming.is_none());
+    assert_eq!(s.app.initial, app("B").initial);
+    s.press("S".parse().unwrap());
+    s.paste("Fig. 3 B\r\n, again");
+    assert_eq!(s.app.naming.as_deref(), Some("Fig. 3 B, again"));
+    let script = s.take_recording().unwrap();
+    assert!(script.contains("S F i g"), "{script}");
+    assert!(!script.contains("still"), "{script}");
+}
