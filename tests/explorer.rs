@@ -520,6 +520,10 @@ fn mouse_click_places_the_release_point_and_drag_sets_the_velocity() {
 #[test]
 fn random_keys_keep_the_invariants() {
     let mut a = app("C");
+    // `S` then Enter, or `E`, write files: into a folder of the test's own.
+    let dir = std::env::temp_dir().join(format!("turntable-random-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    a.save_path = dir.join("scene.toml");
     let mut x: u64 = 0x9E3779B97F4A7C15;
     for i in 0..1500 {
         x ^= x << 13;
@@ -539,6 +543,7 @@ fn random_keys_keep_the_invariants() {
             assert!(!s.contains("NaN") && !s.contains("inf"), "{s}");
         }
     }
+    let _ = std::fs::remove_dir_all(&dir);
 }
 
 #[test]
