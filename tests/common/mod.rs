@@ -40,3 +40,56 @@ pub fn render(app: &mut turntable::app::App, w: u16, h: u16) -> String {
         })
         .collect()
 }
+
+/// A new pseudo-terminal of `cols` × `rows`: master and slave, close-on-exec (as a terminal
+/// emulator's master is: no other child may keep it up), or None where none can be opened
+/// (the caller then skips, saying so).
+pub fn openpty(cols: u16, rows: u16) -> Option<(std::os::fd::OwnedFd, std::os::fd::OwnedFd)> {
+    use std::os::fd::FromRawFd;
+    let (mut master, mut slave) = (0, 0);
+    let ws = libc::winsize {
+        ws_row: rows,
+        ws_col: cols,
+        ws_xpixel: 0,
+        ws_ypixel: 0,
+    };
+    // SAFETY: out-pointers to two ints and a winsize.
+    let r = unsafe {
+        libc::openpty(
+            &mut master,
+            &mut slave,
+            std::ptr::null_mut(),
+            std::ptr::null(),
+            &ws,
+        )
+    };
+    if r != 0 {
+        eprintln!("skipped: no pseudo-terminal here");
+        return None;
+    }
+    // SAFETY: fresh descriptors we now own.
+    unsafe {
+        libc::fcntl(master, libc::F_SETFD, libc::FD_CLOEXEC);
+        libc::fcntl(slave, libc::F_SETFD, libc::FD_CLOEXEC);
+        Some((
+            std::os::fd::OwnedFd::from_raw_fd(master),
+            std::os::fd::OwnedFd::from_raw_fd(slave),
+        ))
+    }
+}
+
+/// `cmd` run with `slave` as its terminal: stdin, stdout and stderr, in a session of its own
+/// (so the pty is its controlling terminal).
+pub fn on_pty(cmd: &mut Command, slave: std::os::fd::OwnedFd) {
+    use std::os::unix::process::CommandExt;
+    cmd.stdin(slave.try_clone().unwrap())
+        .stdout(slave.try_clone().unwrap())
+        .stderr(slave);
+    // SAFETY: setsid is async-signal-safe.
+    unsafe {
+        cmd.pre_exec(|| {
+            libc::setsid();
+            Ok(())
+        });
+    }
+}
