@@ -93,3 +93,22 @@ pub fn on_pty(cmd: &mut Command, slave: std::os::fd::OwnedFd) {
         });
     }
 }
+
+/// `n` steps of classical RK4 of length `h` on (q, u)′ = f(q, u): the tests' own integrator,
+/// independent of the engine's.
+pub fn rk4(
+    f: impl Fn(glam::DVec2, glam::DVec2) -> (glam::DVec2, glam::DVec2),
+    (mut q, mut u): (glam::DVec2, glam::DVec2),
+    h: f64,
+    n: usize,
+) -> (glam::DVec2, glam::DVec2) {
+    for _ in 0..n {
+        let (a1, b1) = f(q, u);
+        let (a2, b2) = f(q + 0.5 * h * a1, u + 0.5 * h * b1);
+        let (a3, b3) = f(q + 0.5 * h * a2, u + 0.5 * h * b2);
+        let (a4, b4) = f(q + h * a3, u + h * b3);
+        q += h / 6.0 * (a1 + 2.0 * a2 + 2.0 * a3 + a4);
+        u += h / 6.0 * (b1 + 2.0 * b2 + 2.0 * b3 + b4);
+    }
+    (q, u)
+}
