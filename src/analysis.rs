@@ -177,7 +177,10 @@ pub fn settings_for(s: Settings) -> Settings {
     let s = if s.method().stick_events() {
         s
     } else {
-        Settings::default()
+        Settings {
+            coupling: s.coupling,
+            ..Settings::default()
+        }
     };
     Settings {
         max_steps: s.max_steps.min(PIECE_STEPS),

@@ -172,7 +172,7 @@ impl Sim {
             }
             // Each step's dense output covers only that step: take its grid points now
             // (μ = 0 has a closed form at every τ: its points are taken once, below).
-            if !self.run.initial().frictionless {
+            if !self.run.closed_form() {
                 self.extend_path(target);
             }
             self.note_outcome();
@@ -279,6 +279,7 @@ impl Sim {
             self.run.initial(),
             Settings {
                 max_steps: STEPS_PER_TICK,
+                coupling: self.run.settings().coupling,
                 ..Settings::dp54(tol)
             },
         )?;

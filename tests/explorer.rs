@@ -529,6 +529,10 @@ fn mouse_click_places_the_release_point_and_drag_sets_the_velocity() {
 #[test]
 fn random_keys_keep_the_invariants() {
     let mut a = app("C");
+    // `S` then Enter, or `E`, write files: into a folder of the test's own.
+    let dir = std::env::temp_dir().join(format!("turntable-random-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    a.save_path = dir.join("scene.toml");
     let mut x: u64 = 0x9E3779B97F4A7C15;
     for i in 0..1500 {
         x ^= x << 13;
@@ -548,6 +552,7 @@ fn random_keys_keep_the_invariants() {
             assert!(!s.contains("NaN") && !s.contains("inf"), "{s}");
         }
     }
+    let _ = std::fs::remove_dir_all(&dir);
 }
 
 #[test]
@@ -1196,4 +1201,21 @@ fn s_names_the_scene_it_saves() {
     a.handle_key(KeyEvent::new(KeyCode::Char('c'), KeyModifiers::CONTROL));
     assert!(a.should_quit());
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// A paste is the name at the save prompt (one line, recorded as the keys it typed) and
+/// nothing elsewhere: a `q` in it quits nothing.
+#[test]
+fn a_paste_types_the_name_at_the_prompt_only() {
+    use turntable::session::Session;
+    let mut s = Session::headless(app("B"), 80, 24, true);
+    s.paste("q x\nstill nothing");
+    assert!(!s.app.should_quit() && s.app.naming.is_none());
+    assert_eq!(s.app.initial, app("B").initial);
+    s.press("S".parse().unwrap());
+    s.paste("Fig. 3 B\r\n, again");
+    assert_eq!(s.app.naming.as_deref(), Some("Fig. 3 B, again"));
+    let script = s.take_recording().unwrap();
+    assert!(script.contains("S F i g"), "{script}");
+    assert!(!script.contains("still"), "{script}");
 }

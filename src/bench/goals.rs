@@ -90,8 +90,60 @@ pub(super) fn savings(cs: &[Initial]) -> Result<Vec<Saving>, Error> {
         lean_evals: 0,
         factor: f64::INFINITY,
     });
+    // Stokes drag (issue 23): its linear equations in closed form, against integrating them.
+    let gamma = 0.5;
+    let stokes = crate::engine::stokes::Stokes::new(gamma, free);
+    let (y, evals) = adaptive_plain(
+        |y| crate::engine::model::Y {
+            p: y.w,
+            w: -2.0 * crate::engine::model::zcross(y.w) + y.p - gamma * y.w,
+        },
+        Frame::Table.from_state(&s),
+        STOKES_TAU,
+        Scheme::Dp54 { tol: 1e-10 },
+    )
+    .ok_or(Error::Failed(
+        "dp54 on the Stokes equations: step size underflow".into(),
+    ))?;
+    let exact = stokes.state(STOKES_TAU);
+    let off = (Frame::Table.to_state(y, STOKES_TAU).r - exact.r).length() / exact.xi();
+    out.push(Saving {
+        what: format!(
+            "Stokes drag γ = {gamma} from C's release to τ = {STOKES_TAU} (ξ ≈ {:.0}): closed form",
+            exact.xi()
+        ),
+        baseline: format!("dp54 tol=1e-10, table frame (|Δr|/ξ = {off:.0e})"),
+        baseline_evals: evals,
+        lean: "closed form: e^{λ±τ}".into(),
+        lean_evals: 0,
+        factor: f64::INFINITY,
+    });
+    // μ_s > μ_k: the same stepping with another threshold, against the point model's.
+    let (mut paper, mut held) = (0, 0);
+    for i in cs {
+        paper += state_at(*i, Settings::default(), 50.0)?.1;
+        let s = Settings {
+            coupling: crate::engine::Coupling::Coulomb { hold: 1.5 },
+            ..Settings::default()
+        };
+        held += state_at(*i, s, 50.0)?.1;
+    }
+    out.push(Saving {
+        what: format!(
+            "{} cases to τ = 50: static friction above kinetic",
+            cs.len()
+        ),
+        baseline: "dp54 tol=1e-10, μs = μk (the paper's)".into(),
+        baseline_evals: paper,
+        lean: "dp54 tol=1e-10, μs/μk = 1.5".into(),
+        lean_evals: held,
+        factor: paper as f64 / held as f64,
+    });
     Ok(out)
 }
+
+/// How long the Stokes saving runs: long enough for the growing mode to lead by far.
+const STOKES_TAU: f64 = 20.0;
 
 /// The speed goals; `all` are the rest task's cases and `refs` their reference measures.
 pub(super) fn speed(cfg: &Config, all: &[Initial], refs: &[Measure]) -> Result<Speed, Error> {

@@ -88,7 +88,9 @@ pub fn table(r: &Report) -> String {
     }
     let _ = writeln!(o, "\nmodel only what a scene requires (RHS evaluations):");
     for s in &r.savings {
-        let factor = if s.factor.is_finite() {
+        let factor = if (0.5..2.0).contains(&s.factor) {
+            format!("{:.3}× as much", 1.0 / s.factor)
+        } else if s.factor.is_finite() {
             format!("{:.0}× less", s.factor)
         } else {
             "none at all".into()

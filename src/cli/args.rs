@@ -2,7 +2,7 @@
 //! arguments, and the checks that turn them into engine settings.
 
 use crate::app::G_DEFAULT;
-use crate::engine::{Frame, Method, Release, Settings};
+use crate::engine::{Coupling, CouplingName, Frame, Method, Release, Settings};
 use crate::error::Error;
 use clap::{Args, Parser, Subcommand};
 use std::path::PathBuf;
@@ -41,6 +41,48 @@ pub struct Cli {
     pub record: Option<PathBuf>,
     #[command(flatten)]
     pub units: UnitsArgs,
+    #[command(flatten)]
+    pub coupling: CouplingArgs,
+}
+
+/// How the particle is coupled to the table (extends the paper), shared by the explorer and
+/// every command. Unset, a scene keeps its own.
+#[derive(Args, Debug, Clone, Default)]
+pub struct CouplingArgs {
+    /// coulomb (dry friction, the paper's) or stokes (drag −γ m u relative to the table, with
+    /// --gamma; solved in closed form, every release but a measure-zero few leaves).
+    #[arg(long, value_parser = variant::<CouplingName>())]
+    pub coupling: Option<CouplingName>,
+    /// Static over kinetic friction, mu_s/mu_k ≥ 1 (the paper: 1): at rest on the table the
+    /// particle holds out to xi = R, and slides at mu_k once loose.
+    #[arg(long, value_name = "R", allow_hyphen_values = true)]
+    pub mu_static_ratio: Option<f64>,
+    /// Stokes drag rate in units of Omega, ≥ 0 (implies --coupling stokes).
+    #[arg(long, value_name = "G", allow_hyphen_values = true)]
+    pub gamma: Option<f64>,
+}
+
+impl CouplingArgs {
+    /// The coupling asked for, checked; `None` if no flag was given.
+    pub fn coupling(&self) -> Result<Option<Coupling>, Error> {
+        if self.coupling.is_none() && self.mu_static_ratio.is_none() && self.gamma.is_none() {
+            return Ok(None);
+        }
+        let name = self.coupling.unwrap_or(if self.gamma.is_some() {
+            CouplingName::Stokes
+        } else {
+            CouplingName::Coulomb
+        });
+        let c = name.with(self.mu_static_ratio, self.gamma).map_err(|e| {
+            Error::Invalid(
+                e.replace("gamma", "--gamma")
+                    .replace("mu-static-ratio", "--mu-static-ratio")
+                    .replace("coupling ", "--coupling "),
+            )
+        })?;
+        c.validate()?;
+        Ok(Some(c))
+    }
 }
 
 /// How plots draw points (`--marker`).
@@ -216,6 +258,8 @@ pub struct NumericsArgs {
     /// Step budget of one run.
     #[arg(long, default_value_t = Settings::default().max_steps)]
     pub max_steps: u64,
+    #[command(flatten)]
+    pub coupling: CouplingArgs,
 }
 
 #[derive(Args, Debug)]
@@ -552,6 +596,7 @@ impl NumericsArgs {
             scheme: self.method.with(knob.unwrap_or(self.method.default_knob())),
             frame: self.frame,
             max_steps: self.max_steps,
+            coupling: self.coupling.coupling()?.unwrap_or(Coupling::PAPER),
         };
         match (self.method.adaptive(), self.tol, self.dt) {
             (true, _, Some(_)) => {

@@ -88,10 +88,20 @@ fn explore(
         None => config::Config::default(),
     };
     let user_themes = config_dir.as_ref().map(|d| d.join("themes"));
-    let scene = match &look.scene {
+    let mut scene = match &look.scene {
         Some(s) => crate::scene::Scene::load(s)?,
         None => crate::scene::Scene::default_scene(),
     };
+    if let Some(c) = cli.coupling.coupling()? {
+        if cli.record.is_some() {
+            // A recording names its scene, not these flags: its replay would differ.
+            return Err(Error::invalid(
+                "--record keeps the scene, not --coupling/--mu-static-ratio/--gamma: put them in a scene file ([settings] coupling, mu_static_ratio, gamma) and pass --scene",
+            ));
+        }
+        scene.settings.coupling = c;
+        scene.settings.validate()?;
+    }
     let no_color = std::env::var_os("NO_COLOR").is_some_and(|v| !v.is_empty());
     let (term, colorterm) = (std::env::var("TERM").ok(), std::env::var("COLORTERM").ok());
     let marker = cli

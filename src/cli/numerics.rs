@@ -19,16 +19,23 @@ const TRAJECTORY_HEADER: &[u8] = b"tau,x,y,xq,yq,u,stuck,energy,work,approx_xi\n
 /// step's dense output, [`step_work`]; dE/dτ = −|u|, so the two differ by E(0) up to the run's
 /// own error), and the Sec. III
 /// approximation of ξ for a release at rest (Eq. 17 in the lab, Eq. 24 on the table for
-/// ξ0 > 1; valid only early, see README), empty otherwise.
+/// ξ0 > 1; valid only early, see README), empty otherwise. Under Stokes drag the work is
+/// −γ∫|u|²dτ, and no approximation applies.
 struct Rows {
     initial: Initial,
     work: f64,
+    /// The run is in closed form (μ = 0 or Stokes drag).
+    closed: bool,
 }
 
 /// −∫|u|dτ over [t0, t1] of `run`'s latest step, by 5-point Gauss–Legendre on its dense output:
 /// |u| is smooth inside a step (stops are its ends), so this is exact to the interpolant's
 /// order, where trapezoids between rows were off by up to 1.8e-4.
 fn step_work(run: &Run, t0: f64, t1: f64) -> Result<f64, crate::engine::RunError> {
+    let power = |u: f64| match run.settings().stokes() {
+        Some(gamma) => gamma * u * u,
+        None => u,
+    };
     const NODES: [(f64, f64); 5] = [
         (0.0, 0.568_888_888_888_888_9),
         (0.538_469_310_105_683_1, 0.478_628_670_499_366_5),
@@ -39,7 +46,7 @@ fn step_work(run: &Run, t0: f64, t1: f64) -> Result<f64, crate::engine::RunError
     let (mid, half) = (0.5 * (t0 + t1), 0.5 * (t1 - t0));
     NODES.iter().try_fold(0.0, |w, &(x, weight)| {
         let u = run.state_at(mid + half * x)?.u_lab().length();
-        Ok(w - half * weight * u)
+        Ok(w - half * weight * power(u))
     })
 }
 
@@ -53,7 +60,7 @@ impl Rows {
         let (q, u) = (s.q(), s.u_lab().length());
         let i = self.initial;
         let approx = match i.release {
-            _ if i.frictionless => None,
+            _ if i.frictionless || self.closed => None,
             crate::engine::Release::LabRest => {
                 Some(crate::engine::approx::lab_rest(i.xi0, s.tau).0)
             }
@@ -79,7 +86,8 @@ impl Rows {
     }
 }
 
-/// Spacing in τ of the trajectory rows of a frictionless run, which takes no steps.
+/// Spacing in τ of the trajectory rows of a closed-form run (μ = 0, Stokes drag), which takes
+/// no steps.
 const FREE_SAMPLE: f64 = 1e-2;
 
 pub fn run(a: RunArgs) -> CmdResult {
@@ -114,7 +122,13 @@ fn run_inputs(a: &RunArgs) -> Result<(Initial, crate::engine::Settings), Error> 
             Initial::show(a.tau_max)
         )));
     }
-    Ok((initial, a.numerics.settings()?))
+    let settings = a.numerics.settings()?;
+    if a.frictionless && settings.coupling != crate::engine::Coupling::PAPER {
+        return Err(Error::invalid(
+            "--frictionless is mu = 0, no coupling to the table at all: drop --coupling, --gamma and --mu-static-ratio",
+        ));
+    }
+    Ok((initial, settings))
 }
 
 /// Runs to its outcome (past the escape certificate unless `stop_on_escape`) or `tau_max`,
@@ -127,7 +141,11 @@ fn integrate(
 ) -> Result<State, Error> {
     let initial = run.initial();
     let write_err = |e: std::io::Error| Error::Failed(format!("--trajectory: {e}"));
-    let mut rows = Rows { initial, work: 0.0 };
+    let mut rows = Rows {
+        initial,
+        work: 0.0,
+        closed: run.closed_form(),
+    };
     if let Some(csv) = csv.as_mut() {
         csv.write_all(TRAJECTORY_HEADER).map_err(write_err)?;
         rows.write(csv, &run.state(), run.status() != Status::Slipping)
@@ -137,18 +155,27 @@ fn integrate(
         let (before, before_energy) = (run.tau(), run.state().energy());
         run.step(tau_max)?;
         if let Some(csv) = csv.as_mut() {
-            if initial.frictionless {
-                // No steps to write: sample the closed form instead.
+            if rows.closed {
+                // No steps to write: sample the closed form instead (Stokes drag: with its
+                // work on each sample's stretch).
                 let n = ((run.tau() - before) / FREE_SAMPLE).ceil().min(1e5) as usize;
+                let mut from = before;
                 for i in 1..n {
                     let t = before + (run.tau() - before) * i as f64 / n as f64;
                     let s = run.state_at(t)?;
+                    if !initial.frictionless {
+                        rows.work += step_work(run, from, t)?;
+                    }
+                    from = t;
                     rows.write(csv, &s, false).map_err(write_err)?;
+                }
+                if !initial.frictionless {
+                    rows.work += step_work(run, from, run.tau())?;
                 }
             }
             rows.work += match run.last_step().map(|l| l.limit) {
-                // μ = 0: nothing does work.
-                _ if initial.frictionless => 0.0,
+                // Closed forms: μ = 0 does no work; Stokes drag's is counted above.
+                _ if rows.closed => 0.0,
                 // A stretch taken in closed form has no dense output of its own (its segment
                 // is a cubic between the ends): the identity gives its work.
                 Some(Limit::ClosedForm) => run.state().energy() - before_energy,
@@ -185,6 +212,13 @@ fn print(report: &(impl Report + serde::Serialize), json: bool) -> CmdResult {
 /// comes to rest, so it cannot.
 pub(super) fn solver_settings(n: &super::NumericsArgs) -> Result<crate::engine::Settings, Error> {
     let s = n.settings()?;
+    if let Some(gamma) = s.stokes() {
+        return Err(Error::Invalid(format!(
+            "under Stokes drag (gamma {}) there is no escape speed, critical radius or outcome map: every release leaves, at the rate {} (turntable run --coupling stokes says how)",
+            Initial::show(gamma),
+            crate::engine::stokes::growth_rate(gamma)
+        )));
+    }
     if !s.method().stick_events() {
         return Err(Error::Invalid(format!(
             "{} has no stick event, so its runs never come to rest: the solvers need dp54, dop853, rk4 or rk2",
@@ -218,7 +252,10 @@ pub fn escape(a: EscapeArgs) -> CmdResult {
         let (t, c) = solve_certified(settings, solve, at)?;
         (t, Some(c))
     };
-    print(&EscapeReport::new(a.xi0, a.phi, &t, certified), a.json)
+    print(
+        &EscapeReport::new(a.xi0, a.phi, &t, certified, &settings),
+        a.json,
+    )
 }
 
 pub fn critical(a: CriticalArgs) -> CmdResult {
@@ -248,5 +285,5 @@ pub fn critical(a: CriticalArgs) -> CmdResult {
     };
     // The paper's Eq. 22: mu = Omega² r0c / (xi0c g), friction measured by the critical radius.
     let mu = a.omega.zip(a.r0c).map(|(w, r)| w * w * r / (t.value * a.g));
-    print(&CriticalReport::new(&t, certified, mu), a.json)
+    print(&CriticalReport::new(&t, certified, mu, &settings), a.json)
 }

@@ -6,7 +6,7 @@ use crate::engine::doubt::Doubt;
 use crate::engine::model::turn_angle;
 use crate::engine::solve::Threshold;
 use crate::engine::units::{Units, show_length, show_time};
-use crate::engine::{Certificate, Frame, Method, Outcome, Run, Settings, State};
+use crate::engine::{Certificate, CouplingName, Frame, Method, Outcome, Run, Settings, State};
 use serde::Serialize;
 use std::fmt::Write as _;
 
@@ -33,6 +33,10 @@ pub struct RunReport {
     pub rejected: u64,
     pub rhs_evals: u64,
     pub frictionless: bool,
+    pub coupling: CouplingName,
+    pub mu_static_ratio: Option<f64>,
+    pub gamma: Option<f64>,
+    pub growth_rate: Option<f64>,
     pub method: Method,
     pub frame: Frame,
     pub tol: Option<f64>,
@@ -114,6 +118,13 @@ impl RunReport {
             rejected: run.cost().rejected,
             rhs_evals: run.cost().rhs_evals,
             frictionless: run.initial().frictionless,
+            coupling: match settings.stokes() {
+                Some(_) => CouplingName::Stokes,
+                None => CouplingName::Coulomb,
+            },
+            mu_static_ratio: settings.stokes().is_none().then(|| settings.hold()),
+            gamma: settings.stokes(),
+            growth_rate: run.stokes().map(|st| st.growth()),
             method: settings.method(),
             frame: settings.frame,
             tol: settings.scheme.tol(),
@@ -143,10 +154,18 @@ impl Report for RunReport {
             (Outcome::Escaped, Some(by)) => {
                 format!("escaped: certified at tau ({})", by.describe())
             }
+            _ if self.gamma.is_some() => {
+                "running: not yet certified to leave at tau-max".to_string()
+            }
             _ => "running: still slipping at tau-max".to_string(),
         };
         let cost = if self.frictionless {
             "closed form, 0 rhs evaluations (mu = 0: a straight line in the lab)".to_string()
+        } else if let (Some(gamma), Some(rate)) = (self.gamma, self.growth_rate) {
+            format!(
+                "closed form, 0 rhs evaluations (Stokes drag gamma = {gamma}: linear)
+growth   {rate:.12}  (Re lambda+: every release leaves as e^(rate tau) but those with u0 = lambda- q0, the centre at rest among them)"
+            )
         } else {
             let knob = match (self.tol, self.dt) {
                 (Some(tol), _) => format!("tol={tol:.0e}"),
@@ -159,6 +178,9 @@ impl Report for RunReport {
             )
         };
         let check = match (&self.check, self.certain) {
+            (Some(_), Some(true)) if self.gamma.is_some() => {
+                "check    closed form (Stokes drag): no integration error to check\n".to_string()
+            }
             (Some(c), Some(true)) => format!(
                 "check    outcome certain: {} agrees; tau differs from it by {:.1e}, position by {:.1e}\n",
                 c.who(),
@@ -178,6 +200,12 @@ impl Report for RunReport {
             "outcome  {how}\n{check}tau      {:.9}\nxi       {:.12}\nangle    {:.12} rad in [0, 2pi) (table frame, ccw from the release direction)\n|u|      {:.3e}\ncost     {cost}\n",
             self.tau, self.xi, self.angle, self.speed,
         );
+        if let Some(r) = self.mu_static_ratio.filter(|&r| r != 1.0) {
+            let _ = writeln!(
+                text,
+                "static   mu_s/mu_k = {r}: at rest it holds out to xi = {r}, slides at mu_k"
+            );
+        }
         if let Some(u) = &self.units {
             let _ = writeln!(
                 text,
@@ -232,6 +260,8 @@ pub struct CriticalReport {
 /// What a threshold search cost and what it can vouch for.
 #[derive(Debug, Serialize)]
 pub struct SolveReport {
+    /// μ_s/μ_k of the runs (1: the paper's).
+    pub mu_static_ratio: f64,
     pub runs: u32,
     pub rhs_evals: u64,
     pub run_tol: Option<f64>,
@@ -239,8 +269,9 @@ pub struct SolveReport {
 }
 
 impl SolveReport {
-    pub fn new(t: &Threshold, certified: Option<bool>) -> SolveReport {
+    pub fn new(t: &Threshold, certified: Option<bool>, settings: &Settings) -> SolveReport {
         SolveReport {
+            mu_static_ratio: settings.hold(),
             runs: t.runs,
             rhs_evals: t.rhs_evals,
             run_tol: t.run_tol,
@@ -261,15 +292,29 @@ impl SolveReport {
                 "checked  NOT certified: an end of the bracket, run in full or by its second opinion, did not end as it says with a margin, even with runs 10^4x tighter\n"
             }
         };
+        let hold = if self.mu_static_ratio == 1.0 {
+            String::new()
+        } else {
+            format!(
+                "static   mu_s/mu_k = {}: a particle at rest holds out to xi = {0}\n",
+                self.mu_static_ratio
+            )
+        };
         format!(
-            "cost     {} runs, {} rhs evaluations{at}\n{checked}",
+            "{hold}cost     {} runs, {} rhs evaluations{at}\n{checked}",
             self.runs, self.rhs_evals
         )
     }
 }
 
 impl EscapeReport {
-    pub fn new(xi0: f64, phi: f64, t: &Threshold, certified: Option<bool>) -> EscapeReport {
+    pub fn new(
+        xi0: f64,
+        phi: f64,
+        t: &Threshold,
+        certified: Option<bool>,
+        settings: &Settings,
+    ) -> EscapeReport {
         EscapeReport {
             xi0,
             // + 0.0: −0 reads 0.
@@ -286,7 +331,7 @@ impl EscapeReport {
                     outcome: if e { Outcome::Escaped } else { Outcome::Stuck },
                 })
                 .collect(),
-            solve: SolveReport::new(t, certified),
+            solve: SolveReport::new(t, certified, settings),
         }
     }
 
@@ -334,14 +379,19 @@ impl Report for EscapeReport {
 }
 
 impl CriticalReport {
-    pub fn new(t: &Threshold, certified: Option<bool>, mu: Option<f64>) -> CriticalReport {
+    pub fn new(
+        t: &Threshold,
+        certified: Option<bool>,
+        mu: Option<f64>,
+        settings: &Settings,
+    ) -> CriticalReport {
         CriticalReport {
             xi0c: t.value,
             stuck_at: t.stuck_at,
             escapes_at: t.escapes_at,
             interval: t.interval,
             mu,
-            solve: SolveReport::new(t, certified),
+            solve: SolveReport::new(t, certified, settings),
         }
     }
 }

@@ -45,7 +45,7 @@ pub struct Doubt {
 }
 
 /// The second opinion on `run`: dp54 at 1000× its tolerance (dp54's or dop853's; fixed-step
-/// runs: tol 1e-12), at least 1e-14, in the other frame.
+/// runs: tol 1e-12), at least 1e-14, in the other frame, with the same coupling.
 pub fn second_opinion(run: &Run) -> Settings {
     let tol = if run.settings().method().adaptive() {
         (run.settings().scheme.knob() * 1e-3).max(TOL_RANGE.0)
@@ -59,6 +59,7 @@ pub fn second_opinion(run: &Run) -> Settings {
     Settings {
         max_steps: SHADOW_BUDGET,
         frame,
+        coupling: run.settings().coupling,
         ..Settings::dp54(tol)
     }
 }
@@ -72,14 +73,28 @@ pub fn decided_state(run: &Run) -> State {
     }
 }
 
+/// The measure whose sign an outcome hangs on, at the deciding state `s`: H (module docs), or,
+/// for a particle held at rest outside ξ = 1 by static friction above kinetic (μ_s/μ_k =
+/// `hold` > 1), the room left to the most static friction can hold, hold − ξ: a stop beyond
+/// it slips on.
+fn measure(s: &State, stuck_outside: bool, hold: f64) -> f64 {
+    if stuck_outside {
+        hold - s.xi()
+    } else {
+        saddle_h(s)
+    }
+}
+
 /// Checks a finished run (stuck, escaped, or run to `tau_max`) against its
 /// [`second_opinion`].
 pub fn doubt(run: &Run, tau_max: f64) -> Doubt {
     let own = run.outcome();
     let end = decided_state(run);
-    let margin = saddle_h(&end).abs();
+    let hold = run.settings().hold();
+    let outside = own == Outcome::Stuck && end.xi() > 1.0;
+    let margin = measure(&end, outside, hold).abs();
     let check = second_opinion(run);
-    if run.initial().frictionless {
+    if run.closed_form() {
         // Closed form: exact.
         return Doubt {
             certain: true,
@@ -105,7 +120,7 @@ pub fn doubt(run: &Run, tau_max: f64) -> Doubt {
     });
     match shadow {
         Some((o, s)) => {
-            let error = (saddle_h(&s) - saddle_h(&end)).abs();
+            let error = (measure(&s, outside, hold) - measure(&end, outside, hold)).abs();
             let (tau_error, q_error) = if o == own {
                 ((s.tau - end.tau).abs(), (s.q() - end.q()).length())
             } else {

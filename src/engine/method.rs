@@ -116,14 +116,54 @@ impl Scheme {
     }
 }
 
-/// How a run is integrated: the user's speed/accuracy choice.
+/// How the particle is coupled to the table. The paper's is dry friction with μ_s = μ_k
+/// (Sec. II); the rest extends it (its Summary's closing remarks).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Coupling {
+    /// Coulomb friction, Eq. (2), sliding at μ_k (the unit: μ_k g = 1). Extends the paper with
+    /// static friction above kinetic: at rest on the table the particle holds while the friction
+    /// it needs, the centripetal force ξ (Sec. II, property 1), is ≤ `hold` = μ_s/μ_k ≥ 1; the
+    /// paper's is 1.
+    Coulomb { hold: f64 },
+    /// Stokes drag F = −γ m u instead (extends the paper: "Stokes' drag coupling", its
+    /// Summary), γ in units of Ω. Linear, so solved in closed form (`engine::stokes`).
+    Stokes { gamma: f64 },
+}
+
+impl Coupling {
+    /// The paper's: μ_s = μ_k.
+    pub const PAPER: Coupling = Coupling::Coulomb { hold: 1.0 };
+    /// Largest μ_s/μ_k and γ accepted: far beyond any real surface, and small enough that
+    /// squares stay finite.
+    pub const MAX: f64 = 1e6;
+
+    /// Checks the values a user may type: μ_s/μ_k in [1, MAX], γ in [0, MAX].
+    pub fn validate(self) -> Result<(), Error> {
+        let (name, x, lo) = match self {
+            Coupling::Coulomb { hold } => ("mu-static-ratio (mu_s/mu_k)", hold, 1.0),
+            Coupling::Stokes { gamma } => ("gamma (Stokes drag rate, units of Omega)", gamma, 0.0),
+        };
+        if !(x.is_finite() && (lo..=Self::MAX).contains(&x)) {
+            return Err(Error::invalid(format!(
+                "{name} must lie in [{lo}, {:e}], got {}",
+                Self::MAX,
+                Initial::show(x)
+            )));
+        }
+        Ok(())
+    }
+}
+
+/// How a run is integrated — the user's speed/accuracy choice — and how the particle is
+/// coupled to the table, which every run of a scene, solver or check shares.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(from = "SettingsFile", into = "SettingsFile")]
+#[serde(try_from = "SettingsFile", into = "SettingsFile")]
 pub struct Settings {
     pub scheme: Scheme,
     pub frame: Frame,
     /// Accepted plus rejected steps a run may take before it gives up.
     pub max_steps: u64,
+    pub coupling: Coupling,
 }
 
 /// Settings as a scene file spells them: the method and its knob (`dt` or `tol`). Files
@@ -140,20 +180,74 @@ struct SettingsFile {
     frame: Frame,
     #[serde(default = "default_max_steps")]
     max_steps: u64,
+    /// `coulomb` (the paper's) or `stokes`.
+    #[serde(default, skip_serializing_if = "is_default")]
+    coupling: CouplingName,
+    /// μ_s/μ_k of Coulomb friction (default 1, the paper's).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    mu_static_ratio: Option<f64>,
+    /// The Stokes drag rate γ, units of Ω (Stokes only).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    gamma: Option<f64>,
+}
+
+/// A coupling's name in scene files and on the command line.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+#[derive(Display, EnumString, IntoStaticStr, VariantArray, EnumMessage)]
+#[strum(serialize_all = "kebab-case")]
+pub enum CouplingName {
+    /// Dry friction (the paper's), with --mu-static-ratio.
+    #[default]
+    Coulomb,
+    /// Stokes drag −γ m u, with --gamma.
+    Stokes,
+}
+
+fn is_default<T: Default + PartialEq>(x: &T) -> bool {
+    *x == T::default()
+}
+
+impl CouplingName {
+    /// The coupling named, with its parameter: μ_s/μ_k (Coulomb, default 1) or γ (Stokes,
+    /// required). A parameter the coupling does not take is refused.
+    pub fn with(
+        self,
+        mu_static_ratio: Option<f64>,
+        gamma: Option<f64>,
+    ) -> Result<Coupling, String> {
+        match (self, mu_static_ratio, gamma) {
+            (CouplingName::Coulomb, r, None) => Ok(Coupling::Coulomb {
+                hold: r.unwrap_or(1.0),
+            }),
+            (CouplingName::Coulomb, _, Some(_)) => {
+                Err("gamma is the Stokes drag rate: it needs coupling stokes".into())
+            }
+            (CouplingName::Stokes, None, Some(gamma)) => Ok(Coupling::Stokes { gamma }),
+            (CouplingName::Stokes, Some(_), _) => Err(
+                "mu-static-ratio is a property of dry friction: it does not apply to coupling stokes".into(),
+            ),
+            (CouplingName::Stokes, None, None) => {
+                Err("coupling stokes needs gamma, the drag rate in units of Omega".into())
+            }
+        }
+    }
 }
 
 fn default_max_steps() -> u64 {
     Settings::default().max_steps
 }
 
-impl From<SettingsFile> for Settings {
-    fn from(f: SettingsFile) -> Self {
+impl TryFrom<SettingsFile> for Settings {
+    type Error = String;
+    fn try_from(f: SettingsFile) -> Result<Self, String> {
         let knob = if f.method.adaptive() { f.tol } else { f.dt };
-        Settings {
+        Ok(Settings {
             scheme: f.method.with(knob.unwrap_or(f.method.default_knob())),
             frame: f.frame,
             max_steps: f.max_steps,
-        }
+            coupling: f.coupling.with(f.mu_static_ratio, f.gamma)?,
+        })
     }
 }
 
@@ -165,6 +259,18 @@ impl From<Settings> for SettingsFile {
             tol: s.scheme.tol(),
             frame: s.frame,
             max_steps: s.max_steps,
+            coupling: match s.coupling {
+                Coupling::Coulomb { .. } => CouplingName::Coulomb,
+                Coupling::Stokes { .. } => CouplingName::Stokes,
+            },
+            mu_static_ratio: match s.coupling {
+                Coupling::Coulomb { hold } if hold != 1.0 => Some(hold),
+                _ => None,
+            },
+            gamma: match s.coupling {
+                Coupling::Stokes { gamma } => Some(gamma),
+                Coupling::Coulomb { .. } => None,
+            },
         }
     }
 }
@@ -175,6 +281,7 @@ impl Default for Settings {
             scheme: Scheme::Dp54 { tol: 1e-10 },
             frame: Frame::Lab,
             max_steps: 20_000_000,
+            coupling: Coupling::PAPER,
         }
     }
 }
@@ -213,7 +320,29 @@ impl Settings {
         if self.max_steps == 0 {
             return Err(Error::invalid("max-steps must be at least 1"));
         }
+        self.coupling.validate()?;
+        if self.hold() != 1.0 && !self.method().stick_events() {
+            return Err(Error::invalid(format!(
+                "{} is the paper's scheme, with mu_s = mu_k and no stops: a mu-static-ratio other than 1 needs a method with stick events",
+                self.method()
+            )));
+        }
         Ok(())
+    }
+    /// μ_s/μ_k: the largest ξ at which a particle at rest on the table holds (Sec. II,
+    /// property 1, extended; 1 for the paper, and for Stokes drag, which never holds).
+    pub fn hold(&self) -> f64 {
+        match self.coupling {
+            Coupling::Coulomb { hold } => hold,
+            Coupling::Stokes { .. } => 1.0,
+        }
+    }
+    /// The Stokes drag rate γ, if the coupling is Stokes drag.
+    pub fn stokes(&self) -> Option<f64> {
+        match self.coupling {
+            Coupling::Stokes { gamma } => Some(gamma),
+            Coupling::Coulomb { .. } => None,
+        }
     }
     /// "dt=1e-3" or "tol=1e-10": the knob that sets this method's accuracy.
     pub fn accuracy_label(&self) -> String {

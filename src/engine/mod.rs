@@ -13,10 +13,11 @@ pub mod run;
 pub mod saddle;
 pub mod solve;
 pub mod stepper;
+pub mod stokes;
 pub mod stop;
 pub mod units;
 
-pub use method::{Method, Settings};
+pub use method::{Coupling, CouplingName, Method, Settings};
 pub use model::{Frame, Initial, Release, State};
 pub use run::{Certificate, Escape, Limit, Outcome, Run, RunError, Status, StepInfo, Stop};
 pub use stepper::Cost;

@@ -354,11 +354,24 @@ impl Frame {
 /// The three forces per unit mass in the rotating frame (Sec. IV's explanation of Fig. 5):
 /// friction (none if `frictionless`), Coriolis and centrifugal, in table-frame components.
 pub fn table_forces(s: &State, frictionless: bool) -> [DVec2; 3] {
+    coupled_forces(s, frictionless, crate::engine::Coupling::PAPER)
+}
+
+/// [`table_forces`] with the table's coupling (extends the paper): Coulomb friction whose
+/// static part holds out to ξ = μ_s/μ_k, or Stokes drag −γu.
+pub fn coupled_forces(
+    s: &State,
+    frictionless: bool,
+    coupling: crate::engine::Coupling,
+) -> [DVec2; 3] {
+    use crate::engine::Coupling;
     let (q, u) = (s.q(), s.u());
-    let fr = if frictionless {
-        DVec2::ZERO
-    } else {
-        friction(u, q)
+    let fr = match coupling {
+        _ if frictionless => DVec2::ZERO,
+        Coupling::Stokes { gamma } => -gamma * u,
+        // At rest and held: static friction balances the centrifugal pull.
+        Coupling::Coulomb { hold } if u == DVec2::ZERO && q.length() <= hold => -q,
+        Coupling::Coulomb { .. } => friction(u, q),
     };
     [fr, -2.0 * zcross(u), q]
 }

@@ -2,7 +2,7 @@
 //! velocity and force arrows, in the lab or the rotating frame at true aspect ratio.
 
 use crate::app::{App, CanvasGeom};
-use crate::engine::model::{rotate, table_forces};
+use crate::engine::model::{coupled_forces, rotate};
 use crate::engine::{Frame, State};
 use glam::DVec2;
 use ratatui::Frame as TuiFrame;
@@ -156,7 +156,7 @@ pub fn force_arrows(app: &App, half_width: f64) -> Vec<ForceArrow> {
 fn forces(app: &App, half_width: f64) -> (Vec<ForceArrow>, DVec2) {
     let th = &app.theme;
     let now = app.sim.now();
-    let [fr, co, ce] = table_forces(&now, app.initial.frictionless);
+    let [fr, co, ce] = coupled_forces(&now, app.initial.frictionless, app.settings.coupling);
     let mut out = Vec::new();
     let mut push = |label, word, vec: DVec2, color| {
         if vec.length() > 0.0 {

@@ -91,6 +91,12 @@ pub fn lesson_line(app: &App) -> String {
         return " μ = 0: a straight line in the lab, a spiral in the rotating frame (f switches)"
             .into();
     }
+    if let Some(gamma) = app.settings.stokes() {
+        return format!(
+            " Stokes drag γ = {gamma}: linear, in closed form; it leaves as e^({:.4}τ)",
+            crate::engine::stokes::growth_rate(gamma)
+        );
+    }
     let Some(p) = &app.paper else {
         return " c: compare with the paper's scheme (raw RK2, fixed dt = 1e-3, no stick event)"
             .into();

@@ -19,6 +19,16 @@ use std::f64::consts::{PI, TAU};
 
 /// Draws `app.page` in `area`; returns the plot's geometry where a click means a release.
 pub fn render(f: &mut TuiFrame, area: Rect, app: &App) -> Option<CanvasGeom> {
+    if let Some(gamma) = app.settings.stokes()
+        && !app.initial.frictionless
+        && matches!(
+            app.page,
+            Page::EscapeSpeed | Page::OutcomeMap | Page::RestRadius
+        )
+    {
+        no_threshold(f, area, app, gamma);
+        return None;
+    }
     match app.page {
         Page::Turntable => None,
         Page::TimePlots => {
@@ -32,6 +42,27 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) -> Option<CanvasGeom> {
             None
         }
     }
+}
+
+/// Under Stokes drag (extends the paper) the threshold pages have nothing to draw: every release
+/// leaves. Said instead, with the rate.
+fn no_threshold(f: &mut TuiFrame, area: Rect, app: &App, gamma: f64) {
+    let th = &app.theme;
+    let block = super::titled(" Stokes drag: no threshold ".to_string(), th);
+    let text = format!(
+        "Under Stokes drag γ = {gamma} there is no escape speed, outcome map or rest radius: \
+         every release leaves, exponentially at the rate Re λ+ = {:.6}, except those with \
+         u0 = λ− q0 (the centre at rest, and one speed and direction at each radius), which \
+         spiral into the centre.",
+        crate::engine::stokes::growth_rate(gamma)
+    );
+    f.render_widget(
+        Paragraph::new(text)
+            .wrap(Wrap { trim: true })
+            .style(Style::default().fg(th.foreground))
+            .block(block),
+        area,
+    );
 }
 
 fn geom(plot: Rect, c: &Chart, page: Page, app: &App) -> CanvasGeom {

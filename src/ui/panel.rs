@@ -69,7 +69,10 @@ pub fn status_text(sim: &Sim, th: &Theme) -> (String, ratatui::style::Color) {
                     "escape certified\n  {}\n  at τ = {}",
                     match e.by {
                         Certificate::Radial => "ξ > 1, moving out",
-                        Certificate::Energy => "E < −½: cannot rest",
+                        Certificate::Energy if sim.run.settings().hold() == 1.0 => {
+                            "E < −½: cannot rest"
+                        }
+                        Certificate::Energy => "E < −½R²: cannot rest",
                     },
                     num(e.tau, 3)
                 ),
@@ -262,7 +265,17 @@ fn readouts(app: &App) -> (Vec<Line<'static>>, std::ops::Range<usize>) {
     let c = app.sim.run.cost();
     if i.frictionless {
         out.push(kv("μ = 0", "closed form".into(), th));
+    } else if let Some(gamma) = app.settings.stokes() {
+        out.push(kv("Stokes γ", num(gamma, 4), th));
+        out.push(kv(
+            "leaves",
+            format!("e^{}τ", num(crate::engine::stokes::growth_rate(gamma), 4)),
+            th,
+        ));
     } else {
+        if app.settings.hold() != 1.0 {
+            out.push(kv("μs/μk", num(app.settings.hold(), 4), th));
+        }
         out.push(kv(
             app.settings.method().into(),
             app.settings.accuracy_label(),

@@ -49,13 +49,23 @@ fn series(
 
 /// E − E(0) and −∫|u|dτ (trapezoids on the path's grid): equal, since dE/dτ = −|u|.
 pub fn energy_pair(path: &[State]) -> [Vec<(f64, f64)>; 2] {
+    energy_pair_drag(path, None)
+}
+
+/// [`energy_pair`], or under Stokes drag γ (extends the paper) E − E(0) and −γ∫|u|²dτ, equal
+/// since there dE/dτ = −γ|u|².
+pub fn energy_pair_drag(path: &[State], drag: Option<f64>) -> [Vec<(f64, f64)>; 2] {
+    let power = |s: &State| {
+        let u = s.u_lab().length();
+        drag.map_or(u, |g| g * u * u)
+    };
     let e0 = path.first().map_or(0.0, State::energy);
     let mut work = 0.0;
     let mut w = Vec::with_capacity(path.len());
     for (i, s) in path.iter().enumerate() {
         if i > 0 {
             let p = &path[i - 1];
-            work -= 0.5 * (s.tau - p.tau) * (s.u_lab().length() + p.u_lab().length());
+            work -= 0.5 * (s.tau - p.tau) * (power(s) + power(p));
         }
         w.push((s.tau, work));
     }
@@ -261,7 +271,12 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) {
     let mut u_s = vec![series("|u|", th.trail, &p, u_of)];
     u_s.extend(paper_series("|u|", &u_of));
     u_s.extend(pin_series(3, (1, -1), &|p| along(p, &u_of)));
-    let [e, w] = energy_pair(&p);
+    let drag = if app.initial.frictionless {
+        None
+    } else {
+        app.settings.stokes()
+    };
+    let [e, w] = energy_pair_drag(&p, drag);
     let e_s = vec![
         Series {
             name: "E − E(0)".into(),
@@ -270,7 +285,12 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) {
             joined: true,
         },
         Series {
-            name: "−∫|u|dτ".into(),
+            name: if drag.is_some() {
+                "−γ∫|u|²dτ"
+            } else {
+                "−∫|u|dτ"
+            }
+            .into(),
             color: th.centrifugal,
             points: w,
             joined: false,
@@ -282,7 +302,16 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) {
         (angle_name, None, a_s, a_m),
         (theta_name, Some(Quantity::Rate), th_s, th_m),
         ("|u|", Some(Quantity::Speed), u_s, u_m),
-        ("dE/dτ = −|u|:", None, e_s, Vec::new()),
+        (
+            if drag.is_some() {
+                "dE/dτ = −γ|u|²:"
+            } else {
+                "dE/dτ = −|u|:"
+            },
+            None,
+            e_s,
+            Vec::new(),
+        ),
     ];
     // As many plots as fit (ξ first), each at least a legend line and three rows; the τ axis
     // under the last.

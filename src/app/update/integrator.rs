@@ -11,10 +11,19 @@ use strum::VariantArray;
 pub(super) fn apply(app: &mut App, action: Action) {
     match action {
         Action::CycleMethod => {
-            let (now, next) = (
+            let (now, mut next) = (
                 app.settings.scheme,
                 next_of(Method::VARIANTS, app.settings.method()),
             );
+            if !next.stick_events() && app.settings.hold() != 1.0 {
+                // The paper's raw scheme has μ_s = μ_k and no stops: it cannot hold a particle
+                // at μ_s/μ_k ≠ 1 (Settings::validate), so the cycle passes it by.
+                app.notice = Some(format!(
+                    "{next} skipped: the paper's scheme has μs = μk, and this scene μs/μk = {}",
+                    app.settings.hold()
+                ));
+                next = next_of(Method::VARIANTS, next);
+            }
             // A fixed step carries over between the fixed-step methods, a tolerance between
             // the adaptive ones; else the default.
             let knob = match now.tol() {
@@ -54,6 +63,10 @@ pub(super) fn apply(app: &mut App, action: Action) {
         Action::EstimateError if app.initial.frictionless => {
             app.notice =
                 Some("μ = 0 is computed in closed form: exact, no error to estimate".into());
+        }
+        Action::EstimateError if app.settings.stokes().is_some() => {
+            app.notice =
+                Some("Stokes drag is computed in closed form: exact, no error to estimate".into());
         }
         Action::EstimateError => {
             app.notice = Some(match app.sim.error_estimate() {

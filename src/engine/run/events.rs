@@ -105,7 +105,8 @@ impl Run {
     /// steps take over instead.)
     pub(super) fn launch_time(&self, s: &State) -> Option<f64> {
         let rho = s.xi();
-        if rho <= 1.0 || s.u_lab() != DVec2::ZERO {
+        // At rest within ξ = μs/μk it is stuck, not launched.
+        if rho <= self.settings.hold() || s.u_lab() != DVec2::ZERO {
             return None;
         }
         let g = rho - 1.0;
@@ -118,7 +119,8 @@ impl Run {
     /// stop comes within s/(1 − ξ). Outside, only once s < ξ − 1: then H < 0, so it can never
     /// come back inside ξ = 1 (where H ≥ 0 is needed to arrive) and the stop is momentary.
     /// Near ξ = 1 neither holds and the stop is integrated: there û swings onto q̂ and the
-    /// deceleration falls to 1 − ξ, which a snap would not see.
+    /// deceleration falls to 1 − ξ, which a snap would not see. (With μ_s > μ_k the stop
+    /// outside may hold, at ξ ≤ μ_s/μ_k: its place is the snap's, within s·t.)
     fn snaps(&self, rho: f64, speed: f64, t: f64) -> bool {
         let within = self.snap_time();
         if rho < 1.0 {
@@ -149,7 +151,8 @@ impl Run {
     }
 
     /// Takes the closed-form stretch to `t` ahead, arriving at table-frame `q` with `u`. A
-    /// stop (u = 0) sticks if ξ ≤ 1, else it slips on (Filippov).
+    /// stop (u = 0) sticks if static friction can hold it, ξ ≤ μ_s/μ_k (the paper's 1), else
+    /// it slips on at μ_k (Filippov).
     pub(super) fn jump(&mut self, t: f64, q: DVec2, u: DVec2) {
         let frame = self.settings.frame;
         let tau = self.stepper.t + t;
@@ -175,13 +178,13 @@ impl Run {
             rejected: 0,
         });
         self.stiff_steps = 0;
-        if self.escape.is_none() && certificate(&to).is_some() {
+        if self.escape.is_none() && certificate(&to, self.settings.hold()).is_some() {
             self.escape = Some(self.locate_escape(&seg));
         }
         if u != DVec2::ZERO {
             return;
         }
-        if q.length() <= 1.0 {
+        if q.length() <= self.settings.hold() {
             self.status = Status::Stuck { tau, q };
         } else {
             self.slip_restarts += 1;
@@ -192,10 +195,11 @@ impl Run {
     pub(super) fn locate_escape(&self, seg: &Segment) -> Escape {
         let frame = self.settings.frame;
         let state = |t: f64| frame.to_state(seg.at(t), t);
-        let g = |t: f64| certificate_margin(&state(t));
+        let hold = self.settings.hold();
+        let g = |t: f64| certificate_margin(&state(t), hold);
         let tau = illinois(g, seg.t0, seg.t1(), 1e-13);
         let state = state(tau);
-        let by = certificate(&state).unwrap_or(Certificate::Radial);
+        let by = certificate(&state, hold).unwrap_or(Certificate::Radial);
         Escape { tau, by, state }
     }
 }

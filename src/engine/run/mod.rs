@@ -6,6 +6,7 @@
 use super::method::Settings;
 use super::model::{Initial, State};
 use super::stepper::{Cost, Segment, StepError, Stepper, too_short};
+use super::stokes::Stokes;
 use super::stop::{frozen_stop, frozen_stop_error, radial_launch};
 use crate::engine::error::Error;
 use glam::DVec2;
@@ -46,6 +47,8 @@ pub enum Limit {
     ClosedForm,
     /// μ = 0: the straight line in closed form.
     Frictionless,
+    /// Stokes drag: the linear solution in closed form.
+    Drag,
     /// τ-max.
     End,
 }
@@ -59,6 +62,7 @@ impl Limit {
             Limit::Stability => "stability",
             Limit::ClosedForm => "closed form",
             Limit::Frictionless => "μ=0 exact",
+            Limit::Drag => "Stokes exact",
             Limit::End => "τ-max",
         }
     }
@@ -136,6 +140,9 @@ pub struct Run {
     stiff_steps: u32,
     stiff_speed: f64,
     stepper: Stepper,
+    /// Stokes drag (with friction on): the run in closed form. Boxed: a point-model run
+    /// stays as small (and as fast) as it was.
+    stokes: Option<Box<Stokes>>,
 }
 
 impl Run {
@@ -163,20 +170,38 @@ impl Run {
             stiff_steps: 0,
             stiff_speed: 0.0,
             stepper,
+            stokes: settings
+                .stokes()
+                .filter(|_| !initial.frictionless)
+                .map(|gamma| Box::new(Stokes::new(gamma, initial))),
         };
+        if let Some(st) = &run.stokes {
+            // Closed form throughout: nothing to evaluate.
+            run.cost.rhs_evals = 0;
+            if st.escape() == Some(0.0) {
+                run.escape = Some(Escape {
+                    tau: 0.0,
+                    by: Certificate::Radial,
+                    state: s0,
+                });
+            }
+            return Ok(run);
+        }
         if initial.frictionless {
             // Closed form throughout: nothing to evaluate.
             run.cost.rhs_evals = 0;
             return Ok(run);
         }
-        // Filippov at u = 0: at rest on the table inside ξ ≤ 1 it stays (property 1).
-        if settings.method().stick_events() && s0.u_lab() == DVec2::ZERO && s0.xi() <= 1.0 {
+        // Filippov at u = 0: at rest on the table it stays while the friction it needs, ξ,
+        // is within static friction's μ_s/μ_k (property 1; the paper's: ξ ≤ 1).
+        let hold = settings.hold();
+        if settings.method().stick_events() && s0.u_lab() == DVec2::ZERO && s0.xi() <= hold {
             run.status = Status::Stuck {
                 tau: 0.0,
                 q: s0.q(),
             };
         }
-        if let Some(by) = certificate(&s0) {
+        if let Some(by) = certificate(&s0, hold) {
             run.escape = Some(Escape {
                 tau: 0.0,
                 by,
@@ -223,6 +248,16 @@ impl Run {
         self.slip_restarts
     }
 
+    /// Whether the run is in closed form throughout (μ = 0, or Stokes drag): no steps.
+    pub fn closed_form(&self) -> bool {
+        self.initial.frictionless || self.stokes.is_some()
+    }
+
+    /// The Stokes solution, when the coupling is Stokes drag (and friction is on).
+    pub fn stokes(&self) -> Option<&Stokes> {
+        self.stokes.as_deref()
+    }
+
     pub fn tau(&self) -> f64 {
         match self.status {
             Status::Slipping => self.stepper.t,
@@ -236,11 +271,12 @@ impl Run {
     }
 
     /// The particle at a τ in the latest step (or the latest τ itself), at any τ after a stick
-    /// (closed-form rotation with the table), or at any τ at all when μ = 0 (closed form).
+    /// (closed-form rotation with the table), or at any τ at all when μ = 0 or under Stokes
+    /// drag (closed forms).
     /// Elsewhere the run holds no dense output: an error, never a nearby state.
     pub fn state_at(&self, tau: f64) -> Result<State, RunError> {
-        if self.initial.frictionless {
-            return Ok(self.initial.free_state(tau));
+        if self.closed_form() {
+            return Ok(self.exact_state(tau));
         }
         let now = self.stepper.t;
         match (self.status, self.last) {
@@ -316,9 +352,8 @@ impl Run {
                 tau: self.stepper.t,
             });
         }
-        if self.initial.frictionless {
-            self.free_step(tau_max);
-            return Ok(());
+        if self.closed_form() {
+            return self.free_step(tau_max);
         }
         let frame = self.settings.frame;
         let s = self.state();
@@ -412,41 +447,66 @@ impl Run {
         } else {
             self.stiff_steps += 1;
         }
-        if self.escape.is_none() && certificate(&frame.to_state(seg.y1, seg.t1())).is_some() {
+        if self.escape.is_none()
+            && certificate(&frame.to_state(seg.y1, seg.t1()), self.settings.hold()).is_some()
+        {
             self.escape = Some(self.locate_escape(&seg));
         }
         Ok(())
     }
 
-    /// μ = 0: one closed-form stride to `tau_max` (or [`FREE_STRIDE`] on when that is
-    /// infinite), stopping at the escape certificate on the way.
-    fn free_step(&mut self, tau_max: f64) {
+    /// The closed-form state at τ: the straight line (μ = 0) or the Stokes solution.
+    fn exact_state(&self, tau: f64) -> State {
+        match &self.stokes {
+            Some(st) => st.state(tau),
+            None => self.initial.free_state(tau),
+        }
+    }
+
+    /// μ = 0 or Stokes drag: one closed-form stride to `tau_max` (or [`FREE_STRIDE`] on when
+    /// that is infinite), stopping at the escape certificate on the way.
+    #[cold]
+    #[inline(never)]
+    fn free_step(&mut self, tau_max: f64) -> Result<(), RunError> {
         let mut end = if tau_max.is_finite() {
             tau_max
         } else {
             self.stepper.t + FREE_STRIDE
         };
         if self.escape.is_none()
-            && let Some(te) = self.initial.free_escape()
+            && let Some(te) = match &self.stokes {
+                Some(st) => st.escape(),
+                None => self.initial.free_escape(),
+            }
             && te <= end
         {
             end = te.max(self.stepper.t);
             self.escape = Some(Escape {
                 tau: te,
                 by: Certificate::Radial,
-                state: self.initial.free_state(te),
+                state: self.exact_state(te),
             });
+        }
+        let to = self.exact_state(end);
+        if !(to.r.is_finite() && to.v.is_finite()) {
+            // Stokes drag grows exponentially: e^{Re λ+ τ} past f64's range.
+            return Err(RunError::Overflow { tau: end });
         }
         let frame = self.settings.frame;
         self.last_step = Some(StepInfo {
             t0: self.stepper.t,
             h: end - self.stepper.t,
-            limit: Limit::Frictionless,
+            limit: if self.stokes.is_some() {
+                Limit::Drag
+            } else {
+                Limit::Frictionless
+            },
             err_ratio: None,
             rejected: 0,
         });
-        self.stepper.y = frame.from_state(&self.initial.free_state(end));
+        self.stepper.y = frame.from_state(&to);
         self.stepper.t = end;
         self.last = None;
+        Ok(())
     }
 }
