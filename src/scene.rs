@@ -64,15 +64,15 @@ impl Scene {
             ),
             "d" => (
                 Initial::velocity(1.1, 1.2 * PI, 1.3),
-                "Fig. 3 D: thrown from outside xi = 1, comes to rest inside",
+                "Fig. 3 D: thrown from outside ξ = 1, comes to rest inside",
             ),
             "fig1" => (
                 Initial::at_rest(500.0, Release::LabRest),
-                "Fig. 1: at rest in the lab at xi0 = 500",
+                "Fig. 1: at rest in the lab at ξ0 = 500",
             ),
             "fig2" => (
                 Initial::at_rest(1.1, Release::TableRest),
-                "Fig. 2: at rest on the table at xi0 = 1.1",
+                "Fig. 2: at rest on the table at ξ0 = 1.1",
             ),
             _ => return None,
         };
