@@ -324,6 +324,7 @@ impl App {
             initial: self.initial,
             settings: self.settings,
             units: self.units,
+            body: self.scene.body,
             view: Some(crate::scene::View {
                 page: self.page,
                 frame: self.view,

@@ -2,6 +2,7 @@
 //! approximations.
 
 pub mod approx;
+pub mod body;
 pub mod dop853;
 pub mod doubt;
 pub mod error;
