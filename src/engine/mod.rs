@@ -9,6 +9,7 @@ pub mod error;
 pub mod method;
 pub mod model;
 pub mod par;
+pub mod rod;
 pub mod roots;
 pub mod run;
 pub mod saddle;

@@ -1,0 +1,153 @@
+//! The appendix's body integrated (issue 23 item 3): as L → 0 it is the point; its energy
+//! never rises.
+
+use turntable::engine::body::Body;
+use turntable::engine::rod::{Phase, RodEnd, RodRun};
+use turntable::engine::{Initial, Outcome, Release, Run, Settings};
+
+fn body(length: f64, angle: f64) -> Body {
+    Body {
+        length,
+        height: None,
+        angle,
+    }
+}
+
+/// The point's end: outcome and rest radius.
+fn point(initial: Initial) -> (Outcome, f64) {
+    let mut run = Run::new(initial, Settings::dp54(1e-12)).unwrap();
+    let (o, s) = run.finish(100.0).unwrap();
+    (o, s.q().length())
+}
+
+fn rod(initial: Initial, l: f64, angle: f64) -> (RodEnd, RodRun) {
+    let mut run = RodRun::new(body(l, angle), 1.0, &initial, 1e-12).unwrap();
+    let end = run.finish(100.0, |_| {}).unwrap();
+    (end, run)
+}
+
+#[test]
+fn a_tiny_body_rests_where_the_point_does() {
+    for (name, initial) in [
+        ("A", Initial::velocity(0.5, std::f64::consts::PI, 1.0)),
+        ("B", Initial::velocity(0.5, 0.0, 0.6)),
+        ("D", Initial::velocity(1.1, 1.2 * std::f64::consts::PI, 1.3)),
+        ("lab-rest 0.5", Initial::at_rest(0.5, Release::LabRest)),
+    ] {
+        let (o, xi) = point(initial);
+        assert_eq!(o, Outcome::Stuck, "{name}");
+        for angle in [0.0, 1.0, 2.5] {
+            let (end, run) = rod(initial, 1e-6, angle);
+            assert_eq!(end, RodEnd::Stuck, "{name} {angle}");
+            let got = run.state.q.length();
+            eprintln!(
+                "{name} psi0 {angle}: point {xi} body {got} diff {:e} steps {}",
+                got - xi,
+                run.steps
+            );
+            assert!((got - xi).abs() < 1e-5, "{name} {angle}: {got} vs {xi}");
+        }
+    }
+}
+
+#[test]
+fn a_tiny_body_escapes_where_the_point_does() {
+    let initial = Initial::velocity(0.5, 0.0, 1.0);
+    assert_eq!(point(initial).0, Outcome::Escaped);
+    let (end, run) = rod(initial, 1e-6, 0.7);
+    eprintln!(
+        "escape at tau {} xi {}",
+        run.state.tau,
+        run.state.q.length()
+    );
+    assert_eq!(end, RodEnd::Escaped);
+}
+
+#[test]
+fn energy_never_rises() {
+    for (l, initial) in [
+        (0.05, Initial::velocity(0.5, std::f64::consts::PI, 1.0)),
+        (0.2, Initial::at_rest(0.6, Release::LabRest)),
+        (0.3, Initial::velocity(0.4, 2.0, 0.8)),
+    ] {
+        let mut run = RodRun::new(body(l, 0.3), 1.0, &initial, 1e-11).unwrap();
+        let mut last = f64::INFINITY;
+        let mut worst: f64 = 0.0;
+        let end = run
+            .finish(100.0, |s| {
+                let e = s.energy(l);
+                worst = worst.max(e - last);
+                last = e;
+            })
+            .unwrap();
+        eprintln!(
+            "L {l}: {end:?} xi {} worst rise {worst:e} phase {:?} steps {}",
+            run.state.q.length(),
+            run.phase,
+            run.steps
+        );
+        assert!(worst <= 1e-9, "L {l}: energy rose by {worst:e}");
+        assert_ne!(run.phase, Phase::Slip);
+    }
+}
+
+/// Both contacts stuck, the rod's axial force can share the load exactly when the centre
+/// could hold as a point, |q| ≤ μ_s/μ_k, whatever the length and angle.
+#[test]
+fn a_body_at_rest_on_the_table_rides_iff_its_centre_could() {
+    for (xi0, hold, rides) in [(0.9, 1.0, true), (1.1, 1.0, false), (1.2, 1.5, true)] {
+        for (l, angle) in [(0.5, 0.0), (0.5, 1.3), (1.5, 2.0)] {
+            let mut run = RodRun::new(
+                body(l, angle),
+                hold,
+                &Initial::at_rest(xi0, Release::TableRest),
+                1e-10,
+            )
+            .unwrap();
+            let end = run.finish(5.0, |_| {}).unwrap();
+            assert_eq!(
+                end == RodEnd::Stuck && run.state.tau == 0.0,
+                rides,
+                "{xi0} {hold} {l}"
+            );
+        }
+    }
+}
+
+mod prop {
+    use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 256, failure_persistence: None, ..ProptestConfig::default() })]
+        /// The hidden-state invariant: the body's Jacobi energy never rises, step by step,
+        /// whatever it does (slides, pivots, rides), beyond the integrator's own error (the
+        /// point's slack in `proptests.rs`: 100 tol a step).
+        #[test]
+        fn the_bodys_energy_never_rises(
+            l in 1e-4f64..0.6,
+            angle in 0.0f64..6.3,
+            xi0 in 0.0f64..1.5,
+            phi in 0.0f64..6.3,
+            v0 in 0.0f64..1.5,
+            release in 0usize..3,
+            hold in 1.0f64..1.5,
+        ) {
+            let initial = match release {
+                0 => Initial::velocity(xi0, phi, v0),
+                1 => Initial::at_rest(xi0, Release::TableRest),
+                _ => Initial::at_rest(xi0, Release::LabRest),
+            };
+            let mut run = RodRun::new(body(l, angle), hold, &initial, 1e-10).unwrap();
+            let mut last = f64::INFINITY;
+            let mut worst: f64 = f64::NEG_INFINITY;
+            run.finish(20.0, |s| {
+                let e = s.energy(l);
+                worst = worst.max(e - last);
+                last = e;
+            })
+            .unwrap();
+            prop_assert!(worst <= 100.0 * 1e-10, "energy rose by {worst:e}");
+        }
+    }
+}
