@@ -67,6 +67,44 @@ fn run_json_reports_the_appendixs_conditions_at_the_end() {
     ]);
     assert_eq!(v["body"]["mu_h_over_l"], serde_json::Value::Null);
     assert_eq!(v["body"]["point_ok"], true);
+    // The two-mass body integrated from the same release: a tiny one rests where the point does
+    // (case A), a longer one measurably elsewhere.
+    let a = [
+        "run",
+        "--xi0",
+        "0.5",
+        "--phi",
+        "3.141592653589793",
+        "--v0",
+        "1",
+        "--json",
+        "--no-check",
+    ];
+    let v = json(&[&a[..], &["--body-length", "1e-6"]].concat());
+    let m = &v["body"]["motion"];
+    assert_eq!(m["outcome"], "stuck");
+    assert!(
+        close(&m["xi"], v["xi"].as_f64().unwrap())
+            || (m["xi"].as_f64().unwrap() - v["xi"].as_f64().unwrap()).abs() < 1e-9,
+        "{v}"
+    );
+    let v = json(&[&a[..], &["--body-length", "0.05"]].concat());
+    let m = &v["body"]["motion"];
+    let d = m["xi"].as_f64().unwrap() - v["xi"].as_f64().unwrap();
+    assert!(d.abs() > 1e-5 && d.abs() < 1e-2, "{d}");
+    // Stokes drag has no stick to model.
+    let v = json(&[
+        "run",
+        "--coupling",
+        "stokes",
+        "--gamma",
+        "1",
+        "--body-length",
+        "0.1",
+        "--json",
+        "--no-check",
+    ]);
+    assert_eq!(v["body"]["motion"], serde_json::Value::Null);
     // Without a body, no `body` field.
     let v = json(&["run", "--json", "--no-check"]);
     assert!(v.get("body").is_none(), "{v}");

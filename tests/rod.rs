@@ -2,7 +2,7 @@
 //! never rises.
 
 use turntable::engine::body::Body;
-use turntable::engine::rod::{Phase, RodEnd, RodRun};
+use turntable::engine::rod::{Phase, RodRun};
 use turntable::engine::{Initial, Outcome, Release, Run, Settings};
 
 fn body(length: f64, angle: f64) -> Body {
@@ -20,7 +20,7 @@ fn point(initial: Initial) -> (Outcome, f64) {
     (o, s.q().length())
 }
 
-fn rod(initial: Initial, l: f64, angle: f64) -> (RodEnd, RodRun) {
+fn rod(initial: Initial, l: f64, angle: f64) -> (Outcome, RodRun) {
     let mut run = RodRun::new(body(l, angle), 1.0, &initial, 1e-12).unwrap();
     let end = run.finish(100.0, |_| {}).unwrap();
     (end, run)
@@ -38,7 +38,7 @@ fn a_tiny_body_rests_where_the_point_does() {
         assert_eq!(o, Outcome::Stuck, "{name}");
         for angle in [0.0, 1.0, 2.5] {
             let (end, run) = rod(initial, 1e-6, angle);
-            assert_eq!(end, RodEnd::Stuck, "{name} {angle}");
+            assert_eq!(end, Outcome::Stuck, "{name} {angle}");
             let got = run.state.q.length();
             eprintln!(
                 "{name} psi0 {angle}: point {xi} body {got} diff {:e} steps {}",
@@ -60,7 +60,7 @@ fn a_tiny_body_escapes_where_the_point_does() {
         run.state.tau,
         run.state.q.length()
     );
-    assert_eq!(end, RodEnd::Escaped);
+    assert_eq!(end, Outcome::Escaped);
 }
 
 #[test]
@@ -106,7 +106,7 @@ fn a_body_at_rest_on_the_table_rides_iff_its_centre_could() {
             .unwrap();
             let end = run.finish(5.0, |_| {}).unwrap();
             assert_eq!(
-                end == RodEnd::Stuck && run.state.tau == 0.0,
+                end == Outcome::Stuck && run.state.tau == 0.0,
                 rides,
                 "{xi0} {hold} {l}"
             );

@@ -105,8 +105,32 @@ pub fn run(a: RunArgs) -> CmdResult {
     let end = integrate(&mut run, a.tau_max, !a.follow, csv)?;
     let doubt = (!a.no_check).then(|| crate::engine::doubt::doubt(&run, a.tau_max));
     let mut report = RunReport::new(&run, &end, doubt, units);
-    report.body = body.map(|b| BodyReport::new(b, &run, &end, units));
+    report.body = match body {
+        Some(b) => {
+            let mut r = BodyReport::new(b, &run, &end, units);
+            r.motion = rod_motion(b, &initial, settings, a.tau_max)?;
+            Some(r)
+        }
+        None => None,
+    };
     print(&report, a.json)
+}
+
+/// The two-mass body run from the same release, under Coulomb friction (μ = 0 and Stokes drag
+/// have no stick to model: None), at the run's tolerance (1e-10 for the fixed-step methods).
+fn rod_motion(
+    body: crate::engine::body::Body,
+    initial: &Initial,
+    settings: crate::engine::Settings,
+    tau_max: f64,
+) -> Result<Option<super::report::MotionReport>, Error> {
+    if initial.frictionless || settings.stokes().is_some() {
+        return Ok(None);
+    }
+    let tol = settings.scheme.tol().unwrap_or(1e-10);
+    let mut rod = crate::engine::rod::RodRun::new(body, settings.hold(), initial, tol)?;
+    let outcome = rod.finish(tau_max, |_| {})?;
+    Ok(Some(super::report::MotionReport::new(&rod, outcome)))
 }
 
 /// The release and settings `run` was asked for, checked.

@@ -5,6 +5,7 @@
 use crate::engine::body::{Body, friction};
 use crate::engine::doubt::Doubt;
 use crate::engine::model::turn_angle;
+use crate::engine::rod::RodRun;
 use crate::engine::solve::Threshold;
 use crate::engine::units::{Units, show_length, show_time};
 use crate::engine::{Certificate, CouplingName, Frame, Method, Outcome, Run, Settings, State};
@@ -58,6 +59,32 @@ pub struct BodyReport {
     pub mu_assumed: bool,
     pub l_over_xi: Option<f64>,
     pub point_ok: bool,
+    pub motion: Option<MotionReport>,
+}
+
+/// `body.motion`: the two-mass body integrated from the same release (`engine::rod`).
+#[derive(Debug, Serialize)]
+pub struct MotionReport {
+    pub outcome: Outcome,
+    pub tau: f64,
+    pub xi: f64,
+    pub angle: f64,
+    pub psi: f64,
+    pub steps: u64,
+}
+
+impl MotionReport {
+    pub fn new(run: &RodRun, outcome: Outcome) -> MotionReport {
+        let s = run.state;
+        MotionReport {
+            outcome,
+            tau: s.tau,
+            xi: s.q.length(),
+            angle: turn_angle(s.q.y.atan2(s.q.x)),
+            psi: turn_angle(s.psi),
+            steps: run.steps,
+        }
+    }
 }
 
 impl BodyReport {
@@ -79,6 +106,7 @@ impl BodyReport {
             mu_assumed: c.mu_assumed,
             l_over_xi: finite(c.rotation),
             point_ok: !c.out_of_depth(),
+            motion: None,
         }
     }
 }
@@ -267,6 +295,17 @@ growth   {rate:.12}  (Re lambda+: every release leaves as e^(rate tau) but those
                 "body     L = {}: {topple}, {rot} at the end; {verdict}",
                 b.length
             );
+            if let Some(m) = &b.motion {
+                let _ = writeln!(
+                    text,
+                    "rod      the two-mass body: {} at tau {:.9}, xi {:.12}, rod at psi {:.6} ({} steps)",
+                    m.outcome.name(),
+                    m.tau,
+                    m.xi,
+                    m.psi,
+                    m.steps
+                );
+            }
         }
         if let Some(u) = &self.units {
             let _ = writeln!(

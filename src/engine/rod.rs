@@ -17,6 +17,7 @@
 use super::body::Body;
 use super::error::Error;
 use super::model::{Initial, Release};
+use super::run::Outcome;
 use super::stepper::{
     A21, A31, A32, A41, A42, A43, A51, A52, A53, A54, A61, A62, A63, A64, A65, A71, A73, A74, A75,
     A76, E1, E3, E4, E5, E6, E7,
@@ -45,17 +46,6 @@ pub enum Phase {
     Pivot { i: usize, anchor: DVec2, sign: f64 },
     /// Both stuck: the body rides the table.
     Rest,
-}
-
-/// How a body run ends.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum RodEnd {
-    /// At rest on the table from `tau` on.
-    Stuck,
-    /// Certified never to rest (E < −½R²).
-    Escaped,
-    /// τ-max came first.
-    Running,
 }
 
 /// The side of each contact: contact i sits at q + S[i] (L/2) ê.
@@ -306,15 +296,15 @@ impl RodRun {
 
     /// Advances by one accepted step, or to the first event inside it; returns how the run
     /// stands then.
-    pub fn step(&mut self, tau_max: f64) -> Result<RodEnd, Error> {
+    pub fn step(&mut self, tau_max: f64) -> Result<Outcome, Error> {
         if self.phase == Phase::Rest {
-            return Ok(RodEnd::Stuck);
+            return Ok(Outcome::Stuck);
         }
         if self.escaped() {
-            return Ok(RodEnd::Escaped);
+            return Ok(Outcome::Escaped);
         }
         if self.state.tau >= tau_max {
-            return Ok(RodEnd::Running);
+            return Ok(Outcome::Running);
         }
         // A slip that has shrunk to roundoff is a stop: the approach to a zero of |u_i| takes
         // steps in proportion to |u_i| (the friction's direction turns ever faster).
@@ -336,14 +326,16 @@ impl RodRun {
         loop {
             self.steps += 1;
             if self.steps > MAX_STEPS {
-                return Err(Error::invalid("the body's run exceeded its step budget"));
+                return Err(Error::Failed(
+                    "the body's run exceeded its step budget".into(),
+                ));
             }
             let h = self.h.min(tau_max - self.state.tau);
             let (y1, err) = self.step_from(self.state.y(), h);
             if err.is_nan() || err > 1.0 {
                 self.h = h * (0.9 * err.powf(-0.2)).clamp(0.1, 0.9);
                 if !self.h.is_finite() || self.h < 1e-15 * self.state.tau.max(1e-3) {
-                    return Err(Error::invalid("the body's step size underflowed"));
+                    return Err(Error::Failed("the body's step size underflowed".into()));
                 }
                 continue;
             }
@@ -369,11 +361,11 @@ impl RodRun {
         }
     }
 
-    fn standing(&self) -> RodEnd {
+    fn standing(&self) -> Outcome {
         if self.phase == Phase::Rest {
-            RodEnd::Stuck
+            Outcome::Stuck
         } else {
-            RodEnd::Running
+            Outcome::Running
         }
     }
 
@@ -456,14 +448,14 @@ impl RodRun {
         &mut self,
         tau_max: f64,
         mut each: impl FnMut(&RodState),
-    ) -> Result<RodEnd, Error> {
+    ) -> Result<Outcome, Error> {
         each(&self.state);
         loop {
             let end = self.step(tau_max)?;
             each(&self.state);
-            if end != RodEnd::Running || self.state.tau >= tau_max {
-                return Ok(if self.escaped() && end == RodEnd::Running {
-                    RodEnd::Escaped
+            if end != Outcome::Running || self.state.tau >= tau_max {
+                return Ok(if self.escaped() && end == Outcome::Running {
+                    Outcome::Escaped
                 } else {
                     end
                 });
