@@ -184,7 +184,7 @@ fn scene_body_shows_the_conditions_on_the_panel() {
     // A long body: L/ξ = 0.5 at release, not ≪ 1, and the warning.
     let long = scene_file("long.toml", "length = 0.25\n");
     let scene = turntable::scene::Scene::load(long.to_str().unwrap()).unwrap();
-    let lines = panel(scene, 0);
+    let lines = panel(scene.clone(), 0);
     assert!(has(&lines, "L/ξ", "0.5000 not ≪ 1"), "{lines:?}");
     assert!(has(&lines, "μh/L", "no height given"), "{lines:?}");
     assert!(
@@ -193,6 +193,27 @@ fn scene_body_shows_the_conditions_on_the_panel() {
             .any(|l| l.contains("point model out of its depth")),
         "{lines:?}"
     );
+    // The body itself is drawn, a bar between its masses: the picture differs from the point's.
+    let mut with = turntable::app::App::new(
+        scene.clone(),
+        turntable::theme::Theme::builtin("mono").unwrap(),
+    );
+    assert!(with.rod.is_some());
+    let mut bare = scene;
+    bare.body = None;
+    let mut without =
+        turntable::app::App::new(bare, turntable::theme::Theme::builtin("mono").unwrap());
+    assert!(without.rod.is_none());
+    let (a, b) = (
+        common::render(&mut with, 100, 30),
+        common::render(&mut without, 100, 30),
+    );
+    let canvas = |s: &str| {
+        s.lines()
+            .map(|l| l.chars().take(70).collect::<String>())
+            .collect::<Vec<_>>()
+    };
+    assert_ne!(canvas(&a), canvas(&b));
     for bad in [
         "length = 0\n",
         "length = -1\n",

@@ -151,3 +151,34 @@ mod prop {
         }
     }
 }
+
+/// The explorer's track: the body at any τ, at rest for ever once stuck, nothing past an
+/// escape's end.
+#[test]
+fn the_track_gives_the_body_at_any_tau() {
+    use turntable::engine::rod::RodTrack;
+    let a = Initial::velocity(0.5, std::f64::consts::PI, 1.0);
+    let t = RodTrack::new(body(0.1, 0.4), 1.0, &a, 1e-10, 50.0).unwrap();
+    assert_eq!(t.outcome, Outcome::Stuck);
+    for s in &t.states {
+        let got = t.at(s.tau).unwrap();
+        assert!((got.q - s.q).length() < 1e-15 && (got.psi - s.psi).abs() < 1e-15);
+    }
+    let rest = *t.states.last().unwrap();
+    let later = t.at(rest.tau + 10.0).unwrap();
+    assert_eq!((later.q, later.psi), (rest.q, rest.psi));
+    // Between two step ends: on the chord.
+    let (p, n) = (t.states[3], t.states[4]);
+    let mid = t.at(0.5 * (p.tau + n.tau)).unwrap();
+    assert!((mid.q - (p.q + n.q) * 0.5).length() < 1e-12);
+    let e = RodTrack::new(
+        body(0.1, 0.4),
+        1.0,
+        &Initial::velocity(0.5, 0.0, 1.0),
+        1e-10,
+        50.0,
+    )
+    .unwrap();
+    assert_eq!(e.outcome, Outcome::Escaped);
+    assert!(e.at(e.states.last().unwrap().tau + 1.0).is_none());
+}

@@ -463,3 +463,55 @@ impl RodRun {
         }
     }
 }
+
+/// A body run's path, every step's end, for drawing it at any τ: the explorer's bar.
+#[derive(Clone, Debug)]
+pub struct RodTrack {
+    pub l: f64,
+    pub states: Vec<RodState>,
+    pub outcome: Outcome,
+}
+
+impl RodTrack {
+    /// The body released as `initial` says, run to rest, escape or `tau_max`.
+    pub fn new(
+        body: Body,
+        hold: f64,
+        initial: &Initial,
+        tol: f64,
+        tau_max: f64,
+    ) -> Result<RodTrack, Error> {
+        let mut run = RodRun::new(body, hold, initial, tol)?;
+        let mut states = Vec::new();
+        let outcome = run.finish(tau_max, |s| states.push(*s))?;
+        Ok(RodTrack {
+            l: body.length,
+            states,
+            outcome,
+        })
+    }
+
+    /// The body at `tau` (linear between step ends), at rest for ever once stuck; None past
+    /// the end of an escaping or unfinished run.
+    pub fn at(&self, tau: f64) -> Option<RodState> {
+        let last = *self.states.last()?;
+        if tau >= last.tau {
+            return (self.outcome == Outcome::Stuck || tau == last.tau)
+                .then_some(RodState { tau, ..last });
+        }
+        let k = self.states.partition_point(|s| s.tau <= tau).max(1);
+        let (a, b) = (self.states[k - 1], self.states[k]);
+        let t = if b.tau > a.tau {
+            (tau - a.tau) / (b.tau - a.tau)
+        } else {
+            1.0
+        };
+        Some(RodState {
+            tau,
+            q: a.q.lerp(b.q, t),
+            u: a.u.lerp(b.u, t),
+            psi: a.psi + (b.psi - a.psi) * t,
+            w: a.w + (b.w - a.w) * t,
+        })
+    }
+}

@@ -219,6 +219,12 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) -> CanvasGeom {
     let v_init = rotate(v_init, turn);
     let sim = &app.sim;
     let paper = app.paper.as_ref();
+    // The finite body, as a bar between its two masses, in the frame shown.
+    let bar = app.rod.as_ref().and_then(|rod| {
+        let s = rod.at(now.tau)?;
+        let spin = turn + if view == Frame::Lab { s.tau } else { 0.0 };
+        Some(s.contacts(rod.l).map(|c| rotate(c, spin)))
+    });
     let half_width = 0.5 * (xb[1] - xb[0]).min(yb[1] - yb[0]);
     let forces = if app.forces {
         force_arrows(app, half_width)
@@ -337,6 +343,15 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) -> CanvasGeom {
                     head.y,
                     Span::styled(fa.label, Style::default().fg(fa.color)),
                 );
+            }
+            if let Some([a, b]) = bar {
+                ctx.draw(&Line {
+                    x1: a.x,
+                    y1: a.y,
+                    x2: b.x,
+                    y2: b.y,
+                    color: th.particle,
+                });
             }
             if let Some(p) = paper {
                 let q = rotate(in_frame(&p.now(), view), turn);
