@@ -226,3 +226,47 @@ fn scene_body_shows_the_conditions_on_the_panel() {
         assert!(e.to_string().contains("bad.toml"), "{bad}: {e}");
     }
 }
+
+/// `sweep body` makes the appendix's "L ≪ r" a number: the rest radius of the two-mass body
+/// departs from the point's as (L/r)², not L/r (cases A and B: a tenth of L, a hundredth of the
+/// error), and not at all at L = 1e-6.
+#[test]
+fn sweep_body_measures_the_rest_radius_error_against_l_over_r() {
+    for release in [
+        &["--xi0", "0.5", "--phi", "3.141592653589793", "--v0", "1"][..],
+        &["--xi0", "0.5", "--phi", "0", "--v0", "0.6"],
+    ] {
+        let args = [
+            &["sweep", "body"][..],
+            release,
+            &["--lengths", "1e-6,1e-3,1e-2"],
+        ]
+        .concat();
+        let (code, out, err) = turntable(&args);
+        assert_eq!(code, 0, "{err}");
+        let mut lines = out.lines();
+        assert_eq!(
+            lines.next(),
+            Some("length,l_over_r,outcome,xi,xi_point,xi_error,tau,tau_point")
+        );
+        let errs: Vec<f64> = lines
+            .map(|l| {
+                let f: Vec<&str> = l.split(',').collect();
+                assert_eq!(f[2], "stuck", "{l}");
+                f[5].parse().unwrap()
+            })
+            .collect();
+        assert!(errs[0].abs() < 1e-9, "{errs:?}");
+        let ratio = errs[2] / errs[1];
+        assert!((50.0..200.0).contains(&ratio), "{errs:?}");
+    }
+    for bad in [
+        &["sweep", "body", "--lengths", "0"][..],
+        &["sweep", "body", "--lengths", "nan"],
+        &["sweep", "body", "--coupling", "stokes", "--gamma", "1"],
+        &["sweep", "body", "--tau-max", "-1"],
+    ] {
+        let (code, _, err) = turntable(bad);
+        assert_eq!(code, 2, "{bad:?}: {err}");
+    }
+}

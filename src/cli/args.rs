@@ -439,6 +439,39 @@ pub enum SweepFigure {
     /// The explorer's outcome map: stuck or escaped over (phi, v0) at one --xi0, as CSV
     /// `phi,v0,outcome,xi,angle`.
     Map(MapArgs),
+    /// The appendix's body against the point: one release, the two-mass body of each
+    /// --lengths run to rest, as CSV `length,l_over_r,outcome,xi,xi_point,xi_error,tau,tau_point`
+    /// (r the point's rest radius): the appendix's "L ≪ r" as a number.
+    Body(BodySweepArgs),
+}
+
+#[derive(Args, Debug)]
+pub struct BodySweepArgs {
+    /// Release radius [default: case A's 0.5].
+    #[arg(long, default_value_t = 0.5, allow_hyphen_values = true)]
+    pub xi0: f64,
+    /// Direction of the initial velocity, table frame, rad [default: case A's π].
+    #[arg(long, default_value_t = std::f64::consts::PI, allow_hyphen_values = true)]
+    pub phi: f64,
+    /// Initial speed relative to the table [default: case A's 1].
+    #[arg(long, default_value_t = 1.0, allow_hyphen_values = true)]
+    pub v0: f64,
+    /// velocity, table-rest or lab-rest.
+    #[arg(long, default_value = "velocity", value_parser = variant::<Release>())]
+    pub release: Release,
+    /// The body lengths L (units of R_max).
+    #[arg(long, value_delimiter = ',', allow_hyphen_values = true, default_values_t = [1e-6, 1e-4, 1e-3, 3e-3, 1e-2, 3e-2, 0.1, 0.3])]
+    pub lengths: Vec<f64>,
+    /// The rod's angle at release (rad).
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    pub body_angle: f64,
+    /// Stop a run at this time if it has neither stuck nor escaped.
+    #[arg(long, default_value_t = 100.0, allow_hyphen_values = true)]
+    pub tau_max: f64,
+    #[command(flatten)]
+    pub numerics: NumericsArgs,
+    #[command(flatten)]
+    pub out: OutArg,
 }
 
 #[derive(Args, Debug)]
