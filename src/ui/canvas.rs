@@ -219,7 +219,24 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) -> CanvasGeom {
     let v_init = rotate(v_init, turn);
     let sim = &app.sim;
     let paper = app.paper.as_ref();
-    // The finite body, as a bar between its two masses, in the frame shown.
+    // The finite body's centre, its path so far beside the point's (thinned as trails are),
+    // and the body as a bar between its two masses, in the frame shown.
+    let rod_path: Vec<DVec2> = app.rod.as_ref().map_or_else(Vec::new, |rod| {
+        let n = rod.states.partition_point(|s| s.tau <= now.tau);
+        let stride = n / MAX_SEGMENTS + 1;
+        rod.states[..n]
+            .iter()
+            .step_by(stride)
+            .map(|s| {
+                let q = if view == Frame::Lab {
+                    rotate(s.q, s.tau)
+                } else {
+                    s.q
+                };
+                rotate(q, turn)
+            })
+            .collect()
+    });
     let bar = app.rod.as_ref().and_then(|rod| {
         let s = rod.at(now.tau)?;
         let spin = turn + if view == Frame::Lab { s.tau } else { 0.0 };
@@ -343,6 +360,15 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) -> CanvasGeom {
                     head.y,
                     Span::styled(fa.label, Style::default().fg(fa.color)),
                 );
+            }
+            for w in rod_path.windows(2) {
+                ctx.draw(&Line {
+                    x1: w[0].x,
+                    y1: w[0].y,
+                    x2: w[1].x,
+                    y2: w[1].y,
+                    color: th.particle,
+                });
             }
             if let Some([a, b]) = bar {
                 ctx.draw(&Line {
