@@ -194,7 +194,10 @@ pub struct RodRun {
     pub phase: Phase,
     fallback: [DVec2; 2],
     h: f64,
+    /// Steps attempted (accepted and rejected).
     pub steps: u64,
+    /// Right-hand-side evaluations, event location's included.
+    evals: std::cell::Cell<u64>,
 }
 
 /// A contact's slip below 10⁻²√tol (relative to 1 + |u|) has stopped: the steps that approach
@@ -239,6 +242,7 @@ impl RodRun {
             fallback: state.contacts(body.length),
             h: 1e-3,
             steps: 0,
+            evals: std::cell::Cell::new(0),
         };
         if state.u == DVec2::ZERO && w == 0.0 && q.length() <= hold {
             run.phase = Phase::Rest;
@@ -256,7 +260,13 @@ impl RodRun {
         self.state.energy(self.l) < -0.5 * self.hold * self.hold
     }
 
+    /// Right-hand-side evaluations so far (seven a DP54 step).
+    pub fn rhs_evals(&self) -> u64 {
+        self.evals.get()
+    }
+
     fn step_from(&self, y: V, h: f64) -> (V, f64) {
+        self.evals.set(self.evals.get() + 7);
         let (l, phase, fb) = (self.l, self.phase, self.fallback);
         dp54(|y| rhs(l, phase, fb, y), y, h, self.tol)
     }
