@@ -182,3 +182,30 @@ fn the_track_gives_the_body_at_any_tau() {
     assert_eq!(e.outcome, Outcome::Escaped);
     assert!(e.at(e.states.last().unwrap().tau + 1.0).is_none());
 }
+
+/// A finite body's rest point converges with the tolerance through its pivots and stops: at
+/// tol 1e-10 within 1e-8 of tol 1e-12 (case A and a release at rest in the lab, L up to 0.3).
+/// Its stop time is known less well, to about 10⁻²√tol over the deceleration (the snap floor).
+#[test]
+fn a_finite_bodys_rest_converges_with_the_tolerance() {
+    for (initial, angle) in [
+        (Initial::velocity(0.5, std::f64::consts::PI, 1.0), 0.0),
+        (Initial::at_rest(0.8, Release::LabRest), 1.0),
+    ] {
+        for l in [0.1, 0.3] {
+            let end = |tol: f64| {
+                let mut run = RodRun::new(body(l, angle), 1.0, &initial, tol).unwrap();
+                assert_eq!(run.finish(100.0, |_| {}).unwrap(), Outcome::Stuck);
+                run.state
+            };
+            let (a, b) = (end(1e-10), end(1e-12));
+            assert!(
+                (a.q - b.q).length() < 1e-8,
+                "L {l}: {:e}",
+                (a.q - b.q).length()
+            );
+            assert!((a.psi - b.psi).abs() < 1e-7, "L {l}: ψ {:e}", a.psi - b.psi);
+            assert!((a.tau - b.tau).abs() < 1e-5, "L {l}: τ {:e}", a.tau - b.tau);
+        }
+    }
+}
