@@ -20,6 +20,10 @@ pub struct Scene {
     /// A real table (μ, rpm, g): readouts in SI too.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub units: Option<crate::engine::units::Units>,
+    /// A finite body (the paper's appendix) instead of a point: its size, and the appendix's
+    /// conditions on the panel.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub body: Option<crate::engine::body::Body>,
     /// How the explorer showed it when saved.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub view: Option<View>,
@@ -86,6 +90,7 @@ impl Scene {
             initial,
             settings: Settings::default(),
             units: None,
+            body: None,
             view: None,
             pins: Vec::new(),
         })
@@ -156,6 +161,10 @@ impl Scene {
         if let Some(u) = scene.units {
             crate::engine::units::Units::new(u.mu, u.rpm, u.g)
                 .map_err(|e| Error::Invalid(format!("{file}: [units] {e}")))?;
+        }
+        if let Some(b) = scene.body {
+            b.validate()
+                .map_err(|e| Error::Invalid(format!("{file}: [body] {e}")))?;
         }
         Ok(scene)
     }

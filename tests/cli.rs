@@ -340,7 +340,18 @@ fn json_reports_are_the_fields_readme_lists() {
     for (heading, args) in [
         (
             "`run --json`:",
-            &["run", "--v0", "0.3", "--json", "--mu", "0.2", "--rpm", "30"][..],
+            &[
+                "run",
+                "--v0",
+                "0.3",
+                "--json",
+                "--mu",
+                "0.2",
+                "--rpm",
+                "30",
+                "--body-length",
+                "0.01",
+            ][..],
         ),
         ("`escape --json`:", &["escape", "--xi0", "0.5", "--json"]),
         (

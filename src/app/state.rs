@@ -78,6 +78,9 @@ pub struct App {
     pub sim: Sim,
     /// The paper's scheme from the same initial conditions, when comparing.
     pub paper: Option<Sim>,
+    /// The scene's finite body (the appendix's two masses on a rod) from the same release,
+    /// drawn as a bar; None without a body, with μ = 0 or under Stokes drag.
+    pub rod: Option<crate::engine::rod::RodTrack>,
     pub theme: Theme,
     pub playing: bool,
     pub speed: f64,
@@ -144,6 +147,7 @@ impl App {
             Settings::default()
         };
         let sim = make_sim(initial, settings);
+        let rod = make_rod(scene.body, &initial, settings);
         let units = scene.units;
         let mut pins = Vec::new();
         for spec in scene.pins.iter().rev().take(crate::pin::MAX_PINS).rev() {
@@ -159,6 +163,7 @@ impl App {
             settings,
             sim,
             paper: None,
+            rod,
             theme,
             playing: true,
             speed: 1.0,
@@ -197,6 +202,7 @@ impl App {
     pub fn restart(&mut self) {
         self.initial = sanitize(self.initial);
         self.sim = make_sim(self.initial, self.settings);
+        self.rod = make_rod(self.scene.body, &self.initial, self.settings);
         if self.paper.is_some() {
             self.paper = Some(make_sim(self.initial, Settings::paper()));
         }
@@ -340,6 +346,7 @@ impl App {
             initial: self.initial,
             settings: self.settings,
             units: self.units,
+            body: self.scene.body,
             view: Some(crate::scene::View {
                 page: self.page,
                 frame: self.view,
@@ -449,6 +456,24 @@ pub fn sanitize(mut i: Initial) -> Initial {
     i.phi = crate::engine::model::wrap_angle(fin(i.phi));
     i
 }
+
+/// The body's track to draw, up to [`ROD_TAU`]; None where there is no body, no dry
+/// friction, or the run fails (the panel's conditions still show).
+fn make_rod(
+    body: Option<crate::engine::body::Body>,
+    initial: &Initial,
+    settings: Settings,
+) -> Option<crate::engine::rod::RodTrack> {
+    let body = body?;
+    if initial.frictionless || settings.stokes().is_some() {
+        return None;
+    }
+    let tol = settings.scheme.tol().unwrap_or(1e-10);
+    crate::engine::rod::RodTrack::new(body, settings.hold(), initial, tol, ROD_TAU).ok()
+}
+
+/// How far in τ the explorer runs the body.
+const ROD_TAU: f64 = 200.0;
 
 pub(crate) fn make_sim(initial: Initial, settings: Settings) -> Sim {
     Sim::new(initial, settings, view_radius(&initial))

@@ -90,6 +90,9 @@ pub fn table(r: &Report) -> String {
     for s in &r.savings {
         let factor = if (0.5..2.0).contains(&s.factor) {
             format!("{:.3}× as much", 1.0 / s.factor)
+        } else if s.factor < 0.5 {
+            // A model that costs more than the point (the finite body).
+            format!("{:.1}× more", 1.0 / s.factor)
         } else if s.factor.is_finite() {
             format!("{:.0}× less", s.factor)
         } else {

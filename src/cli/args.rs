@@ -2,6 +2,7 @@
 //! arguments, and the checks that turn them into engine settings.
 
 use crate::app::G_DEFAULT;
+use crate::engine::body::Body;
 use crate::engine::{Coupling, CouplingName, Frame, Method, Release, Settings};
 use crate::error::Error;
 use clap::{Args, Parser, Subcommand};
@@ -43,6 +44,46 @@ pub struct Cli {
     pub units: UnitsArgs,
     #[command(flatten)]
     pub coupling: CouplingArgs,
+    #[command(flatten)]
+    pub body: BodyArgs,
+}
+
+/// A finite body instead of a point (the paper's appendix), for the explorer and `run`.
+/// Unset, a scene keeps its own.
+#[derive(Args, Debug, Clone, Default)]
+pub struct BodyArgs {
+    /// The body's lateral size L in units of R_max (> 0): the panel and `run --json` judge the
+    /// appendix's conditions for treating it as a point, μh/L ≪ 1 and L/ξ ≪ 1.
+    #[arg(long, value_name = "L", allow_hyphen_values = true)]
+    pub body_length: Option<f64>,
+    /// The body's height h in units of R_max (≥ 0; with --body-length): toppling, μh/L.
+    #[arg(long, value_name = "H", allow_hyphen_values = true)]
+    pub body_height: Option<f64>,
+    /// The rod's angle at release in the table frame, from radially outward, ccw (rad; with
+    /// --body-length).
+    #[arg(long, value_name = "A", allow_hyphen_values = true)]
+    pub body_angle: Option<f64>,
+}
+
+impl BodyArgs {
+    /// The body asked for, checked; `None` if no flag was given.
+    pub fn body(&self) -> Result<Option<Body>, Error> {
+        let Some(length) = self.body_length else {
+            if self.body_height.is_some() || self.body_angle.is_some() {
+                return Err(Error::invalid(
+                    "--body-height and --body-angle describe a body: give its size with --body-length",
+                ));
+            }
+            return Ok(None);
+        };
+        let b = Body {
+            length,
+            height: self.body_height,
+            angle: self.body_angle.unwrap_or(0.0),
+        };
+        b.validate().map_err(|e| Error::Invalid(format!("--{e}")))?;
+        Ok(Some(b))
+    }
 }
 
 /// How the particle is coupled to the table (extends the paper), shared by the explorer and
@@ -300,6 +341,8 @@ pub struct RunArgs {
     pub trajectory: Option<PathBuf>,
     #[command(flatten)]
     pub units: UnitsArgs,
+    #[command(flatten)]
+    pub body: BodyArgs,
 }
 
 /// A real table: every length, time and speed also in SI.
@@ -396,6 +439,39 @@ pub enum SweepFigure {
     /// The explorer's outcome map: stuck or escaped over (phi, v0) at one --xi0, as CSV
     /// `phi,v0,outcome,xi,angle`.
     Map(MapArgs),
+    /// The appendix's body against the point: one release, the two-mass body of each
+    /// --lengths run to rest, as CSV `length,l_over_r,outcome,xi,xi_point,xi_error,tau,tau_point`
+    /// (r the point's rest radius): the appendix's "L ≪ r" as a number.
+    Body(BodySweepArgs),
+}
+
+#[derive(Args, Debug)]
+pub struct BodySweepArgs {
+    /// Release radius [default: case A's 0.5].
+    #[arg(long, default_value_t = 0.5, allow_hyphen_values = true)]
+    pub xi0: f64,
+    /// Direction of the initial velocity, table frame, rad [default: case A's π].
+    #[arg(long, default_value_t = std::f64::consts::PI, allow_hyphen_values = true)]
+    pub phi: f64,
+    /// Initial speed relative to the table [default: case A's 1].
+    #[arg(long, default_value_t = 1.0, allow_hyphen_values = true)]
+    pub v0: f64,
+    /// velocity, table-rest or lab-rest.
+    #[arg(long, default_value = "velocity", value_parser = variant::<Release>())]
+    pub release: Release,
+    /// The body lengths L (units of R_max).
+    #[arg(long, value_delimiter = ',', allow_hyphen_values = true, default_values_t = [1e-6, 1e-4, 1e-3, 3e-3, 1e-2, 3e-2, 0.1, 0.3])]
+    pub lengths: Vec<f64>,
+    /// The rod's angle at release (rad).
+    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
+    pub body_angle: f64,
+    /// Stop a run at this time if it has neither stuck nor escaped.
+    #[arg(long, default_value_t = 100.0, allow_hyphen_values = true)]
+    pub tau_max: f64,
+    #[command(flatten)]
+    pub numerics: NumericsArgs,
+    #[command(flatten)]
+    pub out: OutArg,
 }
 
 #[derive(Args, Debug)]

@@ -102,6 +102,14 @@ fn explore(
         scene.settings.coupling = c;
         scene.settings.validate()?;
     }
+    if let Some(b) = cli.body.body()? {
+        if cli.record.is_some() {
+            return Err(Error::invalid(
+                "--record keeps the scene, not --body-length/--body-height/--body-angle: put them in a scene file ([body] length, height, angle) and pass --scene",
+            ));
+        }
+        scene.body = Some(b);
+    }
     let no_color = std::env::var_os("NO_COLOR").is_some_and(|v| !v.is_empty());
     let (term, colorterm) = (std::env::var("TERM").ok(), std::env::var("COLORTERM").ok());
     let marker = cli

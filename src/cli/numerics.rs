@@ -1,6 +1,6 @@
 //! The headless numerical commands: run, escape, critical (sweep is in `sweep`).
 
-use super::report::{CriticalReport, EscapeReport, Report, RunReport};
+use super::report::{BodyReport, CriticalReport, EscapeReport, Report, RunReport};
 use super::{
     CmdResult, CriticalArgs, Error, EscapeArgs, RunArgs, bracket_width, check_initial, num,
     solver_budget,
@@ -93,6 +93,7 @@ const FREE_SAMPLE: f64 = 1e-2;
 pub fn run(a: RunArgs) -> CmdResult {
     let (initial, settings) = run_inputs(&a)?;
     let units = a.units.units()?;
+    let body = a.body.body()?;
     // The file is opened (and a bad path refused) before any work; rows stream into it.
     let csv = match &a.trajectory {
         Some(path) => Some(BufWriter::new(
@@ -103,7 +104,33 @@ pub fn run(a: RunArgs) -> CmdResult {
     let mut run = Run::new(initial, settings)?;
     let end = integrate(&mut run, a.tau_max, !a.follow, csv)?;
     let doubt = (!a.no_check).then(|| crate::engine::doubt::doubt(&run, a.tau_max));
-    print(&RunReport::new(&run, &end, doubt, units), a.json)
+    let mut report = RunReport::new(&run, &end, doubt, units);
+    report.body = match body {
+        Some(b) => {
+            let mut r = BodyReport::new(b, &run, &end, units);
+            r.motion = rod_motion(b, &initial, settings, a.tau_max)?;
+            Some(r)
+        }
+        None => None,
+    };
+    print(&report, a.json)
+}
+
+/// The two-mass body run from the same release, under Coulomb friction (μ = 0 and Stokes drag
+/// have no stick to model: None), at the run's tolerance (1e-10 for the fixed-step methods).
+fn rod_motion(
+    body: crate::engine::body::Body,
+    initial: &Initial,
+    settings: crate::engine::Settings,
+    tau_max: f64,
+) -> Result<Option<super::report::MotionReport>, Error> {
+    if initial.frictionless || settings.stokes().is_some() {
+        return Ok(None);
+    }
+    let tol = settings.scheme.tol().unwrap_or(1e-10);
+    let mut rod = crate::engine::rod::RodRun::new(body, settings.hold(), initial, tol)?;
+    let outcome = rod.finish(tau_max, |_| {})?;
+    Ok(Some(super::report::MotionReport::new(&rod, outcome)))
 }
 
 /// The release and settings `run` was asked for, checked.

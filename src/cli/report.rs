@@ -2,8 +2,10 @@
 //! object (documented once, in README's *JSON reports*, and checked against it by
 //! `tests/cli.rs`), and whose `text` is its plain output.
 
+use crate::engine::body::{Body, friction};
 use crate::engine::doubt::Doubt;
 use crate::engine::model::turn_angle;
+use crate::engine::rod::RodRun;
 use crate::engine::solve::Threshold;
 use crate::engine::units::{Units, show_length, show_time};
 use crate::engine::{Certificate, CouplingName, Frame, Method, Outcome, Run, Settings, State};
@@ -43,6 +45,70 @@ pub struct RunReport {
     pub dt: Option<f64>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub units: Option<UnitsReport>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub body: Option<BodyReport>,
+}
+
+/// `run --json`'s `body`: the body's size and the appendix's two conditions at the end.
+#[derive(Debug, Serialize)]
+pub struct BodyReport {
+    pub length: f64,
+    pub height: Option<f64>,
+    pub angle: f64,
+    pub mu_h_over_l: Option<f64>,
+    pub mu_assumed: bool,
+    pub l_over_xi: Option<f64>,
+    pub point_ok: bool,
+    pub motion: Option<MotionReport>,
+}
+
+/// `body.motion`: the two-mass body integrated from the same release (`engine::rod`).
+#[derive(Debug, Serialize)]
+pub struct MotionReport {
+    pub outcome: Outcome,
+    pub tau: f64,
+    pub xi: f64,
+    pub angle: f64,
+    pub psi: f64,
+    pub steps: u64,
+}
+
+impl MotionReport {
+    pub fn new(run: &RodRun, outcome: Outcome) -> MotionReport {
+        let s = run.state;
+        MotionReport {
+            outcome,
+            tau: s.tau,
+            xi: s.q.length(),
+            angle: turn_angle(s.q.y.atan2(s.q.x)),
+            psi: turn_angle(s.psi),
+            steps: run.steps,
+        }
+    }
+}
+
+impl BodyReport {
+    /// The conditions at `end` of `run`, on the table `units` gives (μ_k = 1 assumed without).
+    pub fn new(body: Body, run: &Run, end: &State, units: Option<Units>) -> BodyReport {
+        let xi = end.q().length();
+        let f = friction(
+            &run.settings(),
+            run.initial().frictionless,
+            run.outcome() == Outcome::Stuck,
+            xi,
+        );
+        let c = body.conditions(xi, f, units.map(|u| u.mu));
+        BodyReport {
+            length: body.length,
+            height: body.height,
+            angle: body.angle,
+            mu_h_over_l: c.topple,
+            mu_assumed: c.mu_assumed,
+            l_over_xi: finite(c.rotation),
+            point_ok: !c.out_of_depth(),
+            motion: None,
+        }
+    }
 }
 
 /// The second opinion on a run ([`crate::engine::doubt`]): dp54 1000× tighter in the other
@@ -143,6 +209,7 @@ impl RunReport {
                     escape_tau_s: run.escape().map(|e| e.tau * t),
                 }
             }),
+            body: None,
         }
     }
 }
@@ -205,6 +272,40 @@ growth   {rate:.12}  (Re lambda+: every release leaves as e^(rate tau) but those
                 text,
                 "static   mu_s/mu_k = {r}: at rest it holds out to xi = {r}, slides at mu_k"
             );
+        }
+        if let Some(b) = &self.body {
+            let topple = match (b.mu_h_over_l, b.height) {
+                (Some(t), _) if b.mu_assumed => format!("mu h/L <= {t:.3e} (mu_k <= 1 assumed)"),
+                (Some(t), _) => format!("mu h/L = {t:.3e}"),
+                (None, None) => "no height given".into(),
+                (None, Some(_)) => "toppling not judged under Stokes drag".into(),
+            };
+            let rot = b
+                .l_over_xi
+                .map_or("L/xi infinite (at the centre)".into(), |r| {
+                    format!("L/xi = {r:.3e}")
+                });
+            let verdict = if b.point_ok {
+                "both << 1 (<= 0.1): a point"
+            } else {
+                "not both << 1 (<= 0.1): the point model is out of its depth"
+            };
+            let _ = writeln!(
+                text,
+                "body     L = {}: {topple}, {rot} at the end; {verdict}",
+                b.length
+            );
+            if let Some(m) = &b.motion {
+                let _ = writeln!(
+                    text,
+                    "rod      the two-mass body: {} at tau {:.9}, xi {:.12}, rod at psi {:.6} ({} steps)",
+                    m.outcome.name(),
+                    m.tau,
+                    m.xi,
+                    m.psi,
+                    m.steps
+                );
+            }
         }
         if let Some(u) = &self.units {
             let _ = writeln!(

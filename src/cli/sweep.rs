@@ -17,7 +17,75 @@ pub fn sweep(a: SweepArgs) -> CmdResult {
         SweepFigure::Fig5(f) => fig5(&f.data, &f.out),
         SweepFigure::Fig6(f) => fig6(&f.data, &f.out),
         SweepFigure::Map(m) => sweep_map(&m.data, &m.out),
+        SweepFigure::Body(b) => sweep_body(&b),
     }
+}
+
+/// `sweep body`: the two-mass body of each length against the point from one release.
+fn sweep_body(a: &super::BodySweepArgs) -> CmdResult {
+    let initial = Initial {
+        xi0: a.xi0,
+        phi: a.phi,
+        v0: a.v0,
+        release: a.release,
+        frictionless: false,
+    };
+    check_initial(&initial)?;
+    let settings = a.numerics.settings()?;
+    if settings.stokes().is_some() {
+        return Err(Error::invalid(
+            "sweep body compares stops under dry friction: Stokes drag has none",
+        ));
+    }
+    if !(a.tau_max.is_finite() && a.tau_max > 0.0 && a.tau_max <= 1e6) {
+        return Err(Error::Invalid(format!(
+            "tau-max must lie in (0, 1e6], got {}",
+            Initial::show(a.tau_max)
+        )));
+    }
+    points(a.lengths.len())?;
+    let bodies = a
+        .lengths
+        .iter()
+        .map(|&length| {
+            let b = crate::engine::body::Body {
+                length,
+                height: None,
+                angle: a.body_angle,
+            };
+            b.validate()
+                .map_err(|e| Error::Invalid(format!("--lengths: {e}")))?;
+            Ok(b)
+        })
+        .collect::<Result<Vec<_>, Error>>()?;
+    let out = open_out(&a.out)?;
+    let mut run = crate::engine::Run::new(initial, settings)?;
+    let (outcome, end) = run.finish(a.tau_max)?;
+    let stuck = outcome == crate::engine::Outcome::Stuck;
+    let r = end.q().length();
+    let tol = settings.scheme.tol().unwrap_or(1e-10);
+    let mut csv = String::from("length,l_over_r,outcome,xi,xi_point,xi_error,tau,tau_point\n");
+    for b in bodies {
+        let mut rod = crate::engine::rod::RodRun::new(b, settings.hold(), &initial, tol)?;
+        let o = rod.finish(a.tau_max, |_| {})?;
+        let xi = rod.state.q.length();
+        // The error is a rest radius's: defined where both stop.
+        let (l_over_r, xi_point, err) = if stuck && o == crate::engine::Outcome::Stuck {
+            (num(b.length / r), num(r), num(xi - r))
+        } else {
+            (String::new(), String::new(), String::new())
+        };
+        let _ = writeln!(
+            csv,
+            "{},{l_over_r},{},{},{xi_point},{err},{},{}",
+            num(b.length),
+            o.name(),
+            num(xi),
+            num(rod.state.tau),
+            num(end.tau)
+        );
+    }
+    write_csv(&csv, out, &a.out)
 }
 
 /// How many points a sweep may take.

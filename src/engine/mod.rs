@@ -2,12 +2,14 @@
 //! approximations.
 
 pub mod approx;
+pub mod body;
 pub mod dop853;
 pub mod doubt;
 pub mod error;
 pub mod method;
 pub mod model;
 pub mod par;
+pub mod rod;
 pub mod roots;
 pub mod run;
 pub mod saddle;

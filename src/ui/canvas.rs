@@ -298,6 +298,29 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) -> CanvasGeom {
     let pins = &app.pins;
     let units = app.units;
     let pin_style = Style::default().fg(th.muted);
+    // The finite body's centre, its path so far beside the point's (thinned as trails are),
+    // and the body as a bar between its two masses, in the frame shown.
+    let rod_path: Vec<DVec2> = app.rod.as_ref().map_or_else(Vec::new, |rod| {
+        let n = rod.states.partition_point(|s| s.tau <= now.tau);
+        let stride = n / MAX_SEGMENTS + 1;
+        rod.states[..n]
+            .iter()
+            .step_by(stride)
+            .map(|s| {
+                let q = if view == Frame::Lab {
+                    rotate(s.q, s.tau)
+                } else {
+                    s.q
+                };
+                rotate(q, turn)
+            })
+            .collect()
+    });
+    let bar = app.rod.as_ref().and_then(|rod| {
+        let s = rod.at(now.tau)?;
+        let spin = turn + if view == Frame::Lab { s.tau } else { 0.0 };
+        Some(s.contacts(rod.l).map(|c| rotate(c, spin)))
+    });
     let half_width = 0.5 * (xb[1] - xb[0]).min(yb[1] - yb[0]);
     let forces = arrows(app, half_width, arrow_scale);
     let ring_label = rotate(DVec2::new(-0.95, -0.72), turn);
@@ -487,6 +510,24 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) -> CanvasGeom {
                     taken.push(cells(h, n));
                     ctx.print(h.x, h.y, Span::styled(text, pin_style));
                 }
+            }
+            for w in rod_path.windows(2) {
+                ctx.draw(&Line {
+                    x1: w[0].x,
+                    y1: w[0].y,
+                    x2: w[1].x,
+                    y2: w[1].y,
+                    color: th.particle,
+                });
+            }
+            if let Some([a, b]) = bar {
+                ctx.draw(&Line {
+                    x1: a.x,
+                    y1: a.y,
+                    x2: b.x,
+                    y2: b.y,
+                    color: th.particle,
+                });
             }
             if let Some(p) = paper {
                 let q = rotate(in_frame(&p.now(), view), turn);

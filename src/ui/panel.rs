@@ -282,6 +282,9 @@ fn readouts(app: &App) -> (Vec<Line<'static>>, std::ops::Range<usize>) {
             th,
         ));
     }
+    if let Some(b) = app.scene.body {
+        body_lines(app, b, &s, &mut out);
+    }
     out.push(kv("steps", format!("{} rej {}", c.steps, c.rejected), th));
     if app.step_mode
         && let Some(st) = app.sim.run.last_step()
@@ -353,6 +356,63 @@ fn readouts(app: &App) -> (Vec<Line<'static>>, std::ops::Range<usize>) {
         }
     }
     (out, status)
+}
+
+/// The appendix's body: its size and the two conditions for treating it as a point at the
+/// state on screen, each a number and a verdict, and a warning when either is not ≪ 1.
+fn body_lines(
+    app: &App,
+    b: crate::engine::body::Body,
+    s: &crate::engine::State,
+    out: &mut Vec<Line<'static>>,
+) {
+    let th = &app.theme;
+    let xi = s.xi();
+    let stuck = app.sim.outcome_now() == Outcome::Stuck;
+    let f = crate::engine::body::friction(&app.settings, app.initial.frictionless, stuck, xi);
+    let c = b.conditions(xi, f, app.units.map(|u| u.mu));
+    let size = match b.height {
+        Some(h) => format!("L {} h {}", num(b.length, 4), num(h, 4)),
+        None => format!("L {}", num(b.length, 4)),
+    };
+    out.push(kv("body", size, th));
+    let topple = match (c.topple, c.topple_verdict(), b.height) {
+        // Without a real table μ_k = 1 bounds it: the number is an upper bound.
+        (Some(t), Some(v), _) => format!(
+            "{}{} {}",
+            if c.mu_assumed { "≤ " } else { "" },
+            small(t),
+            v.word()
+        ),
+        (_, _, None) => "no height given".into(),
+        _ => "not judged (Stokes)".into(),
+    };
+    out.push(kv("μh/L", topple, th));
+    let rotation = if c.rotation.is_finite() {
+        small(c.rotation)
+    } else {
+        "∞".into()
+    };
+    out.push(kv(
+        "L/ξ",
+        format!("{rotation} {}", c.rotation_verdict().word()),
+        th,
+    ));
+    if c.out_of_depth() {
+        out.push(Line::from(Span::styled(
+            "point model out of its depth",
+            Style::default().fg(th.notice).add_modifier(Modifier::BOLD),
+        )));
+    }
+}
+
+/// A ratio for the body's readouts: four decimals, or exponent form when small or large.
+fn small(x: f64) -> String {
+    if (1e-3..1e4).contains(&x) || x == 0.0 {
+        num(x, 4)
+    } else {
+        format!("{x:.2e}")
+    }
 }
 
 pub fn fmt_speed(s: f64) -> String {

@@ -1,0 +1,527 @@
+//! The appendix's body integrated (extends the paper, whose Appendix only estimates it): two
+//! masses m/2 at q ± (L/2) ê(ψ), joined by a massless rigid rod that carries an axial force only,
+//! each with Coulomb friction μ_k m g/2 against its own slip velocity. Rotating frame, units of
+//! the paper's Eqs. (6)–(7) (μ_k g = 1, Ω = 1), per unit total mass m:
+//!
+//! - sliding: q′ = u, u′ = −2 ẑ × u + q − ½(û₁ + û₂), ψ″ = −(ê × û₁ − ê × û₂)/L, with the
+//!   contacts' slips u_i = u ± (L/2) ψ′ ê⊥ (Coriolis and centrifugal forces have no torque
+//!   about the centre of a two-mass rod; I = mL²/4);
+//! - one contact stuck at a (it holds while the friction it needs, |N ê − ½a| with the rod's
+//!   axial force N, is ≤ ½ μ_s/μ_k): the other pivots about it, ψ″ = −(s a·ê⊥ + sgn ψ′)/L;
+//! - both stuck: the body rides the table iff some axial force keeps both within their cones,
+//!   which works out to |q| ≤ μ_s/μ_k, the point's condition (Sec. II, property 1).
+//!
+//! The Jacobi energy E = ½|u|² + (L²/8) ψ′² − ½|q|² falls at ½(|u₁| + |u₂|), so E < −½R²
+//! (R = μ_s/μ_k) certifies that the body never rests. As L → 0 it is the point.
+
+use super::body::Body;
+use super::error::Error;
+use super::model::{Initial, Release};
+use super::run::Outcome;
+use super::stepper::{
+    A21, A31, A32, A41, A42, A43, A51, A52, A53, A54, A61, A62, A63, A64, A65, A71, A73, A74, A75,
+    A76, E1, E3, E4, E5, E6, E7,
+};
+use glam::DVec2;
+
+/// The body at time τ in the table frame: centre q, its velocity u, the rod's angle ψ and its
+/// rate ψ′ (both relative to the table).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RodState {
+    pub tau: f64,
+    pub q: DVec2,
+    pub u: DVec2,
+    pub psi: f64,
+    pub w: f64,
+}
+
+/// Which contacts hold.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Phase {
+    /// Both slide.
+    Slip,
+    /// Contact `i` (0: at q + (L/2)ê, 1: at q − (L/2)ê) is stuck at `anchor`; the body pivots,
+    /// turning in the sense `sign` (the other contact's friction keeps it until ψ′ = 0, an
+    /// event: integrated past it with that friction, the stop is a smooth crossing to locate).
+    Pivot { i: usize, anchor: DVec2, sign: f64 },
+    /// Both stuck: the body rides the table.
+    Rest,
+}
+
+/// The side of each contact: contact i sits at q + S[i] (L/2) ê.
+const S: [f64; 2] = [1.0, -1.0];
+
+type V = [f64; 6];
+
+fn axis(psi: f64) -> DVec2 {
+    DVec2::from_angle(psi)
+}
+
+impl RodState {
+    fn y(&self) -> V {
+        [self.q.x, self.q.y, self.u.x, self.u.y, self.psi, self.w]
+    }
+    fn from(tau: f64, y: V) -> RodState {
+        RodState {
+            tau,
+            q: DVec2::new(y[0], y[1]),
+            u: DVec2::new(y[2], y[3]),
+            psi: y[4],
+            w: y[5],
+        }
+    }
+    /// Where the two masses are.
+    pub fn contacts(&self, l: f64) -> [DVec2; 2] {
+        S.map(|s| self.q + axis(self.psi) * (s * 0.5 * l))
+    }
+    /// The two contacts' slip velocities relative to the table.
+    pub fn slips(&self, l: f64) -> [DVec2; 2] {
+        S.map(|s| self.u + axis(self.psi).perp() * (s * 0.5 * l * self.w))
+    }
+    /// The Jacobi energy per unit mass, E = ½|u|² + (L²/8) ψ′² − ½|q|² (constants dropped).
+    pub fn energy(&self, l: f64) -> f64 {
+        0.5 * self.u.length_squared() + l * l / 8.0 * self.w * self.w
+            - 0.5 * self.q.length_squared()
+    }
+}
+
+/// A unit vector along `v`, or along `fallback` where `v` is zero (a contact just breaking
+/// loose: its friction opposes the push that breaks it).
+fn dir(v: DVec2, fallback: DVec2) -> DVec2 {
+    let n = v.length();
+    if n > 0.0 {
+        v / n
+    } else {
+        fallback.normalize_or_zero()
+    }
+}
+
+/// The friction contact `i` needs to stay stuck at `anchor` while the other pivots at rate `w`
+/// (per unit total mass): N ê − ½a, N the rod's axial force from the other mass's radial
+/// balance.
+fn pivot_need(l: f64, i: usize, anchor: DVec2, psi: f64, w: f64) -> DVec2 {
+    let (s, e) = (S[i], axis(psi));
+    let n = 0.5 * (s * l * w * w + 2.0 * s * l * w - anchor.dot(e) + s * l);
+    e * n - anchor * 0.5
+}
+
+/// The right-hand side in `phase`.
+fn rhs(l: f64, phase: Phase, fallback: [DVec2; 2], y: V) -> V {
+    let st = RodState::from(0.0, y);
+    let (e, ep) = (axis(st.psi), axis(st.psi).perp());
+    match phase {
+        Phase::Slip => {
+            let [u1, u2] = st.slips(l);
+            let (d1, d2) = (dir(u1, fallback[0]), dir(u2, fallback[1]));
+            let du = -2.0 * st.u.perp() + st.q - (d1 + d2) * 0.5;
+            let dw = -(e.perp_dot(d1) - e.perp_dot(d2)) / l;
+            [st.u.x, st.u.y, du.x, du.y, st.w, dw]
+        }
+        Phase::Pivot { i, anchor, sign } => {
+            let s = S[i];
+            let dw = -(s * anchor.dot(ep) + sign) / l;
+            let u = -ep * (s * 0.5 * l * st.w);
+            let du = -(ep * dw - e * (st.w * st.w)) * (s * 0.5 * l);
+            [u.x, u.y, du.x, du.y, st.w, dw]
+        }
+        Phase::Rest => [0.0; 6],
+    }
+}
+
+fn add(y: V, k: &[(f64, &V)]) -> V {
+    let mut out = y;
+    for (c, kk) in k {
+        for j in 0..6 {
+            out[j] += c * kk[j];
+        }
+    }
+    out
+}
+
+/// One Dormand–Prince 5(4) step (the tableau of `stepper`): the new point and the error
+/// estimate scaled by the tolerance (≤ 1: accept).
+fn dp54(f: impl Fn(V) -> V, y: V, h: f64, tol: f64) -> (V, f64) {
+    let k1 = f(y);
+    let k2 = f(add(y, &[(h * A21, &k1)]));
+    let k3 = f(add(y, &[(h * A31, &k1), (h * A32, &k2)]));
+    let k4 = f(add(y, &[(h * A41, &k1), (h * A42, &k2), (h * A43, &k3)]));
+    let k5 = f(add(
+        y,
+        &[
+            (h * A51, &k1),
+            (h * A52, &k2),
+            (h * A53, &k3),
+            (h * A54, &k4),
+        ],
+    ));
+    let k6 = f(add(
+        y,
+        &[
+            (h * A61, &k1),
+            (h * A62, &k2),
+            (h * A63, &k3),
+            (h * A64, &k4),
+            (h * A65, &k5),
+        ],
+    ));
+    let y1 = add(
+        y,
+        &[
+            (h * A71, &k1),
+            (h * A73, &k3),
+            (h * A74, &k4),
+            (h * A75, &k5),
+            (h * A76, &k6),
+        ],
+    );
+    let k7 = f(y1);
+    let mut err: f64 = 0.0;
+    for j in 0..6 {
+        let e = h * (E1 * k1[j] + E3 * k3[j] + E4 * k4[j] + E5 * k5[j] + E6 * k6[j] + E7 * k7[j]);
+        err = err.max((e / (tol * (1.0 + y[j].abs().max(y1[j].abs())))).abs());
+    }
+    (y1, err)
+}
+
+/// A run of the body: its state, phase and cost.
+#[derive(Clone, Debug)]
+pub struct RodRun {
+    pub l: f64,
+    /// μ_s/μ_k.
+    pub hold: f64,
+    pub tol: f64,
+    pub state: RodState,
+    pub phase: Phase,
+    fallback: [DVec2; 2],
+    h: f64,
+    /// Steps attempted (accepted and rejected).
+    pub steps: u64,
+    /// Right-hand-side evaluations, event location's included.
+    evals: std::cell::Cell<u64>,
+}
+
+/// A contact's slip below 10⁻²√tol (relative to 1 + |u|) has stopped: the steps that approach
+/// a zero of |u_i| shrink with it, and below about 1e-11 their stages straddle the zero and
+/// stall. Snapping at |u_i| moves the rest point by about |u_i|²/2, ≤ 10⁻⁴ tol.
+const STOP_SCALE: f64 = 1e-2;
+
+/// Steps a run may take.
+const MAX_STEPS: u64 = 5_000_000;
+
+impl RodRun {
+    /// The body released as `initial` says, the rod at `body.angle`. A thrown body or one at
+    /// rest in the lab does not spin in the lab (ψ′ = −1, the appendix's case); one at rest on
+    /// the table rides with it (ψ′ = 0).
+    pub fn new(body: Body, hold: f64, initial: &Initial, tol: f64) -> Result<RodRun, Error> {
+        body.validate()?;
+        initial.validate()?;
+        if initial.frictionless {
+            return Err(Error::invalid(
+                "a body with mu = 0 feels no friction: its centre is the point's straight line",
+            ));
+        }
+        let q = DVec2::new(initial.xi0, 0.0);
+        let w = if initial.release == Release::TableRest {
+            0.0
+        } else {
+            -1.0
+        };
+        let state = RodState {
+            tau: 0.0,
+            q,
+            u: initial.u0(),
+            psi: body.angle,
+            w,
+        };
+        let mut run = RodRun {
+            l: body.length,
+            hold,
+            tol,
+            state,
+            phase: Phase::Slip,
+            fallback: state.contacts(body.length),
+            h: 1e-3,
+            steps: 0,
+            evals: std::cell::Cell::new(0),
+        };
+        if state.u == DVec2::ZERO && w == 0.0 && q.length() <= hold {
+            run.phase = Phase::Rest;
+        }
+        Ok(run)
+    }
+
+    /// The slip below which a contact has stopped.
+    fn floor(&self) -> f64 {
+        STOP_SCALE * self.tol.sqrt() * (1.0 + self.state.u.length())
+    }
+
+    /// Whether E < −½R² already certifies that the body never rests.
+    fn escaped(&self) -> bool {
+        self.state.energy(self.l) < -0.5 * self.hold * self.hold
+    }
+
+    /// Right-hand-side evaluations so far (seven a DP54 step).
+    pub fn rhs_evals(&self) -> u64 {
+        self.evals.get()
+    }
+
+    fn step_from(&self, y: V, h: f64) -> (V, f64) {
+        self.evals.set(self.evals.get() + 7);
+        let (l, phase, fb) = (self.l, self.phase, self.fallback);
+        dp54(|y| rhs(l, phase, fb, y), y, h, self.tol)
+    }
+
+    /// The state after `h` from the current one, re-placed on the pivot's circle when
+    /// pivoting (the stuck contact exactly at its anchor).
+    fn trial(&self, h: f64) -> RodState {
+        self.place(h, self.step_from(self.state.y(), h).0)
+    }
+
+    fn place(&self, h: f64, y: V) -> RodState {
+        let mut s = RodState::from(self.state.tau + h, y);
+        if let Phase::Pivot { i, anchor, .. } = self.phase {
+            let ep = axis(s.psi).perp();
+            s.q = anchor - axis(s.psi) * (S[i] * 0.5 * self.l);
+            s.u = -ep * (S[i] * 0.5 * self.l * s.w);
+        }
+        s
+    }
+
+    /// Event functions of the phase at `s`, each positive until its event: a sliding
+    /// contact's slip along its slip at the step's start; a pivot's rate along its start, and
+    /// the stuck contact's cone margin.
+    fn events(&self, s: &RodState) -> [f64; 2] {
+        match self.phase {
+            Phase::Slip => {
+                let (a, b) = (self.state.slips(self.l), s.slips(self.l));
+                [a[0].dot(b[0]), a[1].dot(b[1])]
+            }
+            Phase::Pivot { i, anchor, .. } => [
+                self.state.w * s.w,
+                0.5 * self.hold - pivot_need(self.l, i, anchor, s.psi, s.w).length(),
+            ],
+            Phase::Rest => [1.0, 1.0],
+        }
+    }
+
+    /// Advances by one accepted step, or to the first event inside it; returns how the run
+    /// stands then.
+    pub fn step(&mut self, tau_max: f64) -> Result<Outcome, Error> {
+        if self.phase == Phase::Rest {
+            return Ok(Outcome::Stuck);
+        }
+        if self.escaped() {
+            return Ok(Outcome::Escaped);
+        }
+        if self.state.tau >= tau_max {
+            return Ok(Outcome::Running);
+        }
+        // A slip that has shrunk to roundoff is a stop: the approach to a zero of |u_i| takes
+        // steps in proportion to |u_i| (the friction's direction turns ever faster).
+        if self.phase == Phase::Slip {
+            let slips = self.state.slips(self.l).map(|v| v.length());
+            let floor = self.floor();
+            if let Some(k) = (0..2)
+                .filter(|&k| slips[k] > 0.0 && slips[k] <= floor)
+                .min_by(|&a, &b| slips[a].total_cmp(&slips[b]))
+            {
+                self.event(k);
+                if self.phase != Phase::Slip {
+                    return Ok(self.standing());
+                }
+            }
+        }
+        // Events already at zero at the start (a contact just loose) are not watched.
+        let live = self.events(&self.state).map(|g| g > 0.0);
+        loop {
+            self.steps += 1;
+            if self.steps > MAX_STEPS {
+                return Err(Error::Failed(
+                    "the body's run exceeded its step budget".into(),
+                ));
+            }
+            let h = self.h.min(tau_max - self.state.tau);
+            let (y1, err) = self.step_from(self.state.y(), h);
+            if err.is_nan() || err > 1.0 {
+                self.h = h * (0.9 * err.powf(-0.2)).clamp(0.1, 0.9);
+                if !self.h.is_finite() || self.h < 1e-15 * self.state.tau.max(1e-3) {
+                    return Err(Error::Failed("the body's step size underflowed".into()));
+                }
+                continue;
+            }
+            let grow = (0.9 * err.max(1e-10).powf(-0.2)).clamp(0.2, 5.0);
+            let end = self.place(h, y1);
+            let g = self.events(&end);
+            let hit = (0..2)
+                .filter(|&k| live[k] && g[k] <= 0.0)
+                .min_by(|&a, &b| self.locate(a, h).total_cmp(&self.locate(b, h)));
+            match hit {
+                None => {
+                    self.state = end;
+                    self.h = h * grow;
+                }
+                Some(k) => {
+                    let at = self.locate(k, h);
+                    self.state = self.trial(at);
+                    self.h = (at * grow).max(1e-12);
+                    self.event(k);
+                }
+            }
+            return Ok(self.standing());
+        }
+    }
+
+    fn standing(&self) -> Outcome {
+        if self.phase == Phase::Rest {
+            Outcome::Stuck
+        } else {
+            Outcome::Running
+        }
+    }
+
+    /// Where in (0, h] event `k` first reaches zero, by bisection on the step length.
+    fn locate(&self, k: usize, h: f64) -> f64 {
+        let (mut lo, mut hi) = (0.0, h);
+        for _ in 0..200 {
+            let mid = 0.5 * (lo + hi);
+            if mid <= lo || mid >= hi {
+                break;
+            }
+            if self.events(&self.trial(mid))[k] > 0.0 {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        hi
+    }
+
+    /// What happens at event `k` of the current phase.
+    fn event(&mut self, k: usize) {
+        let l = self.l;
+        let s = self.state;
+        match self.phase {
+            Phase::Slip => {
+                let slips = s.slips(l);
+                let start = slips[k].length();
+                let other = slips[1 - k].length();
+                // A zero of the projection where the slip only turned is no stop.
+                if start > 10.0 * self.floor() {
+                    return;
+                }
+                if other <= self.floor().max(start) {
+                    return self.both_stop();
+                }
+                let anchor = s.contacts(l)[k];
+                if pivot_need(l, k, anchor, s.psi, s.w).length() <= 0.5 * self.hold {
+                    self.phase = Phase::Pivot {
+                        i: k,
+                        anchor,
+                        sign: s.w.signum(),
+                    };
+                    let ep = axis(s.psi).perp();
+                    self.state.q = anchor - axis(s.psi) * (S[k] * 0.5 * l);
+                    self.state.u = -ep * (S[k] * 0.5 * l * s.w);
+                }
+            }
+            Phase::Pivot { i, anchor, .. } => {
+                if k == 0 {
+                    self.state.w = 0.0;
+                    self.state.u = DVec2::ZERO;
+                    self.both_stop();
+                } else {
+                    // The stuck contact breaks loose, pushed against the friction it needed.
+                    let need = pivot_need(l, i, anchor, s.psi, s.w);
+                    self.fallback[i] = -need;
+                    self.fallback[1 - i] = s.slips(l)[1 - i];
+                    self.phase = Phase::Slip;
+                }
+            }
+            Phase::Rest => {}
+        }
+    }
+
+    /// Both contacts at rest: the body rides if |q| ≤ R, else both break loose outward.
+    fn both_stop(&mut self) {
+        self.state.u = DVec2::ZERO;
+        self.state.w = 0.0;
+        if self.state.q.length() <= self.hold {
+            self.phase = Phase::Rest;
+        } else {
+            self.fallback = self.state.contacts(self.l);
+            self.phase = Phase::Slip;
+        }
+    }
+
+    /// Runs to rest, the escape certificate or `tau_max`, calling `each` on every state.
+    pub fn finish(
+        &mut self,
+        tau_max: f64,
+        mut each: impl FnMut(&RodState),
+    ) -> Result<Outcome, Error> {
+        each(&self.state);
+        loop {
+            let end = self.step(tau_max)?;
+            each(&self.state);
+            if end != Outcome::Running || self.state.tau >= tau_max {
+                return Ok(if self.escaped() && end == Outcome::Running {
+                    Outcome::Escaped
+                } else {
+                    end
+                });
+            }
+        }
+    }
+}
+
+/// A body run's path, every step's end, for drawing it at any τ: the explorer's bar.
+#[derive(Clone, Debug)]
+pub struct RodTrack {
+    pub l: f64,
+    pub states: Vec<RodState>,
+    pub outcome: Outcome,
+}
+
+impl RodTrack {
+    /// The body released as `initial` says, run to rest, escape or `tau_max`.
+    pub fn new(
+        body: Body,
+        hold: f64,
+        initial: &Initial,
+        tol: f64,
+        tau_max: f64,
+    ) -> Result<RodTrack, Error> {
+        let mut run = RodRun::new(body, hold, initial, tol)?;
+        let mut states = Vec::new();
+        let outcome = run.finish(tau_max, |s| states.push(*s))?;
+        Ok(RodTrack {
+            l: body.length,
+            states,
+            outcome,
+        })
+    }
+
+    /// The body at `tau` (linear between step ends), at rest for ever once stuck; None past
+    /// the end of an escaping or unfinished run.
+    pub fn at(&self, tau: f64) -> Option<RodState> {
+        let last = *self.states.last()?;
+        if tau >= last.tau {
+            return (self.outcome == Outcome::Stuck || tau == last.tau)
+                .then_some(RodState { tau, ..last });
+        }
+        let k = self.states.partition_point(|s| s.tau <= tau).max(1);
+        let (a, b) = (self.states[k - 1], self.states[k]);
+        let t = if b.tau > a.tau {
+            (tau - a.tau) / (b.tau - a.tau)
+        } else {
+            1.0
+        };
+        Some(RodState {
+            tau,
+            q: a.q.lerp(b.q, t),
+            u: a.u.lerp(b.u, t),
+            psi: a.psi + (b.psi - a.psi) * t,
+            w: a.w + (b.w - a.w) * t,
+        })
+    }
+}

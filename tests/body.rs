@@ -1,0 +1,272 @@
+//! The appendix's body (issue 23 item 3): its size from flags and scene files, and the
+//! appendix's two conditions for treating it as a point, in `run --json` and on the panel.
+
+mod common;
+use common::turntable;
+
+fn json(args: &[&str]) -> serde_json::Value {
+    let (code, out, err) = turntable(args);
+    assert_eq!(code, 0, "{err}");
+    serde_json::from_str(&out).unwrap()
+}
+
+fn close(a: &serde_json::Value, b: f64) -> bool {
+    (a.as_f64().unwrap() - b).abs() <= 1e-12 * b.abs().max(1e-300)
+}
+
+/// μh/L is μ_k f h/L, f the friction in units of μ_k m g: at rest on the table the centripetal
+/// ξ it supplies, sliding 1; L/ξ at the end. μ_k from `--mu`, else the bound 1.
+#[test]
+fn run_json_reports_the_appendixs_conditions_at_the_end() {
+    let body = ["--body-length", "0.02", "--body-height", "0.004"];
+    // Case A comes to rest: f = ξ_rest.
+    let mut a = vec![
+        "run",
+        "--xi0",
+        "0.5",
+        "--phi",
+        "3.141592653589793",
+        "--v0",
+        "1",
+    ];
+    a.extend(body);
+    a.extend(["--json", "--no-check", "--mu", "0.5", "--rpm", "30"]);
+    let v = json(&a);
+    assert_eq!(v["outcome"], "stuck");
+    let xi = v["xi"].as_f64().unwrap();
+    assert!(xi > 0.2 && xi < 0.5, "{xi}");
+    let b = &v["body"];
+    assert!(close(&b["mu_h_over_l"], 0.5 * xi * 0.004 / 0.02), "{b}");
+    assert!(close(&b["l_over_xi"], 0.02 / xi), "{b}");
+    assert_eq!(b["mu_assumed"], false);
+    assert_eq!(b["point_ok"], true);
+    assert_eq!(
+        (b["length"].as_f64(), b["angle"].as_f64()),
+        (Some(0.02), Some(0.0))
+    );
+    // Thrown out fast it escapes, sliding (f = 1); without --mu the bound μ_k = 1: h/L.
+    let mut e = vec!["run", "--v0", "1"];
+    e.extend(body);
+    e.extend(["--json", "--no-check"]);
+    let v = json(&e);
+    assert_eq!(v["outcome"], "escaped");
+    let b = &v["body"];
+    assert!(close(&b["mu_h_over_l"], 0.2), "{b}");
+    assert_eq!(b["mu_assumed"], true);
+    // h/L = 0.2 is not ≪ 1 (> 0.1): out of its depth.
+    assert_eq!(b["point_ok"], false);
+    // No height: toppling is not judged; a point-sized body is fine.
+    let v = json(&[
+        "run",
+        "--v0",
+        "1",
+        "--body-length",
+        "1e-6",
+        "--json",
+        "--no-check",
+    ]);
+    assert_eq!(v["body"]["mu_h_over_l"], serde_json::Value::Null);
+    assert_eq!(v["body"]["point_ok"], true);
+    // The two-mass body integrated from the same release: a tiny one rests where the point does
+    // (case A), a longer one measurably elsewhere.
+    let a = [
+        "run",
+        "--xi0",
+        "0.5",
+        "--phi",
+        "3.141592653589793",
+        "--v0",
+        "1",
+        "--json",
+        "--no-check",
+    ];
+    let v = json(&[&a[..], &["--body-length", "1e-6"]].concat());
+    let m = &v["body"]["motion"];
+    assert_eq!(m["outcome"], "stuck");
+    assert!(
+        close(&m["xi"], v["xi"].as_f64().unwrap())
+            || (m["xi"].as_f64().unwrap() - v["xi"].as_f64().unwrap()).abs() < 1e-9,
+        "{v}"
+    );
+    let v = json(&[&a[..], &["--body-length", "0.05"]].concat());
+    let m = &v["body"]["motion"];
+    let d = m["xi"].as_f64().unwrap() - v["xi"].as_f64().unwrap();
+    assert!(d.abs() > 1e-5 && d.abs() < 1e-2, "{d}");
+    // Stokes drag has no stick to model.
+    let v = json(&[
+        "run",
+        "--coupling",
+        "stokes",
+        "--gamma",
+        "1",
+        "--body-length",
+        "0.1",
+        "--json",
+        "--no-check",
+    ]);
+    assert_eq!(v["body"]["motion"], serde_json::Value::Null);
+    // Without a body, no `body` field.
+    let v = json(&["run", "--json", "--no-check"]);
+    assert!(v.get("body").is_none(), "{v}");
+}
+
+#[test]
+fn bad_body_sizes_exit_2() {
+    for bad in [
+        &["run", "--body-length", "0"][..],
+        &["run", "--body-length", "-0.1"],
+        &["run", "--body-length", "nan"],
+        &["run", "--body-length", "inf"],
+        &["run", "--body-length", "0.1", "--body-height", "-1"],
+        &["run", "--body-length", "0.1", "--body-angle", "nan"],
+        &["run", "--body-height", "0.1"],
+        &["run", "--body-angle", "1"],
+        // The explorer refuses before it opens a terminal.
+        &["--body-length", "-1"],
+        &["--body-angle", "1"],
+    ] {
+        let (code, _, err) = turntable(bad);
+        assert_eq!(code, 2, "{bad:?}: {err}");
+        assert!(err.contains("body"), "{bad:?}: {err}");
+    }
+}
+
+fn scene_file(name: &str, body: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("turntable-body-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join(name);
+    std::fs::write(
+        &path,
+        format!("name = \"{name}\"\n[initial]\nxi0 = 0.5\nphi = 0.0\nv0 = 0.6\n[body]\n{body}"),
+    )
+    .unwrap();
+    path
+}
+
+fn panel(scene: turntable::scene::Scene, ticks: usize) -> Vec<String> {
+    let mut app =
+        turntable::app::App::new(scene, turntable::theme::Theme::builtin("dark").unwrap());
+    for _ in 0..ticks {
+        app.tick();
+    }
+    turntable::ui::panel::lines(&app)
+        .iter()
+        .map(|l| l.to_string())
+        .collect()
+}
+
+/// A scene's `[body]` reaches the panel: the two numbers and their verdicts, live, and the
+/// warning once either is not ≪ 1; the scene saves it back; bad values are refused.
+#[test]
+fn scene_body_shows_the_conditions_on_the_panel() {
+    let small = scene_file(
+        "small.toml",
+        "length = 0.01\nheight = 0.0005\nangle = 0.25\n",
+    );
+    let scene = turntable::scene::Scene::load(small.to_str().unwrap()).unwrap();
+    let body = scene.body.unwrap();
+    assert_eq!(
+        (body.length, body.height, body.angle),
+        (0.01, Some(0.0005), 0.25)
+    );
+    let lines = panel(scene.clone(), 0);
+    let has =
+        |lines: &[String], a: &str, b: &str| lines.iter().any(|l| l.contains(a) && l.contains(b));
+    // At release, sliding: μh/L ≤ 1 · 0.05; L/ξ = 0.01/0.5.
+    assert!(has(&lines, "μh/L", "≤ 0.0500 ≪ 1 ok"), "{lines:?}");
+    assert!(has(&lines, "L/ξ", "0.0200 ≪ 1 ok"), "{lines:?}");
+    assert!(
+        !lines.iter().any(|l| l.contains("out of its depth")),
+        "{lines:?}"
+    );
+    // Saved with the scene.
+    assert!(scene.to_toml().contains("[body]"), "{}", scene.to_toml());
+    // A long body: L/ξ = 0.5 at release, not ≪ 1, and the warning.
+    let long = scene_file("long.toml", "length = 0.25\n");
+    let scene = turntable::scene::Scene::load(long.to_str().unwrap()).unwrap();
+    let lines = panel(scene.clone(), 0);
+    assert!(has(&lines, "L/ξ", "0.5000 not ≪ 1"), "{lines:?}");
+    assert!(has(&lines, "μh/L", "no height given"), "{lines:?}");
+    assert!(
+        lines
+            .iter()
+            .any(|l| l.contains("point model out of its depth")),
+        "{lines:?}"
+    );
+    // The body itself is drawn, a bar between its masses: the picture differs from the point's.
+    let mut with = turntable::app::App::new(
+        scene.clone(),
+        turntable::theme::Theme::builtin("mono").unwrap(),
+    );
+    assert!(with.rod.is_some());
+    let mut bare = scene;
+    bare.body = None;
+    let mut without =
+        turntable::app::App::new(bare, turntable::theme::Theme::builtin("mono").unwrap());
+    assert!(without.rod.is_none());
+    let (a, b) = (
+        common::render(&mut with, 100, 30),
+        common::render(&mut without, 100, 30),
+    );
+    let canvas = |s: &str| {
+        s.lines()
+            .map(|l| l.chars().take(70).collect::<String>())
+            .collect::<Vec<_>>()
+    };
+    assert_ne!(canvas(&a), canvas(&b));
+    for bad in [
+        "length = 0\n",
+        "length = -1\n",
+        "length = 0.1\nheight = -0.1\n",
+        "height = 0.1\n",
+        "length = 0.1\nwidth = 1\n",
+    ] {
+        let path = scene_file("bad.toml", bad);
+        let e = turntable::scene::Scene::load(path.to_str().unwrap()).unwrap_err();
+        assert!(e.to_string().contains("bad.toml"), "{bad}: {e}");
+    }
+}
+
+/// `sweep body` makes the appendix's "L ≪ r" a number: the rest radius of the two-mass body
+/// departs from the point's as (L/r)², not L/r (cases A and B: a tenth of L, a hundredth of the
+/// error), and not at all at L = 1e-6.
+#[test]
+fn sweep_body_measures_the_rest_radius_error_against_l_over_r() {
+    for release in [
+        &["--xi0", "0.5", "--phi", "3.141592653589793", "--v0", "1"][..],
+        &["--xi0", "0.5", "--phi", "0", "--v0", "0.6"],
+    ] {
+        let args = [
+            &["sweep", "body"][..],
+            release,
+            &["--lengths", "1e-6,1e-3,1e-2"],
+        ]
+        .concat();
+        let (code, out, err) = turntable(&args);
+        assert_eq!(code, 0, "{err}");
+        let mut lines = out.lines();
+        assert_eq!(
+            lines.next(),
+            Some("length,l_over_r,outcome,xi,xi_point,xi_error,tau,tau_point")
+        );
+        let errs: Vec<f64> = lines
+            .map(|l| {
+                let f: Vec<&str> = l.split(',').collect();
+                assert_eq!(f[2], "stuck", "{l}");
+                f[5].parse().unwrap()
+            })
+            .collect();
+        assert!(errs[0].abs() < 1e-9, "{errs:?}");
+        let ratio = errs[2] / errs[1];
+        assert!((50.0..200.0).contains(&ratio), "{errs:?}");
+    }
+    for bad in [
+        &["sweep", "body", "--lengths", "0"][..],
+        &["sweep", "body", "--lengths", "nan"],
+        &["sweep", "body", "--coupling", "stokes", "--gamma", "1"],
+        &["sweep", "body", "--tau-max", "-1"],
+    ] {
+        let (code, _, err) = turntable(bad);
+        assert_eq!(code, 2, "{bad:?}: {err}");
+    }
+}
