@@ -107,7 +107,7 @@ fn preset_c_played_says_where_it_sticks_when_it_does() {
         if p.app.now().tau < tau {
             assert!(said.is_empty(), "tick {t}: {said:?}");
         } else {
-            assert_eq!(said, [stuck.clone()], "tick {t}");
+            assert_eq!(said, std::slice::from_ref(&stuck), "tick {t}");
             assert!(p.app.now().tau - tau < turntable::app::TICK_DT);
             break;
         }

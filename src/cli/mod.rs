@@ -138,13 +138,14 @@ fn explore(
         None => None,
     };
     use std::io::IsTerminal;
-    if plain && !std::io::stdin().is_terminal() {
+    if plain {
         // Plain mode writes lines: its output may go to a pipe or a file, its keys may not.
-        return Err(Error::Invalid(
-            "plain mode reads keys from a terminal (stdin must be a tty); headless, use `turntable replay --plain SCRIPT`".into(),
-        ));
-    }
-    if !plain && !(std::io::stdin().is_terminal() && std::io::stdout().is_terminal()) {
+        if !std::io::stdin().is_terminal() {
+            return Err(Error::Invalid(
+                "plain mode reads keys from a terminal (stdin must be a tty); headless, use `turntable replay --plain SCRIPT`".into(),
+            ));
+        }
+    } else if !(std::io::stdin().is_terminal() && std::io::stdout().is_terminal()) {
         return Err(Error::Invalid(
             "the explorer needs a terminal (stdin and stdout must be a tty); headless, use `turntable replay SCRIPT` or a subcommand (see --help)".into(),
         ));
