@@ -141,6 +141,27 @@ fn fig2_escapes_and_says_when_it_was_certified() {
 }
 
 #[test]
+fn a_faster_throw_says_its_escape_on_the_tick_that_reaches_it() {
+    let mut p = Plain::new("C");
+    // v0 + 0.05 (Alt-v): above C's escape speed, 0.6078.
+    p.press(Chord::new(KeyCode::Char('v'), KeyModifiers::ALT));
+    let (out, tau, _) = engine_end(&p.app);
+    assert_eq!(out, Outcome::Escaped);
+    assert!(tau > 1.0, "certified later than the start: {tau}");
+    let escaped = format!("escaped (certified at τ = {})", num(tau, 3));
+    for t in 1..=400 {
+        let said = p.ticks(1);
+        if p.app.now().tau < tau {
+            assert!(said.is_empty(), "tick {t}: {said:?}");
+        } else {
+            assert_eq!(said, std::slice::from_ref(&escaped), "tick {t}");
+            return;
+        }
+    }
+    panic!("never escaped: {:?}", p.lines);
+}
+
+#[test]
 fn compare_says_how_the_papers_scheme_ends_too() {
     let mut p = Plain::new("C");
     assert_eq!(
