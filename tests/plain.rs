@@ -236,8 +236,7 @@ fn i_reads_every_readout_as_the_panel_shows_it() {
         "ξ0 0.500 φ 0.00π v0 0.6078".to_string(),
         format!("τ {}", num(s.tau, 3)),
         format!("ξ {}", num(s.xi(), 5)),
-        "stuck at ξ = 0.99717".into(),
-        "since τ = 5.602".into(),
+        "stuck at ξ = 0.99717 since τ = 5.602".into(),
         "dp54 tol=1e-10".into(),
         "speed ×1 ▶".into(),
     ] {
@@ -332,7 +331,7 @@ fn replay_plain_prints_the_lines_and_the_readouts_at_a_snapshot() {
     );
     assert!(
         at("release: scene fig2, ξ0 = 1.100, at rest on the table; method dp54 tol=1e-10")
-            > at("since τ = 5.602")
+            > at("stuck at ξ = 0.99717 since τ = 5.602")
     );
     assert!(
         lines

@@ -241,17 +241,25 @@ fn status(sim: &Sim) -> String {
     }
 }
 
-/// The readout panel's lines as text, one readout a line.
+/// The readout panel's lines as text, one readout a line: a status the panel wraps under
+/// itself (a single indented span) is joined back into one line.
 fn readouts(app: &App) -> Vec<String> {
-    crate::ui::panel::lines(app)
-        .iter()
-        .map(|l| {
-            let text: String = l.spans.iter().map(|s| s.content.as_ref()).collect();
-            // The panel pads keys into a column: one blank is enough to hear.
-            text.split_whitespace().collect::<Vec<_>>().join(" ")
-        })
-        .filter(|l| !l.is_empty())
-        .collect()
+    let mut out: Vec<String> = Vec::new();
+    for l in crate::ui::panel::lines(app) {
+        let text: String = l.spans.iter().map(|s| s.content.as_ref()).collect();
+        let wrapped = l.spans.len() == 1 && text.starts_with("  ");
+        // The panel pads keys into a column: one blank is enough to hear.
+        let text = text.split_whitespace().collect::<Vec<_>>().join(" ");
+        match out.last_mut() {
+            _ if text.is_empty() => {}
+            Some(last) if wrapped => {
+                last.push(' ');
+                last.push_str(&text);
+            }
+            _ => out.push(text),
+        }
+    }
+    out
 }
 
 /// The help as lines: every key of the keymap by group, as the explorer's `?` lists them.
