@@ -251,7 +251,10 @@ fn record_then_replay_gives_the_same_screen() {
         let tau = s.app.now().tau;
         let script = s.take_recording().unwrap();
         let steps = parse(&script).expect("a recording parses");
-        let fresh = App::new(Scene::default_scene(), theme);
+        let mut fresh = App::new(Scene::default_scene(), theme);
+        // Where the live session saved: a replay's `S`, name, Enter and `E` write nothing
+        // into the working folder.
+        fresh.save_path = tmp.join("scene.toml");
         let out = replay(fresh, &steps, &Options::default());
         let (head, screen) = out.split_once('\n').unwrap();
         assert!(head.contains(&format!("tau={tau:.3}")), "{head}");
