@@ -12,6 +12,7 @@ pub mod error;
 pub mod figure;
 pub mod files;
 pub mod lesson;
+pub mod pin;
 pub mod replay;
 pub mod rng;
 pub mod scene;

@@ -133,7 +133,7 @@ fn run(
 }
 
 /// Runs `steps` in plain mode: the lines `turntable --plain` would print, tick by tick, and at
-/// each snapshot the readouts (as `i` asks for them) under `--- snapshot N: LABEL`.
+/// each snapshot the readouts (as `I` asks for them) under `--- snapshot N: LABEL`.
 fn plain(
     app: App,
     steps: &[Step],

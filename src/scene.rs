@@ -23,9 +23,13 @@ pub struct Scene {
     /// How the explorer showed it when saved.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub view: Option<View>,
+    /// Runs pinned beside this one (`b`), oldest first: each as its release, recomputed
+    /// when loaded.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub pins: Vec<crate::pin::PinSpec>,
 }
 
-/// The explorer's view of a scene: the page, the frame drawn, force arrows, zoom.
+/// The explorer's view of a scene: the page, the frame drawn, the arrows, zoom.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct View {
@@ -33,6 +37,11 @@ pub struct View {
     pub frame: crate::engine::Frame,
     pub forces: bool,
     pub zoom: f64,
+    /// The net force's arrow (`A`) and the velocity's (`i`).
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub net_force: bool,
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub velocity: bool,
 }
 
 /// The paper's reference cases (CONVENTIONS.md), in the order of their keys.
@@ -55,15 +64,15 @@ impl Scene {
             ),
             "d" => (
                 Initial::velocity(1.1, 1.2 * PI, 1.3),
-                "Fig. 3 D: thrown from outside xi = 1, comes to rest inside",
+                "Fig. 3 D: thrown from outside ξ = 1, comes to rest inside",
             ),
             "fig1" => (
                 Initial::at_rest(500.0, Release::LabRest),
-                "Fig. 1: at rest in the lab at xi0 = 500",
+                "Fig. 1: at rest in the lab at ξ0 = 500",
             ),
             "fig2" => (
                 Initial::at_rest(1.1, Release::TableRest),
-                "Fig. 2: at rest on the table at xi0 = 1.1",
+                "Fig. 2: at rest on the table at ξ0 = 1.1",
             ),
             _ => return None,
         };
@@ -78,6 +87,7 @@ impl Scene {
             settings: Settings::default(),
             units: None,
             view: None,
+            pins: Vec::new(),
         })
     }
 
@@ -112,6 +122,37 @@ impl Scene {
             .settings
             .validate()
             .map_err(|e| Error::from(e).context(&file))?;
+        if scene.pins.len() > crate::pin::MAX_PINS {
+            return Err(Error::Invalid(format!(
+                "{file}: {} pins, at most {} are kept",
+                scene.pins.len(),
+                crate::pin::MAX_PINS
+            )));
+        }
+        for (k, p) in scene.pins.iter().enumerate() {
+            let what = format!("{file}: pin {} ({:?})", k + 1, p.label);
+            if p.label.chars().count() > crate::pin::LABEL_MAX
+                || p.label.chars().any(char::is_control)
+            {
+                return Err(Error::Invalid(format!(
+                    "{what}: a label is at most {} printable characters",
+                    crate::pin::LABEL_MAX
+                )));
+            }
+            if !p.turn.is_finite() {
+                return Err(Error::Invalid(format!("{what}: turn must be finite")));
+            }
+            if let Some(u) = p.units {
+                crate::engine::units::Units::new(u.mu, u.rpm, u.g)
+                    .map_err(|e| Error::Invalid(format!("{what}: units: {e}")))?;
+            }
+            p.initial
+                .validate()
+                .map_err(|e| Error::from(e).context(&what))?;
+            p.settings
+                .validate()
+                .map_err(|e| Error::from(e).context(&what))?;
+        }
         if let Some(u) = scene.units {
             crate::engine::units::Units::new(u.mu, u.rpm, u.g)
                 .map_err(|e| Error::Invalid(format!("{file}: [units] {e}")))?;

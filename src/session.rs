@@ -72,6 +72,21 @@ impl<B: Backend> Session<B> {
         self.app.press(chord);
     }
 
+    /// Pasted text: typed, letter by letter, only at the save prompt (there it is the name);
+    /// elsewhere ignored, since a `q` in it would quit. Line breaks and other control
+    /// characters are dropped: a name is one line.
+    pub fn paste(&mut self, text: &str) {
+        if self.app.naming.is_none() {
+            return;
+        }
+        for c in text.chars().filter(|c| !c.is_control()).take(200) {
+            self.press(Chord::new(
+                crossterm::event::KeyCode::Char(c),
+                crossterm::event::KeyModifiers::NONE,
+            ));
+        }
+    }
+
     /// A mouse event. The app maps cells through the canvas as last drawn, so anything
     /// changed since the last frame is drawn first: a recording and its replay then see the
     /// same canvas whatever else happened in between.
@@ -208,8 +223,13 @@ fn ascii_of(c: char) -> char {
         '↺' => '@',
         '▶' | '→' | '≥' | '›' => '>',
         '←' | '≤' | '‹' => '<',
-        '↑' => '^',
-        '↓' => 'v',
+        '↑' | '▲' => '^',
+        '↓' | '▼' => 'v',
+        // The pins' markers (the letters beside them tell them apart too).
+        '◆' => '+',
+        '◇' => '%',
+        '△' => '&',
+        '▽' => '=',
         '≈' | '∼' => '~',
         '′' | '’' | '‘' => '\'',
         '²' => '2',

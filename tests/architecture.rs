@@ -127,3 +127,34 @@ fn runs_fields_are_private() {
     let public: Vec<_> = fields.iter().filter(|l| l.starts_with("pub")).collect();
     assert!(public.is_empty(), "{public:?}");
 }
+
+/// The top level stays small: the project's own files, and nothing a test or a session left
+/// behind (a random-key test once wrote 400 scene and SVG files there, and they were committed).
+#[test]
+fn the_top_level_holds_only_the_project_s_files() {
+    const ALLOWED: [&str; 16] = [
+        "Cargo.toml",
+        "Cargo.lock",
+        "src",
+        "tests",
+        "themes",
+        "docs",
+        "README.md",
+        "CHANGELOG.md",
+        "ARCHITECTURE.md",
+        "LICENSE-MIT",
+        "LICENSE-APACHE",
+        ".ci",
+        ".git",
+        ".gitignore",
+        "target",
+        ".cargo",
+    ];
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let stray: Vec<String> = std::fs::read_dir(root)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| !ALLOWED.contains(&n.as_str()))
+        .collect();
+    assert!(stray.is_empty(), "not the project's: {stray:?}");
+}

@@ -1,9 +1,8 @@
 //! The configuration file and the user's themes (issue 21), as a user meets them: the binary
 //! run with XDG_CONFIG_HOME set to a folder the test writes (never the user's own).
 
+mod common;
 use std::io::Read;
-use std::os::fd::{FromRawFd, OwnedFd};
-use std::os::unix::process::CommandExt;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
@@ -244,33 +243,7 @@ fn replay_is_independent_of_the_configuration() {
 /// The explorer on a pseudo-terminal of its own with XDG_CONFIG_HOME = `xdg`, quit with `q`
 /// after its first frame: everything it wrote (None where no pty can be opened).
 fn explorer_output(xdg: &Path, args: &[&str]) -> Option<Vec<u8>> {
-    let (mut master, mut slave) = (0, 0);
-    let ws = libc::winsize {
-        ws_row: 24,
-        ws_col: 80,
-        ws_xpixel: 0,
-        ws_ypixel: 0,
-    };
-    // SAFETY: out-pointers to two ints and a winsize.
-    let r = unsafe {
-        libc::openpty(
-            &mut master,
-            &mut slave,
-            std::ptr::null_mut(),
-            std::ptr::null(),
-            &ws,
-        )
-    };
-    if r != 0 {
-        eprintln!("skipped: no pseudo-terminal here");
-        return None;
-    }
-    // SAFETY: fresh descriptors we now own; close-on-exec so no other child keeps them.
-    let (master, slave) = unsafe {
-        libc::fcntl(master, libc::F_SETFD, libc::FD_CLOEXEC);
-        libc::fcntl(slave, libc::F_SETFD, libc::FD_CLOEXEC);
-        (OwnedFd::from_raw_fd(master), OwnedFd::from_raw_fd(slave))
-    };
+    let (master, slave) = common::openpty(80, 24)?;
     let mut cmd = Command::new(env!("CARGO_BIN_EXE_turntable"));
     cmd.args(args)
         .env("XDG_CONFIG_HOME", xdg)
@@ -278,17 +251,8 @@ fn explorer_output(xdg: &Path, args: &[&str]) -> Option<Vec<u8>> {
         .env("COLORTERM", "truecolor")
         .env("LANG", "C.UTF-8")
         .env_remove("NO_COLOR")
-        .env_remove("LC_ALL")
-        .stdin(slave.try_clone().unwrap())
-        .stdout(slave.try_clone().unwrap())
-        .stderr(slave);
-    // SAFETY: setsid is async-signal-safe.
-    unsafe {
-        cmd.pre_exec(|| {
-            libc::setsid();
-            Ok(())
-        });
-    }
+        .env_remove("LC_ALL");
+    common::on_pty(&mut cmd, slave);
     let mut child = cmd.spawn().unwrap();
     drop(cmd);
     let writer = std::fs::File::from(master.try_clone().unwrap());

@@ -655,16 +655,7 @@ fn a_stop_outside_the_rim_sticks_when_static_friction_can_hold_it() {
     // Backward in time: dq/ds = −u, du/ds = 2ẑ×u − q + û.
     let f = |q: DVec2, u: DVec2| (-u, 2.0 * zc(u) - q + u.normalize());
     let qs = DVec2::new(1.3, 0.0);
-    let (mut q, mut u) = (qs, -1e-12 * qs.normalize());
-    let h = 1e-4;
-    for _ in 0..3000 {
-        let (a1, b1) = f(q, u);
-        let (a2, b2) = f(q + 0.5 * h * a1, u + 0.5 * h * b1);
-        let (a3, b3) = f(q + 0.5 * h * a2, u + 0.5 * h * b2);
-        let (a4, b4) = f(q + h * a3, u + h * b3);
-        q += h / 6.0 * (a1 + 2.0 * a2 + 2.0 * a3 + a4);
-        u += h / 6.0 * (b1 + 2.0 * b2 + 2.0 * b3 + b4);
-    }
+    let (q, u) = common::rk4(f, (qs, -1e-12 * qs.normalize()), 1e-4, 3000);
     let turn = q.y.atan2(q.x);
     let i = Initial::velocity(q.length(), u.y.atan2(u.x) - turn, u.length());
     let rest = DVec2::from_angle(-turn).rotate(qs);

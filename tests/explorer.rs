@@ -224,6 +224,12 @@ fn every_key_in_the_keymap_does_what_its_help_says() {
                 a.forces && after.contains("friction") && !after.contains("Coriolis")
             }
             Action::EstimateError => after.contains("|Δr| ="),
+            Action::ToggleNetForce => a.net_force && after.contains("net net force"),
+            Action::ToggleVelocity => a.velocity && after.contains("v  velocity (lab)"),
+            Action::PinRun => {
+                a.pins.len() == 1 && after.contains("pinned ◆C") && after.contains("pins   ◆C")
+            }
+            Action::ClearPins => a.pins.is_empty() && after.contains("no pins to clear"),
             // Off at first: the first press turns SI units on at a record player's.
             Action::Unit(..) => {
                 a.units == Some(turntable::app::state::record_player())
@@ -361,18 +367,21 @@ fn help_overlay_lists_every_binding() {
         small.contains("presets A B C D fig1")
             && small.contains(&format!("rows 1–21 of {all}, ↓ more"))
     );
-    a.handle_key(KeyEvent::new(KeyCode::PageDown, KeyModifiers::NONE));
-    let small = render(&mut a, 80, 24);
+    // The two columns put the lesson and app groups on the first page.
     assert!(
         small.contains("Space/Enter    go on when it waits")
-            && small.contains(&format!("rows {}–{all} of {all}", all - 20))
-    );
-    assert!(
-        small.contains("Esc            close help / notice"),
+            && small.contains("Esc            close help / notice"),
         "{small}"
     );
     assert!(
         !small.contains("/ onM") && !small.contains("fig2q"),
+        "{small}"
+    );
+    a.handle_key(KeyEvent::new(KeyCode::PageDown, KeyModifiers::NONE));
+    let small = render(&mut a, 80, 24);
+    assert!(
+        small.contains("◆▲▼◇△▽         pinned runs (b)")
+            && small.contains(&format!("rows {}–{all} of {all}", all - 20)),
         "{small}"
     );
 }
@@ -529,8 +538,10 @@ fn mouse_click_places_the_release_point_and_drag_sets_the_velocity() {
 #[test]
 fn random_keys_keep_the_invariants() {
     let mut a = app("C");
-    // Random keys reach `S`, a name and Enter, and `E`: they must not write into the folder.
-    a.writes_files = false;
+    // `S` then Enter, or `E`, write files: into a folder of the test's own.
+    let dir = std::env::temp_dir().join(format!("turntable-random-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    a.save_path = dir.join("scene.toml");
     let mut x: u64 = 0x9E3779B97F4A7C15;
     for i in 0..1500 {
         x ^= x << 13;
@@ -550,6 +561,7 @@ fn random_keys_keep_the_invariants() {
             assert!(!s.contains("NaN") && !s.contains("inf"), "{s}");
         }
     }
+    let _ = std::fs::remove_dir_all(&dir);
 }
 
 #[test]
@@ -1198,4 +1210,21 @@ fn s_names_the_scene_it_saves() {
     a.handle_key(KeyEvent::new(KeyCode::Char('c'), KeyModifiers::CONTROL));
     assert!(a.should_quit());
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// A paste is the name at the save prompt (one line, recorded as the keys it typed) and
+/// nothing elsewhere: a `q` in it quits nothing.
+#[test]
+fn a_paste_types_the_name_at_the_prompt_only() {
+    use turntable::session::Session;
+    let mut s = Session::headless(app("B"), 80, 24, true);
+    s.paste("q x\nstill nothing");
+    assert!(!s.app.should_quit() && s.app.naming.is_none());
+    assert_eq!(s.app.initial, app("B").initial);
+    s.press("S".parse().unwrap());
+    s.paste("Fig. 3 B\r\n, again");
+    assert_eq!(s.app.naming.as_deref(), Some("Fig. 3 B, again"));
+    let script = s.take_recording().unwrap();
+    assert!(script.contains("S F i g"), "{script}");
+    assert!(!script.contains("still"), "{script}");
 }

@@ -4,9 +4,9 @@
 //! and that answers cursor-position queries when they arrive. The bounds are in frames and
 //! bytes, not in time.
 
+mod common;
 use std::io::Read;
-use std::os::fd::{AsRawFd, FromRawFd, OwnedFd};
-use std::os::unix::process::CommandExt;
+use std::os::fd::AsRawFd;
 use std::process::{Child, Command};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Mutex};
@@ -52,34 +52,7 @@ type Spawned = (Reap, Arc<Mutex<Link>>, i32, Arc<AtomicBool>);
 
 /// The explorer at 120×40 on a new pty behind a slow link.
 fn spawn(rec: &std::path::Path) -> Option<Spawned> {
-    let (mut master, mut slave) = (0, 0);
-    let ws = libc::winsize {
-        ws_row: 40,
-        ws_col: 120,
-        ws_xpixel: 0,
-        ws_ypixel: 0,
-    };
-    // SAFETY: out-pointers to two ints and a winsize.
-    let r = unsafe {
-        libc::openpty(
-            &mut master,
-            &mut slave,
-            std::ptr::null_mut(),
-            std::ptr::null(),
-            &ws,
-        )
-    };
-    if r != 0 {
-        eprintln!("skipped: no pseudo-terminal here");
-        return None;
-    }
-    // SAFETY: our descriptors; close-on-exec as a terminal emulator's master is.
-    unsafe {
-        libc::fcntl(master, libc::F_SETFD, libc::FD_CLOEXEC);
-        libc::fcntl(slave, libc::F_SETFD, libc::FD_CLOEXEC);
-    }
-    // SAFETY: fresh descriptors we now own.
-    let (master, slave) = unsafe { (OwnedFd::from_raw_fd(master), OwnedFd::from_raw_fd(slave)) };
+    let (master, slave) = common::openpty(120, 40)?;
     let mut cmd = Command::new(env!("CARGO_BIN_EXE_turntable"));
     // Never the user's configuration.
     cmd.env("XDG_CONFIG_HOME", "/nonexistent/turntable-tests/config")
@@ -88,17 +61,8 @@ fn spawn(rec: &std::path::Path) -> Option<Spawned> {
         .env("LANG", "C.UTF-8")
         .env_remove("COLORTERM")
         .env_remove("NO_COLOR")
-        .env_remove("LC_ALL")
-        .stdin(slave.try_clone().unwrap())
-        .stdout(slave.try_clone().unwrap())
-        .stderr(slave);
-    // SAFETY: setsid is async-signal-safe.
-    unsafe {
-        cmd.pre_exec(|| {
-            libc::setsid();
-            Ok(())
-        });
-    }
+        .env_remove("LC_ALL");
+    common::on_pty(&mut cmd, slave);
     let child = Reap(cmd.spawn().unwrap());
     let fd = master.as_raw_fd();
     let link = Arc::new(Mutex::new(Link::default()));

@@ -78,7 +78,7 @@ fn opening_names_the_scene_its_release_and_its_state() {
     assert_eq!(
         p.lines,
         [
-            "turntable, plain mode: ? lists the keys, i reads the readouts, Space plays and pauses, q quits",
+            "turntable, plain mode: ? lists the keys, I reads the readouts, Space plays and pauses, q quits",
             "scene C: Fig. 3 C: escapes in the paper; a converged run stops inside ξ = 1",
             "release: scene C, ξ0 = 0.500, φ = 0.00π, v0 = 0.6078 relative to the table; method dp54 tol=1e-10",
             "slipping",
@@ -229,7 +229,7 @@ fn edits_say_the_new_release() {
 fn i_reads_every_readout_as_the_panel_shows_it() {
     let mut p = Plain::new("C");
     p.ticks(150);
-    let said = p.key('i');
+    let said = p.key('I');
     let s = p.app.now();
     assert_eq!(said[0], "readouts at τ = 7.500:");
     for want in [
@@ -262,7 +262,7 @@ fn help_lists_every_key_of_the_keymap() {
             b.help
         );
     }
-    assert!(said.contains(&"  i: readouts in words".to_string()));
+    assert!(said.contains(&"  I: readouts in words".to_string()));
     assert_eq!(p.key('?'), ["help closed"]);
 }
 
@@ -298,7 +298,7 @@ fn every_key_on_every_preset_says_plain_lines_and_numbers() {
             p.say();
             p.ticks(3);
         }
-        p.key('i');
+        p.key('I');
         for l in &p.lines {
             assert!(!l.chars().any(char::is_control), "{scene}: {l:?}");
             for bad in ["NaN", "inf"] {

@@ -2,6 +2,7 @@
 //! the secant on H) against plain bisection on whole runs in the other frame, and releases whose
 //! closed-form stops once took the wrong fate.
 
+mod common;
 use turntable::engine::doubt::doubt;
 use turntable::engine::par::par_map;
 use turntable::engine::solve::{CLASSIFY_TAU, escape_speed};
@@ -189,7 +190,7 @@ fn launched_reference(xi0: f64) -> f64 {
     use glam::DVec2;
     let g = xi0 - 1.0;
     let t0 = (3e-6 / g).asinh().min(1.0);
-    let (mut q, mut u) = (
+    let start = (
         DVec2::new(1.0 + g * t0.cosh(), 0.0),
         DVec2::new(g * t0.sinh(), 0.0),
     );
@@ -198,15 +199,7 @@ fn launched_reference(xi0: f64) -> f64 {
         (u, -2.0 * DVec2::new(-u.y, u.x) + q - slip)
     };
     let n = ((1.0 - t0) / 1e-6).round() as usize;
-    let h = (1.0 - t0) / n as f64;
-    for _ in 0..n {
-        let (a1, b1) = f(q, u);
-        let (a2, b2) = f(q + 0.5 * h * a1, u + 0.5 * h * b1);
-        let (a3, b3) = f(q + 0.5 * h * a2, u + 0.5 * h * b2);
-        let (a4, b4) = f(q + h * a3, u + h * b3);
-        q += h / 6.0 * (a1 + 2.0 * a2 + 2.0 * a3 + a4);
-        u += h / 6.0 * (b1 + 2.0 * b2 + 2.0 * b3 + b4);
-    }
+    let (q, _) = common::rk4(f, start, (1.0 - t0) / n as f64, n);
     q.length()
 }
 

@@ -1,10 +1,10 @@
 //! The explorer's terminal as a user's dies or stops (issue 11), on a pseudo-terminal the
 //! test opens itself (skipped, saying so, where none can be opened; no TTY is needed).
 
+mod common;
 use std::io::Read;
-use std::os::fd::{AsRawFd, FromRawFd, OwnedFd};
+use std::os::fd::AsRawFd;
 use std::os::unix::fs::OpenOptionsExt;
-use std::os::unix::process::CommandExt;
 use std::process::{Child, Command, Stdio};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Mutex};
@@ -69,50 +69,14 @@ fn spawn_with(
     // Other tests fork too: no child may inherit this master (it would keep the pty up).
     static FORK: Mutex<()> = Mutex::new(());
     let _one_at_a_time = FORK.lock().unwrap();
-    let (mut master, mut slave) = (0, 0);
-    let ws = libc::winsize {
-        ws_row: 24,
-        ws_col: 80,
-        ws_xpixel: 0,
-        ws_ypixel: 0,
-    };
-    // SAFETY: out-pointers to two ints and a winsize.
-    let r = unsafe {
-        libc::openpty(
-            &mut master,
-            &mut slave,
-            std::ptr::null_mut(),
-            std::ptr::null(),
-            &ws,
-        )
-    };
-    if r != 0 {
-        eprintln!("skipped: no pseudo-terminal here");
-        return None;
-    }
-    // SAFETY: our descriptors; close-on-exec as a terminal emulator's master is.
-    unsafe {
-        libc::fcntl(master, libc::F_SETFD, libc::FD_CLOEXEC);
-        libc::fcntl(slave, libc::F_SETFD, libc::FD_CLOEXEC);
-    }
-    // SAFETY: fresh descriptors we now own.
-    let (master, slave) = unsafe { (OwnedFd::from_raw_fd(master), OwnedFd::from_raw_fd(slave)) };
+    let (master, slave) = common::openpty(80, 24)?;
     let mut cmd = Command::new(env!("CARGO_BIN_EXE_turntable"));
     // Never the user's configuration.
     cmd.env("XDG_CONFIG_HOME", "/nonexistent/turntable-tests/config")
         .args(["--record", rec.to_str().unwrap()])
         .args(args)
-        .current_dir(cwd)
-        .stdin(slave.try_clone().unwrap())
-        .stdout(slave.try_clone().unwrap())
-        .stderr(slave);
-    // SAFETY: setsid is async-signal-safe.
-    unsafe {
-        cmd.pre_exec(|| {
-            libc::setsid();
-            Ok(())
-        });
-    }
+        .current_dir(cwd);
+    common::on_pty(&mut cmd, slave);
     let child = cmd.spawn().unwrap();
     let seen = Arc::new(Mutex::new(Vec::new()));
     let fd = master.as_raw_fd();
@@ -433,7 +397,7 @@ fn plain_mode_writes_lines_and_gives_the_terminal_back() {
     wait_for("the stop", || {
         contains(&seen, 0, "stuck at ξ = 0.9972 (τ = 5.602)\r\n".as_bytes())
     });
-    pty.type_keys(b"i");
+    pty.type_keys(b"I");
     wait_for("the readouts", || {
         contains(&seen, 0, "readouts at τ = ".as_bytes())
     });

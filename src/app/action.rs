@@ -41,6 +41,9 @@ pub enum Action {
     Preset(usize),
     ToggleCompare,
     ToggleForces,
+    /// The net force's arrow; the velocity's.
+    ToggleNetForce,
+    ToggleVelocity,
     /// Estimate the error of the state on screen from a shadow run at a tighter setting.
     EstimateError,
     ZoomIn,
@@ -78,6 +81,9 @@ pub enum Action {
     Unit(UnitKnob, f64),
     /// Dimensionless readouts only.
     UnitsOff,
+    /// Pin the run on screen beside later ones; clear the pins.
+    PinRun,
+    ClearPins,
     /// A lesson's prediction: yes (it escapes) or no.
     Answer(bool),
     /// A lesson waiting for Space or Enter goes on.
@@ -131,8 +137,9 @@ impl Action {
                 Group::InitialConditions
             }
             CycleMethod | Loosen | Tighten | ToggleCompare | EstimateError => Group::Integrator,
-            ToggleFrame | ToggleForces | ZoomIn | ZoomOut | Pan(..) | ResetView | TauWindow(_)
-            | NextPage | PrevPage | Choose | Omega(_) | R0c(_) | Unit(..) | UnitsOff => Group::View,
+            ToggleFrame | ToggleForces | ToggleNetForce | ToggleVelocity | ZoomIn | ZoomOut
+            | Pan(..) | ResetView | TauWindow(_) | NextPage | PrevPage | Choose | Omega(_)
+            | R0c(_) | Unit(..) | UnitsOff | PinRun | ClearPins => Group::View,
             Quit | Dismiss | ToggleHelp | HelpScroll(_) | HelpPage(_) | Save | SaveAs | Name(_)
             | ExportSvg | ToggleMouse | Readouts => Group::App,
             Answer(_) | GoOn => Group::Lesson,

@@ -176,6 +176,22 @@ impl App {
         if self.sim.run.initial() != self.initial || self.sim.run.settings() != self.settings {
             return Err("run is not from the current initial conditions".into());
         }
+        if self.pins.len() > crate::pin::MAX_PINS {
+            return Err(format!("{} pins", self.pins.len()));
+        }
+        for p in &self.pins {
+            let finite = |s: &crate::engine::State| {
+                [s.tau, s.r.x, s.r.y, s.v.x, s.v.y]
+                    .iter()
+                    .all(|v| v.is_finite())
+            };
+            if p.path.is_empty() || p.path.len() > 2 * crate::pin::PIN_POINTS {
+                return Err(format!("pin {}: {} points", p.spec.label, p.path.len()));
+            }
+            if !p.path.iter().all(finite) {
+                return Err(format!("pin {}: a point not finite", p.spec.label));
+            }
+        }
         if !(state::SPEED_RANGE.0..=state::SPEED_RANGE.1).contains(&self.speed) {
             return Err(format!("speed {} out of range", self.speed));
         }

@@ -84,6 +84,9 @@ pub struct App {
     /// The frame the picture is drawn in (lab or rotating).
     pub view: Frame,
     pub forces: bool,
+    /// The net force's arrow (`A`) and the velocity's (`i`).
+    pub net_force: bool,
+    pub velocity: bool,
     /// Integrator step mode (`n`): step ends marked, step size and error shown.
     pub step_mode: bool,
     pub help: bool,
@@ -99,7 +102,7 @@ pub struct App {
     pub pan: glam::DVec2,
     pub mouse: bool,
     pub notice: Option<String>,
-    /// How many times the readouts were asked for in words (`i`): plain mode prints them.
+    /// How many times the readouts were asked for in words (`I`): plain mode prints them.
     pub readouts_asked: u64,
     /// The name being typed at the save prompt (`S`), while it is open.
     pub naming: Option<String>,
@@ -116,6 +119,9 @@ pub struct App {
     pub units: Option<crate::engine::units::Units>,
     /// The μ measurement of the rest-radius page (Eq. 22): Ω in rad/s and r0c in metres.
     pub mu_probe: (f64, f64),
+    /// Runs pinned beside the one on screen (`b`), oldest first, at most
+    /// [`crate::pin::MAX_PINS`].
+    pub pins: Vec<crate::pin::Pin>,
     /// A narrated lesson's caption, question and wait.
     pub lesson: super::lesson::Lesson,
     pub(crate) dirty: bool,
@@ -141,6 +147,13 @@ impl App {
         };
         let sim = make_sim(initial, settings);
         let units = scene.units;
+        let mut pins = Vec::new();
+        for spec in scene.pins.iter().rev().take(crate::pin::MAX_PINS).rev() {
+            // Checked when the scene was loaded: a pin that still fails is left out.
+            if let Ok(p) = pin_of(spec.clone(), &pins) {
+                pins.push(p);
+            }
+        }
         let view = scene.view.filter(|v| v.zoom.is_finite() && v.zoom > 0.0);
         App {
             scene,
@@ -153,6 +166,8 @@ impl App {
             speed: 1.0,
             view: view.map_or(Frame::Lab, |v| v.frame),
             forces: view.is_some_and(|v| v.forces),
+            net_force: view.is_some_and(|v| v.net_force),
+            velocity: view.is_some_and(|v| v.velocity),
             step_mode: false,
             help: false,
             help_scroll: 0,
@@ -172,6 +187,7 @@ impl App {
             analysis: Analysis::inline(),
             mu_probe: MU_PROBE,
             units,
+            pins,
             lesson: Default::default(),
             dirty: true,
             geom: None,
@@ -332,9 +348,98 @@ impl App {
                 frame: self.view,
                 forces: self.forces,
                 zoom: self.zoom,
+                net_force: self.net_force,
+                velocity: self.velocity,
             }),
+            pins: self.pins.iter().map(|p| p.spec.clone()).collect(),
         }
     }
+
+    /// Pins the run on screen (`b`): its whole path, computed now at bounded cost, labelled
+    /// by the scene's name, or by a letter once edited. A seventh pin replaces the oldest.
+    pub fn pin_run(&mut self) {
+        let dropped = if self.pins.len() >= crate::pin::MAX_PINS {
+            Some(self.pins.remove(0))
+        } else {
+            None
+        };
+        let label = if self.edited() {
+            let used = |c: char| self.pins.iter().any(|p| p.spec.label == c.to_string());
+            ('A'..='Z').find(|c| !used(*c)).unwrap_or('?').to_string()
+        } else {
+            self.scene
+                .name
+                .chars()
+                .take(crate::pin::LABEL_MAX)
+                .collect()
+        };
+        let spec = crate::pin::PinSpec {
+            label,
+            initial: self.initial,
+            settings: self.settings,
+            turn: self.turn,
+            units: self.units,
+        };
+        match pin_of(spec, &self.pins) {
+            Ok(p) => {
+                let what = match p.outcome {
+                    crate::engine::Outcome::Stuck => {
+                        format!("sticks at ξ = {}", num(p.end().xi(), 4))
+                    }
+                    crate::engine::Outcome::Escaped => "escapes".into(),
+                    crate::engine::Outcome::Running if p.end().tau < crate::pin::PIN_TAU_MAX => {
+                        format!(
+                            "still slides at τ = {}, where a pin's {} steps ran out",
+                            num(p.end().tau, 3),
+                            crate::pin::PIN_STEPS
+                        )
+                    }
+                    crate::engine::Outcome::Running => {
+                        format!("still slides at τ = {}", num(p.end().tau, 1))
+                    }
+                };
+                let mut n = format!(
+                    "pinned {}{} ({} of {}): {what}; B clears the pins",
+                    p.marker,
+                    p.spec.label,
+                    self.pins.len() + 1,
+                    crate::pin::MAX_PINS
+                );
+                if let Some(d) = dropped {
+                    n.push_str(&format!(
+                        "; {} pins at most: the oldest, {}{}, unpinned",
+                        crate::pin::MAX_PINS,
+                        d.marker,
+                        d.spec.label
+                    ));
+                }
+                self.pins.push(p);
+                self.notice = Some(n);
+            }
+            Err(e) => self.notice = Some(format!("cannot pin this run: {e}")),
+        }
+    }
+
+    /// The τ span the time plots show by default: the run so far, or the longest pin.
+    pub fn plot_span(&self) -> f64 {
+        self.pins
+            .iter()
+            .map(|p| p.end().tau * p.scale(self.units).1)
+            .fold(self.sim.now().tau, f64::max)
+    }
+}
+
+/// A pin of `spec`, its marker the first one `pins` leaves free.
+fn pin_of(
+    spec: crate::pin::PinSpec,
+    pins: &[crate::pin::Pin],
+) -> Result<crate::pin::Pin, crate::error::Error> {
+    let marker = crate::pin::MARKERS
+        .into_iter()
+        .find(|m| pins.iter().all(|p| p.marker != *m))
+        .unwrap_or(crate::pin::MARKERS[0]);
+    let radius = view_radius(&spec.initial);
+    crate::pin::Pin::compute(spec, marker, radius)
 }
 
 /// Keeps user-edited values valid: ξ0, v0 finite and clamped to [0, [`Initial::MAX`]] (an

@@ -41,7 +41,7 @@ pub struct Cli {
     pub record: Option<PathBuf>,
     /// Plain mode for screen readers: no canvas, no cursor movement, no colour; lines of text
     /// on stdout (the release, each change of state as it happens, notices, the readouts on
-    /// `i`, the keys on `?`), keys as in the explorer. Works with TERM=dumb and with stdout
+    /// `I`, the keys on `?`), keys as in the explorer. Works with TERM=dumb and with stdout
     /// piped (`| tee log`).
     #[arg(long)]
     pub plain: bool,

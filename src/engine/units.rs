@@ -3,6 +3,7 @@
 //! gives every length, time and speed its SI value.
 
 use crate::engine::error::Error;
+use crate::engine::model::Initial;
 
 /// μ, Ω (rad/s) and g (m/s²) of a real table.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
@@ -49,6 +50,17 @@ impl Units {
     /// μg/Ω in m/s: the unit of speed.
     pub fn speed_m_s(&self) -> f64 {
         self.r_max_m() / self.t_s()
+    }
+
+    /// The same release on the table `to`: its metres and m/s held, its dimensionless ξ0 and
+    /// v0 recomputed in `to`'s units (Sec. II: lengths in R_max = μg/Ω², speeds in μg/Ω; φ
+    /// is an angle, the same in both). Larger μ: a larger R_max, so a smaller ξ0.
+    pub fn carry(&self, initial: Initial, to: &Units) -> Initial {
+        Initial {
+            xi0: initial.xi0 * self.r_max_m() / to.r_max_m(),
+            v0: initial.v0 * self.speed_m_s() / to.speed_m_s(),
+            ..initial
+        }
     }
 
     /// The table of the paper's μ measurement (Sec. IV, Eq. 22): μ = 0.15 at Ω = 3.3 rad/s,

@@ -32,6 +32,11 @@ pub fn auto_extent(app: &App) -> f64 {
         .paper
         .as_ref()
         .map_or(own, |p| own.max(reach(p).min(1.5 * own)));
+    // Pins widen it as the paper's run does, so a pinned D (from ξ0 = 1.1) stays in view.
+    let m = app.pins.iter().fold(m, |m, p| {
+        let r = p.path.iter().fold(0.0, |m: f64, s| m.max(s.xi())) * p.scale(app.units).0;
+        m.max(r.min(1.5 * own))
+    });
     (m * 1.1)
         .max(1.5)
         .min(crate::app::state::view_radius(&app.initial) * 1.1)
@@ -74,24 +79,25 @@ fn arrow(ctx: &mut Context, from: DVec2, vec: DVec2, color: Color) {
     }
 }
 
-/// The trail of `sim` up to the τ on screen, from its path (a fixed τ grid, see
-/// [`crate::sim::TRAIL_DT`]), joined to the particle where the path is still growing.
-fn trail(ctx: &mut Context, sim: &crate::sim::Sim, frame: Frame, turn: f64, color: Color) {
-    let path = sim.trail();
-    let now = sim.now();
-    let tail = path
-        .last()
-        .filter(|l| now.tau > l.tau && now.tau - l.tau <= crate::sim::TRAIL_DT)
-        .map(|_| now);
-    let samples: Vec<&State> = path.iter().chain(tail.as_ref()).collect();
-    let stride = samples.len().div_ceil(MAX_SEGMENTS).max(1);
+/// Markers along a pin's path: at its quarters (and its end, with the label).
+const PIN_MARKS: usize = 4;
+
+/// The `n` states of `path` as a line in the frame shown, turned and scaled, thinned to at
+/// most [`MAX_SEGMENTS`] segments.
+fn polyline<'a>(
+    ctx: &mut Context,
+    path: impl Iterator<Item = &'a State>,
+    n: usize,
+    (frame, turn, scale): (Frame, f64, f64),
+    color: Color,
+) {
+    let stride = n.div_ceil(MAX_SEGMENTS).max(1);
     let mut prev: Option<DVec2> = None;
-    let n = samples.len();
-    for (i, s) in samples.into_iter().enumerate() {
+    for (i, s) in path.enumerate() {
         if i % stride != 0 && i + 1 != n {
             continue;
         }
-        let p = rotate(in_frame(s, frame), turn);
+        let p = rotate(in_frame(s, frame), turn) * scale;
         if let Some(a) = prev {
             ctx.draw(&Line {
                 x1: a.x,
@@ -103,6 +109,25 @@ fn trail(ctx: &mut Context, sim: &crate::sim::Sim, frame: Frame, turn: f64, colo
         }
         prev = Some(p);
     }
+}
+
+/// The trail of `sim` up to the τ on screen, from its path (a fixed τ grid, see
+/// [`crate::sim::TRAIL_DT`]), joined to the particle where the path is still growing.
+fn trail(ctx: &mut Context, sim: &crate::sim::Sim, frame: Frame, turn: f64, color: Color) {
+    let path = sim.trail();
+    let now = sim.now();
+    let tail = path
+        .last()
+        .filter(|l| now.tau > l.tau && now.tau - l.tau <= crate::sim::TRAIL_DT)
+        .map(|_| now);
+    let n = path.len() + usize::from(tail.is_some());
+    polyline(
+        ctx,
+        path.iter().chain(tail.as_ref()),
+        n,
+        (frame, turn, 1.0),
+        color,
+    );
 }
 
 /// A force arrow as drawn: its label at the head (so it reads without colour), the word the
@@ -123,6 +148,12 @@ pub const FORCE_SHARE: f64 = 0.2;
 /// does). In the rotating frame the fictitious Coriolis and centrifugal forces act too. All
 /// are scaled together so the longest is [`FORCE_SHARE`] of `half_width`.
 pub fn force_arrows(app: &App, half_width: f64) -> Vec<ForceArrow> {
+    forces(app, half_width).0
+}
+
+/// [`force_arrows`], and the net force at their scale (their sum: du/dτ in the rotating
+/// frame, dv/dτ in the lab).
+fn forces(app: &App, half_width: f64) -> (Vec<ForceArrow>, DVec2) {
     let th = &app.theme;
     let now = app.sim.now();
     let [fr, co, ce] = coupled_forces(&now, app.initial.frictionless, app.settings.coupling);
@@ -145,14 +176,59 @@ pub fn force_arrows(app: &App, half_width: f64) -> Vec<ForceArrow> {
             push("cf", "centrifugal", ce, th.centrifugal);
         }
     }
+    let mut net: DVec2 = out.iter().map(|f| f.vec).sum();
     let longest = out.iter().fold(0.0, |m: f64, f| m.max(f.vec.length()));
     if longest > 0.0 {
         let k = FORCE_SHARE * half_width / longest;
         for f in &mut out {
             f.vec *= k;
         }
+        net *= k;
+    }
+    (out, net)
+}
+
+/// The arrows the canvas draws at the particle, each labelled at its head: the forces (`a`),
+/// the net force (`A`, at the forces' scale) and the velocity (`i`: relative to the table in
+/// the rotating frame, the lab velocity in the lab; `speed_scale` world units per unit speed,
+/// as the initial velocity's arrow). A zero vector is not drawn.
+pub fn arrows(app: &App, half_width: f64, speed_scale: f64) -> Vec<ForceArrow> {
+    let th = &app.theme;
+    let (mut out, net) = forces(app, half_width);
+    if !app.forces {
+        out.clear();
+    }
+    // Below this the sum is rounding: the forces balance (stuck).
+    let balanced = 1e-9 * half_width;
+    if app.net_force && net.length() > balanced {
+        out.push(ForceArrow {
+            label: "net",
+            word: "net force",
+            vec: net,
+            color: th.foreground,
+        });
+    }
+    if app.velocity {
+        let (label, word, v) = velocity(app);
+        if v.length() > 0.0 {
+            out.push(ForceArrow {
+                label,
+                word,
+                vec: v * speed_scale,
+                color: th.arrow,
+            });
+        }
     }
     out
+}
+
+/// The velocity the frame shown sees: `u` relative to the table (rotating), `v` (lab).
+pub fn velocity(app: &App) -> (&'static str, &'static str, DVec2) {
+    let now = app.sim.now();
+    match app.view {
+        Frame::Lab => ("v", "velocity (lab)", now.v),
+        Frame::Table => ("u", "velocity rel. table", now.u()),
+    }
 }
 
 /// Draws the canvas and returns its geometry (where it is and which world it shows).
@@ -219,12 +295,11 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) -> CanvasGeom {
     let v_init = rotate(v_init, turn);
     let sim = &app.sim;
     let paper = app.paper.as_ref();
+    let pins = &app.pins;
+    let units = app.units;
+    let pin_style = Style::default().fg(th.muted);
     let half_width = 0.5 * (xb[1] - xb[0]).min(yb[1] - yb[0]);
-    let forces = if app.forces {
-        force_arrows(app, half_width)
-    } else {
-        Vec::new()
-    };
+    let forces = arrows(app, half_width, arrow_scale);
     let ring_label = rotate(DVec2::new(-0.95, -0.72), turn);
     let tau_now = now.tau;
     let marks: Vec<State> = if app.step_mode {
@@ -278,6 +353,18 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) -> CanvasGeom {
                 radius: 1.0,
                 color: th.limit_circle,
             });
+            // Each pin: its marker along its path (printed first: words printed later win),
+            // and at its end (below) the marker and its label, so pins read without colour.
+            for p in pins {
+                let k = p.scale(units).0;
+                let at = |s: &State| rotate(in_frame(s, view), p.spec.turn) * k;
+                let n = p.path.len();
+                for k in 1..PIN_MARKS {
+                    let s = &p.path[k * (n - 1) / PIN_MARKS];
+                    let m = at(s);
+                    ctx.print(m.x, m.y, Span::styled(p.marker.to_string(), pin_style));
+                }
+            }
             if words {
                 // ξ = 1 is R_max = μg/Ω², the whole story: inside it friction can hold the
                 // particle.
@@ -298,23 +385,28 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) -> CanvasGeom {
             // the rotating frame D's whole path lies along its arrow).
             arrow(ctx, x0, v_init * arrow_scale, th.arrow);
             ctx.layer();
+            for p in pins {
+                let look = (view, p.spec.turn, p.scale(units).0);
+                polyline(ctx, p.path.iter(), p.path.len(), look, th.muted);
+            }
             if let Some(p) = paper {
                 trail(ctx, p, view, turn, th.accent);
             }
             trail(ctx, sim, view, turn, th.trail);
             ctx.layer();
-            if let Some((at, tau)) = stuck {
+            let stuck_label = stuck.map(|(at, tau)| {
+                let text = if words {
+                    format!("× stuck τ={}", crate::ui::panel::num(tau, 2))
+                } else {
+                    "×".into()
+                };
+                (at, text)
+            });
+            if let Some((at, text)) = &stuck_label {
                 ctx.print(
                     at.x,
                     at.y,
-                    Span::styled(
-                        if words {
-                            format!("× stuck τ={}", crate::ui::panel::num(tau, 2))
-                        } else {
-                            "×".into()
-                        },
-                        Style::default().fg(th.stuck),
-                    ),
+                    Span::styled(text.clone(), Style::default().fg(th.stuck)),
                 );
             }
             // Integrator step mode: each step's end on the trail (the latest 500).
@@ -323,20 +415,78 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) -> CanvasGeom {
                 ctx.print(p.x, p.y, Span::styled("·", Style::default().fg(th.notice)));
             }
             let at = rotate(in_frame(&now, view), turn);
+            // The cells a label covers (row, first column, past the last): labels never
+            // cover the particle or one another (in the lab `net` is `fr`, at one head).
+            // (As ratatui's canvas places text: (x − left)·(width − 1)/(right − left).)
+            let cells = |p: DVec2, n: usize| {
+                let (w, h) = (
+                    f64::from(inner.width.max(1) - 1),
+                    f64::from(inner.height.max(1) - 1),
+                );
+                let col = ((p.x - xb[0]) * w / (xb[1] - xb[0])).floor() as i64;
+                let row = ((yb[1] - p.y) * h / (yb[1] - yb[0])).floor() as i64;
+                (row, col, col + n as i64)
+            };
+            let mut taken = vec![cells(at, 1)];
+            taken.extend(stuck_label.map(|(p, text)| cells(p, text.chars().count())));
+            if words {
+                taken.push(cells(ring_label, 11));
+                taken.push(cells(sense, 7));
+            }
+            let free = |h: DVec2, n: usize, taken: &[(i64, i64, i64)]| {
+                let (r, a, b) = cells(h, n);
+                !taken
+                    .iter()
+                    .any(|&(tr, ta, tb)| tr == r && a < tb && ta < b)
+            };
             for fa in &forces {
                 let vec = rotate(fa.vec, turn);
                 arrow(ctx, at, vec, fa.color);
                 let mut head = at + vec * 1.15;
                 // Never under the particle's glyph (`co` read `●o`): right of it instead.
-                let len = fa.label.chars().count() as f64 * cell.x;
+                let n = fa.label.chars().count();
+                let len = n as f64 * cell.x;
                 if (head.y - at.y).abs() < cell.y && head.x - cell.x < at.x && at.x < head.x + len {
                     head.x = at.x + cell.x;
                 }
+                // Else a row off, above or below.
+                if let Some(h) = [0.0, 1.0, -1.0, 2.0, -2.0]
+                    .into_iter()
+                    .map(|k| head + DVec2::Y * (k * cell.y))
+                    .find(|h| free(*h, n, &taken))
+                {
+                    head = h;
+                }
+                taken.push(cells(head, n));
                 ctx.print(
                     head.x,
                     head.y,
                     Span::styled(fa.label, Style::default().fg(fa.color)),
                 );
+            }
+            // Each pin's end: its marker and label, beside the end where the run's own
+            // words leave room (else the marker along the path and the panel name it). An
+            // escape ends out of view: labelled where it leaves.
+            let inside =
+                |q: DVec2| (xb[0]..=xb[1]).contains(&q.x) && (yb[0]..=yb[1]).contains(&q.y);
+            for p in pins {
+                let k = p.scale(units).0;
+                let place = |s: &State| rotate(in_frame(s, view), p.spec.turn) * k;
+                let Some(e) = p.path.iter().rev().map(place).find(|q| inside(*q)) else {
+                    continue;
+                };
+                let text = format!("{}{}", p.marker, p.spec.label);
+                let n = text.chars().count();
+                let back = n as f64 - 1.0;
+                let spot = [(0.0, 0.0), (0.0, 1.0), (0.0, -1.0), (-back, 0.0)]
+                    .into_iter()
+                    .chain([(-back, 1.0), (-back, -1.0), (0.0, 2.0), (0.0, -2.0)])
+                    .map(|(dx, dy)| e + DVec2::new(dx * cell.x, dy * cell.y))
+                    .find(|h| free(*h, n, &taken));
+                if let Some(h) = spot {
+                    taken.push(cells(h, n));
+                    ctx.print(h.x, h.y, Span::styled(text, pin_style));
+                }
             }
             if let Some(p) = paper {
                 let q = rotate(in_frame(&p.now(), view), turn);

@@ -36,7 +36,8 @@ pub enum Mark {
         label: String,
         color: Color,
     },
-    /// A label alone, its left end at (x, y).
+    /// A label alone, its left end at (x, y) (or its right end at the plot's edge, when it
+    /// would run past it).
     Text {
         x: f64,
         y: f64,
@@ -389,7 +390,8 @@ pub fn render_bare(
                         let a = match m {
                             Mark::Point { .. } if px + col + w > x[1] && px - w >= x[0] => px - w,
                             Mark::Point { .. } => px + col,
-                            _ => px,
+                            // Text that would run past the plot's right edge ends there.
+                            _ => px.min(x[1] - w).max(x[0]),
                         };
                         let r = place(a, w, &mut [r0, r0 - 1, r0 + 1, r0 - 2, r0 + 2].into_iter());
                         ctx.print(a, at_row(r), Span::styled(label.clone(), style));

@@ -71,13 +71,15 @@ const MOUSE: [(&str, &str); 3] = [
 ];
 
 /// The glyphs of the picture.
-const GLYPHS: [(&str, &str); 6] = [
+const GLYPHS: [(&str, &str); 8] = [
     ("●", "particle (converged run)"),
     ("○", "paper's RK2 run (c)"),
     ("■", "particle at rest"),
     ("×", "where it stopped"),
     ("·", "step ends (n)"),
     ("↺", "table's sense of rotation"),
+    ("◆▲▼◇△▽", "pinned runs (b), named at the end"),
+    ("net u v", "net force (A), velocity (i)"),
 ];
 
 /// One entry: a group header, or a key (or glyph) and its help.

@@ -498,8 +498,13 @@ fn rest_radius(f: &mut TuiFrame, area: Rect, app: &App) {
         marks,
     };
     chart::render(f, top, th, &c);
-    let (omega, r0c) = app.mu_probe;
-    let g = crate::app::G_DEFAULT;
+    // With SI units on, the table's Ω and g (o/O turn the table).
+    let (omega, g) = app
+        .units
+        .map_or((app.mu_probe.0, crate::app::G_DEFAULT), |u| {
+            (u.omega(), u.g)
+        });
+    let r0c = app.mu_probe.1;
     let mu = xi0c.map(|c| omega * omega * r0c / (g * c));
     let text = vec![
         Line::from(vec![
@@ -516,9 +521,14 @@ fn rest_radius(f: &mut TuiFrame, area: Rect, app: &App) {
             ),
         ]),
         Line::from(format!(
-            "Ω = {} rad/s ({} rpm), r0c = {} m",
+            "Ω = {} rad/s ({} rpm{}), r0c = {} m",
             num(omega, 3),
             num(omega * 60.0 / TAU, 1),
+            if app.units.is_some() {
+                ", the table's"
+            } else {
+                ""
+            },
             num(r0c, 4)
         )),
         Line::from(Span::styled(

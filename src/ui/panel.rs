@@ -228,6 +228,40 @@ fn readouts(app: &App) -> (Vec<Line<'static>>, std::ops::Range<usize>) {
         )));
     }
     let status = status_start..out.len();
+    if let Some(u) = app.units {
+        // The table and the release in SI, while units are on: what μ, rpm and g change.
+        use crate::engine::units::show_length as len;
+        let deg = turn_angle(i.phi).to_degrees();
+        let r0 = match i.release {
+            crate::engine::Release::Velocity => {
+                format!("{} φ {}°", len(i.xi0 * u.r_max_m()), num(deg, 0))
+            }
+            _ => format!("{} at rest", len(i.xi0 * u.r_max_m())),
+        };
+        out.push(kv("r0", r0, th));
+        if i.release == crate::engine::Release::Velocity {
+            out.push(kv("v0", show_speed(i.v0 * u.speed_m_s()), th));
+        }
+        out.push(kv(
+            "μ g",
+            format!("{}, {} m/s²", num(u.mu, 2), num(u.g, 2)),
+            th,
+        ));
+        out.push(kv(
+            "Ω",
+            format!(
+                "{} {} rpm",
+                show_rate(u.omega()),
+                num(u.rpm, if u.rpm < 100.0 { 1 } else { 0 })
+            ),
+            th,
+        ));
+        out.push(kv(
+            "R_max",
+            u.unit_of(crate::engine::units::Quantity::Length),
+            th,
+        ));
+    }
     let c = app.sim.run.cost();
     if i.frictionless {
         out.push(kv("μ = 0", "closed form".into(), th));
@@ -279,10 +313,20 @@ fn readouts(app: &App) -> (Vec<Line<'static>>, std::ops::Range<usize>) {
         }
         out.push(kv("  ξ", num(p.now().xi(), 5), th));
     }
-    if app.forces {
-        // The legend names exactly the arrows drawn, by their head labels.
-        let drawn = crate::ui::canvas::force_arrows(app, 1.0);
-        if drawn.is_empty() {
+    if !app.pins.is_empty() {
+        let names: Vec<String> = app
+            .pins
+            .iter()
+            .map(|p| format!("{}{}", p.marker, p.spec.label))
+            .collect();
+        out.push(kv("pins", names.join(" "), th));
+    }
+    if app.forces || app.net_force || app.velocity {
+        // The legend names exactly the arrows drawn, by their head labels; what is not drawn
+        // for being zero says so.
+        let drawn = crate::ui::canvas::arrows(app, 1.0, 1.0);
+        let has = |l: &str| drawn.iter().any(|a| a.label == l);
+        if app.forces && !drawn.iter().any(|a| ["fr", "co", "cf"].contains(&a.label)) {
             out.push(Line::from(Span::styled(
                 "forces: none in the plane",
                 Style::default().fg(th.muted),
@@ -290,9 +334,22 @@ fn readouts(app: &App) -> (Vec<Line<'static>>, std::ops::Range<usize>) {
         }
         for fa in &drawn {
             out.push(Line::from(vec![
-                Span::styled(format!("{:<3}", fa.label), Style::default().fg(fa.color)),
+                Span::styled(format!("{:<2} ", fa.label), Style::default().fg(fa.color)),
                 Span::styled(fa.word, Style::default().fg(fa.color)),
             ]));
+        }
+        if app.net_force && !has("net") {
+            out.push(Line::from(Span::styled(
+                "net force 0: balanced",
+                Style::default().fg(th.muted),
+            )));
+        }
+        let (label, _, _) = crate::ui::canvas::velocity(app);
+        if app.velocity && !has(label) {
+            out.push(Line::from(Span::styled(
+                format!("{label} = 0"),
+                Style::default().fg(th.muted),
+            )));
         }
     }
     (out, status)

@@ -2,7 +2,7 @@
 //! reader, not drawn. Another renderer of the same [`App`]: [`Seen::of`] reads what a listener
 //! needs from the state, and [`describe`] says in words what changed between two of them — the
 //! release, each change of state as the run on screen reaches it, notices, the help, and the
-//! readouts when asked (`i`). Pure: the same keys and ticks give the same lines.
+//! readouts when asked (`I`). Pure: the same keys and ticks give the same lines.
 
 use crate::app::App;
 use crate::app::lesson::Prompt;
@@ -73,7 +73,7 @@ impl Seen {
 pub fn opening(app: &App) -> Vec<String> {
     let now = Seen::of(app);
     let mut out = vec![
-        "turntable, plain mode: ? lists the keys, i reads the readouts, Space plays and pauses, q quits".to_string(),
+        "turntable, plain mode: ? lists the keys, I reads the readouts, Space plays and pauses, q quits".to_string(),
         format!("scene {}: {}", app.scene.name, app.scene.about),
         now.release.clone(),
         now.status.clone(),
@@ -278,7 +278,7 @@ fn help() -> Vec<String> {
     out
 }
 
-/// The explorer's one-line answer to `i`: τ, ξ and how the run stands.
+/// The explorer's one-line answer to `I`: τ, ξ and how the run stands.
 pub fn summary(app: &App) -> String {
     let s = app.now();
     format!(

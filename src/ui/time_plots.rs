@@ -11,6 +11,9 @@ use crate::ui::panel::num;
 use ratatui::Frame as TuiFrame;
 use ratatui::layout::{Constraint, Layout, Rect};
 
+/// Markers along a pin's line: at its thirds (and its end, with the label).
+const PIN_MARKS: usize = 3;
+
 /// The run's path up to the τ on screen, ending exactly there.
 fn path(sim: &crate::sim::Sim) -> Vec<State> {
     let mut p = sim.trail().to_vec();
@@ -19,6 +22,14 @@ fn path(sim: &crate::sim::Sim) -> Vec<State> {
         p.push(now);
     }
     p
+}
+
+/// What a plot draws of a path: its points (τ, y).
+type PathPoints<'a> = dyn Fn(&[State]) -> Vec<(f64, f64)> + 'a;
+
+/// One quantity of a path against τ, as points.
+fn along(path: &[State], y: &dyn Fn(&State) -> f64) -> Vec<(f64, f64)> {
+    path.iter().map(|s| (s.tau, y(s))).collect()
 }
 
 /// One quantity of a path against τ.
@@ -31,7 +42,7 @@ fn series(
     Series {
         name: name.into(),
         color,
-        points: path.iter().map(|s| (s.tau, y(s))).collect(),
+        points: along(path, &y),
         joined: true,
     }
 }
@@ -77,7 +88,7 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) {
     let paper = app.paper.as_ref().map(path);
     let now = app.sim.now().tau;
     // The τ window: the run so far, or a span the user fixed (t / T).
-    let span = app.tau_window.unwrap_or(now).max(1e-3);
+    let span = app.tau_window.unwrap_or(app.plot_span()).max(1e-3);
     let x = [0.0, span];
     let mut marks = vec![Mark::VLine {
         x: now,
@@ -145,6 +156,47 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) {
             joined: true,
         })
     };
+    // Each pin dimmer, named in the legend by its marker and label, the marker along its
+    // line and the label at its end: told apart without colour.
+    let mut pin_marks: [Vec<Mark>; 4] = Default::default();
+    // `dims`: the powers of length and time in the plot's y, to convert a pin run on
+    // another table (ξ: length; θ′: 1/time; |u|: length/time).
+    let mut pin_series = |k: usize, dims: (i32, i32), y: &PathPoints<'_>| -> Vec<Series> {
+        app.pins
+            .iter()
+            .map(|pin| {
+                let (kl, kt) = pin.scale(app.units);
+                let ky = kl.powi(dims.0) * kt.powi(dims.1);
+                let points: Vec<(f64, f64)> = y(&pin.path)
+                    .into_iter()
+                    .map(|(x, y)| (x * kt, y * ky))
+                    .collect();
+                let n = points.len();
+                for j in 1..PIN_MARKS {
+                    let (x, y) = points[j * (n - 1) / PIN_MARKS];
+                    pin_marks[k].push(Mark::Text {
+                        x,
+                        y,
+                        label: pin.marker.to_string(),
+                        color: th.muted,
+                    });
+                }
+                let (x, y) = points[n - 1];
+                pin_marks[k].push(Mark::Text {
+                    x,
+                    y,
+                    label: format!("{}{}", pin.marker, pin.spec.label),
+                    color: th.muted,
+                });
+                Series {
+                    name: format!("{}{}", pin.marker, pin.spec.label),
+                    color: th.muted,
+                    points,
+                    joined: true,
+                }
+            })
+            .collect()
+    };
     let xi_of = |s: &State| s.xi();
     let th_of = move |s: &State| s.theta_dot().map_or(f64::NAN, |t| t - shift);
     let u_of = |s: &State| s.u_lab().length();
@@ -166,12 +218,14 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) {
     };
     let mut xi_s = vec![series("ξ", th.trail, &p, xi_of)];
     xi_s.extend(paper_series("ξ", &xi_of));
+    xi_s.extend(pin_series(0, (1, 0), &|p| along(p, &xi_of)));
     xi_s.extend(approx(&|t| match i.release {
         Release::LabRest => Some(lab_rest(i.xi0, t).0),
         _ => Some(table_rest(i.xi0, t).0),
     }));
     let mut th_s = vec![series(theta_name, th.trail, &p, th_of)];
     th_s.extend(paper_series(theta_name, &th_of));
+    th_s.extend(pin_series(2, (0, -1), &|p| along(p, &th_of)));
     th_s.extend(approx(&|t| match i.release {
         // θ = τ²/(2ξ0) (Eq. 16): θ′ = τ/ξ0 in the lab.
         Release::LabRest => Some(t / i.xi0 - shift),
@@ -191,6 +245,7 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) {
         points: angle(pp),
         joined: true,
     }));
+    a_s.extend(pin_series(1, (0, 0), &angle));
     // The approximation's θ: its θ′ integrated (trapezoids on its own 200 points).
     if let Some(rate) = th_s.iter().find(|s| s.name == "Sec. III approx.") {
         let mut acc = 0.0;
@@ -215,6 +270,7 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) {
     }
     let mut u_s = vec![series("|u|", th.trail, &p, u_of)];
     u_s.extend(paper_series("|u|", &u_of));
+    u_s.extend(pin_series(3, (1, -1), &|p| along(p, &u_of)));
     let drag = if app.initial.frictionless {
         None
     } else {
@@ -240,11 +296,12 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) {
             joined: false,
         },
     ];
+    let [xi_m, a_m, th_m, u_m] = pin_marks;
     let plots = [
-        ("ξ", Some(Quantity::Length), xi_s),
-        (angle_name, None, a_s),
-        (theta_name, Some(Quantity::Rate), th_s),
-        ("|u|", Some(Quantity::Speed), u_s),
+        ("ξ", Some(Quantity::Length), xi_s, xi_m),
+        (angle_name, None, a_s, a_m),
+        (theta_name, Some(Quantity::Rate), th_s, th_m),
+        ("|u|", Some(Quantity::Speed), u_s, u_m),
         (
             if drag.is_some() {
                 "dE/dτ = −γ|u|²:"
@@ -253,6 +310,7 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) {
             },
             None,
             e_s,
+            Vec::new(),
         ),
     ];
     // As many plots as fit (ξ first), each at least a legend line and three rows; the τ axis
@@ -271,7 +329,7 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) {
         .into_iter()
         .take(fit)
         .enumerate()
-        .map(|(k, (name, quantity, s))| {
+        .map(|(k, (name, quantity, s, pm))| {
             // The y range of what the τ window shows.
             let y = extent(
                 s.iter()
@@ -292,7 +350,9 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) {
                 x,
                 y,
                 series: s,
-                marks: marks.clone(),
+                // The pins' labels last: placed first, so where a short plot has no room
+                // for all, the run's own (τ, stop, escape) are drawn over them.
+                marks: marks.iter().cloned().chain(pm).collect(),
             }
         })
         .collect();

@@ -40,3 +40,75 @@ pub fn render(app: &mut turntable::app::App, w: u16, h: u16) -> String {
         })
         .collect()
 }
+
+/// A new pseudo-terminal of `cols` × `rows`: master and slave, close-on-exec (as a terminal
+/// emulator's master is: no other child may keep it up), or None where none can be opened
+/// (the caller then skips, saying so).
+pub fn openpty(cols: u16, rows: u16) -> Option<(std::os::fd::OwnedFd, std::os::fd::OwnedFd)> {
+    use std::os::fd::FromRawFd;
+    let (mut master, mut slave) = (0, 0);
+    let ws = libc::winsize {
+        ws_row: rows,
+        ws_col: cols,
+        ws_xpixel: 0,
+        ws_ypixel: 0,
+    };
+    // SAFETY: out-pointers to two ints and a winsize.
+    let r = unsafe {
+        libc::openpty(
+            &mut master,
+            &mut slave,
+            std::ptr::null_mut(),
+            std::ptr::null(),
+            &ws,
+        )
+    };
+    if r != 0 {
+        eprintln!("skipped: no pseudo-terminal here");
+        return None;
+    }
+    // SAFETY: fresh descriptors we now own.
+    unsafe {
+        libc::fcntl(master, libc::F_SETFD, libc::FD_CLOEXEC);
+        libc::fcntl(slave, libc::F_SETFD, libc::FD_CLOEXEC);
+        Some((
+            std::os::fd::OwnedFd::from_raw_fd(master),
+            std::os::fd::OwnedFd::from_raw_fd(slave),
+        ))
+    }
+}
+
+/// `cmd` run with `slave` as its terminal: stdin, stdout and stderr, in a session of its own
+/// (so the pty is its controlling terminal).
+pub fn on_pty(cmd: &mut Command, slave: std::os::fd::OwnedFd) {
+    use std::os::unix::process::CommandExt;
+    cmd.stdin(slave.try_clone().unwrap())
+        .stdout(slave.try_clone().unwrap())
+        .stderr(slave);
+    // SAFETY: setsid is async-signal-safe.
+    unsafe {
+        cmd.pre_exec(|| {
+            libc::setsid();
+            Ok(())
+        });
+    }
+}
+
+/// `n` steps of classical RK4 of length `h` on (q, u)′ = f(q, u): the tests' own integrator,
+/// independent of the engine's.
+pub fn rk4(
+    f: impl Fn(glam::DVec2, glam::DVec2) -> (glam::DVec2, glam::DVec2),
+    (mut q, mut u): (glam::DVec2, glam::DVec2),
+    h: f64,
+    n: usize,
+) -> (glam::DVec2, glam::DVec2) {
+    for _ in 0..n {
+        let (a1, b1) = f(q, u);
+        let (a2, b2) = f(q + 0.5 * h * a1, u + 0.5 * h * b1);
+        let (a3, b3) = f(q + 0.5 * h * a2, u + 0.5 * h * b2);
+        let (a4, b4) = f(q + h * a3, u + h * b3);
+        q += h / 6.0 * (a1 + 2.0 * a2 + 2.0 * a3 + a4);
+        u += h / 6.0 * (b1 + 2.0 * b2 + 2.0 * b3 + b4);
+    }
+    (q, u)
+}

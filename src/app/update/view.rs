@@ -7,6 +7,7 @@ use super::super::state::{App, ZOOM_RANGE, record_player};
 use super::round_sig;
 use crate::engine::Frame;
 use crate::engine::units::Units;
+use std::f64::consts::TAU;
 
 pub(super) fn apply(app: &mut App, action: Action) {
     match action {
@@ -17,6 +18,8 @@ pub(super) fn apply(app: &mut App, action: Action) {
             }
         }
         Action::ToggleForces => app.forces = !app.forces,
+        Action::ToggleNetForce => app.net_force = !app.net_force,
+        Action::ToggleVelocity => app.velocity = !app.velocity,
         Action::ZoomIn => app.zoom = (app.zoom * 1.5).min(ZOOM_RANGE.1),
         Action::ZoomOut => app.zoom = (app.zoom / 1.5).max(ZOOM_RANGE.0),
         Action::Pan(dx, dy) => app.pan += glam::DVec2::new(dx, dy) / app.zoom,
@@ -25,7 +28,7 @@ pub(super) fn apply(app: &mut App, action: Action) {
             app.pan = glam::DVec2::ZERO;
         }
         Action::TauWindow(narrow) => {
-            let now = app.sim.now().tau.max(1e-3);
+            let now = app.plot_span().max(1e-3);
             let span = app.tau_window.unwrap_or(now);
             app.tau_window = if narrow {
                 Some((0.5 * span).max(1e-3))
@@ -47,6 +50,20 @@ pub(super) fn apply(app: &mut App, action: Action) {
                 );
             }
         }
+        // With SI units on, the μ probe's Ω is the table's: `o`/`O` turn the table.
+        Action::Omega(d) if app.units.is_some() => {
+            if let Some(u) = app.units {
+                // Within the rpm knob's range (1 to 10⁴ rpm).
+                let omega = (u.omega() + d).clamp(TAU / 60.0, 1e4 * TAU / 60.0);
+                set_units(
+                    app,
+                    Units {
+                        rpm: round_sig(omega * 60.0 / TAU),
+                        ..u
+                    },
+                );
+            }
+        }
         Action::Omega(d) | Action::R0c(d) => {
             let (omega, r0c) = &mut app.mu_probe;
             if matches!(action, Action::Omega(_)) {
@@ -61,21 +78,26 @@ pub(super) fn apply(app: &mut App, action: Action) {
                 ));
             }
         }
-        Action::Unit(knob, d) => {
-            let was = app.units;
-            let mut u = was.unwrap_or_else(record_player);
-            if was.is_some() {
+        Action::Unit(knob, d) => match app.units {
+            // The first press turns units on at the record player, changing nothing else.
+            None => set_units(app, record_player()),
+            Some(mut u) => {
                 let (x, lo, hi) = match knob {
                     UnitKnob::Mu => (&mut u.mu, 0.01, 10.0),
                     UnitKnob::Rpm => (&mut u.rpm, 1.0, 1e4),
                     UnitKnob::G => (&mut u.g, 0.01, 1e3),
                 };
                 *x = round_sig((*x + d).clamp(lo, hi));
+                set_units(app, u);
             }
-            if let Ok(u) = Units::new(u.mu, u.rpm, u.g) {
-                app.units = Some(u);
-                app.notice = Some(format!("SI units: {}", u.describe()));
-            }
+        },
+        Action::PinRun => app.pin_run(),
+        Action::ClearPins => {
+            app.notice = Some(match app.pins.len() {
+                0 => "no pins to clear (b pins the run on screen)".into(),
+                n => format!("{n} pins cleared"),
+            });
+            app.pins.clear();
         }
         Action::UnitsOff => {
             app.units = None;
@@ -84,4 +106,21 @@ pub(super) fn apply(app: &mut App, action: Action) {
         // Other groups' actions: `update` never sends them here.
         _ => {}
     }
+}
+
+/// Sets the table's μ, rpm and g. With units on already, the release is held in metres and
+/// m/s: its dimensionless ξ0 and v0 are recomputed for the new table, and the run restarts
+/// (a larger μ changes the outcome, not only the labels).
+fn set_units(app: &mut App, to: Units) {
+    let Ok(to) = Units::new(to.mu, to.rpm, to.g) else {
+        return;
+    };
+    if let Some(from) = app.units
+        && from != to
+    {
+        app.initial = from.carry(app.initial, &to);
+        app.restart();
+    }
+    app.units = Some(to);
+    app.notice = Some(format!("SI units: {}", to.describe()));
 }
