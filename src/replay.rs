@@ -22,6 +22,8 @@ pub struct Options {
     pub size: (u16, u16),
     /// Style snapshots with ANSI SGR sequences from each cell's colours and modifiers.
     pub ansi: bool,
+    /// Plain mode: the lines `--plain` prints, not screens (a snapshot reads the readouts).
+    pub plain: bool,
 }
 
 impl Default for Options {
@@ -29,6 +31,7 @@ impl Default for Options {
         Options {
             size: DEFAULT_SIZE,
             ansi: false,
+            plain: false,
         }
     }
 }
@@ -75,6 +78,9 @@ fn run(
     out: &mut dyn std::io::Write,
     mut cast: Option<&mut Cast>,
 ) -> std::io::Result<()> {
+    if opts.plain {
+        return plain(app, steps, opts, out);
+    }
     let mut s = Session::headless(app, opts.size.0, opts.size.1, false);
     let mut shots = 0;
     // Ticks passed: the recording's clock.
@@ -122,6 +128,59 @@ fn run(
     }
     if let Some(c) = cast {
         c.frame(ticks, s.screen())?;
+    }
+    out.flush()
+}
+
+/// Runs `steps` in plain mode: the lines `turntable --plain` would print, tick by tick, and at
+/// each snapshot the readouts (as `I` asks for them) under `--- snapshot N: LABEL`.
+fn plain(
+    app: App,
+    steps: &[Step],
+    opts: &Options,
+    out: &mut dyn std::io::Write,
+) -> std::io::Result<()> {
+    use crate::ui::plain::{Seen, describe, opening};
+    let mut s = Session::headless(app, opts.size.0, opts.size.1, false);
+    let mut seen = Seen::of(&s.app);
+    let say = |s: &Session<TestBackend>, seen: &mut Seen, out: &mut dyn std::io::Write| {
+        let now = Seen::of(&s.app);
+        for line in describe(seen, &now) {
+            writeln!(out, "{line}")?;
+        }
+        *seen = now;
+        std::io::Result::Ok(())
+    };
+    for line in opening(&s.app) {
+        writeln!(out, "{line}")?;
+    }
+    let mut shots = 0;
+    for step in steps {
+        if s.app.should_quit() {
+            break;
+        }
+        match step {
+            Step::Snapshot(label) => {
+                shots += 1;
+                let label = label
+                    .as_deref()
+                    .map(|l| format!(": {l}"))
+                    .unwrap_or_default();
+                writeln!(out, "--- snapshot {shots}{label}")?;
+                crate::app::update(&mut s.app, crate::app::Action::Readouts);
+            }
+            Step::Tick(n) => {
+                for _ in 0..*n {
+                    if !s.app.is_playing() {
+                        break;
+                    }
+                    s.apply(&Step::Tick(1));
+                    say(&s, &mut seen, out)?;
+                }
+            }
+            step => s.apply(step),
+        }
+        say(&s, &mut seen, out)?;
     }
     out.flush()
 }

@@ -21,6 +21,7 @@ use std::sync::atomic::{AtomicBool, AtomicI32, Ordering};
 use std::time::{Duration, Instant};
 
 pub mod pace;
+pub mod plain;
 use pace::{Clock, Flight};
 
 /// Puts the terminal back as it was. Safe to call more than once and on a dead terminal.
@@ -39,13 +40,18 @@ pub fn restore() {
 }
 
 fn setup(mouse: bool) -> io::Result<CrosstermBackend<Stdout>> {
+    restore_on_panic(restore);
+    enter(mouse)?;
+    Ok(CrosstermBackend::new(io::stdout()))
+}
+
+/// A panic puts the terminal back (with `restore`) before its message is printed.
+fn restore_on_panic(restore: fn()) {
     let hook = std::panic::take_hook();
     std::panic::set_hook(Box::new(move |info| {
         restore();
         hook(info);
     }));
-    enter(mouse)?;
-    Ok(CrosstermBackend::new(io::stdout()))
 }
 
 /// Raw mode, the alternate screen, no cursor, bracketed paste (pasted text arrives as one
@@ -144,6 +150,7 @@ pub fn run(
         finished: Arc::clone(&finished),
         recorder: recorder.clone(),
         save: record,
+        restore,
     };
     if let Err(e) = watch_signals(Arc::clone(&flags), lost) {
         return (Err(e), None);
@@ -205,6 +212,8 @@ struct Lost {
     finished: Arc<AtomicBool>,
     recorder: Option<SharedRecorder>,
     save: Option<SaveRecording>,
+    /// How this mode puts the terminal back.
+    restore: fn(),
 }
 
 /// A terminating signal asks the event loop to stop. If the terminal is gone (a dropped ssh
@@ -229,7 +238,7 @@ fn watch_signals(flags: Arc<Flags>, lost: Lost) -> io::Result<()> {
             flags.stop.store(true, Ordering::Relaxed);
             std::thread::sleep(Duration::from_millis(600));
             if !lost.finished.load(Ordering::Relaxed) {
-                restore();
+                (lost.restore)();
                 if let (Some(save), Some(r)) = (lost.save, lost.recorder) {
                     save(lock(&r).clone().finish());
                 }

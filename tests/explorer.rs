@@ -255,6 +255,15 @@ fn every_key_in_the_keymap_does_what_its_help_says() {
                         .is_ok_and(|s| s.starts_with("<?xml"))
             }
             Action::ToggleMouse => !a.mouse_capture() && after.contains("mouse off"),
+            // The readouts in words, on the status line: τ, ξ, |u| and how the run stands.
+            Action::Readouts => {
+                a.readouts_asked == 1
+                    && after.contains(&format!(
+                        " τ = {}, ξ = {}, |u| = ",
+                        num(a.now().tau, 3),
+                        num(a.now().xi(), 5)
+                    ))
+            }
             Action::NextPage => a.page == Page::TimePlots && after.contains("time plots"),
             Action::PrevPage => a.page == Page::RestRadius && after.contains("rest radius"),
             Action::Choose => a.page == Page::Turntable && after.contains("Enter runs"),

@@ -57,6 +57,15 @@ fn spawn(rec: &std::path::Path) -> Option<(Reap, Pty, Seen)> {
 
 /// As [`spawn`], in the folder `cwd` (where `s` saves scenes).
 fn spawn_in(rec: &std::path::Path, cwd: &std::path::Path) -> Option<(Reap, Pty, Seen)> {
+    spawn_with(rec, cwd, &[])
+}
+
+/// As [`spawn_in`], with more arguments for the explorer.
+fn spawn_with(
+    rec: &std::path::Path,
+    cwd: &std::path::Path,
+    args: &[&str],
+) -> Option<(Reap, Pty, Seen)> {
     // Other tests fork too: no child may inherit this master (it would keep the pty up).
     static FORK: Mutex<()> = Mutex::new(());
     let _one_at_a_time = FORK.lock().unwrap();
@@ -65,6 +74,7 @@ fn spawn_in(rec: &std::path::Path, cwd: &std::path::Path) -> Option<(Reap, Pty, 
     // Never the user's configuration.
     cmd.env("XDG_CONFIG_HOME", "/nonexistent/turntable-tests/config")
         .args(["--record", rec.to_str().unwrap()])
+        .args(args)
         .current_dir(cwd);
     common::on_pty(&mut cmd, slave);
     let child = cmd.spawn().unwrap();
@@ -366,4 +376,47 @@ fn a_recording_never_replaces_a_file_made_during_the_session() {
         contains(&seen, 0, b"turntable-scene-2.toml")
     });
     std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// Plain mode (`--plain`, issue 22 item 6) on a real terminal: lines of text and not one
+/// escape sequence, raw keys (one key, no Enter), each change of state said as time plays, the
+/// terminal cooked again after SIGTERM; and its recording, replayed with `--plain`, says
+/// exactly what the session said.
+#[test]
+fn plain_mode_writes_lines_and_gives_the_terminal_back() {
+    let path = rec("plain");
+    let Some((mut child, pty, seen)) = spawn_with(&path, &std::env::temp_dir(), &["--plain"])
+    else {
+        return;
+    };
+    wait_for("the opening", || {
+        contains(&seen, 0, "slipping\r\n".as_bytes())
+    });
+    assert!(!cooked(pty.fd));
+    // C plays from the start and stops at τ = 5.602, about 3.7 s later at 1.5 τ a second.
+    wait_for("the stop", || {
+        contains(&seen, 0, "stuck at ξ = 0.9972 (τ = 5.602)\r\n".as_bytes())
+    });
+    pty.type_keys(b"I");
+    wait_for("the readouts", || {
+        contains(&seen, 0, "readouts at τ = ".as_bytes())
+    });
+    wait_for("the last readout", || {
+        contains(&seen, 0, "speed ×1 ▶\r\n".as_bytes())
+    });
+    // SAFETY: a signal to our child.
+    unsafe { libc::kill(child.id() as i32, libc::SIGTERM) };
+    wait_for("the process to end", || child.try_wait().unwrap().is_some());
+    assert_eq!(child.wait().unwrap().code(), Some(143));
+    assert!(cooked(pty.fd), "the terminal is given back cooked");
+    let said = String::from_utf8(seen.lock().unwrap().clone()).unwrap();
+    assert!(!said.contains('\x1b'), "an escape sequence in {said:?}");
+    let said = said.replace("\r\n", "\n");
+    let said = said.trim_end_matches("turntable: ended by signal 15\n");
+    let out = Command::new(env!("CARGO_BIN_EXE_turntable"))
+        .args(["replay", "--plain", path.to_str().unwrap()])
+        .output()
+        .unwrap();
+    let _ = std::fs::remove_file(&path);
+    assert_eq!(String::from_utf8(out.stdout).unwrap(), said);
 }

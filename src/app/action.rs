@@ -59,6 +59,8 @@ pub enum Action {
     /// Write the page on screen as SVG to a new file.
     ExportSvg,
     ToggleMouse,
+    /// The readouts in words: a notice in the explorer, every readout line in plain mode.
+    Readouts,
     /// Mouse: the release point here (model coordinates, as the canvas maps the click).
     PlaceRelease(glam::DVec2),
     /// Mouse drag: the initial velocity points from the release point to here.
@@ -139,7 +141,7 @@ impl Action {
             | Pan(..) | ResetView | TauWindow(_) | NextPage | PrevPage | Choose | Omega(_)
             | R0c(_) | Unit(..) | UnitsOff | PinRun | ClearPins => Group::View,
             Quit | Dismiss | ToggleHelp | HelpScroll(_) | HelpPage(_) | Save | SaveAs | Name(_)
-            | ExportSvg | ToggleMouse => Group::App,
+            | ExportSvg | ToggleMouse | Readouts => Group::App,
             Answer(_) | GoOn => Group::Lesson,
         }
     }

@@ -140,6 +140,7 @@ pub const KEYMAP: &[Binding] = &[
     b(ch('S'), N, Action::SaveAs, "save scene as… (name, Enter)", "app"),
     b(ch('E'), N, Action::ExportSvg, "page as SVG (new file)", "app"),
     b(ch('M'), N, Action::ToggleMouse, "mouse capture on/off", "app"),
+    b(ch('I'), N, Action::Readouts, "readouts in words", "app"),
     b(ch('q'), N, Action::Quit, "quit", "app"),
     b(KeyCode::Esc, N, Action::Dismiss, "close help / notice", "app"),
     b(ch('c'), C, Action::Quit, "quit", "app"),

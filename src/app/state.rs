@@ -105,6 +105,8 @@ pub struct App {
     pub pan: glam::DVec2,
     pub mouse: bool,
     pub notice: Option<String>,
+    /// How many times the readouts were asked for in words (`I`): plain mode prints them.
+    pub readouts_asked: u64,
     /// The name being typed at the save prompt (`S`), while it is open.
     pub naming: Option<String>,
     pub save_path: PathBuf,
@@ -180,6 +182,7 @@ impl App {
             pan: glam::DVec2::ZERO,
             mouse: true,
             notice: None,
+            readouts_asked: 0,
             save_path: PathBuf::from(SAVE_PATH),
             writes_files: true,
             naming: None,

@@ -40,6 +40,12 @@ pub struct Cli {
     /// written when the explorer exits; `turntable replay FILE` shows the same screens.
     #[arg(long, value_name = "FILE")]
     pub record: Option<PathBuf>,
+    /// Plain mode for screen readers: no canvas, no cursor movement, no colour; lines of text
+    /// on stdout (the release, each change of state as it happens, notices, the readouts on
+    /// `I`, the keys on `?`), keys as in the explorer. Works with TERM=dumb and with stdout
+    /// piped (`| tee log`).
+    #[arg(long)]
+    pub plain: bool,
     #[command(flatten)]
     pub units: UnitsArgs,
     #[command(flatten)]

@@ -25,6 +25,10 @@ pub struct LessonArgs {
     /// With --headless: style the snapshots with ANSI colour escape sequences.
     #[arg(long, requires = "headless")]
     pub ansi: bool,
+    /// Plain mode for screen readers: lines of text, not a canvas (see `turntable --help`);
+    /// with --headless, the lines instead of snapshots.
+    #[arg(long, conflicts_with = "ansi")]
+    pub plain: bool,
     /// Colour theme: dark, light, high-contrast, mono, or a .toml file.
     #[arg(long, value_name = "NAME|PATH")]
     pub theme: Option<String>,
@@ -58,7 +62,7 @@ pub fn run(a: &LessonArgs) -> Result<Option<(Look, Driver)>, Error> {
         scene: None,
         theme: a.theme.clone(),
     };
-    let (app, opts, steps) = prepared(lesson, a.size, a.ansi, &look)?;
+    let (app, opts, steps) = prepared(lesson, a.size, a.ansi, a.plain, &look)?;
     if !a.headless {
         return Ok(Some((look, Driver::new(lesson.name, steps))));
     }
@@ -69,7 +73,7 @@ pub fn run(a: &LessonArgs) -> Result<Option<(Look, Driver)>, Error> {
 
 /// What `lesson NAME --headless` prints, at `size` (default the lesson's own).
 pub fn headless(lesson: Lesson, size: Option<(u16, u16)>) -> Result<String, Error> {
-    let (app, opts, steps) = prepared(lesson, size, false, &Look::default())?;
+    let (app, opts, steps) = prepared(lesson, size, false, false, &Look::default())?;
     Ok(crate::replay::replay(app, &steps, &opts))
 }
 
@@ -78,6 +82,7 @@ fn prepared(
     lesson: Lesson,
     size: Option<(u16, u16)>,
     ansi: bool,
+    plain: bool,
     look: &Look,
 ) -> Result<
     (
@@ -91,6 +96,7 @@ fn prepared(
         script: format!("lesson {}", lesson.name),
         size,
         ansi,
+        plain,
         look: look.clone(),
         asciicast: None,
     };

@@ -81,6 +81,7 @@ fn explore(
     cli: &Cli,
     look: &Look,
     lesson: Option<crate::lesson::Driver>,
+    plain: bool,
 ) -> Result<Option<i32>, Error> {
     let config_dir = config::dir(|v| std::env::var_os(v));
     let config = match &config_dir {
@@ -131,7 +132,7 @@ fn explore(
             .with_marker(marker.marker());
     let units = cli.units.units()?;
     let scene_ref = look.scene.as_deref().map(scene_reference);
-    if term.as_deref() == Some("dumb") {
+    if term.as_deref() == Some("dumb") && !plain {
         return Err(Error::Invalid(
             "TERM=dumb cannot show the explorer (it needs cursor movement); set TERM to your terminal's type (e.g. xterm), or use `turntable replay SCRIPT` or a subcommand".into(),
         ));
@@ -145,7 +146,14 @@ fn explore(
         None => None,
     };
     use std::io::IsTerminal;
-    if !(std::io::stdin().is_terminal() && std::io::stdout().is_terminal()) {
+    if plain {
+        // Plain mode writes lines: its output may go to a pipe or a file, its keys may not.
+        if !std::io::stdin().is_terminal() {
+            return Err(Error::Invalid(
+                "plain mode reads keys from a terminal (stdin must be a tty); headless, use `turntable replay --plain SCRIPT`".into(),
+            ));
+        }
+    } else if !(std::io::stdin().is_terminal() && std::io::stdout().is_terminal()) {
         return Err(Error::Invalid(
             "the explorer needs a terminal (stdin and stdout must be a tty); headless, use `turntable replay SCRIPT` or a subcommand (see --help)".into(),
         ));
@@ -168,7 +176,11 @@ fn explore(
         }) as crate::terminal::SaveRecording
     });
     let fps = cli.fps.or(config.fps).unwrap_or(30);
-    let (result, script) = crate::terminal::run(app, fps, save, lesson);
+    let (result, script) = if plain {
+        crate::terminal::plain::run(app, save, lesson)
+    } else {
+        crate::terminal::run(app, fps, save, lesson)
+    };
     if let (Some(r), Some(script)) = (recording, script) {
         let saved = r
             .save(script)
@@ -304,12 +316,12 @@ fn signalled(n: i32) -> ExitCode {
 pub fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
-        None => match explore(&cli, &cli.look, None) {
+        None => match explore(&cli, &cli.look, None, cli.plain) {
             Ok(Some(n)) => return signalled(n),
             r => r.map(|_| ()),
         },
         Some(Command::Lesson(ref a)) => match lesson::run(a) {
-            Ok(Some((look, driver))) => match explore(&cli, &look, Some(driver)) {
+            Ok(Some((look, driver))) => match explore(&cli, &look, Some(driver), a.plain) {
                 Ok(Some(n)) => return signalled(n),
                 r => r.map(|_| ()),
             },

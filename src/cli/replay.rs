@@ -17,6 +17,10 @@ pub struct ReplayArgs {
     /// Style the snapshots with ANSI colour escape sequences.
     #[arg(long)]
     pub ansi: bool,
+    /// Print what plain mode (`turntable --plain`) says, line by line, instead of screens; a
+    /// snapshot prints the readouts.
+    #[arg(long, conflicts_with_all = ["ansi", "asciicast"])]
+    pub plain: bool,
     #[command(flatten)]
     pub look: super::Look,
     /// Also record the replay as an asciicast v2 file (asciinema's player plays it at the
@@ -80,7 +84,8 @@ pub fn prepare(
     app.writes_files = false;
     let opts = Options {
         size: a.size.or(own.size).unwrap_or(crate::replay::DEFAULT_SIZE),
-        ansi: a.ansi || own.ansi,
+        ansi: (a.ansi || own.ansi) && !a.plain,
+        plain: a.plain,
     };
     Ok((app, opts, steps))
 }

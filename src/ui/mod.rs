@@ -10,6 +10,7 @@ pub mod help;
 pub mod layout;
 pub mod pages;
 pub mod panel;
+pub mod plain;
 pub mod time_plots;
 
 use crate::app::{App, CanvasGeom};

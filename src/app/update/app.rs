@@ -44,6 +44,10 @@ pub(super) fn apply(app: &mut App, action: Action) {
                 .into(),
             );
         }
+        Action::Readouts => {
+            app.readouts_asked += 1;
+            app.notice = Some(crate::ui::plain::summary(app));
+        }
         // Other groups' actions: `update` never sends them here.
         _ => {}
     }

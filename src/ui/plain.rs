@@ -1,0 +1,291 @@
+//! Plain mode (`--plain`): the explorer's state described in lines of text for a screen
+//! reader, not drawn. Another renderer of the same [`App`]: [`Seen::of`] reads what a listener
+//! needs from the state, and [`describe`] says in words what changed between two of them — the
+//! release, each change of state as the run on screen reaches it, notices, the help, and the
+//! readouts when asked (`I`). Pure: the same keys and ticks give the same lines.
+
+use crate::app::App;
+use crate::app::lesson::Prompt;
+use crate::app::pages::Page;
+use crate::engine::model::turn_angle;
+use crate::engine::{Frame, Outcome, Release, Status};
+use crate::sim::Sim;
+use crate::ui::panel::{num, speed};
+use std::f64::consts::PI;
+
+/// What plain mode says about an [`App`], compared from one moment to the next.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Seen {
+    release: String,
+    /// At τ = 0 with nothing played yet (a restart shows as a return to this).
+    fresh: bool,
+    status: String,
+    /// The paper's comparison run's status, while comparing.
+    paper: Option<String>,
+    tau: f64,
+    playing: bool,
+    speed: f64,
+    frame: Frame,
+    forces: bool,
+    page: Page,
+    help: bool,
+    notice: Option<String>,
+    naming: Option<String>,
+    caption: Option<String>,
+    prompt: Option<&'static str>,
+    readouts_asked: u64,
+    readouts: Vec<String>,
+}
+
+impl Seen {
+    pub fn of(app: &App) -> Seen {
+        let caption = app.caption();
+        Seen {
+            release: release(app),
+            fresh: app.sim.samples.len() == 1 && app.sim.cursor == 0,
+            status: status(&app.sim),
+            paper: app.paper.as_ref().map(status),
+            tau: app.now().tau,
+            playing: app.playing,
+            speed: app.speed,
+            frame: app.view,
+            forces: app.forces,
+            page: app.page,
+            help: app.help,
+            notice: app.notice.clone(),
+            naming: app.naming.clone(),
+            caption: caption.as_ref().map(|c| c.text.clone()),
+            prompt: match app.lesson.prompt() {
+                Prompt::Answer => Some("answer y or n"),
+                Prompt::GoOn => Some("Space or Enter goes on"),
+                Prompt::None if app.lesson.done && app.lesson.name.is_some() => {
+                    Some("end of the lesson; q quits")
+                }
+                Prompt::None => None,
+            },
+            readouts_asked: app.readouts_asked,
+            readouts: readouts(app),
+        }
+    }
+}
+
+/// The first lines: how to use plain mode, the scene, its release and how the run stands.
+pub fn opening(app: &App) -> Vec<String> {
+    let now = Seen::of(app);
+    let mut out = vec![
+        "turntable, plain mode: ? lists the keys, I reads the readouts, Space plays and pauses, q quits".to_string(),
+        format!("scene {}: {}", app.scene.name, app.scene.about),
+        now.release.clone(),
+        now.status.clone(),
+    ];
+    out.extend(now.paper.iter().map(|p| format!("paper's RK2: {p}")));
+    out.extend(now.caption.iter().flat_map(|c| c.lines().map(String::from)));
+    out.extend(now.prompt.map(String::from));
+    out
+}
+
+/// What changed from `was` to `now`, in lines (none when nothing a listener needs changed:
+/// time playing on says nothing until the run's state changes).
+pub fn describe(was: &Seen, now: &Seen) -> Vec<String> {
+    let mut out = Vec::new();
+    let tau = num(now.tau, 3);
+    let released = now.release != was.release;
+    let restarted = released || (now.fresh && !was.fresh);
+    if released {
+        out.push(now.release.clone());
+    } else if restarted {
+        out.push("restart at τ = 0".into());
+    }
+    if now.playing != was.playing {
+        out.push(if now.playing {
+            format!("playing from τ = {tau}")
+        } else {
+            format!("paused at τ = {tau}")
+        });
+    } else if !now.playing && !restarted && now.tau != was.tau {
+        // Stepped while paused: where it stands now.
+        out.push(format!("τ = {tau}"));
+    }
+    if restarted || now.status != was.status {
+        out.push(now.status.clone());
+    }
+    match (&was.paper, &now.paper) {
+        (None, Some(p)) => {
+            out.push("compare on: the paper's RK2 (rk2-raw, dt = 1e-3, no stick event) from the same release".into());
+            out.push(format!("paper's RK2: {p}"));
+        }
+        (Some(_), None) => out.push("compare off".into()),
+        (Some(a), Some(b)) if a != b || restarted => out.push(format!("paper's RK2: {b}")),
+        _ => {}
+    }
+    if now.speed != was.speed {
+        out.push(format!("speed ×{}", crate::ui::panel::fmt_speed(now.speed)));
+    }
+    if now.frame != was.frame {
+        out.push(match now.frame {
+            Frame::Lab => "frame: lab".into(),
+            Frame::Table => "frame: rotating (readouts in the table frame)".into(),
+        });
+    }
+    if now.forces != was.forces {
+        out.push(if now.forces {
+            "forces on: the readouts name them".into()
+        } else {
+            "forces off".into()
+        });
+    }
+    if now.page != was.page {
+        out.push(format!(
+            "page: {} (drawn in the explorer only; the readouts stay)",
+            now.page.title()
+        ));
+    }
+    if now.help != was.help {
+        if now.help {
+            out.extend(help());
+        } else {
+            out.push("help closed".into());
+        }
+    }
+    match (&was.naming, &now.naming) {
+        (None, Some(_)) => out.push("save as: type a name, Enter saves, Esc cancels".into()),
+        (Some(a), Some(b)) if a != b => out.push(format!("name: {b}")),
+        _ => {}
+    }
+    if now.readouts_asked != was.readouts_asked {
+        // Asked for: every readout, not the one-line notice the explorer shows.
+        out.push(format!("readouts at τ = {tau}:"));
+        out.extend(now.readouts.iter().cloned());
+    } else if now.notice != was.notice
+        && let Some(n) = &now.notice
+    {
+        out.push(n.clone());
+    }
+    if now.caption != was.caption
+        && let Some(c) = &now.caption
+    {
+        // A verdict added under a question: only the new words.
+        let new = match &was.caption {
+            Some(w) if c.starts_with(w.as_str()) => &c[w.len()..],
+            _ => c.as_str(),
+        };
+        out.extend(
+            new.lines()
+                .filter(|l| !l.trim().is_empty())
+                .map(String::from),
+        );
+    }
+    if now.prompt != was.prompt
+        && let Some(p) = now.prompt
+    {
+        out.push(p.into());
+    }
+    out
+}
+
+/// The release in words: scene, ξ0, φ, v0, how it is released, the method.
+fn release(app: &App) -> String {
+    let i = &app.initial;
+    let edited = if app.edited() { " (edited)" } else { "" };
+    let start = match i.release {
+        Release::Velocity => format!(
+            "ξ0 = {}, φ = {}π, v0 = {} relative to the table",
+            num(i.xi0, 3),
+            num(turn_angle(i.phi) / PI, 2),
+            speed(i.v0)
+        ),
+        Release::TableRest => format!("ξ0 = {}, at rest on the table", num(i.xi0, 3)),
+        Release::LabRest => format!("ξ0 = {}, at rest in the lab", num(i.xi0, 3)),
+    };
+    let how = if i.frictionless {
+        "μ = 0, in closed form".to_string()
+    } else if let Some(gamma) = app.settings.stokes() {
+        format!("Stokes drag γ = {}, in closed form", num(gamma, 4))
+    } else {
+        let hold = app.settings.hold();
+        let hold = if hold != 1.0 {
+            format!(", μs/μk = {}", num(hold, 4))
+        } else {
+            String::new()
+        };
+        format!(
+            "method {} {}{hold}",
+            app.settings.method(),
+            app.settings.accuracy_label()
+        )
+    };
+    format!("release: scene {}{edited}, {start}; {how}", app.scene.name)
+}
+
+/// How a run stands at the τ on screen, in words.
+fn status(sim: &Sim) -> String {
+    if sim.error.is_some() {
+        return "stopped: step budget or underflow".into();
+    }
+    let text = match sim.outcome_now() {
+        Outcome::Running => return "slipping".into(),
+        Outcome::Stuck => match sim.run.status() {
+            Status::Stuck { tau, q } => {
+                format!("stuck at ξ = {} (τ = {})", num(q.length(), 4), num(tau, 3))
+            }
+            Status::Slipping => "stuck".into(),
+        },
+        Outcome::Escaped => match sim.run.escape() {
+            Some(e) => format!("escaped (certified at τ = {})", num(e.tau, 3)),
+            None => "escaped".into(),
+        },
+    };
+    match sim.doubt {
+        Some(d) if !d.certain => format!("{text}, in doubt: the run's error could flip it"),
+        _ => text,
+    }
+}
+
+/// The readout panel's lines as text, one readout a line: a status the panel wraps under
+/// itself (a single indented span) is joined back into one line.
+fn readouts(app: &App) -> Vec<String> {
+    let mut out: Vec<String> = Vec::new();
+    for l in crate::ui::panel::lines(app) {
+        let text: String = l.spans.iter().map(|s| s.content.as_ref()).collect();
+        let wrapped = l.spans.len() == 1 && text.starts_with("  ");
+        // The panel pads keys into a column: one blank is enough to hear.
+        let text = text.split_whitespace().collect::<Vec<_>>().join(" ");
+        match out.last_mut() {
+            _ if text.is_empty() => {}
+            Some(last) if wrapped => {
+                last.push(' ');
+                last.push_str(&text);
+            }
+            _ => out.push(text),
+        }
+    }
+    out
+}
+
+/// The help as lines: every key of the keymap by group, as the explorer's `?` lists them.
+fn help() -> Vec<String> {
+    let mut out = vec!["keys (? again closes this list):".to_string()];
+    for (group, rows) in crate::ui::help::rows() {
+        if rows.is_empty() {
+            continue;
+        }
+        out.push(format!("{group}:"));
+        out.extend(
+            rows.into_iter()
+                .map(|(keys, help)| format!("  {keys}: {help}")),
+        );
+    }
+    out
+}
+
+/// The explorer's one-line answer to `I`: τ, ξ and how the run stands.
+pub fn summary(app: &App) -> String {
+    let s = app.now();
+    format!(
+        "τ = {}, ξ = {}, |u| = {}: {}",
+        num(s.tau, 3),
+        num(s.xi(), 5),
+        num(s.u().length(), 4),
+        status(&app.sim)
+    )
+}
