@@ -143,6 +143,29 @@ pub fn run(
     record: Option<SaveRecording>,
     lesson: Option<crate::lesson::Driver>,
 ) -> (io::Result<Option<i32>>, Option<String>) {
+    // The analysis pages fill in off this thread: keys never wait for them.
+    app.analysis = crate::analysis::Analysis::threaded();
+    let mouse = app.mouse_capture();
+    supervise(
+        record,
+        restore,
+        lesson,
+        |recorder| setup(mouse).and_then(|b| Session::new(app, b, recorder)),
+        |session, flags| event_loop(session, fps.clamp(1, 240), flags),
+    )
+}
+
+/// What every mode does around its event loop: watches terminating signals and a hung-up
+/// terminal (each restores the terminal with `restore` and saves the recording so far),
+/// `start`s its session with the recorder, feeds a lesson in, runs `event_loop`, and puts the
+/// terminal back. Returns the signal that ended it, if one did, and the recording.
+fn supervise<B: ratatui::backend::Backend>(
+    record: Option<SaveRecording>,
+    restore: fn(),
+    lesson: Option<crate::lesson::Driver>,
+    start: impl FnOnce(Option<SharedRecorder>) -> io::Result<Session<B>>,
+    event_loop: impl FnOnce(&mut Session<B>, &Flags) -> io::Result<()>,
+) -> (io::Result<Option<i32>>, Option<String>) {
     let flags = Arc::new(Flags::default());
     let finished = Arc::new(AtomicBool::new(false));
     let recorder = record.is_some().then(new_recorder);
@@ -156,10 +179,7 @@ pub fn run(
         return (Err(e), None);
     }
     watch_hangup(Arc::clone(&finished));
-    // The analysis pages fill in off this thread: keys never wait for them.
-    app.analysis = crate::analysis::Analysis::threaded();
-    let mouse = app.mouse_capture();
-    let mut session = match setup(mouse).and_then(|b| Session::new(app, b, recorder)) {
+    let mut session = match start(recorder) {
         Ok(s) => s,
         Err(e) => {
             restore();
@@ -169,7 +189,7 @@ pub fn run(
     if let Some(d) = lesson {
         session.start_lesson(d);
     }
-    let result = event_loop(&mut session, fps.clamp(1, 240), &flags);
+    let result = event_loop(&mut session, &flags);
     finished.store(true, Ordering::Relaxed);
     restore();
     (

@@ -5,16 +5,15 @@
 //! is restored on quit, panic and every terminating signal, as the explorer's is.
 
 use super::pace::Clock;
-use super::{Flags, Lost, SaveRecording, watch_hangup, watch_signals};
+use super::{Flags, SaveRecording};
 use crate::app::App;
-use crate::session::{Session, new_recorder};
+use crate::session::Session;
 use crate::ui::plain::{Seen, describe, opening};
 use crossterm::event::{self, Event, KeyCode, KeyModifiers};
 use crossterm::terminal::{disable_raw_mode, enable_raw_mode};
 use ratatui::backend::TestBackend;
 use std::io::{self, Write};
-use std::sync::Arc;
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::Ordering;
 use std::time::{Duration, Instant};
 
 /// Puts the terminal back as it was: only the mode, as plain mode changed nothing else (and
@@ -45,42 +44,18 @@ pub fn run(
     record: Option<SaveRecording>,
     lesson: Option<crate::lesson::Driver>,
 ) -> (io::Result<Option<i32>>, Option<String>) {
-    let flags = Arc::new(Flags::default());
-    let finished = Arc::new(AtomicBool::new(false));
-    let recorder = record.is_some().then(new_recorder);
-    let lost = Lost {
-        finished: Arc::clone(&finished),
-        recorder: recorder.clone(),
-        save: record,
+    super::supervise(
+        record,
         restore,
-    };
-    if let Err(e) = watch_signals(Arc::clone(&flags), lost) {
-        return (Err(e), None);
-    }
-    watch_hangup(Arc::clone(&finished));
-    super::restore_on_panic(restore);
-    let (w, h) = crossterm::terminal::size().unwrap_or(crate::replay::DEFAULT_SIZE);
-    let session = enter()
-        .and_then(|()| Session::new(app, TestBackend::new(w, h), recorder).map_err(|e| match e {}));
-    let mut session = match session {
-        Ok(s) => s,
-        Err(e) => {
-            restore();
-            return (Err(e), None);
-        }
-    };
-    if let Some(d) = lesson {
-        session.start_lesson(d);
-    }
-    let result = event_loop(&mut session, &flags);
-    finished.store(true, Ordering::Relaxed);
-    restore();
-    (
-        result.map(|()| match flags.signal.load(Ordering::Relaxed) {
-            0 => None,
-            n => Some(n),
-        }),
-        session.take_recording(),
+        lesson,
+        |recorder| {
+            super::restore_on_panic(restore);
+            let (w, h) = crossterm::terminal::size().unwrap_or(crate::replay::DEFAULT_SIZE);
+            enter().and_then(|()| {
+                Session::new(app, TestBackend::new(w, h), recorder).map_err(|e| match e {})
+            })
+        },
+        event_loop,
     )
 }
 
