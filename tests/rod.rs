@@ -91,6 +91,52 @@ fn energy_never_rises() {
     }
 }
 
+/// The property test's two counterexamples (throws, μ_s = μ_k): a contact stopping with a
+/// residual slip u_k below the floor had u_k dropped from the centre's velocity at fixed ψ′,
+/// which raised the energy by ½|u_k|² − u·u_k, 1.6e-8 and 1.3e-8 here. The stop is now a
+/// plastic impulse at that contact, which never adds energy.
+#[test]
+fn a_contacts_stop_takes_out_its_slip_without_adding_energy() {
+    for (l, angle, xi0, phi, v0) in [
+        (
+            0.39831302616876335,
+            1.5936601444069711,
+            0.356507602888581,
+            3.328427365917105,
+            0.34545127288935756,
+        ),
+        (
+            0.5098494369729082,
+            2.169126636414347,
+            0.9776794089108267,
+            4.076146823614127,
+            1.21049169046518,
+        ),
+    ] {
+        let initial = Initial::velocity(xi0, phi, v0);
+        let mut run = RodRun::new(body(l, angle), 1.0, &initial, 1e-10).unwrap();
+        let mut last = f64::INFINITY;
+        let mut worst: f64 = f64::NEG_INFINITY;
+        let mut pivoted = false;
+        let end = run
+            .finish(20.0, |s| {
+                let e = s.energy(l);
+                worst = worst.max(e - last);
+                last = e;
+            })
+            .unwrap();
+        // Both cases pivot about a stopped contact before they rest, the path that rose.
+        let mut again = RodRun::new(body(l, angle), 1.0, &initial, 1e-10).unwrap();
+        while again.step(20.0).unwrap() == Outcome::Running {
+            pivoted |= matches!(again.phase, Phase::Pivot { .. });
+        }
+        eprintln!("L {l}: {end:?} worst rise {worst:e}");
+        assert_eq!(end, Outcome::Stuck);
+        assert!(pivoted, "L {l}: no pivot");
+        assert!(worst <= 100.0 * 1e-10, "L {l}: energy rose by {worst:e}");
+    }
+}
+
 /// Both contacts stuck, the rod's axial force can share the load exactly when the centre
 /// could hold as a point, |q| ≤ μ_s/μ_k, whatever the length and angle.
 #[test]
@@ -120,9 +166,11 @@ mod prop {
 
     proptest! {
         // A fixed seed, as in proptests.rs: CI sees the same 256 cases every run. (Unseeded,
-        // about one run in fifteen found a case where the energy rose by 1.3e-8 to 1.6e-8 in
-        // a step, above this slack: e.g. l 0.398, angle 1.594, xi0 0.3565, phi 3.328,
-        // v0 0.3455, a throw. Left open: see the closing note of the session.)
+        // it once found rises of 1.3e-8 to 1.6e-8 at a contact's stop, now fixed: see
+        // `a_contacts_stop_takes_out_its_slip_without_adding_energy`. About one unseeded run
+        // in forty still fails otherwise: a contact whose slip falls below the stop floor but
+        // cannot hold, |need| just above ½μ_s/μ_k, chatters at ~5e-10 slip until the step
+        // budget runs out. Left open.)
         #![proptest_config(ProptestConfig {
             cases: 256,
             failure_persistence: None,

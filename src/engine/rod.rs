@@ -105,6 +105,17 @@ fn pivot_need(l: f64, i: usize, anchor: DVec2, psi: f64, w: f64) -> DVec2 {
     e * n - anchor * 0.5
 }
 
+/// The rod's rate once contact `k`'s residual slip u_k (below the stop floor) is taken out by
+/// a plastic impulse P at that contact: Δu = P, Δψ′ = 2 s (ê⊥·P)/L, so Δu_k = (1 + ê⊥ê⊥ᵀ) P
+/// and P = −(ê êᵀ + ½ ê⊥ê⊥ᵀ) u_k. Kinetic energy changes by −½ u_kᵀ(ê êᵀ + ½ ê⊥ê⊥ᵀ) u_k ≤ 0;
+/// simply dropping u_k from u (keeping ψ′) changes it by ½|u_k|² − u·u_k, which rises by up
+/// to |u||u_k| ~ 10⁻⁸ at tol 10⁻¹⁰.
+fn stop_contact(l: f64, k: usize, s: &RodState) -> f64 {
+    let ep = axis(s.psi).perp();
+    let uk = s.slips(l)[k];
+    s.w - S[k] * ep.dot(uk) / l
+}
+
 /// The right-hand side in `phase`.
 fn rhs(l: f64, phase: Phase, fallback: [DVec2; 2], y: V) -> V {
     let st = RodState::from(0.0, y);
@@ -414,14 +425,15 @@ impl RodRun {
                 }
                 let anchor = s.contacts(l)[k];
                 if pivot_need(l, k, anchor, s.psi, s.w).length() <= 0.5 * self.hold {
+                    let w = stop_contact(l, k, &s);
                     self.phase = Phase::Pivot {
                         i: k,
                         anchor,
-                        sign: s.w.signum(),
+                        sign: w.signum(),
                     };
                     let ep = axis(s.psi).perp();
-                    self.state.q = anchor - axis(s.psi) * (S[k] * 0.5 * l);
-                    self.state.u = -ep * (S[k] * 0.5 * l * s.w);
+                    self.state.w = w;
+                    self.state.u = -ep * (S[k] * 0.5 * l * w);
                 }
             }
             Phase::Pivot { i, anchor, .. } => {
