@@ -18,10 +18,7 @@ use super::body::Body;
 use super::error::Error;
 use super::model::{Initial, Release};
 use super::run::Outcome;
-use super::stepper::{
-    A21, A31, A32, A41, A42, A43, A51, A52, A53, A54, A61, A62, A63, A64, A65, A71, A73, A74, A75,
-    A76, E1, E3, E4, E5, E6, E7,
-};
+use super::stepper::dp5_stages;
 use glam::DVec2;
 
 /// The body at time τ in the table frame: centre q, its velocity u, the rod's angle ψ and its
@@ -51,7 +48,30 @@ pub enum Phase {
 /// The side of each contact: contact i sits at q + S[i] (L/2) ê.
 const S: [f64; 2] = [1.0, -1.0];
 
-type V = [f64; 6];
+/// The body's state as DOPRI5 steps it: q, u, ψ, ψ′.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct V([f64; 6]);
+
+impl std::ops::Index<usize> for V {
+    type Output = f64;
+    fn index(&self, j: usize) -> &f64 {
+        &self.0[j]
+    }
+}
+
+impl std::ops::Add for V {
+    type Output = V;
+    fn add(self, o: V) -> V {
+        V(std::array::from_fn(|j| self.0[j] + o.0[j]))
+    }
+}
+
+impl std::ops::Mul<f64> for V {
+    type Output = V;
+    fn mul(self, c: f64) -> V {
+        V(self.0.map(|x| x * c))
+    }
+}
 
 fn axis(psi: f64) -> DVec2 {
     DVec2::from_angle(psi)
@@ -59,7 +79,7 @@ fn axis(psi: f64) -> DVec2 {
 
 impl RodState {
     fn y(&self) -> V {
-        [self.q.x, self.q.y, self.u.x, self.u.y, self.psi, self.w]
+        V([self.q.x, self.q.y, self.u.x, self.u.y, self.psi, self.w])
     }
     fn from(tau: f64, y: V) -> RodState {
         RodState {
@@ -126,71 +146,26 @@ fn rhs(l: f64, phase: Phase, fallback: [DVec2; 2], y: V) -> V {
             let (d1, d2) = (dir(u1, fallback[0]), dir(u2, fallback[1]));
             let du = -2.0 * st.u.perp() + st.q - (d1 + d2) * 0.5;
             let dw = -(e.perp_dot(d1) - e.perp_dot(d2)) / l;
-            [st.u.x, st.u.y, du.x, du.y, st.w, dw]
+            V([st.u.x, st.u.y, du.x, du.y, st.w, dw])
         }
         Phase::Pivot { i, anchor, sign } => {
             let s = S[i];
             let dw = -(s * anchor.dot(ep) + sign) / l;
             let u = -ep * (s * 0.5 * l * st.w);
             let du = -(ep * dw - e * (st.w * st.w)) * (s * 0.5 * l);
-            [u.x, u.y, du.x, du.y, st.w, dw]
+            V([u.x, u.y, du.x, du.y, st.w, dw])
         }
-        Phase::Rest => [0.0; 6],
+        Phase::Rest => V([0.0; 6]),
     }
 }
 
-fn add(y: V, k: &[(f64, &V)]) -> V {
-    let mut out = y;
-    for (c, kk) in k {
-        for j in 0..6 {
-            out[j] += c * kk[j];
-        }
-    }
-    out
-}
-
-/// One Dormand–Prince 5(4) step (the tableau of `stepper`): the new point and the error
-/// estimate scaled by the tolerance (≤ 1: accept).
+/// One Dormand–Prince 5(4) step (`stepper`'s stages): the new point and the error estimate
+/// scaled by the tolerance (≤ 1: accept).
 fn dp54(f: impl Fn(V) -> V, y: V, h: f64, tol: f64) -> (V, f64) {
-    let k1 = f(y);
-    let k2 = f(add(y, &[(h * A21, &k1)]));
-    let k3 = f(add(y, &[(h * A31, &k1), (h * A32, &k2)]));
-    let k4 = f(add(y, &[(h * A41, &k1), (h * A42, &k2), (h * A43, &k3)]));
-    let k5 = f(add(
-        y,
-        &[
-            (h * A51, &k1),
-            (h * A52, &k2),
-            (h * A53, &k3),
-            (h * A54, &k4),
-        ],
-    ));
-    let k6 = f(add(
-        y,
-        &[
-            (h * A61, &k1),
-            (h * A62, &k2),
-            (h * A63, &k3),
-            (h * A64, &k4),
-            (h * A65, &k5),
-        ],
-    ));
-    let y1 = add(
-        y,
-        &[
-            (h * A71, &k1),
-            (h * A73, &k3),
-            (h * A74, &k4),
-            (h * A75, &k5),
-            (h * A76, &k6),
-        ],
-    );
-    let k7 = f(y1);
-    let mut err: f64 = 0.0;
-    for j in 0..6 {
-        let e = h * (E1 * k1[j] + E3 * k3[j] + E4 * k4[j] + E5 * k5[j] + E6 * k6[j] + E7 * k7[j]);
-        err = err.max((e / (tol * (1.0 + y[j].abs().max(y1[j].abs())))).abs());
-    }
+    let (y1, _, e) = dp5_stages(&f, y, f(y), h);
+    let err = (0..6)
+        .map(|j| (e[j] / (tol * (1.0 + y[j].abs().max(y1[j].abs())))).abs())
+        .fold(0.0, f64::max);
     (y1, err)
 }
 

@@ -79,32 +79,32 @@ fn fixed_step(rk: FixedRk, rhs: impl Fn(Y) -> Y, y: Y, f0: Y, h: f64, evals: &mu
 }
 
 // Dormand–Prince 5(4) tableau (Hairer's DOPRI5).
-pub(super) const A21: f64 = 1.0 / 5.0;
-pub(super) const A31: f64 = 3.0 / 40.0;
-pub(super) const A32: f64 = 9.0 / 40.0;
-pub(super) const A41: f64 = 44.0 / 45.0;
-pub(super) const A42: f64 = -56.0 / 15.0;
-pub(super) const A43: f64 = 32.0 / 9.0;
-pub(super) const A51: f64 = 19372.0 / 6561.0;
-pub(super) const A52: f64 = -25360.0 / 2187.0;
-pub(super) const A53: f64 = 64448.0 / 6561.0;
-pub(super) const A54: f64 = -212.0 / 729.0;
-pub(super) const A61: f64 = 9017.0 / 3168.0;
-pub(super) const A62: f64 = -355.0 / 33.0;
-pub(super) const A63: f64 = 46732.0 / 5247.0;
-pub(super) const A64: f64 = 49.0 / 176.0;
-pub(super) const A65: f64 = -5103.0 / 18656.0;
-pub(super) const A71: f64 = 35.0 / 384.0;
-pub(super) const A73: f64 = 500.0 / 1113.0;
-pub(super) const A74: f64 = 125.0 / 192.0;
-pub(super) const A75: f64 = -2187.0 / 6784.0;
-pub(super) const A76: f64 = 11.0 / 84.0;
-pub(super) const E1: f64 = 71.0 / 57600.0;
-pub(super) const E3: f64 = -71.0 / 16695.0;
-pub(super) const E4: f64 = 71.0 / 1920.0;
-pub(super) const E5: f64 = -17253.0 / 339200.0;
-pub(super) const E6: f64 = 22.0 / 525.0;
-pub(super) const E7: f64 = -1.0 / 40.0;
+const A21: f64 = 1.0 / 5.0;
+const A31: f64 = 3.0 / 40.0;
+const A32: f64 = 9.0 / 40.0;
+const A41: f64 = 44.0 / 45.0;
+const A42: f64 = -56.0 / 15.0;
+const A43: f64 = 32.0 / 9.0;
+const A51: f64 = 19372.0 / 6561.0;
+const A52: f64 = -25360.0 / 2187.0;
+const A53: f64 = 64448.0 / 6561.0;
+const A54: f64 = -212.0 / 729.0;
+const A61: f64 = 9017.0 / 3168.0;
+const A62: f64 = -355.0 / 33.0;
+const A63: f64 = 46732.0 / 5247.0;
+const A64: f64 = 49.0 / 176.0;
+const A65: f64 = -5103.0 / 18656.0;
+const A71: f64 = 35.0 / 384.0;
+const A73: f64 = 500.0 / 1113.0;
+const A74: f64 = 125.0 / 192.0;
+const A75: f64 = -2187.0 / 6784.0;
+const A76: f64 = 11.0 / 84.0;
+const E1: f64 = 71.0 / 57600.0;
+const E3: f64 = -71.0 / 16695.0;
+const E4: f64 = 71.0 / 1920.0;
+const E5: f64 = -17253.0 / 339200.0;
+const E6: f64 = 22.0 / 525.0;
+const E7: f64 = -1.0 / 40.0;
 const D1: f64 = -12715105075.0 / 11282082432.0;
 const D3: f64 = 87487479700.0 / 32700410799.0;
 const D4: f64 = -10690763975.0 / 1880347072.0;
@@ -132,7 +132,17 @@ struct Dp5Trial {
     dense: Dense,
 }
 
-fn dp5_step(rhs: impl Fn(Y) -> Y, y: Y, k1: Y, h: f64, tol: f64) -> Dp5Trial {
+/// What DOPRI5's stages need of a state: sums and multiples. The point's [`Y`] and the
+/// appendix body's six components (`rod`) share one set of stages.
+pub(super) trait Linear:
+    Copy + std::ops::Add<Output = Self> + std::ops::Mul<f64, Output = Self>
+{
+}
+impl<V: Copy + std::ops::Add<Output = V> + std::ops::Mul<f64, Output = V>> Linear for V {}
+
+/// DOPRI5's stages from `y` with slope `k1` over `h`: the new point, the slopes k1…k7 (k7 at the
+/// new point, FSAL) and the embedded error estimate. Six new right-hand-side evaluations.
+pub(super) fn dp5_stages<V: Linear>(rhs: impl Fn(V) -> V, y: V, k1: V, h: f64) -> (V, [V; 7], V) {
     let k2 = rhs(y + k1 * (h * A21));
     let k3 = rhs(y + (k1 * A31 + k2 * A32) * h);
     let k4 = rhs(y + (k1 * A41 + k2 * A42 + k3 * A43) * h);
@@ -141,6 +151,11 @@ fn dp5_step(rhs: impl Fn(Y) -> Y, y: Y, k1: Y, h: f64, tol: f64) -> Dp5Trial {
     let y1 = y + (k1 * A71 + k3 * A73 + k4 * A74 + k5 * A75 + k6 * A76) * h;
     let k7 = rhs(y1);
     let e = (k1 * E1 + k3 * E3 + k4 * E4 + k5 * E5 + k6 * E6 + k7 * E7) * h;
+    (y1, [k1, k2, k3, k4, k5, k6, k7], e)
+}
+
+fn dp5_step(rhs: impl Fn(Y) -> Y, y: Y, k1: Y, h: f64, tol: f64) -> Dp5Trial {
+    let (y1, [_, _, k3, k4, k5, k6, k7], e) = dp5_stages(rhs, y, k1, h);
     let err = err_norm(y, y1, e, tol);
     let dy = y1 - y;
     let bspl = k1 * h - dy;
