@@ -9,7 +9,9 @@
 //! - one contact stuck at a (it holds while the friction it needs, |N ê − ½a| with the rod's
 //!   axial force N, is ≤ ½ μ_s/μ_k): the other pivots about it, ψ″ = −(s a·ê⊥ + sgn ψ′)/L;
 //! - both stuck: the body rides the table iff some axial force keeps both within their cones,
-//!   which works out to |q| ≤ μ_s/μ_k, the point's condition (Sec. II, property 1).
+//!   which works out to |q| ≤ μ_s/μ_k, the point's condition (Sec. II, property 1);
+//! - a contact breaking loose slips along the one direction its slip can grow in
+//!   ([`breakaway`]), taken as its friction's direction until its slip passes the stop floor.
 //!
 //! The Jacobi energy E = ½|u|² + (L²/8) ψ′² − ½|q|² falls at ½(|u₁| + |u₂|), so E < −½R²
 //! (R = μ_s/μ_k) certifies that the body never rests. As L → 0 it is the point.
@@ -136,14 +138,73 @@ fn stop_contact(l: f64, k: usize, s: &RodState) -> f64 {
     s.w - S[k] * ep.dot(uk) / l
 }
 
+/// The direction contact `i` slips in as it breaks loose, needing `need` (|need| > ½, more than
+/// kinetic friction can give): the one direction d along which its slip then grows, the
+/// Filippov-consistent start. Its slip accelerates as −M(need + ½d), M = 1 + ê⊥ê⊥ᵀ the
+/// contact's mobility (a force along the rod moves the whole mass, across it only the half at
+/// the contact, twice as fast), so d solves −M(need + ½d) = λd with λ > 0:
+/// d = −(nₑ/(λ + ½)) ê − (2n⊥/(λ + 1)) ê⊥, |d| = 1 fixing λ (the left side falls with λ from
+/// 4|need|² > 1 at λ = 0 to ≤ 1 at λ = 2|need|: one root, bisected). With μ_s = μ_k a contact
+/// breaks loose at |need| = ½, where λ = 0 and d = −need/|need|; with μ_s > μ_k it breaks at
+/// |need| = ½μ_s/μ_k, where −need is not consistent: its slip then turned back to zero step
+/// after step, which stalled the run at slips of ~1e-10 until its step budget ran out.
+fn breakaway(need: DVec2, psi: f64) -> DVec2 {
+    let (e, ep) = (axis(psi), axis(psi).perp());
+    let (ne, np) = (need.dot(e), need.dot(ep));
+    let d = |lam: f64| -e * (ne / (lam + 0.5)) - ep * (2.0 * np / (lam + 1.0));
+    let (mut lo, mut hi) = (0.0, 2.0 * need.length());
+    if d(lo).length_squared() <= 1.0 {
+        return -need.normalize_or_zero();
+    }
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if mid <= lo || mid >= hi {
+            break;
+        }
+        if d(mid).length_squared() > 1.0 {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    d(hi).normalize_or_zero()
+}
+
+/// How the sliding phase takes each contact's friction direction.
+#[derive(Clone, Copy, Debug)]
+struct Friction {
+    /// Where a contact's slip is zero: the direction it starts in.
+    fallback: [DVec2; 2],
+    /// Contacts breaking loose, whose slip has not yet grown past `floor`.
+    breaking: [bool; 2],
+    floor: f64,
+}
+
+impl Friction {
+    /// Contact `k`'s friction direction (friction is −½ of it): its slip's, except while it
+    /// breaks loose. Then its slip grows from zero as λτ d, and its direction relaxes to d at
+    /// a rate ~1/|u_k|: an explicit step from zero slip is unstable at any h when λ is small
+    /// (each stage's direction error grows ~1/λ). Below the floor the direction is therefore
+    /// taken as the consistent d itself, recomputed from the state (the quasi-static limit of
+    /// that fast relaxation; it lags by ~|u_k| ≤ the floor); above it, the slip's own.
+    fn dir(&self, l: f64, k: usize, st: &RodState, uk: DVec2) -> DVec2 {
+        if self.breaking[k] && uk.length() <= self.floor {
+            let need = pivot_need(l, k, st.contacts(l)[k], st.psi, st.w);
+            breakaway(need, st.psi)
+        } else {
+            dir(uk, self.fallback[k])
+        }
+    }
+}
+
 /// The right-hand side in `phase`.
-fn rhs(l: f64, phase: Phase, fallback: [DVec2; 2], y: V) -> V {
+fn rhs(l: f64, phase: Phase, friction: &Friction, y: V) -> V {
     let st = RodState::from(0.0, y);
     let (e, ep) = (axis(st.psi), axis(st.psi).perp());
     match phase {
         Phase::Slip => {
             let [u1, u2] = st.slips(l);
-            let (d1, d2) = (dir(u1, fallback[0]), dir(u2, fallback[1]));
+            let (d1, d2) = (friction.dir(l, 0, &st, u1), friction.dir(l, 1, &st, u2));
             let du = -2.0 * st.u.perp() + st.q - (d1 + d2) * 0.5;
             let dw = -(e.perp_dot(d1) - e.perp_dot(d2)) / l;
             V([st.u.x, st.u.y, du.x, du.y, st.w, dw])
@@ -179,6 +240,8 @@ pub struct RodRun {
     pub state: RodState,
     pub phase: Phase,
     fallback: [DVec2; 2],
+    /// Contacts breaking loose (see [`Friction::dir`]).
+    breaking: [bool; 2],
     h: f64,
     /// Steps attempted (accepted and rejected).
     pub steps: u64,
@@ -190,6 +253,16 @@ pub struct RodRun {
 /// a zero of |u_i| shrink with it, and below about 1e-11 their stages straddle the zero and
 /// stall. Snapping at |u_i| moves the rest point by about |u_i|²/2, ≤ 10⁻⁴ tol.
 const STOP_SCALE: f64 = 1e-2;
+
+/// …and a slip below 100 tol has stopped too: with steps of about tol, the stages' friction
+/// flips within a step and DOPRI5 has a spurious fixed point where the body creeps at a slip of
+/// about tol, every step accepted (at tol 1e-6, 700 000 steps at |u| = 1.03e-5 against a floor
+/// of 1.00e-5). This bound only bites above tol = 1e-8; the rest point then moves by ~10⁴ tol².
+const CHATTER: f64 = 100.0;
+
+/// …but never above 10⁻³ (tol ≥ 1e-5): a floor of 100 tol would stop every slip at once at
+/// tol 1e-2. There a loose run may creep at its chatter, and says so by not resting.
+const MAX_FLOOR: f64 = 1e-3;
 
 /// Steps a run may take.
 const MAX_STEPS: u64 = 5_000_000;
@@ -226,6 +299,7 @@ impl RodRun {
             state,
             phase: Phase::Slip,
             fallback: state.contacts(body.length),
+            breaking: [false; 2],
             h: 1e-3,
             steps: 0,
             evals: std::cell::Cell::new(0),
@@ -238,7 +312,8 @@ impl RodRun {
 
     /// The slip below which a contact has stopped.
     fn floor(&self) -> f64 {
-        STOP_SCALE * self.tol.sqrt() * (1.0 + self.state.u.length())
+        (STOP_SCALE * self.tol.sqrt()).max((CHATTER * self.tol).min(MAX_FLOOR))
+            * (1.0 + self.state.u.length())
     }
 
     /// Whether E < −½R² already certifies that the body never rests.
@@ -253,8 +328,13 @@ impl RodRun {
 
     fn step_from(&self, y: V, h: f64) -> (V, f64) {
         self.evals.set(self.evals.get() + 7);
-        let (l, phase, fb) = (self.l, self.phase, self.fallback);
-        dp54(|y| rhs(l, phase, fb, y), y, h, self.tol)
+        let (l, phase) = (self.l, self.phase);
+        let friction = Friction {
+            fallback: self.fallback,
+            breaking: self.breaking,
+            floor: self.floor(),
+        };
+        dp54(|y| rhs(l, phase, &friction, y), y, h, self.tol)
     }
 
     /// The state after `h` from the current one, re-placed on the pivot's circle when
@@ -343,6 +423,10 @@ impl RodRun {
                 .min_by(|&a, &b| self.locate(a, h).total_cmp(&self.locate(b, h)));
             match hit {
                 None => {
+                    let floor = self.floor();
+                    for (b, u) in self.breaking.iter_mut().zip(end.slips(self.l)) {
+                        *b &= u.length() <= floor;
+                    }
                     self.state = end;
                     self.h = h * grow;
                 }
@@ -399,16 +483,31 @@ impl RodRun {
                     return self.both_stop();
                 }
                 let anchor = s.contacts(l)[k];
-                if pivot_need(l, k, anchor, s.psi, s.w).length() <= 0.5 * self.hold {
-                    let w = stop_contact(l, k, &s);
+                let w = stop_contact(l, k, &s);
+                let need = pivot_need(l, k, anchor, s.psi, w);
+                let holds = need.length() <= 0.5 * self.hold;
+                // A contact that cannot hold and whose slip already grows is breaking loose:
+                // left alone. One whose slip shrinks would pass through zero (and turn back,
+                // step after step): it is stopped and set off along its consistent direction.
+                let ep = axis(s.psi).perp();
+                let mobility = |v: DVec2| v + ep * ep.dot(v);
+                let uk = s.slips(l)[k];
+                if !holds && uk.dot(-mobility(need + uk.normalize_or_zero() * 0.5)) > 0.0 {
+                    return;
+                }
+                self.state.w = w;
+                self.state.u = -ep * (S[k] * 0.5 * l * w);
+                if holds {
                     self.phase = Phase::Pivot {
                         i: k,
                         anchor,
                         sign: w.signum(),
                     };
-                    let ep = axis(s.psi).perp();
-                    self.state.w = w;
-                    self.state.u = -ep * (S[k] * 0.5 * l * w);
+                    self.breaking = [false; 2];
+                } else {
+                    self.fallback[k] = breakaway(need, s.psi);
+                    self.fallback[1 - k] = self.state.slips(l)[1 - k];
+                    self.breaking[k] = true;
                 }
             }
             Phase::Pivot { i, anchor, .. } => {
@@ -417,10 +516,11 @@ impl RodRun {
                     self.state.u = DVec2::ZERO;
                     self.both_stop();
                 } else {
-                    // The stuck contact breaks loose, pushed against the friction it needed.
+                    // The stuck contact breaks loose, along the one direction its slip can grow in.
                     let need = pivot_need(l, i, anchor, s.psi, s.w);
-                    self.fallback[i] = -need;
+                    self.fallback[i] = breakaway(need, s.psi);
                     self.fallback[1 - i] = s.slips(l)[1 - i];
+                    self.breaking = [i == 0, i == 1];
                     self.phase = Phase::Slip;
                 }
             }
@@ -432,6 +532,7 @@ impl RodRun {
     fn both_stop(&mut self) {
         self.state.u = DVec2::ZERO;
         self.state.w = 0.0;
+        self.breaking = [false; 2];
         if self.state.q.length() <= self.hold {
             self.phase = Phase::Rest;
         } else {
@@ -510,5 +611,35 @@ impl RodTrack {
             psi: a.psi + (b.psi - a.psi) * t,
             w: a.w + (b.w - a.w) * t,
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The break-away direction is the consistent one: the slip's acceleration −M(need + ½d)
+    /// lies along d, outward (λ > 0), wherever kinetic friction cannot hold (|need| > ½); at
+    /// |need| = ½ it is −need's direction, the μ_s = μ_k break.
+    #[test]
+    fn a_contact_breaks_loose_along_its_slip_s_acceleration() {
+        let mut worst: f64 = 0.0;
+        for i in 0..24 {
+            let psi = 0.27 * f64::from(i);
+            let ep = axis(psi).perp();
+            for j in 0..24 {
+                for size in [0.5 + 1e-9, 0.505, 0.55, 0.75, 1.5, 40.0] {
+                    let need = DVec2::from_angle(0.26 * f64::from(j)) * size;
+                    let d = breakaway(need, psi);
+                    let a = -(need + d * 0.5 + ep * ep.dot(need + d * 0.5));
+                    assert!((d.length() - 1.0).abs() < 1e-12);
+                    assert!(a.dot(d) > 0.0, "{need} {psi}: λ {}", a.dot(d));
+                    worst = worst.max(a.perp_dot(d).abs() / (1.0 + size));
+                }
+            }
+        }
+        assert!(worst < 1e-14, "off its acceleration by {worst:e}");
+        let need = DVec2::new(0.3, -0.4);
+        assert!((breakaway(need, 0.7) + need / 0.5).length() < 1e-12);
     }
 }
