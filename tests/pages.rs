@@ -653,3 +653,37 @@ fn speeds_and_legends_read_without_colour() {
         assert!(screen.contains(words), "{words}\n{screen}");
     }
 }
+
+/// The lesson line under the picture is said whole at every width: one of its wordings, never
+/// a long one cut after "dt =" (issue 18: text cut at 60×20). Every width from 40 to 120, with
+/// and without the paper's run, at μ = 0 too.
+#[test]
+fn the_lesson_line_is_a_whole_sentence_at_every_width() {
+    use turntable::ui::fit::OR;
+    for keys in [
+        &[][..],
+        &[KeyCode::Char('c')][..],
+        &[KeyCode::Char('F')][..],
+        &[KeyCode::Char('c'), KeyCode::Char('3')][..],
+    ] {
+        let mut a = app("D");
+        for k in keys {
+            press(&mut a, *k);
+        }
+        a.tick();
+        let line = turntable::ui::lesson_line(&a);
+        let wordings: Vec<&str> = line.split(OR).map(str::trim).collect();
+        assert!(wordings.len() >= 2, "{line:?}");
+        for w in 40..=120u16 {
+            let screen = render(&mut a, w, 24);
+            let row = screen.lines().nth(22).unwrap().trim();
+            assert!(
+                wordings.contains(&row),
+                "{w}: {row:?} is none of {wordings:?}"
+            );
+            if usize::from(w) > wordings[0].chars().count() {
+                assert_eq!(row, wordings[0], "{w}");
+            }
+        }
+    }
+}

@@ -3,12 +3,24 @@
 
 use unicode_width::UnicodeWidthStr;
 
-/// `text` cut to `width` columns: whole fields (separated by `sep`) from the end, then whole
-/// words of the last field kept; empty when not even one word fits.
+/// Separates a text's wordings, longest first (see [`alternatives`]).
+pub const OR: char = '\u{1f}';
+
+/// A text said several ways, longest first: `fit` shows the first that fits whole, so a narrow
+/// screen reads a shorter sentence, not a long one cut after "for" or "dt =".
+pub fn alternatives<S: AsRef<str>>(wordings: &[S]) -> String {
+    let all: Vec<&str> = wordings.iter().map(AsRef::as_ref).collect();
+    all.join(&OR.to_string())
+}
+
+/// `text` cut to `width` columns: its first wording that fits whole; else, of its last,
+/// whole fields (separated by `sep`) from the end, then whole words of the last field kept;
+/// empty when not even one word fits.
 pub fn fit(text: &str, sep: &str, width: usize) -> String {
-    if text.width() <= width {
-        return text.to_string();
+    if let Some(whole) = text.split(OR).find(|t| t.width() <= width) {
+        return whole.to_string();
     }
+    let text = text.rsplit(OR).next().unwrap_or_default();
     let mut out = String::new();
     for (i, field) in text.split(sep).enumerate() {
         let joined = if i == 0 {
@@ -147,5 +159,23 @@ mod tests {
             "release sticks"
         );
         assert_eq!(fit_label("release sticks (in the window)", 10), "release");
+    }
+
+    #[test]
+    fn the_first_wording_that_fits_is_shown_whole() {
+        let t = alternatives(&[
+            "c: compare with the paper's scheme (raw RK2, dt = 1e-3)",
+            "c: compare with the paper's RK2",
+            "c: paper's RK2",
+        ]);
+        assert_eq!(
+            fit(&t, "\0", 80),
+            "c: compare with the paper's scheme (raw RK2, dt = 1e-3)"
+        );
+        assert_eq!(fit(&t, "\0", 40), "c: compare with the paper's RK2");
+        assert_eq!(fit(&t, "\0", 20), "c: paper's RK2");
+        // None fits: the shortest loses words from its end.
+        assert_eq!(fit(&t, "\0", 10), "c: paper's");
+        assert_eq!(fit("one way", "\0", 7), "one way");
     }
 }

@@ -86,21 +86,34 @@ pub fn draw(frame: &mut Frame, app: &App) -> Option<CanvasGeom> {
     geom
 }
 
-/// The one-line lesson: the paper's scheme against the converged run, or what μ = 0 means.
+/// The one-line lesson: the paper's scheme against the converged run, or what μ = 0 means;
+/// said several ways, longest first (`fit::alternatives`), so a narrow screen reads a whole
+/// shorter sentence.
 pub fn lesson_line(app: &App) -> String {
     if app.initial.frictionless {
-        return " μ = 0: a straight line in the lab, a spiral in the rotating frame (f switches)"
-            .into();
+        return fit::alternatives(&[
+            " μ = 0: a straight line in the lab, a spiral in the rotating frame (f switches)",
+            " μ = 0: a straight line in the lab, a spiral on the table",
+            " μ = 0: a straight line in the lab",
+        ]);
     }
     if let Some(gamma) = app.settings.stokes() {
-        return format!(
-            " Stokes drag γ = {gamma}: linear, in closed form; it leaves as e^({:.4}τ)",
-            crate::engine::stokes::growth_rate(gamma)
-        );
+        let rate = crate::engine::stokes::growth_rate(gamma);
+        return fit::alternatives(&[
+            format!(
+                " Stokes drag γ = {gamma}: linear, in closed form; it leaves as e^({rate:.4}τ)"
+            ),
+            format!(" Stokes drag γ = {gamma}: it leaves as e^({rate:.4}τ)"),
+            format!(" Stokes: leaves as e^({rate:.4}τ)"),
+        ]);
     }
     let Some(p) = &app.paper else {
-        return " c: compare with the paper's scheme (raw RK2, fixed dt = 1e-3, no stick event)"
-            .into();
+        return fit::alternatives(&[
+            " c: compare with the paper's scheme (raw RK2, fixed dt = 1e-3, no stick event)",
+            " c: compare with the paper's scheme (RK2, dt = 1e-3)",
+            " c: compare with the paper's RK2",
+            " c: the paper's RK2",
+        ]);
     };
     let (a, b) = (app.sim.outcome_now(), p.outcome_now());
     let name = |o: Outcome| match o {
@@ -113,23 +126,37 @@ pub fn lesson_line(app: &App) -> String {
         Outcome::Escaped => "both escape",
         Outcome::Running => "both still slide",
     };
+    let method = app.settings.method();
     if a == b {
-        format!(
-            " paper's RK2 (○) and {} (●) agree so far: {}",
-            app.settings.method(),
-            both(a)
-        )
+        fit::alternatives(&[
+            format!(
+                " paper's RK2 (○) and {method} (●) agree so far: {}",
+                both(a)
+            ),
+            format!(" ○ paper's RK2, ● {method}: {}", both(a)),
+            format!(" ○ ●: {}", both(a)),
+        ])
     } else if a == Outcome::Stuck && b == Outcome::Escaped {
-        " ● sticks; the paper's fixed-step RK2 (○) steps over the stop and escapes".into()
+        fit::alternatives(&[
+            " ● sticks; the paper's fixed-step RK2 (○) steps over the stop and escapes",
+            " ● sticks; the paper's RK2 (○) steps over the stop",
+            " ● sticks, ○ escapes",
+        ])
     } else if a == Outcome::Stuck {
-        " ● sticks; the paper's RK2 (○) has no stop event: it dithers about |u| = 0".into()
+        fit::alternatives(&[
+            " ● sticks; the paper's RK2 (○) has no stop event: it dithers about |u| = 0",
+            " ● sticks; the paper's RK2 (○) dithers about |u| = 0",
+            " ● sticks, ○ dithers",
+        ])
     } else {
-        format!(
-            " disagree: {} (●) {}, paper's RK2 (○) {}",
-            app.settings.method(),
-            name(a),
-            name(b)
-        )
+        fit::alternatives(&[
+            format!(
+                " disagree: {method} (●) {}, paper's RK2 (○) {}",
+                name(a),
+                name(b)
+            ),
+            format!(" ● {}, ○ {}", name(a), name(b)),
+        ])
     }
 }
 
@@ -160,7 +187,8 @@ fn status_line(app: &App, width: u16) -> Line<'static> {
     }
     if let Some(n) = &app.notice {
         return Line::from(Span::styled(
-            fit::fit(&format!(" {n}"), "\0", usize::from(width)),
+            // Clauses (", ") drop whole before words do: "comes to" is not left hanging.
+            fit::fit(&format!(" {n}"), ", ", usize::from(width)),
             Style::default().fg(th.notice),
         ));
     }

@@ -16,6 +16,7 @@ use ratatui::style::Style;
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Paragraph, Wrap};
 use std::f64::consts::{PI, TAU};
+use unicode_width::UnicodeWidthStr;
 
 /// Draws `app.page` in `area`; returns the plot's geometry where a click means a release.
 pub fn render(f: &mut TuiFrame, area: Rect, app: &App) -> Option<CanvasGeom> {
@@ -235,12 +236,15 @@ fn widest(c: &crate::app::pages::Curve) -> String {
         })
         .max_by(|a, b| (a.2 - a.1).total_cmp(&(b.2 - b.1)));
     match best {
-        Some((p, lo, hi)) => format!(
-            "widest window: sticks for v0 {}–{}, at φ = {}π",
-            speed(lo),
-            speed(hi),
-            num(p / PI, 2)
-        ),
+        Some((p, lo, hi)) => {
+            let (lo, hi, p) = (speed(lo), speed(hi), num(p / PI, 2));
+            super::fit::alternatives(&[
+                format!("widest window: sticks for v0 {lo}–{hi}, at φ = {p}π"),
+                format!("widest: v0 {lo}–{hi} at φ = {p}π"),
+                format!("widest: v0 {lo}–{hi}"),
+                format!("v0 {lo}–{hi}"),
+            ])
+        }
         None if c.complete() => "escapes at every speed and angle".into(),
         None => String::new(),
     }
@@ -475,7 +479,11 @@ fn rest_radius(f: &mut TuiFrame, area: Rect, app: &App) {
         color: th.particle,
     });
     let c = Chart {
-        title: format!("rest radius (Fig. 6): at rest in the lab at ξ0{progress}"),
+        title: super::fit::alternatives(&[
+            format!("rest radius (Fig. 6): at rest in the lab at ξ0{progress}"),
+            format!("rest radius (Fig. 6){progress}"),
+            "rest radius".to_string(),
+        ]),
         note: xi0c.map_or(String::new(), |c| format!("ξ0c = {}", num(c, 6))),
         x_label: chart::axis("ξ0", Quantity::Length, app.units),
         y_label: chart::axis("final ξ", Quantity::Length, app.units),
@@ -506,40 +514,61 @@ fn rest_radius(f: &mut TuiFrame, area: Rect, app: &App) {
         });
     let r0c = app.mu_probe.1;
     let mu = xi0c.map(|c| omega * omega * r0c / (g * c));
-    let text = vec![
-        Line::from(vec![
-            Span::styled(
-                match mu {
-                    Some(mu) => format!("μ = {}", num(mu, 4)),
-                    None => "μ = … (ξ0c still computing)".into(),
-                },
-                Style::default().fg(th.accent),
-            ),
-            Span::styled(
-                "   Eq. 22: μ = Ω² r0c / (g ξ0c)",
-                Style::default().fg(th.muted),
-            ),
-        ]),
-        Line::from(format!(
-            "Ω = {} rad/s ({} rpm{}), r0c = {} m",
-            num(omega, 3),
-            num(omega * 60.0 / TAU, 1),
-            if app.units.is_some() {
-                ", the table's"
-            } else {
-                ""
+    let (accent, muted) = (
+        Style::default().fg(th.accent),
+        Style::default().fg(th.muted),
+    );
+    // Most telling first; each whole on a line of its own or beside others, never wrapped
+    // inside (a narrow box keeps μ, Ω and r0c, and drops the rest whole).
+    let fields = [
+        (
+            match mu {
+                Some(mu) => format!("μ = {}", num(mu, 4)),
+                None => "μ = … (ξ0c still computing)".into(),
             },
-            num(r0c, 4)
-        )),
-        Line::from(Span::styled(
-            format!("g = {g} m/s²   o/O: Ω ±0.1   d/D: r0c ±1 mm"),
-            Style::default().fg(th.muted),
-        )),
+            accent,
+        ),
+        (
+            format!(
+                "Ω = {} rad/s ({} rpm{})",
+                num(omega, 3),
+                num(omega * 60.0 / TAU, 1),
+                if app.units.is_some() {
+                    ", the table's"
+                } else {
+                    ""
+                }
+            ),
+            Style::default(),
+        ),
+        (format!("r0c = {} m", num(r0c, 4)), Style::default()),
+        ("Eq. 22: μ = Ω² r0c / (g ξ0c)".to_string(), muted),
+        (format!("g = {g} m/s²"), muted),
+        ("o/O: Ω ±0.1   d/D: r0c ±1 mm".to_string(), muted),
     ];
+    let width = usize::from(bottom.width.saturating_sub(2));
+    let mut lines: Vec<Line> = Vec::new();
+    let mut line: Vec<Span> = Vec::new();
+    let mut used = 0;
+    for (text, style) in fields {
+        let text = super::fit::fit(&text, "\0", width);
+        if text.is_empty() {
+            continue;
+        }
+        if used > 0 && used + 3 + text.width() > width {
+            lines.push(Line::from(std::mem::take(&mut line)));
+            used = 0;
+        }
+        if used > 0 {
+            line.push(Span::raw("   "));
+            used += 3;
+        }
+        used += text.width();
+        line.push(Span::styled(text, style));
+    }
+    lines.push(Line::from(line));
     f.render_widget(
-        Paragraph::new(text)
-            .wrap(Wrap { trim: true })
-            .block(super::titled(" measure μ ".into(), th)),
+        Paragraph::new(lines).block(super::titled(" measure μ ".into(), th)),
         bottom,
     );
 }

@@ -78,10 +78,13 @@ pub fn energy_pair_drag(path: &[State], drag: Option<f64>) -> [Vec<(f64, f64)>; 
 /// paper's Sec. III approximations over their window for releases at rest.
 pub fn render(f: &mut TuiFrame, area: Rect, app: &App) {
     let th = &app.theme;
-    let block = super::titled(
-        " time plots: ξ, θ, θ′, |u|, energy against τ (t/T: τ window) ".into(),
-        th,
-    );
+    let title = super::fit::alternatives(&[
+        "time plots: ξ, θ, θ′, |u|, energy against τ (t/T: τ window)",
+        "time plots: ξ, θ, θ′, |u|, energy",
+        "time plots",
+    ]);
+    let room = usize::from(area.width).saturating_sub(4);
+    let block = super::titled(format!(" {} ", super::fit::fit(&title, "\0", room)), th);
     let inner = block.inner(area);
     f.render_widget(block, area);
     let p = path(&app.sim);
