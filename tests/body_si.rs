@@ -366,6 +366,23 @@ fn the_panel_shows_the_body_in_si_without_cutting_it() {
     }
     let wide = render(&mut a, 80, 24);
     assert!(wide.contains(&want), "{wide}");
+    // Plain mode reads it on the body's line.
+    let scene = scene_file("plain-coin.toml", UNITS, "length = \"2 cm\"\n");
+    let keys = dir().join("readouts.keys");
+    std::fs::write(&keys, "I\n").unwrap();
+    let (code, out, err) = turntable(&[
+        "replay",
+        "--plain",
+        "--scene",
+        &scene,
+        keys.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        out.lines()
+            .any(|l| l.starts_with("body L 0.1242 = 2.00 cm")),
+        "{out}"
+    );
 }
 
 fn config(cases: u32) -> ProptestConfig {
