@@ -1,14 +1,19 @@
 //! Scenes: initial conditions plus integrator settings, as serde data. The paper's presets
 //! (Figs. 1–4) are built in; others load from and save to TOML files.
 
+use crate::engine::body::Body;
+use crate::engine::units::{Length, Units, show_metres, show_r_max_in_metres};
 use crate::engine::{Initial, Release, Settings};
 use crate::error::Error;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 use std::path::Path;
 
+/// A scene as the explorer holds it: every length in units of R_max. Its file form is
+/// [`SceneFile`], where the body's sizes may be in metres (`length = "2 cm"`) when the scene
+/// has `[units]`.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[serde(try_from = "SceneFile", into = "SceneFile")]
 pub struct Scene {
     pub name: String,
     /// What the scene shows, one line.
@@ -31,6 +36,157 @@ pub struct Scene {
     /// when loaded.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub pins: Vec<crate::pin::PinSpec>,
+}
+
+/// A scene as its TOML file holds it: [`Scene`]'s fields, the body's sizes as written.
+#[derive(Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct SceneFile {
+    name: String,
+    #[serde(default)]
+    about: String,
+    initial: Initial,
+    #[serde(default)]
+    settings: Settings,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    units: Option<Units>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    body: Option<BodyFile>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    view: Option<View>,
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pins: Vec<crate::pin::PinSpec>,
+}
+
+/// `[body]` as written: `length` and `height` in units of R_max (numbers) or, on a scene with
+/// `[units]`, in metres (`"2 cm"`, `"0.02 m"`, `"15 mm"`); `angle` in radians.
+#[derive(Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct BodyFile {
+    length: SizeField,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    height: Option<SizeField>,
+    #[serde(default)]
+    angle: f64,
+}
+
+/// A body size in a scene file: a number (R_max) or a string with a unit (metres).
+#[derive(Clone, Copy)]
+struct SizeField(Length);
+
+impl Serialize for SizeField {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        match self.0 {
+            Length::RMax(x) => s.serialize_f64(x),
+            Length::Metres(m) => s.serialize_str(&show_metres(m)),
+        }
+    }
+}
+
+impl<'de> Deserialize<'de> for SizeField {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct V;
+        impl serde::de::Visitor<'_> for V {
+            type Value = SizeField;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str("a number in units of R_max (0.1) or a length with a unit m, cm or mm (\"2 cm\")")
+            }
+            fn visit_f64<E: serde::de::Error>(self, x: f64) -> Result<SizeField, E> {
+                Ok(SizeField(Length::RMax(x)))
+            }
+            fn visit_i64<E: serde::de::Error>(self, x: i64) -> Result<SizeField, E> {
+                Ok(SizeField(Length::RMax(x as f64)))
+            }
+            fn visit_u64<E: serde::de::Error>(self, x: u64) -> Result<SizeField, E> {
+                Ok(SizeField(Length::RMax(x as f64)))
+            }
+            fn visit_str<E: serde::de::Error>(self, t: &str) -> Result<SizeField, E> {
+                Length::parse(t).map(SizeField).map_err(E::custom)
+            }
+        }
+        d.deserialize_any(V)
+    }
+}
+
+impl TryFrom<SceneFile> for Scene {
+    type Error = String;
+    /// The body's metres become R_max on the scene's own table; without `[units]` they are
+    /// refused.
+    fn try_from(f: SceneFile) -> Result<Scene, String> {
+        let units = f.units;
+        let body = match f.body {
+            None => None,
+            Some(b) => {
+                let size = |key: &str, l: Length, zero_ok: bool| -> Result<f64, String> {
+                    if let Length::Metres(m) = l
+                        && !(m.is_finite() && (m > 0.0 || (zero_ok && m == 0.0)))
+                    {
+                        let what = if zero_ok { "at least 0" } else { "positive" };
+                        return Err(format!("[body] {key} must be {what}, got {}", l.show()));
+                    }
+                    l.to_r_max(units.as_ref()).ok_or_else(|| {
+                        format!(
+                            "[body] {key} = \"{}\" is a length in metres, which needs the table's R_max: add a [units] table (mu, rpm, optionally g), or give {key} in units of R_max (a plain number)",
+                            l.show()
+                        )
+                    })
+                };
+                Some(Body {
+                    length: size("length", b.length.0, false)?,
+                    height: b.height.map(|h| size("height", h.0, true)).transpose()?,
+                    angle: b.angle,
+                })
+            }
+        };
+        Ok(Scene {
+            name: f.name,
+            about: f.about,
+            initial: f.initial,
+            settings: f.settings,
+            units,
+            body,
+            view: f.view,
+            pins: f.pins,
+        })
+    }
+}
+
+impl From<Scene> for SceneFile {
+    /// With `[units]` the body's sizes are written in metres, as the explorer holds them, in
+    /// the fewest digits that read back to the same R_max; without, in R_max.
+    fn from(s: Scene) -> SceneFile {
+        let size = |x: f64| {
+            SizeField(match &s.units {
+                // Back on this table to the same R_max (to an ulp or two where no decimal
+                // does it exactly).
+                Some(u) => Length::Metres(
+                    Length::parse(&show_r_max_in_metres(x, u))
+                        .ok()
+                        .and_then(|l| match l {
+                            Length::Metres(m) => Some(m),
+                            Length::RMax(_) => None,
+                        })
+                        .unwrap_or(x * u.r_max_m()),
+                ),
+                None => Length::RMax(x),
+            })
+        };
+        let body = s.body.map(|b| BodyFile {
+            length: size(b.length),
+            height: b.height.map(size),
+            angle: b.angle,
+        });
+        SceneFile {
+            name: s.name,
+            about: s.about,
+            initial: s.initial,
+            settings: s.settings,
+            units: s.units,
+            body,
+            view: s.view,
+            pins: s.pins,
+        }
+    }
 }
 
 /// The explorer's view of a scene: the page, the frame drawn, the arrows, zoom.

@@ -3,6 +3,7 @@
 
 use crate::app::G_DEFAULT;
 use crate::engine::body::Body;
+use crate::engine::units::{Length, Units};
 use crate::engine::{Coupling, CouplingName, Frame, Method, Release, Settings};
 use crate::error::Error;
 use clap::{Args, Parser, Subcommand};
@@ -58,22 +59,44 @@ pub struct Cli {
 /// Unset, a scene keeps its own.
 #[derive(Args, Debug, Clone, Default)]
 pub struct BodyArgs {
-    /// The body's lateral size L in units of R_max (> 0): the panel and `run --json` judge the
-    /// appendix's conditions for treating it as a point, μh/L ≪ 1 and L/ξ ≪ 1.
-    #[arg(long, value_name = "L", allow_hyphen_values = true)]
-    pub body_length: Option<f64>,
-    /// The body's height h in units of R_max (≥ 0; with --body-length): toppling, μh/L.
-    #[arg(long, value_name = "H", allow_hyphen_values = true)]
-    pub body_height: Option<f64>,
-    /// The rod's angle at release in the table frame, from radially outward, ccw (rad; with
-    /// --body-length).
-    #[arg(long, value_name = "A", allow_hyphen_values = true)]
+    /// The body's lateral size L (> 0): a plain number in units of R_max, or a length with a
+    /// unit, m, cm or mm (`2cm`, `0.02m`, `15 mm`), on the table --mu and --rpm give (the
+    /// explorer also takes a scene's or the configuration's [units]). The panel and
+    /// `run --json` judge the appendix's conditions for treating it as a point, μh/L ≪ 1 and
+    /// L/ξ ≪ 1.
+    #[arg(long, value_name = "L", allow_hyphen_values = true, value_parser = length)]
+    pub body_length: Option<Length>,
+    /// The body's height h (≥ 0; with --body-length), as --body-length: R_max units or
+    /// m, cm, mm. Toppling: μh/L.
+    #[arg(long, value_name = "H", allow_hyphen_values = true, value_parser = length)]
+    pub body_height: Option<Length>,
+    /// The rod's angle at release in the table frame, from radially outward, ccw (rad, or
+    /// degrees with `deg`: `30deg`; with --body-length).
+    #[arg(long, value_name = "A", allow_hyphen_values = true, value_parser = angle)]
     pub body_angle: Option<f64>,
 }
 
+fn length(text: &str) -> Result<Length, String> {
+    Length::parse(text)
+}
+
+/// Radians, or degrees with `deg` or `°`: `0.5`, `30deg`, `30 °`.
+fn angle(text: &str) -> Result<f64, String> {
+    let t = text.trim();
+    let (x, per_rad) = match t.strip_suffix("deg").or_else(|| t.strip_suffix('°')) {
+        Some(x) => (x.trim_end(), 180.0 / std::f64::consts::PI),
+        None => (t, 1.0),
+    };
+    x.parse::<f64>()
+        .map(|x| x / per_rad)
+        .map_err(|_| format!("`{t}` is not an angle: radians (0.5), or degrees with deg (30deg)"))
+}
+
 impl BodyArgs {
-    /// The body asked for, checked; `None` if no flag was given.
-    pub fn body(&self) -> Result<Option<Body>, Error> {
+    /// The body asked for, checked, its sizes in R_max on the table `units` (a size in metres
+    /// needs one; `where_units` says where the command takes it from); `None` if no flag was
+    /// given.
+    pub fn body(&self, units: Option<&Units>, where_units: &str) -> Result<Option<Body>, Error> {
         let Some(length) = self.body_length else {
             if self.body_height.is_some() || self.body_angle.is_some() {
                 return Err(Error::invalid(
@@ -82,9 +105,29 @@ impl BodyArgs {
             }
             return Ok(None);
         };
+        let r_max = |flag: &str, l: Length, zero_ok: bool| -> Result<f64, Error> {
+            if let Length::Metres(m) = l
+                && !(m.is_finite() && (m > 0.0 || (zero_ok && m == 0.0)))
+            {
+                let what = if zero_ok { "at least 0" } else { "positive" };
+                return Err(Error::Invalid(format!(
+                    "--{flag} must be {what}, got {}",
+                    l.show()
+                )));
+            }
+            l.to_r_max(units).ok_or_else(|| {
+                Error::Invalid(format!(
+                    "--{flag} {} is a length in metres, which needs the real table's R_max: add {where_units}, or give it in units of R_max (a plain number)",
+                    l.show()
+                ))
+            })
+        };
         let b = Body {
-            length,
-            height: self.body_height,
+            length: r_max("body-length", length, false)?,
+            height: self
+                .body_height
+                .map(|h| r_max("body-height", h, true))
+                .transpose()?,
             angle: self.body_angle.unwrap_or(0.0),
         };
         b.validate().map_err(|e| Error::Invalid(format!("--{e}")))?;

@@ -103,7 +103,13 @@ fn explore(
         scene.settings.coupling = c;
         scene.settings.validate()?;
     }
-    if let Some(b) = cli.body.body()? {
+    let units = cli.units.units()?;
+    // The table a body's metres are measured on: the one the explorer opens on (the flags,
+    // else the scene's, else the configuration's; see below).
+    let table = units.or(scene.units).or(config.units);
+    let where_units =
+        "--mu and --rpm (and optionally --g), or a scene or configuration with [units]";
+    if let Some(b) = cli.body.body(table.as_ref(), where_units)? {
         if cli.record.is_some() {
             return Err(Error::invalid(
                 "--record keeps the scene, not --body-length/--body-height/--body-angle: put them in a scene file ([body] length, height, angle) and pass --scene",
@@ -130,7 +136,6 @@ fn explore(
                 colorterm.as_deref(),
             ))
             .with_marker(marker.marker());
-    let units = cli.units.units()?;
     let scene_ref = look.scene.as_deref().map(scene_reference);
     if term.as_deref() == Some("dumb") && !plain {
         return Err(Error::Invalid(

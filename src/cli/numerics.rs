@@ -93,7 +93,9 @@ const FREE_SAMPLE: f64 = 1e-2;
 pub fn run(a: RunArgs) -> CmdResult {
     let (initial, settings) = run_inputs(&a)?;
     let units = a.units.units()?;
-    let body = a.body.body()?;
+    let body = a
+        .body
+        .body(units.as_ref(), "--mu and --rpm (and optionally --g)")?;
     // The file is opened (and a bad path refused) before any work; rows stream into it.
     let csv = match &a.trajectory {
         Some(path) => Some(BufWriter::new(

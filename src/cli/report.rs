@@ -54,6 +54,12 @@ pub struct RunReport {
 pub struct BodyReport {
     pub length: f64,
     pub height: Option<f64>,
+    /// With units: the length in metres.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub length_m: Option<f64>,
+    /// With units: the height in metres (null without a height).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub height_m: Option<Option<f64>>,
     pub angle: f64,
     pub mu_h_over_l: Option<f64>,
     pub mu_assumed: bool,
@@ -101,6 +107,8 @@ impl BodyReport {
         BodyReport {
             length: body.length,
             height: body.height,
+            length_m: units.map(|u| body.length * u.r_max_m()),
+            height_m: units.map(|u| body.height.map(|h| h * u.r_max_m())),
             angle: body.angle,
             mu_h_over_l: c.topple,
             mu_assumed: c.mu_assumed,
@@ -290,10 +298,21 @@ growth   {rate:.12}  (Re lambda+: every release leaves as e^(rate tau) but those
             } else {
                 "not both << 1 (<= 0.1): the point model is out of its depth"
             };
+            let si = |x: f64, m: Option<f64>| match m {
+                Some(m) => format!("{x} ({})", show_length(m)),
+                None => format!("{x}"),
+            };
+            let size = match b.height {
+                Some(h) => format!(
+                    "L = {}, h = {}",
+                    si(b.length, b.length_m),
+                    si(h, b.height_m.flatten())
+                ),
+                None => format!("L = {}", si(b.length, b.length_m)),
+            };
             let _ = writeln!(
                 text,
-                "body     L = {}: {topple}, {rot} at the end; {verdict}",
-                b.length
+                "body     {size}: {topple}, {rot} at the end; {verdict}"
             );
             if let Some(m) = &b.motion {
                 let _ = writeln!(

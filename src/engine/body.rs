@@ -14,6 +14,7 @@
 use super::error::Error;
 use super::method::{Coupling, Settings};
 use super::model::Initial;
+use super::units::Units;
 use serde::{Deserialize, Serialize};
 
 /// The body's size and its rod's angle, as a scene's `[body]` or `--body-length`,
@@ -138,6 +139,19 @@ impl Body {
             );
         }
         Ok(())
+    }
+
+    /// The same body on the table `to`, its metres held (it was on `from`): its length and
+    /// height in R_max recomputed, kept within (0, [`Body::MAX`]]. A larger μ: a larger
+    /// R_max, so a shorter L.
+    pub fn carried(self, from: &Units, to: &Units) -> Body {
+        let k = from.r_max_m() / to.r_max_m();
+        let keep = |x: f64| (x * k).clamp(f64::MIN_POSITIVE, Self::MAX);
+        Body {
+            length: keep(self.length),
+            height: self.height.map(|h| if h == 0.0 { 0.0 } else { keep(h) }),
+            angle: self.angle,
+        }
     }
 
     /// The appendix's conditions at distance `xi` from the centre with friction `friction` in

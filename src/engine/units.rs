@@ -97,6 +97,103 @@ impl Units {
     }
 }
 
+/// A length as a user types one: a plain number in units of R_max (`0.1`), or a number with
+/// a unit, `m`, `cm` or `mm` (`2cm`, `0.02 m`, `15 mm`), in metres. Metres need a real table
+/// to become R_max ([`Length::to_r_max`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Length {
+    /// Units of R_max = μg/Ω².
+    RMax(f64),
+    /// Metres.
+    Metres(f64),
+}
+
+/// The units a [`Length`] may carry, each with its count per metre (longest name first:
+/// `mm` before `m`).
+const LENGTH_UNITS: [(&str, f64); 3] = [("mm", 1e3), ("cm", 1e2), ("m", 1.0)];
+
+impl Length {
+    /// Reads `2cm`, `0.02 m`, `15 mm` (metres) or a plain `0.1` (R_max). The number is any
+    /// that Rust reads (NaN, inf and signs included: ranges are the caller's to check).
+    pub fn parse(text: &str) -> Result<Length, String> {
+        let t = text.trim();
+        let bad = || {
+            format!(
+                "`{t}` is not a length: a number in units of R_max (0.1), or one with a unit m, cm or mm (2cm, 0.02 m, 15 mm)"
+            )
+        };
+        for (unit, per_m) in LENGTH_UNITS {
+            if let Some(x) = t.strip_suffix(unit) {
+                let x: f64 = x.trim_end().parse().map_err(|_| bad())?;
+                return Ok(Length::Metres(x / per_m));
+            }
+        }
+        t.parse().map(Length::RMax).map_err(|_| bad())
+    }
+
+    /// In units of R_max: a plain number as it is; metres on the table `units` (None: there
+    /// is no table to measure against, and metres cannot be converted).
+    pub fn to_r_max(self, units: Option<&Units>) -> Option<f64> {
+        match (self, units) {
+            (Length::RMax(x), _) => Some(x),
+            (Length::Metres(m), Some(u)) => Some(m / u.r_max_m()),
+            (Length::Metres(_), None) => None,
+        }
+    }
+
+    /// As it was typed, near enough for a message: `0.1` or `2 cm`.
+    pub fn show(self) -> String {
+        match self {
+            Length::RMax(x) => Initial::show(x),
+            Length::Metres(m) => show_metres(m),
+        }
+    }
+}
+
+/// `m` metres as the shortest text [`Length::parse`] reads back to exactly `m`, in the unit
+/// that reads best (`2 cm`, `15 mm`, `1.5 m`).
+pub fn show_metres(m: f64) -> String {
+    show_metres_where(m, |back| back.to_bits() == m.to_bits())
+}
+
+/// `l` units of R_max on the table `units` as the shortest text in metres that reads back
+/// to exactly `l` on that table, if any does; else the metres in full (back to within an
+/// ulp or two).
+pub fn show_r_max_in_metres(l: f64, units: &Units) -> String {
+    let r = units.r_max_m();
+    show_metres_where(l * r, |back| (back / r).to_bits() == l.to_bits())
+}
+
+/// The shortest decimal text of `m` metres in a readable unit (m from 1 m, cm from 1 cm, else
+/// mm) whose value, read back, satisfies `same`; else `m` in metres in full.
+fn show_metres_where(m: f64, same: impl Fn(f64) -> bool) -> String {
+    let a = m.abs();
+    let (unit, per_m) = if a >= 1.0 || !a.is_finite() {
+        LENGTH_UNITS[2]
+    } else if a >= 1e-2 {
+        LENGTH_UNITS[1]
+    } else {
+        LENGTH_UNITS[0]
+    };
+    let v = m * per_m;
+    if v.is_finite() {
+        for d in 0..=20 {
+            let text = format!("{v:.d$}");
+            let text = if text.contains('.') {
+                text.trim_end_matches('0').trim_end_matches('.')
+            } else {
+                &text
+            };
+            if text.parse::<f64>().is_ok_and(|x| same(x / per_m)) {
+                return format!("{text} {unit}");
+            }
+        }
+    }
+    // Rust writes an f64 with the fewest digits that read back exactly, never in exponent
+    // form.
+    format!("{m} m")
+}
+
 /// What an axis or a readout measures, for its SI unit: lengths in R_max, times in 1/Ω,
 /// speeds in μg/Ω, angular velocities in Ω (Sec. II).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -182,5 +279,33 @@ mod tests {
         for bad in [(0.0, 33.0, 9.81), (0.2, f64::NAN, 9.81), (0.2, 33.0, -1.0)] {
             assert!(Units::new(bad.0, bad.1, bad.2).is_err(), "{bad:?}");
         }
+    }
+
+    #[test]
+    fn lengths_read_with_and_without_units() {
+        let m = |t: &str| Length::parse(t).unwrap();
+        assert_eq!(m("0.1"), Length::RMax(0.1));
+        assert_eq!(m(" 2e-3 "), Length::RMax(2e-3));
+        assert_eq!(m("2cm"), Length::Metres(0.02));
+        assert_eq!(m("0.02m"), Length::Metres(0.02));
+        assert_eq!(m("0.02 m"), Length::Metres(0.02));
+        assert_eq!(m("15 mm"), Length::Metres(0.015));
+        assert_eq!(m("1e-3m"), Length::Metres(1e-3));
+        assert_eq!(m("-2cm"), Length::Metres(-0.02));
+        assert!(matches!(m("nan cm"), Length::Metres(x) if x.is_nan()));
+        for bad in ["", "cm", "2 in", "2 km", "2c m", "two cm", "2 CM"] {
+            assert!(Length::parse(bad).is_err(), "{bad}");
+        }
+        let u = Units::new(0.2, 100.0 / 3.0, 9.81).unwrap();
+        let omega = 100.0 / 3.0 * std::f64::consts::TAU / 60.0;
+        let r = 0.2 * 9.81 / (omega * omega);
+        assert!((m("2cm").to_r_max(Some(&u)).unwrap() - 0.02 / r).abs() < 1e-15);
+        assert_eq!(m("2cm").to_r_max(None), None);
+        assert_eq!(m("0.5").to_r_max(None), Some(0.5));
+        assert_eq!(show_metres(0.02), "2 cm");
+        assert_eq!(show_metres(0.015), "1.5 cm");
+        assert_eq!(show_metres(0.004), "4 mm");
+        assert_eq!(show_metres(1.5), "1.5 m");
+        assert_eq!(show_r_max_in_metres(0.02 / u.r_max_m(), &u), "2 cm");
     }
 }

@@ -376,6 +376,19 @@ fn body_lines(
         None => format!("L {}", num(b.length, 4)),
     };
     out.push(kv("body", size, th));
+    if let Some(u) = app.units {
+        // The same sizes in SI, on a line of their own under the value (the panel is 30
+        // wide); one indented span, so plain mode reads it on the body's line.
+        let m = |x: f64| crate::engine::units::show_length(x * u.r_max_m());
+        let si = match b.height {
+            Some(h) => format!("       = {} h {}", m(b.length), m(h)),
+            None => format!("       = {}", m(b.length)),
+        };
+        out.push(Line::from(Span::styled(
+            si,
+            Style::default().fg(th.foreground),
+        )));
+    }
     let topple = match (c.topple, c.topple_verdict(), b.height) {
         // Without a real table μ_k = 1 bounds it: the number is an upper bound.
         (Some(t), Some(v), _) => format!(

@@ -109,8 +109,9 @@ pub(super) fn apply(app: &mut App, action: Action) {
 }
 
 /// Sets the table's μ, rpm and g. With units on already, the release is held in metres and
-/// m/s: its dimensionless ξ0 and v0 are recomputed for the new table, and the run restarts
-/// (a larger μ changes the outcome, not only the labels).
+/// m/s, and the body (if any) in metres: its dimensionless ξ0, v0, L and h are recomputed
+/// for the new table, and the run and the body's track restart (a larger μ changes the
+/// outcome, not only the labels).
 fn set_units(app: &mut App, to: Units) {
     let Ok(to) = Units::new(to.mu, to.rpm, to.g) else {
         return;
@@ -119,6 +120,7 @@ fn set_units(app: &mut App, to: Units) {
         && from != to
     {
         app.initial = from.carry(app.initial, &to);
+        app.scene.body = app.scene.body.map(|b| b.carried(&from, &to));
         app.restart();
     }
     app.units = Some(to);
