@@ -202,6 +202,18 @@ pub struct View {
     pub net_force: bool,
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub velocity: bool,
+    /// In a body scene, the point model's path and marker beside the body (`C`); saved only
+    /// when hidden.
+    #[serde(default = "shown", skip_serializing_if = "is_shown")]
+    pub point: bool,
+}
+
+fn shown() -> bool {
+    true
+}
+
+fn is_shown(b: &bool) -> bool {
+    *b
 }
 
 /// The paper's reference cases (CONVENTIONS.md), in the order of their keys.

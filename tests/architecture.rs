@@ -95,6 +95,8 @@ fn the_ui_never_integrates() {
     for (path, code) in sources(&root.join("ui")) {
         for call in [
             "Run::new",
+            "RodTrack::new",
+            "RodTrack::bounded",
             ".step(",
             "engine::solve",
             "engine::doubt",

@@ -270,3 +270,224 @@ fn sweep_body_measures_the_rest_radius_error_against_l_over_r() {
         assert_eq!(code, 2, "{bad:?}: {err}");
     }
 }
+
+/// A body scene as the explorer loads it: case A's release (thrown inward, rests at
+/// ξ ≈ 0.313), a rod of `length` at angle 0.4.
+fn body_app(length: f64) -> turntable::app::App {
+    let mut scene = turntable::scene::Scene::preset("A").unwrap();
+    scene.body = Some(turntable::engine::body::Body {
+        length,
+        height: Some(0.01),
+        angle: 0.4,
+    });
+    turntable::app::App::new(scene, turntable::theme::Theme::builtin("mono").unwrap())
+}
+
+fn key(app: &mut turntable::app::App, c: char) {
+    app.press(turntable::app::Chord::new(
+        crossterm::event::KeyCode::Char(c),
+        crossterm::event::KeyModifiers::NONE,
+    ));
+}
+
+fn panel_of(app: &turntable::app::App) -> Vec<String> {
+    turntable::ui::panel::lines(app)
+        .iter()
+        .map(|l| l.to_string())
+        .collect()
+}
+
+/// The line starting with `key` (then blanks): its value.
+fn value(lines: &[String], key: &str) -> String {
+    lines
+        .iter()
+        .find_map(|l| {
+            l.strip_prefix(key)
+                .filter(|r| r.starts_with(' '))
+                .map(|r| r.trim().to_string())
+        })
+        .unwrap_or_else(|| panic!("no {key} in {lines:?}"))
+}
+
+/// The panel judges the appendix's conditions at the body's state, not the point's: L/ξ with
+/// the body's centre from its track at the τ on screen, and "rests" when the body does; and it
+/// shows the body's own phase, centre and angle, and how it ends once τ gets there.
+#[test]
+fn the_panel_judges_at_the_bodys_state() {
+    let mut app = body_app(0.25);
+    for _ in 0..10 {
+        app.tick();
+    }
+    let tau = app.now().tau;
+    let rod = app.rod.clone().unwrap();
+    let (st, phase) = rod.at_with_phase(tau).unwrap();
+    let lines = panel_of(&app);
+    let body_xi = st.q.length();
+    let point_xi = app.now().xi();
+    let expect = format!("{:.4}", 0.25 / body_xi);
+    assert_ne!(expect, format!("{:.4}", 0.25 / point_xi));
+    assert!(
+        value(&lines, "L/ξ").starts_with(&expect),
+        "{expect} {lines:?}"
+    );
+    assert_eq!(
+        value(&lines, "rod"),
+        turntable::ui::panel::phase_word(phase)
+    );
+    assert_eq!(
+        value(&lines, "rod ξ"),
+        format!(
+            "{:.5} ψ {:.4}",
+            body_xi,
+            turntable::engine::model::wrap_angle(st.psi)
+        )
+    );
+    // The end is not told before τ reaches it.
+    assert!(!lines.iter().any(|l| l.starts_with("ends")), "{lines:?}");
+    // Past the body's rest: riding the table, its rest radius, and friction judged at rest
+    // (μh/L = μ f h/L with f = ξ of the body, ≤ since μ is the bound 1).
+    for _ in 0..100 {
+        app.tick();
+    }
+    let lines = panel_of(&app);
+    let rest = rod.states.last().unwrap().q.length();
+    assert_eq!(value(&lines, "rod"), "riding the table");
+    assert_eq!(value(&lines, "ends"), format!("rests at ξ = {rest:.5}"));
+    assert!(
+        value(&lines, "μh/L").starts_with(&format!("≤ {:.4}", rest * 0.01 / 0.25)),
+        "{lines:?}"
+    );
+    assert!(value(&lines, "L/ξ").starts_with(&format!("{:.4}", 0.25 / rest)));
+    // Readouts in words (`I`, plain mode) say the body's phase and centre.
+    let words = turntable::ui::plain::summary(&app);
+    assert!(
+        words.ends_with(&format!("; body\u{a0}ξ\u{a0}=\u{a0}{rest:.5} at rest")),
+        "{words}"
+    );
+}
+
+/// `C` hides and shows the point model beside the body: its marker leaves the canvas, the
+/// body stays; a saved scene keeps the choice. Without a body `C` changes nothing and says so.
+#[test]
+fn c_compares_the_body_with_the_point_model() {
+    let mut app = body_app(0.1);
+    for _ in 0..60 {
+        app.tick();
+    }
+    // The picture's rows (not the status line's notice).
+    let canvas = |s: &str| {
+        s.lines()
+            .take(28)
+            .map(|l| l.chars().take(70).collect::<String>())
+            .collect::<Vec<_>>()
+            .join("\n")
+    };
+    let shown = canvas(&common::render(&mut app, 100, 30));
+    assert!(shown.contains('■'), "{shown}");
+    key(&mut app, 'C');
+    assert!(!app.point_model);
+    assert!(
+        app.notice
+            .as_deref()
+            .unwrap()
+            .contains("point model hidden")
+    );
+    let hidden = canvas(&common::render(&mut app, 100, 30));
+    assert!(!hidden.contains('■') && !hidden.contains('●'), "{hidden}");
+    assert!(!hidden.contains("stuck τ"), "{hidden}");
+    // The body's bar and path are still drawn: the canvas is not the bare table.
+    let mut bare = body_app(0.1);
+    bare.scene.body = None;
+    bare.rod = None;
+    bare.point_model = false;
+    for _ in 0..60 {
+        bare.tick();
+    }
+    assert_ne!(hidden, canvas(&common::render(&mut bare, 100, 30)));
+    let saved = app.current_scene().to_toml();
+    assert!(saved.contains("point = false"), "{saved}");
+    key(&mut app, 'C');
+    assert!(app.point_model);
+    assert!(!app.current_scene().to_toml().contains("point ="));
+    assert_eq!(canvas(&common::render(&mut app, 100, 30)), shown);
+    // No body: nothing changes but the notice.
+    let mut point = turntable::app::App::new(
+        turntable::scene::Scene::preset("A").unwrap(),
+        turntable::theme::Theme::builtin("mono").unwrap(),
+    );
+    let before = canvas(&common::render(&mut point, 100, 30));
+    key(&mut point, 'C');
+    assert!(point.point_model);
+    assert!(
+        point
+            .notice
+            .as_deref()
+            .unwrap()
+            .starts_with("no body to compare"),
+        "{:?}",
+        point.notice
+    );
+    assert_eq!(canvas(&common::render(&mut point, 100, 30)), before);
+    // `C` is in the help, from the keymap.
+    assert!(
+        turntable::app::KEYMAP
+            .iter()
+            .any(|b| b.help == "body: point model beside it")
+    );
+}
+
+/// The body is the object and a preset its release: keys 1–6 keep it (and compute its run
+/// from the new release); `0` goes back to the scene, body and all.
+#[test]
+fn presets_keep_the_body() {
+    let mut app = body_app(0.1);
+    let body = app.scene.body;
+    key(&mut app, '2');
+    assert_eq!(app.scene.name, "B");
+    assert_eq!(app.scene.body, body);
+    let rod = app.rod.clone().unwrap();
+    assert_eq!(rod.states[0].q.x, 0.5);
+    assert!(app.notice.as_deref().unwrap().contains("the body stays"));
+    key(&mut app, 'x');
+    key(&mut app, '0');
+    assert_eq!(app.scene.body, body);
+    assert_eq!(app.rod.clone().unwrap().states, rod.states);
+}
+
+/// A track cut short (here by a budget of 30 steps) is drawn as far as it goes; past its end
+/// the panel says where and why it stopped, and nothing on screen is NaN.
+#[test]
+fn a_cut_track_says_where_it_stopped() {
+    let mut app = body_app(0.1);
+    let b = app.scene.body.unwrap();
+    let cut = turntable::engine::rod::RodTrack::bounded(
+        b,
+        1.0,
+        &app.initial,
+        1e-10,
+        200.0,
+        30,
+        usize::MAX,
+    )
+    .unwrap();
+    let end = cut.end_tau();
+    assert!(
+        turntable::app::state::rod_cut_notice(&cut)
+            .unwrap()
+            .contains("30-step budget")
+    );
+    app.rod = Some(cut);
+    while app.now().tau <= end {
+        app.tick();
+    }
+    let lines = panel_of(&app);
+    assert_eq!(value(&lines, "rod"), "not computed here");
+    assert_eq!(value(&lines, "ends"), format!("cut at τ = {end:.2}"));
+    assert_eq!(value(&lines, "  by"), "30-step budget");
+    let screen = common::render(&mut app, 80, 24);
+    assert!(
+        !screen.contains("NaN") && !screen.contains("inf"),
+        "{screen}"
+    );
+    assert!(screen.contains("cut at τ"), "{screen}");
+}

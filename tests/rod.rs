@@ -353,3 +353,84 @@ fn a_finite_bodys_rest_converges_with_the_tolerance() {
         }
     }
 }
+
+/// The explorer's track is bounded whatever the release: a step budget (checked between
+/// steps, so a last step's own rejections may pass it by a few) and a cap on the states kept,
+/// which thins them (keeping the phase changes and the end). Cut short, it keeps what it
+/// computed and says where and why; nothing past its end is made up.
+#[test]
+fn a_tracks_steps_and_states_are_bounded() {
+    use turntable::engine::rod::{Cut, RodTrack, TRACK_STATES, TRACK_STEPS};
+    let b = Initial::velocity(0.5, 0.0, 0.6);
+    let full =
+        RodTrack::bounded(body(0.1, 0.4), 1.0, &b, 1e-12, 200.0, u64::MAX, usize::MAX).unwrap();
+    assert_eq!((full.outcome, full.cut.clone()), (Outcome::Stuck, None));
+    assert!(full.states.len() > 400, "{}", full.states.len());
+    assert_eq!(full.states.len(), full.phases.len());
+    // The explorer's bounds leave this run whole.
+    let whole = RodTrack::new(body(0.1, 0.4), 1.0, &b, 1e-12, 200.0).unwrap();
+    assert_eq!(whole.states, full.states);
+    assert!(whole.steps < TRACK_STEPS && whole.states.len() <= TRACK_STATES);
+    // At most 64 states: thinned, the same end, phase changes where the run had them.
+    let thin = RodTrack::bounded(body(0.1, 0.4), 1.0, &b, 1e-12, 200.0, u64::MAX, 64).unwrap();
+    assert!(
+        thin.states.len() <= 64 && thin.states.len() >= 16,
+        "{}",
+        thin.states.len()
+    );
+    assert_eq!(thin.states.len(), thin.phases.len());
+    assert_eq!(thin.outcome, Outcome::Stuck);
+    assert_eq!(thin.states.last(), full.states.last());
+    assert_eq!(thin.states[0], full.states[0]);
+    assert!(thin.states.windows(2).all(|w| w[0].tau <= w[1].tau));
+    let changes = |t: &RodTrack| {
+        t.phases
+            .windows(2)
+            .zip(&t.states[1..])
+            .filter(|(p, _)| p[0] != p[1])
+            .map(|(p, s)| (s.tau, p[1]))
+            .collect::<Vec<_>>()
+    };
+    assert_eq!(changes(&thin), changes(&full));
+    assert_eq!(thin.phase_at(full.end_tau() + 1.0), Some(Phase::Rest));
+    // A budget of 40 steps: cut, what was computed kept, nothing past it.
+    let cut = RodTrack::bounded(body(0.1, 0.4), 1.0, &b, 1e-12, 200.0, 40, usize::MAX).unwrap();
+    assert_eq!(cut.cut, Some(Cut::Budget(40)));
+    assert_eq!(cut.outcome, Outcome::Running);
+    assert!(cut.steps >= 40 && cut.steps < 60, "{}", cut.steps);
+    let end = cut.end_tau();
+    assert!(end > 0.0 && end < full.end_tau());
+    assert_eq!(cut.states[..], full.states[..cut.states.len()]);
+    assert!(cut.at(end).is_some() && cut.at(end + 1e-9).is_none());
+    assert!(cut.at(f64::NAN).is_none());
+    for s in &cut.states {
+        assert!(s.q.is_finite() && s.u.is_finite() && s.psi.is_finite() && s.w.is_finite());
+    }
+}
+
+/// Each state carries its phase: a body thrown as case A slides, pivots about a contact on
+/// the way, and ends riding the table.
+#[test]
+fn a_track_knows_the_phase_at_any_tau() {
+    use turntable::engine::rod::RodTrack;
+    let a = Initial::velocity(0.5, std::f64::consts::PI, 1.0);
+    let t = RodTrack::new(body(0.2, 0.0), 1.0, &a, 1e-10, 200.0).unwrap();
+    assert_eq!(t.phase_at(0.0), Some(Phase::Slip));
+    assert_eq!(t.phase_at(t.end_tau()), Some(Phase::Rest));
+    assert_eq!(t.phase_at(t.end_tau() + 50.0), Some(Phase::Rest));
+    let pivots = t
+        .phases
+        .iter()
+        .filter(|p| matches!(p, Phase::Pivot { .. }))
+        .count();
+    let tau_pivot = t
+        .states
+        .iter()
+        .zip(&t.phases)
+        .find(|(_, p)| matches!(p, Phase::Pivot { .. }))
+        .map(|(s, _)| s.tau);
+    assert!(pivots > 0, "{:?}", t.phases);
+    let tp = tau_pivot.unwrap();
+    assert!(matches!(t.phase_at(tp), Some(Phase::Pivot { .. })));
+    assert_eq!(t.phase_at(0.5 * tp), Some(Phase::Slip));
+}

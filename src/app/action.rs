@@ -44,6 +44,8 @@ pub enum Action {
     /// The net force's arrow; the velocity's.
     ToggleNetForce,
     ToggleVelocity,
+    /// In a body scene, the point model's path and marker beside the body, or not.
+    TogglePointModel,
     /// Estimate the error of the state on screen from a shadow run at a tighter setting.
     EstimateError,
     ZoomIn,
@@ -137,9 +139,9 @@ impl Action {
                 Group::InitialConditions
             }
             CycleMethod | Loosen | Tighten | ToggleCompare | EstimateError => Group::Integrator,
-            ToggleFrame | ToggleForces | ToggleNetForce | ToggleVelocity | ZoomIn | ZoomOut
-            | Pan(..) | ResetView | TauWindow(_) | NextPage | PrevPage | Choose | Omega(_)
-            | R0c(_) | Unit(..) | UnitsOff | PinRun | ClearPins => Group::View,
+            ToggleFrame | ToggleForces | ToggleNetForce | ToggleVelocity | TogglePointModel
+            | ZoomIn | ZoomOut | Pan(..) | ResetView | TauWindow(_) | NextPage | PrevPage
+            | Choose | Omega(_) | R0c(_) | Unit(..) | UnitsOff | PinRun | ClearPins => Group::View,
             Quit | Dismiss | ToggleHelp | HelpScroll(_) | HelpPage(_) | Save | SaveAs | Name(_)
             | ExportSvg | ToggleMouse | Readouts => Group::App,
             Answer(_) | GoOn => Group::Lesson,

@@ -100,6 +100,7 @@ pub const KEYMAP: &[Binding] = &[
     b(ch('a'), N, Action::ToggleForces, "force arrows", "view"),
     b(ch('A'), N, Action::ToggleNetForce, "net force arrow", "view"),
     b(ch('i'), N, Action::ToggleVelocity, "velocity arrow", "view"),
+    b(ch('C'), N, Action::TogglePointModel, "body: point model beside it", "view"),
     b(ch('e'), N, Action::EstimateError, "error estimate", "integrator"),
     b(ch('+'), N, Action::ZoomIn, "zoom in / out", "view"),
     b(ch('='), N, Action::ZoomIn, "zoom in / out", "view"),

@@ -81,6 +81,11 @@ pub struct App {
     /// The scene's finite body (the appendix's two masses on a rod) from the same release,
     /// drawn as a bar; None without a body, with μ = 0 or under Stokes drag.
     pub rod: Option<crate::engine::rod::RodTrack>,
+    /// In a body scene, the point model's path and marker drawn beside the body (`C`).
+    pub point_model: bool,
+    /// What the last computed body track has to say (it was cut short), for the notice after
+    /// the key that computed it.
+    pub(crate) rod_notice: Option<String>,
     pub theme: Theme,
     pub playing: bool,
     pub speed: f64,
@@ -150,6 +155,7 @@ impl App {
         };
         let sim = make_sim(initial, settings);
         let rod = make_rod(scene.body, &initial, settings);
+        let rod_notice = rod.as_ref().and_then(rod_cut_notice);
         let units = scene.units;
         let mut pins = Vec::new();
         for spec in scene.pins.iter().rev().take(crate::pin::MAX_PINS).rev() {
@@ -166,6 +172,8 @@ impl App {
             sim,
             paper: None,
             rod,
+            point_model: view.is_none_or(|v| v.point),
+            rod_notice: None,
             theme,
             playing: true,
             speed: 1.0,
@@ -181,7 +189,7 @@ impl App {
             turn: 0.0,
             pan: glam::DVec2::ZERO,
             mouse: true,
-            notice: None,
+            notice: rod_notice,
             readouts_asked: 0,
             save_path: PathBuf::from(SAVE_PATH),
             writes_files: true,
@@ -206,6 +214,7 @@ impl App {
         self.initial = sanitize(self.initial);
         self.sim = make_sim(self.initial, self.settings);
         self.rod = make_rod(self.scene.body, &self.initial, self.settings);
+        self.rod_notice = self.rod.as_ref().and_then(rod_cut_notice);
         if self.paper.is_some() {
             self.paper = Some(make_sim(self.initial, Settings::paper()));
         }
@@ -223,6 +232,12 @@ impl App {
         self.paper
             .as_ref()
             .is_some_and(|p| p.live() && p.now().tau < self.sim.now().tau - 1e-9)
+    }
+
+    /// Whether the point model is drawn: always, but in a body scene whose body is drawn and
+    /// `C` has hidden it.
+    pub fn point_shown(&self) -> bool {
+        self.point_model || self.rod.is_none()
     }
 
     /// The state on screen.
@@ -357,6 +372,7 @@ impl App {
                 zoom: self.zoom,
                 net_force: self.net_force,
                 velocity: self.velocity,
+                point: self.point_model,
             }),
             pins: self.pins.iter().map(|p| p.spec.clone()).collect(),
         }
@@ -476,7 +492,17 @@ fn make_rod(
 }
 
 /// How far in τ the explorer runs the body.
-const ROD_TAU: f64 = 200.0;
+pub const ROD_TAU: f64 = 200.0;
+
+/// What to say when a body's track stopped short of its run's end: where, and why.
+pub fn rod_cut_notice(rod: &crate::engine::rod::RodTrack) -> Option<String> {
+    use crate::engine::rod::Cut;
+    let at = num(rod.end_tau(), 3);
+    Some(match rod.cut.as_ref()? {
+        Cut::Budget(n) => format!("body drawn to τ = {at} only: its {n}-step budget ran out"),
+        Cut::Failed(e) => format!("body drawn to τ = {at} only: its run failed ({e})"),
+    })
+}
 
 pub(crate) fn make_sim(initial: Initial, settings: Settings) -> Sim {
     Sim::new(initial, settings, view_radius(&initial))

@@ -238,10 +238,14 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) -> CanvasGeom {
         Frame::Lab => " lab frame ".to_string(),
         Frame::Table => " rotating frame ".to_string(),
     };
+    // With the point model hidden (`C`), the body's centre is what a zoom follows.
+    let point = app.point_shown();
+    let body_now = app.rod.as_ref().and_then(|rod| rod.at(app.sim.now().tau));
     if app.zoom != 1.0 {
         title.push_str(&format!(
-            "zoom ×{} (follows ●) ",
-            crate::ui::panel::num(app.zoom, 2)
+            "zoom ×{} (follows {}) ",
+            crate::ui::panel::num(app.zoom, 2),
+            if point { "●" } else { "the body" }
         ));
     }
     let block = super::titled(title, &th);
@@ -255,7 +259,17 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) -> CanvasGeom {
     let now = app.sim.now();
     let view = app.view;
     let follow = if app.zoom > 1.0 {
-        rotate(in_frame(&now, view), turn)
+        match body_now.filter(|_| !point) {
+            Some(b) => rotate(
+                if view == Frame::Lab {
+                    rotate(b.q, b.tau)
+                } else {
+                    b.q
+                },
+                turn,
+            ),
+            None => rotate(in_frame(&now, view), turn),
+        }
     } else {
         DVec2::ZERO
     };
@@ -276,7 +290,7 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) -> CanvasGeom {
     // Where and when it stuck: the rest point in the frame shown (in the lab, where it was at
     // the stop; it rides the table from there).
     let stuck = match app.sim.run.status() {
-        crate::engine::Status::Stuck { tau, q } if now.tau >= tau => {
+        crate::engine::Status::Stuck { tau, q } if now.tau >= tau && point => {
             let at = match view {
                 Frame::Lab => rotate(q, tau),
                 Frame::Table => q,
@@ -322,10 +336,15 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) -> CanvasGeom {
         Some(s.contacts(rod.l).map(|c| rotate(c, spin)))
     });
     let half_width = 0.5 * (xb[1] - xb[0]).min(yb[1] - yb[0]);
-    let forces = arrows(app, half_width, arrow_scale);
+    // The arrows are the point's: hidden with it.
+    let forces = if point {
+        arrows(app, half_width, arrow_scale)
+    } else {
+        Vec::new()
+    };
     let ring_label = rotate(DVec2::new(-0.95, -0.72), turn);
     let tau_now = now.tau;
-    let marks: Vec<State> = if app.step_mode {
+    let marks: Vec<State> = if app.step_mode && point {
         app.sim
             .step_marks
             .iter()
@@ -415,7 +434,9 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) -> CanvasGeom {
             if let Some(p) = paper {
                 trail(ctx, p, view, turn, th.accent);
             }
-            trail(ctx, sim, view, turn, th.trail);
+            if point {
+                trail(ctx, sim, view, turn, th.trail);
+            }
             ctx.layer();
             let stuck_label = stuck.map(|(at, tau)| {
                 let text = if words {
@@ -450,7 +471,11 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) -> CanvasGeom {
                 let row = ((yb[1] - p.y) * h / (yb[1] - yb[0])).floor() as i64;
                 (row, col, col + n as i64)
             };
-            let mut taken = vec![cells(at, 1)];
+            let mut taken = if point {
+                vec![cells(at, 1)]
+            } else {
+                Vec::new()
+            };
             taken.extend(stuck_label.map(|(p, text)| cells(p, text.chars().count())));
             if words {
                 taken.push(cells(ring_label, 11));
@@ -534,12 +559,14 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) -> CanvasGeom {
                 ctx.print(q.x, q.y, Span::styled("○", Style::default().fg(th.accent)));
             }
             // Stuck, the particle is a square: it reads without colour.
-            let glyph = if stuck.is_some() { "■" } else { "●" };
-            ctx.print(
-                at.x,
-                at.y,
-                Span::styled(glyph, Style::default().fg(th.particle)),
-            );
+            if point {
+                let glyph = if stuck.is_some() { "■" } else { "●" };
+                ctx.print(
+                    at.x,
+                    at.y,
+                    Span::styled(glyph, Style::default().fg(th.particle)),
+                );
+            }
         });
     f.render_widget(canvas, area);
     geom

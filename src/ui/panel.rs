@@ -116,15 +116,19 @@ pub fn lines(app: &App) -> Vec<Line<'static>> {
 }
 
 /// The readout lines that fit in `rows`, most important first when not all do: the status
-/// (stuck / slipping / escape certified), then ξ, τ and the release, then the rest.
+/// (stuck / slipping / escape certified), then ξ, τ, the body's phase (first of all when the
+/// point model is hidden, `C`) and the release, then the rest.
 pub fn lines_in(app: &App, rows: usize) -> Vec<Line<'static>> {
-    let (all, status) = readouts(app);
+    let (all, status, rod) = readouts(app);
     if all.len() <= rows {
         return all;
     }
-    let first: Vec<usize> = [status.start, XI_LINE, TAU_LINE]
+    let body_first = rod.filter(|_| !app.point_shown());
+    let first: Vec<usize> = body_first
         .into_iter()
+        .chain([status.start, XI_LINE, TAU_LINE])
         .chain(status.skip(1))
+        .chain(rod.filter(|_| body_first.is_none()))
         .chain([0])
         .collect();
     let mut order = first.clone();
@@ -140,8 +144,8 @@ pub fn lines_in(app: &App, rows: usize) -> Vec<Line<'static>> {
 const TAU_LINE: usize = 1;
 const XI_LINE: usize = 2;
 
-/// The readout lines, and which of them hold the status.
-fn readouts(app: &App) -> (Vec<Line<'static>>, std::ops::Range<usize>) {
+/// The readout lines, which of them hold the status, and which the body's phase.
+fn readouts(app: &App) -> (Vec<Line<'static>>, std::ops::Range<usize>, Option<usize>) {
     let th = &app.theme;
     let s = app.sim.now();
     let i = &app.initial;
@@ -282,9 +286,7 @@ fn readouts(app: &App) -> (Vec<Line<'static>>, std::ops::Range<usize>) {
             th,
         ));
     }
-    if let Some(b) = app.scene.body {
-        body_lines(app, b, &s, &mut out);
-    }
+    let rod = app.scene.body.map(|b| body_lines(app, b, &s, &mut out));
     out.push(kv("steps", format!("{} rej {}", c.steps, c.rejected), th));
     if app.step_mode
         && let Some(st) = app.sim.run.last_step()
@@ -324,7 +326,12 @@ fn readouts(app: &App) -> (Vec<Line<'static>>, std::ops::Range<usize>) {
             .collect();
         out.push(kv("pins", names.join(" "), th));
     }
-    if app.forces || app.net_force || app.velocity {
+    if (app.forces || app.net_force || app.velocity) && !app.point_shown() {
+        out.push(Line::from(Span::styled(
+            "arrows: point's, hidden (C)",
+            Style::default().fg(th.muted),
+        )));
+    } else if app.forces || app.net_force || app.velocity {
         // The legend names exactly the arrows drawn, by their head labels; what is not drawn
         // for being zero says so.
         let drawn = crate::ui::canvas::arrows(app, 1.0, 1.0);
@@ -355,20 +362,87 @@ fn readouts(app: &App) -> (Vec<Line<'static>>, std::ops::Range<usize>) {
             )));
         }
     }
-    (out, status)
+    (out, status, rod)
 }
 
-/// The appendix's body: its size and the two conditions for treating it as a point at the
-/// state on screen, each a number and a verdict, and a warning when either is not ≪ 1.
+/// The body at the τ on screen, as the panel judges it: its centre's radius, whether it rests,
+/// and its state and phase where its track has them.
+pub struct BodyNow {
+    pub xi: f64,
+    pub rests: bool,
+    pub at: Option<(crate::engine::rod::RodState, crate::engine::rod::Phase)>,
+}
+
+/// The body's state at `tau` from its track: where the track ends before `tau` (an escape's
+/// certificate, a cut), its last state, not resting.
+pub fn body_now(rod: &crate::engine::rod::RodTrack, tau: f64) -> Option<BodyNow> {
+    use crate::engine::rod::Phase;
+    match rod.at_with_phase(tau) {
+        Some((st, ph)) => Some(BodyNow {
+            xi: st.q.length(),
+            rests: ph == Phase::Rest || (rod.outcome == Outcome::Stuck && tau >= rod.end_tau()),
+            at: Some((st, ph)),
+        }),
+        None => rod.states.last().map(|l| BodyNow {
+            xi: l.q.length(),
+            rests: false,
+            at: None,
+        }),
+    }
+}
+
+/// A body's phase in words: sliding, pivoting about one contact, riding the table.
+pub fn phase_word(p: crate::engine::rod::Phase) -> &'static str {
+    match p {
+        crate::engine::rod::Phase::Slip => "sliding",
+        crate::engine::rod::Phase::Pivot { .. } => "pivoting",
+        crate::engine::rod::Phase::Rest => "riding the table",
+    }
+}
+
+/// How the body's track ends, once the τ on screen has reached its end (None before): a key
+/// and words that fit the panel, and the reason a cut track stopped.
+pub fn body_end(rod: &crate::engine::rod::RodTrack, tau: f64) -> Option<(String, Option<String>)> {
+    use crate::engine::rod::Cut;
+    let end = rod.end_tau();
+    if tau < end {
+        return None;
+    }
+    Some(match (&rod.cut, rod.outcome) {
+        (Some(Cut::Budget(n)), _) => (
+            format!("cut at τ = {}", num(end, 2)),
+            Some(format!("{n}-step budget")),
+        ),
+        (Some(Cut::Failed(_)), _) => (
+            format!("cut at τ = {}", num(end, 2)),
+            Some("its run failed".into()),
+        ),
+        (None, Outcome::Stuck) => {
+            let xi = rod.states.last().map_or(f64::NAN, |s| s.q.length());
+            (format!("rests at ξ = {}", num(xi, 5)), None)
+        }
+        (None, Outcome::Escaped) => (format!("escapes (τ = {})", num(end, 3)), None),
+        (None, Outcome::Running) => (format!("slides past τ = {}", num(end, 0)), None),
+    })
+}
+
+/// The appendix's body: its size, its own phase and centre at the τ on screen (from its
+/// track), the two conditions for treating it as a point judged at the body's state (the
+/// point's without a track), a warning when either is not ≪ 1, and how the body ends once the
+/// τ on screen reaches it. Returns the index of the phase line.
 fn body_lines(
     app: &App,
     b: crate::engine::body::Body,
     s: &crate::engine::State,
     out: &mut Vec<Line<'static>>,
-) {
+) -> usize {
     let th = &app.theme;
-    let xi = s.xi();
-    let stuck = app.sim.outcome_now() == Outcome::Stuck;
+    let tau = s.tau;
+    let now = app.rod.as_ref().and_then(|r| body_now(r, tau));
+    let (xi, stuck) = match &now {
+        Some(n) => (n.xi, n.rests),
+        None => (s.xi(), app.sim.outcome_now() == Outcome::Stuck),
+    };
     let f = crate::engine::body::friction(&app.settings, app.initial.frictionless, stuck, xi);
     let c = b.conditions(xi, f, app.units.map(|u| u.mu));
     let size = match b.height {
@@ -388,6 +462,31 @@ fn body_lines(
             si,
             Style::default().fg(th.foreground),
         )));
+    }
+    let phase_line = out.len();
+    let phase = match (&app.rod, &now) {
+        (None, _) if app.initial.frictionless => "not run: μ = 0".to_string(),
+        (None, _) if app.settings.stokes().is_some() => "not run: Stokes".to_string(),
+        (None, _) => "not run".to_string(),
+        (
+            Some(_),
+            Some(BodyNow {
+                at: Some((_, p)), ..
+            }),
+        ) => phase_word(*p).to_string(),
+        (Some(r), _) if r.cut.is_none() && r.outcome == Outcome::Escaped => "escaped".into(),
+        (Some(_), _) => "not computed here".into(),
+    };
+    out.push(kv("rod", phase, th));
+    if let Some(BodyNow {
+        at: Some((st, _)), ..
+    }) = &now
+    {
+        out.push(kv(
+            "rod ξ",
+            format!("{} ψ {}", num(st.q.length(), 5), num(wrap_angle(st.psi), 4)),
+            th,
+        ));
     }
     let topple = match (c.topple, c.topple_verdict(), b.height) {
         // Without a real table μ_k = 1 bounds it: the number is an upper bound.
@@ -417,6 +516,13 @@ fn body_lines(
             Style::default().fg(th.notice).add_modifier(Modifier::BOLD),
         )));
     }
+    if let Some((end, why)) = app.rod.as_ref().and_then(|r| body_end(r, tau)) {
+        out.push(kv("ends", end, th));
+        if let Some(why) = why {
+            out.push(kv("  by", why, th));
+        }
+    }
+    phase_line
 }
 
 /// A ratio for the body's readouts: four decimals, or exponent form when small or large.

@@ -278,14 +278,46 @@ fn help() -> Vec<String> {
     out
 }
 
-/// The explorer's one-line answer to `I`: τ, ξ and how the run stands.
+/// The explorer's one-line answer to `I`: τ, ξ and how the run stands, and in a body scene
+/// the body's phase and centre.
 pub fn summary(app: &App) -> String {
     let s = app.now();
-    format!(
+    let mut out = format!(
         "τ = {}, ξ = {}, |u| = {}: {}",
         num(s.tau, 3),
         num(s.xi(), 5),
         num(s.u().length(), 4),
         status(&app.sim)
-    )
+    );
+    if let Some(b) = body(app) {
+        out.push_str(&format!("; {b}"));
+    }
+    out
+}
+
+/// The body at the τ on screen in a few words: its centre's radius (one word to a line cut
+/// short, joined by no-break spaces: kept or dropped whole, never `ξ =` without the number),
+/// then sliding, pivoting or at rest; or how its track ended. None without a body's track.
+fn body(app: &App) -> Option<String> {
+    use crate::engine::rod::Phase;
+    use crate::ui::panel::{body_end, body_now};
+    let rod = app.rod.as_ref()?;
+    let tau = app.now().tau;
+    let now = body_now(rod, tau)?;
+    Some(match now.at {
+        Some((st, ph)) => format!(
+            "body\u{a0}ξ\u{a0}=\u{a0}{} {}",
+            num(st.q.length(), 5),
+            match ph {
+                Phase::Slip => "sliding",
+                Phase::Pivot { .. } => "pivoting",
+                Phase::Rest => "at rest",
+            }
+        ),
+        None => match body_end(rod, tau) {
+            Some((end, Some(why))) => format!("body {end} ({why})"),
+            Some((end, None)) => format!("body {end}"),
+            None => "body not computed here".into(),
+        },
+    })
 }

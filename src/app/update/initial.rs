@@ -50,10 +50,16 @@ pub(super) fn apply(app: &mut App, action: Action) {
             app.restart();
         }
         Action::Preset(i) => {
-            if let Some(scene) = PRESETS.get(i).and_then(|n| Scene::preset(n)) {
+            if let Some(mut scene) = PRESETS.get(i).and_then(|n| Scene::preset(n)) {
+                // The body is the object, the preset its release: it stays.
+                scene.body = app.scene.body;
                 app.initial = scene.initial;
                 app.settings = scene.settings;
-                app.notice = Some(format!("preset {}: {}", scene.name, scene.about));
+                let body = match scene.body {
+                    Some(b) => format!(" (the body stays: L = {})", b.length),
+                    None => String::new(),
+                };
+                app.notice = Some(format!("preset {}: {}{body}", scene.name, scene.about));
                 app.scene = scene;
                 app.zoom = 1.0;
                 app.turn = 0.0;

@@ -27,6 +27,13 @@ pub fn update(app: &mut App, action: Action) {
         Group::App => app::apply(app, action),
         Group::Lesson => lesson::apply(app, action),
     }
+    // A body's track cut short by the key just pressed says so, beside what the key said.
+    if let Some(cut) = app.rod_notice.take() {
+        app.notice = Some(match app.notice.take() {
+            Some(n) => format!("{n}; {cut}"),
+            None => cut,
+        });
+    }
     app.ask_analysis();
 }
 

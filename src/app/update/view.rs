@@ -20,6 +20,25 @@ pub(super) fn apply(app: &mut App, action: Action) {
         Action::ToggleForces => app.forces = !app.forces,
         Action::ToggleNetForce => app.net_force = !app.net_force,
         Action::ToggleVelocity => app.velocity = !app.velocity,
+        Action::TogglePointModel if app.scene.body.is_none() => {
+            app.notice = Some(
+                "no body to compare with the point model (--body-length, or [body] in a scene)"
+                    .into(),
+            );
+        }
+        Action::TogglePointModel => {
+            app.point_model = !app.point_model;
+            app.notice = Some(
+                match (app.rod.is_some(), app.point_model) {
+                    (true, true) => "point model beside the body (C)",
+                    (true, false) => "the body alone, point model hidden (C)",
+                    // Nothing of the body is drawn to stand alone: the point stays.
+                    (false, true) => "point model shown; the body is not run here (μ = 0, Stokes)",
+                    (false, false) => "point model kept: the body is not run here (μ = 0, Stokes)",
+                }
+                .into(),
+            );
+        }
         Action::ZoomIn => app.zoom = (app.zoom * 1.5).min(ZOOM_RANGE.1),
         Action::ZoomOut => app.zoom = (app.zoom / 1.5).max(ZOOM_RANGE.0),
         Action::Pan(dx, dy) => app.pan += glam::DVec2::new(dx, dy) / app.zoom,
