@@ -3,10 +3,9 @@
 //! SI by `run` and the panel.
 
 mod common;
-use common::{render, turntable};
+use common::{render, seeded as config, turntable};
 use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
 use proptest::prelude::*;
-use proptest::test_runner::RngSeed;
 use turntable::app::App;
 use turntable::engine::body::Body;
 use turntable::engine::units::{Length, Units, show_metres, show_r_max_in_metres};
@@ -383,15 +382,6 @@ fn the_panel_shows_the_body_in_si_without_cutting_it() {
             .any(|l| l.starts_with("body L 0.1242 = 2.00 cm")),
         "{out}"
     );
-}
-
-fn config(cases: u32) -> ProptestConfig {
-    ProptestConfig {
-        cases,
-        rng_seed: RngSeed::Fixed(23),
-        failure_persistence: None,
-        ..ProptestConfig::default()
-    }
 }
 
 proptest! {

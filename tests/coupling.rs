@@ -2,10 +2,9 @@
 //! and Stokes drag (`--coupling stokes`), each against a closed form, a limit, or plain runs.
 
 mod common;
-use common::{render, turntable};
+use common::{render, seeded as config, turntable};
 use glam::DVec2;
 use proptest::prelude::*;
-use proptest::test_runner::RngSeed;
 use std::f64::consts::{PI, TAU};
 use turntable::app::App;
 use turntable::engine::doubt::{doubt, second_opinion};
@@ -126,15 +125,6 @@ fn the_second_opinion_shares_the_coupling() {
         };
         let run = Run::new(Initial::velocity(0.5, 0.0, 0.6), s).unwrap();
         assert_eq!(second_opinion(&run).coupling, c);
-    }
-}
-
-fn config(cases: u32) -> ProptestConfig {
-    ProptestConfig {
-        cases,
-        rng_seed: RngSeed::Fixed(23),
-        failure_persistence: None,
-        ..ProptestConfig::default()
     }
 }
 

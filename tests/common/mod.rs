@@ -112,3 +112,14 @@ pub fn rk4(
     }
     (q, u)
 }
+
+/// A property test's configuration with a fixed seed: CI sees the same `cases` every run, and
+/// no failure file is written into the tree.
+pub fn seeded(cases: u32) -> proptest::test_runner::Config {
+    proptest::test_runner::Config {
+        cases,
+        rng_seed: proptest::test_runner::RngSeed::Fixed(23),
+        failure_persistence: None,
+        ..proptest::test_runner::Config::default()
+    }
+}
