@@ -491,3 +491,52 @@ fn a_cut_track_says_where_it_stopped() {
     );
     assert!(screen.contains("cut at τ"), "{screen}");
 }
+
+/// `body.motion.check` is the body run again at tol/1000 and says how far its end lies: the
+/// numbers are those of two runs made here, it is null with `--no-check` and at tol 1e-14
+/// (nothing tighter to ask), and it never says `certain` (the same integrator twice).
+#[test]
+fn the_body_s_end_is_checked_against_a_tighter_run() {
+    use turntable::engine::rod::RodRun;
+    let a = [
+        "run",
+        "--xi0",
+        "0.5",
+        "--phi",
+        "3",
+        "--v0",
+        "1",
+        "--body-length",
+        "0.1",
+        "--json",
+    ];
+    let v = json(&a);
+    let c = &v["body"]["motion"]["check"];
+    let initial = turntable::engine::Initial::velocity(0.5, 3.0, 1.0);
+    let b = turntable::engine::body::Body {
+        length: 0.1,
+        height: None,
+        angle: 0.0,
+    };
+    let end = |tol: f64| {
+        let mut r = RodRun::new(b, 1.0, &initial, tol).unwrap();
+        r.finish(100.0, |_| {}).unwrap();
+        r.state
+    };
+    let (own, tight) = (end(1e-10), end(1e-13));
+    assert_eq!(c["tol"].as_f64(), Some(1e-13));
+    assert_eq!(
+        (c["outcome"].as_str(), c["agrees"].as_bool()),
+        (Some("stuck"), Some(true))
+    );
+    let q = c["q_error"].as_f64().unwrap();
+    assert!((q - (own.q - tight.q).length()).abs() < 1e-15, "{c}");
+    assert!(q > 0.0 && q < 1e-10, "{c}");
+    assert!(c["tau_error"].as_f64().unwrap() < 1e-6, "{c}");
+    assert!(v["body"]["motion"].get("certain").is_none(), "{v}");
+    assert!(c.get("certain").is_none(), "{c}");
+    let v = json(&[&a[..], &["--no-check"]].concat());
+    assert_eq!(v["body"]["motion"]["check"], serde_json::Value::Null);
+    let v = json(&[&a[..], &["--tol", "1e-14"]].concat());
+    assert_eq!(v["body"]["motion"]["check"], serde_json::Value::Null);
+}

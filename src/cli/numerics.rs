@@ -110,7 +110,7 @@ pub fn run(a: RunArgs) -> CmdResult {
     report.body = match body {
         Some(b) => {
             let mut r = BodyReport::new(b, &run, &end, units);
-            r.motion = rod_motion(b, &initial, settings, a.tau_max)?;
+            r.motion = rod_motion(b, &initial, settings, a.tau_max, !a.no_check)?;
             Some(r)
         }
         None => None,
@@ -119,20 +119,29 @@ pub fn run(a: RunArgs) -> CmdResult {
 }
 
 /// The two-mass body run from the same release, under Coulomb friction (μ = 0 and Stokes drag
-/// have no stick to model: None), at the run's tolerance (1e-10 for the fixed-step methods).
+/// have no stick to model: None), at the run's tolerance (1e-10 for the fixed-step methods);
+/// with `check`, again at tol/1000 (not below 1e-14) to measure how far its end lies.
 fn rod_motion(
     body: crate::engine::body::Body,
     initial: &Initial,
     settings: crate::engine::Settings,
     tau_max: f64,
+    check: bool,
 ) -> Result<Option<super::report::MotionReport>, Error> {
     if initial.frictionless || settings.stokes().is_some() {
         return Ok(None);
     }
     let tol = settings.scheme.tol().unwrap_or(1e-10);
-    let mut rod = crate::engine::rod::RodRun::new(body, settings.hold(), initial, tol)?;
-    let outcome = rod.finish(tau_max, |_| {})?;
-    Ok(Some(super::report::MotionReport::new(&rod, outcome)))
+    let end = |tol: f64| -> Result<_, Error> {
+        let mut rod = crate::engine::rod::RodRun::new(body, settings.hold(), initial, tol)?;
+        let outcome = rod.finish(tau_max, |_| {})?;
+        Ok((rod, outcome))
+    };
+    let (rod, outcome) = end(tol)?;
+    // At the tightest tol there is nothing tighter to ask.
+    let tight = (tol * 1e-3).max(crate::engine::method::TOL_RANGE.0);
+    let tight = (check && tight < tol).then(|| (tight, end(tight)));
+    Ok(Some(super::report::MotionReport::new(&rod, outcome, tight)))
 }
 
 /// The release and settings `run` was asked for, checked.

@@ -77,10 +77,35 @@ pub struct MotionReport {
     pub angle: f64,
     pub psi: f64,
     pub steps: u64,
+    /// The same release run again at tol/1000 (without `--no-check`): not an independent
+    /// method, so no `certain`, but the end's measured distance from a tighter run.
+    pub check: Option<MotionCheck>,
 }
 
+/// `body.motion.check`: the body run again 1000 times tighter, and how far its end lies from
+/// this one's.
+#[derive(Debug, Serialize)]
+pub struct MotionCheck {
+    pub tol: f64,
+    /// Null when the check's run failed (`failed` says why).
+    pub outcome: Option<Outcome>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub failed: Option<String>,
+    /// Whether the outcomes agree.
+    pub agrees: bool,
+    /// |q − q_check|, the centre's distance (at the same outcome).
+    pub q_error: Option<f64>,
+    /// |ψ − ψ_check| (at the same outcome).
+    pub psi_error: Option<f64>,
+    /// |τ − τ_check|: when it came to rest or was certified to escape.
+    pub tau_error: Option<f64>,
+}
+
+/// A body's run to its end, or why it failed.
+pub type RodEnd = Result<(RodRun, Outcome), crate::error::Error>;
+
 impl MotionReport {
-    pub fn new(run: &RodRun, outcome: Outcome) -> MotionReport {
+    pub fn new(run: &RodRun, outcome: Outcome, check: Option<(f64, RodEnd)>) -> MotionReport {
         let s = run.state;
         MotionReport {
             outcome,
@@ -89,6 +114,30 @@ impl MotionReport {
             angle: turn_angle(s.q.y.atan2(s.q.x)),
             psi: turn_angle(s.psi),
             steps: run.steps,
+            check: check.map(|(tol, c)| match c {
+                Ok((c, o)) => {
+                    let agrees = o == outcome;
+                    let same = |x: f64| agrees.then_some(x).and_then(finite);
+                    MotionCheck {
+                        tol,
+                        outcome: Some(o),
+                        failed: None,
+                        agrees,
+                        q_error: same((s.q - c.state.q).length()),
+                        psi_error: same((s.psi - c.state.psi).abs()),
+                        tau_error: same((s.tau - c.state.tau).abs()),
+                    }
+                }
+                Err(e) => MotionCheck {
+                    tol,
+                    outcome: None,
+                    failed: Some(e.to_string()),
+                    agrees: false,
+                    q_error: None,
+                    psi_error: None,
+                    tau_error: None,
+                },
+            }),
         }
     }
 }
@@ -324,6 +373,22 @@ growth   {rate:.12}  (Re lambda+: every release leaves as e^(rate tau) but those
                     m.psi,
                     m.steps
                 );
+                if let Some(c) = &m.check {
+                    let e = |x: Option<f64>| x.map_or("-".into(), |x| format!("{x:.1e}"));
+                    let _ = writeln!(
+                        text,
+                        "rod      at tol {:e}: {}; the centre {} away, psi {}, tau {} (not independent: the same integrator)",
+                        c.tol,
+                        match (c.outcome, &c.failed) {
+                            (Some(o), _) if c.agrees => format!("{} too", o.name()),
+                            (Some(o), _) => format!("{}, DISAGREES", o.name()),
+                            (None, f) => format!("failed ({})", f.as_deref().unwrap_or("")),
+                        },
+                        e(c.q_error),
+                        e(c.psi_error),
+                        e(c.tau_error)
+                    );
+                }
             }
         }
         if let Some(u) = &self.units {
