@@ -270,10 +270,19 @@ fn explorer_output(xdg: &Path, args: &[&str]) -> Option<Vec<u8>> {
     let mut seen = Vec::new();
     let start = Instant::now();
     let mut quit = false;
+    let mut answered = 0;
     loop {
         while let Ok(chunk) = rx.try_recv() {
             seen.extend(chunk);
         }
+        // Answer the cursor queries of its frame pacing, as a terminal does (unanswered, each
+        // waits out crossterm's 2 s).
+        let asked = seen.windows(4).filter(|w| w == b"\x1b[6n").count();
+        for _ in answered..asked {
+            use std::io::Write;
+            let _ = (&writer).write_all(b"\x1b[1;1R");
+        }
+        answered = asked;
         if child.try_wait().unwrap().is_some() {
             break;
         }

@@ -2,7 +2,7 @@
 //! test opens itself (skipped, saying so, where none can be opened; no TTY is needed).
 
 mod common;
-use std::io::Read;
+use std::io::{Read, Write};
 use std::os::fd::AsRawFd;
 use std::os::unix::fs::OpenOptionsExt;
 use std::process::{Child, Command, Stdio};
@@ -97,7 +97,17 @@ fn spawn_with(
                 continue;
             }
             match file.read(&mut buf) {
-                Ok(n) if n > 0 => sink.lock().unwrap().extend_from_slice(&buf[..n]),
+                Ok(n) if n > 0 => {
+                    let mut seen = sink.lock().unwrap();
+                    let from = seen.len().saturating_sub(3);
+                    seen.extend_from_slice(&buf[..n]);
+                    // Answer the explorer's cursor queries (its frame pacing) as a terminal
+                    // does; unanswered, each waits out crossterm's 2 s.
+                    let asked = seen[from..].windows(4).filter(|w| w == b"\x1b[6n").count();
+                    for _ in 0..asked {
+                        let _ = file.write_all(b"\x1b[1;1R");
+                    }
+                }
                 _ => std::thread::sleep(Duration::from_millis(20)),
             }
         }
