@@ -97,6 +97,7 @@ fn the_ui_never_integrates() {
             "Run::new",
             "RodTrack::new",
             "RodTrack::bounded",
+            "RodTrack::from_run",
             ".step(",
             "engine::solve",
             "engine::doubt",

@@ -3,6 +3,7 @@
 
 mod common;
 use common::turntable;
+use turntable::engine::Outcome;
 
 fn json(args: &[&str]) -> serde_json::Value {
     let (code, out, err) = turntable(args);
@@ -539,4 +540,57 @@ fn the_body_s_end_is_checked_against_a_tighter_run() {
     assert_eq!(v["body"]["motion"]["check"], serde_json::Value::Null);
     let v = json(&[&a[..], &["--tol", "1e-14"]].concat());
     assert_eq!(v["body"]["motion"]["check"], serde_json::Value::Null);
+}
+
+/// Fig. 2 with a body (`6` keeps it): its track escapes at the certificate, τ = 0, as
+/// `RodRun::finish` says, and is followed out to the point's view radius, so past the
+/// certificate the canvas still draws the bar (its centre `⊕`), to where it leaves and there
+/// after, and the panel says how it ends.
+#[test]
+fn fig2s_body_is_drawn_leaving_past_its_certificate() {
+    let mut app = body_app(0.1);
+    app.scene.body = Some(turntable::engine::body::Body {
+        length: 0.1,
+        height: Some(0.01),
+        angle: 0.0,
+    });
+    key(&mut app, '6');
+    let rod = app.rod.clone().unwrap();
+    let mut run = turntable::engine::rod::RodRun::new(
+        app.scene.body.unwrap(),
+        app.settings.hold(),
+        &app.initial,
+        1e-10,
+    )
+    .unwrap();
+    assert_eq!(run.finish(200.0, |_| {}).unwrap(), Outcome::Escaped);
+    assert_eq!(rod.escape, Some(run.state.tau));
+    assert_eq!(rod.escape, Some(0.0));
+    assert_eq!((rod.outcome, rod.cut.clone()), (Outcome::Escaped, None));
+    let radius = turntable::app::state::view_radius(&app.initial);
+    let last = *rod.states.last().unwrap();
+    assert!(last.q.length() >= radius, "{} < {radius}", last.q.length());
+    assert!(rod.steps <= turntable::engine::rod::TRACK_STEPS);
+    assert!(rod.states.len() <= turntable::engine::rod::TRACK_STATES);
+    // C hides the point: what is drawn is the body's.
+    key(&mut app, 'C');
+    for _ in 0..20 {
+        app.tick();
+    }
+    let tau = app.now().tau;
+    assert!(tau > 0.9 && rod.at(tau).is_some(), "{tau}");
+    let screen = common::render(&mut app, 100, 30);
+    assert!(screen.contains('⊕'), "{screen}");
+    assert!(!screen.contains('●'), "{screen}");
+    let lines = panel_of(&app);
+    assert_eq!(value(&lines, "ends"), "escapes (τ = 0.000)");
+    assert_eq!(value(&lines, "rod"), "sliding");
+    // Past where the body leaves (τ ≈ 5.92): kept at its last place, as the point is.
+    for _ in 0..200 {
+        app.tick();
+    }
+    assert!(app.now().tau > last.tau, "{}", app.now().tau);
+    let screen = common::render(&mut app, 100, 30);
+    assert!(screen.contains('⊕'), "{screen}");
+    assert_eq!(value(&panel_of(&app), "rod"), "escaped");
 }

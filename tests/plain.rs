@@ -355,3 +355,103 @@ fn a_lesson_in_plain_mode_says_its_captions() {
     assert!(!out.contains('\x1b'));
     assert!(out.contains("\n--- snapshot 1: "));
 }
+
+/// A body scene says the body's events as time plays, each once, on the tick whose τ reaches
+/// it, in the track's numbers: case A's body pivots about a stuck contact, then rests on the
+/// table; with `6` (fig. 2's release, the body kept) it escapes at once, certified at τ = 0.
+#[test]
+fn a_body_scene_says_the_bodys_pivot_rest_and_escape_as_time_reaches_them() {
+    use turntable::engine::rod::{Phase, RodTrack};
+    let scene = Scene::load("tests/replay/body.toml").unwrap();
+    let body = scene.body.unwrap();
+    let app = App::new(scene, Theme::builtin("dark").unwrap());
+    let track = RodTrack::new(body, 1.0, &app.initial, 1e-10, 200.0).unwrap();
+    let k = track
+        .phases
+        .iter()
+        .position(|p| matches!(p, Phase::Pivot { .. }))
+        .unwrap();
+    let Phase::Pivot { anchor, .. } = track.phases[k] else {
+        unreachable!()
+    };
+    let pivot = (
+        track.states[k].tau,
+        format!(
+            "the body pivots about a stuck contact at ξ = {}, τ = {}",
+            num(anchor.length(), 5),
+            num(track.states[k].tau, 3)
+        ),
+    );
+    let rest = *track.states.last().unwrap();
+    assert_eq!(track.outcome, Outcome::Stuck);
+    let rest = (
+        rest.tau,
+        format!(
+            "the body rests at ξ = {}, τ = {}",
+            num(rest.q.length(), 5),
+            num(rest.tau, 3)
+        ),
+    );
+    assert_eq!(rest.1, "the body rests at ξ = 0.31442, τ = 1.027");
+    let mut p = Plain {
+        seen: Seen::of(&app),
+        lines: opening(&app),
+        app,
+    };
+    assert!(!p.lines.iter().any(|l| l.starts_with("the body")));
+    for _ in 0..60 {
+        let was = p.app.now().tau;
+        let said = p.ticks(1);
+        let now = p.app.now().tau;
+        for (tau, line) in [&pivot, &rest] {
+            assert_eq!(
+                said.contains(line),
+                was < *tau && *tau <= now,
+                "{line} at τ {was}..{now}: {said:?}"
+            );
+        }
+    }
+    for (_, line) in [&pivot, &rest] {
+        assert_eq!(p.lines.iter().filter(|l| *l == line).count(), 1, "{line}");
+    }
+    // Fig. 2's release outside ξ = 1: certified at once, said with the new release.
+    let said = p.key('6');
+    let cert = p.app.rod.as_ref().unwrap().escape.unwrap();
+    assert_eq!(cert, 0.0);
+    assert!(
+        said.contains(&"the body escapes (certified at τ = 0.000)".to_string()),
+        "{said:?}"
+    );
+    let more = p.ticks(20);
+    assert!(!more.iter().any(|l| l.starts_with("the body")), "{more:?}");
+}
+
+/// The same through `replay --plain`, as a listener hears it.
+#[test]
+fn replay_plain_says_the_bodys_events() {
+    let script = std::env::temp_dir().join(format!("turntable-body-{}.keys", std::process::id()));
+    std::fs::write(&script, "tick 40\n6\ntick 10\n").unwrap();
+    let (code, out, err) = turntable(&[
+        "replay",
+        "--plain",
+        "--scene",
+        "tests/replay/body.toml",
+        script.to_str().unwrap(),
+    ]);
+    std::fs::remove_file(&script).unwrap();
+    assert_eq!(code, 0, "{err}");
+    let lines: Vec<&str> = out.lines().collect();
+    let at = |l: &str| {
+        let n: Vec<usize> = (0..lines.len()).filter(|&k| lines[k] == l).collect();
+        assert_eq!(n.len(), 1, "{l} in {out}");
+        n[0]
+    };
+    let rest = at("the body rests at ξ = 0.31442, τ = 1.027");
+    assert!(at("stuck at ξ = 0.3134 (τ = 0.997)") < rest);
+    assert!(lines[at("the body escapes (certified at τ = 0.000)") - 1].starts_with("escaped"));
+    assert!(
+        lines
+            .iter()
+            .any(|l| l.starts_with("the body pivots about a stuck contact at ξ = "))
+    );
+}

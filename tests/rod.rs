@@ -434,3 +434,71 @@ fn a_track_knows_the_phase_at_any_tau() {
     assert!(matches!(t.phase_at(tp), Some(Phase::Pivot { .. })));
     assert_eq!(t.phase_at(0.5 * tp), Some(Phase::Slip));
 }
+
+/// Followed past its certificate (the explorer's track), an escaping body is stepped on out to
+/// the radius asked for, within the same budgets; the escape's τ is still the certificate's,
+/// where `RodRun::finish` (and `run`'s `body.motion`) stops, and up to it the track is the
+/// unfollowed one. Fig. 2's release (at rest on the table at ξ0 = 1.1, E < −½ at once) and a
+/// body thrown out as fast as case A (certified at τ ≈ 0.5).
+#[test]
+fn an_escaping_body_is_followed_out_past_its_certificate() {
+    use turntable::engine::rod::{RodTrack, TRACK_STATES, TRACK_STEPS};
+    for (initial, radius) in [
+        (Initial::at_rest(1.1, Release::TableRest), 4.5),
+        (Initial::velocity(0.5, 0.0, 1.0), 4.5),
+    ] {
+        let b = body(0.1, 0.0);
+        let mut plain = RodRun::new(b, 1.0, &initial, 1e-10).unwrap();
+        assert_eq!(plain.finish(200.0, |_| {}).unwrap(), Outcome::Escaped);
+        let cert = plain.state.tau;
+        assert_eq!(plain.certificate(), Some(cert));
+        let ends = RodTrack::new(b, 1.0, &initial, 1e-10, 200.0).unwrap();
+        assert_eq!((ends.outcome, ends.escape), (Outcome::Escaped, Some(cert)));
+        assert_eq!(ends.end_tau(), cert);
+        assert!(ends.left().is_none());
+        let run = RodRun::new(b, 1.0, &initial, 1e-10)
+            .unwrap()
+            .following(radius);
+        let t = RodTrack::from_run(run, 200.0, TRACK_STEPS, TRACK_STATES);
+        assert_eq!(
+            (t.outcome, t.escape, t.cut.clone()),
+            (Outcome::Escaped, Some(cert), None)
+        );
+        let last = *t.states.last().unwrap();
+        assert!(last.q.length() >= radius, "{}", last.q.length());
+        // Only the last step crosses the radius.
+        let before = t.states[t.states.len() - 2].q.length();
+        assert!(before < radius, "{before}");
+        assert!(t.end_tau() > cert + 1.0, "{} vs {cert}", t.end_tau());
+        assert_eq!(t.left(), Some(last));
+        assert!(t.at(cert + 1.0).is_some() && t.at(t.end_tau() + 1.0).is_none());
+        assert_eq!(t.states[..ends.states.len()], ends.states[..]);
+        assert!(
+            t.steps < 1000 && t.states.len() < 1000,
+            "{} {}",
+            t.steps,
+            t.states.len()
+        );
+        // Its energy still never rises past the certificate.
+        let e: Vec<f64> = t.states.iter().map(|s| s.energy(0.1)).collect();
+        assert!(e.windows(2).all(|w| w[1] <= w[0] + 1e-8), "{e:?}");
+    }
+}
+
+/// A followed track is bounded as any: a budget that runs out past the certificate cuts the
+/// drawing, not the escape. (Fig. 2's release with the rod across the radius, ψ0 = 0.4, is such
+/// a case: both contacts break loose at once from rest, which `rod` takes along each contact's
+/// slip, and the run creeps at slips of ~1e-10 until its budget is spent, τ ≈ 2e-5.)
+#[test]
+fn a_followed_track_cut_past_its_certificate_still_escapes() {
+    use turntable::engine::rod::{Cut, RodTrack};
+    let fig2 = Initial::at_rest(1.1, Release::TableRest);
+    let run = RodRun::new(body(0.1, 0.4), 1.0, &fig2, 1e-10)
+        .unwrap()
+        .following(4.5);
+    let t = RodTrack::from_run(run, 200.0, 2_000, 500);
+    assert_eq!(t.cut, Some(Cut::Budget(2_000)));
+    assert_eq!((t.outcome, t.escape), (Outcome::Escaped, Some(0.0)));
+    assert!(t.left().is_none() && t.states.len() <= 500);
+    assert!(t.end_tau() < 1e-3, "{}", t.end_tau());
+}

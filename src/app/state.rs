@@ -476,8 +476,10 @@ pub fn sanitize(mut i: Initial) -> Initial {
     i
 }
 
-/// The body's track to draw, up to [`ROD_TAU`]; None where there is no body, no dry
-/// friction, or the run fails (the panel's conditions still show).
+/// The body's track to draw, up to [`ROD_TAU`], an escaping body followed past its
+/// certificate out to the point's [`view_radius`] (the class sees it leave), within the
+/// track's step and state budgets; None where there is no body, no dry friction, or the body
+/// is refused (the panel's conditions still show).
 fn make_rod(
     body: Option<crate::engine::body::Body>,
     initial: &Initial,
@@ -488,7 +490,10 @@ fn make_rod(
         return None;
     }
     let tol = settings.scheme.tol().unwrap_or(1e-10);
-    crate::engine::rod::RodTrack::new(body, settings.hold(), initial, tol, ROD_TAU).ok()
+    use crate::engine::rod::{RodRun, RodTrack, TRACK_STATES, TRACK_STEPS};
+    let run = RodRun::new(body, settings.hold(), initial, tol).ok()?;
+    let run = run.following(view_radius(initial));
+    Some(RodTrack::from_run(run, ROD_TAU, TRACK_STEPS, TRACK_STATES))
 }
 
 /// How far in τ the explorer runs the body.
@@ -498,6 +503,13 @@ pub const ROD_TAU: f64 = 200.0;
 pub fn rod_cut_notice(rod: &crate::engine::rod::RodTrack) -> Option<String> {
     use crate::engine::rod::Cut;
     let at = num(rod.end_tau(), 3);
+    if let (Some(c), Some(Cut::Budget(n))) = (rod.escape, rod.cut.as_ref()) {
+        // Past the certificate the escape stands: only the drawing of it leaving stops.
+        return Some(format!(
+            "body escapes (τ = {}), drawn leaving to τ = {at} only: its {n}-step budget ran out",
+            num(c, 3)
+        ));
+    }
     Some(match rod.cut.as_ref()? {
         Cut::Budget(n) => format!("body drawn to τ = {at} only: its {n}-step budget ran out"),
         Cut::Failed(e) => format!("body drawn to τ = {at} only: its run failed ({e})"),

@@ -247,6 +247,11 @@ pub struct RodRun {
     pub steps: u64,
     /// Right-hand-side evaluations, event location's included.
     evals: std::cell::Cell<u64>,
+    /// Past the escape certificate, the body is stepped on while its centre is within this
+    /// radius (see [`RodRun::following`]); None: a run stops at the certificate.
+    follow_to: Option<f64>,
+    /// τ at which a step first found the certificate, E < −½R².
+    certified: Option<f64>,
 }
 
 /// A contact's slip below 10⁻²√tol (relative to 1 + |u|) has stopped: the steps that approach
@@ -303,11 +308,28 @@ impl RodRun {
             h: 1e-3,
             steps: 0,
             evals: std::cell::Cell::new(0),
+            follow_to: None,
+            certified: None,
         };
         if state.u == DVec2::ZERO && w == 0.0 && q.length() <= hold {
             run.phase = Phase::Rest;
         }
         Ok(run)
+    }
+
+    /// The run followed past its escape certificate while its centre is within `radius` (the
+    /// explorer draws the body leaving, as it follows the point out to its view radius): its
+    /// steps go on as before, and [`RodRun::step`] says `Escaped` once |q| ≥ `radius` (at once
+    /// where it already is), `Running` before. The physics is the same; only where it stops.
+    pub fn following(mut self, radius: f64) -> RodRun {
+        self.follow_to = Some(radius);
+        self
+    }
+
+    /// τ at which a step first found the escape certificate (E < −½R²), once one has: where a
+    /// run that is not followed stops, and the escape's τ of one that is.
+    pub fn certificate(&self) -> Option<f64> {
+        self.certified
     }
 
     /// The slip below which a contact has stopped.
@@ -376,8 +398,12 @@ impl RodRun {
         if self.phase == Phase::Rest {
             return Ok(Outcome::Stuck);
         }
-        if self.escaped() {
-            return Ok(Outcome::Escaped);
+        if self.certified.is_some() || self.escaped() {
+            self.certified.get_or_insert(self.state.tau);
+            // Followed, the certified body goes on until its centre reaches the radius.
+            if !self.follow_to.is_some_and(|r| self.state.q.length() < r) {
+                return Ok(Outcome::Escaped);
+            }
         }
         if self.state.tau >= tau_max {
             return Ok(Outcome::Running);
@@ -552,7 +578,8 @@ impl RodRun {
             let end = self.step(tau_max)?;
             each(&self.state);
             if end != Outcome::Running || self.state.tau >= tau_max {
-                return Ok(if self.escaped() && end == Outcome::Running {
+                let certified = self.certified.is_some() || self.escaped();
+                return Ok(if certified && end == Outcome::Running {
                     Outcome::Escaped
                 } else {
                     end
@@ -586,12 +613,20 @@ pub struct RodTrack {
     pub states: Vec<RodState>,
     /// `phases[k]`: the phase from `states[k]` until the next state.
     pub phases: Vec<Phase>,
-    /// Stuck, Escaped (the last state is the certificate's), or Running: `tau_max` came first,
-    /// or the track was cut (see `cut`).
+    /// Stuck, Escaped (certified: the last state is the certificate's, or past it on a
+    /// followed track), or Running: `tau_max` came first, or the track was cut before the
+    /// certificate (see `cut`).
     pub outcome: Outcome,
+    /// τ of the escape certificate (E < −½R²) where the run escapes: the escape's τ, whether
+    /// or not the track goes on past it.
+    pub escape: Option<f64>,
+    /// The radius an escaping body is followed out to past its certificate (see
+    /// [`RodTrack::from_run`]); None: the track ends at the certificate.
+    pub follow_to: Option<f64>,
     /// Steps the run took.
     pub steps: u64,
-    /// Why the track ends before its run did, if it does.
+    /// Why the track ends before its run did, if it does (on a followed track, possibly after
+    /// the certificate: the escape stands, the drawing stops short).
     pub cut: Option<Cut>,
 }
 
@@ -619,12 +654,22 @@ impl RodTrack {
         max_steps: u64,
         max_states: usize,
     ) -> Result<RodTrack, Error> {
-        let mut run = RodRun::new(body, hold, initial, tol)?;
+        let run = RodRun::new(body, hold, initial, tol)?;
+        Ok(RodTrack::from_run(run, tau_max, max_steps, max_states))
+    }
+
+    /// The track of `run` from where it stands, to rest, escape (followed on to its radius
+    /// where [`RodRun::following`] says so) or `tau_max`, within `max_steps` and `max_states`
+    /// (at least 4): the explorer's `RodTrack::from_run(RodRun::new(…)?.following(r), …)` draws
+    /// an escaping body leaving, at the same cost bounds.
+    pub fn from_run(mut run: RodRun, tau_max: f64, max_steps: u64, max_states: usize) -> RodTrack {
         let mut track = RodTrack {
-            l: body.length,
+            l: run.l,
             states: vec![run.state],
             phases: vec![run.phase],
             outcome: Outcome::Running,
+            escape: None,
+            follow_to: run.follow_to,
             steps: 0,
             cut: None,
         };
@@ -666,7 +711,12 @@ impl RodTrack {
         };
         keep.finish(&mut track);
         track.steps = run.steps;
-        Ok(track)
+        track.escape = run.certificate();
+        if track.escape.is_some() {
+            // Certified, whether or not the following reached its radius.
+            track.outcome = Outcome::Escaped;
+        }
+        track
     }
 
     /// The body at `tau` (linear between kept states), at rest for ever once stuck; None past
@@ -707,6 +757,14 @@ impl RodTrack {
             w: a.w + (b.w - a.w) * t,
         };
         Some((s, phase(k - 1)))
+    }
+
+    /// An escaping track followed out to its radius: its last state, where the body left (the
+    /// explorer keeps it there, as it keeps the point where its run stopped). None otherwise.
+    pub fn left(&self) -> Option<RodState> {
+        let last = *self.states.last()?;
+        let out = self.follow_to.is_some_and(|r| last.q.length() >= r);
+        (self.escape.is_some() && self.cut.is_none() && out).then_some(last)
     }
 
     /// Where the track ends: its last state's τ.

@@ -231,6 +231,54 @@ pub fn velocity(app: &App) -> (&'static str, &'static str, DVec2) {
     }
 }
 
+/// The body's centre on the canvas (`⊕`, at the middle of its bar).
+pub const BODY_GLYPH: &str = "⊕";
+
+/// The body as the canvas draws it at `tau`: its track's state, or where it left the view
+/// once an escaping body's track has followed it out (kept there, as the point is).
+fn body_shown(
+    rod: &crate::engine::rod::RodTrack,
+    tau: f64,
+) -> Option<crate::engine::rod::RodState> {
+    rod.at(tau).or_else(|| rod.left().filter(|s| tau >= s.tau))
+}
+
+/// Where to print a glyph so that it lands in the cell whose dots draw `p`: ratatui places a
+/// line's dots on a grid of `marker`'s resolution (rounded, over the cells' dots) but a label
+/// at (x − left)·(width − 1)/(right − left), truncated, so a label printed at `p` itself may
+/// sit a cell off the line through `p` (the body's `⊕` beside its bar).
+fn on_cell(
+    p: DVec2,
+    (xb, yb): ([f64; 2], [f64; 2]),
+    (w, h): (u16, u16),
+    marker: ratatui::symbols::Marker,
+) -> DVec2 {
+    use ratatui::symbols::Marker;
+    let (dx, dy) = match marker {
+        Marker::Braille | Marker::Octant => (2.0, 4.0),
+        Marker::Sextant => (2.0, 3.0),
+        Marker::Quadrant => (2.0, 2.0),
+        Marker::HalfBlock => (1.0, 2.0),
+        _ => (1.0, 1.0),
+    };
+    let axis = |v: f64, lo: f64, hi: f64, n: u16, dots: f64, down: bool| {
+        let n = f64::from(n);
+        let span = hi - lo;
+        if n < 2.0 || span <= 0.0 {
+            return v;
+        }
+        let from = if down { hi - v } else { v - lo };
+        let dot = (from * (n * dots - 1.0) / span).round();
+        let cell = (dot / dots).floor();
+        let at = ((cell + 0.25) * span / (n - 1.0)).min(span);
+        if down { hi - at } else { lo + at }
+    };
+    DVec2::new(
+        axis(p.x, xb[0], xb[1], w, dx, false),
+        axis(p.y, yb[0], yb[1], h, dy, true),
+    )
+}
+
 /// Draws the canvas and returns its geometry (where it is and which world it shows).
 pub fn render(f: &mut TuiFrame, area: Rect, app: &App) -> CanvasGeom {
     let th = app.theme.clone();
@@ -240,7 +288,10 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) -> CanvasGeom {
     };
     // With the point model hidden (`C`), the body's centre is what a zoom follows.
     let point = app.point_shown();
-    let body_now = app.rod.as_ref().and_then(|rod| rod.at(app.sim.now().tau));
+    let body_now = app
+        .rod
+        .as_ref()
+        .and_then(|rod| body_shown(rod, app.sim.now().tau));
     if app.zoom != 1.0 {
         title.push_str(&format!(
             "zoom ×{} (follows {}) ",
@@ -330,10 +381,13 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) -> CanvasGeom {
             })
             .collect()
     });
+    // The bar between the two masses, and its centre's glyph.
     let bar = app.rod.as_ref().and_then(|rod| {
-        let s = rod.at(now.tau)?;
+        let s = body_shown(rod, now.tau)?;
         let spin = turn + if view == Frame::Lab { s.tau } else { 0.0 };
-        Some(s.contacts(rod.l).map(|c| rotate(c, spin)))
+        let q = rotate(s.q, spin);
+        let centre = on_cell(q, (xb, yb), (inner.width, inner.height), th.marker);
+        Some((s.contacts(rod.l).map(|c| rotate(c, spin)), centre))
     });
     let half_width = 0.5 * (xb[1] - xb[0]).min(yb[1] - yb[0]);
     // The arrows are the point's: hidden with it.
@@ -536,16 +590,18 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) -> CanvasGeom {
                     ctx.print(h.x, h.y, Span::styled(text, pin_style));
                 }
             }
+            // The body's centre's path in the trail's colour, as the point's; the bar in the
+            // particle's, its centre a glyph of its own (it reads without colour, in `mono`).
             for w in rod_path.windows(2) {
                 ctx.draw(&Line {
                     x1: w[0].x,
                     y1: w[0].y,
                     x2: w[1].x,
                     y2: w[1].y,
-                    color: th.particle,
+                    color: th.trail,
                 });
             }
-            if let Some([a, b]) = bar {
+            if let Some(([a, b], c)) = bar {
                 ctx.draw(&Line {
                     x1: a.x,
                     y1: a.y,
@@ -553,6 +609,11 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) -> CanvasGeom {
                     y2: b.y,
                     color: th.particle,
                 });
+                ctx.print(
+                    c.x,
+                    c.y,
+                    Span::styled(BODY_GLYPH, Style::default().fg(th.particle)),
+                );
             }
             if let Some(p) = paper {
                 let q = rotate(in_frame(&p.now(), view), turn);

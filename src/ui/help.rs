@@ -71,8 +71,9 @@ const MOUSE: [(&str, &str); 3] = [
 ];
 
 /// The glyphs of the picture.
-const GLYPHS: [(&str, &str); 8] = [
+const GLYPHS: [(&str, &str); 9] = [
     ("●", "particle (converged run)"),
+    ("⊕", "the body's centre, on its bar (a body scene)"),
     ("○", "paper's RK2 run (c)"),
     ("■", "particle at rest"),
     ("×", "where it stopped"),

@@ -401,9 +401,13 @@ pub fn phase_word(p: crate::engine::rod::Phase) -> &'static str {
 }
 
 /// How the body's track ends, once the τ on screen has reached its end (None before): a key
-/// and words that fit the panel, and the reason a cut track stopped.
+/// and words that fit the panel, and the reason a cut track stopped. An escape ends at its
+/// certificate, though the track follows the body on past it.
 pub fn body_end(rod: &crate::engine::rod::RodTrack, tau: f64) -> Option<(String, Option<String>)> {
     use crate::engine::rod::Cut;
+    if let Some(c) = rod.escape {
+        return (tau >= c).then(|| (format!("escapes (τ = {})", num(c, 3)), None));
+    }
     let end = rod.end_tau();
     if tau < end {
         return None;
@@ -474,7 +478,7 @@ fn body_lines(
                 at: Some((_, p)), ..
             }),
         ) => phase_word(*p).to_string(),
-        (Some(r), _) if r.cut.is_none() && r.outcome == Outcome::Escaped => "escaped".into(),
+        (Some(r), _) if r.escape.is_some() => "escaped".into(),
         (Some(_), _) => "not computed here".into(),
     };
     out.push(kv("rod", phase, th));

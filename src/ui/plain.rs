@@ -20,6 +20,8 @@ pub struct Seen {
     /// At τ = 0 with nothing played yet (a restart shows as a return to this).
     fresh: bool,
     status: String,
+    /// The body's events the τ on screen has reached, in words (see [`body_events`]).
+    body: Vec<String>,
     /// The paper's comparison run's status, while comparing.
     paper: Option<String>,
     tau: f64,
@@ -44,6 +46,7 @@ impl Seen {
             release: release(app),
             fresh: app.sim.samples.len() == 1 && app.sim.cursor == 0,
             status: status(&app.sim),
+            body: body_events(app),
             paper: app.paper.as_ref().map(status),
             tau: app.now().tau,
             playing: app.playing,
@@ -78,6 +81,7 @@ pub fn opening(app: &App) -> Vec<String> {
         now.release.clone(),
         now.status.clone(),
     ];
+    out.extend(now.body.iter().cloned());
     out.extend(now.paper.iter().map(|p| format!("paper's RK2: {p}")));
     out.extend(now.caption.iter().flat_map(|c| c.lines().map(String::from)));
     out.extend(now.prompt.map(String::from));
@@ -109,6 +113,15 @@ pub fn describe(was: &Seen, now: &Seen) -> Vec<String> {
     if restarted || now.status != was.status {
         out.push(now.status.clone());
     }
+    // The body's events, each once as the τ on screen reaches it (all again on a restart or a
+    // new release; none on a step back).
+    let body_new = match now.body.strip_prefix(was.body.as_slice()) {
+        _ if restarted => &now.body[..],
+        Some(tail) => tail,
+        None if was.body.starts_with(&now.body) => &[],
+        None => &now.body[..],
+    };
+    out.extend(body_new.iter().cloned());
     match (&was.paper, &now.paper) {
         (None, Some(p)) => {
             out.push("compare on: the paper's RK2 (rk2-raw, dt = 1e-3, no stick event) from the same release".into());
@@ -239,6 +252,56 @@ fn status(sim: &Sim) -> String {
         Some(d) if !d.certain => format!("{text}, in doubt: the run's error could flip it"),
         _ => text,
     }
+}
+
+/// What the body has done by the τ on screen, in words, one event a line in order of τ: each
+/// start of a pivot about a stuck contact (where that contact is), its rest on the table
+/// (where its centre rides) and its escape's certificate. Read off its track (the numbers are
+/// the track's); empty without one.
+fn body_events(app: &App) -> Vec<String> {
+    use crate::engine::rod::Phase;
+    let Some(rod) = app.rod.as_ref() else {
+        return Vec::new();
+    };
+    let tau = app.now().tau;
+    let n = rod.states.partition_point(|s| s.tau <= tau);
+    let mut events: Vec<(f64, String)> = Vec::new();
+    let mut before = None;
+    for (s, p) in rod.states[..n].iter().zip(&rod.phases) {
+        match (before, *p) {
+            (Some(Phase::Pivot { .. }), Phase::Pivot { .. }) | (Some(Phase::Rest), Phase::Rest) => {
+            }
+            (_, Phase::Pivot { anchor, .. }) => events.push((
+                s.tau,
+                format!(
+                    "the body pivots about a stuck contact at ξ = {}, τ = {}",
+                    num(anchor.length(), 5),
+                    num(s.tau, 3)
+                ),
+            )),
+            (_, Phase::Rest) => events.push((
+                s.tau,
+                format!(
+                    "the body rests at ξ = {}, τ = {}",
+                    num(s.q.length(), 5),
+                    num(s.tau, 3)
+                ),
+            )),
+            (_, Phase::Slip) => {}
+        }
+        before = Some(*p);
+    }
+    if let Some(c) = rod.escape.filter(|c| *c <= tau) {
+        let at = events.partition_point(|(t, _)| *t <= c);
+        events.insert(
+            at,
+            (
+                c,
+                format!("the body escapes (certified at τ = {})", num(c, 3)),
+            ),
+        );
+    }
+    events.into_iter().map(|(_, e)| e).collect()
 }
 
 /// The readout panel's lines as text, one readout a line: a status the panel wraps under
