@@ -369,6 +369,24 @@ mod tests {
         assert!((contrast(Color::Rgb(0, 0, 0), Color::Rgb(255, 255, 255)) - 21.0).abs() < 1e-9);
     }
 
+    /// A body's bar and centre's path (drawn in the particle's colour) and the point's trail
+    /// are told apart in 16 colours (`TERM=xterm`) as in 24-bit: dark's two yellows fell on one.
+    #[test]
+    fn the_particle_and_the_trail_differ_in_16_colours() {
+        for name in ["dark", "light", "high-contrast"] {
+            let t = Theme::builtin(name).unwrap().with_depth(Depth::Ansi16);
+            assert_ne!(t.particle, t.trail, "{name}");
+        }
+        // Only where they fell together: the others keep their nearest colour.
+        let light = Theme::builtin("light").unwrap();
+        let mut mapped = light.clone();
+        ansi16::map(&mut mapped);
+        assert_eq!(
+            mapped.particle,
+            ansi16::nearest(light.particle, ansi16::rgb(mapped.background), 4.5)
+        );
+    }
+
     #[test]
     fn the_256_colour_palette() {
         assert_eq!(nearest_256(0, 0, 0), 16);

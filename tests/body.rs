@@ -594,3 +594,23 @@ fn fig2s_body_is_drawn_leaving_past_its_certificate() {
     assert!(screen.contains('⊕'), "{screen}");
     assert_eq!(value(&panel_of(&app), "rod"), "escaped");
 }
+
+/// A body's size reads as its size at any scale: a body 1e-9 long is not "L 0.0000" (a length
+/// the flags refuse), nor a height of 1e-7 "h 0.0000"; a large one keeps its digits.
+#[test]
+fn the_bodys_size_reads_at_any_scale() {
+    let lines = panel_of(&body_app(1e-9));
+    assert_eq!(value(&lines, "body"), "L 1.00e-9 h 0.0100", "{lines:?}");
+    let lines = panel_of(&body_app(5.0));
+    assert_eq!(value(&lines, "body"), "L 5.0000 h 0.0100", "{lines:?}");
+    let mut scene = turntable::scene::Scene::preset("A").unwrap();
+    scene.body = Some(turntable::engine::body::Body {
+        length: 0.1,
+        height: Some(1e-7),
+        angle: 0.0,
+    });
+    let app = turntable::app::App::new(scene, turntable::theme::Theme::builtin("mono").unwrap());
+    let lines = panel_of(&app);
+    assert_eq!(value(&lines, "body"), "L 0.1000 h 1.00e-7", "{lines:?}");
+    assert!(!lines.iter().any(|l| l.contains("NaN")), "{lines:?}");
+}

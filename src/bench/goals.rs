@@ -9,6 +9,7 @@ use crate::engine::solve::{escape_speed, sweep_escape};
 use crate::engine::stepper::adaptive_plain;
 use crate::engine::{Frame, Initial, Method, Release, Run, Settings};
 use crate::error::Error;
+use crate::scene::Scene;
 use std::time::Instant;
 
 pub(super) fn savings(cs: &[Initial]) -> Result<Vec<Saving>, Error> {
@@ -220,9 +221,15 @@ pub(super) fn speed(cfg: &Config, all: &[Initial], refs: &[Measure]) -> Result<S
     // Ten seconds of play (three in --quick).
     let terminal_bytes = super::bytes::all(if cfg.quick { 90 } else { 300 })?;
     // Ten seconds: the first screen alone takes 3.6 s at 4 KB/s.
-    let links = super::link::RATES
+    // The same with a body: the bar, its centre's path and the panel's body lines as it plays.
+    let body = super::link::body_scene();
+    let links = [Scene::default_scene(), body]
         .iter()
-        .map(|&r| super::link::simulate(r, 10.0))
+        .flat_map(|s| {
+            super::link::RATES
+                .iter()
+                .map(move |&r| super::link::simulate_scene(s, r, 10.0))
+        })
         .collect::<Result<Vec<_>, _>>()?;
     // The rk2 (stick events) dt = 1e-3 accuracy on the rest task, and the loosest dp54 tol
     // that matches it, on a grid of four tolerances per decade.

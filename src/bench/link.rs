@@ -5,6 +5,7 @@
 
 use super::bytes::{counted, draw};
 use crate::app::App;
+use crate::engine::body::Body;
 use crate::error::Error;
 use crate::scene::Scene;
 use crate::terminal::pace::{Clock, TICKS_PER_SECOND};
@@ -15,9 +16,11 @@ use std::time::{Duration, Instant};
 /// Link speeds measured, in bytes/s (4 and 16 KB/s).
 pub const RATES: [f64; 2] = [4096.0, 16384.0];
 
-/// One link speed: the default scene playing at 120×40 (dark theme, 256 colours).
+/// One link speed and scene: playing at 120×40 (dark theme, 256 colours).
 #[derive(Clone, Debug, Serialize)]
 pub struct Link {
+    /// The scene played: the default (`C`), or with a body ([`body_scene`]).
+    pub scene: String,
     pub rate_kb_per_s: f64,
     pub seconds: f64,
     /// Paced: frames drawn, and after the first screen their mean size and rate.
@@ -37,12 +40,29 @@ pub struct Link {
 
 /// The default scene playing for `seconds` of link time at `rate` bytes/s.
 pub fn simulate(rate: f64, seconds: f64) -> Result<Link, Error> {
+    simulate_scene(&Scene::default_scene(), rate, seconds)
+}
+
+/// The default scene with a body, as `turntable --body-length 0.1 --body-height 0.01` opens
+/// it: the bar, its centre's path and the panel's body lines change as it plays.
+pub fn body_scene() -> Scene {
+    let mut scene = Scene::default_scene();
+    scene.body = Some(Body {
+        length: 0.1,
+        height: Some(0.01),
+        angle: 0.0,
+    });
+    scene
+}
+
+/// `scene` playing for `seconds` of link time at `rate` bytes/s.
+pub fn simulate_scene(scene: &Scene, rate: f64, seconds: f64) -> Result<Link, Error> {
     let theme = Theme::builtin("dark")
         .ok_or_else(|| Error::invalid("no dark theme"))?
         .with_depth(Depth::Ansi256);
     let size = (120, 40);
     let (mut term, count) = counted(size)?;
-    let mut app = App::new(Scene::default_scene(), theme.clone());
+    let mut app = App::new(scene.clone(), theme.clone());
     let t0 = Instant::now();
     let mut clock = Clock::new(t0);
     let (mut now, mut ticks, mut frames) = (0.0, 0u64, 0usize);
@@ -75,7 +95,7 @@ pub fn simulate(rate: f64, seconds: f64) -> Result<Link, Error> {
     let paced_bytes = count.get() - first_bytes;
     // Unpaced: every tick drawn at once, the link carrying what it can.
     let (mut term, count) = counted(size)?;
-    let mut app = App::new(Scene::default_scene(), theme);
+    let mut app = App::new(scene.clone(), theme);
     let mut ends = Vec::new();
     draw(&mut term, &mut app)?;
     ends.push(count.get());
@@ -86,6 +106,10 @@ pub fn simulate(rate: f64, seconds: f64) -> Result<Link, Error> {
     }
     let carried = (rate * seconds) as usize;
     Ok(Link {
+        scene: match scene.body {
+            Some(b) => format!("{} with a body L {}", scene.name, b.length),
+            None => scene.name.clone(),
+        },
         rate_kb_per_s: rate / 1024.0,
         seconds,
         frames,

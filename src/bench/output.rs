@@ -226,7 +226,8 @@ pub fn table(r: &Report) -> String {
     for l in &sp.links {
         let _ = writeln!(
             o,
-            "  over a {:>2.0} KB/s link ({:.0} s): {:>5.0} B/frame, {:>4.1} frames/s, {} frame in flight (unpaced: {}), a key shows within {:.2} s (after the first screen), time kept {:.0} %",
+            "  {} over a {:>2.0} KB/s link ({:.0} s): {:>5.0} B/frame, {:>4.1} frames/s, {} frame in flight (unpaced: {}), a key shows within {:.2} s (after the first screen), time kept {:.0} %",
+            l.scene,
             l.rate_kb_per_s,
             l.seconds,
             l.bytes_per_frame,

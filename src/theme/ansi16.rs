@@ -116,8 +116,17 @@ pub fn map(t: &mut Theme) {
         &mut t.escaped,
         &mut t.notice,
     ];
+    let min = if strict { 7.0 } else { 4.5 };
     for c in text {
-        *c = nearest(*c, bg, if strict { 7.0 } else { 4.5 });
+        *c = nearest(*c, bg, min);
+    }
+    // The particle's colour (its marker, and a body's bar and centre's path) and the point's
+    // trail stay apart where both fall on one of the 16 (dark: both yellow): the particle takes
+    // its family's other member, if that keeps the contrast.
+    if t.particle == t.trail
+        && let Some(other) = sibling(t.particle, bg, min)
+    {
+        t.particle = other;
     }
     let drawing = [
         &mut t.table_edge,
@@ -132,4 +141,23 @@ pub fn map(t: &mut Theme) {
     }
     // The spokes may stay faint, but not vanish into the background.
     t.spokes = nearest(t.spokes, bg, 1.2);
+}
+
+/// The other colour of `c`'s family (its bright or normal form; a grey's nearest grey) with at
+/// least `min` contrast against `bg`.
+fn sibling(c: Color, bg: Option<(u8, u8, u8)>, min: f64) -> Option<Color> {
+    let k = |p: Color| bg.map_or(21.0, |bg| contrast(rgb(p).unwrap_or_default(), bg));
+    let lum = luminance(rgb(c)?);
+    let family: &[Color] = HUES
+        .iter()
+        .find(|h| h.contains(&c))
+        .map_or(&GREYS[..], |h| &h[..]);
+    family
+        .iter()
+        .copied()
+        .filter(|&p| p != c && k(p) >= min)
+        .min_by(|a, b| {
+            let d = |p: Color| (luminance(rgb(p).unwrap_or_default()) - lum).abs();
+            d(*a).total_cmp(&d(*b))
+        })
 }

@@ -449,9 +449,10 @@ fn body_lines(
     };
     let f = crate::engine::body::friction(&app.settings, app.initial.frictionless, stuck, xi);
     let c = b.conditions(xi, f, app.units.map(|u| u.mu));
+    // In exponent form when small: a body 1e-9 long is not "L 0.0000".
     let size = match b.height {
-        Some(h) => format!("L {} h {}", num(b.length, 4), num(h, 4)),
-        None => format!("L {}", num(b.length, 4)),
+        Some(h) => format!("L {} h {}", small(b.length), small(h)),
+        None => format!("L {}", small(b.length)),
     };
     out.push(kv("body", size, th));
     if let Some(u) = app.units {
