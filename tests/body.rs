@@ -614,3 +614,13 @@ fn the_bodys_size_reads_at_any_scale() {
     assert_eq!(value(&lines, "body"), "L 0.1000 h 1.00e-7", "{lines:?}");
     assert!(!lines.iter().any(|l| l.contains("NaN")), "{lines:?}");
 }
+
+/// With μ = 0 there is no friction to tip the body: μh/L is 0 exactly, not "≤ 0" (the bound
+/// taken without a real table is μ_k = 1, and 1 · 0 is no bound).
+#[test]
+fn without_friction_the_toppling_number_is_exactly_zero() {
+    let mut app = body_app(0.1);
+    assert!(value(&panel_of(&app), "μh/L").starts_with("≤ "));
+    key(&mut app, 'F');
+    assert_eq!(value(&panel_of(&app), "μh/L"), "0.0000 ≪ 1 ok");
+}

@@ -494,10 +494,11 @@ fn body_lines(
         ));
     }
     let topple = match (c.topple, c.topple_verdict(), b.height) {
-        // Without a real table μ_k = 1 bounds it: the number is an upper bound.
+        // Without a real table μ_k = 1 bounds it: the number is an upper bound (but 0, with
+        // no friction at all, is exact).
         (Some(t), Some(v), _) => format!(
             "{}{} {}",
-            if c.mu_assumed { "≤ " } else { "" },
+            if c.mu_assumed && t > 0.0 { "≤ " } else { "" },
             small(t),
             v.word()
         ),
