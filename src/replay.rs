@@ -180,6 +180,14 @@ fn plain(
             }
             step => s.apply(step),
         }
+        // A page's numbers are said once computed: headless, at once (the terminal's plain
+        // mode says them when its worker brings them).
+        if matches!(
+            s.app.page,
+            crate::app::pages::Page::EscapeSpeed | crate::app::pages::Page::RestRadius
+        ) {
+            s.app.sync_analysis();
+        }
         say(&s, &mut seen, out)?;
     }
     out.flush()

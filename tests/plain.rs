@@ -455,3 +455,44 @@ fn replay_plain_says_the_bodys_events() {
             .any(|l| l.starts_with("the body pivots about a stuck contact at ξ = "))
     );
 }
+
+/// A screen reader has no chart: on the escape-speed and rest-radius pages plain mode says the
+/// page's numbers once computed, and the chart's verdict on the release when it changes —
+/// checked against the engine's solvers (v_e's least to the 4 digits said, its angle to the
+/// 0.001π said; ξ0c to the 6 digits said).
+#[test]
+fn plain_mode_says_the_analysis_pages_numbers() {
+    use turntable::engine::solve::{critical_radius, easiest_angle};
+    let script = std::env::temp_dir().join(format!("turntable-pages-{}.keys", std::process::id()));
+    std::fs::write(&script, "tab\ntab\nv*30\ntab\ntab\n").unwrap();
+    let (code, out, err) = turntable(&["replay", "--plain", script.to_str().unwrap()]);
+    std::fs::remove_file(&script).unwrap();
+    assert_eq!(code, 0, "{err}");
+    let line = |prefix: &str| {
+        out.lines()
+            .find(|l| l.starts_with(prefix))
+            .unwrap_or_else(|| panic!("no {prefix:?} in {out}"))
+            .to_string()
+    };
+    // "escape speed v_e(φ) at ξ0 = 0.500: min 0.5700 at 0.177π, max … at …π"
+    let ve = line("escape speed v_e(φ) at ξ0 = 0.500: min ");
+    let words: Vec<&str> = ve.split(' ').collect();
+    let v: f64 = words[8].parse().unwrap();
+    let phi: f64 = words[10].trim_end_matches("π,").parse().unwrap();
+    let (p, v_min) = easiest_angle(0.5, 72, Settings::dp54(1e-12), 1e-10, 1e-5).unwrap();
+    assert!((v - v_min).abs() <= 5e-5, "{ve}: {v_min}");
+    assert!((phi - p / std::f64::consts::PI).abs() <= 1e-3, "{ve}: {p}");
+    // C's release sticks below v_e; 30 × v (+0.03) takes it above.
+    let stick = out
+        .find("on the chart the release sticks (below v_e)")
+        .unwrap();
+    let escape = out
+        .find("on the chart the release escapes (above v_e)")
+        .unwrap();
+    assert!(stick < escape, "{out}");
+    assert_eq!(out.matches("on the chart the release").count(), 2, "{out}");
+    let rest = line("rest radius (Fig. 6): ");
+    let c: f64 = rest.rsplit(' ').next().unwrap().parse().unwrap();
+    let xi0c = critical_radius(Settings::dp54(1e-12), 1e-9).unwrap().value;
+    assert!((c - xi0c).abs() <= 5e-7, "{rest}: {xi0c}");
+}

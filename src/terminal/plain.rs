@@ -40,10 +40,13 @@ fn enter() -> io::Result<()> {
 /// lesson's mouse steps and a recording need one, and `--record` then replays to the same
 /// screens.
 pub fn run(
-    app: App,
+    mut app: App,
     record: Option<SaveRecording>,
     lesson: Option<crate::lesson::Driver>,
 ) -> (io::Result<Option<i32>>, Option<String>) {
+    // The analysis pages compute off this thread, as in the explorer: their numbers are said
+    // when they arrive (`ui::pages::summary`), and keys never wait for them.
+    app.analysis = crate::analysis::Analysis::threaded();
     super::supervise(
         record,
         restore,
@@ -90,6 +93,7 @@ fn event_loop(session: &mut Session<TestBackend>, flags: &Flags) -> io::Result<(
             clock.restart(Instant::now());
         }
         let Ok(()) = session.pump_lesson();
+        session.app.ask_analysis();
         say(&session.app, &mut seen, &mut out)?;
         if session.app.is_playing() {
             for _ in 0..clock.due(Instant::now()) {

@@ -133,14 +133,7 @@ fn escape_speed(f: &mut TuiFrame, area: Rect, app: &App) -> Option<CanvasGeom> {
                 points: c.floor(),
                 joined: true,
             });
-            note = widest(c);
-        } else if let Some(((p0, v0), (p1, v1))) = c.extremes() {
-            // The least v_e refined between the angles once it arrives (π to three decimals),
-            // the grid's least until then (to two: it is only good to the grid's 0.03π).
-            let (p0, v0, digits) = match c.least {
-                Some(Some((p, v))) => (p, v, 3),
-                _ => (p0, v0, 2),
-            };
+        } else if let Some(((p0, v0), (p1, v1))) = extremes(c) {
             marks.push(Mark::Point {
                 x: p0,
                 y: v0,
@@ -153,14 +146,8 @@ fn escape_speed(f: &mut TuiFrame, area: Rect, app: &App) -> Option<CanvasGeom> {
                 label: "max".into(),
                 color: th.escaped,
             });
-            note = format!(
-                "min {} at {}π, max {} at {}π",
-                speed(v0),
-                num(p0 / PI, digits),
-                speed(v1),
-                num(p1 / PI, 2)
-            );
         }
+        note = curve_note(c, window);
         let done = c.ve.iter().filter(|v| v.is_some()).count();
         if done < c.ve.len() {
             progress = format!(", {done}/{} angles", c.ve.len());
@@ -171,22 +158,12 @@ fn escape_speed(f: &mut TuiFrame, area: Rect, app: &App) -> Option<CanvasGeom> {
         progress = ", computing…".into();
     }
     let phi = turn_angle(i.phi);
-    let judged = match i.release {
-        Release::Velocity => mine.and_then(|c| judge(c, phi, i.v0)),
-        _ => None,
-    };
-    let (verdict, color) = match (judged, window) {
-        (Some(Verdict::Above), false) => (" escapes (above v_e)", th.escaped),
-        (Some(Verdict::Inside), false) => (" sticks (below v_e)", th.stuck),
-        // Between the computed angles' values: the chart cannot tell; the run can.
-        (Some(Verdict::Near), false) => (" ≈ v_e: Enter runs it to see", th.notice),
-        (Some(Verdict::Above), true) => (" escapes (above the window)", th.escaped),
-        (Some(Verdict::Below), _) => (" escapes (below the window)", th.escaped),
-        (Some(Verdict::Inside), true) => (" sticks (in the window)", th.stuck),
-        (Some(Verdict::Never), _) => (" escapes (no window at this φ)", th.escaped),
-        (Some(Verdict::Near), true) => (" ≈ window's edge: Enter runs it", th.notice),
-        (None, _) if i.release == Release::Velocity => ("", th.particle),
-        (None, _) => (" (release at rest: v0 = 0)", th.particle),
+    let (verdict, tone) = release_verdict(app, mine);
+    let color = match tone {
+        Some(Outcome::Escaped) => th.escaped,
+        Some(Outcome::Stuck) => th.stuck,
+        Some(Outcome::Running) => th.notice,
+        None => th.particle,
     };
     let v_now = if i.release == Release::Velocity {
         i.v0
@@ -224,6 +201,121 @@ fn escape_speed(f: &mut TuiFrame, area: Rect, app: &App) -> Option<CanvasGeom> {
     };
     let plot = chart::render(f, area, th, &c)?;
     Some(geom(plot, &c, Page::EscapeSpeed, app))
+}
+
+/// The least and greatest v_e of a curve as (φ, v_e): the least refined between the angles
+/// once it arrives, the grid's until then.
+fn extremes(c: &crate::app::pages::Curve) -> Option<((f64, f64), (f64, f64))> {
+    let (least, most) = c.extremes()?;
+    Some((c.least.flatten().unwrap_or(least), most))
+}
+
+/// The curve's note: the widest sticking window outside ξ = 1; inside, v_e's least (π to three
+/// decimals once refined, to two from the grid, only good to its 0.03π) and greatest.
+fn curve_note(c: &crate::app::pages::Curve, window: bool) -> String {
+    if window {
+        return widest(c);
+    }
+    let Some(((p0, v0), (p1, v1))) = extremes(c) else {
+        return String::new();
+    };
+    let digits = if matches!(c.least, Some(Some(_))) {
+        3
+    } else {
+        2
+    };
+    format!(
+        "min {} at {}π, max {} at {}π",
+        speed(v0),
+        num(p0 / PI, digits),
+        speed(v1),
+        num(p1 / PI, 2)
+    )
+}
+
+/// What the curve says of the release on screen, in words, and its tone: the outcome it
+/// foretells (Running: too near an edge to tell), or None where it says nothing.
+fn release_verdict(
+    app: &App,
+    mine: Option<&crate::app::pages::Curve>,
+) -> (&'static str, Option<Outcome>) {
+    let i = app.initial;
+    let window = i.xi0 > 1.0;
+    let judged = match i.release {
+        Release::Velocity => mine.and_then(|c| judge(c, turn_angle(i.phi), i.v0)),
+        _ => None,
+    };
+    let (esc, stk, near) = (
+        Some(Outcome::Escaped),
+        Some(Outcome::Stuck),
+        Some(Outcome::Running),
+    );
+    match (judged, window) {
+        (Some(Verdict::Above), false) => (" escapes (above v_e)", esc),
+        (Some(Verdict::Inside), false) => (" sticks (below v_e)", stk),
+        // Between the computed angles' values: the chart cannot tell; the run can.
+        (Some(Verdict::Near), false) => (" ≈ v_e: Enter runs it to see", near),
+        (Some(Verdict::Above), true) => (" escapes (above the window)", esc),
+        (Some(Verdict::Below), _) => (" escapes (below the window)", esc),
+        (Some(Verdict::Inside), true) => (" sticks (in the window)", stk),
+        (Some(Verdict::Never), _) => (" escapes (no window at this φ)", esc),
+        (Some(Verdict::Near), true) => (" ≈ window's edge: Enter runs it", near),
+        (None, _) if i.release == Release::Velocity => ("", None),
+        (None, _) => (" (release at rest: v0 = 0)", None),
+    }
+}
+
+/// The analysis page on screen in words, for plain mode (a screen reader has no chart): what
+/// the chart shows once its data are in, and what it says of the release on screen, from the
+/// same pieces the chart is drawn from. None while they compute, and on the pages without a
+/// summary of their own (the turntable's and the time plots' readouts are spoken already).
+pub fn summary(app: &App) -> Option<(String, Option<String>)> {
+    let settings = crate::analysis::settings_for(app.settings);
+    let i = app.initial;
+    if app.settings.stokes().is_some() {
+        return None;
+    }
+    match app.page {
+        Page::EscapeSpeed => {
+            let c = app.charts.curve(i.xi0, settings).filter(|c| c.complete())?;
+            let window = i.xi0 > 1.0;
+            let what = if window {
+                "sticking window"
+            } else {
+                "escape speed v_e(φ)"
+            };
+            let note = curve_note(c, window);
+            let note = note.split(super::fit::OR).next().unwrap_or_default();
+            let (verdict, _) = release_verdict(app, Some(c));
+            Some((
+                format!("{what} at ξ0 = {}: {note}", num(i.xi0, 3)),
+                Some(format!(
+                    "on the chart the release{}",
+                    if verdict.is_empty() {
+                        " is not judged"
+                    } else {
+                        verdict
+                    }
+                )),
+            ))
+        }
+        Page::RestRadius => {
+            let rest = app
+                .charts
+                .rest
+                .as_ref()
+                .filter(|r| r.settings == settings)?;
+            let c = rest.critical??;
+            Some((
+                format!(
+                    "rest radius (Fig. 6): released at rest in the lab, it stays on the table up to ξ0c = {}",
+                    num(c, 6)
+                ),
+                None,
+            ))
+        }
+        _ => None,
+    }
 }
 
 /// The widest sticking window of a curve outside ξ = 1, in words.

@@ -30,6 +30,9 @@ pub struct Seen {
     frame: Frame,
     forces: bool,
     page: Page,
+    /// The analysis page's data in words once computed, and its verdict on the release
+    /// (`ui::pages::summary`).
+    summary: Option<(String, Option<String>)>,
     help: bool,
     notice: Option<String>,
     naming: Option<String>,
@@ -54,6 +57,7 @@ impl Seen {
             frame: app.view,
             forces: app.forces,
             page: app.page,
+            summary: super::pages::summary(app),
             help: app.help,
             notice: app.notice.clone(),
             naming: app.naming.clone(),
@@ -149,9 +153,25 @@ pub fn describe(was: &Seen, now: &Seen) -> Vec<String> {
     }
     if now.page != was.page {
         out.push(format!(
-            "page: {} (drawn in the explorer only; the readouts stay)",
-            now.page.title()
+            "page: {} (drawn in the explorer only; the readouts stay{})",
+            now.page.title(),
+            if matches!(now.page, Page::EscapeSpeed | Page::RestRadius) {
+                "; its numbers follow once computed"
+            } else {
+                ""
+            }
         ));
+    }
+    if let Some((page, verdict)) = &now.summary {
+        let (was_page, was_verdict) = was.summary.clone().unzip();
+        if was_page.as_ref() != Some(page) {
+            out.push(page.clone());
+        }
+        if let Some(v) = verdict
+            && was_verdict.flatten().as_ref() != Some(v)
+        {
+            out.push(v.clone());
+        }
     }
     if now.help != was.help {
         if now.help {
