@@ -277,8 +277,12 @@ pub fn summary(app: &App) -> Option<(String, Option<String>)> {
     }
     match app.page {
         Page::EscapeSpeed => {
-            let c = app.charts.curve(i.xi0, settings).filter(|c| c.complete())?;
             let window = i.xi0 > 1.0;
+            // Inside ξ = 1, once the least v_e is refined too: said once, not grid then refined.
+            let c = app
+                .charts
+                .curve(i.xi0, settings)
+                .filter(|c| c.complete() && (window || c.least.is_some()))?;
             let what = if window {
                 "sticking window"
             } else {
