@@ -530,3 +530,36 @@ fn a_body_at_rest_outside_r_slides_out_without_turning() {
         }
     }
 }
+
+/// Sliding without turning, the body is the point released at rest on the table where its
+/// centre is, and is carried by the point's run (which launches from rest in closed form): at
+/// ξ0 = 1.001 its own steps took 50 000 to τ = 1.2; now it leaves the view radius at τ = 10.66
+/// in 2277, where the point's own run puts it.
+#[test]
+fn a_body_loose_from_rest_just_outside_r_leaves_as_the_point_does() {
+    use turntable::engine::rod::RodTrack;
+    let at_rest = Initial::at_rest(1.001, Release::TableRest);
+    let run = RodRun::new(body(0.1, 1.0), 1.0, &at_rest, 1e-10)
+        .unwrap()
+        .following(4.5);
+    let t = RodTrack::from_run(run, 200.0, 50_000, 20_000);
+    let left = t.left().expect("followed out");
+    eprintln!(
+        "{} steps, left at τ {} ξ {}",
+        t.steps,
+        left.tau,
+        left.q.length()
+    );
+    assert!(t.cut.is_none() && t.steps < 3000, "{} steps", t.steps);
+    assert!(left.q.length() >= 4.5 && (left.psi, left.w) == (1.0, 0.0));
+    let mut point = Run::new(at_rest, Settings::dp54(1e-10)).unwrap();
+    point.run(left.tau, false).unwrap();
+    let p = point.state();
+    assert!((p.tau - left.tau).abs() < 1e-12, "{} {}", p.tau, left.tau);
+    assert!(
+        (p.q() - left.q).length() < 1e-12,
+        "{:?} {:?}",
+        p.q(),
+        left.q
+    );
+}
