@@ -182,10 +182,7 @@ fn plain(
         }
         // A page's numbers are said once computed: headless, at once (the terminal's plain
         // mode says them when its worker brings them).
-        if matches!(
-            s.app.page,
-            crate::app::pages::Page::EscapeSpeed | crate::app::pages::Page::RestRadius
-        ) {
+        if crate::ui::pages::summarized(s.app.page) {
             s.app.sync_analysis();
         }
         say(&s, &mut seen, out)?;

@@ -2,7 +2,7 @@
 //! (Figs. 1–4) are built in; others load from and save to TOML files.
 
 use crate::engine::body::Body;
-use crate::engine::units::{Length, Units, show_metres, show_r_max_in_metres};
+use crate::engine::units::{Length, SizeRefused, Units, show_metres, show_r_max_in_metres};
 use crate::engine::{Initial, Release, Settings};
 use crate::error::Error;
 use serde::{Deserialize, Serialize};
@@ -118,17 +118,14 @@ impl TryFrom<SceneFile> for Scene {
             None => None,
             Some(b) => {
                 let size = |key: &str, l: Length, zero_ok: bool| -> Result<f64, String> {
-                    if let Length::Metres(m) = l
-                        && !(m.is_finite() && (m > 0.0 || (zero_ok && m == 0.0)))
-                    {
-                        let what = if zero_ok { "at least 0" } else { "positive" };
-                        return Err(format!("[body] {key} must be {what}, got {}", l.show()));
-                    }
-                    l.to_r_max(units.as_ref()).ok_or_else(|| {
-                        format!(
+                    l.size_in_r_max(units.as_ref(), zero_ok).map_err(|e| match e {
+                        SizeRefused::Range(what) => {
+                            format!("[body] {key} must be {what}, got {}", l.show())
+                        }
+                        SizeRefused::NoTable => format!(
                             "[body] {key} = \"{}\" is a length in metres, which needs the table's R_max: add a [units] table (mu, rpm, optionally g), or give {key} in units of R_max (a plain number)",
                             l.show()
-                        )
+                        ),
                     })
                 };
                 Some(Body {

@@ -95,8 +95,6 @@ fn the_ui_never_integrates() {
     for (path, code) in sources(&root.join("ui")) {
         for call in [
             "Run::new",
-            "RodTrack::new",
-            "RodTrack::bounded",
             "RodTrack::from_run",
             ".step(",
             "engine::solve",

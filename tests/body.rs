@@ -461,16 +461,7 @@ fn presets_keep_the_body() {
 fn a_cut_track_says_where_it_stopped() {
     let mut app = body_app(0.1);
     let b = app.scene.body.unwrap();
-    let cut = turntable::engine::rod::RodTrack::bounded(
-        b,
-        1.0,
-        &app.initial,
-        1e-10,
-        200.0,
-        30,
-        usize::MAX,
-    )
-    .unwrap();
+    let cut = common::rod_track_within(b, 1.0, &app.initial, 1e-10, 200.0, 30, usize::MAX);
     let end = cut.end_tau();
     assert!(
         turntable::app::state::rod_cut_notice(&cut)

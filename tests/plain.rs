@@ -361,11 +361,11 @@ fn a_lesson_in_plain_mode_says_its_captions() {
 /// table; with `6` (fig. 2's release, the body kept) it escapes at once, certified at τ = 0.
 #[test]
 fn a_body_scene_says_the_bodys_pivot_rest_and_escape_as_time_reaches_them() {
-    use turntable::engine::rod::{Phase, RodTrack};
+    use turntable::engine::rod::Phase;
     let scene = Scene::load("tests/replay/body.toml").unwrap();
     let body = scene.body.unwrap();
     let app = App::new(scene, Theme::builtin("dark").unwrap());
-    let track = RodTrack::new(body, 1.0, &app.initial, 1e-10, 200.0).unwrap();
+    let track = common::rod_track(body, 1.0, &app.initial, 1e-10, 200.0);
     let k = track
         .phases
         .iter()

@@ -1,6 +1,7 @@
 //! The appendix's body integrated (issue 23 item 3): as L → 0 it is the point; its energy
 //! never rises.
 
+mod common;
 use turntable::engine::body::Body;
 use turntable::engine::rod::{Phase, RodRun};
 use turntable::engine::{Initial, Outcome, Release, Run, Settings};
@@ -300,9 +301,8 @@ mod prop {
 /// escape's end.
 #[test]
 fn the_track_gives_the_body_at_any_tau() {
-    use turntable::engine::rod::RodTrack;
     let a = Initial::velocity(0.5, std::f64::consts::PI, 1.0);
-    let t = RodTrack::new(body(0.1, 0.4), 1.0, &a, 1e-10, 50.0).unwrap();
+    let t = common::rod_track(body(0.1, 0.4), 1.0, &a, 1e-10, 50.0);
     assert_eq!(t.outcome, Outcome::Stuck);
     for s in &t.states {
         let got = t.at(s.tau).unwrap();
@@ -315,14 +315,13 @@ fn the_track_gives_the_body_at_any_tau() {
     let (p, n) = (t.states[3], t.states[4]);
     let mid = t.at(0.5 * (p.tau + n.tau)).unwrap();
     assert!((mid.q - (p.q + n.q) * 0.5).length() < 1e-12);
-    let e = RodTrack::new(
+    let e = common::rod_track(
         body(0.1, 0.4),
         1.0,
         &Initial::velocity(0.5, 0.0, 1.0),
         1e-10,
         50.0,
-    )
-    .unwrap();
+    );
     assert_eq!(e.outcome, Outcome::Escaped);
     assert!(e.at(e.states.last().unwrap().tau + 1.0).is_none());
 }
@@ -363,16 +362,16 @@ fn a_tracks_steps_and_states_are_bounded() {
     use turntable::engine::rod::{Cut, RodTrack, TRACK_STATES, TRACK_STEPS};
     let b = Initial::velocity(0.5, 0.0, 0.6);
     let full =
-        RodTrack::bounded(body(0.1, 0.4), 1.0, &b, 1e-12, 200.0, u64::MAX, usize::MAX).unwrap();
+        common::rod_track_within(body(0.1, 0.4), 1.0, &b, 1e-12, 200.0, u64::MAX, usize::MAX);
     assert_eq!((full.outcome, full.cut.clone()), (Outcome::Stuck, None));
     assert!(full.states.len() > 400, "{}", full.states.len());
     assert_eq!(full.states.len(), full.phases.len());
     // The explorer's bounds leave this run whole.
-    let whole = RodTrack::new(body(0.1, 0.4), 1.0, &b, 1e-12, 200.0).unwrap();
+    let whole = common::rod_track(body(0.1, 0.4), 1.0, &b, 1e-12, 200.0);
     assert_eq!(whole.states, full.states);
     assert!(whole.steps < TRACK_STEPS && whole.states.len() <= TRACK_STATES);
     // At most 64 states: thinned, the same end, phase changes where the run had them.
-    let thin = RodTrack::bounded(body(0.1, 0.4), 1.0, &b, 1e-12, 200.0, u64::MAX, 64).unwrap();
+    let thin = common::rod_track_within(body(0.1, 0.4), 1.0, &b, 1e-12, 200.0, u64::MAX, 64);
     assert!(
         thin.states.len() <= 64 && thin.states.len() >= 16,
         "{}",
@@ -392,9 +391,9 @@ fn a_tracks_steps_and_states_are_bounded() {
             .collect::<Vec<_>>()
     };
     assert_eq!(changes(&thin), changes(&full));
-    assert_eq!(thin.phase_at(full.end_tau() + 1.0), Some(Phase::Rest));
+    assert_eq!(phase_at(&thin, full.end_tau() + 1.0), Some(Phase::Rest));
     // A budget of 40 steps: cut, what was computed kept, nothing past it.
-    let cut = RodTrack::bounded(body(0.1, 0.4), 1.0, &b, 1e-12, 200.0, 40, usize::MAX).unwrap();
+    let cut = common::rod_track_within(body(0.1, 0.4), 1.0, &b, 1e-12, 200.0, 40, usize::MAX);
     assert_eq!(cut.cut, Some(Cut::Budget(40)));
     assert_eq!(cut.outcome, Outcome::Running);
     assert!(cut.steps >= 40 && cut.steps < 60, "{}", cut.steps);
@@ -412,12 +411,11 @@ fn a_tracks_steps_and_states_are_bounded() {
 /// the way, and ends riding the table.
 #[test]
 fn a_track_knows_the_phase_at_any_tau() {
-    use turntable::engine::rod::RodTrack;
     let a = Initial::velocity(0.5, std::f64::consts::PI, 1.0);
-    let t = RodTrack::new(body(0.2, 0.0), 1.0, &a, 1e-10, 200.0).unwrap();
-    assert_eq!(t.phase_at(0.0), Some(Phase::Slip));
-    assert_eq!(t.phase_at(t.end_tau()), Some(Phase::Rest));
-    assert_eq!(t.phase_at(t.end_tau() + 50.0), Some(Phase::Rest));
+    let t = common::rod_track(body(0.2, 0.0), 1.0, &a, 1e-10, 200.0);
+    assert_eq!(phase_at(&t, 0.0), Some(Phase::Slip));
+    assert_eq!(phase_at(&t, t.end_tau()), Some(Phase::Rest));
+    assert_eq!(phase_at(&t, t.end_tau() + 50.0), Some(Phase::Rest));
     let pivots = t
         .phases
         .iter()
@@ -431,8 +429,8 @@ fn a_track_knows_the_phase_at_any_tau() {
         .map(|(s, _)| s.tau);
     assert!(pivots > 0, "{:?}", t.phases);
     let tp = tau_pivot.unwrap();
-    assert!(matches!(t.phase_at(tp), Some(Phase::Pivot { .. })));
-    assert_eq!(t.phase_at(0.5 * tp), Some(Phase::Slip));
+    assert!(matches!(phase_at(&t, tp), Some(Phase::Pivot { .. })));
+    assert_eq!(phase_at(&t, 0.5 * tp), Some(Phase::Slip));
 }
 
 /// Followed past its certificate (the explorer's track), an escaping body is stepped on out to
@@ -452,7 +450,7 @@ fn an_escaping_body_is_followed_out_past_its_certificate() {
         assert_eq!(plain.finish(200.0, |_| {}).unwrap(), Outcome::Escaped);
         let cert = plain.state.tau;
         assert_eq!(plain.certificate(), Some(cert));
-        let ends = RodTrack::new(b, 1.0, &initial, 1e-10, 200.0).unwrap();
+        let ends = common::rod_track(b, 1.0, &initial, 1e-10, 200.0);
         assert_eq!((ends.outcome, ends.escape), (Outcome::Escaped, Some(cert)));
         assert_eq!(ends.end_tau(), cert);
         assert!(ends.left().is_none());
@@ -562,4 +560,9 @@ fn a_body_loose_from_rest_just_outside_r_leaves_as_the_point_does() {
         p.q(),
         left.q
     );
+}
+
+/// The phase of `t` at `tau`.
+fn phase_at(t: &turntable::engine::rod::RodTrack, tau: f64) -> Option<Phase> {
+    t.at_with_phase(tau).map(|(_, p)| p)
 }

@@ -3,7 +3,7 @@
 
 use crate::app::G_DEFAULT;
 use crate::engine::body::Body;
-use crate::engine::units::{Length, Units};
+use crate::engine::units::{Length, SizeRefused, Units};
 use crate::engine::{Coupling, CouplingName, Frame, Method, Release, Settings};
 use crate::error::Error;
 use clap::{Args, Parser, Subcommand};
@@ -106,21 +106,13 @@ impl BodyArgs {
             return Ok(None);
         };
         let r_max = |flag: &str, l: Length, zero_ok: bool| -> Result<f64, Error> {
-            if let Length::Metres(m) = l
-                && !(m.is_finite() && (m > 0.0 || (zero_ok && m == 0.0)))
-            {
-                let what = if zero_ok { "at least 0" } else { "positive" };
-                return Err(Error::Invalid(format!(
-                    "--{flag} must be {what}, got {}",
-                    l.show()
-                )));
-            }
-            l.to_r_max(units).ok_or_else(|| {
-                Error::Invalid(format!(
+            l.size_in_r_max(units, zero_ok).map_err(|e| Error::Invalid(match e {
+                SizeRefused::Range(what) => format!("--{flag} must be {what}, got {}", l.show()),
+                SizeRefused::NoTable => format!(
                     "--{flag} {} is a length in metres, which needs the real table's R_max: add {where_units}, or give it in units of R_max (a plain number)",
                     l.show()
-                ))
-            })
+                ),
+            }))
         };
         let b = Body {
             length: r_max("body-length", length, false)?,

@@ -190,10 +190,6 @@ impl Friction {
     /// that fast relaxation; it lags by ~|u_k| ≤ the floor); above it, the slip's own.
     fn dir(&self, l: f64, k: usize, st: &RodState, uk: DVec2) -> DVec2 {
         if self.breaking[k] && uk.length() <= self.floor {
-            if self.breaking[1 - k] {
-                // Both loose from rest: the consistent start is q̂ for both (see `both_loose`).
-                return st.q.normalize_or_zero();
-            }
             let need = pivot_need(l, k, st.contacts(l)[k], st.psi, st.w);
             breakaway(need, st.psi)
         } else {
@@ -289,6 +285,10 @@ const MAX_FLOOR: f64 = 1e-3;
 
 /// Steps a run may take.
 const MAX_STEPS: u64 = 5_000_000;
+
+fn over_budget() -> Error {
+    Error::Failed("the body's run exceeded its step budget".into())
+}
 
 impl RodRun {
     /// The body released as `initial` says, the rod at `body.angle`. A thrown body or one at
@@ -454,9 +454,7 @@ impl RodRun {
         loop {
             self.steps += 1;
             if self.steps > MAX_STEPS {
-                return Err(Error::Failed(
-                    "the body's run exceeded its step budget".into(),
-                ));
+                return Err(over_budget());
             }
             let h = self.h.min(tau_max - self.state.tau);
             let (y1, err) = self.step_from(self.state.y(), h);
@@ -608,7 +606,6 @@ impl RodRun {
     fn both_loose(&mut self) {
         let out = self.state.q.normalize_or_zero();
         self.fallback = [out, out];
-        self.breaking = [true, true];
         self.phase = Phase::Slip;
         let settings = Settings {
             coupling: Coupling::Coulomb { hold: self.hold },
@@ -632,9 +629,7 @@ impl RodRun {
         };
         self.steps += 1;
         if self.steps > MAX_STEPS {
-            return Err(Error::Failed(
-                "the body's run exceeded its step budget".into(),
-            ));
+            return Err(over_budget());
         }
         let before = t.run.cost().rhs_evals;
         let stop = t.run.step(tau_max - t.tau0)?;
@@ -719,36 +714,10 @@ pub struct RodTrack {
 }
 
 impl RodTrack {
-    /// The body released as `initial` says, run to rest, escape or `tau_max`, within
-    /// [`TRACK_STEPS`] and [`TRACK_STATES`]. Errs only on input `RodRun::new` refuses; a run
-    /// that fails or runs out of steps keeps what it computed, with `cut` saying so.
-    pub fn new(
-        body: Body,
-        hold: f64,
-        initial: &Initial,
-        tol: f64,
-        tau_max: f64,
-    ) -> Result<RodTrack, Error> {
-        RodTrack::bounded(body, hold, initial, tol, tau_max, TRACK_STEPS, TRACK_STATES)
-    }
-
-    /// [`RodTrack::new`] with its own step budget and state cap (at least 4).
-    pub fn bounded(
-        body: Body,
-        hold: f64,
-        initial: &Initial,
-        tol: f64,
-        tau_max: f64,
-        max_steps: u64,
-        max_states: usize,
-    ) -> Result<RodTrack, Error> {
-        let run = RodRun::new(body, hold, initial, tol)?;
-        Ok(RodTrack::from_run(run, tau_max, max_steps, max_states))
-    }
-
     /// The track of `run` from where it stands, to rest, escape (followed on to its radius
     /// where [`RodRun::following`] says so) or `tau_max`, within `max_steps` and `max_states`
-    /// (at least 4): the explorer's `RodTrack::from_run(RodRun::new(…)?.following(r), …)` draws
+    /// (at least 4; the explorer's are [`TRACK_STEPS`] and [`TRACK_STATES`]); a run that fails
+    /// or runs out of steps keeps what it computed, with `cut` saying so. The explorer's `RodTrack::from_run(RodRun::new(…)?.following(r), …)` draws
     /// an escaping body leaving, at the same cost bounds.
     pub fn from_run(mut run: RodRun, tau_max: f64, max_steps: u64, max_states: usize) -> RodTrack {
         let mut track = RodTrack {
@@ -813,13 +782,8 @@ impl RodTrack {
         self.at_with_phase(tau).map(|(s, _)| s)
     }
 
-    /// The phase at `tau` (the one that holds from the kept state at or before it); None where
-    /// [`RodTrack::at`] is.
-    pub fn phase_at(&self, tau: f64) -> Option<Phase> {
-        self.at_with_phase(tau).map(|(_, p)| p)
-    }
-
-    /// The state and phase at `tau`.
+    /// The state and phase at `tau` (the phase that holds from the kept state at or before
+    /// it).
     pub fn at_with_phase(&self, tau: f64) -> Option<(RodState, Phase)> {
         let last = *self.states.last()?;
         let phase = |k: usize| self.phases.get(k).copied().unwrap_or(Phase::Slip);
@@ -868,8 +832,6 @@ struct Thinned {
     stride: u64,
     /// Step ends since the last kept one.
     since: u64,
-    /// Which kept states are phase changes (never thinned out while others can be).
-    events: Vec<bool>,
     /// The newest step end when it was not kept (put back at the end).
     pending: Option<(RodState, Phase)>,
 }
@@ -880,7 +842,6 @@ impl Thinned {
             cap,
             stride: 1,
             since: 0,
-            events: vec![true],
             pending: None,
         }
     }
@@ -894,20 +855,19 @@ impl Thinned {
         if event && let Some((ps, pp)) = self.pending.take() {
             // The step end just before a phase change: kept, so the old phase's last stretch
             // is drawn on its own chord.
-            self.keep(t, ps, pp, false);
+            Thinned::keep(t, ps, pp);
         }
         self.pending = None;
         self.since = 0;
-        self.keep(t, s, p, event);
+        Thinned::keep(t, s, p);
         if t.states.len() >= self.cap {
             self.halve(t);
         }
     }
 
-    fn keep(&mut self, t: &mut RodTrack, s: RodState, p: Phase, event: bool) {
+    fn keep(t: &mut RodTrack, s: RodState, p: Phase) {
         t.states.push(s);
         t.phases.push(p);
-        self.events.push(event);
     }
 
     /// Every other kept state dropped (events kept while that halves them enough, then
@@ -919,22 +879,22 @@ impl Thinned {
                 return;
             }
             let n = t.states.len();
+            // A phase change: a state whose phase is not its predecessor's.
+            let change = |k: usize| k > 0 && t.phases[k] != t.phases[k - 1];
             let keep: Vec<bool> = (0..n)
-                .map(|k| k == 0 || k + 1 == n || k % 2 == 0 || (!events_too && self.events[k]))
+                .map(|k| k == 0 || k + 1 == n || k % 2 == 0 || (!events_too && change(k)))
                 .collect();
             let mut it = keep.iter();
             t.states.retain(|_| *it.next().unwrap_or(&true));
             let mut it = keep.iter();
             t.phases.retain(|_| *it.next().unwrap_or(&true));
-            let mut it = keep.iter();
-            self.events.retain(|_| *it.next().unwrap_or(&true));
         }
     }
 
     /// The newest step end, if it was not kept.
     fn finish(&mut self, t: &mut RodTrack) {
         if let Some((s, p)) = self.pending.take() {
-            self.keep(t, s, p, false);
+            Thinned::keep(t, s, p);
         }
     }
 }

@@ -141,6 +141,21 @@ impl Length {
         }
     }
 
+    /// A body's size (`zero_ok`: a height, ≥ 0; else a length, > 0) in units of R_max on the
+    /// table `units`. Metres are checked here; a plain number is `Body::validate`'s to check.
+    pub fn size_in_r_max(self, units: Option<&Units>, zero_ok: bool) -> Result<f64, SizeRefused> {
+        if let Length::Metres(m) = self
+            && !(m.is_finite() && (m > 0.0 || (zero_ok && m == 0.0)))
+        {
+            return Err(SizeRefused::Range(if zero_ok {
+                "at least 0"
+            } else {
+                "positive"
+            }));
+        }
+        self.to_r_max(units).ok_or(SizeRefused::NoTable)
+    }
+
     /// As it was typed, near enough for a message: `0.1` or `2 cm`.
     pub fn show(self) -> String {
         match self {
@@ -148,6 +163,15 @@ impl Length {
             Length::Metres(m) => show_metres(m),
         }
     }
+}
+
+/// Why [`Length::size_in_r_max`] refuses a size; the caller names the flag or key.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum SizeRefused {
+    /// Out of range in metres: it must be this ("positive", "at least 0").
+    Range(&'static str),
+    /// In metres, with no table to convert it on.
+    NoTable,
 }
 
 /// `m` metres as the shortest text [`Length::parse`] reads back to exactly `m`, in the unit

@@ -265,6 +265,11 @@ fn release_verdict(
     }
 }
 
+/// Whether `page` has numbers of its own to say in words ([`summary`]).
+pub fn summarized(page: Page) -> bool {
+    matches!(page, Page::EscapeSpeed | Page::RestRadius)
+}
+
 /// The analysis page on screen in words, for plain mode (a screen reader has no chart): what
 /// the chart shows once its data are in, and what it says of the release on screen, from the
 /// same pieces the chart is drawn from. None while they compute, and on the pages without a

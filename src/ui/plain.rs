@@ -155,7 +155,7 @@ pub fn describe(was: &Seen, now: &Seen) -> Vec<String> {
         out.push(format!(
             "page: {} (drawn in the explorer only; the readouts stay{})",
             now.page.title(),
-            if matches!(now.page, Page::EscapeSpeed | Page::RestRadius) {
+            if super::pages::summarized(now.page) {
                 "; its numbers follow once computed"
             } else {
                 ""

@@ -123,3 +123,30 @@ pub fn seeded(cases: u32) -> proptest::test_runner::Config {
         ..proptest::test_runner::Config::default()
     }
 }
+
+/// A body's track as the explorer computes it (within `TRACK_STEPS` and `TRACK_STATES`).
+pub fn rod_track(
+    body: turntable::engine::body::Body,
+    hold: f64,
+    initial: &turntable::engine::Initial,
+    tol: f64,
+    tau_max: f64,
+) -> turntable::engine::rod::RodTrack {
+    use turntable::engine::rod::{TRACK_STATES, TRACK_STEPS};
+    rod_track_within(body, hold, initial, tol, tau_max, TRACK_STEPS, TRACK_STATES)
+}
+
+/// A body's track (what `RodTrack::from_run` makes of a new run), within `max_steps` and
+/// `max_states`.
+pub fn rod_track_within(
+    body: turntable::engine::body::Body,
+    hold: f64,
+    initial: &turntable::engine::Initial,
+    tol: f64,
+    tau_max: f64,
+    max_steps: u64,
+    max_states: usize,
+) -> turntable::engine::rod::RodTrack {
+    let run = turntable::engine::rod::RodRun::new(body, hold, initial, tol).unwrap();
+    turntable::engine::rod::RodTrack::from_run(run, tau_max, max_steps, max_states)
+}
