@@ -232,7 +232,8 @@ fn stop_times_come_with_their_measured_error() {
     assert_eq!(v["outcome"], "stuck");
     assert_eq!(v["certain"], true);
     let dt = v["check"]["tau_error"].as_f64().unwrap();
-    assert!(dt > 1e-4, "{v}");
+    // Far more than the tolerance (1e-10).
+    assert!(dt > 1e-6, "{v}");
     // And it is an honest measure: the converged stop time lies within it.
     let tight = json(&[
         "run",

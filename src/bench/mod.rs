@@ -245,8 +245,9 @@ pub fn run(cfg: &Config, mut progress: impl FnMut(&str)) -> Result<Report, Error
                 .fold(0.0, f64::max),
         });
         for s in task.settings(cfg) {
-            let (out, ms) = timed(cfg.reps, || measure(s, ESCAPE_VTOL));
-            rows.push(row(task, s, &refs, &out?, ms));
+            let vtol = row_vtol(task, s);
+            let (out, ms) = timed(cfg.reps, || measure(s, vtol));
+            rows.push(row(task, s, vtol, &refs, &out?, ms));
         }
         if task == Task::Rest {
             rest = refs;
@@ -271,8 +272,19 @@ pub fn run(cfg: &Config, mut progress: impl FnMut(&str)) -> Result<Report, Error
     })
 }
 
+/// The escape-speed tolerance of an escape task's row. The solver runs an adaptive method no
+/// looser than a hundredth of it, so at one vtol every looser tolerance would run as that one:
+/// each row's vtol is 100× its tolerance (at least [`ESCAPE_VTOL`]), and it runs at the
+/// tolerance it names.
+fn row_vtol(task: Task, s: Settings) -> f64 {
+    match s.scheme.tol() {
+        Some(tol) if task.escape() => (100.0 * tol).max(ESCAPE_VTOL),
+        _ => ESCAPE_VTOL,
+    }
+}
+
 /// One row: `out` (one setting's measures of the task's cases) against the reference's.
-fn row(task: Task, s: Settings, refs: &[Measure], out: &[Measure], wall_ms: f64) -> Row {
+fn row(task: Task, s: Settings, vtol: f64, refs: &[Measure], out: &[Measure], wall_ms: f64) -> Row {
     let (mut errs, mut times, mut wrong) = (Vec::new(), Vec::new(), 0);
     for (m, r) in out.iter().zip(refs) {
         if m.outcome != r.outcome {
@@ -289,10 +301,12 @@ fn row(task: Task, s: Settings, refs: &[Measure], out: &[Measure], wall_ms: f64)
     let mut evals: Vec<f64> = out.iter().map(|m| m.evals as f64).collect();
     // The raw scheme never stops by itself (nor in `run --method rk2-raw`): its row names the
     // rule the bench stops it by.
-    let rule = if task == Task::Rest && !s.method().stick_events() {
-        " |u|≤dt"
+    let rule = if task.times_stops() && !s.method().stick_events() {
+        " |u|≤dt".to_string()
+    } else if task.escape() {
+        format!(" vtol={vtol:.0e}")
     } else {
-        ""
+        String::new()
     };
     let stops = task.times_stops();
     Row {

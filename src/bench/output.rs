@@ -108,28 +108,34 @@ pub fn table(r: &Report) -> String {
     let _ = writeln!(o, "\nspeed goals (release build, this machine):");
     let _ = writeln!(
         o,
-        "  escape speed to 1e-8 at (0.5, 0), dp54 tol=1e-10: {:.2} ms, {} RHS, v_e = {:.10}   (goal ≤ 5 ms)",
-        sp.escape_ms, sp.escape_evals, sp.escape_value
+        "  escape speed to 1e-8 at (0.5, 0), dp54 tol=1e-10: {:.2} ms, {} RHS, v_e = {:.10}   {}",
+        sp.escape_ms,
+        sp.escape_evals,
+        sp.escape_value,
+        goal(sp.escape_ms, 5.0, "ms")
     );
     let _ = writeln!(
         o,
-        "  four Fig. 5 curves × {} angles (vtol {:e}, all cores): {:.0} ms   (goal ≤ 1000 ms){}",
+        "  four Fig. 5 curves × {} angles (vtol {:e}, all cores): {:.0} ms   {}{}",
         sp.fig5_angles,
         sp.fig5_vtol,
         sp.fig5_ms,
+        goal(sp.fig5_ms, 1000.0, "ms"),
         sp.fig5_ms_vtol_1e8
             .map_or(String::new(), |m| format!("; at vtol 1e-8: {m:.0} ms"))
     );
     let _ = writeln!(
         o,
-        "  escape-speed page, one curve (ξ0 = 0.5, 72 angles, vtol 1e-6, one thread): {:.0} ms   (goal ≤ 50 ms)",
-        sp.curve_ms
+        "  escape-speed page, one curve (ξ0 = 0.5, 72 angles, vtol 1e-6, one thread): {:.0} ms   {}",
+        sp.curve_ms,
+        goal(sp.curve_ms, 50.0, "ms")
     );
     if let Some(ms) = sp.escape_cli_ms {
         let _ = writeln!(
             o,
-            "  `turntable escape --vtol 1e-8 --no-check` on Fig. 5's points (4 ξ0 × {} φ), process start included: {ms:.2} ms median   (goal ≤ 3 ms)",
-            sp.escape_angles
+            "  `turntable escape --vtol 1e-8 --no-check` on Fig. 5's points (4 ξ0 × {} φ), process start included: {ms:.2} ms median   {}",
+            sp.escape_angles,
+            goal(ms, 3.0, "ms")
         );
     }
     if let Some(ms) = sp.escape_checked_ms {
@@ -140,8 +146,9 @@ pub fn table(r: &Report) -> String {
     }
     let _ = writeln!(
         o,
-        "  outcome map 72 × 60 cells (sweep map, all cores): {:.0} ms   (goal ≤ 1000 ms)",
-        sp.map_ms
+        "  outcome map 72 × 60 cells (sweep map, all cores): {:.0} ms   {}",
+        sp.map_ms,
+        goal(sp.map_ms, 1000.0, "ms")
     );
     match (sp.matching_tol, sp.evals_ratio) {
         (Some(tol), Some(ratio)) => {
@@ -205,13 +212,15 @@ pub fn table(r: &Report) -> String {
     }
     let _ = writeln!(
         o,
-        "  explorer frame at 160×48, {}-point trail, paper's run beside it (tick + draw): {:.2} ms   (goal ≤ 2 ms)",
-        sp.frame_trail, sp.frame_ms
+        "  explorer frame at 160×48, {}-point trail, paper's run beside it (tick + draw): {:.2} ms   {}",
+        sp.frame_trail,
+        sp.frame_ms,
+        goal(sp.frame_ms, 2.0, "ms")
     );
     for b in &sp.terminal_bytes {
         let _ = writeln!(
             o,
-            "  terminal output, default scene playing at {}×{} ({} frames), {:<13} {:<6}: {:>6.0} B/frame = {:>5.1} KB/s at {} fps   (goal ≤ {} KB/s)",
+            "  terminal output, default scene playing at {}×{} ({} frames), {:<13} {:<6}: {:>6.0} B/frame = {:>5.1} KB/s at {} fps   {}",
             b.size.0,
             b.size.1,
             b.frames,
@@ -220,7 +229,7 @@ pub fn table(r: &Report) -> String {
             b.bytes_per_frame,
             b.kb_per_s,
             super::bytes::FPS,
-            super::bytes::GOAL_KB_PER_S
+            goal(b.kb_per_s, super::bytes::GOAL_KB_PER_S, "KB/s")
         );
     }
     for l in &sp.links {
@@ -301,4 +310,13 @@ pub fn plot(r: &Report, task: Task, width: u16, height: u16) -> Result<String, E
         render(f, f.area(), &th, &chart);
     })?;
     Ok(plain_text(term.backend().buffer()))
+}
+
+/// A speed goal and whether this run met it: a missed goal says so.
+fn goal(value: f64, limit: f64, unit: &str) -> String {
+    if value <= limit {
+        format!("(goal ≤ {limit} {unit}: met)")
+    } else {
+        format!("(goal ≤ {limit} {unit}: MISSED)")
+    }
 }

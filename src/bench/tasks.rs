@@ -22,6 +22,13 @@ pub enum Task {
     /// Rest position (table frame) and stop time of every case.
     #[strum(to_string = "rest")]
     Rest,
+    /// The same near the rim: releases at ξ0 = 0.99 … 0.9999 moving out at up to 0.9999 of
+    /// the speed that would carry them to ξ = 1, where a stop comes slowly and late (issue 35).
+    /// The reference takes no closed form there but stops within its tolerance: the stretch
+    /// before the stop is integrated in implicit steps (`tests/rim_times.rs` checks it
+    /// against an independent form).
+    #[strum(to_string = "rim stops")]
+    Rim,
     /// Case A's position at τ = 0.5, before its stop: a smooth stretch.
     #[strum(to_string = "A@τ=0.5")]
     Smooth,
@@ -90,6 +97,12 @@ impl Task {
         let at = |phi| Initial::velocity(0.5, phi, 0.0);
         match self {
             Task::Rest => all.to_vec(),
+            Task::Rim => [0.99, 0.999, 0.9999]
+                .into_iter()
+                .flat_map(|xi0| {
+                    [0.5, 0.99, 0.9999].map(|f| Initial::velocity(xi0, 0.0, f * (1.0 - xi0)))
+                })
+                .collect(),
             Task::Smooth => all[..1].to_vec(),
             Task::Drift => all.iter().take(3 + cfg.cases.min(20)).copied().collect(),
             Task::Far => vec![Initial::velocity(0.5, 0.4, 1.5)],
@@ -104,7 +117,7 @@ impl Task {
     /// The second method the reference is checked against.
     pub(super) fn check(self) -> Settings {
         match self {
-            Task::Rest | Task::Drift | Task::Escape => stop_check(),
+            Task::Rest | Task::Rim | Task::Drift | Task::Escape => stop_check(),
             Task::Smooth => Settings::fixed(Method::Rk4, 1e-4),
             Task::Far => Settings::fixed(Method::Rk4, 1e-3),
             Task::Fig5 => Settings::dp54(1e-11),
@@ -123,7 +136,7 @@ impl Task {
 
     /// Whether the task times stops (the τ columns).
     pub(super) fn times_stops(self) -> bool {
-        self == Task::Rest
+        matches!(self, Task::Rest | Task::Rim)
     }
 
     /// The settings measured: each method over its knob, within what the task can afford.
@@ -152,7 +165,9 @@ impl Task {
         let all = [Method::Rk2Raw, Method::Rk2, Method::Rk4];
         let smooth = [Method::Rk2, Method::Rk4];
         let (fixed, dp) = match self {
-            Task::Rest | Task::Smooth | Task::Drift => (fixed(&all, &cfg.dts()), dp54(&|_| true)),
+            Task::Rest | Task::Rim | Task::Smooth | Task::Drift => {
+                (fixed(&all, &cfg.dts()), dp54(&|_| true))
+            }
             Task::Far => {
                 let min = if cfg.quick { 1e-2 } else { 1e-3 };
                 let dts: Vec<f64> = cfg.dts().into_iter().filter(|&d| d >= min).collect();
@@ -184,7 +199,7 @@ impl Task {
         vtol: f64,
     ) -> Result<Measure, Error> {
         let tau = match self {
-            Task::Rest => {
+            Task::Rest | Task::Rim => {
                 let e = finish(initial, settings, REST_TAU)?;
                 let stuck = e.outcome == Outcome::Stuck;
                 return Ok(Measure {

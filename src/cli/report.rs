@@ -306,8 +306,14 @@ growth   {rate:.12}  (Re lambda+: every release leaves as e^(rate tau) but those
                 "check    closed form (Stokes drag): no integration error to check\n".to_string()
             }
             (Some(c), Some(true)) => format!(
-                "check    outcome certain: {} agrees; tau differs from it by {:.1e}, position by {:.1e}\n",
+                "check    outcome certain: {} agrees; {}tau differs from it by {:.1e}, position by {:.1e}\n",
                 c.who(),
+                // Followed past the certificate (--follow): what was compared is the certificate.
+                match self.escape_tau {
+                    Some(te) if te < self.tau =>
+                        format!("at the escape certificate (tau {te:.9}) "),
+                    _ => String::new(),
+                },
                 c.tau_error.unwrap_or(f64::INFINITY),
                 c.q_error.unwrap_or(f64::INFINITY),
             ),
@@ -450,6 +456,9 @@ pub struct SolveReport {
     pub runs: u32,
     pub rhs_evals: u64,
     pub run_tol: Option<f64>,
+    /// How many times the search was run again tighter (said in the text only).
+    #[serde(skip)]
+    pub tightened: u32,
     pub certified: Option<bool>,
 }
 
@@ -460,6 +469,7 @@ impl SolveReport {
             runs: t.runs,
             rhs_evals: t.rhs_evals,
             run_tol: t.run_tol,
+            tightened: t.tightened,
             certified,
         }
     }
@@ -473,9 +483,13 @@ impl SolveReport {
             Some(true) => {
                 "checked  certified: each end run in full ends as it says, and so does a run 1000x tighter in the other frame\n"
             }
-            Some(false) => {
-                "checked  NOT certified: an end of the bracket, run in full or by its second opinion, did not end as it says with a margin, even with runs 10^4x tighter\n"
-            }
+            Some(false) => &format!(
+                "checked  NOT certified: an end of the bracket, run in full or by its second opinion, did not end as it says with a margin{}\n",
+                match self.tightened {
+                    0 => String::new(),
+                    n => format!(", even solved again with runs 10^{}x tighter", 2 * n),
+                }
+            ),
         };
         let hold = if self.mu_static_ratio == 1.0 {
             String::new()

@@ -6,7 +6,8 @@
 //! escaping one crosses ξ = 1. Its size is the outcome's margin. The run's error in it is
 //! measured against a second opinion: dp54 at 1000× the run's tolerance (at least 1e-14) in the
 //! *other* frame, so that even at the tightest tolerance it is an independent formulation and
-//! not the run again. The outcome is certain when the second opinion agrees and the difference
+//! not the run again, and with none of the run's closed forms ([`Run::checking`]): what the run
+//! took in closed form, it integrates. The outcome is certain when the second opinion agrees and the difference
 //! is well inside the margin. `certain` covers the outcome only: where and when it ended are
 //! given with their measured differences from the second opinion ([`Doubt::tau_error`],
 //! [`Doubt::q_error`]), which near a threshold can be large while the outcome is sure.
@@ -113,7 +114,7 @@ pub fn doubt(run: &Run, tau_max: f64) -> Doubt {
         _ => (2.0 * end.tau + 10.0).min(tau_max.max(end.tau)),
     };
     let mut check_evals = 0;
-    let shadow = Run::new(run.initial(), check).ok().and_then(|mut s| {
+    let shadow = Run::checking(run.initial(), check).ok().and_then(|mut s| {
         let o = s.run(limit, true);
         check_evals = s.cost().rhs_evals;
         o.ok().map(|o| (o, decided_state(&s)))

@@ -9,6 +9,7 @@ pub mod error;
 pub mod method;
 pub mod model;
 pub mod par;
+pub mod radau;
 pub mod rod;
 pub mod roots;
 pub mod run;

@@ -20,6 +20,7 @@ use super::body::Body;
 use super::error::Error;
 use super::method::{Coupling, Settings};
 use super::model::{Initial, Release};
+use super::roots::illinois;
 use super::run::{Outcome, Run, Stop};
 use super::stepper::dp5_stages;
 use glam::DVec2;
@@ -477,6 +478,7 @@ impl RodRun {
                     for (b, u) in self.breaking.iter_mut().zip(end.slips(self.l)) {
                         *b &= u.length() <= floor;
                     }
+                    self.locate_certificate(h, &end);
                     self.state = end;
                     self.h = h * grow;
                 }
@@ -497,6 +499,18 @@ impl RodRun {
         } else {
             Outcome::Running
         }
+    }
+
+    /// Where in the step of `h` to `end` the escape certificate E < −½R² first holds, if it
+    /// first holds there: located by Illinois on the step's length (as the point's run locates
+    /// its certificates), not taken at the step's end.
+    fn locate_certificate(&mut self, h: f64, end: &RodState) {
+        let margin = |s: &RodState| -0.5 * self.hold * self.hold - s.energy(self.l);
+        if self.certified.is_some() || self.escaped() || margin(end) <= 0.0 {
+            return;
+        }
+        let at = illinois(|t| margin(&self.trial(t)), 0.0, h, 1e-14 * h.max(1e-300));
+        self.certified = Some(self.state.tau + at);
     }
 
     /// Where in (0, h] event `k` first reaches zero, by bisection on the step length.

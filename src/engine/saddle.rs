@@ -35,30 +35,26 @@ const SLAVED: f64 = 0.1;
 /// (∝ (g/4)⁵) is far below the bound on the model's own.
 const STEPS: usize = 4;
 
-/// I = s² − g² carried along the slow manifold from gap `g` (= 1 − ξ) to ξ = 1, and the time it
-/// takes: dI/dg = 2k/(1 − k) with 1 − cos α = k = 2s²/(ρ² + s²)², s² = I + g² (module docs), by
-/// RK4 in g. On each step the time is the leading-order crossing, dg/dτ = −√(I + g²), with I
-/// held at the step's mean: asinh(g/√I) between its ends (for I > 0; the time is only needed
-/// for a crossing).
-pub fn carry(i0: f64, g: f64) -> (f64, f64) {
+/// I = s² − g² carried along the slow manifold from gap `g` (= 1 − ξ) to ξ = 1:
+/// dI/dg = 2k/(1 − k) with 1 − cos α = k = 2s²/(ρ² + s²)², s² = I + g² (module docs), by RK4
+/// in g.
+pub fn carry(i0: f64, g: f64) -> f64 {
     let k = |s2: f64, rho: f64| 2.0 * s2 / ((rho * rho + s2) * (rho * rho + s2));
     let slope = |g: f64, i: f64| {
         let k = k(i + g * g, 1.0 - g);
         2.0 * k / (1.0 - k)
     };
     let dg = -g / STEPS as f64;
-    let (mut gg, mut i, mut t) = (g, i0, 0.0);
+    let (mut gg, mut i) = (g, i0);
     for _ in 0..STEPS {
         let k1 = slope(gg, i);
         let k2 = slope(gg + 0.5 * dg, i + 0.5 * dg * k1);
         let k3 = slope(gg + 0.5 * dg, i + 0.5 * dg * k2);
         let k4 = slope(gg + dg, i + dg * k3);
-        let next = i + dg / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
-        let root = (0.5 * (i + next)).max(0.0).sqrt();
-        t += (gg / root).asinh() - ((gg + dg).max(0.0) / root).asinh();
-        (i, gg) = (next, gg + dg);
+        i += dg / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+        gg += dg;
     }
-    (i, t)
+    i
 }
 
 /// What the slow manifold says of a particle sliding out near the saddle, with `h` = I/2
@@ -108,7 +104,7 @@ pub fn fate(s: &State) -> Option<Fate> {
     if (i0 - rough).abs() < 0.5 * rough * (3.0 * misaligned + speed) {
         return None;
     }
-    let (i, _) = carry(i0, g);
+    let i = carry(i0, g);
     let loss = i0 - i;
     let doubt = loss * (3.0 * misaligned + speed) + 1e-16;
     if i > doubt {

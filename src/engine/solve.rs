@@ -52,6 +52,8 @@ pub struct Threshold {
     /// dp54's tolerance in the runs that decided the bracket: the one asked for, floored at
     /// 1/100 of the bracket's width (a looser run misplaces the threshold by more than that).
     pub run_tol: Option<f64>,
+    /// How many times [`solve_certified`] solved again 100× tighter.
+    pub tightened: u32,
 }
 
 /// `settings` with its adaptive method at `tol` (not below 1e-14); fixed-step settings as
@@ -121,10 +123,11 @@ pub fn solve_certified<E: From<Error>>(
         let Some(tol) = t.run_tol.filter(|&tol| tol > TOL_RANGE.0) else {
             return Ok((t, false));
         };
-        let (runs, evals) = (t.runs, t.rhs_evals);
+        let (runs, evals, tightened) = (t.runs, t.rhs_evals, t.tightened);
         t = solve(with_tol(settings, 1e-2 * tol))?;
         t.runs += runs;
         t.rhs_evals += evals;
+        t.tightened = tightened + 1;
     }
     let ok = certify(&mut t, settings, &at)?;
     Ok((t, ok))
@@ -323,6 +326,7 @@ pub fn escape_speed_until(
             runs,
             rhs_evals: evals,
             run_tol: settings.scheme.tol(),
+            tightened: 0,
         });
     }
     // The bracket, confirmed at the full settings (the scan ran looser).
@@ -418,6 +422,7 @@ pub fn escape_speed_until(
         runs,
         rhs_evals: evals,
         run_tol: settings.scheme.tol(),
+        tightened: 0,
     })
 }
 
@@ -514,6 +519,7 @@ pub fn critical_radius_until(
         scan: scanned,
         rhs_evals: evals,
         run_tol: settings.scheme.tol(),
+        tightened: 0,
     })
 }
 

@@ -114,13 +114,21 @@ const D7: f64 = 69997945.0 / 29380423.0;
 
 /// The size of `e` in the max norm over the components, each against tol·(1 + |y|) at the
 /// larger of its two ends: stricter than Hairer's RMS, which near the saddle ξ ≈ 1 lets the
-/// error of one component hide behind the others.
-fn err_norm(y0: Y, y1: Y, e: Y, tol: f64) -> f64 {
+/// error of one component hide behind the others. The velocity's scale is at most `vel`: a
+/// second opinion passes max(|u|, |1 − ξ|, 1e-3), as a stop's time is |u| over a deceleration
+/// of at least |1 − ξ|, so near the rim |u| needs its own relative accuracy (`f64::INFINITY`:
+/// none).
+fn err_norm(y0: Y, y1: Y, e: Y, tol: f64, vel: f64) -> f64 {
     let comp = |a: f64, b: f64, d: f64| (d / (tol + tol * a.abs().max(b.abs()))).abs();
+    // Not below what rounding allows w itself (lab frame: v ≈ ẑ×r + u, |v| ~ ξ however small u).
+    let wcomp = |a: f64, b: f64, d: f64| {
+        let w = a.abs().max(b.abs());
+        (d / (tol * (1.0 + w).min(vel.max(10.0 * f64::EPSILON * w / tol)))).abs()
+    };
     comp(y0.p.x, y1.p.x, e.p.x)
         .max(comp(y0.p.y, y1.p.y, e.p.y))
-        .max(comp(y0.w.x, y1.w.x, e.w.x))
-        .max(comp(y0.w.y, y1.w.y, e.w.y))
+        .max(wcomp(y0.w.x, y1.w.x, e.w.x))
+        .max(wcomp(y0.w.y, y1.w.y, e.w.y))
 }
 
 /// One DOPRI5 trial step: the new point, its slope (FSAL), the scaled error norm and the
@@ -154,9 +162,9 @@ pub(super) fn dp5_stages<V: Linear>(rhs: impl Fn(V) -> V, y: V, k1: V, h: f64) -
     (y1, [k1, k2, k3, k4, k5, k6, k7], e)
 }
 
-fn dp5_step(rhs: impl Fn(Y) -> Y, y: Y, k1: Y, h: f64, tol: f64) -> Dp5Trial {
+fn dp5_step(rhs: impl Fn(Y) -> Y, y: Y, k1: Y, h: f64, tol: f64, vel: f64) -> Dp5Trial {
     let (y1, [_, _, k3, k4, k5, k6, k7], e) = dp5_stages(rhs, y, k1, h);
-    let err = err_norm(y, y1, e, tol);
+    let err = err_norm(y, y1, e, tol, vel);
     let dy = y1 - y;
     let bspl = k1 * h - dy;
     let dense = Dense::Dp5([
@@ -179,7 +187,7 @@ fn dp5_step(rhs: impl Fn(Y) -> Y, y: Y, k1: Y, h: f64, tol: f64) -> Dp5Trial {
 /// sized so that its error of the method's `order` would be 0.01·tol. One right-hand-side
 /// evaluation.
 fn initial_step(rhs: impl Fn(Y) -> Y, y: Y, f0: Y, tol: f64, order: i32) -> f64 {
-    let norm = |v: Y| err_norm(y, y, v, tol);
+    let norm = |v: Y| err_norm(y, y, v, tol, f64::INFINITY);
     let (d0, d1) = (norm(y), norm(f0));
     let h0 = if d0 < 1e-5 || d1 < 1e-5 {
         1e-6
@@ -325,7 +333,8 @@ impl Stepper {
         scheme.fixed().map_or(self.h, |(_, dt)| dt)
     }
 
-    /// One accepted step of at most `cap`, and the adaptive error against its tolerance (≤ 1).
+    /// One accepted step of at most `cap`, and the adaptive error against its tolerance (≤ 1),
+    /// the velocity's error scaled by at most `vel` (see [`err_norm`]).
     /// Rejected tries are counted in `cost`; accepted and rejected together stay below
     /// `max_steps`.
     pub fn step(
@@ -333,6 +342,7 @@ impl Stepper {
         rhs: impl Fn(Y) -> Y,
         scheme: Scheme,
         cap: f64,
+        vel: f64,
         cost: &mut Cost,
         max_steps: u64,
     ) -> Result<(Segment, Option<f64>), StepError> {
@@ -348,7 +358,7 @@ impl Stepper {
             if too_short(h, self.t) {
                 return Err(StepError::Underflow);
             }
-            let trial = Trial::try_step(&rhs, scheme, self.y, self.f, h, tol, cost);
+            let trial = Trial::try_step(&rhs, scheme, self.y, self.f, h, (tol, vel), cost);
             let (hnew, accepted) = self.ctrl.next(h, trial.err());
             // A capped step says nothing about how large the next free step may be.
             self.h = if h < self.h && accepted {
@@ -387,7 +397,15 @@ impl Stepper {
     pub fn forced(&mut self, rhs: impl Fn(Y) -> Y, scheme: Scheme, h: f64) -> Segment {
         let mut cost = Cost::default();
         let tol = scheme.tol().unwrap_or(1.0);
-        let trial = Trial::try_step(&rhs, scheme, self.y, self.f, h, tol, &mut cost);
+        let trial = Trial::try_step(
+            &rhs,
+            scheme,
+            self.y,
+            self.f,
+            h,
+            (tol, f64::INFINITY),
+            &mut cost,
+        );
         self.accept(&rhs, h, trial, &mut cost)
     }
 
@@ -431,20 +449,20 @@ impl Trial {
         y: Y,
         f: Y,
         h: f64,
-        tol: f64,
+        (tol, vel): (f64, f64),
         cost: &mut Cost,
     ) -> Trial {
         if let Scheme::Dop853 { .. } = scheme {
             cost.rhs_evals += 11;
             let t = dop853::trial(rhs, y, f, h);
             let err = dop853::combined_err(
-                err_norm(y, t.y1, t.err5, tol),
-                err_norm(y, t.y1, t.err3, tol),
+                err_norm(y, t.y1, t.err5, tol, vel),
+                err_norm(y, t.y1, t.err3, tol, vel),
             );
             Trial::Dop853 { t, err }
         } else {
             cost.rhs_evals += 6;
-            Trial::Dp5(dp5_step(rhs, y, f, h, tol))
+            Trial::Dp5(dp5_step(rhs, y, f, h, tol, vel))
         }
     }
     fn err(&self) -> f64 {
@@ -474,8 +492,15 @@ pub fn adaptive_plain(rhs: impl Fn(Y) -> Y, y: Y, t_end: f64, scheme: Scheme) ->
     let mut cost = Cost::default();
     let mut st = Stepper::new(&rhs, y, scheme, &mut cost);
     while !too_short(t_end - st.t, st.t) {
-        st.step(&rhs, scheme, t_end - st.t, &mut cost, u64::MAX)
-            .ok()?;
+        st.step(
+            &rhs,
+            scheme,
+            t_end - st.t,
+            f64::INFINITY,
+            &mut cost,
+            u64::MAX,
+        )
+        .ok()?;
     }
     Some((st.y, cost.rhs_evals))
 }

@@ -2,6 +2,8 @@
 //! on an off-screen terminal. (Each test target uses part of it.)
 #![allow(dead_code)]
 
+pub mod sundman;
+
 use std::process::Command;
 
 /// An XDG_CONFIG_HOME with nothing in it: tests never read the user's configuration.

@@ -3,95 +3,105 @@
 //! certificate first holds (property 2).
 
 use super::outcome::{Certificate, Escape, Status, certificate, certificate_margin};
-use super::{Ahead, HOVER_STEPS, Limit, Run, SNAP_T, STIFF, STOP_CAP, StepInfo};
-use crate::engine::model::{State, rotate, zcross};
+use super::{Ahead, Limit, Run, RunError, SNAP_T, STOP_CAP, StepInfo};
+use crate::engine::model::{Frame, State, Y, rotate, zcross};
+use crate::engine::radau;
 use crate::engine::roots::illinois;
-use crate::engine::saddle::carry;
 use crate::engine::stepper::Segment;
-use crate::engine::stop::radial_stop;
 use glam::DVec2;
 
 impl Run {
     /// Looks ahead for a stop. d|u|/dτ = q·û − 1 (Coriolis does no work), so a stop is
-    /// ≈ |u|/(1 − q·û) ahead: steps are capped to a fraction of that, and a stop close enough
-    /// is taken in closed form.
-    ///
-    /// Inside ξ = 1, û soon turns onto q̂ and the last stretch is radial with ρ″ = ρ − 1: from
-    /// ρ and s = |u| it stops at ρ_s = 1 − √((1 − ρ)² − s²) after atanh(s/(1 − ρ)), having
-    /// travelled at most s·atanh(s/(1 − ρ)). That end game takes over once the travel left is
-    /// below the tolerance, or once explicit steps hover (their stability limit, ~|u|/|q|,
-    /// shrinks with |u|).
-    pub(super) fn stop_ahead(&self, s: &State) -> Ahead {
-        let u = s.u_lab();
+    /// ≈ |u|/(1 − q·û) ahead: steps are capped to a fraction of that, so that the stop is
+    /// approached in steps that shrink geometrically and never stepped through, and a stop
+    /// closer than the time tolerance is taken in closed form ([`Run::snaps`]).
+    pub(super) fn stop_ahead(&self, q: DVec2, u: DVec2) -> Ahead {
         let speed = u.length();
         if speed == 0.0 {
             return Ahead::Clear;
         }
-        let rho = s.xi();
-        // ξ′|q|: the radial models below hold only for a particle moving out.
-        let out = s.r.dot(u);
-        let decel = 1.0 - out / speed;
-        let gap = 1.0 - rho;
-        // Steps too long for û to be resolved, with û already on q̂: the radial end game is
-        // then exact to O(|u|²) and the explicit step is not.
-        let stiff = self.natural_step() * rho >= STIFF * speed;
-        // û on q̂ (outward, never inward) to within an angle α whose share of the energy,
-        // s²(1 − cos α), the end game may neglect.
-        let aligned = out > 0.0 && speed * (speed - out / rho) <= self.travel_tol();
-        let hovering = self.stiff_steps >= HOVER_STEPS;
-        let end_game = (hovering && out > 0.0) || (stiff && aligned);
-        if gap > 0.0 && speed < gap && out > 0.0 {
-            let t = (speed / gap).atanh();
-            // Short enough to neglect: the radial path is the slowest and longest way to the
-            // stop (d|u|/dτ ≤ −(1 − ξ) in every direction), so off q̂ it bounds the error.
-            let negligible = speed * t <= self.travel_tol() && (aligned || t <= self.snap_time());
-            if negligible || end_game {
-                return Ahead::Jump {
-                    t,
-                    q: radial_stop(s.q(), speed, t),
-                    u: DVec2::ZERO,
-                };
-            }
-        } else if end_game && gap > 0.0 && speed >= gap {
-            // Over the saddle: it reaches ξ = 1 still moving out if I = s² − (1 − ρ)², carried
-            // along the slow manifold ([`carry`]: û is on it here), stays positive beyond the
-            // model's own error (its O(s) share of the loss of I on the way).
-            let i0 = speed * speed - gap * gap;
-            let (i, t) = carry(i0, gap);
-            if i > (i0 - i) * speed {
-                let q = s.q() / rho;
-                return Ahead::Jump {
-                    t,
-                    q,
-                    u: q * i.sqrt(),
-                };
-            }
-        } else if hovering && gap <= 0.0 && out <= 0.0 {
-            // At the saddle ξ ≈ 1 itself, not moving out: stop here and let Filippov's rule
-            // decide. (Moving out beyond it, it escapes: property 2; `launch_time` takes it.)
-            return Ahead::Jump {
-                t: 0.0,
-                q: s.q(),
-                u: DVec2::ZERO,
-            };
-        }
+        let decel = 1.0 - q.dot(u) / speed;
         if decel <= 0.0 {
             return Ahead::Clear;
         }
         let t = speed / decel;
-        if self.snaps(rho, speed, t) {
+        if self.snaps(q.length(), speed, t) {
             // Constant deceleration over a tiny interval.
             return Ahead::Jump {
                 t,
-                q: s.q() + s.u() * (0.5 * t),
+                q: q + u * (0.5 * t),
                 u: DVec2::ZERO,
             };
         }
-        if stiff && !aligned {
-            // Not yet on q̂: steps within the stability limit let û turn as it does.
-            Ahead::Cap((STOP_CAP * t).min(speed / rho), Limit::Stability)
+        Ahead::Cap(STOP_CAP * t, Limit::StopAhead)
+    }
+
+    /// One implicit step of at most `cap` ([`radau`]), in the table frame, at the run's
+    /// tolerance (a fixed-step method's: its [`Run::snap_time`]).
+    pub(super) fn implicit_step(&mut self, cap: f64) -> Result<(), RunError> {
+        let t0 = self.stepper.t;
+        let scheme = self.settings.scheme;
+        let tol = scheme
+            .tol()
+            .unwrap_or_else(|| (scheme.knob() * scheme.knob()).min(SNAP_T));
+        let h = if self.implicit_h > 0.0 {
+            self.implicit_h
         } else {
-            Ahead::Cap(STOP_CAP * t, Limit::StopAhead)
+            self.natural_step()
+        }
+        .min(cap);
+        let y0 = self.table_y();
+        let mut evals = 0;
+        let step = radau::step(y0, h, tol, 1e-14 * t0.abs(), &mut evals);
+        self.cost.rhs_evals += evals;
+        let Some((step, next)) = step else {
+            // No step as long as τ can resolve: if that is because the stop is closer still,
+            // it is taken here, at constant deceleration (within the τ it cannot resolve).
+            let (q, u) = (y0.p, y0.w);
+            let speed = u.length();
+            let decel = 1.0 - q.dot(u) / speed;
+            let t = speed / decel;
+            if decel > 0.0 && t <= 1e-12 * t0.abs() {
+                self.jump(t, q + u * (0.5 * t), DVec2::ZERO, Limit::ClosedForm);
+                return Ok(());
+            }
+            return Err(RunError::StepUnderflow { tau: t0 });
+        };
+        self.cost.steps += 1;
+        // A capped step says nothing about how large the next free step may be.
+        self.implicit_h = if step.h < h {
+            next
+        } else {
+            next.max(self.implicit_h)
+        };
+        let (y1, c1) = kahan(y0, self.table_c(), step.dy);
+        self.jump(step.h, y1.p, y1.w, Limit::Implicit);
+        if let Some(info) = &mut self.last_step {
+            info.err_ratio = Some(step.err);
+        }
+        self.table = Some((self.stepper.t, y1, c1));
+        Ok(())
+    }
+
+    /// The table-frame point now: kept from the latest implicit step if that is where the run
+    /// is. Converted from the lab frame, u = v − ẑ×r loses ~1e-16 to cancellation, which at
+    /// |u| ~ 1e-12 near the rim turns û by 1e-4 on every step, a transient that each implicit
+    /// step would have to resolve again.
+    /// It is kept with the rounding of its sums (Kahan): near the saddle a stop time moves by
+    /// ~1/(2|H|) per unit of H, so the rounding of ξ on every step showed as 3e-8 at ξ0 = 0.9999
+    /// whatever the tolerance.
+    pub(super) fn table_y(&self) -> Y {
+        match self.table {
+            Some((t, y, _)) if t == self.stepper.t => y,
+            _ => Frame::Table.from_state(&self.state()),
+        }
+    }
+
+    /// The rounding carried with [`Run::table_y`] (zero when it was converted).
+    fn table_c(&self) -> Y {
+        match self.table {
+            Some((t, _, c)) if t == self.stepper.t => c,
+            _ => Y::default(),
         }
     }
 
@@ -100,7 +110,7 @@ impl Run {
     /// so explicit steps from rest are held to ~|u|/ρ and were rejected by the million: at
     /// ξ0 = 1.02 the run took ten million steps to τ = 0.21 and, each hover taken as a stop,
     /// never left ξ = 1.0200000. The launch neglects Coriolis' share of ρ″, −2ρs² (the loss of
-    /// I in `radial_stop`), which over t from rest moves ρ by ρg²t⁴/6: the stretch keeps that
+    /// I = s² − (1 − ρ)², see `saddle`), which over t from rest moves ρ by ρg²t⁴/6: the stretch keeps that
     /// within the travel tolerance. (Chained from a moving start the shares add up; explicit
     /// steps take over instead.)
     pub(super) fn launch_time(&self, s: &State) -> Option<f64> {
@@ -121,8 +131,10 @@ impl Run {
     /// Near ξ = 1 neither holds and the stop is integrated: there û swings onto q̂ and the
     /// deceleration falls to 1 − ξ, which a snap would not see. (With μ_s > μ_k the stop
     /// outside may hold, at ξ ≤ μ_s/μ_k: its place is the snap's, within s·t.)
+    /// A stop closer than 1e-12 τ is one τ cannot resolve much better (a few thousand ulps):
+    /// taken then too, within that.
     fn snaps(&self, rho: f64, speed: f64, t: f64) -> bool {
-        let within = self.snap_time();
+        let within = self.snap_time().max(1e-12 * self.stepper.t.abs());
         if rho < 1.0 {
             speed / (1.0 - rho) <= within
         } else {
@@ -131,13 +143,15 @@ impl Run {
     }
 
     /// The error in a stop's time that a closed-form stop may make: dp54's tolerance, a fixed
-    /// step's dt² (its own error per unit time), at most [`SNAP_T`].
+    /// step's dt² (its own error per unit time), at most [`SNAP_T`]; a second opinion's a
+    /// thousandth of that, so that the run's own snap shows in their difference.
     pub(super) fn snap_time(&self) -> f64 {
         let scheme = self.settings.scheme;
-        scheme
+        let t = scheme
             .tol()
             .unwrap_or_else(|| scheme.knob() * scheme.knob())
-            .min(SNAP_T)
+            .min(SNAP_T);
+        if self.checking { 1e-3 * t } else { t }
     }
 
     /// The step the integrator would take with no stop ahead.
@@ -153,7 +167,7 @@ impl Run {
     /// Takes the closed-form stretch to `t` ahead, arriving at table-frame `q` with `u`. A
     /// stop (u = 0) sticks if static friction can hold it, ξ ≤ μ_s/μ_k (the paper's 1), else
     /// it slips on at μ_k (Filippov).
-    pub(super) fn jump(&mut self, t: f64, q: DVec2, u: DVec2) {
+    pub(super) fn jump(&mut self, t: f64, q: DVec2, u: DVec2, limit: Limit) {
         let frame = self.settings.frame;
         let tau = self.stepper.t + t;
         let r = rotate(q, tau);
@@ -173,11 +187,10 @@ impl Run {
         self.last_step = Some(StepInfo {
             t0: seg.t0,
             h: t,
-            limit: Limit::ClosedForm,
+            limit,
             err_ratio: None,
             rejected: 0,
         });
-        self.stiff_steps = 0;
         if self.escape.is_none() && certificate(&to, self.settings.hold()).is_some() {
             self.escape = Some(self.locate_escape(&seg));
         }
@@ -202,4 +215,27 @@ impl Run {
         let by = certificate(&state, hold).unwrap_or(Certificate::Radial);
         Escape { tau, by, state }
     }
+}
+
+/// `y + dy` with the rounding of the sum carried in `c` (Kahan's compensated summation).
+fn kahan(y: Y, c: Y, dy: Y) -> (Y, Y) {
+    let add = |x: f64, c: f64, d: f64| {
+        let d = d - c;
+        let t = x + d;
+        (t, (t - x) - d)
+    };
+    let (px, cpx) = add(y.p.x, c.p.x, dy.p.x);
+    let (py, cpy) = add(y.p.y, c.p.y, dy.p.y);
+    let (wx, cwx) = add(y.w.x, c.w.x, dy.w.x);
+    let (wy, cwy) = add(y.w.y, c.w.y, dy.w.y);
+    (
+        Y {
+            p: DVec2::new(px, py),
+            w: DVec2::new(wx, wy),
+        },
+        Y {
+            p: DVec2::new(cpx, cpy),
+            w: DVec2::new(cwx, cwy),
+        },
+    )
 }

@@ -4,7 +4,7 @@
 //! two, or the energy bound) first holds. How a run ends is in `outcome`.
 
 use super::method::Settings;
-use super::model::{Initial, State};
+use super::model::{Initial, State, Y};
 use super::stepper::{Cost, Segment, StepError, Stepper, too_short};
 use super::stokes::Stokes;
 use super::stop::{frozen_stop, frozen_stop_error, radial_launch};
@@ -41,9 +41,11 @@ pub enum Limit {
     /// Capped to a fraction of the time to the stop ahead, |u|/(1 − q·û): never stepped
     /// through.
     StopAhead,
-    /// Held to the stability limit |u|/|q| while û turns.
-    Stability,
-    /// The stop (or the pass over the saddle) taken in closed form.
+    /// An implicit step (Radau IIA) where explicit ones would be held to the stability limit
+    /// |u|/|q| while û turns: the stretch before a stop.
+    Implicit,
+    /// A stop within the run's time tolerance, or the launch from rest outside ξ = 1, taken in
+    /// closed form.
     ClosedForm,
     /// μ = 0: the straight line in closed form.
     Frictionless,
@@ -59,7 +61,7 @@ impl Limit {
             Limit::Tolerance => "tolerance",
             Limit::FixedStep => "fixed dt",
             Limit::StopAhead => "stop ahead",
-            Limit::Stability => "stability",
+            Limit::Implicit => "implicit",
             Limit::ClosedForm => "closed form",
             Limit::Frictionless => "μ=0 exact",
             Limit::Drag => "Stokes exact",
@@ -85,20 +87,18 @@ const STOP_CAP: f64 = 0.7;
 /// The largest error in a stop's time that a closed-form stop may make (see
 /// `Run::snap_time`): the fixed-step methods' dt² is capped here.
 const SNAP_T: f64 = 1e-6;
-/// Near a stop the direction of u turns at a rate ~|q|/|u| that grows without bound: once a
-/// step is longer than a few |u|/|q|, explicit steps are unstable and can hover at a small
-/// |u| instead of stopping. This many such steps in a row without |u| halving mean hovering:
-/// the stop is then taken in closed form.
-const HOVER_STEPS: u32 = 50;
-/// Hovering is a small-|u| failure: faster particles (far out, |u| ≈ ξ) are left alone.
-const HOVER_SPEED: f64 = 1e-3;
-/// A step is stiff once it is longer than this many |u|/|q|: the stability limit of the
-/// explicit methods on offer (RK2's is 2, RK4's 2.8, DOPRI5's 3.3).
+/// Near a stop the direction of u turns at a rate that grows without bound: ~|q|/|u| inside
+/// ξ = 1 (the pull q against friction), at most 1/|u| (friction's Jacobian, −(I − ûûᵀ)/|u|).
+/// A step is stiff once it is longer than this many |u|/min(|q|, 1), the stability limit of the
+/// explicit methods on offer (RK2's is 2, RK4's 2.8, DOPRI5's 3.3): such stretches take implicit
+/// steps ([`super::radau`]). (Far out, |u| ≈ ξ: never stiff.)
 const STIFF: f64 = 2.0;
 
 /// dp54 takes a stop inside ξ = 1 in closed form ([`frozen_stop`]) once that form's error
-/// bound is below this share of its tolerance.
+/// bound is below this share of its tolerance, and only within ξ ≤ [`FROZEN_K`], the range
+/// over which the bound was measured.
 const FROZEN_SHARE: f64 = 0.1;
+const FROZEN_K: f64 = 0.95;
 
 /// How far one closed-form stride of a frictionless run reaches when no end is given: any
 /// length costs the same.
@@ -135,10 +135,14 @@ pub struct Run {
     slip_restarts: u32,
     /// The latest step, for the explorer's integrator step mode.
     last_step: Option<StepInfo>,
-    /// Consecutive steps longer than the time |u|/|q| in which û turns, and |u| when they
-    /// began.
-    stiff_steps: u32,
-    stiff_speed: f64,
+    /// The implicit method's next step size (0: none taken yet), and the table-frame point at
+    /// the end of the latest implicit step (see [`Run::table_y`]).
+    implicit_h: f64,
+    table: Option<(f64, Y, Y)>,
+    /// A second opinion ([`Run::checking`]): it must not share the run's closed forms, so it
+    /// takes no [`frozen_stop`] and stops in closed form only a thousandth as far from the stop;
+    /// and it holds |u| to its relative accuracy near the rim.
+    checking: bool,
     stepper: Stepper,
     /// Stokes drag (with friction on): the run in closed form. Boxed: a point-model run
     /// stays as small (and as fast) as it was.
@@ -167,8 +171,9 @@ impl Run {
             last: None,
             slip_restarts: 0,
             last_step: None,
-            stiff_steps: 0,
-            stiff_speed: 0.0,
+            implicit_h: 0.0,
+            table: None,
+            checking: false,
             stepper,
             stokes: settings
                 .stokes()
@@ -209,6 +214,15 @@ impl Run {
             });
         }
         Ok(run)
+    }
+
+    /// A run for a second opinion: no closed-form stop but those within a thousandth of its
+    /// time tolerance ([`Run::snap_time`]); the stretch before a stop is integrated.
+    pub fn checking(initial: Initial, settings: Settings) -> Result<Run, Error> {
+        Ok(Run {
+            checking: true,
+            ..Run::new(initial, settings)?
+        })
     }
 
     pub fn initial(&self) -> Initial {
@@ -364,7 +378,7 @@ impl Run {
             self.stepper.t = tau_max;
             return Ok(());
         }
-        let (q, u) = (s.q(), s.u());
+        let Y { p: q, w: u } = self.table_y();
         let speed = u.x.hypot(u.y);
         if self.settings.method().stick_events() && u != DVec2::ZERO && speed < UNDERFLOW_SPEED {
             let decel = 1.0 - q.dot(u / speed);
@@ -372,17 +386,19 @@ impl Run {
                 if decel > 0.0 { speed / decel } else { 0.0 },
                 q,
                 DVec2::ZERO,
+                Limit::ClosedForm,
             );
             return Ok(());
         }
-        if self.settings.method().adaptive()
+        if !self.checking
+            && self.settings.method().adaptive()
             && u != DVec2::ZERO
-            && q.length() < 1.0
+            && q.length() <= FROZEN_K
             && frozen_stop_error(q, u) <= FROZEN_SHARE * self.settings.scheme.knob()
         {
             let (t, dq) = frozen_stop(q, u);
             if t <= cap {
-                self.jump(t, q + dq, DVec2::ZERO);
+                self.jump(t, q + dq, DVec2::ZERO, Limit::ClosedForm);
                 return Ok(());
             }
         }
@@ -390,13 +406,13 @@ impl Run {
             && let Some(t) = self.launch_time(&s)
         {
             let (q, u) = radial_launch(q, t.min(cap));
-            self.jump(t.min(cap), q, u);
+            self.jump(t.min(cap), q, u, Limit::ClosedForm);
             return Ok(());
         }
         if self.settings.method().stick_events() {
-            match self.stop_ahead(&s) {
+            match self.stop_ahead(q, u) {
                 Ahead::Jump { t, q, u } if t <= cap => {
-                    self.jump(t, q, u);
+                    self.jump(t, q, u, Limit::ClosedForm);
                     return Ok(());
                 }
                 Ahead::Cap(c, why) => {
@@ -405,6 +421,9 @@ impl Run {
                     }
                 }
                 Ahead::Clear | Ahead::Jump { .. } => {}
+            }
+            if speed > 0.0 && self.natural_step() * q.length().min(1.0) >= STIFF * speed {
+                return self.implicit_step(cap);
             }
         }
         let rejected_before = self.cost.rejected;
@@ -415,6 +434,17 @@ impl Run {
                 |y| frame.rhs(y),
                 self.settings.scheme,
                 cap,
+                // A second opinion holds |u| to its relative accuracy near the rim: a stop's time
+                // is |u| over a deceleration of at least |1 − ξ|, so there the absolute
+                // 1 + |w| lets the time drift by tol/|1 − ξ| (at ξ0 = 1.00001 thrown in, a
+                // tol 1e-7 check was 7e-5 off, and agreed with its run). Down to 1e-3: below,
+                // the stretch before a stop turns implicit. The run itself keeps the cheaper
+                // norm; the check measures what that costs it.
+                if self.checking {
+                    speed.max((1.0 - q.length()).abs()).max(1e-3)
+                } else {
+                    f64::INFINITY
+                },
                 &mut self.cost,
                 self.settings.max_steps,
             )
@@ -439,14 +469,6 @@ impl Run {
             err_ratio,
             rejected: (self.cost.rejected - rejected_before) as u32,
         });
-        let speed = s.u_lab().length();
-        if speed > HOVER_SPEED || seg.h * s.xi() < STIFF * speed {
-            self.stiff_steps = 0;
-        } else if self.stiff_steps == 0 || speed < 0.5 * self.stiff_speed {
-            (self.stiff_steps, self.stiff_speed) = (1, speed);
-        } else {
-            self.stiff_steps += 1;
-        }
         if self.escape.is_none()
             && certificate(&frame.to_state(seg.y1, seg.t1()), self.settings.hold()).is_some()
         {
