@@ -65,7 +65,7 @@ fn a_planted_link_at_the_temporary_name_is_not_followed() {
         d.join(format!(".out.csv.tmp{}", std::process::id())),
     )
     .unwrap();
-    files::write_atomic(&d.join("out.csv"), b"rows").unwrap();
+    files::write_atomic(&d.join("out.csv"), b"rows", false).unwrap();
     assert_eq!(std::fs::read_to_string(&victim).unwrap(), "precious");
     assert_eq!(std::fs::read_to_string(d.join("out.csv")).unwrap(), "rows");
 }
@@ -127,6 +127,14 @@ fn destinations_that_are_not_regular_files() {
     std::fs::set_permissions(&ro, std::fs::Permissions::from_mode(0o444)).unwrap();
     let (code, _, err) = turntable_in(&d, &["sweep", "fig6", "--points", "2", "--out", "ro.csv"]);
     assert_eq!(code, 2, "{err}");
+    assert!(err.contains("exists; --force replaces it"), "{err}");
+    let (code, _, err) = turntable_in(
+        &d,
+        &[
+            "sweep", "fig6", "--points", "2", "--out", "ro.csv", "--force",
+        ],
+    );
+    assert_eq!(code, 2, "{err}");
     assert!(err.contains("read-only"), "{err}");
     assert_eq!(std::fs::read_to_string(&ro).unwrap(), "keep");
     let (code, _, _) = turntable_in(&d, &["sweep", "fig6", "--points", "2", "--out", "."]);
@@ -151,12 +159,19 @@ fn a_failed_run_leaves_the_old_trajectory() {
             "1000",
             "--trajectory",
             "t.csv",
+            "--force",
         ],
     );
     assert_eq!(code, 1, "{err}");
     assert_eq!(std::fs::read_to_string(d.join("t.csv")).unwrap(), "old");
     assert_eq!(std::fs::read_dir(&d).unwrap().count(), 1);
-    let (code, _, _) = turntable_in(&d, &["run", "--v0", "0.6", "--trajectory", "t.csv"]);
+    let (code, _, err) = turntable_in(&d, &["run", "--v0", "0.6", "--trajectory", "t.csv"]);
+    assert_eq!(code, 2, "an existing file is kept without --force: {err}");
+    assert_eq!(std::fs::read_to_string(d.join("t.csv")).unwrap(), "old");
+    let (code, _, _) = turntable_in(
+        &d,
+        &["run", "--v0", "0.6", "--trajectory", "t.csv", "--force"],
+    );
     assert_eq!(code, 0);
     let csv = std::fs::read_to_string(d.join("t.csv")).unwrap();
     let last: Vec<&str> = csv.lines().last().unwrap().split(',').collect();

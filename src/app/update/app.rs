@@ -132,9 +132,9 @@ fn export_svg(app: &App) -> String {
         if path.symlink_metadata().is_ok() {
             continue;
         }
-        let written = crate::files::Output::create(&path).and_then(|mut out| {
+        let written = crate::files::Output::create(&path, false).and_then(|mut out| {
             out.write_all(text.as_bytes())?;
-            out.finish_new()
+            out.finish()
         });
         return match written {
             Ok(()) if whole => format!("wrote this page to {}", path.display()),
