@@ -292,7 +292,12 @@ fn sigstop_then_sigcont_takes_raw_mode_back() {
     assert!(!cooked(pty.fd));
     // SAFETY: signals to our child; termios of our pty (through its master, as a shell's
     // own tcsetattr on the slave).
+    let stopped_at = seen.lock().unwrap().len();
     unsafe { libc::kill(pid, libc::SIGSTOP) };
+    // As the README says (issue 33 item 8): SIGSTOP cannot be caught, so nothing is given
+    // back: no leaving the alternate screen, no mouse off.
+    std::thread::sleep(Duration::from_millis(300));
+    assert!(!contains(&seen, stopped_at, ALT_OFF) && !contains(&seen, stopped_at, MOUSE_OFF));
     let mut t: libc::termios = unsafe { std::mem::zeroed() };
     assert_eq!(unsafe { libc::tcgetattr(pty.fd, &mut t) }, 0);
     t.c_lflag |= libc::ICANON | libc::ECHO;

@@ -312,9 +312,37 @@ fn signalled(n: i32) -> ExitCode {
     ExitCode::from(128 + n as u8)
 }
 
+/// What clap's own exit does, but a `--help` or `--version` that cannot be written (stdout
+/// on /dev/full, a closed descriptor) fails (exit 1) instead of exiting 0 with nothing said.
+/// A reader that stopped reading (`| head`) took what it wanted.
+fn clap_exit(e: &clap::Error) -> ExitCode {
+    let printed = e.print().and_then(|()| {
+        if e.use_stderr() {
+            std::io::stderr().flush()
+        } else {
+            std::io::stdout().flush()
+        }
+    });
+    match printed {
+        Ok(()) => ExitCode::from(u8::try_from(e.exit_code()).unwrap_or(2)),
+        Err(err) if err.kind() == std::io::ErrorKind::BrokenPipe => {
+            ExitCode::from(u8::try_from(e.exit_code()).unwrap_or(2))
+        }
+        Err(err) => {
+            let what = if e.use_stderr() { "stderr" } else { "stdout" };
+            let e = Error::Failed(format!("writing to {what}: {err}"));
+            let _ = writeln!(std::io::stderr(), "error: {e}");
+            ExitCode::from(e.exit_code())
+        }
+    }
+}
+
 /// Entry point of the binary.
 pub fn main() -> ExitCode {
-    let cli = Cli::parse();
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => return clap_exit(&e),
+    };
     let result = match cli.command {
         None => match explore(&cli, &cli.look, None, cli.plain) {
             Ok(Some(n)) => return signalled(n),

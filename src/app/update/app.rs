@@ -5,13 +5,8 @@ use super::super::state::App;
 
 pub(super) fn apply(app: &mut App, action: Action) {
     match action {
-        Action::Quit => {
-            if app.help {
-                app.help = false;
-            } else {
-                app.quit = true;
-            }
-        }
+        // `q` and Ctrl-C quit whatever is open (the help included); Esc closes it.
+        Action::Quit => app.quit = true,
         // The notice is already cleared by `update`.
         Action::Dismiss => app.help = false,
         Action::ToggleHelp => {
