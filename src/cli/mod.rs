@@ -194,7 +194,17 @@ fn explore(
         crate::terminal::run(app, fps, save, lesson)
     };
     if let (Some(r), Some(script)) = (recording, script) {
-        let saved = r.keep(script)?;
+        let saved = match (r.keep(script), &result) {
+            (Ok(saved), _) => saved,
+            // Ended by a signal: that stays the exit status (128 + n); the message says
+            // where the recording is.
+            (Err(e), Ok(Some(_))) => {
+                let m = crate::files::escape_controls(&e.to_string());
+                let _ = writeln!(std::io::stderr(), "error: {m}");
+                return result.map_err(|e| Error::Failed(format!("terminal: {e}")));
+            }
+            (Err(e), _) => return Err(e),
+        };
         if let Some(path) = cli.record.as_deref().filter(|p| *p != saved) {
             let _ = writeln!(
                 std::io::stderr(),
