@@ -609,7 +609,7 @@ pub struct OutArg {
     #[arg(long)]
     pub out: Option<PathBuf>,
     /// Replace --out if it exists (never a file this command reads).
-    #[arg(long)]
+    #[arg(long, requires = "out")]
     pub force: bool,
 }
 
