@@ -226,9 +226,10 @@ pub fn table(r: &Report) -> String {
     for c in &sp.recording_bytes {
         let _ = writeln!(
             o,
-            "  replay --asciicast at {}×{}, worst case (a whole-screen frame every tick, {} theme): {} B/tick; its bound ({}, {} frames) is reached after {} ticks ({:.0} s of play)",
+            "  replay --asciicast at {}×{}, worst case (a whole-screen frame every tick; the largest of {} ticks, {} theme): {} B/tick; its bound ({}, {} frames) is reached after {} ticks ({:.0} s of play)",
             c.size.0,
             c.size.1,
+            c.ticks,
             c.theme,
             c.worst_bytes_per_tick,
             crate::files::show_bytes(c.bound_bytes),
