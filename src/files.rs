@@ -465,7 +465,12 @@ pub fn write_new(path: &Path, contents: &[u8], max: u32) -> io::Result<PathBuf> 
         if to.symlink_metadata().is_ok() {
             continue;
         }
-        let mut out = Output::create(&to, false)?;
+        let mut out = match Output::create(&to, false) {
+            Ok(out) => out,
+            // Taken since the look above: the next name.
+            Err(e) if e.kind() == io::ErrorKind::AlreadyExists => continue,
+            Err(e) => return Err(e),
+        };
         out.write_all(contents).map_err(|e| err(&to, e))?;
         match out.finish() {
             Ok(()) => return Ok(to),
