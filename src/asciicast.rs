@@ -12,11 +12,17 @@ use ratatui::buffer::Buffer;
 use serde_json::json;
 use std::io::{self, Write};
 
+/// Most frames a recording holds: an hour of play at the explorer's 30 a second. A script's
+/// `tick 10000000` ends there, with an error naming the bound.
+pub const MAX_FRAMES: u64 = 3600 * TICKS_PER_SECOND as u64;
+
 /// The recording as it is written.
 pub struct Cast<'a> {
     out: &'a mut dyn Write,
     /// The last frame written, to skip unchanged ones.
     last: Option<String>,
+    /// Frames written so far.
+    frames: u64,
 }
 
 /// Seconds after the start at `ticks`, to the microsecond (rounding keeps the order).
@@ -35,7 +41,11 @@ impl<'a> Cast<'a> {
             "env": {"TERM": "xterm-256color"},
         });
         writeln!(out, "{header}")?;
-        Ok(Cast { out, last: None })
+        Ok(Cast {
+            out,
+            last: None,
+            frames: 0,
+        })
     }
 
     fn event(&mut self, ticks: u64, kind: &str, data: &str) -> io::Result<()> {
@@ -51,6 +61,14 @@ impl<'a> Cast<'a> {
         if self.last.as_deref() == Some(screen.as_str()) {
             return Ok(());
         }
+        if self.frames >= MAX_FRAMES {
+            return Err(io::Error::other(crate::files::BoundReached {
+                message: format!(
+                    "--asciicast reached its bound of {MAX_FRAMES} frames (an hour at {TICKS_PER_SECOND} a second)"
+                ),
+            }));
+        }
+        self.frames += 1;
         let clear = if self.last.is_none() {
             "\x1b[?25l\x1b[2J"
         } else {

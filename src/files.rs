@@ -1,52 +1,201 @@
-//! Files we read and write, with the care of a trusted command-line tool:
-//! - output replaces a regular file atomically (a random, exclusively created temporary
-//!   sibling renamed into place, so a reader never sees half a file and a failure leaves the
-//!   old one intact), writes straight into a terminal or device such as /dev/null and into a
-//!   FIFO that has a reader, and refuses symbolic links, read-only files, directories and
-//!   anything else;
+//! Files we read and write, with the care of a trusted command-line tool. One policy for
+//! every file the program writes (`--out`, `--trajectory`, `--asciicast`, `--record`, the
+//! explorer's `s` and `E`):
+//! - never a file this command read (a scene, theme, key script or configuration, also a
+//!   script redirected into stdin): compared by identity (device and inode), not by
+//!   spelling, so `../d/s.keys`, a hard link or a link to it are the same file; refused even
+//!   with `--force`;
+//! - never an existing file without `--force`, and never a file that appeared while the
+//!   command ran (the explorer's save and export take the next free name instead);
+//! - atomically: the bytes go to an unnamed temporary file (`O_TMPFILE`) in the destination's
+//!   folder, linked into place at the end, so a reader never sees half a file, a failure
+//!   leaves the old one intact, and a killed process (even by SIGKILL) leaves no temporary
+//!   file behind. Where the filesystem has no unnamed files, a named one, `.NAME.PID.N.tmp`,
+//!   stands in; it is removed on every error, and the next write of `NAME` removes those of
+//!   processes no longer alive;
+//! - a terminal or device such as /dev/null, and a FIFO that has a reader, is written in
+//!   place (nothing is replaced); symbolic links, read-only files, directories and anything
+//!   else are refused;
 //! - input is read from regular files only, up to a size cap, and opening never blocks (a FIFO
 //!   with no writer, /dev/zero and /dev/urandom are refused at once);
+//! - an output a script drives is bounded ([`Capped`]);
 //! - text echoed into a message has its control characters escaped.
 
 use crate::error::Error;
 use std::fs::{File, OpenOptions};
 use std::io::{self, Read, Write};
-use std::os::unix::fs::{FileTypeExt, OpenOptionsExt, PermissionsExt};
+use std::os::fd::AsRawFd;
+use std::os::unix::fs::{FileTypeExt, MetadataExt, OpenOptionsExt, PermissionsExt};
 use std::path::{Path, PathBuf};
-use tempfile::NamedTempFile;
+use std::sync::Mutex;
+use std::sync::atomic::{AtomicU64, Ordering};
 
 /// Largest scene, theme or key script read.
 pub const READ_CAP: u64 = 1 << 20;
 
+/// A file this process read: its identity, and how it was named.
+struct Input {
+    dev: u64,
+    ino: u64,
+    shown: String,
+}
+
+/// Every regular file read so far: an output may not be one of them.
+static INPUTS: Mutex<Vec<Input>> = Mutex::new(Vec::new());
+
+/// Notes `file`, opened as `shown`, as an input of this command (if it is a regular file).
+fn note_input(file: &impl std::os::fd::AsFd, shown: &str) {
+    let Ok(st) = rustix::fs::fstat(file) else {
+        return;
+    };
+    if rustix::fs::FileType::from_raw_mode(st.st_mode) != rustix::fs::FileType::RegularFile {
+        return;
+    }
+    let (dev, ino) = (st.st_dev, st.st_ino);
+    let mut inputs = INPUTS.lock().unwrap_or_else(|e| e.into_inner());
+    if !inputs.iter().any(|i| (i.dev, i.ino) == (dev, ino)) {
+        inputs.push(Input {
+            dev,
+            ino,
+            shown: shown.to_string(),
+        });
+    }
+}
+
+/// How an input with this identity was named, if the command read one.
+fn input_named(m: &std::fs::Metadata) -> Option<String> {
+    let inputs = INPUTS.lock().unwrap_or_else(|e| e.into_inner());
+    inputs
+        .iter()
+        .find(|i| (i.dev, i.ino) == (m.dev(), m.ino()))
+        .map(|i| i.shown.clone())
+}
+
 /// An output file being written: see [`Output::create`]. Dropped without [`Output::finish`],
-/// it leaves the destination as it was.
-pub enum Output {
-    /// A temporary sibling, renamed over `dest` on finish.
-    Replace { tmp: NamedTempFile, dest: PathBuf },
+/// it leaves the destination as it was, and no temporary file.
+pub struct Output {
+    to: To,
+    dest: PathBuf,
+    /// `--force` was given and a file stood at `dest`: finishing replaces it.
+    replace: bool,
+    /// Put in place: no temporary left to remove.
+    placed: bool,
+}
+
+enum To {
+    /// An unnamed file in the destination's folder (`O_TMPFILE`), linked in on finish.
+    Unnamed(File),
+    /// A named temporary sibling (filesystems without unnamed files), removed on drop.
+    Named(File, PathBuf),
     /// A terminal, device or FIFO, written in place.
     Direct(File),
 }
 
+impl Drop for Output {
+    fn drop(&mut self) {
+        if let (To::Named(_, tmp), false) = (&self.to, self.placed) {
+            let _ = std::fs::remove_file(tmp);
+        }
+    }
+}
+
 fn err(path: &Path, what: impl std::fmt::Display) -> io::Error {
-    io::Error::other(format!(
-        "{}: {what}",
-        escape_controls(&path.display().to_string())
-    ))
+    io::Error::other(format!("{}: {what}", shown(path)))
+}
+
+fn err_kind(kind: io::ErrorKind, path: &Path, what: impl std::fmt::Display) -> io::Error {
+    io::Error::new(kind, format!("{}: {what}", shown(path)))
+}
+
+/// A path as a message shows it.
+fn shown(path: &Path) -> String {
+    escape_controls(&path.display().to_string())
+}
+
+/// The folder a path's file is in.
+fn folder(path: &Path) -> &Path {
+    match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    }
+}
+
+/// Temporary names made by this process, counted so that each is new.
+static TMP_SERIAL: AtomicU64 = AtomicU64::new(0);
+
+/// A fresh temporary name beside `dest`: `.NAME.PID.N.tmp`.
+fn tmp_name(dir: &Path, name: &str) -> PathBuf {
+    let n = TMP_SERIAL.fetch_add(1, Ordering::Relaxed);
+    dir.join(format!(".{name}.{}.{n}.tmp", std::process::id()))
+}
+
+/// Removes the `.NAME.PID.N.tmp` files in `dir` whose process is gone (killed while
+/// writing). Returns how many.
+pub fn remove_stale(dir: &Path, name: &str) -> usize {
+    let prefix = format!(".{name}.");
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return 0;
+    };
+    let mut removed = 0;
+    for e in entries.flatten() {
+        let file = e.file_name();
+        let Some((pid, serial)) = file
+            .to_str()
+            .and_then(|f| f.strip_prefix(&prefix))
+            .and_then(|r| r.strip_suffix(".tmp"))
+            .and_then(|r| r.split_once('.'))
+        else {
+            continue;
+        };
+        let (Ok(pid), Ok(_)) = (pid.parse::<i32>(), serial.parse::<u64>()) else {
+            continue;
+        };
+        if !alive(pid)
+            && e.file_type().is_ok_and(|t| t.is_file())
+            && std::fs::remove_file(e.path()).is_ok()
+        {
+            removed += 1;
+        }
+    }
+    removed
+}
+
+/// Whether process `pid` exists.
+fn alive(pid: i32) -> bool {
+    rustix::process::Pid::from_raw(pid).is_some_and(|p| {
+        !matches!(
+            rustix::process::test_kill_process(p),
+            Err(rustix::io::Errno::SRCH)
+        )
+    })
+}
+
+/// Opens `path` for the output named by `flag` (`--out`, `--record`, …) under the policy
+/// above: a refusal is input refused (exit 2) and names the flag.
+pub fn open_output(flag: &str, path: &Path, force: bool) -> Result<Output, Error> {
+    Output::create(path, force).map_err(|e| Error::Invalid(format!("{flag} {e}")))
 }
 
 impl Output {
-    /// Opens `dest` for writing, or says why it will not. Call it before computing what to
-    /// write, so bad paths fail at once.
-    pub fn create(dest: &Path) -> io::Result<Output> {
+    /// Opens `dest` for writing under the policy above, or says why it will not (with
+    /// `force`, an existing regular file that is not an input will be replaced). Call it
+    /// before computing what to write, so bad paths fail at once.
+    pub fn create(dest: &Path, force: bool) -> io::Result<Output> {
+        Self::create_in(dest, force, true)
+    }
+
+    /// As [`Output::create`]; with `unnamed` false, always through a named temporary file
+    /// (as on a filesystem without `O_TMPFILE`).
+    #[doc(hidden)]
+    pub fn create_in(dest: &Path, force: bool, unnamed: bool) -> io::Result<Output> {
         let name = dest
             .file_name()
-            .ok_or_else(|| err(dest, "not a file name"))?;
-        let dir = match dest.parent() {
-            Some(d) if !d.as_os_str().is_empty() => d,
-            _ => Path::new("."),
-        };
-        let mode = match std::fs::symlink_metadata(dest) {
-            Err(e) if e.kind() == io::ErrorKind::NotFound => 0o644,
+            .ok_or_else(|| err(dest, "not a file name"))?
+            .to_string_lossy()
+            .into_owned();
+        let dir = folder(dest);
+        let (mode, existed) = match std::fs::symlink_metadata(dest) {
+            Err(e) if e.kind() == io::ErrorKind::NotFound => (0o644, false),
             Err(e) => return Err(err(dest, e)),
             Ok(m) => {
                 let t = m.file_type();
@@ -68,56 +217,213 @@ impl Output {
                             _ => err(dest, e),
                         })?;
                     clear_nonblock(&f);
-                    return Ok(Output::Direct(f));
+                    return Ok(Output {
+                        to: To::Direct(f),
+                        dest: dest.to_path_buf(),
+                        replace: false,
+                        placed: false,
+                    });
                 } else if !t.is_file() {
                     return Err(err(dest, "not a regular file, terminal, device or FIFO"));
+                } else if let Some(input) = input_named(&m) {
+                    let same = if Path::new(&input) == dest {
+                        String::new()
+                    } else {
+                        format!(" (as {})", escape_controls(&input))
+                    };
+                    return Err(err_kind(
+                        io::ErrorKind::InvalidInput,
+                        dest,
+                        format!(
+                            "is a file this command reads{same}; name another (--force never replaces an input)"
+                        ),
+                    ));
+                } else if !force {
+                    return Err(err_kind(
+                        io::ErrorKind::AlreadyExists,
+                        dest,
+                        "exists; --force replaces it",
+                    ));
                 } else if m.permissions().readonly() {
                     return Err(err(dest, "is read-only; not replacing it"));
                 }
-                m.permissions().mode() & 0o7777
+                (m.permissions().mode() & 0o7777, true)
             }
         };
-        let tmp = tempfile::Builder::new()
-            .prefix(&format!(".{}.", name.to_string_lossy()))
-            .suffix(".tmp")
-            .tempfile_in(dir)
-            .map_err(|e| err(dest, e))?;
-        tmp.as_file()
+        remove_stale(dir, &name);
+        let to = match unnamed.then(|| open_unnamed(dir)).flatten() {
+            Some(Ok(f)) => To::Unnamed(f),
+            Some(Err(e)) => return Err(err(dest, e)),
+            None => {
+                let (f, tmp) = open_named(dir, &name).map_err(|e| err(dest, e))?;
+                To::Named(f, tmp)
+            }
+        };
+        let out = Output {
+            to,
+            dest: dest.to_path_buf(),
+            replace: force && existed,
+            placed: false,
+        };
+        out.file()
             .set_permissions(std::fs::Permissions::from_mode(mode))
             .map_err(|e| err(dest, e))?;
-        Ok(Output::Replace {
-            tmp,
-            dest: dest.to_path_buf(),
-        })
+        Ok(out)
     }
 
-    /// Puts the file in place.
-    pub fn finish(self) -> io::Result<()> {
-        match self {
-            Output::Replace { tmp, dest } => {
-                tmp.as_file().sync_all().map_err(|e| err(&dest, e))?;
-                tmp.persist(&dest).map_err(|e| err(&dest, e.error))?;
-                Ok(())
-            }
-            Output::Direct(mut f) => f.flush(),
+    fn file(&self) -> &File {
+        match &self.to {
+            To::Unnamed(f) | To::Named(f, _) | To::Direct(f) => f,
         }
     }
 
-    /// Puts the file in place unless something already stands at the destination.
-    pub fn finish_new(self) -> io::Result<()> {
-        match self {
-            Output::Replace { tmp, dest } => {
-                tmp.as_file().sync_all().map_err(|e| err(&dest, e))?;
-                // Keeps the kind: a caller tries the next name on AlreadyExists.
-                tmp.persist_noclobber(&dest).map_err(|e| {
-                    let kind = e.error.kind();
-                    io::Error::new(kind, err(&dest, e.error))
-                })?;
-                Ok(())
-            }
-            Output::Direct(_) => Err(io::Error::from(io::ErrorKind::AlreadyExists)),
+    fn file_mut(&mut self) -> &mut File {
+        match &mut self.to {
+            To::Unnamed(f) | To::Named(f, _) | To::Direct(f) => f,
         }
     }
+
+    /// Where this output goes.
+    pub fn dest(&self) -> &Path {
+        &self.dest
+    }
+
+    /// Whether this output is written in place (a terminal, device or FIFO): nothing to put
+    /// in place at the end.
+    pub fn is_direct(&self) -> bool {
+        matches!(self.to, To::Direct(_))
+    }
+
+    /// Puts the file in place: over the file that stood there with `--force`, else only
+    /// where nothing stands (a file that appeared meanwhile is kept: `AlreadyExists`).
+    pub fn finish(mut self) -> io::Result<()> {
+        let dest = self.dest.clone();
+        let replace = self.replace;
+        self.place(&dest, replace)
+    }
+
+    /// Puts the file in place as [`Output::finish`] does, or, if a file appeared there
+    /// meanwhile, at the first free `NAME-N` (N up to `max`). Returns where.
+    pub fn finish_numbered(mut self, max: u32) -> io::Result<PathBuf> {
+        let dest = self.dest.clone();
+        if self.is_direct() || self.replace {
+            let replace = self.replace;
+            return self.place(&dest, replace).map(|()| dest);
+        }
+        for n in 1..=max {
+            let to = numbered(&dest, n);
+            match self.place(&to, false) {
+                Ok(()) => return Ok(to),
+                Err(e) if e.kind() == io::ErrorKind::AlreadyExists => continue,
+                Err(e) => return Err(e),
+            }
+        }
+        Err(err(
+            &dest,
+            format!(
+                "this name and the {} numbered ones after it are taken",
+                max.saturating_sub(1)
+            ),
+        ))
+    }
+
+    /// Links the written file in at `to`: replacing what stands there if `replace`, else
+    /// only if nothing does (`AlreadyExists` otherwise).
+    fn place(&mut self, to: &Path, replace: bool) -> io::Result<()> {
+        {
+            let f = self.file_mut();
+            f.flush().map_err(|e| err(to, e))?;
+            if let To::Direct(_) = self.to {
+                return Ok(());
+            }
+        }
+        self.file().sync_all().map_err(|e| err(to, e))?;
+        let from = match &self.to {
+            To::Unnamed(f) => PathBuf::from(format!("/proc/self/fd/{}", f.as_raw_fd())),
+            To::Named(_, tmp) => tmp.clone(),
+            To::Direct(_) => return Ok(()),
+        };
+        let link = |at: &Path| {
+            rustix::fs::linkat(
+                rustix::fs::CWD,
+                &from,
+                rustix::fs::CWD,
+                at,
+                rustix::fs::AtFlags::SYMLINK_FOLLOW,
+            )
+            .map_err(io::Error::from)
+        };
+        let name = to
+            .file_name()
+            .map_or_else(String::new, |n| n.to_string_lossy().into_owned());
+        if replace {
+            // Under a temporary name first, then renamed over the old file in one step.
+            let tmp = match &self.to {
+                To::Named(_, own) => own.clone(),
+                _ => loop {
+                    let tmp = tmp_name(folder(to), &name);
+                    match link(&tmp) {
+                        Ok(()) => break tmp,
+                        Err(e) if e.kind() == io::ErrorKind::AlreadyExists => continue,
+                        Err(e) => return Err(err(to, e)),
+                    }
+                },
+            };
+            if let Err(e) = std::fs::rename(&tmp, to) {
+                if let To::Unnamed(_) = self.to {
+                    let _ = std::fs::remove_file(&tmp);
+                }
+                return Err(err(to, e));
+            }
+        } else {
+            link(to).map_err(|e| err_kind(e.kind(), to, e))?;
+            if let To::Named(_, tmp) = &self.to {
+                let _ = std::fs::remove_file(tmp);
+            }
+        }
+        self.placed = true;
+        Ok(())
+    }
+}
+
+/// An unnamed file in `dir`, where the filesystem has them (`None` where it has not, or
+/// where /proc, through which it is linked in, is missing).
+fn open_unnamed(dir: &Path) -> Option<io::Result<File>> {
+    use rustix::fs::{Mode, OFlags};
+    if !Path::new("/proc/self/fd").is_dir() {
+        return None;
+    }
+    match rustix::fs::open(
+        dir,
+        OFlags::TMPFILE | OFlags::WRONLY | OFlags::CLOEXEC,
+        Mode::from_raw_mode(0o600),
+    ) {
+        Ok(fd) => Some(Ok(File::from(fd))),
+        Err(rustix::io::Errno::OPNOTSUPP | rustix::io::Errno::ISDIR | rustix::io::Errno::INVAL) => {
+            None
+        }
+        Err(e) => Some(Err(e.into())),
+    }
+}
+
+/// A new named temporary file beside the destination, `.NAME.PID.N.tmp`: created
+/// exclusively, never through a planted link.
+fn open_named(dir: &Path, name: &str) -> io::Result<(File, PathBuf)> {
+    for _ in 0..1000 {
+        let tmp = tmp_name(dir, name);
+        match OpenOptions::new()
+            .write(true)
+            .create_new(true)
+            .mode(0o600)
+            .custom_flags(libc::O_NOFOLLOW | libc::O_CLOEXEC)
+            .open(&tmp)
+        {
+            Ok(f) => return Ok((f, tmp)),
+            Err(e) if e.kind() == io::ErrorKind::AlreadyExists => continue,
+            Err(e) => return Err(e),
+        }
+    }
+    Err(io::Error::other("no free temporary name"))
 }
 
 /// Writes to a device or FIFO block as usual once it is open.
@@ -130,16 +436,10 @@ fn clear_nonblock(f: &File) {
 
 impl Write for Output {
     fn write(&mut self, buf: &[u8]) -> io::Result<usize> {
-        match self {
-            Output::Replace { tmp, .. } => tmp.write(buf),
-            Output::Direct(f) => f.write(buf),
-        }
+        self.file_mut().write(buf)
     }
     fn flush(&mut self) -> io::Result<()> {
-        match self {
-            Output::Replace { tmp, .. } => tmp.flush(),
-            Output::Direct(f) => f.flush(),
-        }
+        self.file_mut().flush()
     }
 }
 
@@ -157,17 +457,135 @@ pub fn numbered(path: &Path, n: u32) -> PathBuf {
     })
 }
 
-/// Writes `contents` to `path` as [`Output`] does.
-pub fn write_atomic(path: &Path, contents: &[u8]) -> io::Result<()> {
-    let mut out = Output::create(path)?;
+/// Writes `contents` to a new file at `path`, or the first free `NAME-N` after it (N up to
+/// `max`), as [`Output`] does; never over a file. Returns where.
+pub fn write_new(path: &Path, contents: &[u8], max: u32) -> io::Result<PathBuf> {
+    for n in 1..=max {
+        let to = numbered(path, n);
+        if to.symlink_metadata().is_ok() {
+            continue;
+        }
+        let mut out = match Output::create(&to, false) {
+            Ok(out) => out,
+            // Taken since the look above: the next name.
+            Err(e) if e.kind() == io::ErrorKind::AlreadyExists => continue,
+            Err(e) => return Err(e),
+        };
+        out.write_all(contents).map_err(|e| err(&to, e))?;
+        match out.finish() {
+            Ok(()) => return Ok(to),
+            // Taken meanwhile: the next name.
+            Err(e) if e.kind() == io::ErrorKind::AlreadyExists => continue,
+            Err(e) => return Err(e),
+        }
+    }
+    Err(err(
+        path,
+        format!(
+            "this name and the {} numbered ones after it are taken",
+            max.saturating_sub(1)
+        ),
+    ))
+}
+
+/// Writes `contents` to `path` as [`Output`] does (replacing a file there only with `force`).
+pub fn write_atomic(path: &Path, contents: &[u8], force: bool) -> io::Result<()> {
+    let mut out = Output::create(path, force)?;
     out.write_all(contents).map_err(|e| err(path, e))?;
     out.finish()
 }
 
-/// Stdout, or a file written as [`Output`] does.
+/// The error a [`Capped`] writer returns when its bound is reached.
+#[derive(Debug)]
+pub struct BoundReached {
+    /// What was bounded (`--asciicast`, `the replay's output`), and the bound in words.
+    pub message: String,
+}
+
+impl std::fmt::Display for BoundReached {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.message)
+    }
+}
+
+impl std::error::Error for BoundReached {}
+
+/// `cap` bytes as a reader would say them: `256 MiB`, `64 KiB`, `100 bytes`.
+pub fn show_bytes(cap: u64) -> String {
+    if cap >= 1 << 20 && cap.is_multiple_of(1 << 20) {
+        format!("{} MiB", cap >> 20)
+    } else if cap >= 1 << 10 && cap.is_multiple_of(1 << 10) {
+        format!("{} KiB", cap >> 10)
+    } else {
+        format!("{cap} bytes")
+    }
+}
+
+/// A writer that passes at most `cap` bytes on to `inner`: the write that would cross the
+/// bound fails with a [`BoundReached`] naming `what` and the bound, and writes nothing.
+pub struct Capped<W> {
+    inner: W,
+    written: u64,
+    cap: u64,
+    what: String,
+}
+
+impl<W: Write> Capped<W> {
+    pub fn new(inner: W, cap: u64, what: impl Into<String>) -> Self {
+        Capped {
+            inner,
+            written: 0,
+            cap,
+            what: what.into(),
+        }
+    }
+
+    /// Bytes passed on so far.
+    pub fn written(&self) -> u64 {
+        self.written
+    }
+
+    pub fn get_ref(&self) -> &W {
+        &self.inner
+    }
+
+    pub fn into_inner(self) -> W {
+        self.inner
+    }
+}
+
+impl<W: Write> Write for Capped<W> {
+    fn write(&mut self, buf: &[u8]) -> io::Result<usize> {
+        if self.written + buf.len() as u64 > self.cap {
+            return Err(io::Error::other(BoundReached {
+                message: format!(
+                    "{} reached its bound of {} ({} bytes)",
+                    self.what,
+                    show_bytes(self.cap),
+                    self.cap
+                ),
+            }));
+        }
+        let n = self.inner.write(buf)?;
+        self.written += n as u64;
+        Ok(n)
+    }
+    fn flush(&mut self) -> io::Result<()> {
+        self.inner.flush()
+    }
+}
+
+/// The bound an error reports having reached, if it is one ([`Capped`], or a frame count).
+pub fn bound_reached(e: &io::Error) -> Option<String> {
+    e.get_ref()
+        .and_then(|inner| inner.downcast_ref::<BoundReached>())
+        .map(|b| b.message.clone())
+}
+
+/// Stdout, or a file written as [`Output`] does (never over an existing file).
 pub fn emit(out: Option<&Path>, text: &str) -> io::Result<()> {
     match out {
-        Some(p) => write_atomic(p, text.as_bytes()),
+        Some(p) => write_atomic(p, text.as_bytes(), false),
         None => {
             let mut so = io::stdout().lock();
             match so.write_all(text.as_bytes()).and_then(|()| so.flush()) {
@@ -179,7 +597,8 @@ pub fn emit(out: Option<&Path>, text: &str) -> io::Result<()> {
     }
 }
 
-/// Reads a regular file of at most `cap` bytes as UTF-8. Errors name the file.
+/// Reads a regular file of at most `cap` bytes as UTF-8, and notes it as an input of this
+/// command (no output may replace it). Errors name the file.
 pub fn read_bounded(path: &Path, cap: u64) -> Result<String, Error> {
     let name = escape_controls(&path.display().to_string());
     let refuse = |e: String| Error::Invalid(format!("{name}: {e}"));
@@ -192,9 +611,17 @@ pub fn read_bounded(path: &Path, cap: u64) -> Result<String, Error> {
     if !m.is_file() {
         return Err(refuse("not a regular file".into()));
     }
+    note_input(&f, &path.display().to_string());
     read_capped(f, cap).map_err(|e| e.context(&name))
 }
 
+/// Reads stdin as [`read_capped`] does; a regular file redirected into it (`< s.keys`) is
+/// noted as an input of this command.
+pub fn read_stdin(cap: u64) -> Result<String, Error> {
+    let stdin = io::stdin();
+    note_input(&stdin, "stdin");
+    read_capped(stdin.lock(), cap)
+}
 /// Reads at most `cap` bytes of UTF-8 from `r`; more is an error.
 pub fn read_capped(r: impl Read, cap: u64) -> Result<String, Error> {
     let mut bytes = Vec::new();

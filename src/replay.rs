@@ -15,6 +15,14 @@ use ratatui::backend::TestBackend;
 /// Size of the off-screen terminal unless the script or `--size` says otherwise.
 pub const DEFAULT_SIZE: (u16, u16) = (80, 24);
 
+/// Most bytes `turntable replay` writes on stdout (snapshots, or plain mode's lines): a script
+/// of 1 MiB can ask for far more (each `snapshot` of a 1000x1000 screen is megabytes).
+pub const OUTPUT_MAX: u64 = 256 << 20;
+
+/// Most bytes of an `--asciicast` recording (see [`crate::asciicast::MAX_FRAMES`] for its
+/// frames).
+pub const CAST_BYTES_MAX: u64 = 256 << 20;
+
 /// How to run a script.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Options {

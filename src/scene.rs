@@ -342,35 +342,7 @@ impl Scene {
     /// already, the first free `STEM-2.EXT`, `STEM-3.EXT`, …; never replaces a file. Returns
     /// the path written.
     pub fn save_new(&self, path: &Path) -> std::io::Result<std::path::PathBuf> {
-        use std::io::Write;
-        let text = self.to_toml();
-        let stem = path.file_stem().map(|s| s.to_string_lossy().into_owned());
-        let ext = path.extension().map(|e| e.to_string_lossy().into_owned());
-        for n in 1..=99 {
-            let candidate = match n {
-                1 => path.to_path_buf(),
-                _ => path.with_file_name(match (&stem, &ext) {
-                    (Some(s), Some(e)) => format!("{s}-{n}.{e}"),
-                    (Some(s), None) => format!("{s}-{n}"),
-                    _ => format!("scene-{n}.toml"),
-                }),
-            };
-            if candidate.symlink_metadata().is_ok() {
-                continue;
-            }
-            let mut out = crate::files::Output::create(&candidate)?;
-            out.write_all(text.as_bytes())?;
-            match out.finish_new() {
-                Ok(()) => return Ok(candidate),
-                // Taken meanwhile: try the next name.
-                Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => continue,
-                Err(e) => return Err(e),
-            }
-        }
-        Err(std::io::Error::other(format!(
-            "{} and 98 numbered names after it exist already",
-            path.display()
-        )))
+        crate::files::write_new(path, self.to_toml().as_bytes(), 99)
     }
 }
 

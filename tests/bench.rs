@@ -260,3 +260,25 @@ fn over_a_slow_link_a_body_costs_about_what_the_point_does() {
         assert!(body.worst_key_s < bound, "{body:?}");
     }
 }
+
+/// Issue 33 item 4: the bench states a recording's worst bytes per tick (a whole-screen
+/// frame every tick): at 80×24 and at the largest screen a script may ask for, with the ticks
+/// until the recording's bound, which the issue's 3-line script now reaches.
+#[test]
+fn a_recordings_worst_tick_and_its_bound() {
+    use turntable::bench::bytes::cast_worst;
+    let small = cast_worst((80, 24), 30).unwrap();
+    let large = cast_worst((1000, 1000), 1).unwrap();
+    eprintln!("{small:?}\n{large:?}");
+    // A whole screen: at least a byte a cell.
+    assert!(small.worst_bytes_per_tick >= 80 * 24, "{small:?}");
+    assert!(large.worst_bytes_per_tick >= 1_000_000, "{large:?}");
+    for c in [&small, &large] {
+        assert_eq!(c.bound_bytes, turntable::replay::CAST_BYTES_MAX);
+        assert_eq!(c.bound_frames, turntable::asciicast::MAX_FRAMES);
+        let by_bytes = c.bound_bytes / c.worst_bytes_per_tick as u64;
+        assert_eq!(c.ticks_to_bound, by_bytes.min(c.bound_frames), "{c:?}");
+    }
+    // 1000×1000 reaches the bound within seconds of play, not after gigabytes.
+    assert!(large.ticks_to_bound < 30 * 10, "{large:?}");
+}

@@ -445,6 +445,47 @@ fn a_failed_out_names_its_file() {
     assert!(err.starts_with("error: --out /dev/full: "), "{err}");
 }
 
+/// Issue 33 item 8: `--help` or `--version` that cannot be written (stdout on /dev/full)
+/// fails; clap's own exit said 0. Written, or read in part by `| head`, they still exit 0.
+#[test]
+fn help_and_version_that_cannot_be_written_fail() {
+    if !std::path::Path::new("/dev/full").exists() {
+        eprintln!("skipped: no /dev/full here");
+        return;
+    }
+    let run = |args: &[&str], stdout: std::process::Stdio| {
+        std::process::Command::new(env!("CARGO_BIN_EXE_turntable"))
+            .args(args)
+            .env("XDG_CONFIG_HOME", common::NO_CONFIG)
+            .stdout(stdout)
+            .output()
+            .unwrap()
+    };
+    for args in [
+        &["--help"][..],
+        &["-h"],
+        &["--version"],
+        &["-V"],
+        &["run", "--help"],
+        &["help", "replay"],
+    ] {
+        let full = std::fs::OpenOptions::new()
+            .write(true)
+            .open("/dev/full")
+            .unwrap();
+        let o = run(args, full.into());
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(1), "{args:?}: {err}");
+        assert!(err.contains("writing to stdout"), "{args:?}: {err}");
+        let o = run(args, std::process::Stdio::piped());
+        assert_eq!(o.status.code(), Some(0), "{args:?}");
+        assert!(!o.stdout.is_empty());
+    }
+    // A usage error is still 2, its message on stderr.
+    let (code, _, err) = turntable(&["--no-such-flag"]);
+    assert_eq!(code, 2, "{err}");
+}
+
 /// Issue 18 item 22: φ beyond ±1e6 rad is refused (its remainder mod 2π has no digits left);
 /// CSV numbers never print as 300-digit decimals, nor as −0, and JSON gives no −0.
 #[test]

@@ -308,6 +308,21 @@ fn esc_closes_help_before_quitting() {
     assert!(a.should_quit());
 }
 
+/// Issue 33 item 8: the README says `q` and Ctrl-C quit; with the help open they used to
+/// close it instead.
+#[test]
+fn q_and_ctrl_c_quit_with_the_help_open() {
+    let mut a = app("C");
+    key(&mut a, '?');
+    assert!(a.help);
+    key(&mut a, 'q');
+    assert!(a.should_quit(), "q with the help open");
+    let mut a = app("C");
+    key(&mut a, '?');
+    a.handle_key(KeyEvent::new(KeyCode::Char('c'), KeyModifiers::CONTROL));
+    assert!(a.should_quit(), "Ctrl-C with the help open");
+}
+
 #[test]
 fn tiny_and_large_sizes_render_without_panic() {
     for (w, h) in [

@@ -65,7 +65,7 @@ fn a_planted_link_at_the_temporary_name_is_not_followed() {
         d.join(format!(".out.csv.tmp{}", std::process::id())),
     )
     .unwrap();
-    files::write_atomic(&d.join("out.csv"), b"rows").unwrap();
+    files::write_atomic(&d.join("out.csv"), b"rows", false).unwrap();
     assert_eq!(std::fs::read_to_string(&victim).unwrap(), "precious");
     assert_eq!(std::fs::read_to_string(d.join("out.csv")).unwrap(), "rows");
 }
@@ -127,6 +127,14 @@ fn destinations_that_are_not_regular_files() {
     std::fs::set_permissions(&ro, std::fs::Permissions::from_mode(0o444)).unwrap();
     let (code, _, err) = turntable_in(&d, &["sweep", "fig6", "--points", "2", "--out", "ro.csv"]);
     assert_eq!(code, 2, "{err}");
+    assert!(err.contains("exists; --force replaces it"), "{err}");
+    let (code, _, err) = turntable_in(
+        &d,
+        &[
+            "sweep", "fig6", "--points", "2", "--out", "ro.csv", "--force",
+        ],
+    );
+    assert_eq!(code, 2, "{err}");
     assert!(err.contains("read-only"), "{err}");
     assert_eq!(std::fs::read_to_string(&ro).unwrap(), "keep");
     let (code, _, _) = turntable_in(&d, &["sweep", "fig6", "--points", "2", "--out", "."]);
@@ -151,12 +159,19 @@ fn a_failed_run_leaves_the_old_trajectory() {
             "1000",
             "--trajectory",
             "t.csv",
+            "--force",
         ],
     );
     assert_eq!(code, 1, "{err}");
     assert_eq!(std::fs::read_to_string(d.join("t.csv")).unwrap(), "old");
     assert_eq!(std::fs::read_dir(&d).unwrap().count(), 1);
-    let (code, _, _) = turntable_in(&d, &["run", "--v0", "0.6", "--trajectory", "t.csv"]);
+    let (code, _, err) = turntable_in(&d, &["run", "--v0", "0.6", "--trajectory", "t.csv"]);
+    assert_eq!(code, 2, "an existing file is kept without --force: {err}");
+    assert_eq!(std::fs::read_to_string(d.join("t.csv")).unwrap(), "old");
+    let (code, _, _) = turntable_in(
+        &d,
+        &["run", "--v0", "0.6", "--trajectory", "t.csv", "--force"],
+    );
     assert_eq!(code, 0);
     let csv = std::fs::read_to_string(d.join("t.csv")).unwrap();
     let last: Vec<&str> = csv.lines().last().unwrap().split(',').collect();
@@ -345,4 +360,117 @@ fn replay_streams_its_snapshots() {
     let text = String::from_utf8_lossy(&w.1);
     assert!(text.starts_with("--- snapshot 1: one"), "{text}");
     assert!(!text.contains("snapshot 2"));
+}
+
+/// Issue 33 item 1: a write killed midway (SIGKILL, nothing can be cleaned up; SIGTERM)
+/// leaves no file at all: the rows go to an unnamed file until they are linked in. (A 56 MB
+/// `.NAME.xxx.tmp` used to stay.)
+#[test]
+fn a_killed_write_leaves_no_temporary_file() {
+    for signal in [libc::SIGKILL, libc::SIGTERM] {
+        let d = dir(&format!("killed-{signal}"));
+        let mut child = Command::new(env!("CARGO_BIN_EXE_turntable"))
+            .env("XDG_CONFIG_HOME", "/nonexistent/turntable-tests/config")
+            .args([
+                "run",
+                "--method",
+                "rk2-raw",
+                "--dt",
+                "1e-6",
+                "--max-steps",
+                "1000000000",
+                "--tau-max",
+                "1000",
+                "--follow",
+                "--v0",
+                "3",
+                "--no-check",
+                "--trajectory",
+                "big.csv",
+            ])
+            .current_dir(&d)
+            .stdout(Stdio::null())
+            .stderr(Stdio::null())
+            .spawn()
+            .unwrap();
+        // Until a megabyte of rows is in the file being written.
+        let start = Instant::now();
+        let pid = child.id();
+        let written = || {
+            std::fs::read_dir(format!("/proc/{pid}/fd"))
+                .into_iter()
+                .flatten()
+                .flatten()
+                .filter_map(|e| std::fs::metadata(e.path()).ok())
+                .filter(|m| m.is_file())
+                .map(|m| m.len())
+                .max()
+                .unwrap_or(0)
+        };
+        while written() < 1 << 20 {
+            assert!(start.elapsed() < Duration::from_secs(30), "no rows written");
+            assert!(child.try_wait().unwrap().is_none(), "ended early");
+            std::thread::sleep(Duration::from_millis(10));
+        }
+        // SAFETY: a signal to our child.
+        unsafe { libc::kill(pid as i32, signal) };
+        let status = child.wait().unwrap();
+        assert!(!status.success());
+        let left: Vec<_> = std::fs::read_dir(&d)
+            .unwrap()
+            .flatten()
+            .map(|e| e.file_name())
+            .collect();
+        assert!(left.is_empty(), "signal {signal}: {left:?}");
+        std::fs::remove_dir_all(&d).unwrap();
+    }
+}
+
+/// Where the filesystem has no unnamed files the temporary is named `.NAME.PID.N.tmp`: gone
+/// on every error (the output dropped), and one left by a killed process (its PID no longer
+/// alive) is removed by the next write of that name; a live process's is kept.
+#[test]
+fn named_temporaries_are_removed_and_stale_ones_swept() {
+    let d = dir("named");
+    let dest = d.join("out.csv");
+    let temporaries = || -> Vec<String> {
+        std::fs::read_dir(&d)
+            .unwrap()
+            .flatten()
+            .map(|e| e.file_name().to_string_lossy().into_owned())
+            .filter(|n| n.starts_with(".out.csv.") && n.ends_with(".tmp"))
+            .collect()
+    };
+    let mut out = files::Output::create_in(&dest, false, false).unwrap();
+    out.write_all(b"rows").unwrap();
+    assert_eq!(temporaries().len(), 1);
+    drop(out);
+    assert!(temporaries().is_empty() && !dest.exists());
+    let mut out = files::Output::create_in(&dest, false, false).unwrap();
+    out.write_all(b"rows").unwrap();
+    out.finish().unwrap();
+    assert!(temporaries().is_empty());
+    assert_eq!(std::fs::read_to_string(&dest).unwrap(), "rows");
+    // A process that has ended, and one alive (this one).
+    let mut gone = Command::new("true").spawn().unwrap();
+    let dead = gone.id();
+    gone.wait().unwrap();
+    let stale = d.join(format!(".out.csv.{dead}.3.tmp"));
+    let alive = d.join(format!(".out.csv.{}.999.tmp", std::process::id()));
+    std::fs::write(&stale, "half").unwrap();
+    std::fs::write(&alive, "half").unwrap();
+    let mut out = files::Output::create_in(&dest, true, false).unwrap();
+    assert!(!stale.exists(), "the dead process's temporary is swept");
+    assert!(alive.exists(), "a live process's is kept");
+    out.write_all(b"new rows").unwrap();
+    out.finish().unwrap();
+    assert_eq!(std::fs::read_to_string(&dest).unwrap(), "new rows");
+    assert_eq!(
+        temporaries(),
+        vec![alive.file_name().unwrap().to_string_lossy()]
+    );
+    // The unnamed kind replaces as atomically, and leaves nothing either.
+    files::write_atomic(&dest, b"third", true).unwrap();
+    assert_eq!(std::fs::read_to_string(&dest).unwrap(), "third");
+    std::fs::remove_dir_all(&d).unwrap();
 }

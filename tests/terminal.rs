@@ -66,6 +66,16 @@ fn spawn_with(
     cwd: &std::path::Path,
     args: &[&str],
 ) -> Option<(Reap, Pty, Seen)> {
+    spawn_env(rec, cwd, args, &[])
+}
+
+/// As [`spawn_with`], with more environment variables.
+fn spawn_env(
+    rec: &std::path::Path,
+    cwd: &std::path::Path,
+    args: &[&str],
+    envs: &[(&str, &std::path::Path)],
+) -> Option<(Reap, Pty, Seen)> {
     // Other tests fork too: no child may inherit this master (it would keep the pty up).
     static FORK: Mutex<()> = Mutex::new(());
     let _one_at_a_time = FORK.lock().unwrap();
@@ -75,6 +85,7 @@ fn spawn_with(
     cmd.env("XDG_CONFIG_HOME", "/nonexistent/turntable-tests/config")
         .args(["--record", rec.to_str().unwrap()])
         .args(args)
+        .envs(envs.iter().copied())
         .current_dir(cwd);
     common::on_pty(&mut cmd, slave);
     let child = cmd.spawn().unwrap();
@@ -292,7 +303,12 @@ fn sigstop_then_sigcont_takes_raw_mode_back() {
     assert!(!cooked(pty.fd));
     // SAFETY: signals to our child; termios of our pty (through its master, as a shell's
     // own tcsetattr on the slave).
+    let stopped_at = seen.lock().unwrap().len();
     unsafe { libc::kill(pid, libc::SIGSTOP) };
+    // As the README says (issue 33 item 8): SIGSTOP cannot be caught, so nothing is given
+    // back: no leaving the alternate screen, no mouse off.
+    std::thread::sleep(Duration::from_millis(300));
+    assert!(!contains(&seen, stopped_at, ALT_OFF) && !contains(&seen, stopped_at, MOUSE_OFF));
     let mut t: libc::termios = unsafe { std::mem::zeroed() };
     assert_eq!(unsafe { libc::tcgetattr(pty.fd, &mut t) }, 0);
     t.c_lflag |= libc::ICANON | libc::ECHO;
@@ -429,4 +445,94 @@ fn plain_mode_writes_lines_and_gives_the_terminal_back() {
         .unwrap();
     let _ = std::fs::remove_file(&path);
     assert_eq!(String::from_utf8(out.stdout).unwrap(), said);
+}
+
+/// Issue 33 item 6: a recording whose file cannot be written at the end (its folder removed
+/// during the session) is kept in `$TMPDIR/turntable-recording-PID.keys`, and the error
+/// (exit 1) names it; on quit and on a terminating signal alike.
+#[test]
+fn a_recording_that_cannot_be_written_at_exit_is_kept() {
+    let base = std::env::temp_dir().join(format!("turntable-lost-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&base);
+    let (gone, tmp) = (base.join("gone"), base.join("tmp"));
+    std::fs::create_dir_all(&tmp).unwrap();
+    for (how, code) in [("q", 1), ("SIGTERM", 143)] {
+        std::fs::create_dir_all(&gone).unwrap();
+        let Some((mut child, pty, seen)) =
+            spawn_env(&gone.join("rec.keys"), &base, &[], &[("TMPDIR", &tmp)])
+        else {
+            return;
+        };
+        wait_for("the first frame", || contains(&seen, 0, ALT_ON));
+        pty.type_keys(b"x");
+        std::fs::remove_dir_all(&gone).unwrap();
+        if how == "q" {
+            pty.type_keys(b"q");
+        } else {
+            // SAFETY: a signal to our child.
+            unsafe { libc::kill(child.id() as i32, libc::SIGTERM) };
+        }
+        wait_for("the end", || child.try_wait().unwrap().is_some());
+        assert_eq!(child.wait().unwrap().code(), Some(code), "{how}");
+        let kept = tmp.join(format!("turntable-recording-{}.keys", child.id()));
+        wait_for("the message", || {
+            contains(&seen, 0, b"the recording is kept in")
+                && contains(&seen, 0, kept.display().to_string().as_bytes())
+        });
+        let script = std::fs::read_to_string(&kept).unwrap();
+        assert!(
+            script.starts_with("# turntable key script\n")
+                && script
+                    .lines()
+                    .any(|l| l.split_whitespace().any(|k| k == "x")),
+            "{how}: {script}"
+        );
+    }
+    std::fs::remove_dir_all(&base).unwrap();
+}
+
+/// Issue 33 item 1: `--record` over an existing file is refused before the terminal is
+/// touched (exit 2); with `--force` the file is replaced when the explorer ends.
+#[test]
+fn record_replaces_an_existing_file_only_with_force() {
+    let path = rec("force");
+    std::fs::write(&path, "precious").unwrap();
+    let Some((mut child, _pty, seen)) = spawn(&path) else {
+        return;
+    };
+    wait_for("the end", || child.try_wait().unwrap().is_some());
+    assert_eq!(child.wait().unwrap().code(), Some(2));
+    wait_for("the message", || {
+        contains(&seen, 0, b"exists; --force replaces it")
+    });
+    assert!(!contains(&seen, 0, ALT_ON), "the terminal was not touched");
+    assert_eq!(std::fs::read_to_string(&path).unwrap(), "precious");
+    let Some((mut child, pty, seen)) = spawn_with(&path, &std::env::temp_dir(), &["--force"])
+    else {
+        return;
+    };
+    wait_for("the first frame", || contains(&seen, 0, ALT_ON));
+    pty.type_keys(b"q");
+    wait_for("quit", || child.try_wait().unwrap().is_some());
+    assert_eq!(child.wait().unwrap().code(), Some(0));
+    let script = std::fs::read_to_string(&path).unwrap();
+    assert!(script.starts_with("# turntable key script\n"), "{script}");
+    std::fs::remove_file(&path).unwrap();
+}
+
+/// Issue 33 item 8: with the help open, `q` quits (it used to close the help).
+#[test]
+fn q_quits_with_the_help_open() {
+    let path = rec("helpq");
+    let Some((mut child, pty, seen)) = spawn(&path) else {
+        return;
+    };
+    wait_for("the first frame", || contains(&seen, 0, ALT_ON));
+    let mark = seen.lock().unwrap().len();
+    pty.type_keys(b"?");
+    wait_for("the help", || contains(&seen, mark, b"help"));
+    pty.type_keys(b"q");
+    wait_for("quit", || child.try_wait().unwrap().is_some());
+    assert_eq!(child.wait().unwrap().code(), Some(0));
+    let _ = std::fs::remove_file(&path);
 }

@@ -101,3 +101,80 @@ pub fn all(frames: usize) -> Result<Vec<Bytes>, Error> {
     }
     Ok(out)
 }
+
+/// The worst an `--asciicast` recording writes per tick at one screen size: every tick that
+/// changes the screen writes a frame, and a frame is the whole screen as ANSI text (JSON
+/// escaped), so the worst case per tick is the largest frame; with the recording's bounds.
+#[derive(Clone, Debug, Serialize)]
+pub struct CastBytes {
+    /// The theme whose frames were largest.
+    pub theme: String,
+    pub size: (u16, u16),
+    /// Ticks played (the default scene, from its start).
+    pub ticks: usize,
+    /// The largest frame, with its event's framing: bytes written by one tick at worst.
+    pub worst_bytes_per_tick: usize,
+    /// `replay::CAST_BYTES_MAX`.
+    pub bound_bytes: u64,
+    /// `asciicast::MAX_FRAMES`.
+    pub bound_frames: u64,
+    /// Ticks after which the worst case reaches a bound (bytes or frames, the first).
+    pub ticks_to_bound: u64,
+}
+
+/// A writer that keeps the longest line written through it.
+struct Lines {
+    line: usize,
+    longest: usize,
+}
+
+impl Write for Lines {
+    fn write(&mut self, buf: &[u8]) -> io::Result<usize> {
+        for &b in buf {
+            self.line += 1;
+            if b == b'\n' {
+                self.longest = self.longest.max(self.line);
+                self.line = 0;
+            }
+        }
+        Ok(buf.len())
+    }
+    fn flush(&mut self) -> io::Result<()> {
+        Ok(())
+    }
+}
+
+/// The default scene played for `ticks` at `size` and recorded as `replay --asciicast` does,
+/// for every built-in theme (24-bit colour, as a replay's `--ansi` writes): the worst.
+pub fn cast_worst(size: (u16, u16), ticks: usize) -> Result<CastBytes, Error> {
+    let mut worst = (0, String::new());
+    for theme in crate::theme::BUILTIN {
+        let th =
+            Theme::builtin(theme).ok_or_else(|| Error::invalid(format!("no theme {theme}")))?;
+        let app = App::new(Scene::default_scene(), th);
+        let opts = crate::replay::Options {
+            size,
+            ..Default::default()
+        };
+        let steps = [crate::script::Step::Tick(ticks as u64)];
+        let mut lines = Lines {
+            line: 0,
+            longest: 0,
+        };
+        crate::replay::replay_cast(app, &steps, &opts, &mut io::sink(), &mut lines, "bench")?;
+        if lines.longest > worst.0 {
+            worst = (lines.longest, theme.to_string());
+        }
+    }
+    let bound_bytes = crate::replay::CAST_BYTES_MAX;
+    let bound_frames = crate::asciicast::MAX_FRAMES;
+    Ok(CastBytes {
+        theme: worst.1,
+        size,
+        ticks,
+        worst_bytes_per_tick: worst.0,
+        bound_bytes,
+        bound_frames,
+        ticks_to_bound: (bound_bytes / worst.0.max(1) as u64).min(bound_frames),
+    })
+}

@@ -220,6 +220,14 @@ pub(super) fn speed(cfg: &Config, all: &[Initial], refs: &[Measure]) -> Result<S
     let (frame_ms, frame_trail) = frame_time(cfg.reps)?;
     // Ten seconds of play (three in --quick).
     let terminal_bytes = super::bytes::all(if cfg.quick { 90 } else { 300 })?;
+    // A recording's worst tick: the largest screen is slow to draw, so a few ticks.
+    let recording_bytes = vec![
+        super::bytes::cast_worst(crate::replay::DEFAULT_SIZE, 30)?,
+        super::bytes::cast_worst(
+            (crate::script::MAX_SIZE, crate::script::MAX_SIZE),
+            if cfg.quick { 2 } else { 5 },
+        )?,
+    ];
     // Ten seconds: the first screen alone takes 3.6 s at 4 KB/s.
     // The same with a body: the bar, its centre's path and the panel's body lines as it plays.
     let body = super::link::body_scene();
@@ -280,6 +288,7 @@ pub(super) fn speed(cfg: &Config, all: &[Initial], refs: &[Measure]) -> Result<S
         frame_ms,
         frame_trail,
         terminal_bytes,
+        recording_bytes,
         links,
     })
 }

@@ -141,6 +141,9 @@ pub struct Speed {
     /// Bytes written to the terminal while the default scene plays at 120×40, per theme and
     /// colour depth.
     pub terminal_bytes: Vec<bytes::Bytes>,
+    /// An `--asciicast` recording's worst bytes per tick, at 80×24 and at the largest screen
+    /// a script may `resize` to (1000×1000), with the ticks until its bound.
+    pub recording_bytes: Vec<bytes::CastBytes>,
     /// The same over a 4 and a 16 KB/s link: paced frames, and the backlog unpaced.
     pub links: Vec<link::Link>,
 }

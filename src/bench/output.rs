@@ -232,6 +232,21 @@ pub fn table(r: &Report) -> String {
             goal(b.kb_per_s, super::bytes::GOAL_KB_PER_S, "KB/s")
         );
     }
+    for c in &sp.recording_bytes {
+        let _ = writeln!(
+            o,
+            "  replay --asciicast at {}×{}, worst case (a whole-screen frame every tick; the largest of {} ticks, {} theme): {} B/tick; its bound ({}, {} frames) is reached after {} ticks ({:.0} s of play)",
+            c.size.0,
+            c.size.1,
+            c.ticks,
+            c.theme,
+            c.worst_bytes_per_tick,
+            crate::files::show_bytes(c.bound_bytes),
+            c.bound_frames,
+            c.ticks_to_bound,
+            c.ticks_to_bound as f64 / f64::from(crate::terminal::pace::TICKS_PER_SECOND)
+        );
+    }
     for l in &sp.links {
         let _ = writeln!(
             o,

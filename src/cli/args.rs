@@ -38,9 +38,13 @@ pub struct Cli {
     #[arg(long, overrides_with = "no_mouse")]
     pub mouse: bool,
     /// Explorer: record the session (keys, ticks, resizes, mouse) as a key script to FILE,
-    /// written when the explorer exits; `turntable replay FILE` shows the same screens.
+    /// written when the explorer exits; `turntable replay FILE` shows the same screens. An
+    /// existing FILE is kept unless --force.
     #[arg(long, value_name = "FILE")]
     pub record: Option<PathBuf>,
+    /// Explorer: replace the --record file if it exists (never a file the session reads).
+    #[arg(long, requires = "record")]
+    pub force: bool,
     /// Plain mode for screen readers: no canvas, no cursor movement, no colour; lines of text
     /// on stdout (the release, each change of state as it happens, notices, the readouts on
     /// `I`, the keys on `?`), keys as in the explorer. Works with TERM=dumb and with stdout
@@ -377,9 +381,13 @@ pub struct RunArgs {
     /// Print one JSON object instead of text.
     #[arg(long)]
     pub json: bool,
-    /// Write the trajectory (one row per step) to this CSV file.
+    /// Write the trajectory (one row per step) to this CSV file (atomically; an existing
+    /// file is kept unless --force).
     #[arg(long)]
     pub trajectory: Option<PathBuf>,
+    /// Replace the --trajectory file if it exists.
+    #[arg(long, requires = "trajectory")]
+    pub force: bool,
     #[command(flatten)]
     pub units: UnitsArgs,
     #[command(flatten)]
@@ -596,9 +604,13 @@ pub struct MapData {
 
 #[derive(Args, Debug)]
 pub struct OutArg {
-    /// Write the CSV here instead of stdout.
+    /// Write the CSV here instead of stdout (atomically; an existing file is kept unless
+    /// --force).
     #[arg(long)]
     pub out: Option<PathBuf>,
+    /// Replace --out if it exists (never a file this command reads).
+    #[arg(long, requires = "out")]
+    pub force: bool,
 }
 
 #[derive(Args, Debug)]
@@ -679,7 +691,7 @@ pub struct SvgOut {
     /// The SVG file to write (atomically; an existing file is kept unless --force).
     #[arg(long, value_name = "FILE.svg")]
     pub out: PathBuf,
-    /// Replace --out if it exists.
+    /// Replace --out if it exists (never a file this command reads).
     #[arg(long)]
     pub force: bool,
 }

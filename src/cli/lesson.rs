@@ -99,6 +99,7 @@ fn prepared(
         plain,
         look: look.clone(),
         asciicast: None,
+        force: false,
     };
     let (mut app, opts, steps) = prepare(lesson.script, &replay)?;
     app.lesson.name = Some(lesson.name.to_string());

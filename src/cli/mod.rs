@@ -144,7 +144,9 @@ fn explore(
     }
     let recording = match &cli.record {
         Some(path) => Some(std::sync::Arc::new(Recording {
-            out: std::sync::Mutex::new(Some(check_record_path(path, [&look.scene, &theme_name])?)),
+            out: std::sync::Mutex::new(Some(crate::files::open_output(
+                "--record", path, cli.force,
+            )?)),
             path: path.clone(),
             scene: scene_ref,
         })),
@@ -175,9 +177,14 @@ fn explore(
         (_, true) => true,
         _ => config.mouse.unwrap_or(true),
     };
+    // The terminal died under the explorer: the recording is kept all the same, and where
+    // it went is said (the terminal is restored by then).
     let save = recording.clone().map(|r| {
         Box::new(move |script: String| {
-            let _ = r.save(script);
+            if let Err(e) = r.keep(script) {
+                let m = crate::files::escape_controls(&e.to_string());
+                let _ = writeln!(std::io::stderr(), "error: {m}");
+            }
         }) as crate::terminal::SaveRecording
     });
     let fps = cli.fps.or(config.fps).unwrap_or(30);
@@ -187,9 +194,17 @@ fn explore(
         crate::terminal::run(app, fps, save, lesson)
     };
     if let (Some(r), Some(script)) = (recording, script) {
-        let saved = r
-            .save(script)
-            .map_err(|e| Error::Failed(format!("--record: {e}")))?;
+        let saved = match (r.keep(script), &result) {
+            (Ok(saved), _) => saved,
+            // Ended by a signal: that stays the exit status (128 + n); the message says
+            // where the recording is.
+            (Err(e), Ok(Some(_))) => {
+                let m = crate::files::escape_controls(&e.to_string());
+                let _ = writeln!(std::io::stderr(), "error: {m}");
+                return result.map_err(|e| Error::Failed(format!("terminal: {e}")));
+            }
+            (Err(e), _) => return Err(e),
+        };
         if let Some(path) = cli.record.as_deref().filter(|p| *p != saved) {
             let _ = writeln!(
                 std::io::stderr(),
@@ -211,75 +226,65 @@ fn scene_reference(scene: &str) -> String {
     std::fs::canonicalize(scene).map_or_else(|_| scene.to_string(), |p| p.display().to_string())
 }
 
-/// A `--record` file, opened before the session and written once at its end (or by the
-/// signal watcher if the terminal dies): a FIFO's reader stays connected throughout.
+/// A `--record` file, opened before the session (under the one output policy: never a file
+/// the session reads, never an existing file without `--force`) and written once at its end
+/// (or by the signal watcher if the terminal dies): a FIFO's reader stays connected
+/// throughout.
 struct Recording {
-    /// The output, and whether a file stood there before the session.
-    out: std::sync::Mutex<Option<(crate::files::Output, bool)>>,
+    out: std::sync::Mutex<Option<crate::files::Output>>,
     path: std::path::PathBuf,
     /// The scene the recording names, so that `replay FILE` alone opens the same one.
     scene: Option<String>,
+}
+
+/// Where a recording goes when its own file cannot be written at the end: a new file in the
+/// temporary folder (`$TMPDIR`, else /tmp), `turntable-recording-PID.keys`.
+pub fn record_fallback() -> std::path::PathBuf {
+    std::env::temp_dir().join(format!("turntable-recording-{}.keys", std::process::id()))
 }
 
 impl Recording {
     /// Writes the script atomically; returns where. A file that was not there before the
     /// session is never replaced (`s` may have saved a scene there meanwhile): the recording
     /// then goes to the first free `NAME-N`.
-    fn save(&self, mut script: String) -> std::io::Result<std::path::PathBuf> {
-        use crate::files::Output;
+    fn save(&self, script: &str) -> std::io::Result<std::path::PathBuf> {
         let taken = self.out.lock().unwrap_or_else(|e| e.into_inner()).take();
-        let (mut out, existed) =
+        let mut out =
             taken.ok_or_else(|| std::io::Error::other("the recording was already saved"))?;
+        out.write_all(script.as_bytes())?;
+        out.finish_numbered(99)
+    }
+
+    /// Saves the script; if that fails, keeps it all the same: in [`record_fallback`], else
+    /// (that failing too) on stderr. The error then says why and where the recording is.
+    fn keep(&self, mut script: String) -> Result<std::path::PathBuf, Error> {
         if let Some(s) = &self.scene {
             let at = script.find('\n').map_or(0, |i| i + 1);
             script.insert_str(at, &crate::script::scene_line(s));
         }
-        out.write_all(script.as_bytes())?;
-        match out {
-            Output::Replace { mut tmp, .. } if !existed => {
-                let dest = &self.path;
-                tmp.as_file().sync_all()?;
-                for n in 1..=99 {
-                    let to = crate::files::numbered(dest, n);
-                    match tmp.persist_noclobber(&to) {
-                        Ok(_) => return Ok(to),
-                        Err(e) if e.error.kind() == std::io::ErrorKind::AlreadyExists => {
-                            tmp = e.file;
-                        }
-                        Err(e) => return Err(e.error),
-                    }
-                }
-                Err(std::io::Error::other(format!(
-                    "{} and 98 numbered names all taken",
-                    dest.display()
+        let why = match self.save(&script) {
+            Ok(p) => return Ok(p),
+            Err(e) => crate::files::escape_controls(&e.to_string()),
+        };
+        let path = crate::files::escape_controls(&self.path.display().to_string());
+        match crate::files::write_new(&record_fallback(), script.as_bytes(), 99) {
+            Ok(kept) => Err(Error::Failed(format!(
+                "--record {path}: could not write it ({why}); the recording is kept in {}",
+                crate::files::escape_controls(&kept.display().to_string())
+            ))),
+            Err(e2) => {
+                let mut err = std::io::stderr().lock();
+                let _ = writeln!(err, "--- the recording ({} bytes) ---", script.len());
+                let _ = err.write_all(script.as_bytes());
+                let _ = writeln!(err, "--- end of the recording ---");
+                Err(Error::Failed(format!(
+                    "--record {path}: could not write it ({why}), nor {} ({}); the recording is on stderr above",
+                    crate::files::escape_controls(&record_fallback().display().to_string()),
+                    crate::files::escape_controls(&e2.to_string())
                 )))
             }
-            out => out.finish().map(|()| self.path.clone()),
         }
     }
-}
-
-/// A `--record` file must be writable where it is named, and must not be one of the files
-/// the session reads: fail before the session, not after. Returns it opened (a FIFO stays
-/// open: closing it would end its reader), and whether a file stood there.
-fn check_record_path(
-    path: &std::path::Path,
-    inputs: [&Option<String>; 2],
-) -> Result<(crate::files::Output, bool), Error> {
-    let usage = |e: String| Error::Invalid(format!("--record {e}"));
-    if let Ok(rec) = std::fs::canonicalize(path) {
-        for input in inputs.into_iter().flatten() {
-            if std::fs::canonicalize(input).is_ok_and(|i| i == rec) {
-                return Err(usage(format!(
-                    "{}: is the file the session reads (--scene/--theme); name another",
-                    crate::files::escape_controls(&path.display().to_string())
-                )));
-            }
-        }
-    }
-    let existed = path.symlink_metadata().is_ok();
-    let out = crate::files::Output::create(path).map_err(|e| usage(e.to_string()))?;
-    Ok((out, existed))
 }
 
 /// A completion script for `shell`, from the clap definitions.
@@ -317,9 +322,37 @@ fn signalled(n: i32) -> ExitCode {
     ExitCode::from(128 + n as u8)
 }
 
+/// What clap's own exit does, but a `--help` or `--version` that cannot be written (stdout
+/// on /dev/full, a closed descriptor) fails (exit 1) instead of exiting 0 with nothing said.
+/// A reader that stopped reading (`| head`) took what it wanted.
+fn clap_exit(e: &clap::Error) -> ExitCode {
+    let printed = e.print().and_then(|()| {
+        if e.use_stderr() {
+            std::io::stderr().flush()
+        } else {
+            std::io::stdout().flush()
+        }
+    });
+    match printed {
+        Ok(()) => ExitCode::from(u8::try_from(e.exit_code()).unwrap_or(2)),
+        Err(err) if err.kind() == std::io::ErrorKind::BrokenPipe => {
+            ExitCode::from(u8::try_from(e.exit_code()).unwrap_or(2))
+        }
+        Err(err) => {
+            let what = if e.use_stderr() { "stderr" } else { "stdout" };
+            let e = Error::Failed(format!("writing to {what}: {err}"));
+            let _ = writeln!(std::io::stderr(), "error: {e}");
+            ExitCode::from(e.exit_code())
+        }
+    }
+}
+
 /// Entry point of the binary.
 pub fn main() -> ExitCode {
-    let cli = Cli::parse();
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => return clap_exit(&e),
+    };
     let result = match cli.command {
         None => match explore(&cli, &cli.look, None, cli.plain) {
             Ok(Some(n)) => return signalled(n),
@@ -354,7 +387,7 @@ pub fn main() -> ExitCode {
 
 #[cfg(test)]
 mod tests {
-    use super::{check_record_path, scene_reference};
+    use super::scene_reference;
     use std::path::Path;
 
     #[test]
@@ -372,19 +405,22 @@ mod tests {
 
     #[test]
     fn record_paths() {
-        let none = [&None, &None];
+        let open = |p: &Path| crate::files::open_output("--record", p, false);
         let tmp = std::env::temp_dir();
-        assert!(check_record_path(&tmp.join("x.keys"), none).is_ok());
+        assert!(open(&tmp.join("x.keys")).is_ok());
         assert!(!tmp.join("x.keys").exists());
-        assert!(check_record_path(&tmp, none).is_err());
-        assert!(check_record_path(&tmp.join("no-such-dir-turntable/x.keys"), none).is_err());
+        assert!(open(&tmp).is_err());
+        assert!(open(&tmp.join("no-such-dir-turntable/x.keys")).is_err());
         // Under a regular file: no directory to write in, even as root.
         let file = tmp.join(format!("turntable-record-{}", std::process::id()));
         std::fs::write(&file, "x").unwrap();
-        assert!(check_record_path(&file.join("x.keys"), none).is_err());
-        let scene = Some(file.display().to_string());
-        assert!(check_record_path(&file, [&scene, &None]).is_err());
-        assert!(check_record_path(Path::new("session.keys"), [&scene, &None]).is_ok());
+        assert!(open(&file.join("x.keys")).is_err());
+        // Existing: only with --force; once read (a scene), never.
+        assert!(open(&file).is_err());
+        assert!(crate::files::open_output("--record", &file, true).is_ok());
+        crate::files::read_bounded(&file, 10).unwrap();
+        assert!(crate::files::open_output("--record", &file, true).is_err());
+        assert!(open(Path::new("session.keys")).is_ok());
         std::fs::remove_file(&file).unwrap();
     }
 }

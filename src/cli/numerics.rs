@@ -98,9 +98,11 @@ pub fn run(a: RunArgs) -> CmdResult {
         .body(units.as_ref(), "--mu and --rpm (and optionally --g)")?;
     // The file is opened (and a bad path refused) before any work; rows stream into it.
     let csv = match &a.trajectory {
-        Some(path) => Some(BufWriter::new(
-            Output::create(path).map_err(|e| Error::Invalid(format!("--trajectory: {e}")))?,
-        )),
+        Some(path) => Some(BufWriter::new(crate::files::open_output(
+            "--trajectory",
+            path,
+            a.force,
+        )?)),
         None => None,
     };
     let mut run = Run::new(initial, settings)?;

@@ -82,26 +82,17 @@ pub fn plot(a: PlotArgs) -> CmdResult {
     }
 }
 
-/// Opens `--out` before any work: an existing file is refused unless `--force`.
+/// Opens `--out` before any work: an existing file is refused unless `--force`, an input
+/// (the `--scene` file) always.
 fn open(svg: &SvgOut) -> Result<Output, Error> {
-    let shown = crate::files::escape_controls(&svg.out.display().to_string());
-    if !svg.force && svg.out.symlink_metadata().is_ok() {
-        return Err(Error::Invalid(format!(
-            "--out {shown}: exists; --force replaces it"
-        )));
-    }
-    Output::create(&svg.out).map_err(|e| Error::Invalid(format!("--out {e}")))
+    crate::files::open_output("--out", &svg.out, svg.force)
 }
 
-/// Writes the figure and puts the file in place (never over a file that appeared meanwhile,
-/// unless `--force`).
+/// Writes the figure and puts the file in place (never over a file that appeared meanwhile).
 fn write(mut out: Output, svg: &SvgOut, fig: &Figure) -> CmdResult {
     let text = crate::figure::to_svg(fig);
     out.write_all(text.as_bytes())
-        .and_then(|()| match svg.force {
-            true => out.finish(),
-            false => out.finish_new(),
-        })
+        .and_then(|()| out.finish())
         .map_err(|e| {
             let shown = crate::files::escape_controls(&svg.out.display().to_string());
             Error::Failed(format!("--out {shown}: {e}"))

@@ -24,36 +24,64 @@ pub struct ReplayArgs {
     #[command(flatten)]
     pub look: super::Look,
     /// Also record the replay as an asciicast v2 file (asciinema's player plays it at the
-    /// pace of the ticks, 30 a second), written atomically.
+    /// pace of the ticks, 30 a second), written atomically; an existing file is kept unless
+    /// --force, and the script, scene and theme never.
     #[arg(long, value_name = "OUT.cast")]
     pub asciicast: Option<std::path::PathBuf>,
+    /// Replace the --asciicast file if it exists.
+    #[arg(long, requires = "asciicast")]
+    pub force: bool,
 }
 
 pub fn run(a: ReplayArgs) -> CmdResult {
     let text = if a.script == "-" {
-        crate::files::read_capped(std::io::stdin().lock(), crate::files::READ_CAP)
-            .map_err(|e| e.context("-"))?
+        crate::files::read_stdin(crate::files::READ_CAP).map_err(|e| e.context("-"))?
     } else {
         crate::files::read_bounded(std::path::Path::new(&a.script), crate::files::READ_CAP)?
     };
+    // The script, scene and theme are read first: the output may be none of them.
     let (app, opts, steps) = prepare(&text, &a)?;
     // Opened before the work, so a bad path fails at once.
     let cast = match &a.asciicast {
-        Some(path) => Some(
-            crate::files::Output::create(path)
-                .map_err(|e| Error::Invalid(format!("--asciicast {e}")))?,
-        ),
+        Some(path) => Some(crate::files::open_output("--asciicast", path, a.force)?),
         None => None,
     };
-    let mut so = std::io::BufWriter::new(std::io::stdout().lock());
+    let so = std::io::BufWriter::new(std::io::stdout().lock());
+    let mut so = crate::files::Capped::new(
+        so,
+        crate::replay::OUTPUT_MAX,
+        "the replay's output on stdout",
+    );
+    let bounded = |e: std::io::Error| match crate::files::bound_reached(&e) {
+        Some(m) => Error::Invalid(format!(
+            "{m}; stopped there (shorten the script: fewer snapshots, ticks or a smaller resize)"
+        )),
+        None => Error::from(e),
+    };
     match cast {
         Some(out) => {
-            let mut file = std::io::BufWriter::new(out);
+            let mut file = crate::files::Capped::new(
+                std::io::BufWriter::new(out),
+                crate::replay::CAST_BYTES_MAX,
+                "--asciicast",
+            );
             let title = format!("turntable replay {}", a.script);
-            replay_cast(app, &steps, &opts, &mut so, &mut file, &title)?;
-            file.into_inner().map_err(|e| e.into_error())?.finish()?;
+            let dest = file.get_ref().get_ref().dest().display().to_string();
+            if let Err(e) = replay_cast(app, &steps, &opts, &mut so, &mut file, &title) {
+                return Err(match crate::files::bound_reached(&e) {
+                    Some(m) => Error::Invalid(format!(
+                        "{m}; nothing was written to {} (shorten the script: fewer ticks or a smaller resize)",
+                        crate::files::escape_controls(&dest)
+                    )),
+                    None => Error::from(e),
+                });
+            }
+            file.into_inner()
+                .into_inner()
+                .map_err(|e| e.into_error())?
+                .finish()?;
         }
-        None => replay_to(app, &steps, &opts, &mut so)?,
+        None => replay_to(app, &steps, &opts, &mut so).map_err(bounded)?,
     }
     Ok(())
 }

@@ -102,9 +102,8 @@ pub(super) fn points(n: usize) -> Result<(), Error> {
 fn open_out(out: &OutArg) -> Result<Option<Output>, Error> {
     out.out
         .as_deref()
-        .map(Output::create)
+        .map(|p| crate::files::open_output("--out", p, out.force))
         .transpose()
-        .map_err(|e| Error::Invalid(format!("--out: {e}")))
 }
 
 /// Writes the CSV to the output opened by [`open_out`], or to stdout.

@@ -5,13 +5,8 @@ use super::super::state::App;
 
 pub(super) fn apply(app: &mut App, action: Action) {
     match action {
-        Action::Quit => {
-            if app.help {
-                app.help = false;
-            } else {
-                app.quit = true;
-            }
-        }
+        // `q` and Ctrl-C quit whatever is open (the help included); Esc closes it.
+        Action::Quit => app.quit = true,
         // The notice is already cleared by `update`.
         Action::Dismiss => app.help = false,
         Action::ToggleHelp => {
@@ -132,9 +127,9 @@ fn export_svg(app: &App) -> String {
         if path.symlink_metadata().is_ok() {
             continue;
         }
-        let written = crate::files::Output::create(&path).and_then(|mut out| {
+        let written = crate::files::Output::create(&path, false).and_then(|mut out| {
             out.write_all(text.as_bytes())?;
-            out.finish_new()
+            out.finish()
         });
         return match written {
             Ok(()) if whole => format!("wrote this page to {}", path.display()),
