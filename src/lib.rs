@@ -20,5 +20,6 @@ pub mod script;
 pub mod session;
 pub mod sim;
 pub mod terminal;
+pub mod text;
 pub mod theme;
 pub mod ui;

@@ -79,7 +79,9 @@ impl<B: Backend> Session<B> {
         if self.app.naming.is_none() {
             return;
         }
-        for c in text.chars().filter(|c| !c.is_control()).take(200) {
+        // Cleaned as any text from outside is (`crate::text`); what it removed is not typed.
+        let text = crate::text::Clean::new(text);
+        for c in text.chars().filter(|&c| c != crate::text::MARK).take(200) {
             self.press(Chord::new(
                 crossterm::event::KeyCode::Char(c),
                 crossterm::event::KeyModifiers::NONE,
