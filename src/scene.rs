@@ -286,14 +286,9 @@ impl Scene {
         let scene: Scene = toml::from_str(&text).map_err(|e| {
             Error::Invalid(format!("{file}: {}", crate::files::toml_error(&text, &e)))
         })?;
-        scene
-            .initial
-            .validate()
-            .map_err(|e| Error::from(e).context(&file))?;
-        scene
-            .settings
-            .validate()
-            .map_err(|e| Error::from(e).context(&file))?;
+        let scene_file = crate::check::Via::Scene;
+        crate::check::release(&scene.initial, &scene.settings, scene_file)
+            .map_err(|e| e.context(&file))?;
         if scene.pins.len() > crate::pin::MAX_PINS {
             return Err(Error::Invalid(format!(
                 "{file}: {} pins, at most {} are kept",
@@ -312,24 +307,17 @@ impl Scene {
             if !p.turn.is_finite() {
                 return Err(Error::Invalid(format!("{what}: turn must be finite")));
             }
+            let pin = crate::check::Via::Pin;
             if let Some(u) = p.units {
-                crate::engine::units::Units::new(u.mu, u.rpm, u.g)
-                    .map_err(|e| Error::Invalid(format!("{what}: units: {e}")))?;
+                crate::check::units(&u, pin).map_err(|e| e.context(&what))?;
             }
-            p.initial
-                .validate()
-                .map_err(|e| Error::from(e).context(&what))?;
-            p.settings
-                .validate()
-                .map_err(|e| Error::from(e).context(&what))?;
+            crate::check::release(&p.initial, &p.settings, pin).map_err(|e| e.context(&what))?;
         }
         if let Some(u) = scene.units {
-            crate::engine::units::Units::new(u.mu, u.rpm, u.g)
-                .map_err(|e| Error::Invalid(format!("{file}: [units] {e}")))?;
+            crate::check::units(&u, scene_file).map_err(|e| e.context(&file))?;
         }
         if let Some(b) = scene.body {
-            b.validate()
-                .map_err(|e| Error::Invalid(format!("{file}: [body] {e}")))?;
+            crate::check::body(&b, scene_file).map_err(|e| e.context(&file))?;
         }
         Ok(scene)
     }

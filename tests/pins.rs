@@ -212,7 +212,8 @@ fn pins_are_saved_with_the_scene_and_load_back() {
     std::fs::write(dir.join("units.toml"), &bad).unwrap();
     let e = Scene::load(dir.join("units.toml").to_str().unwrap()).unwrap_err();
     assert!(
-        e.to_string().contains("pin 2 (\"B\"): units: mu must lie"),
+        e.to_string()
+            .contains("pin 2 (\"B\"): [pins.units] mu must lie in [1e-6, 10], got 0"),
         "{e}\n{bad}"
     );
     let _ = std::fs::remove_dir_all(&dir);

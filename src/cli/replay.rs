@@ -49,7 +49,7 @@ pub fn run(a: ReplayArgs) -> CmdResult {
     match cast {
         Some(out) => {
             let mut file = std::io::BufWriter::new(out);
-            let title = format!("turntable replay {}", a.script);
+            let title = crate::text::clean(&format!("turntable replay {}", a.script));
             replay_cast(app, &steps, &opts, &mut so, &mut file, &title)?;
             file.into_inner().map_err(|e| e.into_error())?.finish()?;
         }

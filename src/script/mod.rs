@@ -137,6 +137,13 @@ fn tokens(line: &str) -> Vec<Token<'_>> {
 
 /// Parses a whole script, expanding `*N` repeats into repeated steps.
 pub fn parse(text: &str) -> Result<Vec<Step>, ParseError> {
+    if text.starts_with('\u{feff}') {
+        return Err(ParseError {
+            line: 1,
+            column: 1,
+            message: "the script begins with a byte-order mark (U+FEFF, invisible in most editors): save it as UTF-8 without one".into(),
+        });
+    }
     let mut steps = Vec::new();
     let mut keys = 0;
     for (index, line) in text.lines().enumerate() {
