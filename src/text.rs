@@ -113,7 +113,7 @@ fn invisible(c: char) -> bool {
 /// Whether `c` is shown as an escape or a mark rather than as itself, in messages
 /// (`files::escape_controls`) as in [`clean`]: controls (C0, DEL, C1) and the invisible
 /// characters that change how text reads.
-pub fn unsafe_char(c: char) -> bool {
+pub fn needs_escape(c: char) -> bool {
     c.is_control() || invisible(c)
 }
 
@@ -184,7 +184,7 @@ pub fn clean(raw: &str) -> String {
                 skip_string(&mut chars, false);
                 continue;
             }
-            c if unsafe_char(c) => {
+            c if needs_escape(c) => {
                 out.push(MARK);
                 continue;
             }
@@ -268,7 +268,7 @@ mod tests {
     }
 
     #[test]
-    fn cleaning_is_idempotent_and_leaves_nothing_unsafe() {
+    fn cleaning_is_idempotent_and_leaves_nothing_to_act_on() {
         for raw in [
             "\x1b[\x1b]\x07",
             "\u{9b}\u{9b}",
@@ -277,7 +277,7 @@ mod tests {
         ] {
             let once = clean(raw);
             assert_eq!(clean(&once), once, "{raw:?}");
-            assert!(!once.chars().any(unsafe_char), "{raw:?} → {once:?}");
+            assert!(!once.chars().any(needs_escape), "{raw:?} → {once:?}");
         }
     }
 }

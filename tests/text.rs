@@ -9,7 +9,7 @@
 mod common;
 use std::path::{Path, PathBuf};
 use std::process::Command;
-use turntable::text::{MARK, clean, unsafe_char};
+use turntable::text::{MARK, clean, needs_escape};
 
 /// Injections a crafted file might carry: each clears the screen, retitles the window, writes
 /// the clipboard, queries the terminal, or moves the cursor, were it printed raw.
@@ -87,7 +87,7 @@ fn clean_output(out: &str, csi: bool) -> Result<(), String> {
             }
             continue;
         }
-        if c != '\n' && unsafe_char(c) {
+        if c != '\n' && needs_escape(c) {
             let at = out.find(c).unwrap_or(0);
             let from = out[..at].char_indices().rev().nth(20).map_or(0, |(i, _)| i);
             return Err(format!(
@@ -119,7 +119,7 @@ fn the_cleaner_keeps_text_and_marks_what_it_removes() {
     for h in HOSTILE {
         let c = clean(h);
         assert!(c.contains(MARK), "{h:?} → {c:?}");
-        assert!(!c.chars().any(unsafe_char), "{h:?} → {c:?}");
+        assert!(!c.chars().any(needs_escape), "{h:?} → {c:?}");
         assert!(
             !c.contains("PWNED") && !c.contains("SGVsbG8") && !c.contains("2J"),
             "a sequence goes whole: {h:?} → {c:?}"
@@ -293,7 +293,7 @@ fn random_control_laden_text_never_reaches_an_output() {
         let n = cases.get();
         // The cleaner: nothing unsafe left, and cleaning twice changes nothing.
         let c = clean(&s);
-        prop_assert!(!c.chars().any(unsafe_char), "{s:?} → {c:?}");
+        prop_assert!(!c.chars().any(needs_escape), "{s:?} → {c:?}");
         prop_assert_eq!(clean(&c), c.clone());
         if n.is_multiple_of(3) {
             bump(3);
@@ -319,7 +319,7 @@ fn random_control_laden_text_never_reaches_an_output() {
                 return Ok(());
             }
         };
-        prop_assert!(!scene.name.chars().any(unsafe_char));
+        prop_assert!(!scene.name.chars().any(needs_escape));
         for plain in [false, true] {
             let opts = Options {
                 plain,
