@@ -650,12 +650,13 @@ pub fn toml_error(text: &str, e: &toml::de::Error) -> String {
     }
 }
 
-/// `text` with control characters (C0, DEL, C1) shown as `\u{..}` escapes, so that a file
-/// name or a script cannot move the cursor or retitle the terminal through a message.
+/// `text` with control characters (C0, DEL, C1) and invisible marks (a byte-order mark, bidi
+/// overrides: `crate::text::needs_escape`) shown as `\u{..}` escapes, so that a file name or a
+/// script cannot move the cursor or retitle the terminal through a message, nor hide in it.
 pub fn escape_controls(text: &str) -> String {
     let mut out = String::with_capacity(text.len());
     for c in text.chars() {
-        if c.is_control() && c != '\n' {
+        if crate::text::needs_escape(c) && c != '\n' {
             out.push_str(&c.escape_unicode().to_string());
         } else {
             out.push(c);

@@ -24,7 +24,8 @@ pub const MARKERS: [char; MAX_PINS] = ['◆', '▲', '▼', '◇', '△', '▽']
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct PinSpec {
-    pub label: String,
+    /// Cleaned as read (`crate::text`).
+    pub label: crate::text::Clean,
     pub initial: Initial,
     #[serde(default)]
     pub settings: Settings,

@@ -5,6 +5,7 @@ use crate::engine::body::Body;
 use crate::engine::units::{Length, SizeRefused, Units, show_metres, show_r_max_in_metres};
 use crate::engine::{Initial, Release, Settings};
 use crate::error::Error;
+use crate::text::Clean;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 use std::path::Path;
@@ -15,10 +16,11 @@ use std::path::Path;
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(try_from = "SceneFile", into = "SceneFile")]
 pub struct Scene {
-    pub name: String,
+    /// Cleaned as read (`crate::text`), as every text from a file is.
+    pub name: Clean,
     /// What the scene shows, one line.
     #[serde(default)]
-    pub about: String,
+    pub about: Clean,
     pub initial: Initial,
     #[serde(default)]
     pub settings: Settings,
@@ -42,9 +44,9 @@ pub struct Scene {
 #[derive(Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct SceneFile {
-    name: String,
+    name: Clean,
     #[serde(default)]
-    about: String,
+    about: Clean,
     initial: Initial,
     #[serde(default)]
     settings: Settings,
@@ -250,7 +252,7 @@ impl Scene {
             .find(|p| p.eq_ignore_ascii_case(name))?
             .to_string();
         Some(Scene {
-            name,
+            name: name.into(),
             about: about.into(),
             initial,
             settings: Settings::default(),
@@ -284,14 +286,9 @@ impl Scene {
         let scene: Scene = toml::from_str(&text).map_err(|e| {
             Error::Invalid(format!("{file}: {}", crate::files::toml_error(&text, &e)))
         })?;
-        scene
-            .initial
-            .validate()
-            .map_err(|e| Error::from(e).context(&file))?;
-        scene
-            .settings
-            .validate()
-            .map_err(|e| Error::from(e).context(&file))?;
+        let scene_file = crate::check::Via::Scene;
+        crate::check::release(&scene.initial, &scene.settings, scene_file)
+            .map_err(|e| e.context(&file))?;
         if scene.pins.len() > crate::pin::MAX_PINS {
             return Err(Error::Invalid(format!(
                 "{file}: {} pins, at most {} are kept",
@@ -300,36 +297,27 @@ impl Scene {
             )));
         }
         for (k, p) in scene.pins.iter().enumerate() {
-            let what = format!("{file}: pin {} ({:?})", k + 1, p.label);
-            if p.label.chars().count() > crate::pin::LABEL_MAX
-                || p.label.chars().any(char::is_control)
-            {
+            let what = format!("{file}: pin {} ({:?})", k + 1, p.label.as_str());
+            if p.label.chars().count() > crate::pin::LABEL_MAX {
                 return Err(Error::Invalid(format!(
-                    "{what}: a label is at most {} printable characters",
+                    "{what}: a label is at most {} characters",
                     crate::pin::LABEL_MAX
                 )));
             }
             if !p.turn.is_finite() {
                 return Err(Error::Invalid(format!("{what}: turn must be finite")));
             }
+            let pin = crate::check::Via::Pin;
             if let Some(u) = p.units {
-                crate::engine::units::Units::new(u.mu, u.rpm, u.g)
-                    .map_err(|e| Error::Invalid(format!("{what}: units: {e}")))?;
+                crate::check::units(&u, pin).map_err(|e| e.context(&what))?;
             }
-            p.initial
-                .validate()
-                .map_err(|e| Error::from(e).context(&what))?;
-            p.settings
-                .validate()
-                .map_err(|e| Error::from(e).context(&what))?;
+            crate::check::release(&p.initial, &p.settings, pin).map_err(|e| e.context(&what))?;
         }
         if let Some(u) = scene.units {
-            crate::engine::units::Units::new(u.mu, u.rpm, u.g)
-                .map_err(|e| Error::Invalid(format!("{file}: [units] {e}")))?;
+            crate::check::units(&u, scene_file).map_err(|e| e.context(&file))?;
         }
         if let Some(b) = scene.body {
-            b.validate()
-                .map_err(|e| Error::Invalid(format!("{file}: [body] {e}")))?;
+            crate::check::body(&b, scene_file).map_err(|e| e.context(&file))?;
         }
         Ok(scene)
     }

@@ -6,8 +6,8 @@
 use crate::app::App;
 use crate::session::{Session, SharedRecorder, lock, new_recorder};
 use crossterm::event::{
-    self, DisableBracketedPaste, DisableMouseCapture, EnableBracketedPaste, EnableMouseCapture,
-    Event, KeyCode, KeyModifiers,
+    DisableBracketedPaste, DisableMouseCapture, EnableBracketedPaste, EnableMouseCapture, Event,
+    KeyCode, KeyModifiers,
 };
 use crossterm::terminal::{
     BeginSynchronizedUpdate, EndSynchronizedUpdate, EnterAlternateScreen, LeaveAlternateScreen,
@@ -20,8 +20,10 @@ use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, AtomicI32, Ordering};
 use std::time::{Duration, Instant};
 
+pub mod input;
 pub mod pace;
 pub mod plain;
+use input::Reader;
 use pace::{Clock, Flight};
 
 /// Puts the terminal back as it was. Safe to call more than once and on a dead terminal.
@@ -280,6 +282,8 @@ fn event_loop(
     let mut flight = Flight::default();
     let mut last_frame: Option<Instant> = None;
     let mut mouse_on = session.app.mouse_capture();
+    // Keys, the mouse, pastes (bounded) and resizes, read here and not by crossterm.
+    let mut input = Reader::new()?;
     while !session.app.should_quit() && !flags.stop.load(Ordering::Relaxed) {
         if flags.suspend.swap(false, Ordering::Relaxed) {
             suspend(session)?;
@@ -321,8 +325,8 @@ fn event_loop(
         }
         let got_input = if flight.awaiting() {
             // Nothing more is written until the frame has arrived; keys stay queued.
-            pace::ask(&mut flight)?;
-            event::poll(Duration::ZERO)?
+            pace::ask(&mut flight, &mut input)?;
+            input.poll(Duration::ZERO)?
         } else {
             // Paused and drawn: wait for input (waking now and then only to notice signals).
             let mut wake = Instant::now() + Duration::from_millis(250);
@@ -332,13 +336,13 @@ fn event_loop(
             if session.app.needs_redraw() {
                 wake = wake.min(frame_due.max(Instant::now()));
             }
-            event::poll(wake.saturating_duration_since(Instant::now()))?
+            input.poll(wake.saturating_duration_since(Instant::now()))?
         };
         if got_input {
             // Take everything queued before drawing again, so held keys cannot lag.
-            let mut queued = vec![event::read()?];
-            while event::poll(Duration::ZERO)? {
-                queued.push(event::read()?);
+            let mut queued: Vec<Event> = std::iter::from_fn(|| input.read()).collect();
+            while input.poll(Duration::ZERO)? {
+                queued.extend(std::iter::from_fn(|| input.read()));
             }
             for ev in pace::coalesce_drags(queued) {
                 match ev {

@@ -22,7 +22,8 @@ pub const BUILTIN: [&str; 4] = ["dark", "light", "high-contrast", "mono"];
 #[derive(Debug, Clone, PartialEq, Eq, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Theme {
-    pub name: String,
+    /// Cleaned as read (`crate::text`).
+    pub name: crate::text::Clean,
     /// How plots and the canvas draw points: braille unless the locale or `--marker` says
     /// otherwise (not a theme file's choice).
     #[serde(skip, default = "braille")]

@@ -482,7 +482,11 @@ fn scene_files_carry_the_coupling() {
     let plain = Scene::preset("B").unwrap().to_toml();
     assert!(!plain.contains("coupling") && !plain.contains("mu_static_ratio"));
     for (name, bad, says) in [
-        ("c.toml", "mu_static_ratio = 0.5\n", "mu-static-ratio"),
+        (
+            "c.toml",
+            "mu_static_ratio = 0.5\n",
+            "[settings] mu_static_ratio",
+        ),
         ("d.toml", "mu_static_ratio = nan\n", "NaN"),
         ("e.toml", "coupling = \"stokes\"\n", "needs gamma"),
         ("f.toml", "gamma = 0.2\n", "needs coupling stokes"),

@@ -21,8 +21,8 @@ fn captions(script: &str) -> Vec<String> {
         .unwrap()
         .into_iter()
         .filter_map(|s| match s {
-            Step::Say(t) => t,
-            Step::Ask(t) => Some(t),
+            Step::Say(t) => t.map(|t| t.to_string()),
+            Step::Ask(t) => Some(t.to_string()),
             _ => None,
         })
         .collect()
@@ -417,7 +417,7 @@ fn every_caption_fits_the_smallest_screen() {
         let steps = parse(l.script).unwrap();
         for s in steps {
             let text = match s {
-                Step::Say(Some(t)) => t,
+                Step::Say(Some(t)) => t.to_string(),
                 Step::Ask(t) => format!("{t}\n{verdict}"),
                 _ => continue,
             };
@@ -624,7 +624,7 @@ fn a_long_caption_at_every_size() {
         .flat_map(|w| (12..=40).step_by(7).map(move |h| (w, h)))
     {
         let mut s = Session::headless(app(), w, h, false);
-        s.app.say(Some(words.clone()));
+        s.app.say(Some(words.as_str().into()));
         let screen = turntable::ui::export::plain_text(s.screen());
         let rows: Vec<&str> = screen
             .lines()
@@ -645,6 +645,6 @@ fn a_long_caption_at_every_size() {
     }
     // Too small for the explorer: its notice, and no caption.
     let mut s = Session::headless(app(), 39, 11, false);
-    s.app.say(Some(words));
+    s.app.say(Some(words.into()));
     assert!(turntable::ui::export::plain_text(s.screen()).contains("too small"));
 }

@@ -282,6 +282,33 @@ fn pasted_text_is_not_keys() {
     assert!(!script.contains("\ns\n"), "{script}");
 }
 
+/// An unpaired paste start (issue 33) no longer swallows every key: Ctrl-C ends the paste
+/// and reaches the explorer at once (it quits, saving the recording), and a paste whose
+/// bytes stop coming is ended, after which `q` quits.
+#[test]
+fn an_unpaired_paste_start_swallows_no_key_for_good() {
+    for (tag, after) in [("paste-ctrl-c", &b"\x03"[..]), ("paste-idle", &b"q"[..])] {
+        let path = rec(tag);
+        let Some((mut child, pty, seen)) = spawn(&path) else {
+            return;
+        };
+        wait_for("the first frame", || contains(&seen, 0, ALT_ON));
+        pty.type_keys(b"\x1b[200~pasted, never ended: q");
+        if after == b"q" {
+            // The paste is ended once its bytes have stopped for half a second.
+            std::thread::sleep(Duration::from_millis(1200));
+        }
+        pty.type_keys(after);
+        wait_for("quit", || child.try_wait().unwrap().is_some());
+        assert_eq!(child.wait().unwrap().code(), Some(0), "{tag}");
+        let script = std::fs::read_to_string(&path).unwrap();
+        // The pasted text was no keys: only the quitting key is recorded.
+        let quit = if after == b"q" { "\nq\n" } else { "\nctrl-c\n" };
+        assert!(script.ends_with(quit), "{tag}: {script}");
+        assert!(!script.contains("\np\n"), "{tag}: {script}");
+    }
+}
+
 /// Whether the pty's line discipline is cooked (canonical input, echo).
 fn cooked(fd: i32) -> bool {
     // SAFETY: a valid descriptor and an out-pointer to a termios.

@@ -164,7 +164,7 @@ impl NameEdit {
         use crossterm::event::{KeyCode, KeyModifiers};
         let plain = chord.mods.difference(KeyModifiers::SHIFT).is_empty();
         match chord.code {
-            KeyCode::Char(c) if plain && !c.is_control() => Some(NameEdit::Char(c)),
+            KeyCode::Char(c) if plain && !crate::text::needs_escape(c) => Some(NameEdit::Char(c)),
             KeyCode::Backspace => Some(NameEdit::Back),
             KeyCode::Enter => Some(NameEdit::Done),
             KeyCode::Esc => Some(NameEdit::Cancel),

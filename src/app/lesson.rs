@@ -11,7 +11,7 @@ use crate::engine::Outcome;
 pub struct Lesson {
     /// The lesson's name, for the caption's title (None: a key script's own captions).
     pub name: Option<String>,
-    pub caption: Option<String>,
+    pub caption: Option<crate::text::Clean>,
     pub question: Option<Question>,
     /// Held until Space or Enter (interactive lessons only: headless, `wait` goes on).
     pub waiting: bool,
@@ -22,7 +22,7 @@ pub struct Lesson {
 /// A prediction: yes means the run on screen escapes.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Question {
-    pub text: String,
+    pub text: crate::text::Clean,
     pub answer: Option<bool>,
     /// The τ on screen when it was asked: unanswered, the run answers only once time has
     /// moved on from there (a run decided at once must not give the answer away).
@@ -70,14 +70,14 @@ impl Lesson {
 
 impl App {
     /// `say`: a caption over the scene until the next `say` or `ask` (None clears it).
-    pub fn say(&mut self, text: Option<String>) {
+    pub fn say(&mut self, text: Option<crate::text::Clean>) {
         self.lesson.caption = text;
         self.lesson.question = None;
         self.dirty = true;
     }
 
     /// `ask`: a prediction for the user to make, y or n; the run then answers it.
-    pub fn ask(&mut self, text: String) {
+    pub fn ask(&mut self, text: crate::text::Clean) {
         self.lesson.caption = None;
         self.lesson.question = Some(Question {
             text,
@@ -99,9 +99,9 @@ impl App {
         let text = match (&l.caption, &l.question) {
             (_, Some(q)) => match self.verdict(q) {
                 Some(v) => format!("{}\n{v}", q.text),
-                None => q.text.clone(),
+                None => q.text.to_string(),
             },
-            (Some(c), None) => c.clone(),
+            (Some(c), None) => c.to_string(),
             (None, None) if l.done && l.name.is_some() => "End of the lesson.".into(),
             (None, None) if l.waiting => String::new(),
             (None, None) => return None,

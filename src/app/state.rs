@@ -313,7 +313,7 @@ impl App {
     /// the run on screen does at the τ on screen, in the panel's notation.
     pub fn about(&self) -> String {
         if !self.edited() {
-            return self.scene.about.clone();
+            return self.scene.about.to_string();
         }
         let base = self.scene.name.trim_end_matches(" (edited)");
         let sim = &self.sim;
@@ -350,14 +350,14 @@ impl App {
         let changed = self.edited() || name.is_some();
         Scene {
             name: if let Some(n) = name {
-                n.to_string()
+                n.into()
             } else if changed {
-                format!("{} (edited)", self.scene.name.trim_end_matches(" (edited)"))
+                format!("{} (edited)", self.scene.name.trim_end_matches(" (edited)")).into()
             } else {
                 self.scene.name.clone()
             },
             about: if changed {
-                self.ending()
+                self.ending().into()
             } else {
                 self.scene.about.clone()
             },
@@ -387,7 +387,7 @@ impl App {
             None
         };
         let label = if self.edited() {
-            let used = |c: char| self.pins.iter().any(|p| p.spec.label == c.to_string());
+            let used = |c: char| self.pins.iter().any(|p| *p.spec.label == *c.to_string());
             ('A'..='Z').find(|c| !used(*c)).unwrap_or('?').to_string()
         } else {
             self.scene
@@ -397,7 +397,7 @@ impl App {
                 .collect()
         };
         let spec = crate::pin::PinSpec {
-            label,
+            label: label.into(),
             initial: self.initial,
             settings: self.settings,
             turn: self.turn,

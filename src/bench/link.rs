@@ -108,7 +108,7 @@ pub fn simulate_scene(scene: &Scene, rate: f64, seconds: f64) -> Result<Link, Er
     Ok(Link {
         scene: match scene.body {
             Some(b) => format!("{} with a body L {}", scene.name, b.length),
-            None => scene.name.clone(),
+            None => scene.name.to_string(),
         },
         rate_kb_per_s: rate / 1024.0,
         seconds,

@@ -126,7 +126,7 @@ impl BodyArgs {
                 .transpose()?,
             angle: self.body_angle.unwrap_or(0.0),
         };
-        b.validate().map_err(|e| Error::Invalid(format!("--{e}")))?;
+        crate::check::body(&b, crate::check::Via::Flags)?;
         Ok(Some(b))
     }
 }
@@ -166,7 +166,8 @@ impl CouplingArgs {
                     .replace("coupling ", "--coupling "),
             )
         })?;
-        c.validate()?;
+        c.validate()
+            .map_err(|e| crate::check::named(e, crate::check::Via::Flags))?;
         Ok(Some(c))
     }
 }
@@ -414,7 +415,12 @@ impl UnitsArgs {
         match (self.mu, self.rpm, self.gravity) {
             (None, None, None) => Ok(None),
             (Some(mu), Some(rpm), g) => {
-                Ok(crate::engine::units::Units::new(mu, rpm, g.unwrap_or(G_DEFAULT)).map(Some)?)
+                let u = Units {
+                    mu,
+                    rpm,
+                    g: g.unwrap_or(G_DEFAULT),
+                };
+                crate::check::units(&u, crate::check::Via::Flags).map(Some)
             }
             _ => Err(Error::invalid(
                 "physical units need both --mu and --rpm (and optionally --g)",
@@ -742,7 +748,7 @@ impl NumericsArgs {
             }
             _ => {}
         }
-        s.validate()?;
+        crate::check::settings(&s, crate::check::Via::Flags)?;
         Ok(s)
     }
 }

@@ -13,7 +13,7 @@ pub fn bench(a: BenchArgs) -> CmdResult {
     if let Some(n) = a.cases {
         if n > 10_000 {
             return Err(Error::Invalid(format!(
-                "cases must be at most 10000, got {n}"
+                "--cases must be at most 10000, got {n}"
             )));
         }
         cfg.cases = n;

@@ -109,8 +109,8 @@ impl Config {
                         ))
                     })?;
                     c.units = Some(
-                        Units::new(u.mu, u.rpm, u.g)
-                            .map_err(|e| refuse(format!("key `units`: {e}")))?,
+                        crate::check::units(&u, crate::check::Via::Config)
+                            .map_err(|e| refuse(e.to_string()))?,
                     );
                 }
                 _ => {
@@ -201,7 +201,7 @@ mod tests {
             ("theme = 3", "key `theme`: expected a string, got 3"),
             (
                 "[units]\nmu = -1\nrpm = 3",
-                "key `units`: mu must lie in (0, 10], got -1",
+                "[units] mu must lie in [1e-6, 10], got -1",
             ),
         ] {
             assert_eq!(parse(text).unwrap_err(), format!("{f}{want}"), "{text}");

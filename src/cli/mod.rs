@@ -21,15 +21,9 @@ pub use args::*;
 
 pub type CmdResult = Result<(), Error>;
 
+/// A release typed as flags, checked as every release is (`crate::check`).
 pub fn check_initial(i: &Initial) -> Result<(), Error> {
-    i.validate()?;
-    if i.phi.abs() > PHI_MAX {
-        return Err(Error::Invalid(format!(
-            "phi must lie in [-{PHI_MAX:e}, {PHI_MAX:e}] rad, got {}",
-            Initial::show(i.phi)
-        )));
-    }
-    Ok(())
+    crate::check::initial(i, crate::check::Via::Flags)
 }
 
 /// A number as the CSV outputs write it: the shortest digits that read back exactly, in
@@ -44,8 +38,7 @@ pub(crate) fn num(x: f64) -> String {
     }
 }
 
-/// Largest |φ| taken (rad): beyond it the angle's remainder mod 2π has lost its digits.
-pub const PHI_MAX: f64 = 1e6;
+pub use crate::check::PHI_MAX;
 
 /// The narrowest bracket `--vtol`/`--xtol` may ask for: a threshold of order 1 resolved to a few
 /// thousand ulps, which the runs' own accuracy (dp54 at tol 1e-14) can still certify.
@@ -57,7 +50,7 @@ pub(crate) fn bracket_width(name: &str, x: f64) -> Result<(), Error> {
         Ok(())
     } else {
         Err(Error::Invalid(format!(
-            "{name} must lie in [{BRACKET_MIN:e}, 1] (narrower than the runs can certify), got {}",
+            "--{name} must lie in [{BRACKET_MIN:e}, 1] (narrower than the runs can certify), got {}",
             Initial::show(x)
         )))
     }
@@ -101,7 +94,7 @@ fn explore(
             ));
         }
         scene.settings.coupling = c;
-        scene.settings.validate()?;
+        crate::check::release(&scene.initial, &scene.settings, crate::check::Via::Flags)?;
     }
     let units = cli.units.units()?;
     // The table a body's metres are measured on: the one the explorer opens on (the flags,

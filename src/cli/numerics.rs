@@ -155,19 +155,14 @@ fn run_inputs(a: &RunArgs) -> Result<(Initial, crate::engine::Settings), Error> 
         release: a.release,
         frictionless: a.frictionless,
     };
-    check_initial(&initial)?;
     if !(a.tau_max.is_finite() && a.tau_max > 0.0 && a.tau_max <= TAU_MAX_LIMIT) {
         return Err(Error::Invalid(format!(
-            "tau-max must lie in (0, {TAU_MAX_LIMIT:e}], got {}",
+            "--tau-max must lie in (0, {TAU_MAX_LIMIT:e}], got {}",
             Initial::show(a.tau_max)
         )));
     }
     let settings = a.numerics.settings()?;
-    if a.frictionless && settings.coupling != crate::engine::Coupling::PAPER {
-        return Err(Error::invalid(
-            "--frictionless is mu = 0, no coupling to the table at all: drop --coupling, --gamma and --mu-static-ratio",
-        ));
-    }
+    crate::check::release(&initial, &settings, crate::check::Via::Flags)?;
     Ok((initial, settings))
 }
 
@@ -273,7 +268,7 @@ pub(super) fn positive(name: &str, x: f64) -> Result<(), Error> {
         Ok(())
     } else {
         Err(Error::Invalid(format!(
-            "{name} must be a positive number, got {}",
+            "--{name} must be a positive number, got {}",
             Initial::show(x)
         )))
     }

@@ -3,7 +3,7 @@
 
 use super::numerics::positive;
 use super::sweep::{fig5_check, fig5_data, fig6_check, fig6_data, map_check, map_data};
-use super::{CmdResult, PlotArgs, PlotFigure, PlotRun, SvgOut, check_initial};
+use super::{CmdResult, PlotArgs, PlotFigure, PlotRun, SvgOut};
 use crate::engine::solve::critical_radius;
 use crate::engine::{Initial, Release, State, Status};
 use crate::error::Error;
@@ -107,8 +107,7 @@ fn pick(r: &PlotRun) -> Result<(Initial, crate::engine::Settings), Error> {
     i.phi = r.phi.unwrap_or(i.phi);
     i.v0 = r.v0.unwrap_or(i.v0);
     i.release = r.release.unwrap_or(i.release);
-    check_initial(&i)?;
-    scene.settings.validate()?;
+    crate::check::release(&i, &scene.settings, crate::check::Via::Flags)?;
     positive("tau-max", r.tau_max)?;
     Ok((i, scene.settings))
 }

@@ -65,7 +65,7 @@ pub fn run(a: ReplayArgs) -> CmdResult {
                 crate::replay::CAST_BYTES_MAX,
                 "--asciicast",
             );
-            let title = format!("turntable replay {}", a.script);
+            let title = crate::text::clean(&format!("turntable replay {}", a.script));
             let dest = file.get_ref().get_ref().dest().display().to_string();
             if let Err(e) = replay_cast(app, &steps, &opts, &mut so, &mut file, &title) {
                 return Err(match crate::files::bound_reached(&e) {

@@ -39,7 +39,7 @@ fn sweep_body(a: &super::BodySweepArgs) -> CmdResult {
     }
     if !(a.tau_max.is_finite() && a.tau_max > 0.0 && a.tau_max <= 1e6) {
         return Err(Error::Invalid(format!(
-            "tau-max must lie in (0, 1e6], got {}",
+            "--tau-max must lie in (0, 1e6], got {}",
             Initial::show(a.tau_max)
         )));
     }
@@ -53,8 +53,8 @@ fn sweep_body(a: &super::BodySweepArgs) -> CmdResult {
                 height: None,
                 angle: a.body_angle,
             };
-            b.validate()
-                .map_err(|e| Error::Invalid(format!("--lengths: {e}")))?;
+            crate::check::body(&b, crate::check::Via::Flags)
+                .map_err(|e| crate::check::retyped(e, "--body-length", "--lengths"))?;
             Ok(b)
         })
         .collect::<Result<Vec<_>, Error>>()?;
@@ -70,8 +70,14 @@ fn sweep_body(a: &super::BodySweepArgs) -> CmdResult {
         let o = rod.finish(a.tau_max, |_| {})?;
         let xi = rod.state.q.length();
         // The error is a rest radius's: defined where both stop.
+        // At the centre (r = 0) L/r is unbounded: the cell is left empty, and said so below.
         let (l_over_r, xi_point, err) = if stuck && o == crate::engine::Outcome::Stuck {
-            (num(b.length / r), num(r), num(xi - r))
+            let ratio = if r > 0.0 {
+                num(b.length / r)
+            } else {
+                String::new()
+            };
+            (ratio, num(r), num(xi - r))
         } else {
             (String::new(), String::new(), String::new())
         };
@@ -85,6 +91,12 @@ fn sweep_body(a: &super::BodySweepArgs) -> CmdResult {
             num(end.tau)
         );
     }
+    if stuck && r == 0.0 {
+        let _ = writeln!(
+            std::io::stderr(),
+            "note: the point rests at the centre (r = 0), where L/r is unbounded: l_over_r is left empty"
+        );
+    }
     write_csv(&csv, out, &a.out)
 }
 
@@ -92,7 +104,7 @@ fn sweep_body(a: &super::BodySweepArgs) -> CmdResult {
 pub(super) fn points(n: usize) -> Result<(), Error> {
     if n == 0 || n > 100_000 {
         return Err(Error::Invalid(format!(
-            "points must lie in 1..=100000, got {n}"
+            "--points must lie in 1..=100000, got {n}"
         )));
     }
     Ok(())
@@ -181,7 +193,8 @@ fn fig6(a: &Fig6Data, out_arg: &OutArg) -> CmdResult {
 pub(super) fn fig6_check(a: &Fig6Data) -> Result<crate::engine::Settings, Error> {
     points(a.points)?;
     positive("xi0-max", a.xi0_max)?;
-    check_initial(&Initial::velocity(a.xi0_max, 0.0, 0.0))?;
+    check_initial(&Initial::velocity(a.xi0_max, 0.0, 0.0))
+        .map_err(|e| crate::check::retyped(e, "--xi0", "--xi0-max"))?;
     solver_settings(&a.numerics)
 }
 
@@ -226,13 +239,14 @@ pub(super) fn map_check(a: &MapData) -> Result<crate::engine::Settings, Error> {
     for (name, n) in [("phi-points", a.phi_points), ("v0-points", a.v0_points)] {
         if !(1..=2000).contains(&n) {
             return Err(Error::invalid(format!(
-                "{name} must lie in 1..=2000, got {n}"
+                "--{name} must lie in 1..=2000, got {n}"
             )));
         }
     }
     if let Some(v) = a.v0_max {
         positive("v0-max", v)?;
-        check_initial(&Initial::velocity(a.xi0, 0.0, v))?;
+        check_initial(&Initial::velocity(a.xi0, 0.0, v))
+            .map_err(|e| crate::check::retyped(e, "--v0", "--v0-max"))?;
     }
     Ok(settings)
 }

@@ -104,8 +104,12 @@ impl Body {
     /// Largest length or height accepted, in R_max (far beyond any table, and squares stay
     /// finite).
     pub const MAX: f64 = 1e6;
+    /// Smallest length accepted, in R_max: with h ≤ MAX and μ ≤ 10 the toppling number μh/L
+    /// stays finite (at most 1e16), and a body this small is a point to every digit shown.
+    pub const MIN_LENGTH: f64 = 1e-9;
 
-    /// Checks the values a user may type: 0 < L ≤ MAX, 0 ≤ h ≤ MAX, |ψ| ≤ [`Initial::MAX`].
+    /// Checks the values a user may type: MIN_LENGTH ≤ L ≤ MAX, 0 ≤ h ≤ MAX,
+    /// |ψ| ≤ [`Initial::MAX`].
     pub fn validate(&self) -> Result<(), Error> {
         let bad = |name: &str, what: &str, x: f64| {
             Err(Error::invalid(format!(
@@ -114,10 +118,10 @@ impl Body {
             )))
         };
         let l = self.length;
-        if !(l.is_finite() && l > 0.0 && l <= Self::MAX) {
+        if !(l.is_finite() && (Self::MIN_LENGTH..=Self::MAX).contains(&l)) {
             return bad(
                 "body-length (units of R_max)",
-                &format!("positive and at most {:e}", Self::MAX),
+                &format!("in [{:e}, {:e}]", Self::MIN_LENGTH, Self::MAX),
                 l,
             );
         }

@@ -20,12 +20,20 @@ fn default_g() -> f64 {
 }
 
 impl Units {
-    /// Checks the values: finite and positive, μ at most 10, rpm at most 10⁶.
+    /// Smallest μ, rpm and g taken: with each in [`Units::MIN`], its maximum], every scale
+    /// (R_max = μg/Ω² from 1e-23 m to 1e19 m, 1/Ω up to 1e7 s, μg/Ω) and every length, time
+    /// and speed shown in SI is a finite number, never 0 or ∞ (nor NaN from their ratio).
+    pub const MIN: f64 = 1e-6;
+
+    /// Checks the values: μ in [1e-6, 10], rpm in [1e-6, 1e6], g in [1e-6, 1e4] (m/s²).
     pub fn new(mu: f64, rpm: f64, g: f64) -> Result<Units, Error> {
         for (name, x, max) in [("mu", mu, 10.0), ("rpm", rpm, 1e6), ("g", g, 1e4)] {
-            if !(x.is_finite() && x > 0.0 && x <= max) {
+            if !(x.is_finite() && (Self::MIN..=max).contains(&x)) {
                 return Err(Error::invalid(format!(
-                    "{name} must lie in (0, {max}], got {x}"
+                    "{name} must lie in [{}, {}], got {}",
+                    Initial::show(Self::MIN),
+                    Initial::show(max),
+                    Initial::show(x)
                 )));
             }
         }
@@ -261,7 +269,7 @@ pub fn show_time(t: f64) -> String {
 
 /// Three significant digits, no exponent below 10⁶.
 fn sig(x: f64) -> String {
-    if !x.is_finite() || x.abs() >= 1e6 {
+    if !x.is_finite() || x.abs() >= 1e6 || (x != 0.0 && x.abs() < 0.01) {
         return format!("{x:.2e}");
     }
     let d = if x.abs() >= 100.0 {

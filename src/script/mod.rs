@@ -27,6 +27,7 @@ pub use header::{ScriptOptions, parse_size, quote_word, scene_line, script_optio
 pub use record::Recorder;
 
 use crate::app::Chord;
+use crate::text::Clean;
 
 use std::fmt;
 use std::ops::RangeInclusive;
@@ -63,12 +64,12 @@ pub enum Step {
     /// Resize the off-screen terminal to width × height cells.
     Resize(u16, u16),
     /// Emit the screen, with an optional label.
-    Snapshot(Option<String>),
+    Snapshot(Option<Clean>),
     Mouse(MouseEvent),
     /// A caption over the scene (None: clear it).
-    Say(Option<String>),
+    Say(Option<Clean>),
     /// A prediction to make: yes means the run on screen escapes.
-    Ask(String),
+    Ask(Clean),
     /// Interactive: hold the lesson until Space or Enter. Headless: nothing.
     Wait,
 }
@@ -136,6 +137,13 @@ fn tokens(line: &str) -> Vec<Token<'_>> {
 
 /// Parses a whole script, expanding `*N` repeats into repeated steps.
 pub fn parse(text: &str) -> Result<Vec<Step>, ParseError> {
+    if text.starts_with('\u{feff}') {
+        return Err(ParseError {
+            line: 1,
+            column: 1,
+            message: "the script begins with a byte-order mark (U+FEFF, invisible in most editors): save it as UTF-8 without one".into(),
+        });
+    }
     let mut steps = Vec::new();
     let mut keys = 0;
     for (index, line) in text.lines().enumerate() {
@@ -252,12 +260,12 @@ fn parse_line(line: &str, steps: &mut Vec<Step>, keys: &mut usize) -> Result<(),
     }
 }
 
-/// The line after its command, as written (inner blanks kept, a comment left out); None
-/// when there is nothing after it.
-fn rest(line: &str, toks: &[Token]) -> Option<String> {
+/// The line after its command, as written (inner blanks kept, a comment left out) and
+/// cleaned (`crate::text`); None when there is nothing after it.
+fn rest(line: &str, toks: &[Token]) -> Option<Clean> {
     toks.get(1)
         .zip(toks.last())
-        .map(|(from, to)| line[from.start..to.start + to.text.len()].to_string())
+        .map(|(from, to)| Clean::new(&line[from.start..to.start + to.text.len()]))
 }
 
 /// Parses a key token with its optional `*N` repeat; `*` alone (or last)

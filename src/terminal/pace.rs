@@ -147,15 +147,22 @@ pub fn coalesce_drags(events: Vec<Event>) -> Vec<Event> {
     out
 }
 
-/// Asks the terminal where its cursor is and waits (up to crossterm's 2 s) for an answer,
+/// How long a cursor-position query is waited for (as crossterm waited).
+pub const ANSWER_WAIT: Duration = Duration::from_secs(2);
+
+/// Asks the terminal where its cursor is and waits (up to [`ANSWER_WAIT`]) for an answer,
 /// keeping any keys that come meanwhile queued for the event loop.
-pub fn ask(flight: &mut Flight) -> std::io::Result<()> {
+pub fn ask(flight: &mut Flight, input: &mut super::input::Reader) -> std::io::Result<()> {
+    use std::io::Write;
     flight.asked();
-    match crossterm::cursor::position() {
-        Ok(_) => flight.answered(),
-        // crossterm's timeout: the answer may still come.
-        Err(e) if e.kind() == std::io::ErrorKind::Other => flight.timed_out(),
-        Err(e) => return Err(e),
+    let mut out = std::io::stdout();
+    out.write_all(b"\x1b[6n")?;
+    out.flush()?;
+    if input.cursor(ANSWER_WAIT)? {
+        flight.answered();
+    } else {
+        // Timed out: the answer may still come.
+        flight.timed_out();
     }
     Ok(())
 }

@@ -9,7 +9,7 @@ use super::{Flags, SaveRecording};
 use crate::app::App;
 use crate::session::Session;
 use crate::ui::plain::{Seen, describe, opening};
-use crossterm::event::{self, Event, KeyCode, KeyModifiers};
+use crossterm::event::{Event, KeyCode, KeyModifiers};
 use crossterm::terminal::{disable_raw_mode, enable_raw_mode};
 use ratatui::backend::TestBackend;
 use std::io::{self, Write};
@@ -80,6 +80,8 @@ fn event_loop(session: &mut Session<TestBackend>, flags: &Flags) -> io::Result<(
     out.flush()?;
     let mut seen = Seen::of(&session.app);
     let mut clock = Clock::new(Instant::now());
+    // Keys read here, not by crossterm: a paste start cannot swallow them (`super::input`).
+    let mut input = super::input::Reader::new()?;
     while !session.app.should_quit() && !flags.stop.load(Ordering::Relaxed) {
         if flags.suspend.swap(false, Ordering::Relaxed) {
             restore();
@@ -110,10 +112,10 @@ fn event_loop(session: &mut Session<TestBackend>, flags: &Flags) -> io::Result<(
         if session.app.is_playing() {
             wake = wake.min(clock.next());
         }
-        if event::poll(wake.saturating_duration_since(Instant::now()))? {
-            let mut queued = vec![event::read()?];
-            while event::poll(Duration::ZERO)? {
-                queued.push(event::read()?);
+        if input.poll(wake.saturating_duration_since(Instant::now()))? {
+            let mut queued: Vec<Event> = std::iter::from_fn(|| input.read()).collect();
+            while input.poll(Duration::ZERO)? {
+                queued.extend(std::iter::from_fn(|| input.read()));
             }
             for ev in queued {
                 match ev {

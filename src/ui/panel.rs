@@ -509,7 +509,7 @@ fn body_lines(
     let rotation = if c.rotation.is_finite() {
         small(c.rotation)
     } else {
-        "∞".into()
+        "∞ at ξ = 0".into()
     };
     out.push(kv(
         "L/ξ",
