@@ -272,3 +272,40 @@ fn solver_brackets_are_certified_only_when_checked() {
     let v = json(&["escape", "--xi0", "0.5", "--json", "--no-check"]);
     assert!(v["certified"].is_null(), "{v}");
 }
+
+/// A bracket that is not certified says what was tried and no more: a fixed-step method is not
+/// run tighter, so its text claims no tighter runs (issue 35: it said "even with runs 10^4x
+/// tighter" where none were made).
+#[test]
+fn an_uncertified_bracket_claims_no_runs_it_did_not_make() {
+    let (code, text, _) = turntable(&[
+        "escape", "--xi0", "0.5", "--phi", "0", "--method", "rk2", "--dt", "0.1", "--vtol", "1e-8",
+    ]);
+    assert_eq!(code, 0, "{text}");
+    assert!(text.contains("NOT certified"), "{text}");
+    assert!(!text.contains("tighter"), "{text}");
+}
+
+/// Followed past its escape certificate (`--follow`), `run` prints the end at τ-max but its
+/// measured differences are the certificate's: it says so (issue 35).
+#[test]
+fn a_followed_run_says_its_errors_are_the_certificates() {
+    let (code, text, _) = turntable(&[
+        "run",
+        "--xi0",
+        "0.5",
+        "--v0",
+        "0.7",
+        "--follow",
+        "--tau-max",
+        "10",
+    ]);
+    assert_eq!(code, 0, "{text}");
+    assert!(text.contains("tau      10.000000000"), "{text}");
+    assert!(
+        text.contains("agrees; at the escape certificate (tau "),
+        "{text}"
+    );
+    let (_, text, _) = turntable(&["run", "--xi0", "0.5", "--v0", "0.7"]);
+    assert!(!text.contains("at the escape certificate"), "{text}");
+}
