@@ -5,7 +5,7 @@
 //! Nothing here reads the clock or the environment: the same script gives byte-identical
 //! output on every run and machine.
 
-use crate::app::App;
+use crate::app::{App, Effect, Effects};
 use crate::asciicast::Cast;
 use crate::script::Step;
 use crate::session::Session;
@@ -90,6 +90,7 @@ fn run(
         return plain(app, steps, opts, out);
     }
     let mut s = Session::headless(app, opts.size.0, opts.size.1, false);
+    s.carry = answer;
     let mut shots = 0;
     // Ticks passed: the recording's clock.
     let mut ticks = 0;
@@ -150,6 +151,7 @@ fn plain(
 ) -> std::io::Result<()> {
     use crate::ui::plain::{Seen, describe, opening};
     let mut s = Session::headless(app, opts.size.0, opts.size.1, false);
+    s.carry = answer;
     let mut seen = Seen::of(&s.app);
     let say = |s: &Session<TestBackend>, seen: &mut Seen, out: &mut dyn std::io::Write| {
         let now = Seen::of(&s.app);
@@ -198,6 +200,23 @@ fn plain(
     out.flush()
 }
 
+/// A replay writes no file: each effect is answered with what it would have written, where.
+pub fn answer(app: &mut App, effects: Effects) {
+    for effect in effects {
+        app.report(match effect {
+            Effect::SaveScene { scene, path } => format!(
+                "replay saves nothing: \"{}\" → {} (or the next free name)",
+                scene.name,
+                path.display()
+            ),
+            Effect::ExportSvg { page, .. } => format!(
+                "replay saves nothing: this page → turntable-{}-N.svg (the first free N)",
+                crate::ui::figure::slug(page)
+            ),
+        });
+    }
+}
+
 fn snapshot(
     s: &mut Session<TestBackend>,
     out: &mut dyn std::io::Write,
@@ -242,6 +261,14 @@ mod tests {
             "{out}"
         );
         assert_eq!(out.lines().count(), 25);
+    }
+
+    /// A replay writes no file: `s` and `E` are answered with what would have been written.
+    #[test]
+    fn a_replay_answers_effects_without_writing() {
+        let out = run("s\nsnapshot one\nE\nsnapshot two");
+        assert!(out.contains("replay saves nothing: \"C\""), "{out}");
+        assert!(out.contains("replay saves nothing: this page"), "{out}");
     }
 
     #[test]

@@ -3,7 +3,7 @@
 //! in a headless replay (`TestBackend`) alike, so what `--record` writes is exactly what a
 //! replay applies.
 
-use crate::app::{App, Chord};
+use crate::app::{App, Chord, Effect, Effects};
 use crate::script::{Recorder, Step};
 use crossterm::event::{KeyEvent, MouseEvent};
 use ratatui::Terminal;
@@ -35,6 +35,9 @@ pub struct Session<B: Backend> {
     recorder: Option<SharedRecorder>,
     /// An interactive lesson's script, fed in as time passes (see [`Session::pump_lesson`]).
     lesson: Option<crate::lesson::Driver>,
+    /// How the effects `update` returns are carried out: [`carry_out`] (files written) unless
+    /// the shell says otherwise (a replay answers them with [`crate::replay::answer`]).
+    pub carry: fn(&mut App, Effects),
 }
 
 impl<B: Backend> Session<B> {
@@ -53,6 +56,7 @@ impl<B: Backend> Session<B> {
             term,
             recorder,
             lesson: None,
+            carry: carry_out,
         })
     }
 
@@ -69,7 +73,8 @@ impl<B: Backend> Session<B> {
         if let Some(r) = &self.recorder {
             lock(r).key(chord);
         }
-        self.app.press(chord);
+        let effects = self.app.press(chord);
+        (self.carry)(&mut self.app, effects);
     }
 
     /// Pasted text: typed, letter by letter, only at the save prompt (there it is the name);
@@ -98,7 +103,8 @@ impl<B: Backend> Session<B> {
         if let Some(r) = &self.recorder {
             lock(r).mouse(&ev);
         }
-        self.app.handle_mouse(ev);
+        let effects = self.app.handle_mouse(ev);
+        (self.carry)(&mut self.app, effects);
         Ok(())
     }
 
@@ -193,6 +199,51 @@ impl<B: Backend> Session<B> {
     pub fn take_recording(&mut self) -> Option<String> {
         self.recorder.take().map(|r| lock(&r).clone().finish())
     }
+}
+
+/// Carries out what `update` asked for: a scene saved to a new file, the page on screen
+/// written as SVG; each reported back to `app` as a notice (where it went, or why not).
+pub fn carry_out(app: &mut App, effects: Effects) {
+    for effect in effects {
+        let notice = match effect {
+            Effect::SaveScene { scene, path } => match scene.save_new(&path) {
+                Ok(p) => format!("saved \"{}\" to {}", scene.name, p.display()),
+                Err(e) => format!("could not save {}: {e}", path.display()),
+            },
+            Effect::ExportSvg { dir, page } => export_svg(app, &dir, page),
+        };
+        app.report(notice);
+    }
+}
+
+/// Writes the page on screen as SVG to the first free `turntable-PAGE-N.svg` in `dir`; never
+/// over a file. Says where, or why not.
+fn export_svg(app: &App, dir: &std::path::Path, page: crate::app::pages::Page) -> String {
+    use std::io::Write;
+    let (fig, whole) = crate::ui::figure::page(app);
+    let text = crate::figure::to_svg(&fig);
+    let slug = crate::ui::figure::slug(page);
+    for n in 1..=999 {
+        let path = dir.join(format!("turntable-{slug}-{n}.svg"));
+        if path.symlink_metadata().is_ok() {
+            continue;
+        }
+        let written = crate::files::Output::create(&path, false).and_then(|mut out| {
+            out.write_all(text.as_bytes())?;
+            out.finish()
+        });
+        return match written {
+            Ok(()) if whole => format!("wrote this page to {}", path.display()),
+            Ok(()) => format!(
+                "wrote this page to {} (partial: it is still computing)",
+                path.display()
+            ),
+            // Taken meanwhile: the next name.
+            Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => continue,
+            Err(e) => format!("could not write {}: {e}", path.display()),
+        };
+    }
+    format!("could not write turntable-{slug}-N.svg: 999 names taken")
 }
 
 /// A terminal that is not UTF-8 (`--marker ascii`, or a locale that says so) gets ASCII only:

@@ -19,8 +19,15 @@ fn app(scene: &str) -> App {
     App::new(Scene::preset(scene).unwrap(), theme())
 }
 
+/// A key pressed, and what it asks for carried out as the explorer's session does (files
+/// written).
 fn key(app: &mut App, c: char) {
-    app.handle_key(KeyEvent::new(KeyCode::Char(c), KeyModifiers::NONE));
+    press(app, KeyEvent::new(KeyCode::Char(c), KeyModifiers::NONE));
+}
+
+fn press(app: &mut App, k: KeyEvent) {
+    let effects = app.handle_key(k);
+    turntable::session::carry_out(app, effects);
 }
 
 /// The canvas part of a screen (left of the panel at 80 columns).
@@ -165,7 +172,7 @@ fn every_key_in_the_keymap_does_what_its_help_says() {
         let (tau, init, set) = (a.sim.now().tau, a.initial, a.settings);
         let (speed, zoom, pan) = (a.speed, a.zoom, a.pan);
         let init_playing = a.playing;
-        a.handle_key(b.chord.event());
+        press(&mut a, b.chord.event());
         let after = render(&mut a, 80, 24);
         let what = format!("{} ({})", b.chord.label(), b.help);
         match b.action {
@@ -1180,7 +1187,10 @@ fn s_names_the_scene_it_saves() {
     for c in "Case Dx, μ × 2q".chars() {
         key(&mut a, c);
     }
-    a.handle_key(KeyEvent::new(KeyCode::Backspace, KeyModifiers::NONE));
+    press(
+        &mut a,
+        KeyEvent::new(KeyCode::Backspace, KeyModifiers::NONE),
+    );
     assert!(!a.should_quit());
     assert_eq!(a.initial.xi0, xi0, "x typed a letter, no edit");
     assert_eq!(a.naming.as_deref(), Some("Case Dx, μ × 2"));
@@ -1189,7 +1199,7 @@ fn s_names_the_scene_it_saves() {
         screen.contains(" save as: Case Dx, μ × 2▏"),
         "the prompt shows what is typed:\n{screen}"
     );
-    a.handle_key(KeyEvent::new(KeyCode::Enter, KeyModifiers::NONE));
+    press(&mut a, KeyEvent::new(KeyCode::Enter, KeyModifiers::NONE));
     assert_eq!(a.naming, None);
     let path = dir.join("case-dx-μ-2.toml");
     let saved = Scene::load(path.to_str().unwrap()).unwrap();
@@ -1201,12 +1211,12 @@ fn s_names_the_scene_it_saves() {
     for c in "case dx μ 2".chars() {
         key(&mut a, c);
     }
-    a.handle_key(KeyEvent::new(KeyCode::Enter, KeyModifiers::NONE));
+    press(&mut a, KeyEvent::new(KeyCode::Enter, KeyModifiers::NONE));
     assert!(dir.join("case-dx-μ-2-2.toml").exists());
     // Esc: nothing saved, and keys are keys again.
     key(&mut a, 'S');
     key(&mut a, 'z');
-    a.handle_key(KeyEvent::new(KeyCode::Esc, KeyModifiers::NONE));
+    press(&mut a, KeyEvent::new(KeyCode::Esc, KeyModifiers::NONE));
     assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 2);
     key(&mut a, 'x');
     assert!(a.initial.xi0 > xi0);
@@ -1224,7 +1234,10 @@ fn s_names_the_scene_it_saves() {
         "{prompt}"
     );
     // Ctrl-C still quits from the prompt.
-    a.handle_key(KeyEvent::new(KeyCode::Char('c'), KeyModifiers::CONTROL));
+    press(
+        &mut a,
+        KeyEvent::new(KeyCode::Char('c'), KeyModifiers::CONTROL),
+    );
     assert!(a.should_quit());
     let _ = std::fs::remove_dir_all(&dir);
 }
@@ -1244,4 +1257,75 @@ fn a_paste_types_the_name_at_the_prompt_only() {
     let script = s.take_recording().unwrap();
     assert!(script.contains("S F i g"), "{script}");
     assert!(!script.contains("still"), "{script}");
+}
+
+/// `update` is pure: `s`, `S` then Enter, and `E` write no file; they return what to write.
+/// The shell carries it out (the explorer's session writes it, a replay says what it would
+/// have written) and reports back as a notice.
+#[test]
+fn saving_and_exporting_are_effects_the_shell_carries_out() {
+    use turntable::app::action::NameEdit;
+    use turntable::app::{Effect, update};
+    let dir = std::env::temp_dir().join(format!("turntable-effects-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let files = || std::fs::read_dir(&dir).unwrap().count();
+    let mut a = app("C");
+    a.save_path = dir.join("scene.toml");
+    let save = update(&mut a, Action::Save);
+    assert!(
+        matches!(&save[..], [Effect::SaveScene { scene, path }]
+            if *path == a.save_path && scene.initial == a.initial),
+        "{save:?}"
+    );
+    let export = update(&mut a, Action::ExportSvg);
+    assert_eq!(
+        export,
+        [Effect::ExportSvg {
+            dir: dir.clone(),
+            page: Page::Turntable
+        }]
+    );
+    assert!(update(&mut a, Action::SaveAs).is_empty());
+    for c in "Mine".chars() {
+        assert!(update(&mut a, Action::Name(NameEdit::Char(c))).is_empty());
+    }
+    let named = update(&mut a, Action::Name(NameEdit::Done));
+    assert!(
+        matches!(&named[..], [Effect::SaveScene { scene, path }]
+            if scene.name == "Mine" && *path == dir.join("mine.toml")),
+        "{named:?}"
+    );
+    assert_eq!(files(), 0, "update wrote nothing");
+    // A replay answers them: a notice each, no file.
+    let mut r = a.clone();
+    turntable::replay::answer(&mut r, save.clone());
+    assert!(
+        r.notice
+            .as_deref()
+            .unwrap()
+            .starts_with("replay saves nothing: \""),
+        "{:?}",
+        r.notice
+    );
+    turntable::replay::answer(&mut r, export.clone());
+    assert_eq!(
+        r.notice.as_deref(),
+        Some("replay saves nothing: this page → turntable-turntable-N.svg (the first free N)")
+    );
+    assert_eq!(files(), 0, "a replay wrote nothing");
+    // The explorer's shell writes them, and says where.
+    turntable::session::carry_out(&mut a, save);
+    assert!(a.notice.as_deref().unwrap().starts_with("saved \""));
+    turntable::session::carry_out(&mut a, named);
+    turntable::session::carry_out(&mut a, export);
+    assert!(
+        a.notice
+            .as_deref()
+            .unwrap()
+            .starts_with("wrote this page to")
+    );
+    assert!(dir.join("scene.toml").exists() && dir.join("mine.toml").exists());
+    assert!(dir.join("turntable-turntable-1.svg").exists());
+    let _ = std::fs::remove_dir_all(&dir);
 }

@@ -45,8 +45,10 @@ impl Plain {
         self.press(Chord::new(KeyCode::Char(c), KeyModifiers::NONE))
     }
 
+    /// A key pressed; what it asks to write is answered as a replay answers it (no file).
     fn press(&mut self, chord: Chord) -> Vec<String> {
-        self.app.press(chord);
+        let effects = self.app.press(chord);
+        turntable::replay::answer(&mut self.app, effects);
         self.say()
     }
 
@@ -269,7 +271,6 @@ fn help_lists_every_key_of_the_keymap() {
 #[test]
 fn the_save_prompt_is_spoken() {
     let mut p = Plain::new("C");
-    p.app.writes_files = false;
     assert_eq!(
         p.key('S'),
         ["save as: type a name, Enter saves, Esc cancels"]
@@ -289,12 +290,12 @@ fn the_save_prompt_is_spoken() {
 fn every_key_on_every_preset_says_plain_lines_and_numbers() {
     for scene in turntable::scene::PRESETS {
         let mut p = Plain::new(scene);
-        p.app.writes_files = false;
         for b in KEYMAP {
             if b.action == turntable::app::Action::Quit {
                 continue;
             }
-            p.app.handle_key(KeyEvent::new(b.chord.code, b.chord.mods));
+            let effects = p.app.handle_key(KeyEvent::new(b.chord.code, b.chord.mods));
+            turntable::replay::answer(&mut p.app, effects);
             p.say();
             p.ticks(3);
         }

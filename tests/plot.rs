@@ -378,7 +378,10 @@ fn the_explorer_writes_the_page_to_a_new_file() {
         turntable::theme::Theme::builtin("dark").unwrap(),
     );
     app.save_path = dir.join("turntable-scene.toml");
-    let press = |app: &mut App, code| app.handle_key(KeyEvent::new(code, KeyModifiers::NONE));
+    let press = |app: &mut App, code| {
+        let effects = app.handle_key(KeyEvent::new(code, KeyModifiers::NONE));
+        turntable::session::carry_out(app, effects);
+    };
     // It plays from the start: 80 ticks are τ = 4, past B's stop.
     for _ in 0..80 {
         app.tick();

@@ -3,6 +3,7 @@
 
 pub mod action;
 pub mod chord;
+pub mod effect;
 pub mod keymap;
 pub mod lesson;
 pub mod pages;
@@ -11,6 +12,7 @@ pub mod update;
 
 pub use action::Action;
 pub use chord::Chord;
+pub use effect::{Effect, Effects};
 pub use keymap::{Binding, KEYMAP};
 pub use state::{App, CanvasGeom, G_DEFAULT, MU_PROBE, TICK_DT};
 pub use update::update;
@@ -25,48 +27,60 @@ impl App {
         App::build(scene, theme)
     }
 
-    /// A terminal's key event: its chord, if it has one (releases have none).
-    pub fn handle_key(&mut self, key: KeyEvent) {
-        if let Some(chord) = Chord::from_event(&key) {
-            self.press(chord);
+    /// A terminal's key event: its chord, if it has one (releases have none). Returns what
+    /// the shell must carry out (see [`update`]).
+    pub fn handle_key(&mut self, key: KeyEvent) -> Effects {
+        match Chord::from_event(&key) {
+            Some(chord) => self.press(chord),
+            None => Effects::new(),
         }
     }
 
-    /// Keymap → action → update.
-    pub fn press(&mut self, chord: Chord) {
+    /// Keymap → action → update; returns what the shell must carry out.
+    pub fn press(&mut self, chord: Chord) -> Effects {
         // While a name is typed, keys are its letters; only Ctrl-C keeps its meaning (quit).
         let ctrl_c = Chord::new(KeyCode::Char('c'), KeyModifiers::CONTROL);
         let action = match &self.naming {
             Some(_) if chord != ctrl_c => action::NameEdit::of(chord).map(Action::Name),
             _ => keymap::lookup_when(chord, self.lesson.prompt()),
         };
-        if let Some(a) = action {
-            update(self, a);
+        match action {
+            Some(a) => update(self, a),
+            None => Effects::new(),
         }
     }
 
+    /// What the shell reports back once it has carried out an effect: the notice saying
+    /// what was done (or why not).
+    pub fn report(&mut self, notice: String) {
+        self.notice = Some(notice);
+        self.dirty = true;
+    }
+
     /// The mouse as actions, through the canvas as last drawn: a click places the release
-    /// point, a drag sets the initial velocity, the wheel zooms.
-    pub fn handle_mouse(&mut self, ev: MouseEvent) {
+    /// point, a drag sets the initial velocity, the wheel zooms. Returns what the shell must
+    /// carry out (see [`update`]).
+    pub fn handle_mouse(&mut self, ev: MouseEvent) -> Effects {
         if !self.mouse {
-            return;
+            return Effects::new();
         }
         if self.help {
-            match ev.kind {
+            return match ev.kind {
                 MouseEventKind::ScrollUp => update(self, Action::HelpScroll(-3)),
                 MouseEventKind::ScrollDown => update(self, Action::HelpScroll(3)),
-                _ => {}
-            }
-            return;
+                _ => Effects::new(),
+            };
         }
-        let Some(g) = self.geom else { return };
+        let Some(g) = self.geom else {
+            return Effects::new();
+        };
         let at = g.to_world(ev.column, ev.row);
         if g.page != pages::Page::Turntable {
             // The plot is the (φ, v0) plane: a click picks that release.
             if let (MouseEventKind::Down(MouseButton::Left), Some(p)) = (ev.kind, at) {
-                update(self, Action::PickRelease(p));
+                return update(self, Action::PickRelease(p));
             }
-            return;
+            return Effects::new();
         }
         let action = match (ev.kind, at) {
             (MouseEventKind::Up(_), _) => Action::EndDrag,
@@ -76,9 +90,9 @@ impl App {
             }
             (MouseEventKind::ScrollUp, Some(_)) => Action::ZoomIn,
             (MouseEventKind::ScrollDown, Some(_)) => Action::ZoomOut,
-            _ => return,
+            _ => return Effects::new(),
         };
-        update(self, action);
+        update(self, action)
     }
 
     /// One tick: advances the run(s) by `TICK_DT × speed` of sim time if playing.

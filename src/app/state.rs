@@ -114,9 +114,8 @@ pub struct App {
     pub readouts_asked: u64,
     /// The name being typed at the save prompt (`S`), while it is open.
     pub naming: Option<String>,
+    /// Where `s` saves (`S` beside it, `E` in its folder).
     pub save_path: PathBuf,
-    /// False in a headless replay: `s` then says what it would save and writes nothing.
-    pub writes_files: bool,
     pub quit: bool,
     /// What the body shows (`Tab` cycles).
     pub page: Page,
@@ -192,7 +191,6 @@ impl App {
             notice: rod_notice,
             readouts_asked: 0,
             save_path: PathBuf::from(SAVE_PATH),
-            writes_files: true,
             naming: None,
             quit: false,
             page: view.map_or(Page::Turntable, |v| v.page),
