@@ -113,7 +113,7 @@ fn run(
             (Step::Tick(n), Some(c)) => {
                 // Tick by tick, a frame each, as the explorer draws them.
                 for _ in 0..*n {
-                    if !s.app.is_playing() {
+                    if !s.is_playing() {
                         break;
                     }
                     s.apply(&Step::Tick(1));
@@ -177,11 +177,12 @@ fn plain(
                     .map(|l| format!(": {l}"))
                     .unwrap_or_default();
                 writeln!(out, "--- snapshot {shots}{label}")?;
-                crate::app::update(&mut s.app, crate::app::Action::Readouts);
+                let effects = crate::app::update(&mut s.app, crate::app::Action::Readouts);
+                answer(&mut s.app, effects);
             }
             Step::Tick(n) => {
                 for _ in 0..*n {
-                    if !s.app.is_playing() {
+                    if !s.is_playing() {
                         break;
                     }
                     s.apply(&Step::Tick(1));
@@ -193,7 +194,7 @@ fn plain(
         // A page's numbers are said once computed: headless, at once (the terminal's plain
         // mode says them when its worker brings them).
         if crate::ui::pages::summarized(s.app.page) {
-            s.app.sync_analysis();
+            s.sync_analysis();
         }
         say(&s, &mut seen, out)?;
     }
@@ -203,7 +204,7 @@ fn plain(
 /// A replay writes no file: each effect is answered with what it would have written, where.
 pub fn answer(app: &mut App, effects: Effects) {
     for effect in effects {
-        app.report(match effect {
+        let notice = match effect {
             Effect::SaveScene { scene, path } => format!(
                 "replay saves nothing: \"{}\" → {} (or the next free name)",
                 scene.name,
@@ -213,7 +214,10 @@ pub fn answer(app: &mut App, effects: Effects) {
                 "replay saves nothing: this page → turntable-{}-N.svg (the first free N)",
                 crate::ui::figure::slug(page)
             ),
-        });
+            // Words on screen, not a file: said as in the explorer.
+            Effect::Readouts => crate::ui::plain::summary(app),
+        };
+        app.report(notice);
     }
 }
 

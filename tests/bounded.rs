@@ -225,7 +225,7 @@ fn page_pieces_are_bounded_whatever_the_step() {
     s.key(KeyEvent::new(KeyCode::Tab, KeyModifiers::NONE));
     s.key(KeyEvent::new(KeyCode::Tab, KeyModifiers::NONE));
     s.screen();
-    assert!(!s.app.analysis.busy());
+    assert!(!s.analysis.busy());
     assert_eq!(s.app.settings, tiny);
     // The page is complete: every curve's every piece arrived (unknown where over budget).
     let curve = s
@@ -253,17 +253,17 @@ fn headless_pages_are_computed_for_frames_not_for_keys() {
     s.screen();
     let cells = s.app.charts.map.as_ref().expect("map").cells.len() as u64;
     assert!(cells > 500, "{cells}");
-    let first = s.app.analysis.computed();
+    let first = s.analysis.computed();
     assert_eq!(first, CURVE_POINTS as u64 + cells);
     for _ in 0..20 {
         s.key(key('x'));
     }
-    assert_eq!(s.app.analysis.computed(), first, "keys compute nothing");
+    assert_eq!(s.analysis.computed(), first, "keys compute nothing");
     s.screen();
     let map = s.app.charts.map.as_ref().expect("map");
     assert!(map.cells.iter().all(Option::is_some));
     assert_eq!(
-        s.app.analysis.computed() - first,
+        s.analysis.computed() - first,
         CURVE_POINTS as u64 + map.cells.len() as u64
     );
     // However large the terminal, a map has at most MAP_CELLS cells, in the plot's shape.

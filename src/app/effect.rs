@@ -15,6 +15,9 @@ pub enum Effect {
     /// Write `page`, as it is on screen, as SVG to the first free `turntable-PAGE-N.svg` in
     /// `dir`.
     ExportSvg { dir: PathBuf, page: Page },
+    /// Say the readouts in words (`I`): words for people are the view's, so the shell puts
+    /// them in the notice.
+    Readouts,
 }
 
 /// What one action asks of the shell, in order (most actions: nothing).

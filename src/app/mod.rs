@@ -14,7 +14,7 @@ pub use action::Action;
 pub use chord::Chord;
 pub use effect::{Effect, Effects};
 pub use keymap::{Binding, KEYMAP};
-pub use state::{App, CanvasGeom, G_DEFAULT, MU_PROBE, TICK_DT};
+pub use state::{App, CanvasGeom, G_DEFAULT, MU_PROBE, Measured, TICK_DT};
 pub use update::update;
 
 use crate::engine::Settings;
@@ -97,7 +97,6 @@ impl App {
 
     /// One tick: advances the run(s) by `TICK_DT × speed` of sim time if playing.
     pub fn tick(&mut self) {
-        self.ask_analysis();
         if self.playing {
             update::step(self);
         } else if self.catch_up() {
@@ -126,11 +125,16 @@ impl App {
         self.dirty = true;
     }
 
-    /// The terminal is now `width` × `height`: redraw, and size what is computed for it.
+    /// The terminal is now `width` × `height`: redraw (the shell then asks for what the
+    /// pages compute at this size).
     pub fn resize(&mut self, width: u16, height: u16) {
         self.screen = (width, height);
         self.dirty = true;
-        self.ask_analysis();
+    }
+
+    /// What the view measured at the terminal's size (the shell tells it after a resize).
+    pub fn measured(&mut self, m: Measured) {
+        self.measured = m;
     }
 
     /// The canvas geometry of the last draw (where mouse cells land in world coordinates).
@@ -138,10 +142,10 @@ impl App {
         self.geom
     }
 
-    /// Whether time should tick: playing, the paper's run still catching up, or a page
-    /// filling in.
+    /// Whether time should tick for the model: playing, or the paper's run still catching
+    /// up (the shell adds a page filling in: `Session::is_playing`).
     pub fn is_playing(&self) -> bool {
-        self.playing || self.paper_lags() || self.analysis.busy()
+        self.playing || self.paper_lags()
     }
 
     pub fn mouse_capture(&self) -> bool {

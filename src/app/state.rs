@@ -2,12 +2,11 @@
 //! how it is shown. Nothing here reads the clock: time passes only through ticks.
 
 use super::pages::{Charts, Page};
-use crate::analysis::Analysis;
 use crate::engine::{Frame, Initial, Settings, State};
+use crate::present::num;
 use crate::scene::Scene;
 use crate::sim::Sim;
 use crate::theme::Theme;
-use crate::ui::panel::num;
 use ratatui::layout::Rect;
 use std::path::PathBuf;
 
@@ -32,6 +31,16 @@ pub fn record_player() -> crate::engine::units::Units {
 pub const PANEL_W: u16 = 30;
 /// Where `s` saves the scene.
 pub const SAVE_PATH: &str = "turntable-scene.toml";
+
+/// What the view measured for the model at the terminal's size: the shell tells it on resize
+/// (`crate::session::tell_size`), so that `update` never asks the view.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Measured {
+    /// Rows of the help a page (PgUp/PgDn) moves by.
+    pub help_page: u16,
+    /// The help's last first row: scrolled no further.
+    pub help_max_scroll: u16,
+}
 
 /// The canvas as last drawn: where it is on screen and which world rectangle it shows, so
 /// that mouse cells map back to table coordinates.
@@ -119,9 +128,8 @@ pub struct App {
     pub quit: bool,
     /// What the body shows (`Tab` cycles).
     pub page: Page,
-    /// What the analysis pages have received, and where it is computed.
+    /// What the analysis pages have received (the shell's worker computes them).
     pub charts: Charts,
-    pub analysis: Analysis,
     /// A real table (`--mu`, `--rpm`, `--g` or the scene's `[units]`): readouts in SI too.
     pub units: Option<crate::engine::units::Units>,
     /// The μ measurement of the rest-radius page (Eq. 22): Ω in rad/s and r0c in metres.
@@ -135,6 +143,8 @@ pub struct App {
     pub(crate) geom: Option<CanvasGeom>,
     /// The terminal's size, as its session last said (the outcome map's grid follows it).
     pub(crate) screen: (u16, u16),
+    /// What the view measured at that size.
+    pub(crate) measured: Measured,
     /// Mouse drag in progress: setting the initial velocity.
     pub(crate) dragging: bool,
 }
@@ -195,7 +205,6 @@ impl App {
             quit: false,
             page: view.map_or(Page::Turntable, |v| v.page),
             charts: Charts::default(),
-            analysis: Analysis::inline(),
             mu_probe: MU_PROBE,
             units,
             pins,
@@ -203,6 +212,7 @@ impl App {
             dirty: true,
             geom: None,
             screen: (80, 24),
+            measured: Measured::default(),
             dragging: false,
         }
     }
@@ -243,59 +253,36 @@ impl App {
         self.sim.now()
     }
 
-    /// Brings the analysis pages up to date for a frame: takes the pieces that arrived and
-    /// asks for what the page on screen still lacks, computing it now when inline (headless).
-    /// Returns whether anything arrived or was asked.
-    pub fn sync_analysis(&mut self) -> bool {
-        self.sync(true)
+    /// The next analysis job the page on screen needs and lacks, if any, with the settings it
+    /// is computed at; an outcome map at the grid `map_grid` gives for its speed range. The
+    /// shell holds the worker and measures the plot (`crate::session::sync`).
+    pub fn wanted_job(
+        &self,
+        map_grid: impl Fn(f64) -> Option<(usize, usize)>,
+    ) -> Option<(crate::analysis::Job, Settings)> {
+        let job = super::pages::wanted(
+            self.page,
+            &self.charts,
+            &self.initial,
+            self.settings,
+            map_grid,
+        )?;
+        Some((job, crate::analysis::settings_for(self.settings)))
     }
 
-    /// As [`App::sync_analysis`], but an inline request is only noted: keys and ticks call
-    /// this, so fifty edits before a frame compute one page, not fifty.
-    pub(crate) fn ask_analysis(&mut self) -> bool {
-        self.sync(false)
+    /// A piece of an analysis job, brought by the shell's worker.
+    pub fn receive(
+        &mut self,
+        job: &crate::analysis::Job,
+        settings: Settings,
+        piece: crate::analysis::Piece,
+    ) {
+        self.charts.apply(job, settings, piece);
+        self.dirty = true;
     }
 
-    fn sync(&mut self, compute: bool) -> bool {
-        let mut moved = false;
-        // Inline, each request completes when computed: a page needs at most five jobs.
-        for _ in 0..8 {
-            if compute {
-                self.analysis.compute();
-            }
-            if let Some((job, settings)) = self.analysis.current() {
-                for p in self.analysis.take() {
-                    self.charts.apply(&job, settings, p);
-                    moved = true;
-                }
-            }
-            let settings = crate::analysis::settings_for(self.settings);
-            let wanted = super::pages::wanted(
-                self.page,
-                &self.charts,
-                &self.initial,
-                self.settings,
-                |v0_max| crate::ui::pages::map_grid(self, v0_max),
-            );
-            let Some(job) = wanted else {
-                // Nothing is computed for a page that is not on screen.
-                self.analysis.cancel();
-                break;
-            };
-            if self.analysis.current() == Some((job, settings)) {
-                // In flight, or done and still lacking (a failed piece): ask no more.
-                break;
-            }
-            let todo = self.charts.missing(&job, settings);
-            self.analysis.request(job, settings, todo);
-            moved = true;
-        }
-        self.dirty |= moved;
-        moved
-    }
-
-    /// The terminal's size as its session last said: the outcome map's grid follows it (see
-    /// `ui::pages::map_grid`), a function of the size, not of when frames were drawn, so that
+    /// The terminal's size as its session last said: the outcome map's grid follows it (the
+    /// shell measures it: `ui::pages::map_grid`), a function of the size, not of when frames were drawn, so that
     /// the same keys give the same map.
     pub fn screen(&self) -> (u16, u16) {
         self.screen

@@ -14,22 +14,7 @@ use ratatui::text::{Line, Span};
 use ratatui::widgets::Paragraph;
 use std::f64::consts::PI;
 
-/// A number for a readout: never NaN or inf on screen.
-pub fn num(x: f64, prec: usize) -> String {
-    if x.is_finite() {
-        let s = format!("{x:.prec$}");
-        if s.trim_start_matches('-')
-            .chars()
-            .all(|c| c == '0' || c == '.')
-        {
-            s.trim_start_matches('-').to_string()
-        } else {
-            s
-        }
-    } else {
-        "—".into()
-    }
-}
+pub use crate::present::num;
 
 /// A release speed: four decimals, up to six where they are not zeros (C's v0 = 0.6078 and
 /// its escape speed 0.607797… differ in the sixth).

@@ -16,7 +16,7 @@ pub(super) fn apply(app: &mut App, action: Action) -> Effects {
         }
         Action::HelpScroll(rows) => scroll_help(app, i32::from(rows)),
         Action::HelpPage(pages) => {
-            let page = crate::ui::help::page(app.screen().1);
+            let page = app.measured.help_page;
             scroll_help(app, i32::from(pages) * i32::from(page));
         }
         Action::Save => return vec![save(app, None)],
@@ -45,7 +45,7 @@ pub(super) fn apply(app: &mut App, action: Action) -> Effects {
         }
         Action::Readouts => {
             app.readouts_asked += 1;
-            app.notice = Some(crate::ui::plain::summary(app));
+            return vec![Effect::Readouts];
         }
         // Other groups' actions: `update` never sends them here.
         _ => {}
@@ -113,8 +113,7 @@ fn file_stem(name: &str) -> String {
 /// Moves the help by `rows` (no further than its end at this size); nothing when it is shut.
 fn scroll_help(app: &mut App, rows: i32) {
     if app.help {
-        let (w, h) = app.screen();
-        let end = i32::from(crate::ui::help::max_scroll(w, h, &app.theme));
+        let end = i32::from(app.measured.help_max_scroll);
         let to = (i32::from(app.help_scroll) + rows).clamp(0, end);
         app.help_scroll = u16::try_from(to).unwrap_or(0);
     }

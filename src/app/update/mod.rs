@@ -39,7 +39,6 @@ pub fn update(app: &mut App, action: Action) -> Effects {
             None => cut,
         });
     }
-    app.ask_analysis();
     effects
 }
 
