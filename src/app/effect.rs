@@ -11,7 +11,7 @@ use std::path::PathBuf;
 #[derive(Clone, Debug, PartialEq)]
 pub enum Effect {
     /// Save `scene` to a new file at `path`, or the next free name beside it.
-    SaveScene { scene: Scene, path: PathBuf },
+    SaveScene { scene: Box<Scene>, path: PathBuf },
     /// Write `page`, as it is on screen, as SVG to the first free `turntable-PAGE-N.svg` in
     /// `dir`.
     ExportSvg { dir: PathBuf, page: Page },

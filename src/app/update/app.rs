@@ -90,7 +90,7 @@ fn save(app: &App, name: Option<&str>) -> Effect {
         None => app.save_path.clone(),
     };
     Effect::SaveScene {
-        scene: app.scene_named(name),
+        scene: Box::new(app.scene_named(name)),
         path,
     }
 }
