@@ -64,7 +64,7 @@ fn the_escape_speed_page_holds_the_solver_s_curves() {
     let mut a = app("C");
     a.page = Page::EscapeSpeed;
     common::sync(&mut a);
-    let s = settings_for(a.settings);
+    let s = settings_for(a.settings());
     for xi0 in std::iter::once(0.5).chain(PAPER_XI0) {
         let c = a.charts.curve(xi0, s).expect("curve");
         assert!(c.complete(), "{xi0}");
@@ -111,7 +111,7 @@ fn the_escape_speed_page_holds_the_solver_s_curves() {
     );
     assert!(screen.contains(&note), "{note}\n{screen}");
     // C's v0 = 0.6078 at φ = 0 is below v_e(0) there: the page says it sticks.
-    assert!(c.ve[0].unwrap().hi().unwrap() > a.initial.v0);
+    assert!(c.ve[0].unwrap().hi().unwrap() > a.initial().v0);
     assert!(screen.contains("release sticks (below v_e)"), "{screen}");
 }
 
@@ -120,7 +120,7 @@ fn the_outcome_map_agrees_with_the_escape_speeds() {
     let mut a = app("C");
     a.page = Page::OutcomeMap;
     common::sync(&mut a);
-    let s = settings_for(a.settings);
+    let s = settings_for(a.settings());
     let curve = a.charts.curve(0.5, s).unwrap().clone();
     let map = a.charts.map.clone().expect("map");
     let turntable::analysis::Job::Map {
@@ -178,12 +178,12 @@ fn a_click_on_the_map_picks_that_release_and_enter_runs_it() {
         row,
         modifiers: KeyModifiers::NONE,
     });
-    assert!((a.initial.phi.rem_euclid(TAU) - want.x).abs() < 1e-9);
-    assert!((a.initial.v0 - want.y).abs() < 1e-9);
-    assert_eq!(a.initial.release, Release::Velocity);
+    assert!((a.initial().phi.rem_euclid(TAU) - want.x).abs() < 1e-9);
+    assert!((a.initial().v0 - want.y).abs() < 1e-9);
+    assert_eq!(a.initial().release, Release::Velocity);
     press(&mut a, KeyCode::Enter);
     assert_eq!(a.page, Page::Turntable);
-    assert!(a.playing && a.sim.now().tau == 0.0);
+    assert!(a.playing && a.sim().now().tau == 0.0);
 }
 
 #[test]
@@ -229,7 +229,7 @@ fn the_time_plots_show_the_energy_identity() {
     for _ in 0..60 {
         a.tick();
     }
-    let path = a.sim.trail().to_vec();
+    let path = a.sim().trail().to_vec();
     let [e, w] = turntable::ui::time_plots::energy_pair(&path);
     let worst = e
         .iter()
@@ -298,7 +298,7 @@ fn the_map_fills_the_plot_and_a_return_computes_only_what_is_missing() {
     let cells = &mut charts.map.as_mut().unwrap().cells;
     cells[3] = None;
     cells[17] = None;
-    let s = settings_for(a.settings);
+    let s = settings_for(a.settings());
     assert_eq!(charts.missing(&map.job, s), vec![3, 17]);
     let mut an = Analysis::inline();
     an.request(map.job, s, charts.missing(&map.job, s));
@@ -324,20 +324,20 @@ fn the_escape_page_does_not_guess_between_its_angles() {
     let mut a = app("C");
     a.page = Page::EscapeSpeed;
     common::sync(&mut a);
-    let s = settings_for(a.settings);
+    let s = settings_for(a.settings());
     let c = a.charts.curve(0.5, s).unwrap().clone();
     let n = c.ve.len();
     let (v1, v2) = (
         c.ve[1].unwrap().hi().unwrap(),
         c.ve[2].unwrap().hi().unwrap(),
     );
-    a.initial.phi = 1.5 * TAU / n as f64;
+    a.explore().edit_initial(|i| i.phi = 1.5 * TAU / n as f64);
     for (v0, words) in [
         (0.5 * (v1 + v2), "release ≈ v_e: Enter runs it to see"),
         (v1.max(v2) + 1e-3, "release escapes (above v_e)"),
         (v1.min(v2) - 1e-3, "release sticks (below v_e)"),
     ] {
-        a.initial.v0 = v0;
+        a.explore().edit_initial(|i| i.v0 = v0);
         let screen = render(&mut a, 100, 30);
         assert!(screen.contains(words), "{v0}: {words}\n{screen}");
     }
@@ -356,7 +356,7 @@ fn outside_xi_1_the_pages_show_the_sticking_window() {
     };
     let mut a = app("D");
     for xi0 in [1.1, 1.05, 1.3, 2.0] {
-        a.initial.xi0 = xi0;
+        a.explore().edit_initial(|i| i.xi0 = xi0);
         a.page = Page::EscapeSpeed;
         common::sync(&mut a);
         let c = a.charts.curve(xi0, s).expect("curve").clone();
@@ -421,19 +421,19 @@ fn outside_xi_1_the_pages_show_the_sticking_window() {
         screen.contains("release sticks (in the window)"),
         "{screen}"
     );
-    d.initial.v0 = 0.3;
+    d.explore().edit_initial(|i| i.v0 = 0.3);
     let screen = render(&mut d, 100, 30);
     assert!(
         screen.contains("release escapes (below the window)"),
         "{screen}"
     );
-    d.initial.v0 = 3.0;
+    d.explore().edit_initial(|i| i.v0 = 3.0);
     let screen = render(&mut d, 100, 30);
     assert!(
         screen.contains("release escapes (above the window)"),
         "{screen}"
     );
-    d.initial.phi = 0.0;
+    d.explore().edit_initial(|i| i.phi = 0.0);
     let screen = render(&mut d, 100, 30);
     assert!(
         screen.contains("release escapes (no window at this φ)"),
@@ -486,10 +486,11 @@ fn the_map_grid_is_the_drawn_plot_at_every_size() {
             modifiers: KeyModifiers::NONE,
         });
         assert!(
-            (a.initial.phi.rem_euclid(TAU) - phi).abs() < 1e-6 && (a.initial.v0 - v0).abs() < 1e-6,
+            (a.initial().phi.rem_euclid(TAU) - phi).abs() < 1e-6
+                && (a.initial().v0 - v0).abs() < 1e-6,
             "{w}×{h}: {} {} vs {phi} {v0}",
-            a.initial.phi,
-            a.initial.v0
+            a.initial().phi,
+            a.initial().v0
         );
     }
 }
@@ -501,7 +502,7 @@ fn no_number_is_cut_at_any_width() {
     let mut a = app("C");
     a.page = Page::EscapeSpeed;
     common::sync(&mut a);
-    let s = settings_for(a.settings);
+    let s = settings_for(a.settings());
     let c = a.charts.curve(0.5, s).unwrap();
     let ((_, _), (_, vmax)) = c.extremes().unwrap();
     let (_, vmin) = c.least.unwrap().unwrap();

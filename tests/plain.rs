@@ -65,7 +65,7 @@ impl Plain {
 
 /// How the engine's own run of the app's release ends: the stop or the escape.
 fn engine_end(app: &App) -> (Outcome, f64, f64) {
-    let mut run = Run::new(app.initial, Settings::default()).unwrap();
+    let mut run = Run::new(app.initial(), Settings::default()).unwrap();
     let (out, _) = run.finish(100.0).unwrap();
     match (run.status(), run.escape()) {
         (Status::Stuck { tau, q }, _) => (out, tau, q.length()),
@@ -176,7 +176,7 @@ fn compare_says_how_the_papers_scheme_ends_too() {
     let said = p.ticks(400);
     assert_eq!(said[0], "stuck at ξ = 0.9972 (τ = 5.602)");
     // The paper's fixed-step RK2 steps over C's stop and escapes (Sec. IV), as its own run.
-    let mut paper = Run::new(p.app.initial, Settings::paper()).unwrap();
+    let mut paper = Run::new(p.app.initial(), Settings::paper()).unwrap();
     paper.finish(100.0).unwrap();
     let e = paper.escape().expect("the paper's RK2 lets C escape");
     assert!(
@@ -366,7 +366,7 @@ fn a_body_scene_says_the_bodys_pivot_rest_and_escape_as_time_reaches_them() {
     let scene = Scene::load("tests/replay/body.toml").unwrap();
     let body = scene.body.unwrap();
     let app = App::new(scene, Theme::builtin("dark").unwrap());
-    let track = common::rod_track(body, 1.0, &app.initial, 1e-10, 200.0);
+    let track = common::rod_track(body, 1.0, &app.initial(), 1e-10, 200.0);
     let k = track
         .phases
         .iter()
@@ -417,7 +417,7 @@ fn a_body_scene_says_the_bodys_pivot_rest_and_escape_as_time_reaches_them() {
     }
     // Fig. 2's release outside ξ = 1: certified at once, said with the new release.
     let said = p.key('6');
-    let cert = p.app.rod.as_ref().unwrap().escape.unwrap();
+    let cert = p.app.rod().unwrap().escape.unwrap();
     assert_eq!(cert, 0.0);
     assert!(
         said.contains(&"the body escapes (certified at τ = 0.000)".to_string()),

@@ -397,7 +397,7 @@ fn the_explorer_writes_the_page_to_a_new_file() {
     let (x, y) = (axis(&tags, "x-tick"), axis(&tags, "y-tick"));
     // The trail ends where the particle is on screen: B at rest (docs/numerics.md).
     let end = *points(with_class(&tags, "series")[0]).last().unwrap();
-    let now = app.sim.now();
+    let now = app.sim().now();
     assert!((x(end.0) - now.r.x).abs() < 1e-5 && (y(end.1) - now.r.y).abs() < 1e-5);
     assert!((now.xi() - 0.9452679655).abs() < 1e-8, "{}", now.xi());
     // Never over a file: a second press, and a name taken meanwhile, give new names.

@@ -79,22 +79,12 @@ impl CanvasGeom {
 
 #[derive(Clone, Debug)]
 pub struct App {
-    /// The scene as loaded (what `0` resets to).
-    pub scene: Scene,
-    /// The initial conditions and settings being explored.
-    pub initial: Initial,
-    pub settings: Settings,
-    pub sim: Sim,
-    /// The paper's scheme from the same initial conditions, when comparing.
-    pub paper: Option<Sim>,
-    /// The scene's finite body (the appendix's two masses on a rod) from the same release,
-    /// drawn as a bar; None without a body, with μ = 0 or under Stokes drag.
-    pub rod: Option<crate::engine::rod::RodTrack>,
+    /// The scene, the initial conditions and settings being explored, and their runs: read
+    /// through [`App::initial`], [`App::sim`] and the like, changed only through its
+    /// setters, which restart the runs.
+    pub(super) exploration: super::exploration::Exploration,
     /// In a body scene, the point model's path and marker drawn beside the body (`C`).
     pub point_model: bool,
-    /// What the last computed body track has to say (it was cut short), for the notice after
-    /// the key that computed it.
-    pub(crate) rod_notice: Option<String>,
     pub theme: Theme,
     pub playing: bool,
     pub speed: f64,
@@ -156,15 +146,6 @@ pub fn view_radius(initial: &Initial) -> f64 {
 
 impl App {
     pub(crate) fn build(scene: Scene, theme: Theme) -> App {
-        let initial = sanitize(scene.initial);
-        let settings = if scene.settings.validate().is_ok() {
-            scene.settings
-        } else {
-            Settings::default()
-        };
-        let sim = make_sim(initial, settings);
-        let rod = make_rod(scene.body, &initial, settings);
-        let rod_notice = rod.as_ref().and_then(rod_cut_notice);
         let units = scene.units;
         let mut pins = Vec::new();
         for spec in scene.pins.iter().rev().take(crate::pin::MAX_PINS).rev() {
@@ -174,15 +155,11 @@ impl App {
             }
         }
         let view = scene.view.filter(|v| v.zoom.is_finite() && v.zoom > 0.0);
+        let mut exploration = super::exploration::Exploration::new(scene);
         App {
-            scene,
-            initial,
-            settings,
-            sim,
-            paper: None,
-            rod,
+            notice: exploration.take_rod_notice(),
+            exploration,
             point_model: view.is_none_or(|v| v.point),
-            rod_notice: None,
             theme,
             playing: true,
             speed: 1.0,
@@ -198,7 +175,6 @@ impl App {
             turn: 0.0,
             pan: glam::DVec2::ZERO,
             mouse: true,
-            notice: rod_notice,
             readouts_asked: 0,
             save_path: PathBuf::from(SAVE_PATH),
             naming: None,
@@ -217,40 +193,70 @@ impl App {
         }
     }
 
-    /// Restarts both runs at τ = 0 from the current initial conditions and settings.
-    pub fn restart(&mut self) {
-        self.initial = sanitize(self.initial);
-        self.sim = make_sim(self.initial, self.settings);
-        self.rod = make_rod(self.scene.body, &self.initial, self.settings);
-        self.rod_notice = self.rod.as_ref().and_then(rod_cut_notice);
-        if self.paper.is_some() {
-            self.paper = Some(make_sim(self.initial, Settings::paper()));
-        }
+    /// The scene as loaded (what `0` resets to).
+    pub fn scene(&self) -> &Scene {
+        self.exploration.scene()
+    }
+
+    /// The initial conditions being explored.
+    pub fn initial(&self) -> Initial {
+        self.exploration.initial()
+    }
+
+    pub fn settings(&self) -> Settings {
+        self.exploration.settings()
+    }
+
+    /// The run on screen.
+    pub fn sim(&self) -> &Sim {
+        self.exploration.sim()
+    }
+
+    /// The paper's scheme from the same initial conditions, when comparing.
+    pub fn paper(&self) -> Option<&Sim> {
+        self.exploration.paper()
+    }
+
+    /// The scene's finite body (the appendix's two masses on a rod) from the same release,
+    /// drawn as a bar; None without a body, with μ = 0 or under Stokes drag.
+    pub fn rod(&self) -> Option<&crate::engine::rod::RodTrack> {
+        self.exploration.rod()
+    }
+
+    /// What is explored, to read as a whole.
+    pub fn exploration(&self) -> &super::exploration::Exploration {
+        &self.exploration
+    }
+
+    /// What is explored, to change through its setters (each restarts the runs); the screen
+    /// is redrawn.
+    pub fn explore(&mut self) -> &mut super::exploration::Exploration {
+        self.dirty = true;
+        &mut self.exploration
     }
 
     /// Brings the paper's run to the τ on screen, within one tick's step budget (so after `c`
     /// on a long session it catches up over several ticks). Returns whether it moved.
     pub fn catch_up(&mut self) -> bool {
-        let target = self.sim.now().tau;
-        self.paper.as_mut().is_some_and(|p| p.catch_up_to(target))
+        self.exploration.catch_up()
     }
 
     /// Whether the paper's run lags behind the one on screen (it is catching up).
     pub fn paper_lags(&self) -> bool {
-        self.paper
+        self.paper()
             .as_ref()
-            .is_some_and(|p| p.live() && p.now().tau < self.sim.now().tau - 1e-9)
+            .is_some_and(|p| p.live() && p.now().tau < self.sim().now().tau - 1e-9)
     }
 
     /// Whether the point model is drawn: always, but in a body scene whose body is drawn and
     /// `C` has hidden it.
     pub fn point_shown(&self) -> bool {
-        self.point_model || self.rod.is_none()
+        self.point_model || self.rod().is_none()
     }
 
     /// The state on screen.
     pub fn now(&self) -> State {
-        self.sim.now()
+        self.sim().now()
     }
 
     /// The next analysis job the page on screen needs and lacks, if any, with the settings it
@@ -263,11 +269,11 @@ impl App {
         let job = super::pages::wanted(
             self.page,
             &self.charts,
-            &self.initial,
-            self.settings,
+            &self.initial(),
+            self.settings(),
             map_grid,
         )?;
-        Some((job, crate::analysis::settings_for(self.settings)))
+        Some((job, crate::analysis::settings_for(self.settings())))
     }
 
     /// A piece of an analysis job, brought by the shell's worker.
@@ -291,17 +297,17 @@ impl App {
     /// Whether the initial conditions or settings differ from the scene as loaded, the scene
     /// taken as the app holds it (φ modulo 2π: D's 1.2π is −0.8π on screen, not an edit).
     pub fn edited(&self) -> bool {
-        self.initial != sanitize(self.scene.initial) || self.settings != self.scene.settings
+        self.initial() != sanitize(self.scene().initial) || self.settings() != self.scene().settings
     }
 
     /// What the scene shows, one line: the scene's own words until it is edited, then what
     /// the run on screen does at the τ on screen, in the panel's notation.
     pub fn about(&self) -> String {
         if !self.edited() {
-            return self.scene.about.to_string();
+            return self.scene().about.to_string();
         }
-        let base = self.scene.name.trim_end_matches(" (edited)");
-        let sim = &self.sim;
+        let base = self.scene().name.trim_end_matches(" (edited)");
+        let sim = &self.sim();
         let what = match sim.outcome_now() {
             crate::engine::Outcome::Running => {
                 format!("sliding at τ = {}", num(sim.now().tau, 3))
@@ -313,7 +319,7 @@ impl App {
 
     /// How the run ends, once it is decided (whatever τ is on screen): empty before.
     pub(crate) fn ending(&self) -> String {
-        let run = &self.sim.run;
+        let run = &self.sim().run;
         match (run.status(), run.escape()) {
             (crate::engine::Status::Stuck { tau, q }, _) => {
                 format!("sticks at ξ = {} (τ = {})", num(q.length(), 4), num(tau, 3))
@@ -337,19 +343,23 @@ impl App {
             name: if let Some(n) = name {
                 n.into()
             } else if changed {
-                format!("{} (edited)", self.scene.name.trim_end_matches(" (edited)")).into()
+                format!(
+                    "{} (edited)",
+                    self.scene().name.trim_end_matches(" (edited)")
+                )
+                .into()
             } else {
-                self.scene.name.clone()
+                self.scene().name.clone()
             },
             about: if changed {
                 self.ending().into()
             } else {
-                self.scene.about.clone()
+                self.scene().about.clone()
             },
-            initial: self.initial,
-            settings: self.settings,
+            initial: self.initial(),
+            settings: self.settings(),
             units: self.units,
-            body: self.scene.body,
+            body: self.scene().body,
             view: Some(crate::scene::View {
                 page: self.page,
                 frame: self.view,
@@ -375,7 +385,7 @@ impl App {
             let used = |c: char| self.pins.iter().any(|p| *p.spec.label == *c.to_string());
             ('A'..='Z').find(|c| !used(*c)).unwrap_or('?').to_string()
         } else {
-            self.scene
+            self.scene()
                 .name
                 .chars()
                 .take(crate::pin::LABEL_MAX)
@@ -383,8 +393,8 @@ impl App {
         };
         let spec = crate::pin::PinSpec {
             label: label.into(),
-            initial: self.initial,
-            settings: self.settings,
+            initial: self.initial(),
+            settings: self.settings(),
             turn: self.turn,
             units: self.units,
         };
@@ -433,7 +443,7 @@ impl App {
         self.pins
             .iter()
             .map(|p| p.end().tau * p.scale(self.units).1)
-            .fold(self.sim.now().tau, f64::max)
+            .fold(self.sim().now().tau, f64::max)
     }
 }
 
@@ -465,20 +475,21 @@ pub fn sanitize(mut i: Initial) -> Initial {
 /// certificate out to the point's [`view_radius`] (the class sees it leave), within the
 /// track's step and state budgets; None where there is no body, no dry friction, or the body
 /// is refused (the panel's conditions still show).
-fn make_rod(
+pub(super) fn make_rod(
     body: Option<crate::engine::body::Body>,
     initial: &Initial,
     settings: Settings,
+    steps: u64,
 ) -> Option<crate::engine::rod::RodTrack> {
     let body = body?;
     if initial.frictionless || settings.stokes().is_some() {
         return None;
     }
     let tol = settings.scheme.tol().unwrap_or(1e-10);
-    use crate::engine::rod::{RodRun, RodTrack, TRACK_STATES, TRACK_STEPS};
+    use crate::engine::rod::{RodRun, RodTrack, TRACK_STATES};
     let run = RodRun::new(body, settings.hold(), initial, tol).ok()?;
     let run = run.following(view_radius(initial));
-    Some(RodTrack::from_run(run, ROD_TAU, TRACK_STEPS, TRACK_STATES))
+    Some(RodTrack::from_run(run, ROD_TAU, steps, TRACK_STATES))
 }
 
 /// How far in τ the explorer runs the body.
@@ -501,7 +512,7 @@ pub fn rod_cut_notice(rod: &crate::engine::rod::RodTrack) -> Option<String> {
     })
 }
 
-pub(crate) fn make_sim(initial: Initial, settings: Settings) -> Sim {
+pub(super) fn make_sim(initial: Initial, settings: Settings) -> Sim {
     Sim::new(initial, settings, view_radius(&initial))
         .or_else(|_| Sim::new(sanitize(initial), Settings::default(), 4.5))
         .expect("sanitized initial conditions and default settings are valid")

@@ -33,7 +33,7 @@ pub fn update(app: &mut App, action: Action) -> Effects {
         Group::Lesson => lesson::apply(app, action),
     }
     // A body's track cut short by the key just pressed says so, beside what the key said.
-    if let Some(cut) = app.rod_notice.take() {
+    if let Some(cut) = app.exploration.take_rod_notice() {
         app.notice = Some(match app.notice.take() {
             Some(n) => format!("{n}; {cut}"),
             None => cut,
@@ -45,9 +45,11 @@ pub fn update(app: &mut App, action: Action) -> Effects {
 /// One tick of sim time (× speed) for both runs. Marks the screen dirty only if time moved.
 pub fn step(app: &mut App) -> bool {
     let dtau = super::state::TICK_DT * app.speed;
-    let before = (app.sim.cursor, app.sim.samples.len());
-    app.sim.advance(dtau);
-    let mut moved = before != (app.sim.cursor, app.sim.samples.len());
+    let (sim, _) = app.exploration.runs_mut();
+    let before = (sim.cursor, sim.samples.len());
+    sim.advance(dtau);
+    let moved = before != (sim.cursor, sim.samples.len());
+    let mut moved = moved;
     moved |= app.catch_up();
     app.dirty |= moved;
     moved
