@@ -1,7 +1,7 @@
 //! The configuration file and the user's themes (issue 21), as a user meets them: the binary
 //! run with XDG_CONFIG_HOME set to a folder the test writes (never the user's own).
 
-mod common;
+use crate::common;
 use std::io::Read;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
@@ -40,7 +40,7 @@ fn run(xdg: &Path, args: &[&str]) -> (i32, String, String) {
 
 /// The dark theme under another name, with a background no built-in theme has.
 fn my_theme(name: &str) -> String {
-    include_str!("../themes/dark.toml")
+    include_str!("../../themes/dark.toml")
         .replace("name = \"dark\"", &format!("name = \"{name}\""))
         .replace("#11151c", "#010203")
 }

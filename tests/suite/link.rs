@@ -4,7 +4,7 @@
 //! and that answers cursor-position queries when they arrive. The bounds are in frames and
 //! bytes, not in time.
 
-mod common;
+use crate::common;
 use std::io::Read;
 use std::os::fd::AsRawFd;
 use std::process::{Child, Command};

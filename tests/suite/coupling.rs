@@ -1,7 +1,8 @@
 //! Beyond the paper's coupling (issue 23): static friction above kinetic (`--mu-static-ratio`)
 //! and Stokes drag (`--coupling stokes`), each against a closed form, a limit, or plain runs.
 
-mod common;
+use crate::common;
+use crate::reference;
 use common::{render, seeded as config, turntable};
 use glam::DVec2;
 use proptest::prelude::*;
@@ -69,7 +70,7 @@ fn static_friction_changes_nothing_for_releases_inside_the_rim() {
     let base = critical_radius(Settings::default(), 1e-7).unwrap();
     let more = critical_radius(held(3.0), 1e-7).unwrap();
     assert!((base.value - more.value).abs() < 1e-7);
-    assert!((base.value - 0.87204386).abs() < 1e-6);
+    assert!((base.value - reference::XI0C).abs() < 1e-6);
 }
 
 /// Thrown inward from outside ξ = 1, the particle slows, but Coriolis turns it before it stops

@@ -3,7 +3,7 @@
 //! typed it and prints its number readably, and every accepted table and body shows finite
 //! numbers (no `inf`, no `NaN`).
 
-mod common;
+use crate::common;
 use common::turntable;
 use std::path::PathBuf;
 use std::process::Command;

@@ -1,7 +1,7 @@
 //! The arrows that explain (`a`, `A`, `i`): friction opposes the slip velocity, the net force
 //! is the forces' sum (the equations' acceleration), and each reads without colour.
 
-mod common;
+use crate::common;
 use common::render;
 use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
 use turntable::app::App;

@@ -50,8 +50,8 @@ pub fn sync(app: &mut turntable::app::App) {
 }
 
 /// A new pseudo-terminal of `cols` × `rows`: master and slave, close-on-exec (as a terminal
-/// emulator's master is: no other child may keep it up), or None where none can be opened
-/// (the caller then skips, saying so).
+/// emulator's master is: no other child may keep it up). Where none can be opened it panics,
+/// unless `TURNTABLE_SKIP_PTY=1`: then None, and the caller skips, saying so.
 pub fn openpty(cols: u16, rows: u16) -> Option<(std::os::fd::OwnedFd, std::os::fd::OwnedFd)> {
     use std::os::fd::FromRawFd;
     let (mut master, mut slave) = (0, 0);
@@ -72,7 +72,14 @@ pub fn openpty(cols: u16, rows: u16) -> Option<(std::os::fd::OwnedFd, std::os::f
         )
     };
     if r != 0 {
-        eprintln!("skipped: no pseudo-terminal here");
+        // A test that needs a terminal and cannot have one fails, unless told that none is
+        // to be had here: a silent skip would pass where nothing was checked.
+        assert!(
+            std::env::var_os("TURNTABLE_SKIP_PTY").is_some_and(|v| v == "1"),
+            "no pseudo-terminal could be opened (errno {}); set TURNTABLE_SKIP_PTY=1 to skip the tests that need one",
+            std::io::Error::last_os_error()
+        );
+        eprintln!("skipped (TURNTABLE_SKIP_PTY=1): no pseudo-terminal here");
         return None;
     }
     // SAFETY: fresh descriptors we now own.
@@ -157,4 +164,15 @@ pub fn rod_track_within(
 ) -> turntable::engine::rod::RodTrack {
     let run = turntable::engine::rod::RodRun::new(body, hold, initial, tol).unwrap();
     turntable::engine::rod::RodTrack::from_run(run, tau_max, max_steps, max_states)
+}
+
+/// A test's budget (cases, seeds) from the environment variable `var`, else `default`: CI runs
+/// the default; a longer hunt sets the variable.
+pub fn budget(var: &str, default: u64) -> u64 {
+    match std::env::var(var) {
+        Ok(v) => v
+            .parse()
+            .unwrap_or_else(|_| panic!("{var} must be a whole number, got {v:?}")),
+        Err(_) => default,
+    }
 }

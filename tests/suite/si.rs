@@ -2,7 +2,7 @@
 //! change the dimensionless release and the outcome (lengths in R_max = μg/Ω², speeds in
 //! μg/Ω); the table stays in the panel; the μ probe reads the table's Ω.
 
-mod common;
+use crate::common;
 use common::render;
 use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
 use turntable::app::App;

@@ -1,7 +1,7 @@
 //! The appendix's body integrated (issue 23 item 3): as L → 0 it is the point; its energy
 //! never rises.
 
-mod common;
+use crate::common;
 use turntable::engine::body::Body;
 use turntable::engine::rod::{Phase, RodRun};
 use turntable::engine::{Initial, Outcome, Release, Run, Settings};

@@ -4,7 +4,7 @@
 //! closed-form end games were replaced by implicit steps, a release at ξ0 = 0.9999 stopped at
 //! τ = 5.5008 "with an error of 0" where the truth is 4.9518.
 
-mod common;
+use crate::common;
 use common::sundman::{self, Fate};
 use proptest::prelude::*;
 use std::f64::consts::PI;

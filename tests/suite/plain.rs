@@ -2,7 +2,7 @@
 //! headless by keys and ticks as the terminal loop drives it, the lines checked exactly and
 //! their numbers against the engine's own runs.
 
-mod common;
+use crate::common;
 use common::turntable;
 use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
 use turntable::app::keymap::KEYMAP;

@@ -2,7 +2,7 @@
 //! "2 cm"` on a real table, held in metres in the explorer as the release is, and reported in
 //! SI by `run` and the panel.
 
-mod common;
+use crate::common;
 use common::{render, seeded as config, turntable};
 use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
 use proptest::prelude::*;

@@ -6,7 +6,7 @@
 //! The cost counters are masked except in `integrator-step` (see `mask_costs`).
 //!
 //! Refresh the goldens after an intended change to the screen with
-//! `UPDATE_GOLDENS=1 cargo test --release --test replay`, and review the diff.
+//! `UPDATE_GOLDENS=1 cargo test --release --test suite replay::`, and review the diff.
 
 use crossterm::event::{KeyEvent, MouseButton, MouseEvent, MouseEventKind};
 use std::path::{Path, PathBuf};
@@ -154,7 +154,7 @@ fn goldens() {
     }
     assert!(
         failures.is_empty(),
-        "{}\nIf the change is intended: UPDATE_GOLDENS=1 cargo test --release --test replay",
+        "{}\nIf the change is intended: UPDATE_GOLDENS=1 cargo test --release --test suite replay::",
         failures.join("\n")
     );
     // No stale goldens.

@@ -1,5 +1,6 @@
 //! The paper's reference cases (CONVENTIONS.md) against converged runs, and where the paper's
 //! own scheme (raw RK2, δt = 1e-3) parts from them.
+use crate::reference;
 
 use std::f64::consts::PI;
 use turntable::engine::solve::{critical_radius, easiest_angle, escape_speed, sweep_escape};
@@ -44,9 +45,9 @@ const D: Initial = Initial {
 #[test]
 fn a_b_d_come_to_rest_inside_xi_1_as_the_paper_says() {
     for (name, i, xi, tau) in [
-        ("A", A, 0.3134040708, 0.9968810201),
-        ("B", B, 0.9452679655, 2.7001071339),
-        ("D", D, 0.6749549950, 0.7642626928),
+        ("A", A, reference::A_REST.0, reference::A_REST.1),
+        ("B", B, reference::B_REST.0, reference::B_REST.1),
+        ("D", D, reference::D_REST.0, reference::D_REST.1),
     ] {
         let (o, t, x, _) = finish(i, Settings::dp54(1e-12), 100.0);
         assert_eq!(o, Outcome::Stuck, "{name}");
@@ -128,7 +129,11 @@ fn escape_speed_at_half_lies_in_the_papers_bracket() {
         "v_e = {}",
         t.value
     );
-    assert!((t.value - 0.60782364).abs() < 2e-8, "v_e = {}", t.value);
+    assert!(
+        (t.value - reference::VE_C).abs() < 2e-8,
+        "v_e = {}",
+        t.value
+    );
     // C's speed 0.6078 is just below it: C sticks.
     assert!(0.6078 < t.stuck_at.unwrap() && t.value - 0.6078 < 1e-4);
 }
@@ -137,7 +142,11 @@ fn escape_speed_at_half_lies_in_the_papers_bracket() {
 fn critical_radius_is_0_87() {
     let t = critical_radius(Settings::dp54(1e-11), 1e-8).unwrap();
     assert!(t.interval);
-    assert!((t.value - 0.87204386).abs() < 1e-7, "xi0c = {}", t.value);
+    assert!(
+        (t.value - reference::XI0C).abs() < 1e-7,
+        "xi0c = {}",
+        t.value
+    );
 }
 
 /// Fig. 5: the curves peak near φ ≈ 4. The minimum does not sit near 0.4 for every ξ0, as

@@ -1,7 +1,7 @@
 //! The narrated lessons: every number a caption states is checked here against the engine;
 //! every caption fits the smallest screen; an interactive lesson holds at `wait` and `ask`
 //! without holding up time; the command's errors. Their screens are goldens in
-//! `tests/replay` (`lesson-NAME.txt`, see tests/replay.rs).
+//! `tests/replay` (`lesson-NAME.txt`, see tests/suite/replay.rs).
 
 use std::f64::consts::PI;
 use std::process::Command;

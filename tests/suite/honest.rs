@@ -1,7 +1,8 @@
 //! Honest numbers (issue 11): outcomes that say when the run's own error could flip them,
 //! bad solver input refused up front, and words that say what the numbers are.
 
-mod common;
+use crate::common;
+use crate::reference;
 use common::turntable;
 use turntable::engine::doubt::doubt;
 use turntable::engine::{Initial, Outcome, Run, Settings};
@@ -262,7 +263,7 @@ fn solver_brackets_are_certified_only_when_checked() {
     assert_eq!(v["certified"], true, "{v}");
     // ξ0c from a converged reference (tol 1e-13, xtol 1e-10).
     let x = v["xi0c"].as_f64().unwrap();
-    assert!((x - 0.87204385).abs() < 2e-8, "{x}");
+    assert!((x - reference::XI0C).abs() < 2e-8, "{x}");
     let v = json(&[
         "escape", "--xi0", "0.99", "--phi", "1", "--vtol", "1e-9", "--json",
     ]);

@@ -9,6 +9,7 @@ use turntable::session::Session;
 use turntable::theme::{BUILTIN, Theme};
 use turntable::ui::export::plain_text;
 
+use crate::common;
 use turntable::rng::SplitMix64 as Rng;
 
 /// "NaN" or "inf" as a word (Rust's spelling of non-finite floats), anywhere on screen.
@@ -132,9 +133,12 @@ fn fuzz(seed: u64, steps: usize) {
     }
 }
 
+/// Seeds × steps of the key fuzzer: `TURNTABLE_FUZZ=SEEDS` (each 1500 steps) runs more, or
+/// fewer; the default, 8, is what CI runs (~10 s).
 #[test]
 fn random_keys_and_resizes_keep_the_app_valid() {
-    for seed in 0..8 {
+    let seeds = common::budget("TURNTABLE_FUZZ", 8);
+    for seed in 0..seeds {
         fuzz(seed, 1500);
     }
 }

@@ -1,7 +1,7 @@
 //! The analysis pages (issue 10): Tab order and titles, and the data each page shows checked
 //! against the engine's solvers, not only that a chart renders.
 
-mod common;
+use crate::common;
 use common::render;
 use crossterm::event::{KeyCode, KeyEvent, KeyModifiers, MouseButton, MouseEvent, MouseEventKind};
 use std::f64::consts::TAU;

@@ -1,6 +1,7 @@
 //! The work–precision bench: rows with finite errors, errors that shrink as the step or the
 //! tolerance tightens, the fixed-step methods' orders, and the fast escape speed against pure
 //! bisection. No test here depends on timing.
+use crate::reference;
 
 use turntable::bench::{self, Config, Task};
 use turntable::engine::Method as M;
@@ -180,7 +181,7 @@ fn fast_escape_speed_matches_bisection_and_is_certified() {
         );
     }
     let t = escape_speed(0.5, 0.0, s, 1e-8).unwrap();
-    assert!((t.value - 0.607823644).abs() < 1e-8, "{}", t.value);
+    assert!((t.value - reference::VE_C).abs() < 1e-8, "{}", t.value);
 }
 
 #[test]

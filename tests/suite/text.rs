@@ -6,7 +6,7 @@
 //! errors. A property test feeds random control-laden strings through the cleaner and through
 //! scene and script loading, and counts the cases by class.
 
-mod common;
+use crate::common;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use turntable::text::{MARK, clean, needs_escape};
@@ -176,7 +176,7 @@ fn scene_and_script_text_reaches_every_output_clean() {
 #[test]
 fn theme_names_configuration_strings_and_errors_are_clean() {
     let dir = tmp("errors");
-    let dark = include_str!("../themes/dark.toml");
+    let dark = include_str!("../../themes/dark.toml");
     for (k, h) in HOSTILE.iter().enumerate() {
         let path = dir.join(format!("t{k}.toml"));
         let text = dark.replacen("name = \"dark\"", &format!("name = {}", toml_str(h)), 1);
@@ -231,7 +231,7 @@ fn theme_names_configuration_strings_and_errors_are_clean() {
 /// Random strings heavy in controls, escape sequences' pieces and invisible marks, through
 /// the cleaner and through a scene file and a key script into replay's outputs: each case is
 /// refused with a clean error or runs with every output clean. The counts by class are
-/// printed (`cargo test --release --test text -- --nocapture`).
+/// printed (`cargo test --release --test suite text:: -- --nocapture`).
 #[test]
 fn random_control_laden_text_never_reaches_an_output() {
     use proptest::prelude::*;

@@ -1,7 +1,7 @@
 //! The appendix's body (issue 23 item 3): its size from flags and scene files, and the
 //! appendix's two conditions for treating it as a point, in `run --json` and on the panel.
 
-mod common;
+use crate::common;
 use common::turntable;
 use turntable::engine::Outcome;
 

@@ -2,7 +2,7 @@
 //! the secant on H) against plain bisection on whole runs in the other frame, and releases whose
 //! closed-form stops once took the wrong fate.
 
-mod common;
+use crate::common;
 use turntable::engine::doubt::doubt;
 use turntable::engine::par::par_map;
 use turntable::engine::solve::{CLASSIFY_TAU, escape_speed};

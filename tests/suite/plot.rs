@@ -1,7 +1,8 @@
 //! `turntable plot`: SVG figures parsed back — well formed, labelled, and their lines mapped
 //! back through the tick labels to the values docs/numerics.md gives.
 
-mod common;
+use crate::common;
+use crate::reference;
 use common::turntable;
 use std::path::PathBuf;
 
@@ -206,9 +207,9 @@ fn fig5_maps_back_to_the_escape_speed() {
         let phi = std::f64::consts::TAU * k as f64 / 8.0;
         assert!((x(px) - phi).abs() < 1e-5, "point {k}: φ {}", x(px));
     }
-    // docs/numerics.md: v_e(0.5, 0) = 0.60782364; the sweep's bracket is 1e-6 wide.
+    // The sweep's bracket is 1e-6 wide.
     let v = y(pts[0].1);
-    assert!((v - 0.60782364).abs() < 2e-6, "v_e {v}");
+    assert!((v - reference::VE_C).abs() < 2e-6, "v_e {v}");
     // The peak lies near φ ≈ 4 (the grid point 5π/4 ≈ 3.93 of eight).
     let top = pts.iter().min_by(|a, b| a.1.total_cmp(&b.1)).unwrap();
     assert!((x(top.0) - 5.0 * std::f64::consts::PI / 4.0).abs() < 1e-5);
@@ -238,7 +239,7 @@ fn fig6_marks_the_critical_radius() {
     let marks = text_of(&tags, "mark-label");
     assert_eq!(marks, ["ξ0c = 0.872044"]);
     let line = with_class(&tags, "mark")[0];
-    assert!((x(line.num("x1")) - 0.87204386).abs() < 1e-5);
+    assert!((x(line.num("x1")) - reference::XI0C).abs() < 1e-5);
     std::fs::remove_file(&f).unwrap();
 }
 
@@ -299,9 +300,11 @@ fn the_trajectory_ends_where_the_run_stops() {
             "release at (0.5, 0)"
         );
         let (ex, ey) = *path.last().unwrap();
-        // docs/numerics.md: B rests at ξ = 0.9452679655.
         let xi = x(ex).hypot(y(ey));
-        assert!((xi - 0.9452679655).abs() < 1e-5, "{frame}: rests at {xi}");
+        assert!(
+            (xi - reference::B_REST.0).abs() < 1e-5,
+            "{frame}: rests at {xi}"
+        );
         // The rim ξ = 1, drawn as a circle, maps back to radius 1.
         let rim = points(lines[1]);
         assert!(
@@ -399,7 +402,11 @@ fn the_explorer_writes_the_page_to_a_new_file() {
     let end = *points(with_class(&tags, "series")[0]).last().unwrap();
     let now = app.sim().now();
     assert!((x(end.0) - now.r.x).abs() < 1e-5 && (y(end.1) - now.r.y).abs() < 1e-5);
-    assert!((now.xi() - 0.9452679655).abs() < 1e-8, "{}", now.xi());
+    assert!(
+        (now.xi() - reference::B_REST.0).abs() < 1e-8,
+        "{}",
+        now.xi()
+    );
     // Never over a file: a second press, and a name taken meanwhile, give new names.
     std::fs::write(dir.join("turntable-turntable-3.svg"), "mine").unwrap();
     press(&mut app, KeyCode::Char('E'));
@@ -428,7 +435,11 @@ fn the_explorer_writes_the_page_to_a_new_file() {
     let mine = points(lines[0]);
     assert_eq!(mine.len(), turntable::analysis::CURVE_POINTS);
     assert!(x(mine[0].0).abs() < 1e-5);
-    assert!((y(mine[0].1) - 0.60782364).abs() < 2e-6, "{}", y(mine[0].1));
+    assert!(
+        (y(mine[0].1) - reference::VE_C).abs() < 2e-6,
+        "{}",
+        y(mine[0].1)
+    );
     assert_eq!(legend(&tags)[0], "ξ0 = 0.5");
     std::fs::remove_dir_all(&dir).unwrap();
 }

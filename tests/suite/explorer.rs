@@ -1,6 +1,6 @@
 //! The explorer driven headless: keys and ticks into `App`, frames rendered on a `TestBackend`.
 
-mod common;
+use crate::common;
 use common::render;
 use crossterm::event::{KeyCode, KeyEvent, KeyModifiers, MouseButton, MouseEvent, MouseEventKind};
 use turntable::app::keymap::KEYMAP;
@@ -233,7 +233,7 @@ fn every_key_in_the_keymap_does_what_its_help_says() {
             Action::EstimateError => after.contains("|Δr| ="),
             Action::ToggleNetForce => a.net_force && after.contains("net net force"),
             Action::ToggleVelocity => a.velocity && after.contains("v  velocity (lab)"),
-            // This scene has no body: `C` only says so (tests/body.rs tries it with one).
+            // This scene has no body: `C` only says so (tests/suite/body.rs tries it with one).
             Action::TogglePointModel => a.point_model && after.contains("no body to compare"),
             Action::PinRun => {
                 a.pins.len() == 1 && after.contains("pinned ◆C") && after.contains("pins   ◆C")

@@ -2,7 +2,7 @@
 //! where the engine's run ends, shows in both frames and on the time plots, and is saved with
 //! the scene.
 
-mod common;
+use crate::common;
 use common::render;
 use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
 use turntable::app::App;

@@ -1,6 +1,7 @@
 //! The headless commands as a user runs them: JSON fields and the trajectory file.
 
-mod common;
+use crate::common;
+use crate::reference;
 use common::turntable;
 
 fn field(json: &str, key: &str) -> String {
@@ -27,7 +28,7 @@ fn run_json_and_trajectory_agree() {
     assert_eq!(code, 0);
     assert_eq!(field(&out, "outcome"), "\"stuck\"");
     let xi: f64 = field(&out, "xi").parse().unwrap();
-    assert!((xi - 0.9452679655).abs() < 1e-9, "{xi}");
+    assert!((xi - reference::B_REST.0).abs() < 1e-9, "{xi}");
     let steps: usize = field(&out, "steps").parse().unwrap();
     let csv = std::fs::read_to_string(&path).unwrap();
     std::fs::remove_file(&path).unwrap();
@@ -112,11 +113,11 @@ fn escape_and_critical_print_their_values() {
     let (code, out, _) = turntable(&["escape", "--xi0", "0.5", "--phi", "0", "--json"]);
     assert_eq!(code, 0);
     let v: f64 = field(&out, "v_escape").parse().unwrap();
-    assert!((v - 0.60782364).abs() < 2e-8, "{v}");
+    assert!((v - reference::VE_C).abs() < 2e-8, "{v}");
     let (code, out, _) = turntable(&["critical", "--json"]);
     assert_eq!(code, 0);
     let x: f64 = field(&out, "xi0c").parse().unwrap();
-    assert!((x - 0.87204386).abs() < 1e-7, "{x}");
+    assert!((x - reference::XI0C).abs() < 1e-7, "{x}");
     let (code, out, _) = turntable(&["sweep", "fig6", "--points", "11"]);
     assert_eq!(code, 0);
     let lines: Vec<&str> = out.lines().collect();
@@ -134,7 +135,7 @@ fn critical_radius_measures_mu() {
     assert_eq!(code, 0);
     let mu: f64 = field(&out, "mu").parse().unwrap();
     assert!(
-        (mu - 3.3 * 3.3 * 0.12 / (0.87204386 * 9.81)).abs() < 1e-7,
+        (mu - 3.3 * 3.3 * 0.12 / (reference::XI0C * 9.81)).abs() < 1e-7,
         "{mu}"
     );
     let (code, _, _) = turntable(&["critical", "--omega", "3.3"]);

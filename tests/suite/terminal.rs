@@ -1,7 +1,7 @@
 //! The explorer's terminal as a user's dies or stops (issue 11), on a pseudo-terminal the
 //! test opens itself (skipped, saying so, where none can be opened; no TTY is needed).
 
-mod common;
+use crate::common;
 use std::io::{Read, Write};
 use std::os::fd::AsRawFd;
 use std::os::unix::fs::OpenOptionsExt;
