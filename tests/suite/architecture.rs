@@ -109,6 +109,35 @@ fn the_ui_never_integrates() {
     assert!(bad.is_empty(), "{}", bad.join("\n"));
 }
 
+/// `update` is a pure state machine: the model (`app/`) asks the view nothing (the shell tells
+/// it sizes), writes no file and holds no worker; what must happen outside it returns as
+/// effects that the shell (session, terminal, replay) carries out.
+#[test]
+fn the_model_asks_nothing_of_the_view_or_the_world() {
+    let mut bad = vec![];
+    for (path, code) in sources(&src().join("app")) {
+        for line in code.lines() {
+            let code = line.split("//").next().unwrap_or("");
+            for needle in [
+                "crate::ui",
+                "crate::files",
+                "crate::session",
+                "crate::terminal",
+                "crate::replay",
+                "Analysis",
+                "save_new",
+                "std::fs",
+                "std::thread",
+            ] {
+                if code.contains(needle) {
+                    bad.push(format!("{}: {}", path.display(), line.trim()));
+                }
+            }
+        }
+    }
+    assert!(bad.is_empty(), "{}", bad.join("\n"));
+}
+
 /// A run is advanced only by `Run::step` and read through its accessors: its fields are
 /// private, so no caller can set a status or an escape of its own.
 #[test]

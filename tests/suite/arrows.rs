@@ -30,7 +30,7 @@ fn friction_opposes_the_slip_velocity_and_the_net_force_is_the_acceleration() {
         key(&mut a, c);
     }
     assert_eq!(a.view, Frame::Table);
-    let s = a.sim.now();
+    let s = a.sim().now();
     let all = arrows(&a, 2.0, 0.5);
     let (fr, u, net) = (find(&all, "fr"), find(&all, "u"), find(&all, "net"));
     // Slipping: friction is −û (Eq. 2), exactly against the velocity relative to the table.
@@ -57,7 +57,7 @@ fn friction_opposes_the_slip_velocity_and_the_net_force_is_the_acceleration() {
     // In the lab: the lab velocity, and the net force is friction alone.
     key(&mut a, 'f');
     let all = arrows(&a, 2.0, 0.5);
-    assert!((find(&all, "v").vec - a.sim.now().v * 0.5).length() < 1e-15);
+    assert!((find(&all, "v").vec - a.sim().now().v * 0.5).length() < 1e-15);
     assert!((find(&all, "net").vec - find(&all, "fr").vec).length() < 1e-15);
     let screen = render(&mut a, 100, 30);
     assert!(screen.contains("v  velocity (lab)"), "{screen}");
@@ -75,7 +75,7 @@ fn stuck_the_forces_balance_and_nothing_moves_on_the_table() {
     for _ in 0..400 {
         a.tick();
     }
-    assert_eq!(a.sim.outcome_now(), Outcome::Stuck);
+    assert_eq!(a.sim().outcome_now(), Outcome::Stuck);
     for c in ['a', 'A', 'i', 'f'] {
         key(&mut a, c);
     }
@@ -93,7 +93,7 @@ fn stuck_the_forces_balance_and_nothing_moves_on_the_table() {
     let all = arrows(&a, 2.0, 0.5);
     let (v, net) = (find(&all, "v").vec, find(&all, "net").vec);
     assert!(v.normalize().dot(net.normalize()).abs() < 1e-9);
-    assert!(net.normalize().dot(a.sim.now().r.normalize()) < -1.0 + 1e-9);
+    assert!(net.normalize().dot(a.sim().now().r.normalize()) < -1.0 + 1e-9);
     for (w, h) in [(40, 12), (80, 24), (200, 60)] {
         render(&mut a, w, h);
         a.check_invariants().unwrap();

@@ -199,12 +199,12 @@ fn scene_body_shows_the_conditions_on_the_panel() {
         scene.clone(),
         turntable::theme::Theme::builtin("mono").unwrap(),
     );
-    assert!(with.rod.is_some());
+    assert!(with.rod().is_some());
     let mut bare = scene;
     bare.body = None;
     let mut without =
         turntable::app::App::new(bare, turntable::theme::Theme::builtin("mono").unwrap());
-    assert!(without.rod.is_none());
+    assert!(without.rod().is_none());
     let (a, b) = (
         common::render(&mut with, 100, 30),
         common::render(&mut without, 100, 30),
@@ -320,7 +320,7 @@ fn the_panel_judges_at_the_bodys_state() {
         app.tick();
     }
     let tau = app.now().tau;
-    let rod = app.rod.clone().unwrap();
+    let rod = app.rod().cloned().unwrap();
     let (st, phase) = rod.at_with_phase(tau).unwrap();
     let lines = panel_of(&app);
     let body_xi = st.q.length();
@@ -398,8 +398,7 @@ fn c_compares_the_body_with_the_point_model() {
     assert!(!hidden.contains("stuck τ"), "{hidden}");
     // The body's bar and path are still drawn: the canvas is not the bare table.
     let mut bare = body_app(0.1);
-    bare.scene.body = None;
-    bare.rod = None;
+    bare.explore().set_body(None);
     bare.point_model = false;
     for _ in 0..60 {
         bare.tick();
@@ -442,17 +441,17 @@ fn c_compares_the_body_with_the_point_model() {
 #[test]
 fn presets_keep_the_body() {
     let mut app = body_app(0.1);
-    let body = app.scene.body;
+    let body = app.scene().body;
     key(&mut app, '2');
-    assert_eq!(app.scene.name, "B");
-    assert_eq!(app.scene.body, body);
-    let rod = app.rod.clone().unwrap();
+    assert_eq!(app.scene().name, "B");
+    assert_eq!(app.scene().body, body);
+    let rod = app.rod().cloned().unwrap();
     assert_eq!(rod.states[0].q.x, 0.5);
     assert!(app.notice.as_deref().unwrap().contains("the body stays"));
     key(&mut app, 'x');
     key(&mut app, '0');
-    assert_eq!(app.scene.body, body);
-    assert_eq!(app.rod.clone().unwrap().states, rod.states);
+    assert_eq!(app.scene().body, body);
+    assert_eq!(app.rod().cloned().unwrap().states, rod.states);
 }
 
 /// A track cut short (here by a budget of 30 steps) is drawn as far as it goes; past its end
@@ -460,15 +459,16 @@ fn presets_keep_the_body() {
 #[test]
 fn a_cut_track_says_where_it_stopped() {
     let mut app = body_app(0.1);
-    let b = app.scene.body.unwrap();
-    let cut = common::rod_track_within(b, 1.0, &app.initial, 1e-10, 200.0, 30, usize::MAX);
+    let b = app.scene().body.unwrap();
+    let cut = common::rod_track_within(b, 1.0, &app.initial(), 1e-10, 200.0, 30, usize::MAX);
     let end = cut.end_tau();
     assert!(
         turntable::app::state::rod_cut_notice(&cut)
             .unwrap()
             .contains("30-step budget")
     );
-    app.rod = Some(cut);
+    app.explore().limit_body_steps(30);
+    assert_eq!(app.rod().unwrap().end_tau(), end);
     while app.now().tau <= end {
         app.tick();
     }
@@ -540,17 +540,17 @@ fn the_body_s_end_is_checked_against_a_tighter_run() {
 #[test]
 fn fig2s_body_is_drawn_leaving_past_its_certificate() {
     let mut app = body_app(0.1);
-    app.scene.body = Some(turntable::engine::body::Body {
+    app.explore().set_body(Some(turntable::engine::body::Body {
         length: 0.1,
         height: Some(0.01),
         angle: 0.0,
-    });
+    }));
     key(&mut app, '6');
-    let rod = app.rod.clone().unwrap();
+    let rod = app.rod().cloned().unwrap();
     let mut run = turntable::engine::rod::RodRun::new(
-        app.scene.body.unwrap(),
-        app.settings.hold(),
-        &app.initial,
+        app.scene().body.unwrap(),
+        app.settings().hold(),
+        &app.initial(),
         1e-10,
     )
     .unwrap();
@@ -558,7 +558,7 @@ fn fig2s_body_is_drawn_leaving_past_its_certificate() {
     assert_eq!(rod.escape, Some(run.state.tau));
     assert_eq!(rod.escape, Some(0.0));
     assert_eq!((rod.outcome, rod.cut.clone()), (Outcome::Escaped, None));
-    let radius = turntable::app::state::view_radius(&app.initial);
+    let radius = turntable::app::state::view_radius(&app.initial());
     let last = *rod.states.last().unwrap();
     assert!(last.q.length() >= radius, "{} < {radius}", last.q.length());
     assert!(rod.steps <= turntable::engine::rod::TRACK_STEPS);

@@ -298,42 +298,42 @@ fn doubling_mu_halves_the_bodys_dimensionless_size() {
     // The first press turns units on and changes nothing: the R_max size at that moment.
     key(&mut a, 'u');
     let u0 = a.units.unwrap();
-    assert_eq!(a.scene.body.unwrap().length, 0.1);
+    assert_eq!(a.scene().body.unwrap().length, 0.1);
     let metres = 0.1 * u0.r_max_m();
     for _ in 0..15 {
         key(&mut a, 'u');
     }
     let u = a.units.unwrap();
     assert_eq!(u.mu, 2.0 * u0.mu);
-    let b = a.scene.body.unwrap();
+    let b = a.scene().body.unwrap();
     assert!((b.length - 0.05).abs() < 1e-12, "{b:?}");
     assert!((b.height.unwrap() - 0.005).abs() < 1e-12, "{b:?}");
     assert!(rel(b.length * u.r_max_m(), metres) < 1e-12);
     // The track was made again for the new body, from τ = 0.
-    let rod = a.rod.as_ref().unwrap();
+    let rod = a.rod().unwrap();
     assert!((rod.l - 0.05).abs() < 1e-12);
     assert_eq!(rod.states[0].tau, 0.0);
-    assert_eq!(a.sim.now().tau, 0.0);
+    assert_eq!(a.sim().now().tau, 0.0);
     a.check_invariants().unwrap();
     // rpm: twice the speed is a quarter of R_max, four times L.
-    let before = a.scene.body.unwrap().length;
+    let before = a.scene().body.unwrap().length;
     let r_before = a.units.unwrap().r_max_m();
     key(&mut a, 'w');
-    let after = a.scene.body.unwrap().length;
+    let after = a.scene().body.unwrap().length;
     assert!(rel(after / before, r_before / a.units.unwrap().r_max_m()) < 1e-12);
     // And back: the same metres.
     key(&mut a, 'W');
     for _ in 0..15 {
         key(&mut a, 'U');
     }
-    assert!((a.scene.body.unwrap().length - 0.1).abs() < 1e-9);
+    assert!((a.scene().body.unwrap().length - 0.1).abs() < 1e-9);
     // Saved with its table, it loads back at the same size.
     let text = a.current_scene().to_toml();
     assert!(text.contains("length = \""), "{text}");
     let path = dir().join("explorer.toml");
     std::fs::write(&path, &text).unwrap();
     let back = Scene::load(path.to_str().unwrap()).unwrap();
-    assert!(rel(back.body.unwrap().length, a.scene.body.unwrap().length) < 1e-12);
+    assert!(rel(back.body.unwrap().length, a.scene().body.unwrap().length) < 1e-12);
 }
 
 /// The panel gives L and h in SI on a line of its own, whole at every size it shows at.

@@ -46,21 +46,21 @@ fn compare_after_a_long_session_catches_up_over_ticks() {
         let tau = s.app.now().tau;
         assert!(tau > 1000.0, "{tau}");
         s.key(key('c'));
-        let p = s.app.paper.as_ref().unwrap();
+        let p = s.app.paper().unwrap();
         assert!(p.samples.len() <= 2, "{}", p.samples.len());
         // In closed form (μ = 0) it is there at once; else, paused, it ticks until it is.
         assert_eq!(s.app.paper_lags(), friction);
         assert_eq!(s.app.is_playing(), friction);
         let mut ticks = 0;
         while s.app.paper_lags() {
-            let before = s.app.paper.as_ref().unwrap().run.cost().steps;
+            let before = s.app.paper().unwrap().run.cost().steps;
             s.tick();
-            let p = s.app.paper.as_ref().unwrap();
+            let p = s.app.paper().unwrap();
             assert!(p.run.cost().steps - before <= STEPS_PER_TICK);
             ticks += 1;
             assert!(ticks < 1000, "never caught up");
         }
-        let p = s.app.paper.as_ref().unwrap();
+        let p = s.app.paper().unwrap();
         assert!(
             (p.now().tau - tau).abs() < 1e-9 || !p.live(),
             "{} {tau}",
@@ -82,7 +82,7 @@ fn restart_work_is_bounded_per_tick() {
     for _ in 0..200 {
         s.key(key('r'));
         s.tick();
-        let c = s.app.sim.run.cost();
+        let c = s.app.sim().run.cost();
         assert!(c.steps + c.rejected <= STEPS_PER_TICK + 1, "{c:?}");
     }
 }
@@ -97,7 +97,7 @@ fn error_estimate_is_bounded() {
     for _ in 0..1000 {
         s.tick();
     }
-    let est = s.app.sim.error_estimate();
+    let est = s.app.sim().error_estimate();
     match est {
         Ok(e) => assert!(e.rhs_evals <= 13 * STEPS_PER_TICK, "{e:?}"),
         Err(e) => assert!(
@@ -138,30 +138,30 @@ fn frictionless_trail_is_bounded_per_point_and_per_tick() {
     };
     let mut s = session("A");
     keys(&mut s, "FRR]]]]]]]]");
-    assert!(s.app.initial.frictionless);
+    assert!(s.app.initial().frictionless);
     for _ in 0..40_000 {
-        let before = s.app.sim.work.points;
+        let before = s.app.sim().work.points;
         s.tick();
-        bounded(&s.app.sim, before);
+        bounded(s.app.sim(), before);
     }
     assert!(s.app.now().tau > 100_000.0, "{}", s.app.now().tau);
     keys(&mut s, "[[[[[[[[[[[[[[");
     s.key(key('c'));
-    let p = s.app.paper.as_ref().unwrap();
+    let p = s.app.paper().unwrap();
     bounded(p, 0);
     assert!((p.now().tau - s.app.now().tau).abs() < 1e-9);
     for _ in 0..100 {
-        let before = s.app.paper.as_ref().unwrap().work.points;
+        let before = s.app.paper().unwrap().work.points;
         s.tick();
-        bounded(s.app.paper.as_ref().unwrap(), before);
+        bounded(s.app.paper().unwrap(), before);
     }
     // `n` strides on 1000 τ at a time: 40,000 points each, never more kept.
     let mut s = session("A");
     keys(&mut s, "FRR");
     for _ in 0..500 {
-        let before = s.app.sim.work.points;
+        let before = s.app.sim().work.points;
         s.key(key('n'));
-        bounded(&s.app.sim, before);
+        bounded(s.app.sim(), before);
     }
     assert!(s.app.now().tau >= 400_000.0, "{}", s.app.now().tau);
 }
@@ -176,27 +176,27 @@ fn integrator_step_steps_from_the_current_state() {
     s.key(key('m'));
     s.key(key('m'));
     assert_eq!(
-        s.app.sim.run.settings().method(),
+        s.app.sim().run.settings().method(),
         turntable::engine::Method::Rk2Raw
     );
     for _ in 0..8 {
         s.key(key(']'));
     }
     let mut ticks = 0;
-    while s.app.now().tau < 150.0 && s.app.sim.live() {
+    while s.app.now().tau < 150.0 && s.app.sim().live() {
         s.tick();
         ticks += 1;
         assert!(ticks < 10_000);
     }
     s.key(key(' '));
     let tau = s.app.now().tau;
-    let steps = s.app.sim.work.steps;
-    assert!(tau >= 150.0 && s.app.sim.run.tau() > tau, "{tau}");
+    let steps = s.app.sim().work.steps;
+    assert!(tau >= 150.0 && s.app.sim().run.tau() > tau, "{tau}");
     s.key(key('n'));
     // The step holding the screen's τ is the run's latest: nothing to integrate.
-    assert_eq!(s.app.sim.work.steps, steps);
+    assert_eq!(s.app.sim().work.steps, steps);
     s.key(key('n'));
-    let sim = &s.app.sim;
+    let sim = s.app.sim();
     assert_eq!(sim.work.steps - steps, 1, "{:?}", sim.work);
     assert!(sim.now().tau > tau, "{} {tau}", sim.now().tau);
     assert_eq!(sim.now(), sim.run.state());
@@ -225,8 +225,8 @@ fn page_pieces_are_bounded_whatever_the_step() {
     s.key(KeyEvent::new(KeyCode::Tab, KeyModifiers::NONE));
     s.key(KeyEvent::new(KeyCode::Tab, KeyModifiers::NONE));
     s.screen();
-    assert!(!s.app.analysis.busy());
-    assert_eq!(s.app.settings, tiny);
+    assert!(!s.analysis.busy());
+    assert_eq!(s.app.settings(), tiny);
     // The page is complete: every curve's every piece arrived (unknown where over budget).
     let curve = s
         .app
@@ -253,17 +253,17 @@ fn headless_pages_are_computed_for_frames_not_for_keys() {
     s.screen();
     let cells = s.app.charts.map.as_ref().expect("map").cells.len() as u64;
     assert!(cells > 500, "{cells}");
-    let first = s.app.analysis.computed();
+    let first = s.analysis.computed();
     assert_eq!(first, CURVE_POINTS as u64 + cells);
     for _ in 0..20 {
         s.key(key('x'));
     }
-    assert_eq!(s.app.analysis.computed(), first, "keys compute nothing");
+    assert_eq!(s.analysis.computed(), first, "keys compute nothing");
     s.screen();
     let map = s.app.charts.map.as_ref().expect("map");
     assert!(map.cells.iter().all(Option::is_some));
     assert_eq!(
-        s.app.analysis.computed() - first,
+        s.analysis.computed() - first,
         CURVE_POINTS as u64 + map.cells.len() as u64
     );
     // However large the terminal, a map has at most MAP_CELLS cells, in the plot's shape.

@@ -19,8 +19,15 @@ fn app(scene: &str) -> App {
     App::new(Scene::preset(scene).unwrap(), theme())
 }
 
+/// A key pressed, and what it asks for carried out as the explorer's session does (files
+/// written).
 fn key(app: &mut App, c: char) {
-    app.handle_key(KeyEvent::new(KeyCode::Char(c), KeyModifiers::NONE));
+    press(app, KeyEvent::new(KeyCode::Char(c), KeyModifiers::NONE));
+}
+
+fn press(app: &mut App, k: KeyEvent) {
+    let effects = app.handle_key(k);
+    turntable::session::carry_out(app, effects);
 }
 
 /// The canvas part of a screen (left of the panel at 80 columns).
@@ -41,14 +48,14 @@ fn frame_toggle_redraws_the_same_trail_in_the_other_frame() {
         a.tick();
     }
     key(&mut a, ' ');
-    let n = a.sim.trail().len();
+    let n = a.sim().trail().len();
     let lab = render(&mut a, 80, 24);
     assert!(lab.contains("lab frame"));
     key(&mut a, 'f');
     assert_eq!(a.view, Frame::Table);
     let rot = render(&mut a, 80, 24);
     assert!(rot.contains("rotating frame"));
-    assert_eq!(a.sim.trail().len(), n, "the trail is stored once");
+    assert_eq!(a.sim().trail().len(), n, "the trail is stored once");
     assert_ne!(canvas_part(&lab), canvas_part(&rot));
     key(&mut a, 'f');
     assert_eq!(canvas_part(&render(&mut a, 80, 24)), canvas_part(&lab));
@@ -58,21 +65,21 @@ fn frame_toggle_redraws_the_same_trail_in_the_other_frame() {
 fn preset_b_run_to_the_end_says_stuck_at_the_engines_xi() {
     let mut a = app("C");
     key(&mut a, '2');
-    assert_eq!(a.scene.name, "B");
+    assert_eq!(a.scene().name, "B");
     for _ in 0..2000 {
-        if a.sim.outcome_now() == Outcome::Stuck {
+        if a.sim().outcome_now() == Outcome::Stuck {
             break;
         }
         a.tick();
     }
-    let mut run = Run::new(a.initial, Settings::default()).unwrap();
+    let mut run = Run::new(a.initial(), Settings::default()).unwrap();
     let (out, _) = run.finish(100.0).unwrap();
     assert_eq!(out, Outcome::Stuck);
     let Status::Stuck { tau, q } = run.status() else {
         panic!()
     };
-    let Status::Stuck { tau: t2, q: q2 } = a.sim.run.status() else {
-        panic!("app run not stuck: {:?}", a.sim.run.status())
+    let Status::Stuck { tau: t2, q: q2 } = a.sim().run.status() else {
+        panic!("app run not stuck: {:?}", a.sim().run.status())
     };
     assert!((q.length() - q2.length()).abs() < 1e-12 && (tau - t2).abs() < 1e-12);
     let xi = num(q.length(), 5);
@@ -91,9 +98,9 @@ fn readouts_equal_the_engine_state() {
     for _ in 0..23 {
         a.tick();
     }
-    let s = a.sim.now();
+    let s = a.sim().now();
     assert!((s.tau - 23.0 * turntable::app::TICK_DT).abs() < 1e-9);
-    let mut run = Run::new(a.initial, a.settings).unwrap();
+    let mut run = Run::new(a.initial(), a.settings()).unwrap();
     run.run(s.tau, false).unwrap();
     let e = run.state_at(s.tau).unwrap();
     assert!((e.r - s.r).length() < 1e-8, "{e:?} vs {s:?}");
@@ -106,10 +113,10 @@ fn readouts_equal_the_engine_state() {
         num(s.theta_dot().unwrap(), 4),
         format!(
             "steps  {} rej {}",
-            a.sim.run.cost().steps,
-            a.sim.run.cost().rejected
+            a.sim().run.cost().steps,
+            a.sim().run.cost().rejected
         ),
-        format!("RHS    {}", a.sim.run.cost().rhs_evals),
+        format!("RHS    {}", a.sim().run.cost().rhs_evals),
         "dp54   tol=1e-10".to_string(),
     ] {
         assert!(screen.contains(&v), "missing {v} in\n{screen}");
@@ -162,17 +169,17 @@ fn every_key_in_the_keymap_does_what_its_help_says() {
             _ => {}
         }
         let before = render(&mut a, 80, 24);
-        let (tau, init, set) = (a.sim.now().tau, a.initial, a.settings);
+        let (tau, init, set) = (a.sim().now().tau, a.initial(), a.settings());
         let (speed, zoom, pan) = (a.speed, a.zoom, a.pan);
         let init_playing = a.playing;
-        a.handle_key(b.chord.event());
+        press(&mut a, b.chord.event());
         let after = render(&mut a, 80, 24);
         let what = format!("{} ({})", b.chord.label(), b.help);
         match b.action {
             Action::Quit => assert!(a.should_quit(), "{what}"),
             _ => assert_ne!(before, after, "{what}: screen unchanged"),
         }
-        let now = a.sim.now().tau;
+        let now = a.sim().now().tau;
         let ok = match b.action {
             Action::Quit => a.should_quit(),
             Action::Dismiss => !a.help && !a.should_quit(),
@@ -198,27 +205,27 @@ fn every_key_in_the_keymap_does_what_its_help_says() {
             Action::IntegratorStep => a.step_mode && !a.is_playing() && after.contains("h      "),
             Action::Faster => a.speed == 2.0 * speed && after.contains("×2"),
             Action::Slower => a.speed == speed / 2.0 && after.contains("×1/2"),
-            Action::Restart => now == 0.0 && a.initial == init,
+            Action::Restart => now == 0.0 && a.initial() == init,
             Action::ToggleFrame => a.view == Frame::Table,
-            Action::CycleMethod => a.settings.method() != set.method() && now == 0.0,
-            Action::Loosen => a.settings.scheme.knob() > set.scheme.knob() && now == 0.0,
-            Action::Tighten => a.settings.scheme.knob() < set.scheme.knob() && now == 0.0,
-            Action::Xi0(d) => (a.initial.xi0 - (init.xi0 + d)).abs() < 1e-12 && now == 0.0,
+            Action::CycleMethod => a.settings().method() != set.method() && now == 0.0,
+            Action::Loosen => a.settings().scheme.knob() > set.scheme.knob() && now == 0.0,
+            Action::Tighten => a.settings().scheme.knob() < set.scheme.knob() && now == 0.0,
+            Action::Xi0(d) => (a.initial().xi0 - (init.xi0 + d)).abs() < 1e-12 && now == 0.0,
             Action::Phi(d) => {
                 let w = turntable::engine::model::wrap_angle(init.phi + d);
-                (a.initial.phi - w).abs() < 1e-12 && now == 0.0
+                (a.initial().phi - w).abs() < 1e-12 && now == 0.0
             }
-            Action::V0(d) => (a.initial.v0 - (init.v0 + d)).abs() < 1e-12 && now == 0.0,
-            Action::CycleRelease => a.initial.release != init.release && now == 0.0,
+            Action::V0(d) => (a.initial().v0 - (init.v0 + d)).abs() < 1e-12 && now == 0.0,
+            Action::CycleRelease => a.initial().release != init.release && now == 0.0,
             Action::ToggleFriction => {
-                a.initial.frictionless
+                a.initial().frictionless
                     && now == 0.0
-                    && a.sim.run.cost().rhs_evals == 0
+                    && a.sim().run.cost().rhs_evals == 0
                     && after.contains("μ = 0  closed form")
             }
-            Action::ResetScene => a.initial == a.scene.initial && now == 0.0,
-            Action::Preset(i) => a.scene.name == PRESETS[i] && now == 0.0,
-            Action::ToggleCompare => a.paper.is_some() && after.contains("paper: rk2-raw"),
+            Action::ResetScene => a.initial() == a.scene().initial && now == 0.0,
+            Action::Preset(i) => a.scene().name == PRESETS[i] && now == 0.0,
+            Action::ToggleCompare => a.paper().is_some() && after.contains("paper: rk2-raw"),
             // In the lab (the default view) friction is the only force.
             Action::ToggleForces => {
                 a.forces && after.contains("friction") && !after.contains("Coriolis")
@@ -249,7 +256,7 @@ fn every_key_in_the_keymap_does_what_its_help_says() {
             Action::Name(_) => unreachable!("typed at the prompt, bound to no key"),
             Action::Save => {
                 after.contains("saved \"")
-                    && Scene::load(a.save_path.to_str().unwrap()).unwrap().initial == a.initial
+                    && Scene::load(a.save_path.to_str().unwrap()).unwrap().initial == a.initial()
             }
             Action::ExportSvg => {
                 after.contains("wrote this page to")
@@ -464,15 +471,15 @@ fn scene_c_shows_the_paper_escaping_where_the_converged_run_sticks() {
     }
     for _ in 0..400 {
         a.tick();
-        if a.paper.as_ref().unwrap().outcome_now() == Outcome::Escaped {
+        if a.paper().unwrap().outcome_now() == Outcome::Escaped {
             break;
         }
     }
-    let Status::Stuck { q, .. } = a.sim.run.status() else {
+    let Status::Stuck { q, .. } = a.sim().run.status() else {
         panic!("converged run not stuck")
     };
     assert!((q.length() - 0.99717).abs() < 1e-4, "{}", q.length());
-    let esc = a.paper.as_ref().unwrap().run.escape().unwrap().tau;
+    let esc = a.paper().unwrap().run.escape().unwrap().tau;
     assert!((esc - 17.3).abs() < 0.1, "{esc}");
     let screen = render(&mut a, 80, 24);
     assert!(screen.contains(&format!("stuck at ξ = {}", num(q.length(), 5))));
@@ -532,24 +539,24 @@ fn mouse_click_places_the_release_point_and_drag_sets_the_velocity() {
         modifiers: KeyModifiers::NONE,
     };
     a.handle_mouse(ev(MouseEventKind::Down(MouseButton::Left), col, row));
-    assert!((a.initial.xi0 - 0.8).abs() < 0.1, "{}", a.initial.xi0);
+    assert!((a.initial().xi0 - 0.8).abs() < 0.1, "{}", a.initial().xi0);
     a.handle_mouse(ev(
         MouseEventKind::Drag(MouseButton::Left),
         col,
         row.saturating_sub(3),
     ));
-    assert!(a.initial.v0 > 0.0);
+    assert!(a.initial().v0 > 0.0);
     a.handle_mouse(ev(
         MouseEventKind::Up(MouseButton::Left),
         col,
         row.saturating_sub(3),
     ));
-    assert_eq!(a.sim.now().tau, 0.0);
+    assert_eq!(a.sim().now().tau, 0.0);
     a.check_invariants().unwrap();
     key(&mut a, 'M');
-    let xi0 = a.initial.xi0;
+    let xi0 = a.initial().xi0;
     a.handle_mouse(ev(MouseEventKind::Down(MouseButton::Left), col + 5, row));
-    assert_eq!(a.initial.xi0, xi0, "mouse off: clicks do nothing");
+    assert_eq!(a.initial().xi0, xi0, "mouse off: clicks do nothing");
 }
 
 #[test]
@@ -661,12 +668,12 @@ fn error_estimate_tells_converged_from_creeping() {
     for _ in 0..80 {
         a.tick();
     }
-    let e = a.sim.error_estimate().unwrap();
+    let e = a.sim().error_estimate().unwrap();
     assert!(e.tau > 3.0 && e.error < 1e-9, "{e:?}");
     key(&mut a, 'e');
     assert!(render(&mut a, 100, 30).contains("|Δr| ="));
     let mut raw =
-        turntable::sim::Sim::new(a.initial, turntable::engine::Settings::paper(), 10.0).unwrap();
+        turntable::sim::Sim::new(a.initial(), turntable::engine::Settings::paper(), 10.0).unwrap();
     for _ in 0..80 {
         raw.advance(0.05);
     }
@@ -711,11 +718,11 @@ fn a_click_places_the_release_where_clicked() {
     let angle = 0.75 * std::f64::consts::PI;
     assert!((a.turn - angle).abs() < 0.2, "turn {}", a.turn);
     assert!(
-        (a.initial.xi0 - 0.4 * 2f64.sqrt()).abs() < 0.12,
+        (a.initial().xi0 - 0.4 * 2f64.sqrt()).abs() < 0.12,
         "{}",
-        a.initial.xi0
+        a.initial().xi0
     );
-    assert_eq!(a.initial.phi, 0.0, "the model's release is unchanged");
+    assert_eq!(a.initial().phi, 0.0, "the model's release is unchanged");
     let screen = render(&mut a, 80, 24);
     let (pc, pr) = screen
         .lines()
@@ -733,7 +740,7 @@ fn a_click_places_the_release_where_clicked() {
     // The same cell maps back to the release point in the model.
     let back = a.geom_for_tests().unwrap().to_world(col, row).unwrap();
     assert!(
-        (back - glam::DVec2::new(a.initial.xi0, 0.0)).length() < 0.1,
+        (back - glam::DVec2::new(a.initial().xi0, 0.0)).length() < 0.1,
         "{back}"
     );
 }
@@ -825,10 +832,10 @@ fn the_trail_is_the_same_at_every_speed() {
     }
     assert_eq!(fast.speed, 256.0);
     fast.tick();
-    while slow.sim.now().tau < fast.sim.now().tau - 1e-9 {
+    while slow.sim().now().tau < fast.sim().now().tau - 1e-9 {
         slow.tick();
     }
-    let (a, b) = (slow.sim.trail(), fast.sim.trail());
+    let (a, b) = (slow.sim().trail(), fast.sim().trail());
     assert!(a.len() > 300, "{}", a.len());
     assert_eq!(a.len(), b.len());
     for (p, q) in a.iter().zip(b) {
@@ -848,7 +855,7 @@ fn the_trail_is_the_same_at_every_speed() {
     for _ in 0..50 {
         fast.tick();
     }
-    let n = fast.sim.path.len();
+    let n = fast.sim().path.len();
     assert!(n < 2 * (12.8 / turntable::sim::TRAIL_DT) as usize, "{n}");
 }
 
@@ -865,12 +872,12 @@ fn integrator_steps_one_at_a_time() {
     let mut hs = Vec::new();
     let mut limits = Vec::new();
     for _ in 0..200 {
-        let before = a.sim.run.cost();
+        let before = a.sim().run.cost();
         key(&mut a, 'n');
         assert!(a.step_mode && !a.playing);
-        let st = a.sim.run.last_step().unwrap();
+        let st = a.sim().run.last_step().unwrap();
         if hs.len() > 1 {
-            let c = a.sim.run.cost();
+            let c = a.sim().run.cost();
             let taken = (c.steps - before.steps) + (c.rejected - before.rejected);
             assert!(
                 taken <= 1 + u64::from(st.rejected),
@@ -879,15 +886,15 @@ fn integrator_steps_one_at_a_time() {
         }
         hs.push(st.h);
         limits.push(st.limit);
-        if a.sim.run.outcome() != Outcome::Running {
+        if a.sim().run.outcome() != Outcome::Running {
             break;
         }
     }
-    assert_eq!(a.sim.run.outcome(), Outcome::Stuck);
+    assert_eq!(a.sim().run.outcome(), Outcome::Stuck);
     assert_eq!(*limits.last().unwrap(), Limit::ClosedForm, "{limits:?}");
     assert!(limits.contains(&Limit::Implicit), "{limits:?}");
     assert!(hs[hs.len() - 2] < 0.5 * hs[1], "{hs:?}");
-    assert_eq!(a.sim.step_marks.len(), hs.len());
+    assert_eq!(a.sim().step_marks.len(), hs.len());
     let screen = render(&mut a, 100, 30);
     assert!(
         screen.contains("h      ") && screen.contains('·'),
@@ -902,10 +909,10 @@ fn integrator_steps_one_at_a_time() {
     }
     for _ in 0..50 {
         key(&mut a, 'n');
-        let st = a.sim.run.last_step().unwrap();
+        let st = a.sim().run.last_step().unwrap();
         assert_eq!((st.h, st.limit), (1e-3, Limit::FixedStep));
     }
-    assert_eq!(a.sim.run.outcome(), Outcome::Running);
+    assert_eq!(a.sim().run.outcome(), Outcome::Running);
 }
 
 /// SI units from the keys: the first press turns them on at a record player's (33⅓ rpm), the next change
@@ -1000,24 +1007,24 @@ fn steps_through_fast_history_are_one_tick_at_the_speed_now() {
         key(&mut a, '[');
     }
     assert_eq!(a.speed, 1.0);
-    let t0 = a.sim.now().tau;
+    let t0 = a.sim().now().tau;
     assert!((t0 - 9.6).abs() < 1e-9, "{t0}");
     key(&mut a, ',');
-    let t1 = a.sim.now().tau;
+    let t1 = a.sim().now().tau;
     assert!((t0 - t1 - 0.05).abs() < 1e-9, "{t0} → {t1}");
-    assert!((a.paper.as_ref().unwrap().now().tau - t1).abs() < 1e-9);
+    assert!((a.paper().unwrap().now().tau - t1).abs() < 1e-9);
     // The state there is the run's own (at rest, riding the table), not a copy of another.
-    let Status::Stuck { q, .. } = a.sim.run.status() else {
+    let Status::Stuck { q, .. } = a.sim().run.status() else {
         panic!("A sticks")
     };
-    assert_eq!(a.sim.now(), turntable::engine::State::riding(q, t1));
+    assert_eq!(a.sim().now(), turntable::engine::State::riding(q, t1));
     key(&mut a, ',');
-    assert!((a.sim.now().tau - (t0 - 0.1)).abs() < 1e-9);
+    assert!((a.sim().now().tau - (t0 - 0.1)).abs() < 1e-9);
     key(&mut a, '.');
-    assert!((a.sim.now().tau - (t0 - 0.05)).abs() < 1e-9);
+    assert!((a.sim().now().tau - (t0 - 0.05)).abs() < 1e-9);
     key(&mut a, '.');
     key(&mut a, '.');
-    assert!((a.sim.now().tau - (t0 + 0.05)).abs() < 1e-9);
+    assert!((a.sim().now().tau - (t0 + 0.05)).abs() < 1e-9);
     a.check_invariants().unwrap();
     // Still sliding, the state a tick back is the path's, on its τ grid.
     let mut c = app("C");
@@ -1029,9 +1036,9 @@ fn steps_through_fast_history_are_one_tick_at_the_speed_now() {
     key(&mut c, '[');
     key(&mut c, '[');
     key(&mut c, ',');
-    let now = c.sim.now();
-    assert!((now.tau - 0.55).abs() < 1e-9 && c.sim.run.status() == Status::Slipping);
-    assert!(c.sim.path.contains(&now));
+    let now = c.sim().now();
+    assert!((now.tau - 0.55).abs() < 1e-9 && c.sim().run.status() == Status::Slipping);
+    assert!(c.sim().path.contains(&now));
 }
 
 /// The title tells what is on screen at the τ on screen, in the panel's notation; `s` saves
@@ -1045,8 +1052,8 @@ fn the_title_and_a_saved_scene_tell_what_is_on_screen() {
     a.tick();
     a.tick();
     // The integrator looks ahead of the screen; the title reads the screen's τ.
-    let shown = a.sim.now().tau;
-    assert!(a.sim.run.tau() > shown, "{} {shown}", a.sim.run.tau());
+    let shown = a.sim().now().tau;
+    assert!(a.sim().run.tau() > shown, "{} {shown}", a.sim().run.tau());
     let screen = render(&mut a, 100, 30);
     let title = screen.lines().next().unwrap().to_string();
     assert!(
@@ -1066,7 +1073,7 @@ fn the_title_and_a_saved_scene_tell_what_is_on_screen() {
     for _ in 0..200 {
         a.tick();
     }
-    let Status::Stuck { tau, q } = a.sim.run.status() else {
+    let Status::Stuck { tau, q } = a.sim().run.status() else {
         panic!("C with v0 − 0.001 sticks")
     };
     key(&mut a, 'f');
@@ -1107,17 +1114,17 @@ fn method_key_reaches_dop853_with_the_same_tol() {
     let mut a = app("C");
     key(&mut a, '>');
     key(&mut a, '>');
-    assert_eq!(a.settings.scheme, Scheme::Dp54 { tol: 1e-11 });
+    assert_eq!(a.settings().scheme, Scheme::Dp54 { tol: 1e-11 });
     key(&mut a, 'm');
-    assert_eq!(a.settings.scheme, Scheme::Dop853 { tol: 1e-11 });
+    assert_eq!(a.settings().scheme, Scheme::Dop853 { tol: 1e-11 });
     let screen = render(&mut a, 100, 30);
     assert!(screen.contains("dop853"), "{screen}");
     for _ in 0..400 {
         a.tick();
     }
-    assert_eq!(a.sim.run.outcome(), Outcome::Stuck);
+    assert_eq!(a.sim().run.outcome(), Outcome::Stuck);
     key(&mut a, 'm');
-    assert_eq!(a.settings.scheme, Scheme::Rk2Raw { dt: 1e-3 });
+    assert_eq!(a.settings().scheme, Scheme::Rk2Raw { dt: 1e-3 });
 }
 
 /// `update` dispatches on the action's group: every key is listed in help under the group
@@ -1175,41 +1182,44 @@ fn s_names_the_scene_it_saves() {
     std::fs::create_dir_all(&dir).unwrap();
     let mut a = app("D");
     a.save_path = dir.join("turntable-scene.toml");
-    let xi0 = a.initial.xi0;
+    let xi0 = a.initial().xi0;
     key(&mut a, 'S');
     for c in "Case Dx, μ × 2q".chars() {
         key(&mut a, c);
     }
-    a.handle_key(KeyEvent::new(KeyCode::Backspace, KeyModifiers::NONE));
+    press(
+        &mut a,
+        KeyEvent::new(KeyCode::Backspace, KeyModifiers::NONE),
+    );
     assert!(!a.should_quit());
-    assert_eq!(a.initial.xi0, xi0, "x typed a letter, no edit");
+    assert_eq!(a.initial().xi0, xi0, "x typed a letter, no edit");
     assert_eq!(a.naming.as_deref(), Some("Case Dx, μ × 2"));
     let screen = render(&mut a, 40, 12);
     assert!(
         screen.contains(" save as: Case Dx, μ × 2▏"),
         "the prompt shows what is typed:\n{screen}"
     );
-    a.handle_key(KeyEvent::new(KeyCode::Enter, KeyModifiers::NONE));
+    press(&mut a, KeyEvent::new(KeyCode::Enter, KeyModifiers::NONE));
     assert_eq!(a.naming, None);
     let path = dir.join("case-dx-μ-2.toml");
     let saved = Scene::load(path.to_str().unwrap()).unwrap();
     assert_eq!(saved.name, "Case Dx, μ × 2");
-    assert_eq!(saved.initial, a.initial);
+    assert_eq!(saved.initial, a.initial());
     assert!(a.notice.as_deref().unwrap().contains("case-dx-μ-2.toml"));
     // The same name again: a new file beside it, never a replaced one.
     key(&mut a, 'S');
     for c in "case dx μ 2".chars() {
         key(&mut a, c);
     }
-    a.handle_key(KeyEvent::new(KeyCode::Enter, KeyModifiers::NONE));
+    press(&mut a, KeyEvent::new(KeyCode::Enter, KeyModifiers::NONE));
     assert!(dir.join("case-dx-μ-2-2.toml").exists());
     // Esc: nothing saved, and keys are keys again.
     key(&mut a, 'S');
     key(&mut a, 'z');
-    a.handle_key(KeyEvent::new(KeyCode::Esc, KeyModifiers::NONE));
+    press(&mut a, KeyEvent::new(KeyCode::Esc, KeyModifiers::NONE));
     assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 2);
     key(&mut a, 'x');
-    assert!(a.initial.xi0 > xi0);
+    assert!(a.initial().xi0 > xi0);
     // A name is at most NAME_MAX characters.
     key(&mut a, 'S');
     for _ in 0..60 {
@@ -1224,7 +1234,10 @@ fn s_names_the_scene_it_saves() {
         "{prompt}"
     );
     // Ctrl-C still quits from the prompt.
-    a.handle_key(KeyEvent::new(KeyCode::Char('c'), KeyModifiers::CONTROL));
+    press(
+        &mut a,
+        KeyEvent::new(KeyCode::Char('c'), KeyModifiers::CONTROL),
+    );
     assert!(a.should_quit());
     let _ = std::fs::remove_dir_all(&dir);
 }
@@ -1237,11 +1250,82 @@ fn a_paste_types_the_name_at_the_prompt_only() {
     let mut s = Session::headless(app("B"), 80, 24, true);
     s.paste("q x\nstill nothing");
     assert!(!s.app.should_quit() && s.app.naming.is_none());
-    assert_eq!(s.app.initial, app("B").initial);
+    assert_eq!(s.app.initial(), app("B").initial());
     s.press("S".parse().unwrap());
     s.paste("Fig. 3 B\r\n, again");
     assert_eq!(s.app.naming.as_deref(), Some("Fig. 3 B, again"));
     let script = s.take_recording().unwrap();
     assert!(script.contains("S F i g"), "{script}");
     assert!(!script.contains("still"), "{script}");
+}
+
+/// `update` is pure: `s`, `S` then Enter, and `E` write no file; they return what to write.
+/// The shell carries it out (the explorer's session writes it, a replay says what it would
+/// have written) and reports back as a notice.
+#[test]
+fn saving_and_exporting_are_effects_the_shell_carries_out() {
+    use turntable::app::action::NameEdit;
+    use turntable::app::{Effect, update};
+    let dir = std::env::temp_dir().join(format!("turntable-effects-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let files = || std::fs::read_dir(&dir).unwrap().count();
+    let mut a = app("C");
+    a.save_path = dir.join("scene.toml");
+    let save = update(&mut a, Action::Save);
+    assert!(
+        matches!(&save[..], [Effect::SaveScene { scene, path }]
+            if *path == a.save_path && scene.initial == a.initial()),
+        "{save:?}"
+    );
+    let export = update(&mut a, Action::ExportSvg);
+    assert_eq!(
+        export,
+        [Effect::ExportSvg {
+            dir: dir.clone(),
+            page: Page::Turntable
+        }]
+    );
+    assert!(update(&mut a, Action::SaveAs).is_empty());
+    for c in "Mine".chars() {
+        assert!(update(&mut a, Action::Name(NameEdit::Char(c))).is_empty());
+    }
+    let named = update(&mut a, Action::Name(NameEdit::Done));
+    assert!(
+        matches!(&named[..], [Effect::SaveScene { scene, path }]
+            if scene.name == "Mine" && *path == dir.join("mine.toml")),
+        "{named:?}"
+    );
+    assert_eq!(files(), 0, "update wrote nothing");
+    // A replay answers them: a notice each, no file.
+    let mut r = a.clone();
+    turntable::replay::answer(&mut r, save.clone());
+    assert!(
+        r.notice
+            .as_deref()
+            .unwrap()
+            .starts_with("replay saves nothing: \""),
+        "{:?}",
+        r.notice
+    );
+    turntable::replay::answer(&mut r, export.clone());
+    assert_eq!(
+        r.notice.as_deref(),
+        Some("replay saves nothing: this page → turntable-turntable-N.svg (the first free N)")
+    );
+    assert_eq!(files(), 0, "a replay wrote nothing");
+    // The explorer's shell writes them, and says where.
+    turntable::session::carry_out(&mut a, save);
+    assert!(a.notice.as_deref().unwrap().starts_with("saved \""));
+    turntable::session::carry_out(&mut a, named);
+    turntable::session::carry_out(&mut a, export);
+    assert!(
+        a.notice
+            .as_deref()
+            .unwrap()
+            .starts_with("wrote this page to")
+    );
+    assert!(dir.join("scene.toml").exists() && dir.join("mine.toml").exists());
+    assert!(dir.join("turntable-turntable-1.svg").exists());
+    let _ = std::fs::remove_dir_all(&dir);
 }

@@ -271,7 +271,8 @@ fn saving_twice_keeps_both() {
     let mut app = App::new(Scene::default_scene(), Theme::builtin("mono").unwrap());
     app.save_path = d.join("turntable-scene.toml");
     std::fs::write(&app.save_path, "mine").unwrap();
-    update(&mut app, Action::Save);
+    let effects = update(&mut app, Action::Save);
+    turntable::session::carry_out(&mut app, effects);
     assert_eq!(std::fs::read_to_string(&app.save_path).unwrap(), "mine");
     let second = d.join("turntable-scene-2.toml");
     assert!(
@@ -281,7 +282,8 @@ fn saving_twice_keeps_both() {
             .ends_with("turntable-scene-2.toml")
     );
     assert!(Scene::load(second.to_str().unwrap()).is_ok());
-    update(&mut app, Action::Save);
+    let effects = update(&mut app, Action::Save);
+    turntable::session::carry_out(&mut app, effects);
     assert!(d.join("turntable-scene-3.toml").exists());
 }
 

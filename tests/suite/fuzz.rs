@@ -194,7 +194,7 @@ fn edits_at_the_bounds_clamp() {
                         s.key(k);
                         s.app.quit = false;
                         s.tick();
-                        let i = s.app.initial;
+                        let i = s.app.initial();
                         assert!(
                             (0.0..=max).contains(&i.xi0) && (0.0..=max).contains(&i.v0),
                             "{xi0} {v0} {release:?}: {:?} gave {i:?}",

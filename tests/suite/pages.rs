@@ -50,20 +50,21 @@ fn tab_cycles_the_pages_and_each_title_names_its_page() {
 
 #[test]
 fn nothing_is_computed_for_a_page_not_on_screen() {
-    let mut a = app("C");
-    a.tick();
-    assert_eq!(a.analysis.current(), None);
-    assert!(a.charts.curves.is_empty() && a.charts.map.is_none() && a.charts.rest.is_none());
-    press(&mut a, KeyCode::Tab); // time plots: from the run itself
-    assert_eq!(a.analysis.current(), None);
+    let mut s = turntable::session::Session::headless(app("C"), 80, 24, false);
+    s.tick();
+    assert_eq!(s.analysis.current(), None);
+    let c = &s.app.charts;
+    assert!(c.curves.is_empty() && c.map.is_none() && c.rest.is_none());
+    s.key(KeyEvent::new(KeyCode::Tab, KeyModifiers::NONE)); // time plots: from the run itself
+    assert_eq!(s.analysis.current(), None);
 }
 
 #[test]
 fn the_escape_speed_page_holds_the_solver_s_curves() {
     let mut a = app("C");
     a.page = Page::EscapeSpeed;
-    a.sync_analysis();
-    let s = settings_for(a.settings);
+    common::sync(&mut a);
+    let s = settings_for(a.settings());
     for xi0 in std::iter::once(0.5).chain(PAPER_XI0) {
         let c = a.charts.curve(xi0, s).expect("curve");
         assert!(c.complete(), "{xi0}");
@@ -110,7 +111,7 @@ fn the_escape_speed_page_holds_the_solver_s_curves() {
     );
     assert!(screen.contains(&note), "{note}\n{screen}");
     // C's v0 = 0.6078 at φ = 0 is below v_e(0) there: the page says it sticks.
-    assert!(c.ve[0].unwrap().hi().unwrap() > a.initial.v0);
+    assert!(c.ve[0].unwrap().hi().unwrap() > a.initial().v0);
     assert!(screen.contains("release sticks (below v_e)"), "{screen}");
 }
 
@@ -118,8 +119,8 @@ fn the_escape_speed_page_holds_the_solver_s_curves() {
 fn the_outcome_map_agrees_with_the_escape_speeds() {
     let mut a = app("C");
     a.page = Page::OutcomeMap;
-    a.sync_analysis();
-    let s = settings_for(a.settings);
+    common::sync(&mut a);
+    let s = settings_for(a.settings());
     let curve = a.charts.curve(0.5, s).unwrap().clone();
     let map = a.charts.map.clone().expect("map");
     let turntable::analysis::Job::Map {
@@ -165,7 +166,7 @@ fn the_outcome_map_agrees_with_the_escape_speeds() {
 fn a_click_on_the_map_picks_that_release_and_enter_runs_it() {
     let mut a = app("C");
     a.page = Page::OutcomeMap;
-    a.sync_analysis();
+    common::sync(&mut a);
     render(&mut a, 100, 30);
     let g = a.geom_for_tests().expect("plot geometry");
     assert_eq!(g.page, Page::OutcomeMap);
@@ -177,19 +178,19 @@ fn a_click_on_the_map_picks_that_release_and_enter_runs_it() {
         row,
         modifiers: KeyModifiers::NONE,
     });
-    assert!((a.initial.phi.rem_euclid(TAU) - want.x).abs() < 1e-9);
-    assert!((a.initial.v0 - want.y).abs() < 1e-9);
-    assert_eq!(a.initial.release, Release::Velocity);
+    assert!((a.initial().phi.rem_euclid(TAU) - want.x).abs() < 1e-9);
+    assert!((a.initial().v0 - want.y).abs() < 1e-9);
+    assert_eq!(a.initial().release, Release::Velocity);
     press(&mut a, KeyCode::Enter);
     assert_eq!(a.page, Page::Turntable);
-    assert!(a.playing && a.sim.now().tau == 0.0);
+    assert!(a.playing && a.sim().now().tau == 0.0);
 }
 
 #[test]
 fn the_rest_radius_page_has_fig6_and_reads_mu_from_eq22() {
     let mut a = app("C");
     a.page = Page::RestRadius;
-    a.sync_analysis();
+    common::sync(&mut a);
     let rest = a.charts.rest.clone().expect("rest");
     let c = rest.critical.unwrap().unwrap();
     let want = critical_radius(settings_for(Settings::default()), 1e-6)
@@ -228,7 +229,7 @@ fn the_time_plots_show_the_energy_identity() {
     for _ in 0..60 {
         a.tick();
     }
-    let path = a.sim.trail().to_vec();
+    let path = a.sim().trail().to_vec();
     let [e, w] = turntable::ui::time_plots::energy_pair(&path);
     let worst = e
         .iter()
@@ -255,7 +256,7 @@ fn pages_survive_every_size() {
         Page::RestRadius,
     ] {
         a.page = page;
-        a.sync_analysis();
+        common::sync(&mut a);
         for (w, h) in [(40, 12), (60, 20), (80, 24), (200, 60), (1, 1)] {
             let s = render(&mut a, w, h);
             assert!(!s.contains("NaN"), "{page:?} {w}x{h}");
@@ -270,9 +271,9 @@ fn the_map_fills_the_plot_and_a_return_computes_only_what_is_missing() {
     use turntable::analysis::{Analysis, Job, Piece};
     let mut a = app("C");
     a.page = Page::OutcomeMap;
-    a.sync_analysis();
+    common::sync(&mut a);
     render(&mut a, 90, 26);
-    a.sync_analysis();
+    common::sync(&mut a);
     let size = |a: &App| match a.charts.map.as_ref().map(|m| m.job) {
         Some(Job::Map { size, .. }) => size,
         other => panic!("{other:?}"),
@@ -283,7 +284,7 @@ fn the_map_fills_the_plot_and_a_return_computes_only_what_is_missing() {
         (usize::from(plot.width), usize::from(plot.height))
     );
     render(&mut a, 120, 40);
-    a.sync_analysis();
+    common::sync(&mut a);
     render(&mut a, 120, 40);
     let plot = a.geom_for_tests().unwrap().area;
     assert_eq!(
@@ -297,7 +298,7 @@ fn the_map_fills_the_plot_and_a_return_computes_only_what_is_missing() {
     let cells = &mut charts.map.as_mut().unwrap().cells;
     cells[3] = None;
     cells[17] = None;
-    let s = settings_for(a.settings);
+    let s = settings_for(a.settings());
     assert_eq!(charts.missing(&map.job, s), vec![3, 17]);
     let mut an = Analysis::inline();
     an.request(map.job, s, charts.missing(&map.job, s));
@@ -322,21 +323,21 @@ fn the_map_fills_the_plot_and_a_return_computes_only_what_is_missing() {
 fn the_escape_page_does_not_guess_between_its_angles() {
     let mut a = app("C");
     a.page = Page::EscapeSpeed;
-    a.sync_analysis();
-    let s = settings_for(a.settings);
+    common::sync(&mut a);
+    let s = settings_for(a.settings());
     let c = a.charts.curve(0.5, s).unwrap().clone();
     let n = c.ve.len();
     let (v1, v2) = (
         c.ve[1].unwrap().hi().unwrap(),
         c.ve[2].unwrap().hi().unwrap(),
     );
-    a.initial.phi = 1.5 * TAU / n as f64;
+    a.explore().edit_initial(|i| i.phi = 1.5 * TAU / n as f64);
     for (v0, words) in [
         (0.5 * (v1 + v2), "release ≈ v_e: Enter runs it to see"),
         (v1.max(v2) + 1e-3, "release escapes (above v_e)"),
         (v1.min(v2) - 1e-3, "release sticks (below v_e)"),
     ] {
-        a.initial.v0 = v0;
+        a.explore().edit_initial(|i| i.v0 = v0);
         let screen = render(&mut a, 100, 30);
         assert!(screen.contains(words), "{v0}: {words}\n{screen}");
     }
@@ -355,9 +356,9 @@ fn outside_xi_1_the_pages_show_the_sticking_window() {
     };
     let mut a = app("D");
     for xi0 in [1.1, 1.05, 1.3, 2.0] {
-        a.initial.xi0 = xi0;
+        a.explore().edit_initial(|i| i.xi0 = xi0);
         a.page = Page::EscapeSpeed;
-        a.sync_analysis();
+        common::sync(&mut a);
         let c = a.charts.curve(xi0, s).expect("curve").clone();
         assert!(c.complete(), "{xi0}");
         let windows: Vec<(usize, f64, f64)> = (0..c.ve.len())
@@ -397,7 +398,7 @@ fn outside_xi_1_the_pages_show_the_sticking_window() {
         );
         // The map's speeds reach past the window's top, and it has stuck cells.
         a.page = Page::OutcomeMap;
-        a.sync_analysis();
+        common::sync(&mut a);
         let top = windows.iter().map(|w| w.2).fold(0.0, f64::max);
         let map = a.charts.map.clone().expect("map");
         let analysis::Job::Map { v0_max, .. } = map.job else {
@@ -420,19 +421,19 @@ fn outside_xi_1_the_pages_show_the_sticking_window() {
         screen.contains("release sticks (in the window)"),
         "{screen}"
     );
-    d.initial.v0 = 0.3;
+    d.explore().edit_initial(|i| i.v0 = 0.3);
     let screen = render(&mut d, 100, 30);
     assert!(
         screen.contains("release escapes (below the window)"),
         "{screen}"
     );
-    d.initial.v0 = 3.0;
+    d.explore().edit_initial(|i| i.v0 = 3.0);
     let screen = render(&mut d, 100, 30);
     assert!(
         screen.contains("release escapes (above the window)"),
         "{screen}"
     );
-    d.initial.phi = 0.0;
+    d.explore().edit_initial(|i| i.phi = 0.0);
     let screen = render(&mut d, 100, 30);
     assert!(
         screen.contains("release escapes (no window at this φ)"),
@@ -485,10 +486,11 @@ fn the_map_grid_is_the_drawn_plot_at_every_size() {
             modifiers: KeyModifiers::NONE,
         });
         assert!(
-            (a.initial.phi.rem_euclid(TAU) - phi).abs() < 1e-6 && (a.initial.v0 - v0).abs() < 1e-6,
+            (a.initial().phi.rem_euclid(TAU) - phi).abs() < 1e-6
+                && (a.initial().v0 - v0).abs() < 1e-6,
             "{w}×{h}: {} {} vs {phi} {v0}",
-            a.initial.phi,
-            a.initial.v0
+            a.initial().phi,
+            a.initial().v0
         );
     }
 }
@@ -499,8 +501,8 @@ fn the_map_grid_is_the_drawn_plot_at_every_size() {
 fn no_number_is_cut_at_any_width() {
     let mut a = app("C");
     a.page = Page::EscapeSpeed;
-    a.sync_analysis();
-    let s = settings_for(a.settings);
+    common::sync(&mut a);
+    let s = settings_for(a.settings());
     let c = a.charts.curve(0.5, s).unwrap();
     let ((_, _), (_, vmax)) = c.extremes().unwrap();
     let (_, vmin) = c.least.unwrap().unwrap();
@@ -610,7 +612,7 @@ fn a_theme_s_background_covers_every_cell() {
                 Page::RestRadius,
             ] {
                 a.page = page;
-                a.sync_analysis();
+                common::sync(&mut a);
                 let mut t =
                     ratatui::Terminal::new(ratatui::backend::TestBackend::new(80, 24)).unwrap();
                 a.resize(80, 24);

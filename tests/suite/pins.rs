@@ -74,8 +74,7 @@ fn a_pin_ends_where_the_engines_run_stops() {
 #[test]
 fn an_escaping_pin_is_followed_out_of_view_and_a_long_one_is_bounded() {
     let mut a = app("C");
-    a.initial = Initial::velocity(0.5, 0.0, 1.2);
-    a.restart();
+    a.explore().set_initial(Initial::velocity(0.5, 0.0, 1.2));
     key(&mut a, 'b');
     let p = &a.pins[0];
     assert_eq!(p.outcome, Outcome::Escaped);
@@ -98,7 +97,7 @@ fn an_escaping_pin_is_followed_out_of_view_and_a_long_one_is_bounded() {
     assert_eq!(p.spec.label, "B");
     // The paper's raw RK2 never stops at C: bounded in steps and τ all the same.
     key(&mut a, '3');
-    while a.settings.method() != turntable::engine::Method::Rk2Raw {
+    while a.settings().method() != turntable::engine::Method::Rk2Raw {
         key(&mut a, 'm');
     }
     key(&mut a, 'b');
@@ -173,7 +172,7 @@ fn pins_show_in_both_frames_and_on_the_time_plots_at_every_size() {
     }
     // The time plots span the longest pin (C stops at τ ≈ 5.6), not only the τ on screen.
     a.page = Page::TimePlots;
-    assert!(a.plot_span() > 5.5 && a.sim.now().tau < 2.0);
+    assert!(a.plot_span() > 5.5 && a.sim().now().tau < 2.0);
     let screen = render(&mut a, 200, 60);
     assert!(screen.contains(" 5 "), "{screen}");
 }

@@ -45,8 +45,10 @@ impl Plain {
         self.press(Chord::new(KeyCode::Char(c), KeyModifiers::NONE))
     }
 
+    /// A key pressed; what it asks to write is answered as a replay answers it (no file).
     fn press(&mut self, chord: Chord) -> Vec<String> {
-        self.app.press(chord);
+        let effects = self.app.press(chord);
+        turntable::replay::answer(&mut self.app, effects);
         self.say()
     }
 
@@ -63,7 +65,7 @@ impl Plain {
 
 /// How the engine's own run of the app's release ends: the stop or the escape.
 fn engine_end(app: &App) -> (Outcome, f64, f64) {
-    let mut run = Run::new(app.initial, Settings::default()).unwrap();
+    let mut run = Run::new(app.initial(), Settings::default()).unwrap();
     let (out, _) = run.finish(100.0).unwrap();
     match (run.status(), run.escape()) {
         (Status::Stuck { tau, q }, _) => (out, tau, q.length()),
@@ -174,7 +176,7 @@ fn compare_says_how_the_papers_scheme_ends_too() {
     let said = p.ticks(400);
     assert_eq!(said[0], "stuck at ξ = 0.9972 (τ = 5.602)");
     // The paper's fixed-step RK2 steps over C's stop and escapes (Sec. IV), as its own run.
-    let mut paper = Run::new(p.app.initial, Settings::paper()).unwrap();
+    let mut paper = Run::new(p.app.initial(), Settings::paper()).unwrap();
     paper.finish(100.0).unwrap();
     let e = paper.escape().expect("the paper's RK2 lets C escape");
     assert!(
@@ -269,7 +271,6 @@ fn help_lists_every_key_of_the_keymap() {
 #[test]
 fn the_save_prompt_is_spoken() {
     let mut p = Plain::new("C");
-    p.app.writes_files = false;
     assert_eq!(
         p.key('S'),
         ["save as: type a name, Enter saves, Esc cancels"]
@@ -289,12 +290,12 @@ fn the_save_prompt_is_spoken() {
 fn every_key_on_every_preset_says_plain_lines_and_numbers() {
     for scene in turntable::scene::PRESETS {
         let mut p = Plain::new(scene);
-        p.app.writes_files = false;
         for b in KEYMAP {
             if b.action == turntable::app::Action::Quit {
                 continue;
             }
-            p.app.handle_key(KeyEvent::new(b.chord.code, b.chord.mods));
+            let effects = p.app.handle_key(KeyEvent::new(b.chord.code, b.chord.mods));
+            turntable::replay::answer(&mut p.app, effects);
             p.say();
             p.ticks(3);
         }
@@ -365,7 +366,7 @@ fn a_body_scene_says_the_bodys_pivot_rest_and_escape_as_time_reaches_them() {
     let scene = Scene::load("tests/replay/body.toml").unwrap();
     let body = scene.body.unwrap();
     let app = App::new(scene, Theme::builtin("dark").unwrap());
-    let track = common::rod_track(body, 1.0, &app.initial, 1e-10, 200.0);
+    let track = common::rod_track(body, 1.0, &app.initial(), 1e-10, 200.0);
     let k = track
         .phases
         .iter()
@@ -416,7 +417,7 @@ fn a_body_scene_says_the_bodys_pivot_rest_and_escape_as_time_reaches_them() {
     }
     // Fig. 2's release outside ξ = 1: certified at once, said with the new release.
     let said = p.key('6');
-    let cert = p.app.rod.as_ref().unwrap().escape.unwrap();
+    let cert = p.app.rod().unwrap().escape.unwrap();
     assert_eq!(cert, 0.0);
     assert!(
         said.contains(&"the body escapes (certified at τ = 0.000)".to_string()),

@@ -381,7 +381,10 @@ fn the_explorer_writes_the_page_to_a_new_file() {
         turntable::theme::Theme::builtin("dark").unwrap(),
     );
     app.save_path = dir.join("turntable-scene.toml");
-    let press = |app: &mut App, code| app.handle_key(KeyEvent::new(code, KeyModifiers::NONE));
+    let press = |app: &mut App, code| {
+        let effects = app.handle_key(KeyEvent::new(code, KeyModifiers::NONE));
+        turntable::session::carry_out(app, effects);
+    };
     // It plays from the start: 80 ticks are τ = 4, past B's stop.
     for _ in 0..80 {
         app.tick();
@@ -397,7 +400,7 @@ fn the_explorer_writes_the_page_to_a_new_file() {
     let (x, y) = (axis(&tags, "x-tick"), axis(&tags, "y-tick"));
     // The trail ends where the particle is on screen: B at rest (docs/numerics.md).
     let end = *points(with_class(&tags, "series")[0]).last().unwrap();
-    let now = app.sim.now();
+    let now = app.sim().now();
     assert!((x(end.0) - now.r.x).abs() < 1e-5 && (y(end.1) - now.r.y).abs() < 1e-5);
     assert!(
         (now.xi() - reference::B_REST.0).abs() < 1e-8,

@@ -17,7 +17,7 @@ fn key(app: &mut App, c: char) {
 }
 
 fn outcome(a: &App) -> Outcome {
-    Run::new(a.initial, a.settings)
+    Run::new(a.initial(), a.settings())
         .unwrap()
         .finish(1e3)
         .unwrap()
@@ -28,16 +28,19 @@ fn outcome(a: &App) -> Outcome {
 fn doubling_mu_doubles_r_max_and_halves_xi0_for_the_same_metres() {
     let mut a = App::new(Scene::preset("C").unwrap(), Theme::builtin("dark").unwrap());
     // Thrown outward faster than C: it escapes on this table.
-    a.initial = Initial::velocity(0.5, 0.0, 0.7);
-    a.restart();
+    a.explore().set_initial(Initial::velocity(0.5, 0.0, 0.7));
     assert_eq!(outcome(&a), Outcome::Escaped);
     key(&mut a, 'u');
     let u0 = a.units.unwrap();
     assert_eq!(
-        a.initial.xi0, 0.5,
+        a.initial().xi0,
+        0.5,
         "turning units on changes nothing but labels"
     );
-    let (r0, v0) = (a.initial.xi0 * u0.r_max_m(), a.initial.v0 * u0.speed_m_s());
+    let (r0, v0) = (
+        a.initial().xi0 * u0.r_max_m(),
+        a.initial().v0 * u0.speed_m_s(),
+    );
     for _ in 0..15 {
         key(&mut a, 'u');
     }
@@ -45,20 +48,20 @@ fn doubling_mu_doubles_r_max_and_halves_xi0_for_the_same_metres() {
     assert_eq!(u.mu, 2.0 * u0.mu);
     assert!((u.r_max_m() / u0.r_max_m() - 2.0).abs() < 1e-12);
     // The same metres and m/s: ξ0 and v0 halve.
-    assert!((a.initial.xi0 - 0.25).abs() < 1e-9, "{}", a.initial.xi0);
-    assert!((a.initial.v0 - 0.35).abs() < 1e-9, "{}", a.initial.v0);
-    assert!((a.initial.xi0 * u.r_max_m() - r0).abs() < 1e-9);
-    assert!((a.initial.v0 * u.speed_m_s() - v0).abs() < 1e-9);
-    assert_eq!(a.initial.phi, 0.0);
+    assert!((a.initial().xi0 - 0.25).abs() < 1e-9, "{}", a.initial().xi0);
+    assert!((a.initial().v0 - 0.35).abs() < 1e-9, "{}", a.initial().v0);
+    assert!((a.initial().xi0 * u.r_max_m() - r0).abs() < 1e-9);
+    assert!((a.initial().v0 * u.speed_m_s() - v0).abs() < 1e-9);
+    assert_eq!(a.initial().phi, 0.0);
     // "What if friction were larger?": it now stops.
     assert_eq!(outcome(&a), Outcome::Stuck);
-    assert_eq!(a.sim.now().tau, 0.0, "the run restarted");
+    assert_eq!(a.sim().now().tau, 0.0, "the run restarted");
     a.check_invariants().unwrap();
     // And back: the release in metres is the same one.
     for _ in 0..15 {
         key(&mut a, 'U');
     }
-    assert!((a.initial.xi0 - 0.5).abs() < 1e-9 && (a.initial.v0 - 0.7).abs() < 1e-9);
+    assert!((a.initial().xi0 - 0.5).abs() < 1e-9 && (a.initial().v0 - 0.7).abs() < 1e-9);
     assert_eq!(outcome(&a), Outcome::Escaped);
 }
 
@@ -89,7 +92,7 @@ fn the_table_stays_in_the_panel_and_the_mu_probe_reads_its_omega() {
         a.check_invariants().unwrap();
         if h >= 24 {
             let r_max = format!("R_max  {}", show_length(u.r_max_m()));
-            let r0 = format!("r0     {} φ 0°", show_length(a.initial.xi0 * u.r_max_m()));
+            let r0 = format!("r0     {} φ 0°", show_length(a.initial().xi0 * u.r_max_m()));
             let omega = format!("Ω      {} 34.3 rpm", show_rate(u.omega()));
             for want in [&r_max, &r0, "μ g    0.15, 9.81 m/s²", &omega] {
                 assert!(screen.contains(want), "{w}×{h}: {want}\n{screen}");
@@ -113,12 +116,12 @@ fn the_table_stays_in_the_panel_and_the_mu_probe_reads_its_omega() {
         screen.contains("Ω = 3.595 rad/s (34.3 rpm, the table's)"),
         "{screen}"
     );
-    let xi0 = a.initial.xi0;
+    let xi0 = a.initial().xi0;
     key(&mut a, 'o');
     let v = a.units.unwrap();
     assert!((v.omega() - (u.omega() + 0.1)).abs() < 1e-9, "{v:?}");
     assert!(
-        a.initial.xi0 > xi0,
+        a.initial().xi0 > xi0,
         "a faster table: a smaller R_max, a larger ξ0"
     );
     assert_eq!(
@@ -133,8 +136,7 @@ fn the_table_stays_in_the_panel_and_the_mu_probe_reads_its_omega() {
 #[test]
 fn a_pin_from_another_table_is_drawn_in_this_ones_units() {
     let mut a = App::new(Scene::preset("C").unwrap(), Theme::builtin("dark").unwrap());
-    a.initial = Initial::velocity(0.5, 0.0, 0.7);
-    a.restart();
+    a.explore().set_initial(Initial::velocity(0.5, 0.0, 0.7));
     key(&mut a, 'u');
     key(&mut a, 'b');
     let before = a.units;
@@ -149,7 +151,7 @@ fn a_pin_from_another_table_is_drawn_in_this_ones_units() {
         (kl - 0.5).abs() < 1e-12 && (kt - 1.0).abs() < 1e-12,
         "{kl} {kt}"
     );
-    assert!((pin.path[0].xi() * kl - a.initial.xi0).abs() < 1e-9);
+    assert!((pin.path[0].xi() * kl - a.initial().xi0).abs() < 1e-9);
     // Units off: nothing to convert by.
     assert_eq!(pin.scale(None), (1.0, 1.0));
     for page in [Page::Turntable, Page::TimePlots] {

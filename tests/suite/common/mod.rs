@@ -27,8 +27,8 @@ pub fn turntable(args: &[&str]) -> (i32, String, String) {
 /// loop does) and returns the screen as text, one line per row.
 pub fn render(app: &mut turntable::app::App, w: u16, h: u16) -> String {
     let mut t = ratatui::Terminal::new(ratatui::backend::TestBackend::new(w, h)).unwrap();
-    app.resize(w, h);
-    app.sync_analysis();
+    turntable::session::tell_size(app, w, h);
+    sync(app);
     let mut geom = None;
     t.draw(|f| geom = turntable::ui::draw(f, app)).unwrap();
     app.drawn(geom);
@@ -41,6 +41,12 @@ pub fn render(app: &mut turntable::app::App, w: u16, h: u16) -> String {
                 + "\n"
         })
         .collect()
+}
+
+/// Brings `app`'s analysis pages up to date, computed now (as a headless session's frame
+/// does).
+pub fn sync(app: &mut turntable::app::App) {
+    turntable::session::sync(app, &mut turntable::analysis::Analysis::inline(), true);
 }
 
 /// A new pseudo-terminal of `cols` × `rows`: master and slave, close-on-exec (as a terminal
