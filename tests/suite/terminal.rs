@@ -245,7 +245,9 @@ fn suspend_and_continue() {
     unsafe { libc::kill(pid, libc::SIGTSTP) };
     wait_for("stopped", || state() == Some('T'));
     // Written before it stopped; the reader thread may not have it yet on a loaded machine.
-    wait_for("the terminal handed back", || contains(&seen, mark, ALT_OFF));
+    wait_for("the terminal handed back", || {
+        contains(&seen, mark, ALT_OFF)
+    });
     let mark = seen.lock().unwrap().len();
     unsafe { libc::kill(pid, libc::SIGCONT) };
     wait_for("the screen back", || contains(&seen, mark, ALT_ON));
