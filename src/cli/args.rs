@@ -159,13 +159,9 @@ impl CouplingArgs {
         } else {
             CouplingName::Coulomb
         });
-        let c = name.with(self.mu_static_ratio, self.gamma).map_err(|e| {
-            Error::Invalid(
-                e.replace("gamma", "--gamma")
-                    .replace("mu-static-ratio", "--mu-static-ratio")
-                    .replace("coupling ", "--coupling "),
-            )
-        })?;
+        let c = name
+            .with(self.mu_static_ratio, self.gamma)
+            .map_err(|e| Error::Invalid(e.named("--gamma", "--mu-static-ratio", "--coupling")))?;
         c.validate()
             .map_err(|e| crate::check::named(e, crate::check::Via::Flags))?;
         Ok(Some(c))

@@ -56,14 +56,28 @@ pub(crate) fn bracket_width(name: &str, x: f64) -> Result<(), Error> {
     }
 }
 
-/// A step budget exhausted inside a solver: the advice names the solver's own flags (the
-/// run's message names --tau-max, which the solvers do not take).
+/// A solver's error as its command's flags name it: a step budget exhausted inside it, with
+/// advice that names the solver's own flags (not --tau-max, which the solvers do not take),
+/// and its bracket width as `tol_flag`.
 pub(crate) fn solver_budget<E: Into<Error>>(tol_flag: &'static str) -> impl Fn(E) -> Error {
     move |e| match e.into() {
         Error::Run(crate::engine::RunError::Budget { steps, tau }) => Error::Failed(format!(
             "step budget of {steps} steps exhausted at tau = {tau:.6} (raise --max-steps, or loosen {tol_flag} or --tol)"
         )),
-        e => e,
+        e => crate::check::retyped(e, crate::engine::error::Field::Bracket, tol_flag),
+    }
+}
+
+/// An error as the command line says it: a value the engine refused and nothing named is
+/// named as its flag; a run that could not finish says which flags would let it.
+fn as_typed(e: Error) -> String {
+    use crate::engine::RunError;
+    match crate::check::named(e, crate::check::Via::Flags) {
+        e @ Error::Run(RunError::Budget { .. }) => {
+            format!("{e} (raise --max-steps, lower --tau-max, or use a larger dt / looser tol)")
+        }
+        e @ Error::Run(RunError::Overflow { .. }) => format!("{e} (lower --tau-max)"),
+        e => e.to_string(),
     }
 }
 
@@ -194,9 +208,15 @@ fn explore(
             (Err(e), Ok(Some(_))) => {
                 let m = crate::files::escape_controls(&e.to_string());
                 let _ = writeln!(std::io::stderr(), "error: {m}");
-                return result.map_err(|e| Error::Failed(format!("terminal: {e}")));
+                return result.map_err(|e| Error::io("terminal", e));
             }
-            (Err(e), _) => return Err(e),
+            // The terminal failed too: both are said, the terminal's first.
+            (Err(e), Err(t)) => {
+                let t = crate::files::escape_controls(&format!("terminal: {t}"));
+                let _ = writeln!(std::io::stderr(), "error: {t}");
+                return Err(e);
+            }
+            (Err(e), Ok(None)) => return Err(e),
         };
         if let Some(path) = cli.record.as_deref().filter(|p| *p != saved) {
             let _ = writeln!(
@@ -207,7 +227,7 @@ fn explore(
             );
         }
     }
-    result.map_err(|e| Error::Failed(format!("terminal: {e}")))
+    result.map_err(|e| Error::io("terminal", e))
 }
 
 /// How a recording names its scene: a preset by name, a file by its absolute path, so that
@@ -371,9 +391,10 @@ pub fn main() -> ExitCode {
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            let m = crate::files::escape_controls(&e.to_string());
+            let code = e.exit_code();
+            let m = crate::files::escape_controls(&as_typed(e));
             let _ = writeln!(std::io::stderr(), "error: {m}");
-            ExitCode::from(e.exit_code())
+            ExitCode::from(code)
         }
     }
 }
