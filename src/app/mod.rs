@@ -12,7 +12,7 @@ pub mod update;
 pub use action::Action;
 pub use chord::Chord;
 pub use keymap::{Binding, KEYMAP};
-pub use state::{App, CanvasGeom, G_DEFAULT, MU_PROBE, TICK_DT};
+pub use state::{App, CanvasGeom, MU_PROBE, TICK_DT, TICKS_PER_SECOND};
 pub use update::update;
 
 use crate::engine::Settings;

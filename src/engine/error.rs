@@ -290,6 +290,87 @@ mod tests {
         assert_eq!(Range::AtMost(1e12).to_string(), "be ≤ 1e12");
     }
 
+    /// Each of the engine's checks refuses a value by its field and the range it missed.
+    #[test]
+    fn the_engines_checks_carry_field_value_and_range() {
+        use crate::engine::body::Body;
+        use crate::engine::units::Units;
+        use crate::engine::{Coupling, Settings};
+        let invalid = |r: Result<(), Error>| match r {
+            Err(Error::Invalid(i)) => (i.field, i.value, i.range),
+            other => panic!("{other:?}"),
+        };
+        let release = |xi0, phi, v0| Initial::velocity(xi0, phi, v0).validate();
+        assert_eq!(
+            invalid(release(-1.0, 0.0, 0.5)),
+            (Field::Xi0, -1.0, Range::AtLeast(0.0))
+        );
+        assert_eq!(
+            invalid(release(0.5, f64::NAN, 0.5)).0,
+            Field::Phi,
+            "a NaN phi"
+        );
+        assert_eq!(
+            invalid(release(0.5, 0.0, 1e13)),
+            (Field::V0, 1e13, Range::AtMost(Initial::MAX))
+        );
+        let units = |mu, rpm, g| Units::new(mu, rpm, g).map(|_| ());
+        assert_eq!(
+            invalid(units(0.1, 1e7, 9.81)),
+            (Field::Rpm, 1e7, Range::Within(Units::MIN, 1e6))
+        );
+        assert_eq!(invalid(units(0.1, 33.0, 0.0)).0, Field::G);
+        let body = Body {
+            length: 1.0,
+            height: Some(-1.0),
+            angle: 0.0,
+        };
+        assert_eq!(
+            invalid(body.validate()),
+            (Field::BodyHeight, -1.0, Range::Within(0.0, Body::MAX))
+        );
+        let s = Settings {
+            max_steps: 0,
+            ..Settings::default()
+        };
+        assert_eq!(
+            invalid(s.validate()),
+            (Field::MaxSteps, 0.0, Range::AtLeast(1.0))
+        );
+        let s = Settings {
+            coupling: Coupling::Coulomb { hold: 0.5 },
+            ..Settings::default()
+        };
+        assert_eq!(invalid(s.validate()).0, Field::MuStaticRatio);
+        let e = crate::engine::solve::check_escape_xi0(1e12).unwrap_err();
+        assert_eq!(
+            invalid(Err(e.clone())),
+            (
+                Field::Xi0,
+                1e12,
+                Range::AtMost(crate::engine::solve::MAX_ESCAPE_XI0)
+            )
+        );
+        assert!(e.to_string().contains("for an escape speed"), "{e}");
+        let e = crate::engine::solve::escape_speed(0.5, 0.0, Settings::default(), 0.0);
+        assert_eq!(
+            invalid(e.map(|_| ())),
+            (Field::Bracket, 0.0, Range::Above(0.0))
+        );
+    }
+
+    /// A combination refused is input refused too; a run's failure and a solver's are not.
+    #[test]
+    fn refusals_are_told_from_failures() {
+        let mut s = crate::engine::Settings::paper();
+        s.coupling = crate::engine::Coupling::Coulomb { hold: 2.0 };
+        let e = s.validate().unwrap_err();
+        assert!(matches!(e, Error::Refused(_)) && e.is_refusal(), "{e:?}");
+        let e = Error::from(RunError::StepUnderflow { tau: 1.0 });
+        assert!(!e.is_refusal());
+        assert!(!Error::NoAnswer("none".into()).is_refusal());
+    }
+
     #[test]
     fn no_field_is_named_like_a_flag() {
         for f in Field::ALL {

@@ -202,17 +202,17 @@ fn is_default<T: Default + PartialEq>(x: &T) -> bool {
     *x == T::default()
 }
 
-/// A coupling's parameter given to the coupling that does not take it, or missing.
+/// A coupling's parameter given to the coupling that does not take it, or missing. Its
+/// message names the values as a scene file does (`gamma`, `mu_static_ratio`, `coupling`);
+/// [`Mismatch::named`] as typed elsewhere.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("{}", self.named("gamma", "mu_static_ratio", "coupling"))]
 pub enum Mismatch {
     /// γ with dry friction.
-    #[error("{}", self.named("gamma", "mu_static_ratio", "coupling"))]
     GammaWithoutStokes,
     /// μ_s/μ_k with Stokes drag.
-    #[error("{}", self.named("gamma", "mu_static_ratio", "coupling"))]
     RatioWithStokes,
     /// Stokes drag with no γ.
-    #[error("{}", self.named("gamma", "mu_static_ratio", "coupling"))]
     StokesWithoutGamma,
 }
 

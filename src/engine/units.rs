@@ -15,8 +15,11 @@ pub struct Units {
     pub g: f64,
 }
 
+/// Gravity unless a scene, the configuration or a flag says otherwise (m/s²).
+pub const G_DEFAULT: f64 = 9.81;
+
 fn default_g() -> f64 {
-    9.81
+    G_DEFAULT
 }
 
 impl Units {
