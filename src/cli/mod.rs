@@ -187,8 +187,9 @@ fn explore(
     // The terminal died under the explorer: the recording is kept all the same, and where
     // it went is said (the terminal is restored by then).
     let save = recording.clone().map(|r| {
-        Box::new(move |script: String| {
-            if let Err(e) = r.keep(script) {
+        Box::new(move |script: String| match r.keep(script) {
+            Ok(saved) => r.say_if_moved(&saved),
+            Err(e) => {
                 let m = crate::files::escape_controls(&e.to_string());
                 let _ = writeln!(std::io::stderr(), "error: {m}");
             }
@@ -218,14 +219,7 @@ fn explore(
             }
             (Err(e), Ok(None)) => return Err(e),
         };
-        if let Some(path) = cli.record.as_deref().filter(|p| *p != saved) {
-            let _ = writeln!(
-                std::io::stderr(),
-                "--record: {} appeared during the session (kept); the recording is in {}",
-                crate::files::escape_controls(&path.display().to_string()),
-                crate::files::escape_controls(&saved.display().to_string())
-            );
-        }
+        r.say_if_moved(&saved);
     }
     result.map_err(|e| Error::io("terminal", e))
 }
@@ -257,6 +251,19 @@ pub fn record_fallback() -> std::path::PathBuf {
 }
 
 impl Recording {
+    /// Says on stderr where the recording went if that is not the file asked for (which
+    /// appeared during the session); on either way out, the end or a terminal that died.
+    fn say_if_moved(&self, saved: &std::path::Path) {
+        if self.path != saved {
+            let _ = writeln!(
+                std::io::stderr(),
+                "--record: {} appeared during the session (kept); the recording is in {}",
+                crate::files::escape_controls(&self.path.display().to_string()),
+                crate::files::escape_controls(&saved.display().to_string())
+            );
+        }
+    }
+
     /// Writes the script atomically; returns where. A file that was not there before the
     /// session is never replaced (`s` may have saved a scene there meanwhile): the recording
     /// then goes to the first free `NAME-N`.

@@ -191,10 +191,10 @@ struct SettingsFile {
 #[derive(Display, EnumString, IntoStaticStr, VariantArray, EnumMessage)]
 #[strum(serialize_all = "kebab-case")]
 pub enum CouplingName {
-    /// Dry friction (the paper's), with --mu-static-ratio.
+    /// Dry friction (the paper's), with its static ratio mu_s/mu_k.
     #[default]
     Coulomb,
-    /// Stokes drag −γ m u, with --gamma.
+    /// Stokes drag −γ m u, with its rate γ.
     Stokes,
 }
 
