@@ -27,6 +27,8 @@ pub enum Error {
         what: String,
         source: Arc<std::io::Error>,
     },
+    /// Work stopped by its caller (an analysis page that is no longer wanted).
+    Cancelled,
 }
 
 impl std::fmt::Display for Error {
@@ -41,6 +43,7 @@ impl std::fmt::Display for Error {
             Error::Run(r) => r.fmt(f),
             Error::Io { what, source } if what.is_empty() => source.fmt(f),
             Error::Io { what, source } => write!(f, "{what}: {source}"),
+            Error::Cancelled => f.write_str("cancelled"),
         }
     }
 }
@@ -52,7 +55,7 @@ impl std::error::Error for Error {
             Error::Io { source, .. } => Some(&**source),
             Error::Value { value, .. } => Some(value),
             Error::Run(r) => Some(r),
-            Error::Invalid(_) | Error::Failed(_) => None,
+            Error::Invalid(_) | Error::Failed(_) | Error::Cancelled => None,
         }
     }
 }
@@ -70,6 +73,7 @@ impl PartialEq for Error {
             (Invalid(a), Invalid(b)) | (Failed(a), Failed(b)) => a == b,
             (Value { name: n, value: v }, Value { name: m, value: w }) => n == m && v == w,
             (Run(a), Run(b)) => a == b,
+            (Cancelled, Cancelled) => true,
             (Io { what: a, source: s }, Io { what: b, source: t }) => {
                 a == b && s.kind() == t.kind() && s.to_string() == t.to_string()
             }
@@ -132,7 +136,7 @@ impl Error {
     pub fn exit_code(&self) -> u8 {
         match self {
             Error::Invalid(_) | Error::Value { .. } => 2,
-            Error::Run(_) | Error::Failed(_) | Error::Io { .. } => 1,
+            Error::Run(_) | Error::Failed(_) | Error::Io { .. } | Error::Cancelled => 1,
         }
     }
 }
@@ -147,7 +151,7 @@ impl From<crate::engine::error::Error> for Error {
             E::Refused(m) => Error::Invalid(m.into_owned()),
             E::Run(r) => Error::Run(r),
             E::NoAnswer(m) => Error::Failed(m.into_owned()),
-            E::Cancelled => Error::Failed("cancelled".into()),
+            E::Cancelled => Error::Cancelled,
         }
     }
 }
