@@ -14,6 +14,7 @@ pub mod figure;
 pub mod files;
 pub mod lesson;
 pub mod pin;
+pub mod present;
 pub mod replay;
 pub mod rng;
 pub mod scene;

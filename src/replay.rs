@@ -5,7 +5,7 @@
 //! Nothing here reads the clock or the environment: the same script gives byte-identical
 //! output on every run and machine.
 
-use crate::app::App;
+use crate::app::{App, Effect, Effects};
 use crate::asciicast::Cast;
 use crate::script::Step;
 use crate::session::Session;
@@ -90,6 +90,7 @@ fn run(
         return plain(app, steps, opts, out);
     }
     let mut s = Session::headless(app, opts.size.0, opts.size.1, false);
+    s.carry = answer;
     let mut shots = 0;
     // Ticks passed: the recording's clock.
     let mut ticks = 0;
@@ -112,7 +113,7 @@ fn run(
             (Step::Tick(n), Some(c)) => {
                 // Tick by tick, a frame each, as the explorer draws them.
                 for _ in 0..*n {
-                    if !s.app.is_playing() {
+                    if !s.is_playing() {
                         break;
                     }
                     s.apply(&Step::Tick(1));
@@ -150,6 +151,7 @@ fn plain(
 ) -> std::io::Result<()> {
     use crate::ui::plain::{Seen, describe, opening};
     let mut s = Session::headless(app, opts.size.0, opts.size.1, false);
+    s.carry = answer;
     let mut seen = Seen::of(&s.app);
     let say = |s: &Session<TestBackend>, seen: &mut Seen, out: &mut dyn std::io::Write| {
         let now = Seen::of(&s.app);
@@ -175,11 +177,12 @@ fn plain(
                     .map(|l| format!(": {l}"))
                     .unwrap_or_default();
                 writeln!(out, "--- snapshot {shots}{label}")?;
-                crate::app::update(&mut s.app, crate::app::Action::Readouts);
+                let effects = crate::app::update(&mut s.app, crate::app::Action::Readouts);
+                answer(&mut s.app, effects);
             }
             Step::Tick(n) => {
                 for _ in 0..*n {
-                    if !s.app.is_playing() {
+                    if !s.is_playing() {
                         break;
                     }
                     s.apply(&Step::Tick(1));
@@ -191,11 +194,31 @@ fn plain(
         // A page's numbers are said once computed: headless, at once (the terminal's plain
         // mode says them when its worker brings them).
         if crate::ui::pages::summarized(s.app.page) {
-            s.app.sync_analysis();
+            s.sync_analysis();
         }
         say(&s, &mut seen, out)?;
     }
     out.flush()
+}
+
+/// A replay writes no file: each effect is answered with what it would have written, where.
+pub fn answer(app: &mut App, effects: Effects) {
+    for effect in effects {
+        let notice = match effect {
+            Effect::SaveScene { scene, path } => format!(
+                "replay saves nothing: \"{}\" → {} (or the next free name)",
+                scene.name,
+                path.display()
+            ),
+            Effect::ExportSvg { page, .. } => format!(
+                "replay saves nothing: this page → turntable-{}-N.svg (the first free N)",
+                crate::ui::figure::slug(page)
+            ),
+            // Words on screen, not a file: said as in the explorer.
+            Effect::Readouts => crate::ui::plain::summary(app),
+        };
+        app.report(notice);
+    }
 }
 
 fn snapshot(
@@ -242,6 +265,14 @@ mod tests {
             "{out}"
         );
         assert_eq!(out.lines().count(), 25);
+    }
+
+    /// A replay writes no file: `s` and `E` are answered with what would have been written.
+    #[test]
+    fn a_replay_answers_effects_without_writing() {
+        let out = run("s\nsnapshot one\nE\nsnapshot two");
+        assert!(out.contains("replay saves nothing: \"C\""), "{out}");
+        assert!(out.contains("replay saves nothing: this page"), "{out}");
     }
 
     #[test]

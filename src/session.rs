@@ -3,7 +3,8 @@
 //! in a headless replay (`TestBackend`) alike, so what `--record` writes is exactly what a
 //! replay applies.
 
-use crate::app::{App, Chord};
+use crate::analysis::Analysis;
+use crate::app::{App, Chord, Effect, Effects};
 use crate::script::{Recorder, Step};
 use crossterm::event::{KeyEvent, MouseEvent};
 use ratatui::Terminal;
@@ -35,6 +36,12 @@ pub struct Session<B: Backend> {
     recorder: Option<SharedRecorder>,
     /// An interactive lesson's script, fed in as time passes (see [`Session::pump_lesson`]).
     lesson: Option<crate::lesson::Driver>,
+    /// How the effects `update` returns are carried out: [`carry_out`] (files written) unless
+    /// the shell says otherwise (a replay answers them with [`crate::replay::answer`]).
+    pub carry: fn(&mut App, Effects),
+    /// Where the analysis pages are computed: inline (computed when a frame is drawn) unless
+    /// [`Session::with_worker`].
+    pub analysis: Analysis,
 }
 
 impl<B: Backend> Session<B> {
@@ -46,14 +53,43 @@ impl<B: Backend> Session<B> {
         if let Some(r) = &recorder {
             lock(r).resize(size.width, size.height);
         }
-        let mut app = app;
-        app.resize(size.width, size.height);
-        Ok(Session {
+        let mut s = Session {
             app,
             term,
             recorder,
             lesson: None,
-        })
+            carry: carry_out,
+            analysis: Analysis::inline(),
+        };
+        tell_size(&mut s.app, size.width, size.height);
+        s.ask_analysis();
+        Ok(s)
+    }
+
+    /// The analysis pages computed on a worker thread (the interactive loops): keys and
+    /// frames never wait for them.
+    pub fn with_worker(mut self) -> Self {
+        self.analysis.cancel();
+        self.analysis = Analysis::threaded();
+        self.ask_analysis();
+        self
+    }
+
+    /// Whether time should tick: the model's runs (see [`App::is_playing`]), or a page
+    /// filling in from the worker.
+    pub fn is_playing(&self) -> bool {
+        self.app.is_playing() || self.analysis.busy()
+    }
+
+    /// Brings the analysis pages up to date for a frame (inline: computed now).
+    pub fn sync_analysis(&mut self) -> bool {
+        sync(&mut self.app, &mut self.analysis, true)
+    }
+
+    /// As [`Session::sync_analysis`], but an inline request is only noted: keys and ticks
+    /// call this, so fifty edits before a frame compute one page, not fifty.
+    pub fn ask_analysis(&mut self) -> bool {
+        sync(&mut self.app, &mut self.analysis, false)
     }
 
     /// A terminal's key event (releases and keys a script cannot name are ignored; repeats
@@ -69,7 +105,9 @@ impl<B: Backend> Session<B> {
         if let Some(r) = &self.recorder {
             lock(r).key(chord);
         }
-        self.app.press(chord);
+        let effects = self.app.press(chord);
+        (self.carry)(&mut self.app, effects);
+        self.ask_analysis();
     }
 
     /// Pasted text: typed, letter by letter, only at the save prompt (there it is the name);
@@ -98,7 +136,9 @@ impl<B: Backend> Session<B> {
         if let Some(r) = &self.recorder {
             lock(r).mouse(&ev);
         }
-        self.app.handle_mouse(ev);
+        let effects = self.app.handle_mouse(ev);
+        (self.carry)(&mut self.app, effects);
+        self.ask_analysis();
         Ok(())
     }
 
@@ -107,6 +147,7 @@ impl<B: Backend> Session<B> {
         if let Some(r) = &self.recorder {
             lock(r).tick();
         }
+        self.ask_analysis();
         self.app.tick();
         if let Some(d) = &mut self.lesson {
             d.ticked();
@@ -134,7 +175,7 @@ impl<B: Backend> Session<B> {
 
     fn feed(&mut self, d: &mut crate::lesson::Driver) -> Result<(), B::Error> {
         while !(self.app.lesson.holds() || self.app.should_quit()) {
-            if d.counting() && self.app.is_playing() {
+            if d.counting() && self.is_playing() {
                 return Ok(());
             }
             let Some(step) = d.next_step() else {
@@ -162,12 +203,13 @@ impl<B: Backend> Session<B> {
         if let Some(r) = &self.recorder {
             lock(r).resize(width, height);
         }
-        self.app.resize(width, height);
+        tell_size(&mut self.app, width, height);
+        self.ask_analysis();
     }
 
     /// Draws the app, its analysis pages brought up to date first (headless, computed now).
     pub fn draw(&mut self) -> Result<(), B::Error> {
-        self.app.sync_analysis();
+        self.sync_analysis();
         let mut geom = None;
         let ascii = self.app.theme.marker == Marker::Dot;
         self.term.draw(|f| {
@@ -193,6 +235,99 @@ impl<B: Backend> Session<B> {
     pub fn take_recording(&mut self) -> Option<String> {
         self.recorder.take().map(|r| lock(&r).clone().finish())
     }
+}
+
+/// Tells `app` the terminal is now `width` × `height`, and what the view measures there (the
+/// help's page and end).
+pub fn tell_size(app: &mut App, width: u16, height: u16) {
+    app.resize(width, height);
+    app.measured(crate::app::Measured {
+        help_page: crate::ui::help::page(height),
+        help_max_scroll: crate::ui::help::max_scroll(width, height, &app.theme),
+    });
+}
+
+/// Brings `app`'s analysis pages up to date through `analysis`: takes the pieces that arrived
+/// and asks for what the page on screen still lacks, the outcome map at the grid its plot
+/// holds at the terminal's size (`ui::pages::map_grid`), computing it now when `compute` and
+/// inline. Returns whether anything arrived or was asked (the app then redraws).
+pub fn sync(app: &mut App, analysis: &mut Analysis, compute: bool) -> bool {
+    let mut moved = false;
+    // Inline, each request completes when computed: a page needs at most five jobs.
+    for _ in 0..8 {
+        if compute {
+            analysis.compute();
+        }
+        if let Some((job, settings)) = analysis.current() {
+            for p in analysis.take() {
+                app.receive(&job, settings, p);
+                moved = true;
+            }
+        }
+        let wanted = app.wanted_job(|v0_max| crate::ui::pages::map_grid(app, v0_max));
+        let Some((job, settings)) = wanted else {
+            // Nothing is computed for a page that is not on screen.
+            analysis.cancel();
+            break;
+        };
+        if analysis.current() == Some((job, settings)) {
+            // In flight, or done and still lacking (a failed piece): ask no more.
+            break;
+        }
+        let todo = app.charts.missing(&job, settings);
+        analysis.request(job, settings, todo);
+        moved = true;
+    }
+    if moved {
+        app.invalidate();
+    }
+    moved
+}
+
+/// Carries out what `update` asked for: a scene saved to a new file, the page on screen
+/// written as SVG; each reported back to `app` as a notice (where it went, or why not).
+pub fn carry_out(app: &mut App, effects: Effects) {
+    for effect in effects {
+        let notice = match effect {
+            Effect::SaveScene { scene, path } => match scene.save_new(&path) {
+                Ok(p) => format!("saved \"{}\" to {}", scene.name, p.display()),
+                Err(e) => format!("could not save {}: {e}", path.display()),
+            },
+            Effect::ExportSvg { dir, page } => export_svg(app, &dir, page),
+            Effect::Readouts => crate::ui::plain::summary(app),
+        };
+        app.report(notice);
+    }
+}
+
+/// Writes the page on screen as SVG to the first free `turntable-PAGE-N.svg` in `dir`; never
+/// over a file. Says where, or why not.
+fn export_svg(app: &App, dir: &std::path::Path, page: crate::app::pages::Page) -> String {
+    use std::io::Write;
+    let (fig, whole) = crate::ui::figure::page(app);
+    let text = crate::figure::to_svg(&fig);
+    let slug = crate::ui::figure::slug(page);
+    for n in 1..=999 {
+        let path = dir.join(format!("turntable-{slug}-{n}.svg"));
+        if path.symlink_metadata().is_ok() {
+            continue;
+        }
+        let written = crate::files::Output::create(&path, false).and_then(|mut out| {
+            out.write_all(text.as_bytes())?;
+            out.finish()
+        });
+        return match written {
+            Ok(()) if whole => format!("wrote this page to {}", path.display()),
+            Ok(()) => format!(
+                "wrote this page to {} (partial: it is still computing)",
+                path.display()
+            ),
+            // Taken meanwhile: the next name.
+            Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => continue,
+            Err(e) => format!("could not write {}: {e}", path.display()),
+        };
+    }
+    format!("could not write turntable-{slug}-N.svg: 999 names taken")
 }
 
 /// A terminal that is not UTF-8 (`--marker ascii`, or a locale that says so) gets ASCII only:
@@ -282,7 +417,7 @@ impl Session<TestBackend> {
             Step::Tick(n) => {
                 for _ in 0..*n {
                     // Paused, a tick changes nothing (and a tick cannot unpause).
-                    if !self.app.is_playing() {
+                    if !self.is_playing() {
                         break;
                     }
                     self.tick();

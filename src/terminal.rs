@@ -140,19 +140,22 @@ pub type SaveRecording = Box<dyn FnOnce(String) + Send>;
 /// terminal is gone and the process must end without returning, `record` gets that script.
 /// With `lesson`, its script is fed in as the session goes (`Session::pump_lesson`).
 pub fn run(
-    mut app: App,
+    app: App,
     fps: u32,
     record: Option<SaveRecording>,
     lesson: Option<crate::lesson::Driver>,
 ) -> (io::Result<Option<i32>>, Option<String>) {
-    // The analysis pages fill in off this thread: keys never wait for them.
-    app.analysis = crate::analysis::Analysis::threaded();
     let mouse = app.mouse_capture();
     supervise(
         record,
         restore,
         lesson,
-        |recorder| setup(mouse).and_then(|b| Session::new(app, b, recorder)),
+        // The analysis pages fill in off this thread: keys never wait for them.
+        |recorder| {
+            setup(mouse)
+                .and_then(|b| Session::new(app, b, recorder))
+                .map(Session::with_worker)
+        },
         |session, flags| event_loop(session, fps.clamp(1, 240), flags),
     )
 }
@@ -304,9 +307,9 @@ fn event_loop(
         }
         // Time passes only through ticks, and a recording counts them (a replay of it needs
         // no clock); as many are due as wall-clock time says, however few frames get drawn.
-        if session.app.is_playing() {
+        if session.is_playing() {
             for _ in 0..clock.due(Instant::now()) {
-                if !session.app.is_playing() {
+                if !session.is_playing() {
                     break;
                 }
                 session.tick();
@@ -330,7 +333,7 @@ fn event_loop(
         } else {
             // Paused and drawn: wait for input (waking now and then only to notice signals).
             let mut wake = Instant::now() + Duration::from_millis(250);
-            if session.app.is_playing() {
+            if session.is_playing() {
                 wake = wake.min(clock.next());
             }
             if session.app.needs_redraw() {
@@ -377,7 +380,7 @@ fn event_loop(
                 }
             }
         }
-        if !session.app.is_playing() {
+        if !session.is_playing() {
             clock.restart(Instant::now());
         }
     }

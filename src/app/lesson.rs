@@ -137,7 +137,7 @@ impl App {
                 "it does not escape"
             }
         };
-        let escaped = match self.sim.outcome_now() {
+        let escaped = match self.sim().outcome_now() {
             Outcome::Running => {
                 return answer.map(|a| format!("You said {}. Watch the run.", said(a)));
             }

@@ -3,6 +3,8 @@
 
 pub mod action;
 pub mod chord;
+pub mod effect;
+pub mod exploration;
 pub mod keymap;
 pub mod lesson;
 pub mod pages;
@@ -11,8 +13,10 @@ pub mod update;
 
 pub use action::Action;
 pub use chord::Chord;
+pub use effect::{Effect, Effects};
+pub use exploration::Exploration;
 pub use keymap::{Binding, KEYMAP};
-pub use state::{App, CanvasGeom, MU_PROBE, TICK_DT, TICKS_PER_SECOND};
+pub use state::{App, CanvasGeom, MU_PROBE, Measured, TICK_DT, TICKS_PER_SECOND};
 pub use update::update;
 
 use crate::engine::Settings;
@@ -25,48 +29,60 @@ impl App {
         App::build(scene, theme)
     }
 
-    /// A terminal's key event: its chord, if it has one (releases have none).
-    pub fn handle_key(&mut self, key: KeyEvent) {
-        if let Some(chord) = Chord::from_event(&key) {
-            self.press(chord);
+    /// A terminal's key event: its chord, if it has one (releases have none). Returns what
+    /// the shell must carry out (see [`update`]).
+    pub fn handle_key(&mut self, key: KeyEvent) -> Effects {
+        match Chord::from_event(&key) {
+            Some(chord) => self.press(chord),
+            None => Effects::new(),
         }
     }
 
-    /// Keymap → action → update.
-    pub fn press(&mut self, chord: Chord) {
+    /// Keymap → action → update; returns what the shell must carry out.
+    pub fn press(&mut self, chord: Chord) -> Effects {
         // While a name is typed, keys are its letters; only Ctrl-C keeps its meaning (quit).
         let ctrl_c = Chord::new(KeyCode::Char('c'), KeyModifiers::CONTROL);
         let action = match &self.naming {
             Some(_) if chord != ctrl_c => action::NameEdit::of(chord).map(Action::Name),
             _ => keymap::lookup_when(chord, self.lesson.prompt()),
         };
-        if let Some(a) = action {
-            update(self, a);
+        match action {
+            Some(a) => update(self, a),
+            None => Effects::new(),
         }
     }
 
+    /// What the shell reports back once it has carried out an effect: the notice saying
+    /// what was done (or why not).
+    pub fn report(&mut self, notice: String) {
+        self.notice = Some(notice);
+        self.dirty = true;
+    }
+
     /// The mouse as actions, through the canvas as last drawn: a click places the release
-    /// point, a drag sets the initial velocity, the wheel zooms.
-    pub fn handle_mouse(&mut self, ev: MouseEvent) {
+    /// point, a drag sets the initial velocity, the wheel zooms. Returns what the shell must
+    /// carry out (see [`update`]).
+    pub fn handle_mouse(&mut self, ev: MouseEvent) -> Effects {
         if !self.mouse {
-            return;
+            return Effects::new();
         }
         if self.help {
-            match ev.kind {
+            return match ev.kind {
                 MouseEventKind::ScrollUp => update(self, Action::HelpScroll(-3)),
                 MouseEventKind::ScrollDown => update(self, Action::HelpScroll(3)),
-                _ => {}
-            }
-            return;
+                _ => Effects::new(),
+            };
         }
-        let Some(g) = self.geom else { return };
+        let Some(g) = self.geom else {
+            return Effects::new();
+        };
         let at = g.to_world(ev.column, ev.row);
         if g.page != pages::Page::Turntable {
             // The plot is the (φ, v0) plane: a click picks that release.
             if let (MouseEventKind::Down(MouseButton::Left), Some(p)) = (ev.kind, at) {
-                update(self, Action::PickRelease(p));
+                return update(self, Action::PickRelease(p));
             }
-            return;
+            return Effects::new();
         }
         let action = match (ev.kind, at) {
             (MouseEventKind::Up(_), _) => Action::EndDrag,
@@ -76,14 +92,13 @@ impl App {
             }
             (MouseEventKind::ScrollUp, Some(_)) => Action::ZoomIn,
             (MouseEventKind::ScrollDown, Some(_)) => Action::ZoomOut,
-            _ => return,
+            _ => return Effects::new(),
         };
-        update(self, action);
+        update(self, action)
     }
 
     /// One tick: advances the run(s) by `TICK_DT × speed` of sim time if playing.
     pub fn tick(&mut self) {
-        self.ask_analysis();
         if self.playing {
             update::step(self);
         } else if self.catch_up() {
@@ -112,11 +127,16 @@ impl App {
         self.dirty = true;
     }
 
-    /// The terminal is now `width` × `height`: redraw, and size what is computed for it.
+    /// The terminal is now `width` × `height`: redraw (the shell then asks for what the
+    /// pages compute at this size).
     pub fn resize(&mut self, width: u16, height: u16) {
         self.screen = (width, height);
         self.dirty = true;
-        self.ask_analysis();
+    }
+
+    /// What the view measured at the terminal's size (the shell tells it after a resize).
+    pub fn measured(&mut self, m: Measured) {
+        self.measured = m;
     }
 
     /// The canvas geometry of the last draw (where mouse cells land in world coordinates).
@@ -124,10 +144,10 @@ impl App {
         self.geom
     }
 
-    /// Whether time should tick: playing, the paper's run still catching up, or a page
-    /// filling in.
+    /// Whether time should tick for the model: playing, or the paper's run still catching
+    /// up (the shell adds a page filling in: `Session::is_playing`).
     pub fn is_playing(&self) -> bool {
-        self.playing || self.paper_lags() || self.analysis.busy()
+        self.playing || self.paper_lags()
     }
 
     pub fn mouse_capture(&self) -> bool {
@@ -164,18 +184,16 @@ impl App {
             }
             Ok(())
         };
-        check_sim("run", &self.sim)?;
-        if let Some(p) = &self.paper {
+        check_sim("run", self.sim())?;
+        if let Some(p) = self.paper() {
             check_sim("paper", p)?;
             if p.run.settings() != Settings::paper() {
                 return Err("paper run does not use the paper's settings".into());
             }
         }
-        self.initial.validate().map_err(|e| e.to_string())?;
-        self.settings.validate().map_err(|e| e.to_string())?;
-        if self.sim.run.initial() != self.initial || self.sim.run.settings() != self.settings {
-            return Err("run is not from the current initial conditions".into());
-        }
+        // The runs are those of the initial conditions shown: `Exploration` holds that.
+        self.initial().validate().map_err(|e| e.to_string())?;
+        self.settings().validate().map_err(|e| e.to_string())?;
         if self.pins.len() > crate::pin::MAX_PINS {
             return Err(format!("{} pins", self.pins.len()));
         }

@@ -2,12 +2,11 @@
 //! how it is shown. Nothing here reads the clock: time passes only through ticks.
 
 use super::pages::{Charts, Page};
-use crate::analysis::Analysis;
 use crate::engine::{Frame, Initial, Settings, State};
+use crate::present::num;
 use crate::scene::Scene;
 use crate::sim::Sim;
 use crate::theme::Theme;
-use crate::ui::panel::num;
 use ratatui::layout::Rect;
 use std::path::PathBuf;
 
@@ -32,6 +31,16 @@ pub fn record_player() -> crate::engine::units::Units {
 }
 /// Where `s` saves the scene.
 pub const SAVE_PATH: &str = "turntable-scene.toml";
+
+/// What the view measured for the model at the terminal's size: the shell tells it on resize
+/// (`crate::session::tell_size`), so that `update` never asks the view.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Measured {
+    /// Rows of the help a page (PgUp/PgDn) moves by.
+    pub help_page: u16,
+    /// The help's last first row: scrolled no further.
+    pub help_max_scroll: u16,
+}
 
 /// The canvas as last drawn: where it is on screen and which world rectangle it shows, so
 /// that mouse cells map back to table coordinates.
@@ -70,22 +79,12 @@ impl CanvasGeom {
 
 #[derive(Clone, Debug)]
 pub struct App {
-    /// The scene as loaded (what `0` resets to).
-    pub scene: Scene,
-    /// The initial conditions and settings being explored.
-    pub initial: Initial,
-    pub settings: Settings,
-    pub sim: Sim,
-    /// The paper's scheme from the same initial conditions, when comparing.
-    pub paper: Option<Sim>,
-    /// The scene's finite body (the appendix's two masses on a rod) from the same release,
-    /// drawn as a bar; None without a body, with μ = 0 or under Stokes drag.
-    pub rod: Option<crate::engine::rod::RodTrack>,
+    /// The scene, the initial conditions and settings being explored, and their runs: read
+    /// through [`App::initial`], [`App::sim`] and the like, changed only through its
+    /// setters, which restart the runs.
+    pub(super) exploration: super::exploration::Exploration,
     /// In a body scene, the point model's path and marker drawn beside the body (`C`).
     pub point_model: bool,
-    /// What the last computed body track has to say (it was cut short), for the notice after
-    /// the key that computed it.
-    pub(crate) rod_notice: Option<String>,
     pub theme: Theme,
     pub playing: bool,
     pub speed: f64,
@@ -114,15 +113,13 @@ pub struct App {
     pub readouts_asked: u64,
     /// The name being typed at the save prompt (`S`), while it is open.
     pub naming: Option<String>,
+    /// Where `s` saves (`S` beside it, `E` in its folder).
     pub save_path: PathBuf,
-    /// False in a headless replay: `s` then says what it would save and writes nothing.
-    pub writes_files: bool,
     pub quit: bool,
     /// What the body shows (`Tab` cycles).
     pub page: Page,
-    /// What the analysis pages have received, and where it is computed.
+    /// What the analysis pages have received (the shell's worker computes them).
     pub charts: Charts,
-    pub analysis: Analysis,
     /// A real table (`--mu`, `--rpm`, `--g` or the scene's `[units]`): readouts in SI too.
     pub units: Option<crate::engine::units::Units>,
     /// The μ measurement of the rest-radius page (Eq. 22): Ω in rad/s and r0c in metres.
@@ -136,6 +133,8 @@ pub struct App {
     pub(crate) geom: Option<CanvasGeom>,
     /// The terminal's size, as its session last said (the outcome map's grid follows it).
     pub(crate) screen: (u16, u16),
+    /// What the view measured at that size.
+    pub(crate) measured: Measured,
     /// Mouse drag in progress: setting the initial velocity.
     pub(crate) dragging: bool,
 }
@@ -147,15 +146,6 @@ pub fn view_radius(initial: &Initial) -> f64 {
 
 impl App {
     pub(crate) fn build(scene: Scene, theme: Theme) -> App {
-        let initial = sanitize(scene.initial);
-        let settings = if scene.settings.validate().is_ok() {
-            scene.settings
-        } else {
-            Settings::default()
-        };
-        let sim = make_sim(initial, settings);
-        let rod = make_rod(scene.body, &initial, settings);
-        let rod_notice = rod.as_ref().and_then(rod_cut_notice);
         let units = scene.units;
         let mut pins = Vec::new();
         for spec in scene.pins.iter().rev().take(crate::pin::MAX_PINS).rev() {
@@ -165,15 +155,11 @@ impl App {
             }
         }
         let view = scene.view.filter(|v| v.zoom.is_finite() && v.zoom > 0.0);
+        let mut exploration = super::exploration::Exploration::new(scene);
         App {
-            scene,
-            initial,
-            settings,
-            sim,
-            paper: None,
-            rod,
+            notice: exploration.take_rod_notice(),
+            exploration,
             point_model: view.is_none_or(|v| v.point),
-            rod_notice: None,
             theme,
             playing: true,
             speed: 1.0,
@@ -189,15 +175,12 @@ impl App {
             turn: 0.0,
             pan: glam::DVec2::ZERO,
             mouse: true,
-            notice: rod_notice,
             readouts_asked: 0,
             save_path: PathBuf::from(SAVE_PATH),
-            writes_files: true,
             naming: None,
             quit: false,
             page: view.map_or(Page::Turntable, |v| v.page),
             charts: Charts::default(),
-            analysis: Analysis::inline(),
             mu_probe: MU_PROBE,
             units,
             pins,
@@ -205,99 +188,107 @@ impl App {
             dirty: true,
             geom: None,
             screen: (80, 24),
+            measured: Measured::default(),
             dragging: false,
         }
     }
 
-    /// Restarts both runs at τ = 0 from the current initial conditions and settings.
-    pub fn restart(&mut self) {
-        self.initial = sanitize(self.initial);
-        self.sim = make_sim(self.initial, self.settings);
-        self.rod = make_rod(self.scene.body, &self.initial, self.settings);
-        self.rod_notice = self.rod.as_ref().and_then(rod_cut_notice);
-        if self.paper.is_some() {
-            self.paper = Some(make_sim(self.initial, Settings::paper()));
-        }
+    /// The scene as loaded (what `0` resets to).
+    pub fn scene(&self) -> &Scene {
+        self.exploration.scene()
+    }
+
+    /// The initial conditions being explored.
+    pub fn initial(&self) -> Initial {
+        self.exploration.initial()
+    }
+
+    pub fn settings(&self) -> Settings {
+        self.exploration.settings()
+    }
+
+    /// The run on screen.
+    pub fn sim(&self) -> &Sim {
+        self.exploration.sim()
+    }
+
+    /// The paper's scheme from the same initial conditions, when comparing.
+    pub fn paper(&self) -> Option<&Sim> {
+        self.exploration.paper()
+    }
+
+    /// The scene's finite body (the appendix's two masses on a rod) from the same release,
+    /// drawn as a bar; None without a body, with μ = 0 or under Stokes drag.
+    pub fn rod(&self) -> Option<&crate::engine::rod::RodTrack> {
+        self.exploration.rod()
+    }
+
+    /// What is explored, to read as a whole.
+    pub fn exploration(&self) -> &super::exploration::Exploration {
+        &self.exploration
+    }
+
+    /// What is explored, to change through its setters (each restarts the runs); the screen
+    /// is redrawn.
+    pub fn explore(&mut self) -> &mut super::exploration::Exploration {
+        self.dirty = true;
+        &mut self.exploration
     }
 
     /// Brings the paper's run to the τ on screen, within one tick's step budget (so after `c`
     /// on a long session it catches up over several ticks). Returns whether it moved.
     pub fn catch_up(&mut self) -> bool {
-        let target = self.sim.now().tau;
-        self.paper.as_mut().is_some_and(|p| p.catch_up_to(target))
+        self.exploration.catch_up()
     }
 
     /// Whether the paper's run lags behind the one on screen (it is catching up).
     pub fn paper_lags(&self) -> bool {
-        self.paper
+        self.paper()
             .as_ref()
-            .is_some_and(|p| p.live() && p.now().tau < self.sim.now().tau - 1e-9)
+            .is_some_and(|p| p.live() && p.now().tau < self.sim().now().tau - 1e-9)
     }
 
     /// Whether the point model is drawn: always, but in a body scene whose body is drawn and
     /// `C` has hidden it.
     pub fn point_shown(&self) -> bool {
-        self.point_model || self.rod.is_none()
+        self.point_model || self.rod().is_none()
     }
 
     /// The state on screen.
     pub fn now(&self) -> State {
-        self.sim.now()
+        self.sim().now()
     }
 
-    /// Brings the analysis pages up to date for a frame: takes the pieces that arrived and
-    /// asks for what the page on screen still lacks, computing it now when inline (headless).
-    /// Returns whether anything arrived or was asked.
-    pub fn sync_analysis(&mut self) -> bool {
-        self.sync(true)
+    /// The next analysis job the page on screen needs and lacks, if any, with the settings it
+    /// is computed at; an outcome map at the grid `map_grid` gives for its speed range. The
+    /// shell holds the worker and measures the plot (`crate::session::sync`).
+    pub fn wanted_job(
+        &self,
+        map_grid: impl Fn(f64) -> Option<(usize, usize)>,
+    ) -> Option<(crate::analysis::Job, Settings)> {
+        let job = super::pages::wanted(
+            self.page,
+            &self.charts,
+            &self.initial(),
+            self.settings(),
+            map_grid,
+        )?;
+        Some((job, crate::analysis::settings_for(self.settings())))
     }
 
-    /// As [`App::sync_analysis`], but an inline request is only noted: keys and ticks call
-    /// this, so fifty edits before a frame compute one page, not fifty.
-    pub(crate) fn ask_analysis(&mut self) -> bool {
-        self.sync(false)
+    /// A piece of an analysis job, brought by the shell's worker.
+    pub fn receive(
+        &mut self,
+        job: &crate::analysis::Job,
+        settings: Settings,
+        piece: crate::analysis::Piece,
+    ) {
+        self.charts.apply(job, settings, piece);
+        self.dirty = true;
     }
 
-    fn sync(&mut self, compute: bool) -> bool {
-        let mut moved = false;
-        // Inline, each request completes when computed: a page needs at most five jobs.
-        for _ in 0..8 {
-            if compute {
-                self.analysis.compute();
-            }
-            if let Some((job, settings)) = self.analysis.current() {
-                for p in self.analysis.take() {
-                    self.charts.apply(&job, settings, p);
-                    moved = true;
-                }
-            }
-            let settings = crate::analysis::settings_for(self.settings);
-            let wanted = super::pages::wanted(
-                self.page,
-                &self.charts,
-                &self.initial,
-                self.settings,
-                |v0_max| crate::ui::pages::map_grid(self, v0_max),
-            );
-            let Some(job) = wanted else {
-                // Nothing is computed for a page that is not on screen.
-                self.analysis.cancel();
-                break;
-            };
-            if self.analysis.current() == Some((job, settings)) {
-                // In flight, or done and still lacking (a failed piece): ask no more.
-                break;
-            }
-            let todo = self.charts.missing(&job, settings);
-            self.analysis.request(job, settings, todo);
-            moved = true;
-        }
-        self.dirty |= moved;
-        moved
-    }
-
-    /// The terminal's size as its session last said: the outcome map's grid follows it (see
-    /// `ui::pages::map_grid`), a function of the size, not of when frames were drawn, so that
+    /// The terminal's size as its session last said: the outcome map's grid follows it (the
+    /// shell measures it: `ui::pages::map_grid`), a function of the size, not of when frames were drawn, so that
     /// the same keys give the same map.
     pub fn screen(&self) -> (u16, u16) {
         self.screen
@@ -306,17 +297,17 @@ impl App {
     /// Whether the initial conditions or settings differ from the scene as loaded, the scene
     /// taken as the app holds it (φ modulo 2π: D's 1.2π is −0.8π on screen, not an edit).
     pub fn edited(&self) -> bool {
-        self.initial != sanitize(self.scene.initial) || self.settings != self.scene.settings
+        self.initial() != sanitize(self.scene().initial) || self.settings() != self.scene().settings
     }
 
     /// What the scene shows, one line: the scene's own words until it is edited, then what
     /// the run on screen does at the τ on screen, in the panel's notation.
     pub fn about(&self) -> String {
         if !self.edited() {
-            return self.scene.about.to_string();
+            return self.scene().about.to_string();
         }
-        let base = self.scene.name.trim_end_matches(" (edited)");
-        let sim = &self.sim;
+        let base = self.scene().name.trim_end_matches(" (edited)");
+        let sim = &self.sim();
         let what = match sim.outcome_now() {
             crate::engine::Outcome::Running => {
                 format!("sliding at τ = {}", num(sim.now().tau, 3))
@@ -328,7 +319,7 @@ impl App {
 
     /// How the run ends, once it is decided (whatever τ is on screen): empty before.
     pub(crate) fn ending(&self) -> String {
-        let run = &self.sim.run;
+        let run = &self.sim().run;
         match (run.status(), run.escape()) {
             (crate::engine::Status::Stuck { tau, q }, _) => {
                 format!("sticks at ξ = {} (τ = {})", num(q.length(), 4), num(tau, 3))
@@ -352,19 +343,23 @@ impl App {
             name: if let Some(n) = name {
                 n.into()
             } else if changed {
-                format!("{} (edited)", self.scene.name.trim_end_matches(" (edited)")).into()
+                format!(
+                    "{} (edited)",
+                    self.scene().name.trim_end_matches(" (edited)")
+                )
+                .into()
             } else {
-                self.scene.name.clone()
+                self.scene().name.clone()
             },
             about: if changed {
                 self.ending().into()
             } else {
-                self.scene.about.clone()
+                self.scene().about.clone()
             },
-            initial: self.initial,
-            settings: self.settings,
+            initial: self.initial(),
+            settings: self.settings(),
             units: self.units,
-            body: self.scene.body,
+            body: self.scene().body,
             view: Some(crate::scene::View {
                 page: self.page,
                 frame: self.view,
@@ -390,7 +385,7 @@ impl App {
             let used = |c: char| self.pins.iter().any(|p| *p.spec.label == *c.to_string());
             ('A'..='Z').find(|c| !used(*c)).unwrap_or('?').to_string()
         } else {
-            self.scene
+            self.scene()
                 .name
                 .chars()
                 .take(crate::pin::LABEL_MAX)
@@ -398,8 +393,8 @@ impl App {
         };
         let spec = crate::pin::PinSpec {
             label: label.into(),
-            initial: self.initial,
-            settings: self.settings,
+            initial: self.initial(),
+            settings: self.settings(),
             turn: self.turn,
             units: self.units,
         };
@@ -448,7 +443,7 @@ impl App {
         self.pins
             .iter()
             .map(|p| p.end().tau * p.scale(self.units).1)
-            .fold(self.sim.now().tau, f64::max)
+            .fold(self.sim().now().tau, f64::max)
     }
 }
 
@@ -480,20 +475,21 @@ pub fn sanitize(mut i: Initial) -> Initial {
 /// certificate out to the point's [`view_radius`] (the class sees it leave), within the
 /// track's step and state budgets; None where there is no body, no dry friction, or the body
 /// is refused (the panel's conditions still show).
-fn make_rod(
+pub(super) fn make_rod(
     body: Option<crate::engine::body::Body>,
     initial: &Initial,
     settings: Settings,
+    steps: u64,
 ) -> Option<crate::engine::rod::RodTrack> {
     let body = body?;
     if initial.frictionless || settings.stokes().is_some() {
         return None;
     }
     let tol = settings.scheme.tol().unwrap_or(1e-10);
-    use crate::engine::rod::{RodRun, RodTrack, TRACK_STATES, TRACK_STEPS};
+    use crate::engine::rod::{RodRun, RodTrack, TRACK_STATES};
     let run = RodRun::new(body, settings.hold(), initial, tol).ok()?;
     let run = run.following(view_radius(initial));
-    Some(RodTrack::from_run(run, ROD_TAU, TRACK_STEPS, TRACK_STATES))
+    Some(RodTrack::from_run(run, ROD_TAU, steps, TRACK_STATES))
 }
 
 /// How far in τ the explorer runs the body.
@@ -516,7 +512,7 @@ pub fn rod_cut_notice(rod: &crate::engine::rod::RodTrack) -> Option<String> {
     })
 }
 
-pub(crate) fn make_sim(initial: Initial, settings: Settings) -> Sim {
+pub(super) fn make_sim(initial: Initial, settings: Settings) -> Sim {
     Sim::new(initial, settings, view_radius(&initial))
         .or_else(|_| Sim::new(sanitize(initial), Settings::default(), 4.5))
         .expect("sanitized initial conditions and default settings are valid")

@@ -37,7 +37,7 @@ pub(super) fn counted(size: (u16, u16)) -> Result<(Counted, Rc<Cell<usize>>), Er
 
 /// Draws `app` as the explorer does.
 pub(super) fn draw(term: &mut Counted, app: &mut App) -> Result<(), Error> {
-    app.sync_analysis();
+    crate::session::sync(app, &mut crate::analysis::Analysis::inline(), true);
     let mut geom = None;
     term.draw(|f| geom = crate::ui::draw(f, app))?;
     app.drawn(geom);

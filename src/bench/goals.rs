@@ -331,7 +331,7 @@ fn frame_time(reps: usize) -> Result<(f64, usize), Error> {
     let theme = crate::theme::Theme::builtin("dark").ok_or(Error::invalid("no dark theme"))?;
     let mut app = App::new(crate::scene::Scene::default_scene(), theme);
     update(&mut app, Action::ToggleCompare);
-    while app.sim.samples.len() < 20_000 {
+    while app.sim().samples.len() < 20_000 {
         app.tick();
     }
     let mut term = Terminal::new(TestBackend::new(160, 48))?;
@@ -343,7 +343,7 @@ fn frame_time(reps: usize) -> Result<(f64, usize), Error> {
         Ok::<(), std::convert::Infallible>(())
     });
     r?;
-    Ok((ms, app.sim.trail().len()))
+    Ok((ms, app.sim().trail().len()))
 }
 
 /// For every task with an rk2 dt = 1e-3 row: the loosest dp54 row at least as accurate (median

@@ -25,7 +25,7 @@ pub enum Task {
     /// The same near the rim: releases at ξ0 = 0.99 … 0.9999 moving out at up to 0.9999 of
     /// the speed that would carry them to ξ = 1, where a stop comes slowly and late (issue 35).
     /// The reference takes no closed form there but stops within its tolerance: the stretch
-    /// before the stop is integrated in implicit steps (`tests/rim_times.rs` checks it
+    /// before the stop is integrated in implicit steps (`tests/suite/rim_times.rs` checks it
     /// against an independent form).
     #[strum(to_string = "rim stops")]
     Rim,

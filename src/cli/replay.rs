@@ -108,8 +108,7 @@ pub fn prepare(
             )),
             e => e,
         })?;
-    let mut app = crate::app::App::new(scene, theme);
-    app.writes_files = false;
+    let app = crate::app::App::new(scene, theme);
     let opts = Options {
         size: a.size.or(own.size).unwrap_or(crate::replay::DEFAULT_SIZE),
         ansi: (a.ansi || own.ansi) && !a.plain,

@@ -1,6 +1,6 @@
 //! The numerical commands' reports: one typed struct per command, whose fields are its `--json`
 //! object (documented once, in README's *JSON reports*, and checked against it by
-//! `tests/cli.rs`), and whose `text` is its plain output.
+//! `tests/suite/cli.rs`), and whose `text` is its plain output.
 
 use crate::engine::body::{Body, friction};
 use crate::engine::doubt::Doubt;

@@ -39,5 +39,5 @@ pub fn table_rest(xi0: f64, tau: f64) -> (f64, f64, f64) {
 
 /// Sec. III B's approximation for ξ holds for τ ≲ 1 (Fig. 2). Its Θ′ (Eq. 25) drops the
 /// friction term ξΘ′/ξ′, which near a release from rest is the larger one: the converged
-/// Θ is several times smaller at ξ0 = 1.1 (see tests/approx.rs).
+/// Θ is several times smaller at ξ0 = 1.1 (see tests/suite/approx.rs).
 pub const TABLE_REST_WINDOW: f64 = 1.0;

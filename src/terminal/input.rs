@@ -257,14 +257,9 @@ fn parse_esc(b: &[u8], more: bool) -> Parsed {
             if b.len() == 2 {
                 return Parsed::More;
             }
-            match b[2] {
-                b'D' => plain(KeyCode::Left),
-                b'C' => plain(KeyCode::Right),
-                b'A' => plain(KeyCode::Up),
-                b'B' => plain(KeyCode::Down),
-                b'H' => plain(KeyCode::Home),
-                b'F' => plain(KeyCode::End),
-                v @ b'P'..=b'S' => plain(KeyCode::F(1 + v - b'P')),
+            match (b[2], cursor_key(b[2])) {
+                (_, Some(code)) => plain(code),
+                (v @ b'P'..=b'S', _) => plain(KeyCode::F(1 + v - b'P')),
                 _ => Parsed::Bad,
             }
         }
@@ -280,6 +275,19 @@ fn parse_esc(b: &[u8], more: bool) -> Parsed {
     }
 }
 
+/// The cursor keys' final byte, the same after `ESC O` and `ESC [`.
+fn cursor_key(c: u8) -> Option<KeyCode> {
+    Some(match c {
+        b'D' => KeyCode::Left,
+        b'C' => KeyCode::Right,
+        b'A' => KeyCode::Up,
+        b'B' => KeyCode::Down,
+        b'H' => KeyCode::Home,
+        b'F' => KeyCode::End,
+        _ => return None,
+    })
+}
+
 fn parse_csi(b: &[u8]) -> Parsed {
     if b.len() == 2 {
         return Parsed::More;
@@ -291,12 +299,7 @@ fn parse_csi(b: &[u8]) -> Parsed {
             Some(v @ b'A'..=b'E') => plain(KeyCode::F(1 + v - b'A')),
             Some(_) => Parsed::Bad,
         },
-        b'D' => plain(KeyCode::Left),
-        b'C' => plain(KeyCode::Right),
-        b'A' => plain(KeyCode::Up),
-        b'B' => plain(KeyCode::Down),
-        b'H' => plain(KeyCode::Home),
-        b'F' => plain(KeyCode::End),
+        c @ (b'D' | b'C' | b'A' | b'B' | b'H' | b'F') => cursor_key(c).map_or(Parsed::Bad, plain),
         b'Z' => key(KeyCode::BackTab, KeyModifiers::SHIFT),
         b'P' => plain(KeyCode::F(1)),
         b'Q' => plain(KeyCode::F(2)),

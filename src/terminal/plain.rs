@@ -40,13 +40,10 @@ fn enter() -> io::Result<()> {
 /// lesson's mouse steps and a recording need one, and `--record` then replays to the same
 /// screens.
 pub fn run(
-    mut app: App,
+    app: App,
     record: Option<SaveRecording>,
     lesson: Option<crate::lesson::Driver>,
 ) -> (io::Result<Option<i32>>, Option<String>) {
-    // The analysis pages compute off this thread, as in the explorer: their numbers are said
-    // when they arrive (`ui::pages::summary`), and keys never wait for them.
-    app.analysis = crate::analysis::Analysis::threaded();
     super::supervise(
         record,
         restore,
@@ -55,7 +52,12 @@ pub fn run(
             super::restore_on_panic(restore);
             let (w, h) = crossterm::terminal::size().unwrap_or(crate::replay::DEFAULT_SIZE);
             enter().and_then(|()| {
-                Session::new(app, TestBackend::new(w, h), recorder).map_err(|e| match e {})
+                // The analysis pages compute off this thread, as in the explorer: their
+                // numbers are said when they arrive (`ui::pages::summary`), and keys never
+                // wait for them.
+                Session::new(app, TestBackend::new(w, h), recorder)
+                    .map(Session::with_worker)
+                    .map_err(|e| match e {})
             })
         },
         event_loop,
@@ -95,11 +97,11 @@ fn event_loop(session: &mut Session<TestBackend>, flags: &Flags) -> io::Result<(
             clock.restart(Instant::now());
         }
         let Ok(()) = session.pump_lesson();
-        session.app.ask_analysis();
+        session.ask_analysis();
         say(&session.app, &mut seen, &mut out)?;
-        if session.app.is_playing() {
+        if session.is_playing() {
             for _ in 0..clock.due(Instant::now()) {
-                if !session.app.is_playing() {
+                if !session.is_playing() {
                     break;
                 }
                 session.tick();
@@ -109,7 +111,7 @@ fn event_loop(session: &mut Session<TestBackend>, flags: &Flags) -> io::Result<(
         }
         out.flush()?;
         let mut wake = Instant::now() + Duration::from_millis(250);
-        if session.app.is_playing() {
+        if session.is_playing() {
             wake = wake.min(clock.next());
         }
         if input.poll(wake.saturating_duration_since(Instant::now()))? {
@@ -136,7 +138,7 @@ fn event_loop(session: &mut Session<TestBackend>, flags: &Flags) -> io::Result<(
             }
             out.flush()?;
         }
-        if !session.app.is_playing() {
+        if !session.is_playing() {
             clock.restart(Instant::now());
         }
     }

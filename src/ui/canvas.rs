@@ -27,10 +27,9 @@ pub fn in_frame(s: &State, frame: Frame) -> DVec2 {
 /// when it escapes it is seen leaving rather than shrinking the table to a dot.
 pub fn auto_extent(app: &App) -> f64 {
     let reach = |sim: &crate::sim::Sim| sim.trail().iter().fold(0.0, |m: f64, s| m.max(s.xi()));
-    let own = reach(&app.sim).max(app.initial.xi0).max(1.0);
+    let own = reach(app.sim()).max(app.initial().xi0).max(1.0);
     let m = app
-        .paper
-        .as_ref()
+        .paper()
         .map_or(own, |p| own.max(reach(p).min(1.5 * own)));
     // Pins widen it as the paper's run does, so a pinned D (from ξ0 = 1.1) stays in view.
     let m = app.pins.iter().fold(m, |m, p| {
@@ -39,7 +38,7 @@ pub fn auto_extent(app: &App) -> f64 {
     });
     (m * 1.1)
         .max(1.5)
-        .min(crate::app::state::view_radius(&app.initial) * 1.1)
+        .min(crate::app::state::view_radius(&app.initial()) * 1.1)
 }
 
 /// World bounds of a canvas of `w`×`h` cells showing a disc of radius `r` around `c`, with
@@ -155,8 +154,8 @@ pub fn force_arrows(app: &App, half_width: f64) -> Vec<ForceArrow> {
 /// frame, dv/dτ in the lab).
 fn forces(app: &App, half_width: f64) -> (Vec<ForceArrow>, DVec2) {
     let th = &app.theme;
-    let now = app.sim.now();
-    let [fr, co, ce] = coupled_forces(&now, app.initial.frictionless, app.settings.coupling);
+    let now = app.sim().now();
+    let [fr, co, ce] = coupled_forces(&now, app.initial().frictionless, app.settings().coupling);
     let mut out = Vec::new();
     let mut push = |label, word, vec: DVec2, color| {
         if vec.length() > 0.0 {
@@ -224,7 +223,7 @@ pub fn arrows(app: &App, half_width: f64, speed_scale: f64) -> Vec<ForceArrow> {
 
 /// The velocity the frame shown sees: `u` relative to the table (rotating), `v` (lab).
 pub fn velocity(app: &App) -> (&'static str, &'static str, DVec2) {
-    let now = app.sim.now();
+    let now = app.sim().now();
     match app.view {
         Frame::Lab => ("v", "velocity (lab)", now.v),
         Frame::Table => ("u", "velocity rel. table", now.u()),
@@ -289,9 +288,8 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) -> CanvasGeom {
     // With the point model hidden (`C`), the body's centre is what a zoom follows.
     let point = app.point_shown();
     let body_now = app
-        .rod
-        .as_ref()
-        .and_then(|rod| body_shown(rod, app.sim.now().tau));
+        .rod()
+        .and_then(|rod| body_shown(rod, app.sim().now().tau));
     if app.zoom != 1.0 {
         title.push_str(&format!(
             "zoom ×{} (follows {}) ",
@@ -307,7 +305,7 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) -> CanvasGeom {
     // (the physics is rotationally symmetric: the model keeps its release on +x). Zoomed in,
     // the view follows the particle.
     let turn = app.turn;
-    let now = app.sim.now();
+    let now = app.sim().now();
     let view = app.view;
     let follow = if app.zoom > 1.0 {
         match body_now.filter(|_| !point) {
@@ -326,7 +324,7 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) -> CanvasGeom {
     };
     let centre = follow + app.pan * r0;
     let (xb, yb) = bounds(inner.width, inner.height, centre, r);
-    let arrow_scale = 0.3 * r0 / app.initial.xi0.max(1.0);
+    let arrow_scale = 0.3 * r0 / app.initial().xi0.max(1.0);
     let geom = CanvasGeom {
         area: inner,
         x: xb,
@@ -336,11 +334,11 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) -> CanvasGeom {
         turn,
         page: crate::app::pages::Page::Turntable,
     };
-    let table_r = 1.5f64.max(app.initial.xi0 * 1.2);
+    let table_r = 1.5f64.max(app.initial().xi0 * 1.2);
     let spin = turn + if view == Frame::Lab { now.tau } else { 0.0 };
     // Where and when it stuck: the rest point in the frame shown (in the lab, where it was at
     // the stop; it rides the table from there).
-    let stuck = match app.sim.run.status() {
+    let stuck = match app.sim().run.status() {
         crate::engine::Status::Stuck { tau, q } if now.tau >= tau && point => {
             let at = match view {
                 Frame::Lab => rotate(q, tau),
@@ -351,21 +349,21 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) -> CanvasGeom {
         _ => None,
     };
     // The initial velocity as the frame shown sees it: lab v, or u relative to the table.
-    let s0 = app.initial.state();
+    let s0 = app.initial().state();
     let v_init = match view {
         Frame::Lab => s0.v,
         Frame::Table => s0.u(),
     };
-    let x0 = rotate(DVec2::new(app.initial.xi0, 0.0), turn);
+    let x0 = rotate(DVec2::new(app.initial().xi0, 0.0), turn);
     let v_init = rotate(v_init, turn);
-    let sim = &app.sim;
-    let paper = app.paper.as_ref();
+    let sim = app.sim();
+    let paper = app.paper();
     let pins = &app.pins;
     let units = app.units;
     let pin_style = Style::default().fg(th.muted);
     // The finite body's centre, its path so far beside the point's (thinned as trails are),
     // and the body as a bar between its two masses, in the frame shown.
-    let rod_path: Vec<DVec2> = app.rod.as_ref().map_or_else(Vec::new, |rod| {
+    let rod_path: Vec<DVec2> = app.rod().map_or_else(Vec::new, |rod| {
         let n = rod.states.partition_point(|s| s.tau <= now.tau);
         let stride = n / MAX_SEGMENTS + 1;
         rod.states[..n]
@@ -382,7 +380,7 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) -> CanvasGeom {
             .collect()
     });
     // The bar between the two masses, and its centre's glyph.
-    let bar = app.rod.as_ref().and_then(|rod| {
+    let bar = app.rod().and_then(|rod| {
         let s = body_shown(rod, now.tau)?;
         let spin = turn + if view == Frame::Lab { s.tau } else { 0.0 };
         let q = rotate(s.q, spin);
@@ -399,7 +397,7 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) -> CanvasGeom {
     let ring_label = rotate(DVec2::new(-0.95, -0.72), turn);
     let tau_now = now.tau;
     let marks: Vec<State> = if app.step_mode && point {
-        app.sim
+        app.sim()
             .step_marks
             .iter()
             .filter(|m| m.tau <= tau_now)

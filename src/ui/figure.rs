@@ -9,27 +9,27 @@ use crate::figure::{Figure, build};
 
 /// The page's figure, and whether it is whole (false while the page is still computing).
 pub fn page(app: &App) -> (Figure, bool) {
-    let i = app.initial;
+    let i = app.initial();
     match app.page {
         Page::Turntable => {
-            let end = match app.sim.outcome_now() {
-                Outcome::Stuck => format!("stuck at ξ = {:.5}", app.sim.now().xi()),
+            let end = match app.sim().outcome_now() {
+                Outcome::Stuck => format!("stuck at ξ = {:.5}", app.sim().now().xi()),
                 Outcome::Escaped => "escaped".into(),
-                Outcome::Running => format!("τ = {:.3}", app.sim.now().tau),
+                Outcome::Running => format!("τ = {:.3}", app.sim().now().tau),
             };
             let fig = build::trajectory(&title(app), &path(app), app.view, &end);
             (fig, true)
         }
         Page::TimePlots => {
-            let now = app.sim.now().tau;
-            let stop = match app.sim.run.status() {
+            let now = app.sim().now().tau;
+            let stop = match app.sim().run.status() {
                 Status::Stuck { tau, .. } if tau <= now => Some(tau),
                 _ => None,
             };
             (build::time(&title(app), &path(app), stop), true)
         }
         Page::EscapeSpeed => {
-            let settings = settings_for(app.settings);
+            let settings = settings_for(app.settings());
             let mut xi0s = vec![i.xi0];
             // The paper's four beside it, inside ξ = 1 where they are the same quantity.
             if i.xi0 <= 1.0 {
@@ -75,7 +75,7 @@ pub fn page(app: &App) -> (Figure, bool) {
                     .collect();
                 let whole = m.cells.iter().all(Option::is_some);
                 let curve = (release != Release::LabRest)
-                    .then(|| app.charts.curve(xi0, settings_for(app.settings)))
+                    .then(|| app.charts.curve(xi0, settings_for(app.settings())))
                     .flatten()
                     .map(|c| c.points());
                 let v_axis = match release {
@@ -113,8 +113,8 @@ pub fn page(app: &App) -> (Figure, bool) {
 
 /// The run's path up to the τ on screen, ending exactly there.
 fn path(app: &App) -> Vec<State> {
-    let mut p = app.sim.trail().to_vec();
-    let now = app.sim.now();
+    let mut p = app.sim().trail().to_vec();
+    let now = app.sim().now();
     if p.last().is_none_or(|s| s.tau < now.tau) {
         p.push(now);
     }
@@ -122,13 +122,13 @@ fn path(app: &App) -> Vec<State> {
 }
 
 fn title(app: &App) -> String {
-    let i = app.initial;
+    let i = app.initial();
     let release = match i.release {
         Release::Velocity => format!("ξ0 = {}, φ = {:.4}, v0 = {}", i.xi0, i.phi, i.v0),
         Release::TableRest => format!("ξ0 = {}, at rest on the table", i.xi0),
         Release::LabRest => format!("ξ0 = {}, at rest in the lab", i.xi0),
     };
-    format!("Released at {release}, τ = {:.3}", app.sim.now().tau)
+    format!("Released at {release}, τ = {:.3}", app.sim().now().tau)
 }
 
 /// The outcome map with nothing computed yet: its axes alone.

@@ -90,14 +90,14 @@ pub fn draw(frame: &mut Frame, app: &App) -> Option<CanvasGeom> {
 /// said several ways, longest first (`fit::alternatives`), so a narrow screen reads a whole
 /// shorter sentence.
 pub fn lesson_line(app: &App) -> String {
-    if app.initial.frictionless {
+    if app.initial().frictionless {
         return fit::alternatives(&[
             " μ = 0: a straight line in the lab, a spiral in the rotating frame (f switches)",
             " μ = 0: a straight line in the lab, a spiral on the table",
             " μ = 0: a straight line in the lab",
         ]);
     }
-    if let Some(gamma) = app.settings.stokes() {
+    if let Some(gamma) = app.settings().stokes() {
         let rate = crate::engine::stokes::growth_rate(gamma);
         return fit::alternatives(&[
             format!(
@@ -107,7 +107,7 @@ pub fn lesson_line(app: &App) -> String {
             format!(" Stokes: leaves as e^({rate:.4}τ)"),
         ]);
     }
-    let Some(p) = &app.paper else {
+    let Some(p) = &app.paper() else {
         return fit::alternatives(&[
             " c: compare with the paper's scheme (raw RK2, fixed dt = 1e-3, no stick event)",
             " c: compare with the paper's scheme (RK2, dt = 1e-3)",
@@ -115,7 +115,7 @@ pub fn lesson_line(app: &App) -> String {
             " c: the paper's RK2",
         ]);
     };
-    let (a, b) = (app.sim.outcome_now(), p.outcome_now());
+    let (a, b) = (app.sim().outcome_now(), p.outcome_now());
     let name = |o: Outcome| match o {
         Outcome::Stuck => "sticks",
         Outcome::Escaped => "escapes",
@@ -126,7 +126,7 @@ pub fn lesson_line(app: &App) -> String {
         Outcome::Escaped => "both escape",
         Outcome::Running => "both still slide",
     };
-    let method = app.settings.method();
+    let method = app.settings().method();
     if a == b {
         fit::alternatives(&[
             format!(

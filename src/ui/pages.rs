@@ -20,8 +20,8 @@ use unicode_width::UnicodeWidthStr;
 
 /// Draws `app.page` in `area`; returns the plot's geometry where a click means a release.
 pub fn render(f: &mut TuiFrame, area: Rect, app: &App) -> Option<CanvasGeom> {
-    if let Some(gamma) = app.settings.stokes()
-        && !app.initial.frictionless
+    if let Some(gamma) = app.settings().stokes()
+        && !app.initial().frictionless
         && matches!(
             app.page,
             Page::EscapeSpeed | Page::OutcomeMap | Page::RestRadius
@@ -81,8 +81,8 @@ fn geom(plot: Rect, c: &Chart, page: Page, app: &App) -> CanvasGeom {
 /// v_e(φ) for the current ξ0 beside the paper's four, the release as a point, min and max.
 fn escape_speed(f: &mut TuiFrame, area: Rect, app: &App) -> Option<CanvasGeom> {
     let th = &app.theme;
-    let i = app.initial;
-    let settings = crate::analysis::settings_for(app.settings);
+    let i = app.initial();
+    let settings = crate::analysis::settings_for(app.settings());
     let charts = &app.charts;
     let mine = charts.curve(i.xi0, settings);
     let mut series = Vec::new();
@@ -239,7 +239,7 @@ fn release_verdict(
     app: &App,
     mine: Option<&crate::app::pages::Curve>,
 ) -> (&'static str, Option<Outcome>) {
-    let i = app.initial;
+    let i = app.initial();
     let window = i.xi0 > 1.0;
     let judged = match i.release {
         Release::Velocity => mine.and_then(|c| judge(c, turn_angle(i.phi), i.v0)),
@@ -275,9 +275,9 @@ pub fn summarized(page: Page) -> bool {
 /// same pieces the chart is drawn from. None while they compute, and on the pages without a
 /// summary of their own (the turntable's and the time plots' readouts are spoken already).
 pub fn summary(app: &App) -> Option<(String, Option<String>)> {
-    let settings = crate::analysis::settings_for(app.settings);
-    let i = app.initial;
-    if app.settings.stokes().is_some() {
+    let settings = crate::analysis::settings_for(app.settings());
+    let i = app.initial();
+    if app.settings().stokes().is_some() {
         return None;
     }
     match app.page {
@@ -404,8 +404,8 @@ fn judge(c: &crate::app::pages::Curve, phi: f64, v0: f64) -> Option<Verdict> {
 /// Stuck or escaped over (φ, v0), stuck cells shaded by their rest radius, the v_e curve on it.
 fn outcome_map(f: &mut TuiFrame, area: Rect, app: &App) -> Option<CanvasGeom> {
     let th = &app.theme;
-    let i = app.initial;
-    let settings = crate::analysis::settings_for(app.settings);
+    let i = app.initial();
+    let settings = crate::analysis::settings_for(app.settings());
     let map = app.charts.map.as_ref().filter(|m| match m.job {
         crate::analysis::Job::Map { xi0, release, .. } => {
             xi0 == i.xi0 && release == i.release && m.settings == settings
@@ -474,8 +474,8 @@ fn outcome_map(f: &mut TuiFrame, area: Rect, app: &App) -> Option<CanvasGeom> {
 /// The outcome map's chart (without its cells) for speeds up to `v0_max`.
 fn map_chart(app: &App, v0_max: f64, progress: String) -> Chart {
     let th = &app.theme;
-    let i = app.initial;
-    let settings = crate::analysis::settings_for(app.settings);
+    let i = app.initial();
+    let settings = crate::analysis::settings_for(app.settings());
     let frame_word = if i.release == Release::LabRest {
         "lab"
     } else {
@@ -543,7 +543,7 @@ pub fn map_grid(app: &App, v0_max: f64) -> Option<(usize, usize)> {
 /// beside it Eq. 22, μ = Ω² r0c / (g ξ0c), from an Ω and r0c the user enters.
 fn rest_radius(f: &mut TuiFrame, area: Rect, app: &App) {
     let th = &app.theme;
-    let settings = crate::analysis::settings_for(app.settings);
+    let settings = crate::analysis::settings_for(app.settings());
     let rest = app.charts.rest.as_ref().filter(|r| r.settings == settings);
     let [top, bottom] = Layout::vertical([Constraint::Min(6), Constraint::Length(5)]).areas(area);
     let mut points = Vec::new();
@@ -575,7 +575,7 @@ fn rest_radius(f: &mut TuiFrame, area: Rect, app: &App) {
         }
     }
     marks.push(Mark::VLine {
-        x: app.initial.xi0.min(REST_XI0_MAX),
+        x: app.initial().xi0.min(REST_XI0_MAX),
         label: "now".into(),
         color: th.particle,
     });

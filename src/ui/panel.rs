@@ -14,22 +14,7 @@ use ratatui::text::{Line, Span};
 use ratatui::widgets::Paragraph;
 use std::f64::consts::PI;
 
-/// A number for a readout: never NaN or inf on screen.
-pub fn num(x: f64, prec: usize) -> String {
-    if x.is_finite() {
-        let s = format!("{x:.prec$}");
-        if s.trim_start_matches('-')
-            .chars()
-            .all(|c| c == '0' || c == '.')
-        {
-            s.trim_start_matches('-').to_string()
-        } else {
-            s
-        }
-    } else {
-        "—".into()
-    }
-}
+pub use crate::present::num;
 
 /// A release speed: four decimals, up to six where they are not zeros (C's v0 = 0.6078 and
 /// its escape speed 0.607797… differ in the sixth).
@@ -147,8 +132,8 @@ const XI_LINE: usize = 2;
 /// The readout lines, which of them hold the status, and which the body's phase.
 fn readouts(app: &App) -> (Vec<Line<'static>>, std::ops::Range<usize>, Option<usize>) {
     let th = &app.theme;
-    let s = app.sim.now();
-    let i = &app.initial;
+    let s = app.sim().now();
+    let i = &app.initial();
     let mut out: Vec<Line<'static>> = Vec::new();
     let init = match i.release {
         crate::engine::Release::Velocity => format!(
@@ -223,7 +208,7 @@ fn readouts(app: &App) -> (Vec<Line<'static>>, std::ops::Range<usize>, Option<us
     }
     out.push(kv("ξ′", format!("{}{xi_dot_si}", num(s.xi_dot(), 4)), th));
     out.push(kv("|u|", format!("{}{u_si}", num(s.u().length(), 4)), th));
-    let (st, col) = status_text(&app.sim, th);
+    let (st, col) = status_text(app.sim(), th);
     let status_start = out.len();
     for l in st.lines() {
         out.push(Line::from(Span::styled(
@@ -266,10 +251,10 @@ fn readouts(app: &App) -> (Vec<Line<'static>>, std::ops::Range<usize>, Option<us
             th,
         ));
     }
-    let c = app.sim.run.cost();
+    let c = app.sim().run.cost();
     if i.frictionless {
         out.push(kv("μ = 0", "closed form".into(), th));
-    } else if let Some(gamma) = app.settings.stokes() {
+    } else if let Some(gamma) = app.settings().stokes() {
         out.push(kv("Stokes γ", num(gamma, 4), th));
         out.push(kv(
             "leaves",
@@ -277,19 +262,19 @@ fn readouts(app: &App) -> (Vec<Line<'static>>, std::ops::Range<usize>, Option<us
             th,
         ));
     } else {
-        if app.settings.hold() != 1.0 {
-            out.push(kv("μs/μk", num(app.settings.hold(), 4), th));
+        if app.settings().hold() != 1.0 {
+            out.push(kv("μs/μk", num(app.settings().hold(), 4), th));
         }
         out.push(kv(
-            app.settings.method().into(),
-            app.settings.accuracy_label(),
+            app.settings().method().into(),
+            app.settings().accuracy_label(),
             th,
         ));
     }
-    let rod = app.scene.body.map(|b| body_lines(app, b, &s, &mut out));
+    let rod = app.scene().body.map(|b| body_lines(app, b, &s, &mut out));
     out.push(kv("steps", format!("{} rej {}", c.steps, c.rejected), th));
     if app.step_mode
-        && let Some(st) = app.sim.run.last_step()
+        && let Some(st) = app.sim().run.last_step()
     {
         out.push(kv("h", format!("{:.1e} {}", st.h, st.limit.describe()), th));
         if let Some(e) = st.err_ratio {
@@ -304,7 +289,7 @@ fn readouts(app: &App) -> (Vec<Line<'static>>, std::ops::Range<usize>, Option<us
     out.push(kv("RHS", format!("{}", c.rhs_evals), th));
     let play = if app.playing { "▶" } else { "❚❚" };
     out.push(kv("speed", format!("×{} {play}", fmt_speed(app.speed)), th));
-    if let Some(p) = &app.paper {
+    if let Some(p) = &app.paper() {
         let (st, col) = status_text(p, th);
         out.push(Line::from(Span::styled(
             "paper: rk2-raw dt=1e-3 ○",
@@ -442,12 +427,12 @@ fn body_lines(
 ) -> usize {
     let th = &app.theme;
     let tau = s.tau;
-    let now = app.rod.as_ref().and_then(|r| body_now(r, tau));
+    let now = app.rod().and_then(|r| body_now(r, tau));
     let (xi, stuck) = match &now {
         Some(n) => (n.xi, n.rests),
-        None => (s.xi(), app.sim.outcome_now() == Outcome::Stuck),
+        None => (s.xi(), app.sim().outcome_now() == Outcome::Stuck),
     };
-    let f = crate::engine::body::friction(&app.settings, app.initial.frictionless, stuck, xi);
+    let f = crate::engine::body::friction(&app.settings(), app.initial().frictionless, stuck, xi);
     let c = b.conditions(xi, f, app.units.map(|u| u.mu));
     // In exponent form when small: a body 1e-9 long is not "L 0.0000".
     let size = match b.height {
@@ -469,9 +454,9 @@ fn body_lines(
         )));
     }
     let phase_line = out.len();
-    let phase = match (&app.rod, &now) {
-        (None, _) if app.initial.frictionless => "not run: μ = 0".to_string(),
-        (None, _) if app.settings.stokes().is_some() => "not run: Stokes".to_string(),
+    let phase = match (&app.rod(), &now) {
+        (None, _) if app.initial().frictionless => "not run: μ = 0".to_string(),
+        (None, _) if app.settings().stokes().is_some() => "not run: Stokes".to_string(),
         (None, _) => "not run".to_string(),
         (
             Some(_),
@@ -522,7 +507,7 @@ fn body_lines(
             Style::default().fg(th.notice).add_modifier(Modifier::BOLD),
         )));
     }
-    if let Some((end, why)) = app.rod.as_ref().and_then(|r| body_end(r, tau)) {
+    if let Some((end, why)) = app.rod().and_then(|r| body_end(r, tau)) {
         out.push(kv("ends", end, th));
         if let Some(why) = why {
             out.push(kv("  by", why, th));
@@ -550,7 +535,7 @@ pub fn fmt_speed(s: f64) -> String {
 
 pub fn render(f: &mut TuiFrame, area: Rect, app: &App) {
     let th = &app.theme;
-    let block = super::titled(format!(" scene {} ", app.scene.name), th);
+    let block = super::titled(format!(" scene {} ", app.scene().name), th);
     let rows = usize::from(block.inner(area).height);
     f.render_widget(
         Paragraph::new(lines_in(app, rows))

@@ -47,10 +47,10 @@ impl Seen {
         let caption = app.caption();
         Seen {
             release: release(app),
-            fresh: app.sim.samples.len() == 1 && app.sim.cursor == 0,
-            status: status(&app.sim),
+            fresh: app.sim().samples.len() == 1 && app.sim().cursor == 0,
+            status: status(app.sim()),
             body: body_events(app),
-            paper: app.paper.as_ref().map(status),
+            paper: app.paper().map(status),
             tau: app.now().tau,
             playing: app.playing,
             speed: app.speed,
@@ -81,7 +81,7 @@ pub fn opening(app: &App) -> Vec<String> {
     let now = Seen::of(app);
     let mut out = vec![
         "turntable, plain mode: ? lists the keys, I reads the readouts, Space plays and pauses, q quits".to_string(),
-        format!("scene {}: {}", app.scene.name, app.scene.about),
+        format!("scene {}: {}", app.scene().name, app.scene().about),
         now.release.clone(),
         now.status.clone(),
     ];
@@ -218,7 +218,7 @@ pub fn describe(was: &Seen, now: &Seen) -> Vec<String> {
 
 /// The release in words: scene, ξ0, φ, v0, how it is released, the method.
 fn release(app: &App) -> String {
-    let i = &app.initial;
+    let i = &app.initial();
     let edited = if app.edited() { " (edited)" } else { "" };
     let start = match i.release {
         Release::Velocity => format!(
@@ -232,10 +232,10 @@ fn release(app: &App) -> String {
     };
     let how = if i.frictionless {
         "μ = 0, in closed form".to_string()
-    } else if let Some(gamma) = app.settings.stokes() {
+    } else if let Some(gamma) = app.settings().stokes() {
         format!("Stokes drag γ = {}, in closed form", num(gamma, 4))
     } else {
-        let hold = app.settings.hold();
+        let hold = app.settings().hold();
         let hold = if hold != 1.0 {
             format!(", μs/μk = {}", num(hold, 4))
         } else {
@@ -243,11 +243,14 @@ fn release(app: &App) -> String {
         };
         format!(
             "method {} {}{hold}",
-            app.settings.method(),
-            app.settings.accuracy_label()
+            app.settings().method(),
+            app.settings().accuracy_label()
         )
     };
-    format!("release: scene {}{edited}, {start}; {how}", app.scene.name)
+    format!(
+        "release: scene {}{edited}, {start}; {how}",
+        app.scene().name
+    )
 }
 
 /// How a run stands at the τ on screen, in words.
@@ -280,7 +283,7 @@ fn status(sim: &Sim) -> String {
 /// the track's); empty without one.
 fn body_events(app: &App) -> Vec<String> {
     use crate::engine::rod::Phase;
-    let Some(rod) = app.rod.as_ref() else {
+    let Some(rod) = app.rod() else {
         return Vec::new();
     };
     let tau = app.now().tau;
@@ -370,7 +373,7 @@ pub fn summary(app: &App) -> String {
         num(s.tau, 3),
         num(s.xi(), 5),
         num(s.u().length(), 4),
-        status(&app.sim)
+        status(app.sim())
     );
     if let Some(b) = body(app) {
         out.push_str(&format!("; {b}"));
@@ -384,7 +387,7 @@ pub fn summary(app: &App) -> String {
 fn body(app: &App) -> Option<String> {
     use crate::engine::rod::Phase;
     use crate::ui::panel::{body_end, body_now};
-    let rod = app.rod.as_ref()?;
+    let rod = app.rod()?;
     let tau = app.now().tau;
     let now = body_now(rod, tau)?;
     Some(match now.at {

@@ -87,9 +87,9 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) {
     let block = super::titled(format!(" {} ", super::fit::fit(&title, "\0", room)), th);
     let inner = block.inner(area);
     f.render_widget(block, area);
-    let p = path(&app.sim);
-    let paper = app.paper.as_ref().map(path);
-    let now = app.sim.now().tau;
+    let p = path(app.sim());
+    let paper = app.paper().map(path);
+    let now = app.sim().now().tau;
     // The τ window: the run so far, or a span the user fixed (t / T).
     let span = app.tau_window.unwrap_or(app.plot_span()).max(1e-3);
     let x = [0.0, span];
@@ -98,7 +98,7 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) {
         label: format!("τ={}", num(now, 2)),
         color: th.accent,
     }];
-    if let Status::Stuck { tau, .. } = app.sim.run.status()
+    if let Status::Stuck { tau, .. } = app.sim().run.status()
         && tau <= now
     {
         marks.push(Mark::VLine {
@@ -107,7 +107,7 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) {
             color: th.stuck,
         });
     }
-    if let Some(e) = app.sim.run.escape()
+    if let Some(e) = app.sim().run.escape()
         && e.tau <= now
     {
         marks.push(Mark::VLine {
@@ -116,7 +116,7 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) {
             color: th.escaped,
         });
     }
-    let i = app.initial;
+    let i = app.initial();
     let approx_window = match i.release {
         _ if i.frictionless => None,
         Release::LabRest => Some(lab_rest_window(i.xi0)),
@@ -274,10 +274,10 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) {
     let mut u_s = vec![series("|u|", th.trail, &p, u_of)];
     u_s.extend(paper_series("|u|", &u_of));
     u_s.extend(pin_series(3, (1, -1), &|p| along(p, &u_of)));
-    let drag = if app.initial.frictionless {
+    let drag = if app.initial().frictionless {
         None
     } else {
-        app.settings.stokes()
+        app.settings().stokes()
     };
     let [e, w] = energy_pair_drag(&p, drag);
     let e_s = vec![

@@ -6,65 +6,48 @@ use super::super::pages::Page;
 use super::super::state::App;
 use super::next_of;
 use crate::engine::model::{turn_angle, wrap_angle, zcross};
-use crate::engine::{Frame, Release, Settings};
+use crate::engine::{Frame, Release};
 use crate::scene::{PRESETS, Scene};
 use std::f64::consts::PI;
 use strum::VariantArray;
 
 pub(super) fn apply(app: &mut App, action: Action) {
     match action {
-        Action::Xi0(d) => {
-            app.initial.xi0 += d;
-            app.restart();
-        }
-        Action::Phi(d) => {
-            app.initial.phi += d;
-            app.initial.release = Release::Velocity;
-            app.restart();
-        }
-        Action::V0(d) => {
-            app.initial.v0 += d;
-            app.initial.release = Release::Velocity;
-            app.restart();
-        }
-        Action::CycleRelease => {
-            app.initial.release = next_of(Release::VARIANTS, app.initial.release);
-            app.restart();
-        }
+        Action::Xi0(d) => app.exploration.edit_initial(|i| i.xi0 += d),
+        Action::Phi(d) => app.exploration.edit_initial(|i| {
+            i.phi += d;
+            i.release = Release::Velocity;
+        }),
+        Action::V0(d) => app.exploration.edit_initial(|i| {
+            i.v0 += d;
+            i.release = Release::Velocity;
+        }),
+        Action::CycleRelease => app
+            .exploration
+            .edit_initial(|i| i.release = next_of(Release::VARIANTS, i.release)),
         Action::ToggleFriction => {
-            app.initial.frictionless = !app.initial.frictionless;
-            app.notice = Some(if app.initial.frictionless {
+            app.exploration
+                .edit_initial(|i| i.frictionless = !i.frictionless);
+            app.notice = Some(if app.initial().frictionless {
                 "μ = 0: no friction, so no force at all in the lab (closed form, no steps)".into()
             } else {
                 "friction on: μg = 1".into()
             });
-            app.restart();
         }
-        Action::ResetScene => {
-            app.initial = app.scene.initial;
-            app.settings = if app.scene.settings.validate().is_ok() {
-                app.scene.settings
-            } else {
-                Settings::default()
-            };
-            app.restart();
-        }
+        Action::ResetScene => app.exploration.reset(),
         Action::Preset(i) => {
             if let Some(mut scene) = PRESETS.get(i).and_then(|n| Scene::preset(n)) {
                 // The body is the object, the preset its release: it stays.
-                scene.body = app.scene.body;
-                app.initial = scene.initial;
-                app.settings = scene.settings;
+                scene.body = app.scene().body;
                 let body = match scene.body {
                     Some(b) => format!(" (the body stays: L = {})", b.length),
                     None => String::new(),
                 };
                 app.notice = Some(format!("preset {}: {}{body}", scene.name, scene.about));
-                app.scene = scene;
+                app.exploration.load(scene);
                 app.zoom = 1.0;
                 app.turn = 0.0;
                 app.pan = glam::DVec2::ZERO;
-                app.restart();
             }
         }
         Action::PlaceRelease(p) => {
@@ -73,49 +56,49 @@ pub(super) fn apply(app: &mut App, action: Action) {
             if p.length() > 0.0 {
                 app.turn = wrap_angle(app.turn + p.y.atan2(p.x));
             }
-            app.initial.xi0 = p.length();
+            app.exploration.edit_initial(|i| i.xi0 = p.length());
             app.dragging = true;
-            app.restart();
             app.notice = Some(format!(
                 "release point ξ0 = {:.3}; drag to set the velocity",
-                app.initial.xi0
+                app.initial().xi0
             ));
         }
         Action::AimVelocity(p) => {
             let scale = app.geom.map_or(1.0, |g| g.arrow_scale);
-            let r0 = glam::DVec2::new(app.initial.xi0, 0.0);
+            let r0 = glam::DVec2::new(app.initial().xi0, 0.0);
             // The arrow shows the lab velocity in the lab view and u0 in the rotating view.
             let drawn = (p - r0) / scale;
             let u0 = match app.view {
                 Frame::Lab => drawn - zcross(r0),
                 Frame::Table => drawn,
             };
-            app.initial.release = Release::Velocity;
-            app.initial.v0 = u0.length();
-            app.initial.phi = if u0.length() > 0.0 {
-                u0.y.atan2(u0.x)
-            } else {
-                0.0
-            };
-            app.restart();
+            app.exploration.edit_initial(|i| {
+                i.release = Release::Velocity;
+                i.v0 = u0.length();
+                i.phi = if u0.length() > 0.0 {
+                    u0.y.atan2(u0.x)
+                } else {
+                    0.0
+                };
+            });
             app.notice = Some(format!(
                 "v0 = {:.3}, φ = {:.3}π",
-                app.initial.v0,
-                turn_angle(app.initial.phi) / PI
+                app.initial().v0,
+                turn_angle(app.initial().phi) / PI
             ));
         }
         Action::PickRelease(p) => {
             let release = match app.page {
-                Page::OutcomeMap => app.initial.release,
+                Page::OutcomeMap => app.initial().release,
                 _ => Release::Velocity,
             };
-            let chosen = crate::analysis::map_release(app.initial.xi0, release, p.x, p.y.max(0.0));
-            app.initial = chosen;
-            app.restart();
+            let chosen =
+                crate::analysis::map_release(app.initial().xi0, release, p.x, p.y.max(0.0));
+            app.exploration.set_initial(chosen);
             app.notice = Some(format!(
                 "release v0 = {:.4} at φ = {:.3}π: Enter runs it on the turntable",
-                app.initial.v0,
-                turn_angle(app.initial.phi) / PI
+                app.initial().v0,
+                turn_angle(app.initial().phi) / PI
             ));
         }
         // `EndDrag` is handled before dispatch; other groups' actions never come here.

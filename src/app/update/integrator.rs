@@ -2,7 +2,7 @@
 //! estimate.
 
 use super::super::action::Action;
-use super::super::state::{App, make_sim};
+use super::super::state::App;
 use super::{next_of, round_sig};
 use crate::engine::method::{DT_RANGE, TOL_RANGE};
 use crate::engine::{Method, Settings};
@@ -12,15 +12,15 @@ pub(super) fn apply(app: &mut App, action: Action) {
     match action {
         Action::CycleMethod => {
             let (now, mut next) = (
-                app.settings.scheme,
-                next_of(Method::VARIANTS, app.settings.method()),
+                app.settings().scheme,
+                next_of(Method::VARIANTS, app.settings().method()),
             );
-            if !next.stick_events() && app.settings.hold() != 1.0 {
+            if !next.stick_events() && app.settings().hold() != 1.0 {
                 // The paper's raw scheme has μ_s = μ_k and no stops: it cannot hold a particle
                 // at μ_s/μ_k ≠ 1 (Settings::validate), so the cycle passes it by.
                 app.notice = Some(format!(
                     "{next} skipped: the paper's scheme has μs = μk, and this scene μs/μk = {}",
-                    app.settings.hold()
+                    app.settings().hold()
                 ));
                 next = next_of(Method::VARIANTS, next);
             }
@@ -31,8 +31,11 @@ pub(super) fn apply(app: &mut App, action: Action) {
                 None if !next.adaptive() => now.knob(),
                 _ => next.default_knob(),
             };
-            app.settings.scheme = next.with(knob);
-            app.restart();
+            let settings = Settings {
+                scheme: next.with(knob),
+                ..app.settings()
+            };
+            app.exploration.set_settings(settings);
         }
         Action::Loosen | Action::Tighten => {
             let k = if action == Action::Loosen {
@@ -40,36 +43,33 @@ pub(super) fn apply(app: &mut App, action: Action) {
             } else {
                 1.0 / 10f64.sqrt()
             };
-            let s = &mut app.settings.scheme;
+            let mut settings = app.settings();
+            let s = &mut settings.scheme;
             let range = if s.method().adaptive() {
                 TOL_RANGE
             } else {
                 DT_RANGE
             };
             *s = s.with_knob(round_sig(s.knob() * k).clamp(range.0, range.1));
-            app.restart();
+            app.exploration.set_settings(settings);
         }
         Action::ToggleCompare => {
-            app.paper = match app.paper {
-                Some(_) => None,
-                None => {
-                    // It catches up with the run on screen over the next ticks, within each
-                    // tick's step budget: the key itself does no integration.
-                    Some(make_sim(app.initial, Settings::paper()))
-                }
-            };
+            // It catches up with the run on screen over the next ticks, within each tick's
+            // step budget: the key itself does no integration.
+            let on = app.paper().is_none();
+            app.exploration.compare(on);
             app.catch_up();
         }
-        Action::EstimateError if app.initial.frictionless => {
+        Action::EstimateError if app.initial().frictionless => {
             app.notice =
                 Some("μ = 0 is computed in closed form: exact, no error to estimate".into());
         }
-        Action::EstimateError if app.settings.stokes().is_some() => {
+        Action::EstimateError if app.settings().stokes().is_some() => {
             app.notice =
                 Some("Stokes drag is computed in closed form: exact, no error to estimate".into());
         }
         Action::EstimateError => {
-            app.notice = Some(match app.sim.error_estimate() {
+            app.notice = Some(match app.sim().error_estimate() {
                 Ok(e) => format!(
                     "error at τ = {:.3}: |Δr| = {:.1e} against dp54 tol={:.0e} ({} RHS)",
                     e.tau, e.error, e.tol, e.rhs_evals

@@ -1,5 +1,7 @@
-//! The pure update: an action applied to the state. No I/O but `Save`, no clock. One module
-//! per help group (as the keymap lists them); `update` dispatches on the action's group.
+//! The pure update: an action applied to the state. No I/O, no clock: what must happen
+//! outside (a file saved or exported) is returned as [`Effects`] for the shell to carry out.
+//! One module per help group (as the keymap lists them); `update` dispatches on the action's
+//! group.
 
 mod app;
 mod initial;
@@ -9,40 +11,45 @@ mod time;
 mod view;
 
 use super::action::{Action, Group};
+use super::effect::Effects;
 use super::state::App;
 
-pub fn update(app: &mut App, action: Action) {
+/// Applies `action` to `app`; returns what the shell must do outside the model.
+pub fn update(app: &mut App, action: Action) -> Effects {
     if action == Action::EndDrag {
         // Letting go of the mouse changes nothing on screen (the notice stays).
         app.dragging = false;
-        return;
+        return Effects::new();
     }
     app.dirty = true;
     app.notice = None;
+    let mut effects = Effects::new();
     match action.group() {
         Group::Time => time::apply(app, action),
         Group::InitialConditions => initial::apply(app, action),
         Group::Integrator => integrator::apply(app, action),
         Group::View => view::apply(app, action),
-        Group::App => app::apply(app, action),
+        Group::App => effects = app::apply(app, action),
         Group::Lesson => lesson::apply(app, action),
     }
     // A body's track cut short by the key just pressed says so, beside what the key said.
-    if let Some(cut) = app.rod_notice.take() {
+    if let Some(cut) = app.exploration.take_rod_notice() {
         app.notice = Some(match app.notice.take() {
             Some(n) => format!("{n}; {cut}"),
             None => cut,
         });
     }
-    app.ask_analysis();
+    effects
 }
 
 /// One tick of sim time (× speed) for both runs. Marks the screen dirty only if time moved.
 pub fn step(app: &mut App) -> bool {
     let dtau = super::state::TICK_DT * app.speed;
-    let before = (app.sim.cursor, app.sim.samples.len());
-    app.sim.advance(dtau);
-    let mut moved = before != (app.sim.cursor, app.sim.samples.len());
+    let (sim, _) = app.exploration.runs_mut();
+    let before = (sim.cursor, sim.samples.len());
+    sim.advance(dtau);
+    let moved = before != (sim.cursor, sim.samples.len());
+    let mut moved = moved;
     moved |= app.catch_up();
     app.dirty |= moved;
     moved

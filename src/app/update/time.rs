@@ -14,30 +14,32 @@ pub(super) fn apply(app: &mut App, action: Action) {
         Action::IntegratorStep => {
             app.playing = false;
             app.step_mode = true;
-            if !app.sim.step_once() {
+            if !app.exploration.runs_mut().0.step_once() {
                 app.notice = Some("no more steps: the run has ended (r restarts)".into());
             }
         }
         Action::StepForward => {
             app.playing = false;
             let dtau = TICK_DT * app.speed;
-            if !step_through_history(&mut app.sim, dtau) {
+            let (sim, paper) = app.exploration.runs_mut();
+            if !step_through_history(sim, dtau) {
                 step(app);
-            } else if let Some(p) = app.paper.as_mut() {
+            } else if let Some(p) = paper {
                 step_through_history(p, dtau);
             }
         }
         Action::StepBack => {
             app.playing = false;
             let dtau = -TICK_DT * app.speed;
-            step_through_history(&mut app.sim, dtau);
-            if let Some(p) = app.paper.as_mut() {
+            let (sim, paper) = app.exploration.runs_mut();
+            step_through_history(sim, dtau);
+            if let Some(p) = paper {
                 step_through_history(p, dtau);
             }
         }
         Action::Faster => app.speed = (app.speed * 2.0).min(SPEED_RANGE.1),
         Action::Slower => app.speed = (app.speed / 2.0).max(SPEED_RANGE.0),
-        Action::Restart => app.restart(),
+        Action::Restart => app.exploration.restart(),
         // Other groups' actions: `update` never sends them here.
         _ => {}
     }

@@ -20,7 +20,7 @@ pub(super) fn apply(app: &mut App, action: Action) {
         Action::ToggleForces => app.forces = !app.forces,
         Action::ToggleNetForce => app.net_force = !app.net_force,
         Action::ToggleVelocity => app.velocity = !app.velocity,
-        Action::TogglePointModel if app.scene.body.is_none() => {
+        Action::TogglePointModel if app.scene().body.is_none() => {
             app.notice = Some(
                 "no body to compare with the point model (--body-length, or [body] in a scene)"
                     .into(),
@@ -29,7 +29,7 @@ pub(super) fn apply(app: &mut App, action: Action) {
         Action::TogglePointModel => {
             app.point_model = !app.point_model;
             app.notice = Some(
-                match (app.rod.is_some(), app.point_model) {
+                match (app.rod().is_some(), app.point_model) {
                     (true, true) => "point model beside the body (C)",
                     (true, false) => "the body alone, point model hidden (C)",
                     // Nothing of the body is drawn to stand alone: the point stays.
@@ -61,7 +61,7 @@ pub(super) fn apply(app: &mut App, action: Action) {
             if matches!(app.page, Page::EscapeSpeed | Page::OutcomeMap) {
                 app.page = Page::Turntable;
                 app.playing = true;
-                app.restart();
+                app.exploration.restart();
             } else {
                 app.notice = Some(
                     "Enter runs the release chosen on the escape-speed or outcome-map page (Tab)"
@@ -138,9 +138,7 @@ fn set_units(app: &mut App, to: Units) {
     if let Some(from) = app.units
         && from != to
     {
-        app.initial = from.carry(app.initial, &to);
-        app.scene.body = app.scene.body.map(|b| b.carried(&from, &to));
-        app.restart();
+        app.exploration.carry(&from, &to);
     }
     app.units = Some(to);
     app.notice = Some(format!("SI units: {}", to.describe()));

@@ -1,0 +1,172 @@
+//! What is explored: the scene as loaded, the initial conditions and settings being edited,
+//! and the runs from them (the point's, the paper's to compare, the body's track). Its fields
+//! are private and every setter restarts the runs, so the runs on screen are always those of
+//! the initial conditions and settings shown: no caller places a `restart()` by hand, and
+//! nothing checks at run time what the type holds.
+
+use super::state::{make_rod, make_sim, rod_cut_notice, sanitize};
+use crate::engine::rod::{RodTrack, TRACK_STEPS};
+use crate::engine::{Initial, Settings};
+use crate::scene::Scene;
+use crate::sim::Sim;
+
+#[derive(Clone, Debug)]
+pub struct Exploration {
+    /// The scene as loaded (what `0` resets to).
+    scene: Scene,
+    initial: Initial,
+    settings: Settings,
+    sim: Sim,
+    /// The paper's scheme from the same initial conditions, when comparing.
+    paper: Option<Sim>,
+    /// The scene's finite body from the same release; None without a body, with μ = 0 or
+    /// under Stokes drag.
+    rod: Option<RodTrack>,
+    /// What the last computed body track has to say (it was cut short), until taken.
+    rod_notice: Option<String>,
+}
+
+impl Exploration {
+    /// The scene's release and settings (default settings if the scene's are refused), run
+    /// from τ = 0.
+    pub fn new(scene: Scene) -> Exploration {
+        let initial = sanitize(scene.initial);
+        let settings = valid(scene.settings);
+        let mut e = Exploration {
+            sim: make_sim(initial, settings),
+            scene,
+            initial,
+            settings,
+            paper: None,
+            rod: None,
+            rod_notice: None,
+        };
+        e.restart();
+        e
+    }
+
+    pub fn scene(&self) -> &Scene {
+        &self.scene
+    }
+
+    pub fn initial(&self) -> Initial {
+        self.initial
+    }
+
+    pub fn settings(&self) -> Settings {
+        self.settings
+    }
+
+    /// The run on screen.
+    pub fn sim(&self) -> &Sim {
+        &self.sim
+    }
+
+    /// The paper's run, when comparing.
+    pub fn paper(&self) -> Option<&Sim> {
+        self.paper.as_ref()
+    }
+
+    /// The body's track, in a body scene that runs one.
+    pub fn rod(&self) -> Option<&RodTrack> {
+        self.rod.as_ref()
+    }
+
+    /// New initial conditions (kept valid: see [`sanitize`]); the runs restart.
+    pub fn set_initial(&mut self, initial: Initial) {
+        self.initial = initial;
+        self.restart();
+    }
+
+    /// An edit of the initial conditions; the runs restart.
+    pub fn edit_initial(&mut self, edit: impl FnOnce(&mut Initial)) {
+        let mut i = self.initial;
+        edit(&mut i);
+        self.set_initial(i);
+    }
+
+    /// New settings (default settings if refused); the runs restart.
+    pub fn set_settings(&mut self, settings: Settings) {
+        self.settings = valid(settings);
+        self.restart();
+    }
+
+    /// A scene loaded in place of this one: its release and settings; the runs restart.
+    pub fn load(&mut self, scene: Scene) {
+        self.initial = scene.initial;
+        self.settings = valid(scene.settings);
+        self.scene = scene;
+        self.restart();
+    }
+
+    /// Back to the scene as loaded; the runs restart.
+    pub fn reset(&mut self) {
+        self.initial = self.scene.initial;
+        self.settings = valid(self.scene.settings);
+        self.restart();
+    }
+
+    /// The release and the body carried to a new table (SI units changed); the runs restart.
+    pub fn carry(&mut self, from: &crate::engine::units::Units, to: &crate::engine::units::Units) {
+        self.initial = from.carry(self.initial, to);
+        self.scene.body = self.scene.body.map(|b| b.carried(from, to));
+        self.restart();
+    }
+
+    /// A body (or none) in place of the scene's; the runs restart.
+    pub fn set_body(&mut self, body: Option<crate::engine::body::Body>) {
+        self.scene.body = body;
+        self.restart();
+    }
+
+    /// The body's track computed again within `steps` steps, so cut short there as a track
+    /// that runs out of its budget is: the same body, release and settings, a smaller budget.
+    pub fn limit_body_steps(&mut self, steps: u64) {
+        self.rod = make_rod(self.scene.body, &self.initial, self.settings, steps);
+        self.rod_notice = self.rod.as_ref().and_then(rod_cut_notice);
+    }
+
+    /// The paper's run beside the one on screen, or not. It starts at τ = 0 and catches up
+    /// over the next ticks ([`Exploration::catch_up`]): the key itself integrates nothing.
+    pub fn compare(&mut self, on: bool) {
+        self.paper = on.then(|| make_sim(self.initial, Settings::paper()));
+    }
+
+    /// Restarts the runs at τ = 0 from the current initial conditions and settings.
+    pub fn restart(&mut self) {
+        self.initial = sanitize(self.initial);
+        self.sim = make_sim(self.initial, self.settings);
+        self.rod = make_rod(self.scene.body, &self.initial, self.settings, TRACK_STEPS);
+        self.rod_notice = self.rod.as_ref().and_then(rod_cut_notice);
+        if self.paper.is_some() {
+            self.compare(true);
+        }
+    }
+
+    /// What the body's track, computed by the last restart, has to say (it was cut short).
+    pub fn take_rod_notice(&mut self) -> Option<String> {
+        self.rod_notice.take()
+    }
+
+    /// The runs, to move along in time (advance, step, walk the history): their initial
+    /// conditions and settings are not theirs to change.
+    pub(crate) fn runs_mut(&mut self) -> (&mut Sim, Option<&mut Sim>) {
+        (&mut self.sim, self.paper.as_mut())
+    }
+
+    /// Brings the paper's run to the τ on screen, within one tick's step budget (so after `c`
+    /// on a long session it catches up over several ticks). Returns whether it moved.
+    pub fn catch_up(&mut self) -> bool {
+        let target = self.sim.now().tau;
+        self.paper.as_mut().is_some_and(|p| p.catch_up_to(target))
+    }
+}
+
+/// The settings, or the default ones if they are refused.
+fn valid(settings: Settings) -> Settings {
+    if settings.validate().is_ok() {
+        settings
+    } else {
+        Settings::default()
+    }
+}

@@ -1,0 +1,635 @@
+//! The headless commands as a user runs them: JSON fields and the trajectory file.
+
+use crate::common;
+use crate::reference;
+use common::turntable;
+
+fn field(json: &str, key: &str) -> String {
+    let v: serde_json::Value = serde_json::from_str(json).unwrap();
+    v[key].to_string()
+}
+
+#[test]
+fn run_json_and_trajectory_agree() {
+    let path = std::env::temp_dir().join(format!("turntable-traj-{}.csv", std::process::id()));
+    let p = path.to_str().unwrap();
+    let (code, out, _) = turntable(&[
+        "run",
+        "--xi0",
+        "0.5",
+        "--phi",
+        "0",
+        "--v0",
+        "0.6",
+        "--json",
+        "--trajectory",
+        p,
+    ]);
+    assert_eq!(code, 0);
+    assert_eq!(field(&out, "outcome"), "\"stuck\"");
+    let xi: f64 = field(&out, "xi").parse().unwrap();
+    assert!((xi - reference::B_REST.0).abs() < 1e-9, "{xi}");
+    let steps: usize = field(&out, "steps").parse().unwrap();
+    let csv = std::fs::read_to_string(&path).unwrap();
+    std::fs::remove_file(&path).unwrap();
+    let rows: Vec<Vec<f64>> = csv
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').take(9).map(|x| x.parse().unwrap()).collect())
+        .collect();
+    assert_eq!(
+        csv.lines().next().unwrap(),
+        "tau,x,y,xq,yq,u,stuck,energy,work,approx_xi"
+    );
+    // dE/dτ = −|u|: E − E(0) and the work column agree to the run's own error (they differed
+    // by up to 1.8e-4 with trapezoids between rows); a release with speed has no Sec. III
+    // approximation (the column is empty).
+    // README: to 1e-11 at the default tol, 1e-7 with rk2 at dt = 1e-3.
+    let e0 = rows[0][7];
+    for r in &rows {
+        assert!((r[7] - e0 - r[8]).abs() < 1e-11, "{r:?}");
+    }
+    assert!(csv.lines().skip(1).all(|l| l.ends_with(',')));
+    // One row per step, plus the start and the closed-form stop.
+    assert!(rows.len() > steps, "{} rows for {steps} steps", rows.len());
+    let last = rows.last().unwrap();
+    assert_eq!((last[5], last[6]), (0.0, 1.0));
+    assert!(((last[3] * last[3] + last[4] * last[4]).sqrt() - xi).abs() < 1e-12);
+    assert!(
+        rows[..rows.len() - 1]
+            .iter()
+            .all(|r| r[6] == 0.0 && r[5] > 0.0)
+    );
+    let tau: f64 = field(&out, "tau").parse().unwrap();
+    assert_eq!(last[0], tau);
+    let (code, _, err) = turntable(&[
+        "run",
+        "--xi0",
+        "0.5",
+        "--v0",
+        "0.6",
+        "--method",
+        "rk2",
+        "--dt",
+        "1e-3",
+        "--trajectory",
+        p,
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let csv = std::fs::read_to_string(&path).unwrap();
+    std::fs::remove_file(&path).unwrap();
+    let col = |l: &str, k: usize| l.split(',').nth(k).unwrap().parse::<f64>().unwrap();
+    let e0 = col(csv.lines().nth(1).unwrap(), 7);
+    for l in csv.lines().skip(1) {
+        assert!((col(l, 7) - e0 - col(l, 8)).abs() < 1e-7, "{l}");
+    }
+    // Released at rest in the lab far out (Fig. 1), the approx_xi column is Eq. 17.
+    let (code, _, err) = turntable(&[
+        "run",
+        "--xi0",
+        "500",
+        "--release",
+        "lab-rest",
+        "--tau-max",
+        "10",
+        "--follow",
+        "--trajectory",
+        p,
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let csv = std::fs::read_to_string(&path).unwrap();
+    std::fs::remove_file(&path).unwrap();
+    for l in csv.lines().skip(1) {
+        let r: Vec<f64> = l.split(',').map(|x| x.parse().unwrap()).collect();
+        let xi = (r[1] * r[1] + r[2] * r[2]).sqrt();
+        assert!((r[9] - (r[0].powi(4) / 6000.0 + 500.0)).abs() < 1e-9, "{l}");
+        // Within the window τ ≲ √ξ0 the approximation holds closely.
+        assert!((r[9] - xi).abs() < 0.05, "{l}");
+    }
+}
+
+#[test]
+fn escape_and_critical_print_their_values() {
+    let (code, out, _) = turntable(&["escape", "--xi0", "0.5", "--phi", "0", "--json"]);
+    assert_eq!(code, 0);
+    let v: f64 = field(&out, "v_escape").parse().unwrap();
+    assert!((v - reference::VE_C).abs() < 2e-8, "{v}");
+    let (code, out, _) = turntable(&["critical", "--json"]);
+    assert_eq!(code, 0);
+    let x: f64 = field(&out, "xi0c").parse().unwrap();
+    assert!((x - reference::XI0C).abs() < 1e-7, "{x}");
+    let (code, out, _) = turntable(&["sweep", "fig6", "--points", "11"]);
+    assert_eq!(code, 0);
+    let lines: Vec<&str> = out.lines().collect();
+    assert_eq!(lines[0], "xi0,outcome,xi,angle");
+    assert!(
+        lines[9].starts_with("0.8,stuck,") && lines[10].starts_with("0.9,escaped,"),
+        "{out}"
+    );
+}
+
+/// The paper's way to measure μ (Eq. 22): from the measured Ω and critical radius r0c.
+#[test]
+fn critical_radius_measures_mu() {
+    let (code, out, _) = turntable(&["critical", "--omega", "3.3", "--r0c", "0.12", "--json"]);
+    assert_eq!(code, 0);
+    let mu: f64 = field(&out, "mu").parse().unwrap();
+    assert!(
+        (mu - 3.3 * 3.3 * 0.12 / (reference::XI0C * 9.81)).abs() < 1e-7,
+        "{mu}"
+    );
+    let (code, _, _) = turntable(&["critical", "--omega", "3.3"]);
+    assert_eq!(code, 2);
+}
+
+#[test]
+fn run_frictionless_is_a_closed_form_line() {
+    let (code, out, _) = turntable(&[
+        "run",
+        "--xi0",
+        "0.5",
+        "--release",
+        "table-rest",
+        "--frictionless",
+        "--json",
+    ]);
+    assert_eq!(code, 0);
+    assert_eq!(field(&out, "outcome"), "\"escaped\"");
+    assert_eq!(field(&out, "frictionless"), "true");
+    assert_eq!(field(&out, "rhs_evals"), "0");
+    let tau: f64 = field(&out, "escape_tau").parse().unwrap();
+    assert!((tau - 3f64.sqrt()).abs() < 1e-12, "{tau}");
+    let (_, text, _) = turntable(&["run", "--release", "lab-rest", "--frictionless"]);
+    assert!(
+        text.contains("running") && text.contains("closed form"),
+        "{text}"
+    );
+}
+
+#[test]
+fn enum_flags_list_their_values_and_take_aliases() {
+    let (code, _, err) = turntable(&["run", "--method", "rk3"]);
+    assert_eq!(code, 2);
+    assert!(
+        err.contains("[possible values: rk2-raw, rk2, rk4, dp54, dop853]"),
+        "{err}"
+    );
+    let (code, out, err) = turntable(&["run", "--frame", "rotating", "--json"]);
+    assert_eq!(
+        (code, field(&out, "frame")),
+        (0, "\"table\"".into()),
+        "{err}"
+    );
+    let (code, _, err) = turntable(&["run", "--release", "rest"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("velocity, table-rest, lab-rest"), "{err}");
+}
+
+#[test]
+fn sweep_map_prints_one_row_per_cell_that_agrees_with_v_e() {
+    let (code, out, err) = turntable(&[
+        "sweep",
+        "map",
+        "--xi0",
+        "0.5",
+        "--phi-points",
+        "12",
+        "--v0-points",
+        "10",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let mut lines = out.lines();
+    assert_eq!(lines.next(), Some("phi,v0,outcome,xi,angle"));
+    let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
+    assert_eq!(rows.len(), 120);
+    let mut checked = 0;
+    for r in &rows {
+        let (phi, v0): (f64, f64) = (r[0].parse().unwrap(), r[1].parse().unwrap());
+        let (_, ve, _) = turntable(&["escape", "--xi0", "0.5", "--phi", r[0], "--json"]);
+        let ve: f64 = field(&ve, "v_escape").parse().unwrap();
+        if (v0 - ve).abs() > 1e-3 {
+            let want = if v0 > ve { "escaped" } else { "stuck" };
+            assert_eq!(r[2], want, "phi {phi} v0 {v0} v_e {ve}");
+            assert_eq!(r[3].is_empty(), want == "escaped");
+            checked += 1;
+        }
+        if checked > 30 {
+            break;
+        }
+    }
+    for bad in [
+        &["sweep", "map"][..],
+        &["sweep", "map", "--xi0", "0.5,0.2"],
+        &["sweep", "map", "--xi0", "0.5", "--v0-points", "0"],
+        &["sweep", "map", "--xi0", "0.5", "--v0-max", "-1"],
+        &["sweep", "map", "--xi0", "0.5", "--release", "sideways"],
+    ] {
+        let (code, out, err) = turntable(bad);
+        assert_eq!(code, 2, "{bad:?}: {err}");
+        assert!(out.is_empty() && err.lines().count() <= 6, "{bad:?}: {err}");
+    }
+}
+
+#[test]
+fn physical_units_give_si_copies() {
+    let (code, out, err) = turntable(&[
+        "run", "--xi0", "0.5", "--v0", "0.6", "--mu", "0.15", "--rpm", "31.5", "--json",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    let omega = 31.5 * std::f64::consts::TAU / 60.0;
+    let r_max = 0.15 * 9.81 / (omega * omega);
+    let u = &v["units"];
+    assert!((u["R_max_m"].as_f64().unwrap() - r_max).abs() < 1e-15);
+    assert!((u["T_s"].as_f64().unwrap() - 1.0 / omega).abs() < 1e-15);
+    let xi = v["xi"].as_f64().unwrap();
+    assert!((u["xi_m"].as_f64().unwrap() - xi * r_max).abs() < 1e-15);
+    let tau = v["tau"].as_f64().unwrap();
+    assert!((u["tau_s"].as_f64().unwrap() - tau / omega).abs() < 1e-15);
+    let (code, out, _) = turntable(&["run", "--xi0", "0.5", "--json"]);
+    assert_eq!(code, 0);
+    assert!(!out.contains("units"));
+    for bad in [
+        &["run", "--mu", "0.2"][..],
+        &["run", "--mu", "0.2", "--rpm", "-3"],
+        &["run", "--mu", "nan", "--rpm", "30"],
+        &["--rpm", "30"],
+    ] {
+        let (code, _, err) = turntable(bad);
+        assert_eq!(code, 2, "{bad:?}: {err}");
+        assert_eq!(err.lines().count(), 1, "{err}");
+    }
+}
+
+#[test]
+fn scene_files_carry_units_and_the_explorer_shows_si() {
+    let dir = std::env::temp_dir().join(format!("turntable-units-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let good = dir.join("table.toml");
+    std::fs::write(
+        &good,
+        "name = \"real\"\n[initial]\nxi0 = 0.5\nphi = 0.0\nv0 = 0.6\n[units]\nmu = 0.15\nrpm = 31.5\n",
+    )
+    .unwrap();
+    let scene = turntable::scene::Scene::load(good.to_str().unwrap()).unwrap();
+    let u = scene.units.unwrap();
+    assert_eq!((u.mu, u.rpm, u.g), (0.15, 31.5, 9.81));
+    let mut app =
+        turntable::app::App::new(scene, turntable::theme::Theme::builtin("dark").unwrap());
+    let lines: Vec<String> = turntable::ui::panel::lines(&app)
+        .iter()
+        .map(|l| l.to_string())
+        .collect();
+    assert!(
+        lines
+            .iter()
+            .any(|l| l.contains("ξ") && l.contains("= 6.76 cm")),
+        "{lines:?}"
+    );
+    assert!(
+        lines
+            .iter()
+            .any(|l| l.contains("τ") && l.contains("= 0.00 s")),
+        "{lines:?}"
+    );
+    app.tick();
+    let bad = dir.join("bad.toml");
+    std::fs::write(
+        &bad,
+        "name = \"real\"\n[initial]\nxi0 = 0.5\nphi = 0.0\nv0 = 0.6\n[units]\nmu = -1\nrpm = 31.5\n",
+    )
+    .unwrap();
+    let e = turntable::scene::Scene::load(bad.to_str().unwrap()).unwrap_err();
+    assert!(e.to_string().contains("[units] mu must lie in"), "{e}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// A release at rest in the lab far out escapes at once, on its release direction: the angle
+/// is 0, not 2π less a rounding error (which printed as 6.283185307180, outside [0, 2π)).
+#[test]
+fn an_angle_a_hair_below_a_turn_is_zero() {
+    let (code, out, _) = turntable(&["run", "--xi0", "500", "--release", "lab-rest", "--json"]);
+    assert_eq!(code, 0);
+    assert_eq!(field(&out, "angle"), "0.0");
+    let (code, out, _) = turntable(&["run", "--xi0", "500", "--release", "lab-rest"]);
+    assert_eq!(code, 0);
+    assert!(out.contains("angle    0.000000000000 rad"), "{out}");
+    assert_eq!(turntable::engine::model::turn_angle(-1e-13), 0.0);
+    assert_eq!(turntable::engine::model::turn_angle(-0.0), 0.0);
+    let w = turntable::engine::model::turn_angle(-1e-3);
+    assert!((w - (std::f64::consts::TAU - 1e-3)).abs() < 1e-15);
+}
+
+/// The fields README's table under `heading` lists.
+fn readme_fields(heading: &str) -> Vec<String> {
+    let readme =
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md")).unwrap();
+    let table = readme.split(heading).nth(1).unwrap();
+    table
+        .lines()
+        .skip_while(|l| !l.starts_with("| field"))
+        .skip(2)
+        .take_while(|l| l.starts_with("| `"))
+        .map(|l| l.split('`').nth(1).unwrap().to_string())
+        .collect()
+}
+
+/// The JSON reports are documented once, in README: every field printed is listed there, and
+/// nothing else is (units and check included when asked for).
+#[test]
+fn json_reports_are_the_fields_readme_lists() {
+    for (heading, args) in [
+        (
+            "`run --json`:",
+            &[
+                "run",
+                "--v0",
+                "0.3",
+                "--json",
+                "--mu",
+                "0.2",
+                "--rpm",
+                "30",
+                "--body-length",
+                "0.01",
+            ][..],
+        ),
+        ("`escape --json`:", &["escape", "--xi0", "0.5", "--json"]),
+        (
+            "`critical --json`:",
+            &["critical", "--json", "--xtol", "1e-6"],
+        ),
+    ] {
+        let (code, out, err) = turntable(args);
+        assert_eq!(code, 0, "{err}");
+        let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+        // serde_json's map sorts its keys.
+        let keys: Vec<String> = v.as_object().unwrap().keys().cloned().collect();
+        let mut listed = readme_fields(heading);
+        listed.sort();
+        assert_eq!(keys, listed, "{heading}");
+    }
+}
+
+/// Shell completions and the manual page come from the clap definitions, every subcommand in.
+#[test]
+fn completions_and_man_page() {
+    for shell in ["bash", "zsh", "fish"] {
+        let (code, out, err) = turntable(&["completions", shell]);
+        assert_eq!(code, 0, "{err}");
+        for word in ["escape", "critical", "vtol", "no-check"] {
+            assert!(out.contains(word), "{shell}: no {word}");
+        }
+    }
+    let (code, _, err) = turntable(&["completions", "tcsh"]);
+    assert_eq!(code, 2, "{err}");
+    let (code, out, _) = turntable(&["man"]);
+    assert_eq!(code, 0);
+    assert!(
+        out.starts_with(".ie ") || out.starts_with(".TH"),
+        "{}",
+        &out[..40]
+    );
+    for section in [
+        "TURNTABLE RUN",
+        "TURNTABLE ESCAPE",
+        "TURNTABLE REPLAY",
+        "xi0",
+    ] {
+        assert!(out.contains(section), "no {section}");
+    }
+}
+
+/// Issue 18 item 22: bracket widths no run can certify are refused up front (`sweep fig5
+/// --vtol 1e-308` ran on and then advised `--tau-max`, which sweep does not take); a budget
+/// spent inside a solver advises the solver's own flags.
+#[test]
+fn solvers_refuse_unreachable_brackets_and_advise_their_own_flags() {
+    for args in [
+        &["sweep", "fig5", "--vtol", "1e-308"][..],
+        &["escape", "--xi0", "0.5", "--vtol", "1e-20"],
+        &["critical", "--xtol", "1e-300"],
+    ] {
+        let (code, out, err) = turntable(args);
+        assert_eq!(code, 2, "{args:?}: {err}");
+        assert!(out.is_empty());
+        assert!(err.contains("must lie in [1e-12, 1]"), "{err}");
+    }
+    let (code, _, err) = turntable(&[
+        "escape",
+        "--xi0",
+        "0.5",
+        "--phi",
+        "1",
+        "--vtol",
+        "1e-12",
+        "--max-steps",
+        "1000",
+    ]);
+    assert_eq!(code, 1);
+    assert!(
+        err.contains("raise --max-steps, or loosen --vtol or --tol"),
+        "{err}"
+    );
+    assert!(!err.contains("tau-max"), "{err}");
+}
+
+/// Issue 18 item 22: a write error on `--out` names the file.
+#[test]
+fn a_failed_out_names_its_file() {
+    if !std::path::Path::new("/dev/full").exists() {
+        eprintln!("skipped: no /dev/full here");
+        return;
+    }
+    let (code, _, err) = turntable(&["sweep", "fig6", "--points", "3", "--out", "/dev/full"]);
+    assert_eq!(code, 1);
+    assert!(err.starts_with("error: --out /dev/full: "), "{err}");
+}
+
+/// Issue 33 item 8: `--help` or `--version` that cannot be written (stdout on /dev/full)
+/// fails; clap's own exit said 0. Written, or read in part by `| head`, they still exit 0.
+#[test]
+fn help_and_version_that_cannot_be_written_fail() {
+    if !std::path::Path::new("/dev/full").exists() {
+        eprintln!("skipped: no /dev/full here");
+        return;
+    }
+    let run = |args: &[&str], stdout: std::process::Stdio| {
+        std::process::Command::new(env!("CARGO_BIN_EXE_turntable"))
+            .args(args)
+            .env("XDG_CONFIG_HOME", common::NO_CONFIG)
+            .stdout(stdout)
+            .output()
+            .unwrap()
+    };
+    for args in [
+        &["--help"][..],
+        &["-h"],
+        &["--version"],
+        &["-V"],
+        &["run", "--help"],
+        &["help", "replay"],
+    ] {
+        let full = std::fs::OpenOptions::new()
+            .write(true)
+            .open("/dev/full")
+            .unwrap();
+        let o = run(args, full.into());
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(1), "{args:?}: {err}");
+        assert!(err.contains("writing to stdout"), "{args:?}: {err}");
+        let o = run(args, std::process::Stdio::piped());
+        assert_eq!(o.status.code(), Some(0), "{args:?}");
+        assert!(!o.stdout.is_empty());
+    }
+    // A usage error is still 2, its message on stderr.
+    let (code, _, err) = turntable(&["--no-such-flag"]);
+    assert_eq!(code, 2, "{err}");
+}
+
+/// Issue 18 item 22: φ beyond ±1e6 rad is refused (its remainder mod 2π has no digits left);
+/// CSV numbers never print as 300-digit decimals, nor as −0, and JSON gives no −0.
+#[test]
+fn angles_are_bounded_and_numbers_print_short() {
+    let (code, _, err) = turntable(&["run", "--phi", "1e300"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("phi must lie in [-1e6, 1e6]"), "{err}");
+    let (code, out, _) = turntable(&["sweep", "fig6", "--points", "2", "--xi0-max", "1e-300"]);
+    assert_eq!(code, 0);
+    assert_eq!(out, "xi0,outcome,xi,angle\n0,stuck,0,0\n1e-300,stuck,0,0\n");
+    let (code, out, _) = turntable(&["sweep", "fig5", "--xi0", "-0", "--points", "1"]);
+    assert_eq!(code, 0);
+    assert!(out.lines().nth(1).unwrap().starts_with("0,0,"), "{out}");
+    let (code, out, _) = turntable(&["escape", "--xi0", "0.5", "--phi", "-0", "--json"]);
+    assert_eq!(code, 0);
+    assert_eq!(field(&out, "phi"), "0.0");
+    let path = std::env::temp_dir().join(format!("turntable-tiny-{}.csv", std::process::id()));
+    let (code, _, err) = turntable(&[
+        "run",
+        "--v0",
+        "1e-300",
+        "--tau-max",
+        "1",
+        "--trajectory",
+        path.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let csv = std::fs::read_to_string(&path).unwrap();
+    std::fs::remove_file(&path).unwrap();
+    let longest = csv.split([',', '\n']).map(str::len).max().unwrap();
+    assert!(longest <= 24, "{longest}: {csv}");
+    assert!(!csv.contains("-0,") && !csv.contains("-0\n"), "{csv}");
+}
+
+/// `sweep fig5|fig6|map` are subcommands, each refusing a flag that means nothing to it (`sweep
+/// fig6 --phi-points 7 --v0-max 9 --release lab-rest` exited 0, ignoring all three).
+#[test]
+fn each_sweep_takes_only_its_own_flags() {
+    for args in [
+        &["sweep", "fig6", "--phi-points", "7"][..],
+        &["sweep", "fig6", "--v0-max", "9"],
+        &["sweep", "fig6", "--release", "lab-rest"],
+        &["sweep", "fig6", "--vtol", "1e-6"],
+        &["sweep", "fig5", "--xi0-max", "2"],
+        &["sweep", "fig5", "--release", "lab-rest"],
+        &["sweep", "map", "--xi0", "0.5", "--points", "3"],
+        &["sweep", "map", "--xi0", "0.5", "--xi0-max", "2"],
+    ] {
+        let (code, out, err) = turntable(args);
+        assert_eq!(code, 2, "{args:?}: {out}");
+        assert!(err.contains("unexpected argument"), "{args:?}: {err}");
+    }
+}
+
+/// One angle convention on every output (issue 18): `sweep map` and `sweep fig6` give rest
+/// angles in [0, 2π), as `run` does (they wrote raw atan2, some negative).
+#[test]
+fn sweep_angles_lie_in_zero_to_two_pi() {
+    let runs = [
+        vec![
+            "sweep",
+            "map",
+            "--xi0",
+            "0.5",
+            "--phi-points",
+            "12",
+            "--v0-points",
+            "6",
+            "--v0-max",
+            "1",
+        ],
+        vec!["sweep", "fig6", "--points", "12"],
+    ];
+    for args in runs {
+        let (code, out, err) = turntable(&args);
+        assert_eq!(code, 0, "{err}");
+        let mut n = 0;
+        for line in out.lines().skip(1) {
+            let angle = line.rsplit(',').next().unwrap();
+            if angle.is_empty() {
+                continue;
+            }
+            let a: f64 = angle.parse().unwrap();
+            assert!(
+                (0.0..std::f64::consts::TAU).contains(&a),
+                "{args:?}: {line}"
+            );
+            n += 1;
+        }
+        assert!(n >= 6, "{args:?}: {out}");
+    }
+}
+
+#[test]
+fn dop853_takes_tol_and_rests_where_dp54_does() {
+    let args = [
+        "run",
+        "--xi0",
+        "0.5",
+        "--phi",
+        "3.141592653589793",
+        "--v0",
+        "1",
+        "--json",
+    ];
+    let xi = |extra: &[&str]| {
+        let (code, out, err) = turntable(&[&args[..], extra].concat());
+        assert_eq!(code, 0, "{err}");
+        (field(&out, "method"), field(&out, "tol"), field(&out, "xi"))
+    };
+    let (m, tol, x8) = xi(&["--method", "dop853", "--tol", "1e-12"]);
+    assert_eq!((m.as_str(), tol.as_str()), ("\"dop853\"", "1e-12"));
+    let (_, _, x5) = xi(&["--method", "dp54", "--tol", "1e-12"]);
+    let (x8, x5): (f64, f64) = (x8.parse().unwrap(), x5.parse().unwrap());
+    assert!((x8 - x5).abs() < 1e-10, "{x8} vs {x5}");
+    // Its default knob is a tolerance too; a dt is refused.
+    assert_eq!(xi(&["--method", "dop853"]).1, "1e-10");
+    let (code, _, err) = turntable(&["run", "--method", "dop853", "--dt", "0.01"]);
+    assert_eq!(code, 2);
+    assert!(err.contains("dop853 takes --tol"), "{err}");
+}
+
+/// `replay --help` documents the script grammar itself (an installed binary has no README), and
+/// its example replays as printed.
+#[test]
+fn replay_help_carries_a_working_example() {
+    let (code, help, _) = turntable(&["replay", "--help"]);
+    assert_eq!(code, 0);
+    assert!(!help.contains("README"), "{help}");
+    let script: String = help
+        .lines()
+        .skip_while(|l| !l.trim_start().starts_with("resize"))
+        .take_while(|l| l.starts_with("    "))
+        .map(|l| format!("{}\n", l.trim()))
+        .collect();
+    assert!(script.contains("mouse click"), "{script}");
+    let path = std::env::temp_dir().join(format!("turntable-help-{}.keys", std::process::id()));
+    std::fs::write(&path, &script).unwrap();
+    let (code, out, err) = turntable(&["replay", path.to_str().unwrap()]);
+    std::fs::remove_file(&path).unwrap();
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        out.starts_with("--- snapshot 1: after 80 ticks (80x24"),
+        "{out}"
+    );
+}

@@ -1,0 +1,650 @@
+//! The narrated lessons: every number a caption states is checked here against the engine;
+//! every caption fits the smallest screen; an interactive lesson holds at `wait` and `ask`
+//! without holding up time; the command's errors. Their screens are goldens in
+//! `tests/replay` (`lesson-NAME.txt`, see tests/suite/replay.rs).
+
+use std::f64::consts::PI;
+use std::process::Command;
+use turntable::app::{App, Chord};
+use turntable::engine::solve::{critical_radius, easiest_angle, escape_speed, sweep_escape};
+use turntable::engine::{Initial, Method, Outcome, Release, Run, Settings};
+use turntable::lesson::{Driver, LESSONS, find};
+use turntable::scene::Scene;
+use turntable::script::{Step, parse};
+use turntable::session::Session;
+use turntable::theme::Theme;
+use turntable::ui::fit::wrap;
+
+/// The captions and questions of a lesson, in order.
+fn captions(script: &str) -> Vec<String> {
+    parse(script)
+        .unwrap()
+        .into_iter()
+        .filter_map(|s| match s {
+            Step::Say(t) => t.map(|t| t.to_string()),
+            Step::Ask(t) => Some(t.to_string()),
+            _ => None,
+        })
+        .collect()
+}
+
+/// Numbers as written in `text` (`0.60782`, `2.4e-5`, `1.2` of `1.2π`).
+fn numbers(text: &str) -> Vec<String> {
+    let mut out = vec![];
+    let b: Vec<char> = text.chars().collect();
+    let mut i = 0;
+    while i < b.len() {
+        if !b[i].is_ascii_digit() || (i > 0 && (b[i - 1].is_alphanumeric() || b[i - 1] == '_')) {
+            i += 1;
+            continue;
+        }
+        let start = i;
+        while i < b.len() && b[i].is_ascii_digit() {
+            i += 1;
+        }
+        if i + 1 < b.len() && b[i] == '.' && b[i + 1].is_ascii_digit() {
+            i += 1;
+            while i < b.len() && b[i].is_ascii_digit() {
+                i += 1;
+            }
+        }
+        if i + 2 < b.len() && b[i] == 'e' && b[i + 1] == '-' && b[i + 2].is_ascii_digit() {
+            i += 2;
+            while i < b.len() && b[i].is_ascii_digit() {
+                i += 1;
+            }
+        }
+        out.push(b[start..i].iter().collect());
+    }
+    out
+}
+
+#[test]
+fn numbers_are_read_as_written() {
+    assert_eq!(
+        numbers("v_e = 0.60782, 2.4e-5 below; φ = 1.2π, dt = 1e-3, ξ0 = 0.5, Ω², R_max"),
+        ["0.60782", "2.4e-5", "1.2", "1e-3", "0.5"]
+    );
+}
+
+/// Phrases that name a figure, section, equation, key or property: references, not claims.
+const REFERENCES: [&str; 13] = [
+    "Figs. 3 and 4",
+    "Fig. 2",
+    "Fig. 5",
+    "Fig. 6",
+    "Sec. II",
+    "Eq. 22",
+    "property 1",
+    "property 2",
+    "key 2",
+    "key 4",
+    "key 6",
+    "keys 1 to 4",
+    "Ω²",
+];
+
+fn converged(i: Initial, tau_max: f64) -> (Outcome, f64, f64) {
+    let mut run = Run::new(i, Settings::dp54(1e-12)).unwrap();
+    let (o, s) = run.finish(tau_max).unwrap();
+    (o, s.q().length(), s.tau)
+}
+
+/// `x` as printed to the digits of `shown`.
+fn shows(x: f64, shown: &str) -> bool {
+    let decimals = shown.split('.').nth(1).map_or(0, str::len);
+    format!("{x:.decimals$}") == shown
+}
+
+fn preset(name: &str) -> Initial {
+    Scene::preset(name).unwrap().initial
+}
+
+fn table_rest(xi0: f64) -> Outcome {
+    converged(Initial::at_rest(xi0, Release::TableRest), 50.0).0
+}
+
+/// A number as a caption writes it, and its check against the engine.
+type Claim = (&'static str, Box<dyn Fn()>);
+
+/// Each number a lesson's captions state, with its check against the engine.
+fn claims(lesson: &str) -> Vec<Claim> {
+    let b = || -> (Outcome, f64, f64) { converged(preset("B"), 50.0) };
+    let ve_c = || {
+        escape_speed(0.5, 0.0, Settings::dp54(1e-11), 1e-8)
+            .unwrap()
+            .value
+    };
+    let d = || converged(preset("D"), 50.0);
+    let c = |k: &'static str, f: Box<dyn Fn()>| (k, f);
+    match lesson {
+        "stick" => vec![
+            // R_max in units of itself; Ω = 1 and μg = 1 as friction's strength while sliding.
+            c(
+                "1",
+                Box::new(|| {
+                    assert_eq!(table_rest(1.0 - 1e-9), Outcome::Stuck);
+                    assert_eq!(table_rest(1.0 + 1e-3), Outcome::Escaped);
+                    let f = turntable::engine::model::friction(
+                        glam::DVec2::new(0.3, -0.4),
+                        glam::DVec2::X,
+                    );
+                    assert!((f.length() - 1.0).abs() < 1e-15);
+                }),
+            ),
+            c(
+                "0.9",
+                Box::new(|| {
+                    let (o, xi, tau) = converged(Initial::at_rest(0.9, Release::TableRest), 50.0);
+                    assert_eq!((o, tau), (Outcome::Stuck, 0.0));
+                    assert!((xi - 0.9).abs() < 1e-15);
+                }),
+            ),
+            c(
+                "1.1",
+                Box::new(|| {
+                    assert_eq!(preset("fig2"), Initial::at_rest(1.1, Release::TableRest));
+                    assert_eq!(table_rest(1.1), Outcome::Escaped);
+                }),
+            ),
+            c(
+                "0.5",
+                Box::new(|| assert_eq!(preset("B"), Initial::velocity(0.5, 0.0, 0.6))),
+            ),
+            c("0.6", Box::new(|| assert_eq!(preset("B").v0, 0.6))),
+            c(
+                "0.9453",
+                Box::new(move || {
+                    let (o, xi, _) = b();
+                    assert_eq!(o, Outcome::Stuck);
+                    assert!(shows(xi, "0.9453") && xi < 1.0, "{xi}");
+                }),
+            ),
+        ],
+        "cases" => vec![
+            c(
+                "0.5",
+                Box::new(|| {
+                    assert_eq!(preset("A"), Initial::velocity(0.5, PI, 1.0));
+                }),
+            ),
+            // A's v0, and R_max.
+            c(
+                "1",
+                Box::new(|| {
+                    assert_eq!(preset("A").v0, 1.0);
+                    assert_eq!(table_rest(1.0 - 1e-9), Outcome::Stuck);
+                    assert_eq!(table_rest(1.0 + 1e-3), Outcome::Escaped);
+                }),
+            ),
+            c(
+                "0.3134",
+                Box::new(|| {
+                    let (o, xi, _) = converged(preset("A"), 50.0);
+                    assert_eq!(o, Outcome::Stuck);
+                    assert!(shows(xi, "0.3134"), "{xi}");
+                }),
+            ),
+            c("0", Box::new(|| assert_eq!(preset("B").phi, 0.0))),
+            c(
+                "0.6",
+                Box::new(|| assert_eq!(preset("B"), Initial::velocity(0.5, 0.0, 0.6))),
+            ),
+            c("0.9453", Box::new(move || assert!(shows(b().1, "0.9453")))),
+            c(
+                "0.6078",
+                Box::new(|| assert_eq!(preset("C"), Initial::velocity(0.5, 0.0, 0.6078))),
+            ),
+            c(
+                "0.60782",
+                Box::new(move || assert!(shows(ve_c(), "0.60782"), "{}", ve_c())),
+            ),
+            c(
+                "2.4e-5",
+                Box::new(move || {
+                    let gap = ve_c() - 0.6078;
+                    assert_eq!(format!("{gap:.1e}"), "2.4e-5");
+                    // Below it: a converged run sticks, just inside ξ = 1.
+                    let (o, xi, _) = converged(preset("C"), 50.0);
+                    assert!(o == Outcome::Stuck && xi < 1.0 && xi > 0.99, "{xi}");
+                }),
+            ),
+            c(
+                "1e-3",
+                Box::new(|| {
+                    let s = Settings::paper();
+                    assert_eq!(s.method(), Method::Rk2Raw);
+                    assert_eq!(s.scheme.knob(), 1e-3);
+                    assert!(!s.method().stick_events());
+                }),
+            ),
+            c(
+                "17.3",
+                Box::new(|| {
+                    let mut raw = Run::new(preset("C"), Settings::paper()).unwrap();
+                    assert_eq!(raw.run(50.0, true).unwrap(), Outcome::Escaped);
+                    let t = raw.escape().unwrap().tau;
+                    assert!(shows(t, "17.3"), "{t}");
+                }),
+            ),
+            c(
+                "1.1",
+                Box::new(|| assert_eq!(preset("D"), Initial::velocity(1.1, 1.2 * PI, 1.3))),
+            ),
+            c("1.2", Box::new(|| assert_eq!(preset("D").phi, 1.2 * PI))),
+            c("1.3", Box::new(|| assert_eq!(preset("D").v0, 1.3))),
+            c(
+                "0.6750",
+                Box::new(move || {
+                    let (o, xi, _) = d();
+                    assert_eq!(o, Outcome::Stuck);
+                    assert!(shows(xi, "0.6750"), "{xi}");
+                }),
+            ),
+        ],
+        "escape" => {
+            let window = |v0: f64| converged(Initial::velocity(1.1, 1.2 * PI, v0), 100.0).0;
+            vec![
+                // ξ0 = 0.5 (scene C), and v0 = 0.5 along D's direction escapes.
+                c(
+                    "0.5",
+                    Box::new(move || {
+                        assert_eq!(preset("C").xi0, 0.5);
+                        assert_eq!(window(0.5), Outcome::Escaped);
+                    }),
+                ),
+                c(
+                    "0.5700",
+                    Box::new(|| {
+                        let (_, v) =
+                            easiest_angle(0.5, 36, Settings::dp54(1e-10), 1e-10, 1e-4).unwrap();
+                        assert!(shows(v, "0.5700"), "{v}");
+                    }),
+                ),
+                c(
+                    "0.557",
+                    Box::new(|| {
+                        let (phi, _) =
+                            easiest_angle(0.5, 36, Settings::dp54(1e-10), 1e-10, 1e-4).unwrap();
+                        // Left of radial: counterclockwise from outward.
+                        assert!(shows(phi, "0.557") && phi > 0.0, "{phi}");
+                    }),
+                ),
+                // φ = 0 straight out; and v_e = 0 beyond R_max: at rest on the table it escapes.
+                c(
+                    "0",
+                    Box::new(|| {
+                        assert_eq!(preset("C").phi, 0.0);
+                        let t = escape_speed(1.1, 1.2 * PI, Settings::dp54(1e-10), 1e-6).unwrap();
+                        assert_eq!((t.value, t.stuck_at), (0.0, None));
+                    }),
+                ),
+                c(
+                    "0.60782",
+                    Box::new(move || assert!(shows(ve_c(), "0.60782"))),
+                ),
+                c(
+                    "0.6078",
+                    Box::new(move || {
+                        assert_eq!(preset("C").v0, 0.6078);
+                        assert_eq!(converged(preset("C"), 50.0).0, Outcome::Stuck);
+                    }),
+                ),
+                c(
+                    "4",
+                    Box::new(|| {
+                        let pts = sweep_escape(&[0.5], 36, Settings::dp54(1e-8), 1e-6).unwrap();
+                        let max = pts
+                            .iter()
+                            .max_by(|a, b| a.v_escape.total_cmp(&b.v_escape))
+                            .unwrap();
+                        assert!((max.phi - 4.0).abs() < 0.2, "peak at {}", max.phi);
+                    }),
+                ),
+                c("1.1", Box::new(|| assert_eq!(preset("D").xi0, 1.1))),
+                c("1.2", Box::new(|| assert_eq!(preset("D").phi, 1.2 * PI))),
+                c(
+                    "1.3",
+                    Box::new(move || {
+                        assert_eq!(preset("D").v0, 1.3);
+                        assert_eq!(window(1.3), Outcome::Stuck);
+                    }),
+                ),
+                c(
+                    "2.5",
+                    Box::new(move || assert_eq!(window(2.5), Outcome::Escaped)),
+                ),
+                c(
+                    "0.87204",
+                    Box::new(|| {
+                        let t = critical_radius(Settings::dp54(1e-11), 1e-8).unwrap();
+                        assert!(shows(t.value, "0.87204"), "{}", t.value);
+                        // "Up to ξ0c it comes to rest; from further out it escapes."
+                        assert!(t.interval);
+                    }),
+                ),
+                c(
+                    "0.87",
+                    Box::new(|| {
+                        let t = critical_radius(Settings::dp54(1e-10), 1e-6).unwrap();
+                        assert!(shows(t.value, "0.87"), "{}", t.value);
+                    }),
+                ),
+                c(
+                    "0.9",
+                    Box::new(|| {
+                        let (o, _, _) = converged(Initial::at_rest(0.9, Release::LabRest), 50.0);
+                        assert_eq!(o, Outcome::Escaped);
+                    }),
+                ),
+            ]
+        }
+        other => panic!("no claims listed for lesson {other}"),
+    }
+}
+
+/// Every number in a lesson's captions is one its claims check (references aside), and every
+/// claim is checked.
+fn check_lesson(name: &str) {
+    let lesson = find(name).unwrap();
+    let claims = claims(name);
+    let mut stated: Vec<String> = vec![];
+    for text in captions(lesson.script) {
+        let mut t = text.clone();
+        for r in REFERENCES {
+            t = t.replace(r, "");
+        }
+        for n in numbers(&t) {
+            assert!(
+                claims.iter().any(|(k, _)| *k == n),
+                "{name}: '{n}' in {text:?} is not checked"
+            );
+            stated.push(n);
+        }
+    }
+    for (k, check) in &claims {
+        assert!(
+            stated.iter().any(|n| n == k),
+            "{name}: claim {k} is stated nowhere"
+        );
+        check();
+    }
+}
+
+#[test]
+fn every_number_in_lesson_stick_is_checked() {
+    check_lesson("stick");
+}
+
+#[test]
+fn every_number_in_lesson_cases_is_checked() {
+    check_lesson("cases");
+}
+
+#[test]
+fn every_number_in_lesson_escape_is_checked() {
+    check_lesson("escape");
+}
+
+#[test]
+fn every_lesson_has_claims_and_snapshots() {
+    assert_eq!(LESSONS.len(), 3);
+    for l in LESSONS {
+        assert!(find(&l.name.to_uppercase()).is_some());
+        let steps = parse(l.script).unwrap();
+        assert!(
+            steps.iter().any(|s| matches!(s, Step::Ask(_))),
+            "{}",
+            l.name
+        );
+        assert!(
+            steps
+                .iter()
+                .filter(|s| matches!(s, Step::Snapshot(_)))
+                .count()
+                >= 4
+        );
+        assert!(steps.contains(&Step::Wait));
+    }
+}
+
+/// At the smallest screen (40×12: a box 38 wide over the 9-row body, 7 rows of text) every
+/// caption fits whole, a question with the longest verdict the run can give too.
+#[test]
+fn every_caption_fits_the_smallest_screen() {
+    let verdict = "Not so: you said it does not escape, but it escapes (certified at τ = 17.329).";
+    for l in LESSONS {
+        let steps = parse(l.script).unwrap();
+        for s in steps {
+            let text = match s {
+                Step::Say(Some(t)) => t.to_string(),
+                Step::Ask(t) => format!("{t}\n{verdict}"),
+                _ => continue,
+            };
+            let lines = wrap(&text, 38, 100);
+            assert!(
+                lines.len() <= 7,
+                "{}: {} lines: {lines:#?}",
+                l.name,
+                lines.len()
+            );
+        }
+    }
+}
+
+/// Each lesson at 40×12 and at 200×60: the caption box is there, its words whole.
+#[test]
+fn lessons_render_at_the_smallest_and_a_large_screen() {
+    for l in LESSONS {
+        for size in [(40, 12), (200, 60)] {
+            let out = turntable::cli::lesson::headless(l, Some(size)).unwrap();
+            let shots = out.split("--- snapshot").skip(1).count();
+            assert!(shots >= 4);
+            assert_eq!(
+                out.matches(&format!("lesson: {}", l.name)).count(),
+                shots,
+                "{}",
+                l.name
+            );
+            if size == (40, 12) {
+                assert!(!out.contains('…'), "{}: a caption was cut:\n{out}", l.name);
+            }
+        }
+    }
+}
+
+fn app() -> App {
+    App::new(Scene::default_scene(), Theme::builtin("dark").unwrap())
+}
+
+fn press(s: &mut Session<ratatui::backend::TestBackend>, key: &str) {
+    let chord: Chord = key.parse().unwrap();
+    s.press(chord);
+}
+
+/// Interactive: `wait` and an unanswered `ask` hold the lesson, not time; Space, Enter and
+/// y/n are the lesson's only then; `tick N` counts the session's ticks.
+#[test]
+fn an_interactive_lesson_holds_as_state_and_time_goes_on() {
+    let script = "space\nsay one\nwait\nspace\ntick 3\nsay two\nask Will it escape? (y/n)\nspace\ntick 200\nsay three\n";
+    let mut s = Session::headless(app(), 80, 24, false);
+    s.start_lesson(Driver::new("t", parse(script).unwrap()));
+    s.pump_lesson().unwrap();
+    // Paused by the lesson's Space, held at its wait with the caption up.
+    assert!(!s.app.playing && s.app.lesson.waiting);
+    assert_eq!(s.app.lesson.caption.as_deref(), Some("one"));
+    // The user can still play the scene while it waits: time goes on, the lesson holds.
+    s.app.playing = true;
+    let tau = s.app.now().tau;
+    s.tick();
+    s.pump_lesson().unwrap();
+    assert!(s.app.now().tau > tau);
+    assert!(s.app.lesson.waiting);
+    // The footer says so, and Space goes on (it does not pause while the lesson waits).
+    let footer = turntable::ui::export::plain_text(s.screen());
+    assert!(footer.contains("Space go on"), "{footer}");
+    press(&mut s, "space");
+    assert!(!s.app.lesson.waiting && s.app.playing);
+    s.pump_lesson().unwrap();
+    // The lesson's own Space paused it: its `tick 3` ends at once, as in a replay.
+    assert!(!s.app.playing);
+    assert_eq!(s.app.lesson.caption, None);
+    let q = s.app.lesson.question.clone().unwrap();
+    assert_eq!((q.text.as_str(), q.answer), ("Will it escape? (y/n)", None));
+    // Held at the question: Space is play/pause again, n answers and does not step.
+    s.pump_lesson().unwrap();
+    assert!(s.app.lesson.question.is_some());
+    press(&mut s, "n");
+    assert!(!s.app.step_mode);
+    assert_eq!(s.app.lesson.question.as_ref().unwrap().answer, Some(false));
+    s.pump_lesson().unwrap();
+    // Now it plays, and `tick 200` counts the session's ticks.
+    assert!(s.app.playing);
+    for _ in 0..199 {
+        s.tick();
+        s.pump_lesson().unwrap();
+    }
+    assert!(s.app.lesson.question.is_some(), "after 199 of 200 ticks");
+    s.tick();
+    s.pump_lesson().unwrap();
+    assert_eq!(s.app.lesson.caption.as_deref(), Some("three"));
+    assert!(s.app.lesson.done);
+    // Unheld, n is the integrator step again.
+    press(&mut s, "n");
+    assert!(s.app.step_mode);
+}
+
+/// The run answers the prediction: right or not by the engine's outcome, and only once time
+/// has moved on from the question (scene C sticks; fig2 is decided at τ = 0).
+#[test]
+fn the_run_answers_the_prediction() {
+    let mut s = Session::headless(app(), 80, 24, false);
+    let mut text = |script: &str| {
+        for step in parse(script).unwrap() {
+            s.apply(&step);
+        }
+        let c = s.app.caption().unwrap();
+        (c.text, c.prompt)
+    };
+    let (t, prompt) = text("ask Will it escape?");
+    assert_eq!((t.as_str(), prompt), ("Will it escape?", Some("y / n")));
+    let (t, prompt) = text("y");
+    assert_eq!(t, "Will it escape?\nYou said it escapes. Watch the run.");
+    assert_eq!(prompt, None);
+    let (t, _) = text("tick 130");
+    assert_eq!(
+        t,
+        "Will it escape?\nNot so: you said it escapes, but it sticks at ξ = 0.9972 (τ = 5.602)."
+    );
+    let (t, _) = text("3\nask Will C escape?\nn\ntick 130");
+    assert_eq!(
+        t,
+        "Will C escape?\nRight: it sticks at ξ = 0.9972 (τ = 5.602)."
+    );
+    let (t, _) = text("6\nspace\nask Will it escape?");
+    assert_eq!(t, "Will it escape?", "decided at τ = 0, not yet told");
+    let (t, _) = text("space\ntick");
+    assert_eq!(
+        t,
+        "Will it escape?\nThe run: it escapes (certified at τ = 0.000)."
+    );
+    // Answered late, the answer still counts.
+    let (t, _) = text("n");
+    assert!(
+        t.ends_with(
+            "Not so: you said it does not escape, but it escapes (certified at τ = 0.000)."
+        ),
+        "{t}"
+    );
+    // A caption replaces the question; `say` alone clears it.
+    let (t, _) = text("say Next.");
+    assert_eq!(t, "Next.");
+    assert!(text_none(&mut s, "say"));
+}
+
+fn text_none(s: &mut Session<ratatui::backend::TestBackend>, script: &str) -> bool {
+    for step in parse(script).unwrap() {
+        s.apply(&step);
+    }
+    s.app.caption().is_none()
+}
+
+fn turntable(args: &[&str]) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_turntable"))
+        .args(args)
+        .output()
+        .unwrap()
+}
+
+#[test]
+fn the_lesson_command() {
+    let out = turntable(&["lesson", "--list"]);
+    assert!(out.status.success());
+    let list = String::from_utf8(out.stdout).unwrap();
+    assert_eq!(list.lines().count(), 3, "{list}");
+    for l in LESSONS {
+        assert!(list.contains(l.name) && list.contains(l.about), "{list}");
+    }
+    for bad in [
+        &["lesson", "nope"][..],
+        &["lesson", "nope", "--headless"],
+        &["lesson"],
+    ] {
+        let out = turntable(bad);
+        assert_eq!(out.status.code(), Some(2), "{bad:?}");
+        let err = String::from_utf8(out.stderr).unwrap();
+        assert!(out.stdout.is_empty(), "{bad:?}");
+        assert_eq!(err.lines().count(), 1, "{err}");
+        assert!(err.contains("stick, cases, escape"), "{err}");
+        if bad.len() > 1 {
+            assert!(err.contains("unknown lesson 'nope'"), "{err}");
+        }
+    }
+    // --size without --headless is refused; headless prints the snapshots as replay does.
+    let out = turntable(&["lesson", "stick", "--size", "40x12"]);
+    assert_eq!(out.status.code(), Some(2));
+    let out = turntable(&["lesson", "STICK", "--headless", "--size", "40x12"]);
+    assert!(out.status.success());
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(text.starts_with("--- snapshot 1: at rest on the table at ξ0 = 0.9 (40x12"));
+    // Interactive, with no terminal: refused before the screen is touched.
+    let out = turntable(&["lesson", "cases"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(out.stdout.is_empty());
+}
+
+/// The caption at every size from the smallest up, with more words than fit: never a panic,
+/// whole words on every row of the box, and `…` where the rest is left out.
+#[test]
+fn a_long_caption_at_every_size() {
+    let words = "Friction alone holds a particle on the turning table; ".repeat(80);
+    let whole: std::collections::HashSet<&str> = words.split_whitespace().collect();
+    for (w, h) in (40..=120)
+        .step_by(9)
+        .flat_map(|w| (12..=40).step_by(7).map(move |h| (w, h)))
+    {
+        let mut s = Session::headless(app(), w, h, false);
+        s.app.say(Some(words.as_str().into()));
+        let screen = turntable::ui::export::plain_text(s.screen());
+        let rows: Vec<&str> = screen
+            .lines()
+            .filter_map(|l| l.strip_prefix('│'))
+            .filter_map(|l| l.split('│').next())
+            .filter(|l| l.starts_with("Friction") || l.starts_with("alone") || l.contains("table;"))
+            .collect();
+        assert!(!rows.is_empty(), "{w}×{h}:\n{screen}");
+        for r in &rows {
+            for word in r.split_whitespace() {
+                assert!(
+                    whole.contains(word) || word == "…",
+                    "{w}×{h}: '{word}' cut in\n{screen}"
+                );
+            }
+        }
+        assert!(screen.contains(" …"), "{w}×{h}:\n{screen}");
+    }
+    // Too small for the explorer: its notice, and no caption.
+    let mut s = Session::headless(app(), 39, 11, false);
+    s.app.say(Some(words.into()));
+    assert!(turntable::ui::export::plain_text(s.screen()).contains("too small"));
+}

@@ -1,0 +1,459 @@
+//! `turntable plot`: SVG figures parsed back — well formed, labelled, and their lines mapped
+//! back through the tick labels to the values docs/numerics.md gives.
+
+use crate::common;
+use crate::reference;
+use common::turntable;
+use std::path::PathBuf;
+
+fn out(tag: &str) -> PathBuf {
+    let p = std::env::temp_dir().join(format!("turntable-plot-{tag}-{}.svg", std::process::id()));
+    let _ = std::fs::remove_file(&p);
+    p
+}
+
+/// A tag of the document: its name, attributes, and whether it opens, closes or is empty.
+#[derive(Debug)]
+struct Tag {
+    name: String,
+    attrs: Vec<(String, String)>,
+    kind: Kind,
+    /// The text right after it, up to the next tag.
+    text: String,
+}
+
+#[derive(Debug, PartialEq)]
+enum Kind {
+    Open,
+    Close,
+    Empty,
+}
+
+impl Tag {
+    fn attr(&self, k: &str) -> Option<&str> {
+        self.attrs
+            .iter()
+            .find(|(a, _)| a == k)
+            .map(|(_, v)| v.as_str())
+    }
+    fn num(&self, k: &str) -> f64 {
+        self.attr(k).unwrap().parse().unwrap()
+    }
+}
+
+/// Parses the SVG as XML enough to check it: every tag closes in order, attributes are quoted,
+/// text holds no bare `<` or `&`. Panics otherwise.
+fn parse(svg: &str) -> Vec<Tag> {
+    let body = svg
+        .strip_prefix("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n")
+        .expect("an XML declaration");
+    let mut tags = Vec::new();
+    let mut stack: Vec<String> = Vec::new();
+    let mut rest = body;
+    while let Some(start) = rest.find('<') {
+        let text = &rest[..start];
+        assert!(!text.contains('>'), "bare > in {text:?}");
+        check_text(text);
+        if let Some(last) = tags.last_mut() {
+            let t: &mut Tag = last;
+            t.text = text.to_string();
+        }
+        let end = rest[start..].find('>').expect("an unclosed tag") + start;
+        let inner = &rest[start + 1..end];
+        rest = &rest[end + 1..];
+        if let Some(name) = inner.strip_prefix('/') {
+            assert_eq!(stack.pop().as_deref(), Some(name), "tags out of order");
+            tags.push(Tag {
+                name: name.into(),
+                attrs: vec![],
+                kind: Kind::Close,
+                text: String::new(),
+            });
+            continue;
+        }
+        let (inner, kind) = match inner.strip_suffix('/') {
+            Some(i) => (i, Kind::Empty),
+            None => (inner, Kind::Open),
+        };
+        let name: String = inner.chars().take_while(|c| !c.is_whitespace()).collect();
+        let mut attrs = Vec::new();
+        let mut a = inner[name.len()..].trim();
+        while !a.is_empty() {
+            let eq = a.find("=\"").expect("an attribute with a quoted value");
+            let key = a[..eq].trim().to_string();
+            let close = a[eq + 2..].find('"').expect("a closing quote") + eq + 2;
+            let value = &a[eq + 2..close];
+            check_text(value);
+            attrs.push((key, value.to_string()));
+            a = a[close + 1..].trim();
+        }
+        if kind == Kind::Open {
+            stack.push(name.clone());
+        }
+        tags.push(Tag {
+            name,
+            attrs,
+            kind,
+            text: String::new(),
+        });
+    }
+    assert!(rest.trim().is_empty(), "text after the root: {rest:?}");
+    assert!(stack.is_empty(), "unclosed: {stack:?}");
+    assert_eq!(tags[0].name, "svg");
+    tags
+}
+
+/// Entities only as `&amp;` `&lt;` `&gt;` `&quot;`.
+fn check_text(t: &str) {
+    assert!(!t.contains('<'), "bare < in {t:?}");
+    for (i, _) in t.match_indices('&') {
+        let e = &t[i..];
+        assert!(
+            ["&amp;", "&lt;", "&gt;", "&quot;"]
+                .iter()
+                .any(|x| e.starts_with(x)),
+            "bare & in {t:?}"
+        );
+    }
+}
+
+fn with_class<'a>(tags: &'a [Tag], class: &str) -> Vec<&'a Tag> {
+    tags.iter()
+        .filter(|t| t.attr("class") == Some(class))
+        .collect()
+}
+
+/// The polyline's points, in SVG coordinates.
+fn points(t: &Tag) -> Vec<(f64, f64)> {
+    t.attr("points")
+        .unwrap()
+        .split(' ')
+        .map(|p| {
+            let (x, y) = p.split_once(',').unwrap();
+            (x.parse().unwrap(), y.parse().unwrap())
+        })
+        .collect()
+}
+
+/// The affine map from an SVG coordinate to data, read off two tick labels of `class`
+/// (`x-tick` by their x, `y-tick` by their y), within the panel starting at tag `from`.
+fn axis(tags: &[Tag], class: &str) -> impl Fn(f64) -> f64 {
+    let coord = if class == "x-tick" { "x" } else { "y" };
+    let ticks: Vec<(f64, f64)> = with_class(tags, class)
+        .iter()
+        .map(|t| (t.num(coord), t.text.parse::<f64>().unwrap()))
+        .collect();
+    assert!(ticks.len() >= 2, "{class}: {ticks:?}");
+    let (a, b) = (ticks[0], ticks[ticks.len() - 1]);
+    move |p| a.1 + (p - a.0) * (b.1 - a.1) / (b.0 - a.0)
+}
+
+fn text_of<'a>(tags: &'a [Tag], class: &str) -> Vec<&'a str> {
+    with_class(tags, class)
+        .iter()
+        .map(|t| t.text.as_str())
+        .collect()
+}
+
+/// The names in the (first) legend.
+fn legend(tags: &[Tag]) -> Vec<String> {
+    let start = tags
+        .iter()
+        .position(|t| t.attr("class") == Some("legend"))
+        .unwrap();
+    let mut depth = 0;
+    let mut names = Vec::new();
+    for t in &tags[start..] {
+        match (t.name.as_str(), &t.kind) {
+            ("g", Kind::Open) => depth += 1,
+            ("g", Kind::Close) => depth -= 1,
+            ("text", Kind::Open) => names.push(t.text.clone()),
+            _ => {}
+        }
+        if depth == 0 {
+            break;
+        }
+    }
+    names
+}
+
+#[test]
+fn fig5_maps_back_to_the_escape_speed() {
+    let f = out("fig5");
+    let p = f.to_str().unwrap();
+    let (code, stdout, err) =
+        turntable(&["plot", "fig5", "--xi0", "0.5", "--points", "8", "--out", p]);
+    assert_eq!(code, 0, "{err}");
+    assert!(stdout.is_empty());
+    let svg = std::fs::read_to_string(&f).unwrap();
+    let tags = parse(&svg);
+    assert_eq!(
+        text_of(&tags, "x-label")[0],
+        "φ, direction of the throw from radially outward (rad)"
+    );
+    assert_eq!(text_of(&tags, "y-label")[0], "v_e, escape speed (μg/Ω)");
+    assert!(text_of(&tags, "title")[0].starts_with("Escape speed v_e(φ)"));
+    assert!(
+        legend(&tags).contains(&"ξ0 = 0.5".to_string()),
+        "{:?}",
+        legend(&tags)
+    );
+    let lines = with_class(&tags, "series");
+    assert_eq!(lines.len(), 1);
+    let pts = points(lines[0]);
+    assert_eq!(pts.len(), 8);
+    let (x, y) = (axis(&tags, "x-tick"), axis(&tags, "y-tick"));
+    for (k, &(px, _)) in pts.iter().enumerate() {
+        let phi = std::f64::consts::TAU * k as f64 / 8.0;
+        assert!((x(px) - phi).abs() < 1e-5, "point {k}: φ {}", x(px));
+    }
+    // The sweep's bracket is 1e-6 wide.
+    let v = y(pts[0].1);
+    assert!((v - reference::VE_C).abs() < 2e-6, "v_e {v}");
+    // The peak lies near φ ≈ 4 (the grid point 5π/4 ≈ 3.93 of eight).
+    let top = pts.iter().min_by(|a, b| a.1.total_cmp(&b.1)).unwrap();
+    assert!((x(top.0) - 5.0 * std::f64::consts::PI / 4.0).abs() < 1e-5);
+    std::fs::remove_file(&f).unwrap();
+}
+
+#[test]
+fn fig6_marks_the_critical_radius() {
+    let f = out("fig6");
+    let p = f.to_str().unwrap();
+    let (code, _, err) = turntable(&["plot", "fig6", "--points", "11", "--out", p]);
+    assert_eq!(code, 0, "{err}");
+    let tags = parse(&std::fs::read_to_string(&f).unwrap());
+    assert_eq!(text_of(&tags, "x-label")[0], "ξ0, release radius (R_max)");
+    assert_eq!(text_of(&tags, "y-label")[0], "ξ, final rest radius (R_max)");
+    // 0, 0.1, …, 0.8 stop (the escapes at 0.9 and 1 break nothing after them).
+    let lines = with_class(&tags, "series");
+    assert_eq!(lines.len(), 1);
+    let pts = points(lines[0]);
+    assert_eq!(pts.len(), 9);
+    let (x, y) = (axis(&tags, "x-tick"), axis(&tags, "y-tick"));
+    assert!(y(pts[0].1).abs() < 1e-5 && x(pts[0].0).abs() < 1e-5);
+    // The table drags a release at rest in the lab outward: it rests no nearer the centre.
+    for &(px, py) in &pts {
+        assert!(y(py) >= x(px) - 1e-4, "{} {}", x(px), y(py));
+    }
+    let marks = text_of(&tags, "mark-label");
+    assert_eq!(marks, ["ξ0c = 0.872044"]);
+    let line = with_class(&tags, "mark")[0];
+    assert!((x(line.num("x1")) - reference::XI0C).abs() < 1e-5);
+    std::fs::remove_file(&f).unwrap();
+}
+
+#[test]
+fn the_map_has_a_cell_per_stuck_release() {
+    let f = out("map");
+    let p = f.to_str().unwrap();
+    let args = [
+        "--xi0",
+        "0.5",
+        "--phi-points",
+        "12",
+        "--v0-points",
+        "10",
+        "--v0-max",
+        "2",
+    ];
+    let (code, _, err) = turntable(&[&["plot", "map"][..], &args, &["--out", p]].concat());
+    assert_eq!(code, 0, "{err}");
+    let svg = std::fs::read_to_string(&f).unwrap();
+    let tags = parse(&svg);
+    let (_, csv, _) = turntable(&[&["sweep", "map"][..], &args].concat());
+    let stuck = csv.lines().filter(|l| l.contains(",stuck,")).count();
+    let cells = with_class(&tags, "cell").len();
+    assert_eq!(cells, stuck);
+    assert!(stuck > 0 && stuck < 120);
+    assert_eq!(
+        text_of(&tags, "y-label")[0],
+        "v0, speed relative to the table (μg/Ω)"
+    );
+    std::fs::remove_file(&f).unwrap();
+}
+
+#[test]
+fn the_trajectory_ends_where_the_run_stops() {
+    let f = out("traj");
+    let p = f.to_str().unwrap();
+    for frame in ["lab", "table"] {
+        let (code, _, err) = turntable(&[
+            "plot",
+            "trajectory",
+            "--scene",
+            "B",
+            "--frame",
+            frame,
+            "--out",
+            p,
+            "--force",
+        ]);
+        assert_eq!(code, 0, "{err}");
+        let tags = parse(&std::fs::read_to_string(&f).unwrap());
+        let (x, y) = (axis(&tags, "x-tick"), axis(&tags, "y-tick"));
+        let lines = with_class(&tags, "series");
+        let path = points(lines[0]);
+        let (sx, sy) = path[0];
+        assert!(
+            (x(sx) - 0.5).abs() < 1e-5 && y(sy).abs() < 1e-5,
+            "release at (0.5, 0)"
+        );
+        let (ex, ey) = *path.last().unwrap();
+        let xi = x(ex).hypot(y(ey));
+        assert!(
+            (xi - reference::B_REST.0).abs() < 1e-5,
+            "{frame}: rests at {xi}"
+        );
+        // The rim ξ = 1, drawn as a circle, maps back to radius 1.
+        let rim = points(lines[1]);
+        assert!(
+            rim.iter()
+                .all(|&(a, b)| (x(a).hypot(y(b)) - 1.0).abs() < 1e-5)
+        );
+        let marks = text_of(&tags, "mark-label");
+        assert_eq!(marks[0], "release");
+        assert!(
+            marks[1].starts_with("stuck at ξ = 0.94527, τ = 2.700"),
+            "{marks:?}"
+        );
+    }
+    std::fs::remove_file(&f).unwrap();
+}
+
+#[test]
+fn the_time_plots_hold_four_panels() {
+    let f = out("time");
+    let p = f.to_str().unwrap();
+    let (code, _, err) = turntable(&["plot", "time", "--scene", "A", "--out", p]);
+    assert_eq!(code, 0, "{err}");
+    let tags = parse(&std::fs::read_to_string(&f).unwrap());
+    assert_eq!(
+        text_of(&tags, "y-label"),
+        ["ξ (R_max)", "θ′ (Ω)", "|u| (μg/Ω)", "(μg/Ω)²"]
+    );
+    assert_eq!(text_of(&tags, "x-label"), ["τ (1/Ω)"; 4]);
+    assert_eq!(with_class(&tags, "series").len(), 5);
+    // The stop is marked in each panel at A's stop time (docs/numerics.md: τ = 0.99688).
+    assert_eq!(text_of(&tags, "mark-label"), ["stuck τ=0.997"; 4]);
+    std::fs::remove_file(&f).unwrap();
+}
+
+#[test]
+fn plot_keeps_files_and_refuses_what_does_not_apply() {
+    let f = out("keep");
+    std::fs::write(&f, "mine").unwrap();
+    let p = f.to_str().unwrap();
+    let (code, _, err) = turntable(&["plot", "fig6", "--points", "3", "--out", p]);
+    assert_eq!(code, 2);
+    assert!(err.contains("exists; --force replaces it"), "{err}");
+    assert_eq!(std::fs::read_to_string(&f).unwrap(), "mine");
+    let (code, _, err) = turntable(&["plot", "fig6", "--points", "3", "--out", p, "--force"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(std::fs::read_to_string(&f).unwrap().starts_with("<?xml"));
+    std::fs::remove_file(&f).unwrap();
+    for args in [
+        &["plot", "fig6", "--xi0", "0.5", "--out", p][..],
+        &["plot", "time", "--frame", "table", "--out", p],
+        &["plot", "fig5"],
+        &["plot", "fig5", "--points", "0", "--out", p],
+        &["plot", "trajectory", "--scene", "nope", "--out", p],
+        &["plot", "trajectory", "--xi0", "-1", "--out", p],
+        &["plot", "fig6", "--out", "/nonexistent/dir/f.svg"],
+    ] {
+        let (code, _, err) = turntable(args);
+        assert_eq!(code, 2, "{args:?}: {err}");
+        assert!(!f.exists(), "{args:?}");
+    }
+}
+
+/// The explorer's `E`: the page on screen, from what the explorer holds, to a new file each
+/// time (never over one), with a notice naming it.
+#[test]
+fn the_explorer_writes_the_page_to_a_new_file() {
+    use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
+    use turntable::app::App;
+    let dir = std::env::temp_dir().join(format!("turntable-export-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let mut app = App::new(
+        turntable::scene::Scene::preset("B").unwrap(),
+        turntable::theme::Theme::builtin("dark").unwrap(),
+    );
+    app.save_path = dir.join("turntable-scene.toml");
+    let press = |app: &mut App, code| {
+        let effects = app.handle_key(KeyEvent::new(code, KeyModifiers::NONE));
+        turntable::session::carry_out(app, effects);
+    };
+    // It plays from the start: 80 ticks are τ = 4, past B's stop.
+    for _ in 0..80 {
+        app.tick();
+    }
+    common::render(&mut app, 100, 30);
+    press(&mut app, KeyCode::Char('E'));
+    let first = dir.join("turntable-turntable-1.svg");
+    assert_eq!(
+        app.notice.as_deref(),
+        Some(format!("wrote this page to {}", first.display()).as_str())
+    );
+    let tags = parse(&std::fs::read_to_string(&first).unwrap());
+    let (x, y) = (axis(&tags, "x-tick"), axis(&tags, "y-tick"));
+    // The trail ends where the particle is on screen: B at rest (docs/numerics.md).
+    let end = *points(with_class(&tags, "series")[0]).last().unwrap();
+    let now = app.sim().now();
+    assert!((x(end.0) - now.r.x).abs() < 1e-5 && (y(end.1) - now.r.y).abs() < 1e-5);
+    assert!(
+        (now.xi() - reference::B_REST.0).abs() < 1e-8,
+        "{}",
+        now.xi()
+    );
+    // Never over a file: a second press, and a name taken meanwhile, give new names.
+    std::fs::write(dir.join("turntable-turntable-3.svg"), "mine").unwrap();
+    press(&mut app, KeyCode::Char('E'));
+    press(&mut app, KeyCode::Char('E'));
+    assert!(
+        app.notice
+            .as_deref()
+            .unwrap()
+            .ends_with("turntable-turntable-4.svg")
+    );
+    assert!(dir.join("turntable-turntable-2.svg").exists());
+    assert_eq!(
+        std::fs::read_to_string(dir.join("turntable-turntable-3.svg")).unwrap(),
+        "mine"
+    );
+    // The escape-speed page: the curves the page computed, v_e(0.5, 0) among them.
+    press(&mut app, KeyCode::Tab);
+    press(&mut app, KeyCode::Tab);
+    common::render(&mut app, 100, 30);
+    press(&mut app, KeyCode::Char('E'));
+    let svg = std::fs::read_to_string(dir.join("turntable-escape-speed-1.svg")).unwrap();
+    let tags = parse(&svg);
+    let lines = with_class(&tags, "series");
+    assert_eq!(lines.len(), 4, "ξ0 0.5 and the paper's 0.8, 0.2, 0.001");
+    let (x, y) = (axis(&tags, "x-tick"), axis(&tags, "y-tick"));
+    let mine = points(lines[0]);
+    assert_eq!(mine.len(), turntable::analysis::CURVE_POINTS);
+    assert!(x(mine[0].0).abs() < 1e-5);
+    assert!(
+        (y(mine[0].1) - reference::VE_C).abs() < 2e-6,
+        "{}",
+        y(mine[0].1)
+    );
+    assert_eq!(legend(&tags)[0], "ξ0 = 0.5");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// A replay writes no files: `E` there says what it would write.
+#[test]
+fn a_replay_only_says_what_e_would_write() {
+    let keys = out("replay").with_extension("keys");
+    std::fs::write(&keys, "resize 100x24\ntab\nE\n").unwrap();
+    let (code, screen, err) = turntable(&["replay", keys.to_str().unwrap()]);
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        screen.contains("replay saves nothing: this page → turntable-time-plots-N.svg"),
+        "{screen}"
+    );
+    std::fs::remove_file(&keys).unwrap();
+}
