@@ -121,7 +121,7 @@ fn sticking_speeds_until(xi0: f64, phi: f64, settings: Settings, tol: f64, go_on
     }
     let sticks = |v0: f64| {
         if !go_on() {
-            return Err(Error::Failed("cancelled".into()));
+            return Err(Error::Cancelled);
         }
         classify(Initial::velocity(xi0, phi, v0), settings).map(|c| c.outcome == Outcome::Stuck)
     };

@@ -6,7 +6,7 @@
 //! (`TICKS_PER_SECOND`), so the recording plays at the pace of the session and is the same
 //! bytes on every run.
 
-use crate::terminal::pace::TICKS_PER_SECOND;
+use crate::app::TICKS_PER_SECOND;
 use crate::ui::export::ansi_text;
 use ratatui::buffer::Buffer;
 use serde_json::json;

@@ -6,6 +6,7 @@
 //! keys move them in steps the app keeps in range), only counts the script parser bounds.
 
 use crate::engine::body::Body;
+use crate::engine::error::Field;
 use crate::engine::units::Units;
 use crate::engine::{Coupling, Initial, Settings};
 use crate::error::Error;
@@ -26,8 +27,8 @@ pub enum Via {
     Config,
 }
 
-/// The engine's names for the values it checks (the first word of its messages), and each
-/// value's name in a scene or configuration file.
+/// The values the engine checks by their flags' names (see [`flag`]), and each value's name
+/// in a scene or configuration file.
 const KEYS: [(&str, &str); 16] = [
     ("frictionless", "[initial] frictionless"),
     ("coupling", "[settings] coupling"),
@@ -66,28 +67,49 @@ impl Via {
     }
 }
 
-/// `e` (a message that begins with the name of the value it refuses, as the engine's do)
-/// with that name as typed `via`.
-pub fn named(e: impl Into<Error>, via: Via) -> Error {
-    match e.into() {
-        Error::Invalid(m) => {
-            let word = m.split([' ', ',']).next().unwrap_or("");
-            match KEYS.iter().find(|(k, _)| *k == word) {
-                Some((k, _)) => Error::Invalid(format!("{}{}", via.name(k), &m[k.len()..])),
-                None => Error::Invalid(m),
-            }
-        }
-        e => e,
+/// A value the engine checks, by the name of its flag (without `--`), which [`KEYS`] maps
+/// to its key in a file; `None` for the solvers' bracket width, whose flag each command
+/// names itself (`--vtol`, `--xtol`).
+pub fn flag(f: Field) -> Option<&'static str> {
+    Some(match f {
+        Field::Xi0 => "xi0",
+        Field::Phi => "phi",
+        Field::V0 => "v0",
+        Field::Tol => "tol",
+        Field::Dt => "dt",
+        Field::MaxSteps => "max-steps",
+        Field::MuStaticRatio => "mu-static-ratio",
+        Field::Gamma => "gamma",
+        Field::Mu => "mu",
+        Field::Rpm => "rpm",
+        Field::G => "g",
+        Field::BodyLength => "body-length",
+        Field::BodyHeight => "body-height",
+        Field::BodyAngle => "body-angle",
+        Field::Bracket => return None,
+    })
+}
+
+impl Via {
+    /// The engine's `field` as it is typed here (its own name if it has no flag).
+    pub fn field(self, f: Field) -> String {
+        flag(f).map_or_else(|| f.name().to_string(), |k| self.name(k))
     }
 }
 
-/// `e` with the flag `from` (at its start) called `to`: a value checked as another (the
-/// sweeps' `--xi0-max` as a release's `--xi0`).
-pub fn retyped(e: Error, from: &str, to: &str) -> Error {
+/// `e` with a value the engine refused named as typed `via` (unless it is already named).
+pub fn named(e: impl Into<Error>, via: Via) -> Error {
+    e.into().name_field(|f| via.field(f))
+}
+
+/// `e` with a refused `field` called `to`: a value checked as another (the sweeps'
+/// `--xi0-max` as a release's `--xi0`).
+pub fn retyped(e: Error, field: Field, to: &str) -> Error {
     match e {
-        Error::Invalid(m) if m.starts_with(&format!("{from} ")) => {
-            Error::Invalid(format!("{to}{}", &m[from.len()..]))
-        }
+        Error::Value { value, .. } if value.field == field => Error::Value {
+            name: Some(to.to_string()),
+            value,
+        },
         e => e,
     }
 }
@@ -165,7 +187,7 @@ mod tests {
         let i = Initial::velocity(0.5, 0.0, 1e13);
         let e = initial(&i, Via::Flags).unwrap_err();
         assert_eq!(
-            retyped(e, "--v0", "--v0-max").to_string(),
+            retyped(e, Field::V0, "--v0-max").to_string(),
             "--v0-max must be ≤ 1e12, got 1e13"
         );
         let u = Units {

@@ -103,6 +103,36 @@ fn err(path: &Path, what: impl std::fmt::Display) -> io::Error {
     io::Error::other(format!("{}: {what}", shown(path)))
 }
 
+/// `e` met at `path`: the same kind, said with the path, `e` kept as the source.
+fn at(path: &Path, e: io::Error) -> io::Error {
+    io::Error::new(
+        e.kind(),
+        AtPath {
+            path: shown(path),
+            source: e,
+        },
+    )
+}
+
+/// An `io::Error` and the path it was met at.
+#[derive(Debug)]
+struct AtPath {
+    path: String,
+    source: io::Error,
+}
+
+impl std::fmt::Display for AtPath {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}: {}", self.path, self.source)
+    }
+}
+
+impl std::error::Error for AtPath {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        Some(&self.source)
+    }
+}
+
 fn err_kind(kind: io::ErrorKind, path: &Path, what: impl std::fmt::Display) -> io::Error {
     io::Error::new(kind, format!("{}: {what}", shown(path)))
 }
@@ -196,7 +226,7 @@ impl Output {
         let dir = folder(dest);
         let (mode, existed) = match std::fs::symlink_metadata(dest) {
             Err(e) if e.kind() == io::ErrorKind::NotFound => (0o644, false),
-            Err(e) => return Err(err(dest, e)),
+            Err(e) => return Err(at(dest, e)),
             Ok(m) => {
                 let t = m.file_type();
                 if t.is_symlink() {
@@ -214,7 +244,7 @@ impl Output {
                         .open(dest)
                         .map_err(|e| match e.raw_os_error() {
                             Some(libc::ENXIO) => err(dest, "a FIFO with no reader"),
-                            _ => err(dest, e),
+                            _ => at(dest, e),
                         })?;
                     clear_nonblock(&f);
                     return Ok(Output {
@@ -253,9 +283,9 @@ impl Output {
         remove_stale(dir, &name);
         let to = match unnamed.then(|| open_unnamed(dir)).flatten() {
             Some(Ok(f)) => To::Unnamed(f),
-            Some(Err(e)) => return Err(err(dest, e)),
+            Some(Err(e)) => return Err(at(dest, e)),
             None => {
-                let (f, tmp) = open_named(dir, &name).map_err(|e| err(dest, e))?;
+                let (f, tmp) = open_named(dir, &name).map_err(|e| at(dest, e))?;
                 To::Named(f, tmp)
             }
         };
@@ -267,7 +297,7 @@ impl Output {
         };
         out.file()
             .set_permissions(std::fs::Permissions::from_mode(mode))
-            .map_err(|e| err(dest, e))?;
+            .map_err(|e| at(dest, e))?;
         Ok(out)
     }
 
@@ -332,12 +362,12 @@ impl Output {
     fn place(&mut self, to: &Path, replace: bool) -> io::Result<()> {
         {
             let f = self.file_mut();
-            f.flush().map_err(|e| err(to, e))?;
+            f.flush().map_err(|e| at(to, e))?;
             if let To::Direct(_) = self.to {
                 return Ok(());
             }
         }
-        self.file().sync_all().map_err(|e| err(to, e))?;
+        self.file().sync_all().map_err(|e| at(to, e))?;
         let from = match &self.to {
             To::Unnamed(f) => PathBuf::from(format!("/proc/self/fd/{}", f.as_raw_fd())),
             To::Named(_, tmp) => tmp.clone(),
@@ -365,7 +395,7 @@ impl Output {
                     match link(&tmp) {
                         Ok(()) => break tmp,
                         Err(e) if e.kind() == io::ErrorKind::AlreadyExists => continue,
-                        Err(e) => return Err(err(to, e)),
+                        Err(e) => return Err(at(to, e)),
                     }
                 },
             };
@@ -373,10 +403,10 @@ impl Output {
                 if let To::Unnamed(_) = self.to {
                     let _ = std::fs::remove_file(&tmp);
                 }
-                return Err(err(to, e));
+                return Err(at(to, e));
             }
         } else {
-            link(to).map_err(|e| err_kind(e.kind(), to, e))?;
+            link(to).map_err(|e| at(to, e))?;
             if let To::Named(_, tmp) = &self.to {
                 let _ = std::fs::remove_file(tmp);
             }
@@ -471,7 +501,7 @@ pub fn write_new(path: &Path, contents: &[u8], max: u32) -> io::Result<PathBuf> 
             Err(e) if e.kind() == io::ErrorKind::AlreadyExists => continue,
             Err(e) => return Err(e),
         };
-        out.write_all(contents).map_err(|e| err(&to, e))?;
+        out.write_all(contents).map_err(|e| at(&to, e))?;
         match out.finish() {
             Ok(()) => return Ok(to),
             // Taken meanwhile: the next name.
@@ -491,7 +521,7 @@ pub fn write_new(path: &Path, contents: &[u8], max: u32) -> io::Result<PathBuf> 
 /// Writes `contents` to `path` as [`Output`] does (replacing a file there only with `force`).
 pub fn write_atomic(path: &Path, contents: &[u8], force: bool) -> io::Result<()> {
     let mut out = Output::create(path, force)?;
-    out.write_all(contents).map_err(|e| err(path, e))?;
+    out.write_all(contents).map_err(|e| at(path, e))?;
     out.finish()
 }
 
@@ -577,9 +607,23 @@ impl<W: Write> Write for Capped<W> {
 
 /// The bound an error reports having reached, if it is one ([`Capped`], or a frame count).
 pub fn bound_reached(e: &io::Error) -> Option<String> {
-    e.get_ref()
-        .and_then(|inner| inner.downcast_ref::<BoundReached>())
-        .map(|b| b.message.clone())
+    // Its own error, or the cause of one (an error met at a path keeps its source).
+    let mut cause = e
+        .get_ref()
+        .map(|inner| inner as &(dyn std::error::Error + 'static));
+    while let Some(c) = cause {
+        if let Some(b) = c.downcast_ref::<BoundReached>() {
+            return Some(b.message.clone());
+        }
+        // An io::Error's own source skips its payload: look inside it.
+        cause = match c.downcast_ref::<io::Error>() {
+            Some(io) => io
+                .get_ref()
+                .map(|inner| inner as &(dyn std::error::Error + 'static)),
+            None => c.source(),
+        };
+    }
+    None
 }
 
 /// Stdout, or a file written as [`Output`] does (never over an existing file).
@@ -679,6 +723,20 @@ mod tests {
     fn caps() {
         assert_eq!(read_capped(&b"abc"[..], 3).unwrap(), "abc");
         assert!(read_capped(&b"abcd"[..], 3).is_err());
+        // An error met at a path keeps its kind and its cause, and says the path.
+        let cause = io::Error::from(io::ErrorKind::PermissionDenied);
+        let e = at(Path::new("a/b.csv"), cause);
+        assert_eq!(e.kind(), io::ErrorKind::PermissionDenied);
+        assert_eq!(e.to_string(), "a/b.csv: permission denied");
+        let inner = e.get_ref().and_then(std::error::Error::source);
+        assert!(inner.is_some_and(|c| c.is::<io::Error>()));
+        let bound = io::Error::other(BoundReached {
+            message: "the cap".into(),
+        });
+        assert_eq!(
+            bound_reached(&at(Path::new("x"), bound)).as_deref(),
+            Some("the cap")
+        );
         assert!(read_capped(&[0xff][..], 3).is_err());
     }
 }

@@ -16,7 +16,7 @@ pub use chord::Chord;
 pub use effect::{Effect, Effects};
 pub use exploration::Exploration;
 pub use keymap::{Binding, KEYMAP};
-pub use state::{App, CanvasGeom, G_DEFAULT, MU_PROBE, Measured, TICK_DT};
+pub use state::{App, CanvasGeom, MU_PROBE, Measured, TICK_DT, TICKS_PER_SECOND};
 pub use update::update;
 
 use crate::engine::Settings;

@@ -10,13 +10,15 @@ use crate::theme::Theme;
 use ratatui::layout::Rect;
 use std::path::PathBuf;
 
-/// Sim time per tick at speed 1 (at 30 fps: 1.5 τ per second, about a quarter turn).
+/// Sim time per tick at speed 1 (at [`TICKS_PER_SECOND`]: 1.5 τ per second, about a quarter
+/// turn).
 pub const TICK_DT: f64 = 0.05;
+/// The app's clock rate in wall-clock time (the terminal's, an asciicast's): each tick is
+/// `TICK_DT × speed` of sim time.
+pub const TICKS_PER_SECOND: u32 = 30;
 /// Speed factor bounds (powers of two).
 pub const SPEED_RANGE: (f64, f64) = (1.0 / 64.0, 256.0);
 pub const ZOOM_RANGE: (f64, f64) = (1.0 / 64.0, 1024.0);
-/// Gravity for the SI readouts unless a scene or flag says otherwise (m/s²).
-pub const G_DEFAULT: f64 = 9.81;
 /// The μ measurement's starting values, an example (the paper gives Eq. 22, no table):
 /// Ω = 3.3 rad/s and r0c = 0.12 m.
 pub const MU_PROBE: (f64, f64) = (3.3, 0.12);
@@ -24,11 +26,9 @@ pub const MU_PROBE: (f64, f64) = (3.3, 0.12);
 /// The table SI units start from (`u`, `w`, `g`): a record player at 33⅓ rpm with μ = 0.15.
 /// An everyday example, not the paper's: it names no table speed and no μ.
 pub fn record_player() -> crate::engine::units::Units {
-    crate::engine::units::Units::new(0.15, 100.0 / 3.0, G_DEFAULT)
+    crate::engine::units::Units::new(0.15, 100.0 / 3.0, crate::engine::units::G_DEFAULT)
         .expect("a record player's values are in range")
 }
-/// Width of the readout panel beside the picture (wide terminals).
-pub const PANEL_W: u16 = 30;
 /// Where `s` saves the scene.
 pub const SAVE_PATH: &str = "turntable-scene.toml";
 

@@ -5,10 +5,11 @@
 
 use super::bytes::{counted, draw};
 use crate::app::App;
+use crate::app::TICKS_PER_SECOND;
 use crate::engine::body::Body;
 use crate::error::Error;
 use crate::scene::Scene;
-use crate::terminal::pace::{Clock, TICKS_PER_SECOND};
+use crate::terminal::pace::Clock;
 use crate::theme::{Depth, Theme};
 use serde::Serialize;
 use std::time::{Duration, Instant};

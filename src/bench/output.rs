@@ -244,7 +244,7 @@ pub fn table(r: &Report) -> String {
             crate::files::show_bytes(c.bound_bytes),
             c.bound_frames,
             c.ticks_to_bound,
-            c.ticks_to_bound as f64 / f64::from(crate::terminal::pace::TICKS_PER_SECOND)
+            c.ticks_to_bound as f64 / f64::from(crate::app::TICKS_PER_SECOND)
         );
     }
     for l in &sp.links {

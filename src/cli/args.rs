@@ -1,8 +1,8 @@
 //! The command line as clap reads it: the explorer's flags, the subcommands and their
 //! arguments, and the checks that turn them into engine settings.
 
-use crate::app::G_DEFAULT;
 use crate::engine::body::Body;
+use crate::engine::units::G_DEFAULT;
 use crate::engine::units::{Length, SizeRefused, Units};
 use crate::engine::{Coupling, CouplingName, Frame, Method, Release, Settings};
 use crate::error::Error;
@@ -159,13 +159,9 @@ impl CouplingArgs {
         } else {
             CouplingName::Coulomb
         });
-        let c = name.with(self.mu_static_ratio, self.gamma).map_err(|e| {
-            Error::Invalid(
-                e.replace("gamma", "--gamma")
-                    .replace("mu-static-ratio", "--mu-static-ratio")
-                    .replace("coupling ", "--coupling "),
-            )
-        })?;
+        let c = name
+            .with(self.mu_static_ratio, self.gamma)
+            .map_err(|e| Error::Invalid(e.named("--gamma", "--mu-static-ratio", "--coupling")))?;
         c.validate()
             .map_err(|e| crate::check::named(e, crate::check::Via::Flags))?;
         Ok(Some(c))

@@ -56,14 +56,28 @@ pub(crate) fn bracket_width(name: &str, x: f64) -> Result<(), Error> {
     }
 }
 
-/// A step budget exhausted inside a solver: the advice names the solver's own flags (the
-/// run's message names --tau-max, which the solvers do not take).
+/// A solver's error as its command's flags name it: a step budget exhausted inside it, with
+/// advice that names the solver's own flags (not --tau-max, which the solvers do not take),
+/// and its bracket width as `tol_flag`.
 pub(crate) fn solver_budget<E: Into<Error>>(tol_flag: &'static str) -> impl Fn(E) -> Error {
     move |e| match e.into() {
         Error::Run(crate::engine::RunError::Budget { steps, tau }) => Error::Failed(format!(
             "step budget of {steps} steps exhausted at tau = {tau:.6} (raise --max-steps, or loosen {tol_flag} or --tol)"
         )),
-        e => e,
+        e => crate::check::retyped(e, crate::engine::error::Field::Bracket, tol_flag),
+    }
+}
+
+/// An error as the command line says it: a value the engine refused and nothing named is
+/// named as its flag; a run that could not finish says which flags would let it.
+fn as_typed(e: Error) -> String {
+    use crate::engine::RunError;
+    match crate::check::named(e, crate::check::Via::Flags) {
+        e @ Error::Run(RunError::Budget { .. }) => {
+            format!("{e} (raise --max-steps, lower --tau-max, or use a larger dt / looser tol)")
+        }
+        e @ Error::Run(RunError::Overflow { .. }) => format!("{e} (lower --tau-max)"),
+        e => e.to_string(),
     }
 }
 
@@ -173,8 +187,9 @@ fn explore(
     // The terminal died under the explorer: the recording is kept all the same, and where
     // it went is said (the terminal is restored by then).
     let save = recording.clone().map(|r| {
-        Box::new(move |script: String| {
-            if let Err(e) = r.keep(script) {
+        Box::new(move |script: String| match r.keep(script) {
+            Ok(saved) => r.say_if_moved(&saved),
+            Err(e) => {
                 let m = crate::files::escape_controls(&e.to_string());
                 let _ = writeln!(std::io::stderr(), "error: {m}");
             }
@@ -194,20 +209,19 @@ fn explore(
             (Err(e), Ok(Some(_))) => {
                 let m = crate::files::escape_controls(&e.to_string());
                 let _ = writeln!(std::io::stderr(), "error: {m}");
-                return result.map_err(|e| Error::Failed(format!("terminal: {e}")));
+                return result.map_err(|e| Error::io("terminal", e));
             }
-            (Err(e), _) => return Err(e),
+            // The terminal failed too: both are said, the terminal's first.
+            (Err(e), Err(t)) => {
+                let t = crate::files::escape_controls(&format!("terminal: {t}"));
+                let _ = writeln!(std::io::stderr(), "error: {t}");
+                return Err(e);
+            }
+            (Err(e), Ok(None)) => return Err(e),
         };
-        if let Some(path) = cli.record.as_deref().filter(|p| *p != saved) {
-            let _ = writeln!(
-                std::io::stderr(),
-                "--record: {} appeared during the session (kept); the recording is in {}",
-                crate::files::escape_controls(&path.display().to_string()),
-                crate::files::escape_controls(&saved.display().to_string())
-            );
-        }
+        r.say_if_moved(&saved);
     }
-    result.map_err(|e| Error::Failed(format!("terminal: {e}")))
+    result.map_err(|e| Error::io("terminal", e))
 }
 
 /// How a recording names its scene: a preset by name, a file by its absolute path, so that
@@ -237,6 +251,19 @@ pub fn record_fallback() -> std::path::PathBuf {
 }
 
 impl Recording {
+    /// Says on stderr where the recording went if that is not the file asked for (which
+    /// appeared during the session); on either way out, the end or a terminal that died.
+    fn say_if_moved(&self, saved: &std::path::Path) {
+        if self.path != saved {
+            let _ = writeln!(
+                std::io::stderr(),
+                "--record: {} appeared during the session (kept); the recording is in {}",
+                crate::files::escape_controls(&self.path.display().to_string()),
+                crate::files::escape_controls(&saved.display().to_string())
+            );
+        }
+    }
+
     /// Writes the script atomically; returns where. A file that was not there before the
     /// session is never replaced (`s` may have saved a scene there meanwhile): the recording
     /// then goes to the first free `NAME-N`.
@@ -371,9 +398,10 @@ pub fn main() -> ExitCode {
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            let m = crate::files::escape_controls(&e.to_string());
+            let code = e.exit_code();
+            let m = crate::files::escape_controls(&as_typed(e));
             let _ = writeln!(std::io::stderr(), "error: {m}");
-            ExitCode::from(e.exit_code())
+            ExitCode::from(code)
         }
     }
 }

@@ -175,7 +175,7 @@ fn integrate(
     mut csv: Option<BufWriter<Output>>,
 ) -> Result<State, Error> {
     let initial = run.initial();
-    let write_err = |e: std::io::Error| Error::Failed(format!("--trajectory: {e}"));
+    let write_err = |e: std::io::Error| Error::io("--trajectory", e);
     let mut rows = Rows {
         initial,
         work: 0.0,

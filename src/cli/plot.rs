@@ -95,7 +95,7 @@ fn write(mut out: Output, svg: &SvgOut, fig: &Figure) -> CmdResult {
         .and_then(|()| out.finish())
         .map_err(|e| {
             let shown = crate::files::escape_controls(&svg.out.display().to_string());
-            Error::Failed(format!("--out {shown}: {e}"))
+            Error::io(format!("--out {shown}"), e)
         })
 }
 

@@ -53,8 +53,9 @@ fn sweep_body(a: &super::BodySweepArgs) -> CmdResult {
                 height: None,
                 angle: a.body_angle,
             };
-            crate::check::body(&b, crate::check::Via::Flags)
-                .map_err(|e| crate::check::retyped(e, "--body-length", "--lengths"))?;
+            crate::check::body(&b, crate::check::Via::Flags).map_err(|e| {
+                crate::check::retyped(e, crate::engine::error::Field::BodyLength, "--lengths")
+            })?;
             Ok(b)
         })
         .collect::<Result<Vec<_>, Error>>()?;
@@ -194,7 +195,7 @@ pub(super) fn fig6_check(a: &Fig6Data) -> Result<crate::engine::Settings, Error>
     points(a.points)?;
     positive("xi0-max", a.xi0_max)?;
     check_initial(&Initial::velocity(a.xi0_max, 0.0, 0.0))
-        .map_err(|e| crate::check::retyped(e, "--xi0", "--xi0-max"))?;
+        .map_err(|e| crate::check::retyped(e, crate::engine::error::Field::Xi0, "--xi0-max"))?;
     solver_settings(&a.numerics)
 }
 
@@ -246,7 +247,7 @@ pub(super) fn map_check(a: &MapData) -> Result<crate::engine::Settings, Error> {
     if let Some(v) = a.v0_max {
         positive("v0-max", v)?;
         check_initial(&Initial::velocity(a.xi0, 0.0, v))
-            .map_err(|e| crate::check::retyped(e, "--v0", "--v0-max"))?;
+            .map_err(|e| crate::check::retyped(e, crate::engine::error::Field::V0, "--v0-max"))?;
     }
     Ok(settings)
 }

@@ -111,38 +111,20 @@ impl Body {
     /// Checks the values a user may type: MIN_LENGTH ≤ L ≤ MAX, 0 ≤ h ≤ MAX,
     /// |ψ| ≤ [`Initial::MAX`].
     pub fn validate(&self) -> Result<(), Error> {
-        let bad = |name: &str, what: &str, x: f64| {
-            Err(Error::invalid(format!(
-                "{name} must be {what}, got {}",
-                Initial::show(x)
-            )))
-        };
-        let l = self.length;
-        if !(l.is_finite() && (Self::MIN_LENGTH..=Self::MAX).contains(&l)) {
-            return bad(
-                "body-length (units of R_max)",
-                &format!("in [{:e}, {:e}]", Self::MIN_LENGTH, Self::MAX),
-                l,
-            );
+        use super::error::{Field, Range, check};
+        check(
+            Field::BodyLength,
+            self.length,
+            Range::Within(Self::MIN_LENGTH, Self::MAX),
+        )?;
+        if let Some(h) = self.height {
+            check(Field::BodyHeight, h, Range::Within(0.0, Self::MAX))?;
         }
-        if let Some(h) = self.height
-            && !(h.is_finite() && (0.0..=Self::MAX).contains(&h))
-        {
-            return bad(
-                "body-height (units of R_max)",
-                &format!("in [0, {:e}]", Self::MAX),
-                h,
-            );
-        }
-        let a = self.angle;
-        if !(a.is_finite() && a.abs() <= Initial::MAX) {
-            return bad(
-                "body-angle (rad)",
-                &format!("finite, |angle| ≤ {:e}", Initial::MAX),
-                a,
-            );
-        }
-        Ok(())
+        check(
+            Field::BodyAngle,
+            self.angle,
+            Range::Within(-Initial::MAX, Initial::MAX),
+        )
     }
 
     /// The same body on the table `to`, its metres held (it was on `from`): its length and

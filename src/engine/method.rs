@@ -2,7 +2,7 @@
 //! Dormand–Prince 5(4) and 8(5,3) with step control and dense output (Hairer, Nørsett &
 //! Wanner, *Solving ODEs I*, II.5 and the DOPRI5 and DOP853 codes).
 
-use super::model::{Frame, Initial};
+use super::model::Frame;
 use crate::engine::error::Error;
 use serde::{Deserialize, Serialize};
 use strum::{Display, EnumMessage, EnumString, IntoStaticStr, VariantArray};
@@ -139,18 +139,12 @@ impl Coupling {
 
     /// Checks the values a user may type: μ_s/μ_k in [1, MAX], γ in [0, MAX].
     pub fn validate(self) -> Result<(), Error> {
-        let (name, x, lo) = match self {
-            Coupling::Coulomb { hold } => ("mu-static-ratio (mu_s/mu_k)", hold, 1.0),
-            Coupling::Stokes { gamma } => ("gamma (Stokes drag rate, units of Omega)", gamma, 0.0),
+        use super::error::{Field, Range, check};
+        let (field, x, lo) = match self {
+            Coupling::Coulomb { hold } => (Field::MuStaticRatio, hold, 1.0),
+            Coupling::Stokes { gamma } => (Field::Gamma, gamma, 0.0),
         };
-        if !(x.is_finite() && (lo..=Self::MAX).contains(&x)) {
-            return Err(Error::invalid(format!(
-                "{name} must lie in [{lo}, {:e}], got {}",
-                Self::MAX,
-                Initial::show(x)
-            )));
-        }
-        Ok(())
+        check(field, x, Range::Within(lo, Self::MAX))
     }
 }
 
@@ -197,15 +191,46 @@ struct SettingsFile {
 #[derive(Display, EnumString, IntoStaticStr, VariantArray, EnumMessage)]
 #[strum(serialize_all = "kebab-case")]
 pub enum CouplingName {
-    /// Dry friction (the paper's), with --mu-static-ratio.
+    /// Dry friction (the paper's), with its static ratio mu_s/mu_k.
     #[default]
     Coulomb,
-    /// Stokes drag −γ m u, with --gamma.
+    /// Stokes drag −γ m u, with its rate γ.
     Stokes,
 }
 
 fn is_default<T: Default + PartialEq>(x: &T) -> bool {
     *x == T::default()
+}
+
+/// A coupling's parameter given to the coupling that does not take it, or missing. Its
+/// message names the values as a scene file does (`gamma`, `mu_static_ratio`, `coupling`);
+/// [`Mismatch::named`] as typed elsewhere.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("{}", self.named("gamma", "mu_static_ratio", "coupling"))]
+pub enum Mismatch {
+    /// γ with dry friction.
+    GammaWithoutStokes,
+    /// μ_s/μ_k with Stokes drag.
+    RatioWithStokes,
+    /// Stokes drag with no γ.
+    StokesWithoutGamma,
+}
+
+impl Mismatch {
+    /// The mismatch in words, with γ, μ_s/μ_k and the coupling called as typed.
+    pub fn named(self, gamma: &str, ratio: &str, coupling: &str) -> String {
+        match self {
+            Mismatch::GammaWithoutStokes => {
+                format!("{gamma} is the Stokes drag rate: it needs {coupling} stokes")
+            }
+            Mismatch::RatioWithStokes => format!(
+                "{ratio} is a property of dry friction: it does not apply to {coupling} stokes"
+            ),
+            Mismatch::StokesWithoutGamma => {
+                format!("{coupling} stokes needs {gamma}, the drag rate in units of Omega")
+            }
+        }
+    }
 }
 
 impl CouplingName {
@@ -215,21 +240,15 @@ impl CouplingName {
         self,
         mu_static_ratio: Option<f64>,
         gamma: Option<f64>,
-    ) -> Result<Coupling, String> {
+    ) -> Result<Coupling, Mismatch> {
         match (self, mu_static_ratio, gamma) {
             (CouplingName::Coulomb, r, None) => Ok(Coupling::Coulomb {
                 hold: r.unwrap_or(1.0),
             }),
-            (CouplingName::Coulomb, _, Some(_)) => {
-                Err("gamma is the Stokes drag rate: it needs coupling stokes".into())
-            }
+            (CouplingName::Coulomb, _, Some(_)) => Err(Mismatch::GammaWithoutStokes),
             (CouplingName::Stokes, None, Some(gamma)) => Ok(Coupling::Stokes { gamma }),
-            (CouplingName::Stokes, Some(_), _) => Err(
-                "mu-static-ratio is a property of dry friction: it does not apply to coupling stokes".into(),
-            ),
-            (CouplingName::Stokes, None, None) => {
-                Err("coupling stokes needs gamma, the drag rate in units of Omega".into())
-            }
+            (CouplingName::Stokes, Some(_), _) => Err(Mismatch::RatioWithStokes),
+            (CouplingName::Stokes, None, None) => Err(Mismatch::StokesWithoutGamma),
         }
     }
 }
@@ -246,7 +265,10 @@ impl TryFrom<SettingsFile> for Settings {
             scheme: f.method.with(knob.unwrap_or(f.method.default_knob())),
             frame: f.frame,
             max_steps: f.max_steps,
-            coupling: f.coupling.with(f.mu_static_ratio, f.gamma)?,
+            coupling: f
+                .coupling
+                .with(f.mu_static_ratio, f.gamma)
+                .map_err(|e| e.to_string())?,
         })
     }
 }
@@ -307,23 +329,17 @@ impl Settings {
         self.scheme.method()
     }
     pub fn validate(&self) -> Result<(), Error> {
-        let (name, (lo, hi), k) = match self.scheme.tol() {
-            Some(tol) => ("tol", TOL_RANGE, tol),
-            None => ("dt", DT_RANGE, self.scheme.knob()),
+        use super::error::{Field, Range, check};
+        let (field, (lo, hi), k) = match self.scheme.tol() {
+            Some(tol) => (Field::Tol, TOL_RANGE, tol),
+            None => (Field::Dt, DT_RANGE, self.scheme.knob()),
         };
-        if !(k.is_finite() && (lo..=hi).contains(&k)) {
-            return Err(Error::invalid(format!(
-                "{name} must lie in [{lo:e}, {hi:e}], got {}",
-                Initial::show(k)
-            )));
-        }
-        if self.max_steps == 0 {
-            return Err(Error::invalid("max-steps must be at least 1"));
-        }
+        check(field, k, Range::Within(lo, hi))?;
+        check(Field::MaxSteps, self.max_steps as f64, Range::AtLeast(1.0))?;
         self.coupling.validate()?;
         if self.hold() != 1.0 && !self.method().stick_events() {
-            return Err(Error::invalid(format!(
-                "{} is the paper's scheme, with mu_s = mu_k and no stops: a mu-static-ratio other than 1 needs a method with stick events",
+            return Err(Error::refused(format!(
+                "{} is the paper's scheme, with mu_s = mu_k and no stops: a static friction ratio mu_s/mu_k other than 1 needs a method with stick events",
                 self.method()
             )));
         }

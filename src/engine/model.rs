@@ -142,33 +142,18 @@ impl Initial {
 
     /// Checks the values a user may type: finite, 0 ≤ ξ0, v0 ≤ [`Initial::MAX`].
     pub fn validate(&self) -> Result<(), Error> {
-        for (name, x) in [("xi0", self.xi0), ("phi", self.phi), ("v0", self.v0)] {
-            if !x.is_finite() {
-                return Err(Error::invalid(format!(
-                    "{name} must be a finite number, got {}",
-                    Self::show(x)
-                )));
-            }
+        use super::error::{Field, Range, check};
+        for (field, x) in [
+            (Field::Xi0, self.xi0),
+            (Field::Phi, self.phi),
+            (Field::V0, self.v0),
+        ] {
+            check(field, x, Range::Finite)?;
         }
-        if self.xi0 < 0.0 {
-            return Err(Error::invalid(format!(
-                "xi0 must be ≥ 0, got {}",
-                Self::show(self.xi0)
-            )));
-        }
-        if self.v0 < 0.0 {
-            return Err(Error::invalid(format!(
-                "v0 must be ≥ 0, got {}",
-                Self::show(self.v0)
-            )));
-        }
-        for (name, x) in [("xi0", self.xi0), ("v0", self.v0)] {
-            if x > Self::MAX {
-                return Err(Error::invalid(format!(
-                    "{name} must be ≤ {:e}, got {x:e}",
-                    Self::MAX
-                )));
-            }
+        check(Field::Xi0, self.xi0, Range::AtLeast(0.0))?;
+        check(Field::V0, self.v0, Range::AtLeast(0.0))?;
+        for (field, x) in [(Field::Xi0, self.xi0), (Field::V0, self.v0)] {
+            check(field, x, Range::AtMost(Self::MAX))?;
         }
         Ok(())
     }

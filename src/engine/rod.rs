@@ -288,7 +288,7 @@ const MAX_FLOOR: f64 = 1e-3;
 const MAX_STEPS: u64 = 5_000_000;
 
 fn over_budget() -> Error {
-    Error::Failed("the body's run exceeded its step budget".into())
+    Error::NoAnswer("the body's run exceeded its step budget".into())
 }
 
 impl RodRun {
@@ -299,7 +299,7 @@ impl RodRun {
         body.validate()?;
         initial.validate()?;
         if initial.frictionless {
-            return Err(Error::invalid(
+            return Err(Error::refused(
                 "a body with mu = 0 feels no friction: its centre is the point's straight line",
             ));
         }
@@ -462,7 +462,7 @@ impl RodRun {
             if err.is_nan() || err > 1.0 {
                 self.h = h * (0.9 * err.powf(-0.2)).clamp(0.1, 0.9);
                 if !self.h.is_finite() || self.h < 1e-15 * self.state.tau.max(1e-3) {
-                    return Err(Error::Failed("the body's step size underflowed".into()));
+                    return Err(Error::NoAnswer("the body's step size underflowed".into()));
                 }
                 continue;
             }

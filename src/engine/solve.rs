@@ -8,7 +8,7 @@ use super::par::par_map;
 use super::roots::{bisect, golden_min};
 use super::run::{Outcome, Run};
 use super::saddle::{Fate, fate, saddle_h};
-use crate::engine::error::Error;
+use crate::engine::error::{Error, Field, Invalid, Range};
 use serde::Serialize;
 
 /// Asked by a solver before each of its runs: `false` ends the solver with
@@ -162,10 +162,9 @@ fn scan(
         .iter()
         .map(|&x| escapes(x).map(|e| (x, e)))
         .collect::<Result<Vec<_>, _>>()?;
-    let first = outcomes
-        .iter()
-        .position(|o| o.1)
-        .ok_or(Error::Failed("no escape found in the scanned range".into()))?;
+    let first = outcomes.iter().position(|o| o.1).ok_or(Error::NoAnswer(
+        "no escape found in the scanned range".into(),
+    ))?;
     let interval = outcomes[first..].iter().all(|o| o.1);
     Ok((first, interval, outcomes))
 }
@@ -249,15 +248,17 @@ fn escape_scan_top(xi0: f64) -> f64 {
 /// Largest ξ0 whose escape speed can be sought: the scan's speeds stay ≤ [`Initial::MAX`].
 pub const MAX_ESCAPE_XI0: f64 = 4e11;
 
+/// Why [`MAX_ESCAPE_XI0`] (with [`Initial::MAX`] = 1e12).
+const ESCAPE_XI0_WHY: &str = " for an escape speed (the scan reaches v0 = 2(1 + xi0) + 2 ≤ 1e12)";
+
 /// Whether [`escape_speed`] accepts `xi0` (so that a command can refuse it before any run).
 pub fn check_escape_xi0(xi0: f64) -> Result<(), Error> {
     Initial::velocity(xi0, 0.0, 0.0).validate()?;
     if xi0 > MAX_ESCAPE_XI0 {
-        return Err(Error::invalid(format!(
-            "xi0 must be ≤ {MAX_ESCAPE_XI0:e} for an escape speed (the scan reaches v0 = 2(1 + xi0) + 2 ≤ {:e}), got {}",
-            Initial::MAX,
-            Initial::show(xi0)
-        )));
+        return Err(Error::Invalid(Invalid {
+            why: ESCAPE_XI0_WHY,
+            ..Invalid::new(Field::Xi0, xi0, Range::AtMost(MAX_ESCAPE_XI0))
+        }));
     }
     Ok(())
 }
@@ -290,11 +291,11 @@ pub fn escape_speed_until(
     go_on: GoOn,
 ) -> Result<Threshold, Error> {
     if !(tol.is_finite() && tol > 0.0) {
-        return Err(Error::invalid(format!("tol must be > 0, got {tol}")));
+        return Err(Error::invalid(Field::Bracket, tol, Range::Above(0.0)));
     }
     Initial::velocity(xi0, phi, 0.0).validate()?;
     if !settings.method().stick_events() {
-        return Err(Error::invalid(format!(
+        return Err(Error::refused(format!(
             "the escape speed needs stick events: {} never comes to rest",
             settings.method()
         )));
@@ -344,7 +345,7 @@ pub fn escape_speed_until(
             (true, _) if i > 1 => i -= 1,
             (false, false) if i + 1 < grid.len() => i += 1,
             _ => {
-                return Err(Error::Failed(
+                return Err(Error::NoAnswer(
                     "the escape speed could not be bracketed".into(),
                 ));
             }
@@ -505,7 +506,7 @@ pub fn critical_radius_until(
     let grid: Vec<f64> = (0..=30).map(|i| 1.5 * i as f64 / 30.0).collect();
     let (first, interval, scanned) = scan(&grid, &mut classify)?;
     if first == 0 {
-        return Err(Error::Failed(
+        return Err(Error::NoAnswer(
             "released at rest in the lab at the centre, the particle escaped".into(),
         ));
     }

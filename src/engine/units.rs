@@ -15,8 +15,11 @@ pub struct Units {
     pub g: f64,
 }
 
+/// Gravity unless a scene, the configuration or a flag says otherwise (m/s²).
+pub const G_DEFAULT: f64 = 9.81;
+
 fn default_g() -> f64 {
-    9.81
+    G_DEFAULT
 }
 
 impl Units {
@@ -27,15 +30,13 @@ impl Units {
 
     /// Checks the values: μ in [1e-6, 10], rpm in [1e-6, 1e6], g in [1e-6, 1e4] (m/s²).
     pub fn new(mu: f64, rpm: f64, g: f64) -> Result<Units, Error> {
-        for (name, x, max) in [("mu", mu, 10.0), ("rpm", rpm, 1e6), ("g", g, 1e4)] {
-            if !(x.is_finite() && (Self::MIN..=max).contains(&x)) {
-                return Err(Error::invalid(format!(
-                    "{name} must lie in [{}, {}], got {}",
-                    Initial::show(Self::MIN),
-                    Initial::show(max),
-                    Initial::show(x)
-                )));
-            }
+        use super::error::{Field, Range, check};
+        for (field, x, max) in [
+            (Field::Mu, mu, 10.0),
+            (Field::Rpm, rpm, 1e6),
+            (Field::G, g, 1e4),
+        ] {
+            check(field, x, Range::Within(Self::MIN, max))?;
         }
         Ok(Units { mu, rpm, g })
     }

@@ -8,8 +8,7 @@
 use crossterm::event::{Event, MouseEventKind};
 use std::time::{Duration, Instant};
 
-/// The app's clock rate: each tick is `TICK_DT × speed` of sim time.
-pub const TICKS_PER_SECOND: u32 = 30;
+use crate::app::TICKS_PER_SECOND;
 /// Ticks caught up at once: more than a wait for an answer (2 s) or the first screen over a
 /// 4 KB/s link (4 s). A longer gap is a stall (a stopped process, a slow machine), and its
 /// time is dropped rather than integrated in one burst.

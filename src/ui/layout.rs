@@ -6,7 +6,7 @@ use ratatui::layout::{Constraint, Layout, Rect};
 /// Below this the explorer shows a "too small" notice instead.
 pub const MIN_SIZE: (u16, u16) = (40, 12);
 /// Width of the readout panel beside the picture (wide terminals).
-pub use crate::app::state::PANEL_W;
+pub const PANEL_W: u16 = 30;
 /// Below this width the panel goes under the picture rather than beside it.
 pub const WIDE: u16 = 60;
 /// Rows of the panel under the picture on a narrow terminal at most (every readout of a

@@ -610,7 +610,7 @@ fn rest_radius(f: &mut TuiFrame, area: Rect, app: &App) {
     // With SI units on, the table's Ω and g (o/O turn the table).
     let (omega, g) = app
         .units
-        .map_or((app.mu_probe.0, crate::app::G_DEFAULT), |u| {
+        .map_or((app.mu_probe.0, crate::engine::units::G_DEFAULT), |u| {
             (u.omega(), u.g)
         });
     let r0c = app.mu_probe.1;

@@ -47,6 +47,111 @@ fn offenders(needle: &str, allowed: &[&str]) -> Vec<String> {
     found
 }
 
+/// The string literals in Rust source `code` (comments and char literals skipped), raw or not,
+/// as written between their quotes.
+fn string_literals(code: &str) -> Vec<String> {
+    let c: Vec<char> = code.chars().collect();
+    let mut out = vec![];
+    let mut i = 0;
+    while i < c.len() {
+        match c[i] {
+            '/' if c.get(i + 1) == Some(&'/') => {
+                while i < c.len() && c[i] != '\n' {
+                    i += 1;
+                }
+            }
+            '/' if c.get(i + 1) == Some(&'*') => {
+                i += 2;
+                while i + 1 < c.len() && !(c[i] == '*' && c[i + 1] == '/') {
+                    i += 1;
+                }
+                i += 2;
+            }
+            // A char literal ('"', '\'', 'x'); else a lifetime.
+            '\'' if c.get(i + 1) == Some(&'\\') => {
+                i += 2;
+                while i < c.len() && c[i] != '\'' {
+                    i += 1;
+                }
+                i += 1;
+            }
+            '\'' if c.get(i + 2) == Some(&'\'') => i += 3,
+            'r' if (i == 0 || !(c[i - 1].is_alphanumeric() || c[i - 1] == '_'))
+                && matches!(c.get(i + 1), Some('"' | '#')) =>
+            {
+                let mut j = i + 1;
+                while c.get(j) == Some(&'#') {
+                    j += 1;
+                }
+                if c.get(j) != Some(&'"') {
+                    i += 1;
+                    continue;
+                }
+                let hashes = j - i - 1;
+                let start = j + 1;
+                let mut k = start;
+                while k < c.len()
+                    && !(c[k] == '"' && (1..=hashes).all(|h| c.get(k + h) == Some(&'#')))
+                {
+                    k += 1;
+                }
+                out.push(c[start..k.min(c.len())].iter().collect());
+                i = k + 1 + hashes;
+            }
+            '"' => {
+                let start = i + 1;
+                let mut k = start;
+                while k < c.len() && c[k] != '"' {
+                    k += if c[k] == '\\' { 2 } else { 1 };
+                }
+                out.push(c[start..k.min(c.len())].iter().collect());
+                i = k + 1;
+            }
+            _ => i += 1,
+        }
+    }
+    out
+}
+
+/// The engine knows values by what they are (`Field`), never by a command-line flag: no
+/// string in it (its tests' too) holds `--name` or `--{name}`; the CLI names the flag.
+#[test]
+fn the_engine_names_no_flag() {
+    let flag = |s: &str| {
+        s.match_indices("--").any(|(at, _)| {
+            s[at + 2..]
+                .chars()
+                .next()
+                .is_some_and(|ch| ch.is_ascii_lowercase() || ch == '{')
+        })
+    };
+    assert!(flag("raise --max-steps") && flag("--{name}") && !flag("a -- b"));
+    let found = string_literals("let a = '\"'; // \"--x\"\n f(r#\"--y\"#, \"b\\\"--z\", 'a')");
+    assert_eq!(found, ["--y", "b\\\"--z"]);
+    let mut bad = vec![];
+    let root = src().join("engine");
+    let mut files = vec![];
+    let mut dirs = vec![root];
+    while let Some(d) = dirs.pop() {
+        for entry in std::fs::read_dir(d).unwrap() {
+            let path = entry.unwrap().path();
+            if path.is_dir() {
+                dirs.push(path);
+            } else if path.extension().is_some_and(|e| e == "rs") {
+                files.push(path);
+            }
+        }
+    }
+    assert!(files.len() > 10, "{files:?}");
+    for path in files {
+        let text = std::fs::read_to_string(&path).unwrap();
+        for s in string_literals(&text).into_iter().filter(|s| flag(s)) {
+            bad.push(format!("{}: {s:?}", path.display()));
+        }
+    }
+    assert!(bad.is_empty(), "{}", bad.join("\n"));
+}
+
 #[test]
 fn the_engine_depends_on_nothing_else_in_the_crate() {
     let mut bad = vec![];

@@ -73,9 +73,7 @@ impl Outcome {
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum RunError {
     /// The step budget ran out before the run ended.
-    #[error(
-        "step budget of {steps} steps exhausted at tau = {tau:.6} (raise --max-steps, lower --tau-max, or use a larger dt / looser tol)"
-    )]
+    #[error("step budget of {steps} steps exhausted at tau = {tau:.6}")]
     Budget { steps: u64, tau: f64 },
     /// dp54 could not meet the tolerance with a representable step.
     #[error("step size underflow at tau = {tau:.6}: the tolerance cannot be met")]
@@ -86,7 +84,7 @@ pub enum RunError {
     OutOfRange { tau: f64, from: f64, to: f64 },
     /// A closed form's position left f64's range (Stokes drag grows exponentially).
     #[error(
-        "the position overflows at tau = {tau:.6}: the particle is beyond any representable distance (lower --tau-max)"
+        "the position overflows at tau = {tau:.6}: the particle is beyond any representable distance"
     )]
     Overflow { tau: f64 },
 }
