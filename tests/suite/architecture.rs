@@ -328,10 +328,6 @@ const KNOWN: &[(&str, &str)] = &[
     // page as a figure: each page is described twice (item 3).
     ("figure", "ui"),
     ("ui", "figure"),
-    // A replay records an asciicast through the terminal's writer, which replays scripts.
-    ("asciicast", "terminal"),
-    ("terminal", "replay"),
-    ("replay", "asciicast"),
 ];
 
 /// Which room `rel` (a path under src/) is in.
