@@ -8,7 +8,7 @@ use ratatui::Frame as TuiFrame;
 use ratatui::layout::Rect;
 use ratatui::style::{Color, Style};
 use ratatui::text::{Line, Span};
-use ratatui::widgets::canvas::{Canvas, Line as Seg, Points};
+use ratatui::widgets::canvas::{Canvas, Context, Line as Seg, Points};
 use ratatui::widgets::{Block, Borders, Paragraph};
 use unicode_width::UnicodeWidthStr;
 
@@ -199,10 +199,37 @@ pub fn render_bare(
 ) -> Option<Rect> {
     let (x, y) = (sane(chart.x), sane(chart.y));
     let (plot, gutter, yt) = layout(inner, chart, x_axis, min_gutter)?;
-    let ylabels: Vec<String> = yt.iter().map(|v| tick_label(*v)).collect();
+    legend(f, inner, th, chart);
+    let rows = Rows { y, h: plot.height };
+    y_ticks(f, inner, plot, gutter, th, &yt, rows);
+    if x_axis {
+        x_ticks(f, inner, plot, th, chart, x);
+    }
+    // One terminal column in x units.
+    let col = (x[1] - x[0]) / f64::from(plot.width.max(1));
+    let canvas = Canvas::default()
+        .marker(th.marker)
+        .x_bounds(x)
+        .y_bounds(y)
+        .paint(|ctx| {
+            for m in &chart.marks {
+                if let Mark::VLine { x: mx, color, .. } = m {
+                    ctx.draw(&Seg::new(*mx, y[0], *mx, y[1], *color));
+                }
+            }
+            ctx.layer();
+            paint_series(ctx, &chart.series);
+            ctx.layer();
+            paint_labels(ctx, &chart.marks, x, rows, col);
+        });
+    f.render_widget(canvas, plot);
+    Some(plot)
+}
+
+/// The legend: every series and mark by name, in its colour, after the y axis name. A name
+/// that does not fit is left out whole.
+fn legend(f: &mut TuiFrame, inner: Rect, th: &Theme, chart: &Chart) {
     let muted = Style::default().fg(th.muted);
-    // Legend: every series and mark by name, in its colour, after the y axis name.
-    // A name that does not fit is left out whole.
     let mut legend = vec![Span::styled(format!("{} ", chart.y_label), muted)];
     let mut used = legend[0].width();
     for s in chart.series.iter().filter(|s| !s.name.is_empty()) {
@@ -218,17 +245,29 @@ pub fn render_bare(
         Paragraph::new(Line::from(legend)),
         Rect { height: 1, ..inner },
     );
-    // The row a value's braille dot falls in (the canvas maps y to dot rows 0..4h − 1, top
-    // down, by truncation): tick labels and text marks go on it, so that they sit beside
-    // their curve rather than a row off.
-    let h = plot.height;
-    let dot_row = move |v: f64| -> u16 {
+}
+
+/// The plot's rows for y values over `y` on `h` rows.
+#[derive(Clone, Copy)]
+struct Rows {
+    y: [f64; 2],
+    h: u16,
+}
+
+impl Rows {
+    /// The row a value's braille dot falls in (the canvas maps y to dot rows 0..4h − 1, top
+    /// down, by truncation): tick labels and text marks go on it, so that they sit beside
+    /// their curve rather than a row off.
+    fn dot_row(self, v: f64) -> u16 {
+        let (y, h) = (self.y, self.h);
         let d = ((y[1] - v) / (y[1] - y[0]) * (4.0 * f64::from(h) - 1.0)).max(0.0);
         ((d as u32 / 4) as u16).min(h - 1)
-    };
-    // A y at which the canvas prints text on row `r` (it puts text at row
-    // ⌊(y1 − y)/(y1 − y0)·(h − 1)⌋).
-    let text_y_of_row = move |r: i64| {
+    }
+
+    /// A y at which the canvas prints text on row `r` (it puts text at row
+    /// ⌊(y1 − y)/(y1 − y0)·(h − 1)⌋).
+    fn text_y(self, r: i64) -> f64 {
+        let (y, h) = (self.y, self.h);
         if h > 1 {
             // The middle of the row, or the bottom edge for the last (text below y0 is dropped).
             let k = (r as f64 + 0.5).min(f64::from(h - 1));
@@ -236,20 +275,34 @@ pub fn render_bare(
         } else {
             y[1]
         }
-    };
-    let to_row = |v: f64| plot.y + dot_row(v);
-    for (v, l) in yt.iter().zip(&ylabels) {
-        let r = Rect::new(inner.x, to_row(*v), gutter - 1, 1);
+    }
+}
+
+/// The y ticks' labels, right-aligned in the gutter on their values' rows.
+fn y_ticks(
+    f: &mut TuiFrame,
+    inner: Rect,
+    plot: Rect,
+    gutter: u16,
+    th: &Theme,
+    yt: &[f64],
+    rows: Rows,
+) {
+    let muted = Style::default().fg(th.muted);
+    for v in yt {
+        let r = Rect::new(inner.x, plot.y + rows.dot_row(*v), gutter - 1, 1);
         f.render_widget(
-            Paragraph::new(Span::styled(l.clone(), muted)).right_aligned(),
+            Paragraph::new(Span::styled(tick_label(*v), muted)).right_aligned(),
             r,
         );
     }
-    let xt = if x_axis {
-        ticks(x[0], x[1], (plot.width as usize / 10).clamp(1, 8))
-    } else {
-        Vec::new()
-    };
+}
+
+/// The x ticks under the plot (none overlapping), and below them the note and the x axis
+/// name.
+fn x_ticks(f: &mut TuiFrame, inner: Rect, plot: Rect, th: &Theme, chart: &Chart, x: [f64; 2]) {
+    let muted = Style::default().fg(th.muted);
+    let xt = ticks(x[0], x[1], (plot.width as usize / 10).clamp(1, 8));
     let axis_row = plot.y + plot.height;
     let mut taken = 0u16;
     for v in xt {
@@ -270,137 +323,138 @@ pub fn render_bare(
             Rect::new(start, axis_row, w.min(plot.right() - start), 1),
         );
     }
-    if x_axis {
-        let row = Rect::new(inner.x, axis_row + 1, inner.width, 1);
-        // The axis name's fields first, then the note's that still fit beside it.
-        let x_label = fit(&chart.x_label, "  ", usize::from(plot.width));
-        let room = usize::from(inner.width).saturating_sub(x_label.width() + 1);
-        let note = fit(&chart.note, ", ", room);
-        f.render_widget(
-            Paragraph::new(Line::from(vec![Span::styled(
-                note,
-                Style::default().fg(th.foreground),
-            )])),
-            row,
-        );
-        f.render_widget(
-            Paragraph::new(Span::styled(x_label, muted)).right_aligned(),
-            Rect::new(plot.x, axis_row + 1, plot.width, 1),
-        );
+    let row = Rect::new(inner.x, axis_row + 1, inner.width, 1);
+    // The axis name's fields first, then the note's that still fit beside it.
+    let x_label = fit(&chart.x_label, "  ", usize::from(plot.width));
+    let room = usize::from(inner.width).saturating_sub(x_label.width() + 1);
+    let note = fit(&chart.note, ", ", room);
+    f.render_widget(
+        Paragraph::new(Line::from(vec![Span::styled(
+            note,
+            Style::default().fg(th.foreground),
+        )])),
+        row,
+    );
+    f.render_widget(
+        Paragraph::new(Span::styled(x_label, muted)).right_aligned(),
+        Rect::new(plot.x, axis_row + 1, plot.width, 1),
+    );
+}
+
+/// The series: lines (a gap where a value is not finite) or dots.
+fn paint_series(ctx: &mut Context, series: &[Series]) {
+    for s in series {
+        if s.joined {
+            for w in s.points.windows(2) {
+                let ((x1, y1), (x2, y2)) = (w[0], w[1]);
+                if [x1, y1, x2, y2].iter().all(|v| v.is_finite()) {
+                    ctx.draw(&Seg::new(x1, y1, x2, y2, s.color));
+                }
+            }
+        } else {
+            ctx.draw(&Points {
+                coords: &s.points,
+                color: s.color,
+            });
+        }
     }
-    // One terminal column in x units.
-    let col = (x[1] - x[0]) / f64::from(plot.width.max(1));
-    let canvas = Canvas::default()
-        .marker(th.marker)
-        .x_bounds(x)
-        .y_bounds(y)
-        .paint(|ctx| {
-            for m in &chart.marks {
-                if let Mark::VLine { x: mx, color, .. } = m {
-                    ctx.draw(&Seg::new(*mx, y[0], *mx, y[1], *color));
-                }
+}
+
+/// The spans of the plot labels take: (left, right, row), in x units.
+struct Taken {
+    rows: i64,
+    spans: Vec<(f64, f64, i64)>,
+}
+
+impl Taken {
+    /// The first of `tries` (rows) where `w` from `a` is free, else the first; taken.
+    fn place(&mut self, a: f64, w: f64, tries: &mut dyn Iterator<Item = i64>) -> i64 {
+        let first = tries.next().unwrap_or(0);
+        let rows = self.rows;
+        let free = |r: i64, t: &[(f64, f64, i64)]| {
+            (0..rows).contains(&r)
+                && !t
+                    .iter()
+                    .any(|&(x0, x1, rr)| rr == r && a < x1 && x0 < a + w)
+        };
+        let r = std::iter::once(first)
+            .chain(tries)
+            .find(|&r| free(r, &self.spans))
+            .unwrap_or(first);
+        self.spans.push((a, a + w, r));
+        r
+    }
+}
+
+/// The marks' dots and labels. Labels never overwrite one another: line labels go along the
+/// top, a row lower where the row is taken; a point keeps its dot and its words move a row up
+/// or down if they must. The last marks (the release) are placed first.
+fn paint_labels(ctx: &mut Context, marks: &[Mark], x: [f64; 2], rows: Rows, col: f64) {
+    let at_row = |r: i64| rows.text_y(r);
+    let mut taken = Taken {
+        rows: i64::from(rows.h),
+        spans: Vec::new(),
+    };
+    // The points' dots first: words go around them.
+    for m in marks {
+        if let Mark::Point {
+            x: px,
+            y: py,
+            color,
+            ..
+        } = *m
+        {
+            let r0 = i64::from(rows.dot_row(py));
+            taken.place(px, col, &mut std::iter::once(r0));
+            ctx.print(
+                px,
+                at_row(r0),
+                Span::styled("●", Style::default().fg(color)),
+            );
+        }
+    }
+    for m in marks.iter().rev() {
+        let (label, color) = match m {
+            Mark::VLine { label, color, .. }
+            | Mark::Text { label, color, .. }
+            | Mark::Point { label, color, .. } => (label, *color),
+        };
+        let style = Style::default().fg(color);
+        // Whole words only, as many as the wider side of a point has room for.
+        let label = match *m {
+            Mark::Point { x: px, .. } => {
+                let side = (x[1] - px - col).max(px - x[0]) / col;
+                fit_label(label, (side.max(0.0) as usize).saturating_sub(1))
             }
-            ctx.layer();
-            for s in &chart.series {
-                if s.joined {
-                    for w in s.points.windows(2) {
-                        let ((x1, y1), (x2, y2)) = (w[0], w[1]);
-                        if [x1, y1, x2, y2].iter().all(|v| v.is_finite()) {
-                            ctx.draw(&Seg::new(x1, y1, x2, y2, s.color));
-                        }
-                    }
+            _ => label.clone(),
+        };
+        let w = (label.width() + 1) as f64 * col;
+        match *m {
+            Mark::VLine { x: mx, .. } => {
+                // Right of the line, or left of it in the right half.
+                let a = if mx > 0.5 * (x[0] + x[1]) {
+                    mx - w
                 } else {
-                    ctx.draw(&Points {
-                        coords: &s.points,
-                        color: s.color,
-                    });
-                }
-            }
-            ctx.layer();
-            // Labels never overwrite one another: line labels go along the top, a row lower
-            // where the row is taken; a point keeps its dot and its words move a row up or
-            // down if they must. The last marks (the release) are placed first.
-            let rows = i64::from(h);
-            let at_row = |r: i64| text_y_of_row(r);
-            let mut taken: Vec<(f64, f64, i64)> = Vec::new();
-            let mut place = |a: f64, w: f64, tries: &mut dyn Iterator<Item = i64>| {
-                let first = tries.next().unwrap_or(0);
-                let free = |r: i64, t: &[(f64, f64, i64)]| {
-                    (0..rows).contains(&r)
-                        && !t
-                            .iter()
-                            .any(|&(x0, x1, rr)| rr == r && a < x1 && x0 < a + w)
+                    mx + col
                 };
-                let r = std::iter::once(first)
-                    .chain(tries)
-                    .find(|&r| free(r, &taken))
-                    .unwrap_or(first);
-                taken.push((a, a + w, r));
-                r
-            };
-            // The points' dots first: words go around them.
-            for m in &chart.marks {
-                if let Mark::Point {
-                    x: px,
-                    y: py,
-                    color,
-                    ..
-                } = *m
-                {
-                    let r0 = i64::from(dot_row(py));
-                    place(px, col, &mut std::iter::once(r0));
-                    ctx.print(
-                        px,
-                        at_row(r0),
-                        Span::styled("●", Style::default().fg(color)),
-                    );
-                }
+                let r = taken.place(a, w, &mut (0..taken.rows));
+                ctx.print(a, at_row(r), Span::styled(label.clone(), style));
             }
-            for m in chart.marks.iter().rev() {
-                let (label, color) = match m {
-                    Mark::VLine { label, color, .. }
-                    | Mark::Text { label, color, .. }
-                    | Mark::Point { label, color, .. } => (label, *color),
+            Mark::Point { x: px, y: py, .. } | Mark::Text { x: px, y: py, .. } => {
+                let r0 = i64::from(rows.dot_row(py));
+                // A point's words right of its dot, or left of it when they would run
+                // past the plot's edge (never cut).
+                let a = match m {
+                    Mark::Point { .. } if px + col + w > x[1] && px - w >= x[0] => px - w,
+                    Mark::Point { .. } => px + col,
+                    // Text that would run past the plot's right edge ends there.
+                    _ => px.min(x[1] - w).max(x[0]),
                 };
-                let style = Style::default().fg(color);
-                // Whole words only, as many as the wider side of a point has room for.
-                let label = match *m {
-                    Mark::Point { x: px, .. } => {
-                        let side = (x[1] - px - col).max(px - x[0]) / col;
-                        fit_label(label, (side.max(0.0) as usize).saturating_sub(1))
-                    }
-                    _ => label.clone(),
-                };
-                let w = (label.width() + 1) as f64 * col;
-                match *m {
-                    Mark::VLine { x: mx, .. } => {
-                        // Right of the line, or left of it in the right half.
-                        let a = if mx > 0.5 * (x[0] + x[1]) {
-                            mx - w
-                        } else {
-                            mx + col
-                        };
-                        let r = place(a, w, &mut (0..rows));
-                        ctx.print(a, at_row(r), Span::styled(label.clone(), style));
-                    }
-                    Mark::Point { x: px, y: py, .. } | Mark::Text { x: px, y: py, .. } => {
-                        let r0 = i64::from(dot_row(py));
-                        // A point's words right of its dot, or left of it when they would run
-                        // past the plot's edge (never cut).
-                        let a = match m {
-                            Mark::Point { .. } if px + col + w > x[1] && px - w >= x[0] => px - w,
-                            Mark::Point { .. } => px + col,
-                            // Text that would run past the plot's right edge ends there.
-                            _ => px.min(x[1] - w).max(x[0]),
-                        };
-                        let r = place(a, w, &mut [r0, r0 - 1, r0 + 1, r0 - 2, r0 + 2].into_iter());
-                        ctx.print(a, at_row(r), Span::styled(label.clone(), style));
-                    }
-                }
+                let r = taken.place(a, w, &mut [r0, r0 - 1, r0 + 1, r0 - 2, r0 + 2].into_iter());
+                ctx.print(a, at_row(r), Span::styled(label.clone(), style));
             }
-        });
-    f.render_widget(canvas, plot);
-    Some(plot)
+        }
+    }
 }
 
 #[cfg(test)]
