@@ -12,6 +12,10 @@ use crate::engine::{Certificate, CouplingName, Frame, Method, Outcome, Run, Sett
 use serde::Serialize;
 use std::fmt::Write as _;
 
+mod threshold;
+
+pub use threshold::*;
+
 /// A command's report: its fields are its JSON; this is its plain output.
 pub trait Report {
     fn text(&self) -> String;
@@ -273,7 +277,42 @@ impl RunReport {
 
 impl Report for RunReport {
     fn text(&self) -> String {
-        let how = match (self.outcome, self.certificate) {
+        let (how, cost, check) = (self.how(), self.cost(), self.check());
+        let mut text = format!(
+            "outcome  {how}\n{check}tau      {:.9}\nxi       {:.12}\nangle    {:.12} rad in [0, 2pi) (table frame, ccw from the release direction)\n|u|      {:.3e}\ncost     {cost}\n",
+            self.tau, self.xi, self.angle, self.speed,
+        );
+        if let Some(r) = self.mu_static_ratio.filter(|&r| r != 1.0) {
+            let _ = writeln!(
+                text,
+                "static   mu_s/mu_k = {r}: at rest it holds out to xi = {r}, slides at mu_k"
+            );
+        }
+        if let Some(b) = &self.body {
+            text.push_str(&b.text());
+        }
+        if let Some(u) = &self.units {
+            let _ = writeln!(
+                text,
+                "SI       tau = {}, xi = {}, |u| = {:.3e} m/s (mu {}, {} rpm, g {}: R_max = {}, 1/Omega = {})",
+                show_time(u.tau_s),
+                show_length(u.xi_m),
+                u.speed_m_s,
+                u.mu,
+                u.rpm,
+                u.g,
+                show_length(u.R_max_m),
+                show_time(u.T_s)
+            );
+        }
+        text
+    }
+}
+
+impl RunReport {
+    /// How the run ended, in words.
+    fn how(&self) -> String {
+        match (self.outcome, self.certificate) {
             (Outcome::Stuck, _) => "stuck: at rest on the table from tau on".to_string(),
             (Outcome::Escaped, Some(by)) => {
                 format!("escaped: certified at tau ({})", by.describe())
@@ -282,8 +321,12 @@ impl Report for RunReport {
                 "running: not yet certified to leave at tau-max".to_string()
             }
             _ => "running: still slipping at tau-max".to_string(),
-        };
-        let cost = if self.frictionless {
+        }
+    }
+
+    /// What the run cost: closed forms, or its steps and evaluations.
+    fn cost(&self) -> String {
+        if self.frictionless {
             "closed form, 0 rhs evaluations (mu = 0: a straight line in the lab)".to_string()
         } else if let (Some(gamma), Some(rate)) = (self.gamma, self.growth_rate) {
             format!(
@@ -300,8 +343,12 @@ growth   {rate:.12}  (Re lambda+: every release leaves as e^(rate tau) but those
                 "{} steps, {} rejected, {} rhs evaluations ({} {knob})",
                 self.steps, self.rejected, self.rhs_evals, self.method
             )
-        };
-        let check = match (&self.check, self.certain) {
+        }
+    }
+
+    /// The second opinion's line, if one was asked for (with its newline).
+    fn check(&self) -> String {
+        match (&self.check, self.certain) {
             (Some(_), Some(true)) if self.gamma.is_some() => {
                 "check    closed form (Stokes drag): no integration error to check\n".to_string()
             }
@@ -325,287 +372,74 @@ growth   {rate:.12}  (Re lambda+: every release leaves as e^(rate tau) but those
                 c.outcome.map_or("out of budget", |o| o.name())
             ),
             _ => String::new(),
-        };
-        let mut text = format!(
-            "outcome  {how}\n{check}tau      {:.9}\nxi       {:.12}\nangle    {:.12} rad in [0, 2pi) (table frame, ccw from the release direction)\n|u|      {:.3e}\ncost     {cost}\n",
-            self.tau, self.xi, self.angle, self.speed,
-        );
-        if let Some(r) = self.mu_static_ratio.filter(|&r| r != 1.0) {
-            let _ = writeln!(
-                text,
-                "static   mu_s/mu_k = {r}: at rest it holds out to xi = {r}, slides at mu_k"
-            );
         }
-        if let Some(b) = &self.body {
-            let topple = match (b.mu_h_over_l, b.height) {
-                (Some(t), _) if b.mu_assumed => format!("mu h/L <= {t:.3e} (mu_k <= 1 assumed)"),
-                (Some(t), _) => format!("mu h/L = {t:.3e}"),
-                (None, None) => "no height given".into(),
-                (None, Some(_)) => "toppling not judged under Stokes drag".into(),
-            };
-            let rot = b
-                .l_over_xi
-                .map_or("L/xi infinite (at the centre)".into(), |r| {
-                    format!("L/xi = {r:.3e}")
-                });
-            let verdict = if b.point_ok {
-                "both << 1 (<= 0.1): a point"
-            } else {
-                "not both << 1 (<= 0.1): the point model is out of its depth"
-            };
-            let si = |x: f64, m: Option<f64>| match m {
-                Some(m) => format!("{x} ({})", show_length(m)),
-                None => format!("{x}"),
-            };
-            let size = match b.height {
-                Some(h) => format!(
-                    "L = {}, h = {}",
-                    si(b.length, b.length_m),
-                    si(h, b.height_m.flatten())
-                ),
-                None => format!("L = {}", si(b.length, b.length_m)),
-            };
+    }
+}
+
+impl BodyReport {
+    /// The body's lines of `run`'s text: its size and the two conditions at the end, and the
+    /// two-mass body's run with its check.
+    fn text(&self) -> String {
+        let b = self;
+        let mut text = String::new();
+        let topple = match (b.mu_h_over_l, b.height) {
+            (Some(t), _) if b.mu_assumed => format!("mu h/L <= {t:.3e} (mu_k <= 1 assumed)"),
+            (Some(t), _) => format!("mu h/L = {t:.3e}"),
+            (None, None) => "no height given".into(),
+            (None, Some(_)) => "toppling not judged under Stokes drag".into(),
+        };
+        let rot = b
+            .l_over_xi
+            .map_or("L/xi infinite (at the centre)".into(), |r| {
+                format!("L/xi = {r:.3e}")
+            });
+        let verdict = if b.point_ok {
+            "both << 1 (<= 0.1): a point"
+        } else {
+            "not both << 1 (<= 0.1): the point model is out of its depth"
+        };
+        let si = |x: f64, m: Option<f64>| match m {
+            Some(m) => format!("{x} ({})", show_length(m)),
+            None => format!("{x}"),
+        };
+        let size = match b.height {
+            Some(h) => format!(
+                "L = {}, h = {}",
+                si(b.length, b.length_m),
+                si(h, b.height_m.flatten())
+            ),
+            None => format!("L = {}", si(b.length, b.length_m)),
+        };
+        let _ = writeln!(
+            text,
+            "body     {size}: {topple}, {rot} at the end; {verdict}"
+        );
+        if let Some(m) = &b.motion {
             let _ = writeln!(
                 text,
-                "body     {size}: {topple}, {rot} at the end; {verdict}"
+                "rod      the two-mass body: {} at tau {:.9}, xi {:.12}, rod at psi {:.6} ({} steps)",
+                m.outcome.name(),
+                m.tau,
+                m.xi,
+                m.psi,
+                m.steps
             );
-            if let Some(m) = &b.motion {
+            if let Some(c) = &m.check {
+                let e = |x: Option<f64>| x.map_or("-".into(), |x| format!("{x:.1e}"));
                 let _ = writeln!(
                     text,
-                    "rod      the two-mass body: {} at tau {:.9}, xi {:.12}, rod at psi {:.6} ({} steps)",
-                    m.outcome.name(),
-                    m.tau,
-                    m.xi,
-                    m.psi,
-                    m.steps
+                    "rod      at tol {:e}: {}; the centre {} away, psi {}, tau {} (not independent: the same integrator)",
+                    c.tol,
+                    match (c.outcome, &c.failed) {
+                        (Some(o), _) if c.agrees => format!("{} too", o.name()),
+                        (Some(o), _) => format!("{}, DISAGREES", o.name()),
+                        (None, f) => format!("failed ({})", f.as_deref().unwrap_or("")),
+                    },
+                    e(c.q_error),
+                    e(c.psi_error),
+                    e(c.tau_error)
                 );
-                if let Some(c) = &m.check {
-                    let e = |x: Option<f64>| x.map_or("-".into(), |x| format!("{x:.1e}"));
-                    let _ = writeln!(
-                        text,
-                        "rod      at tol {:e}: {}; the centre {} away, psi {}, tau {} (not independent: the same integrator)",
-                        c.tol,
-                        match (c.outcome, &c.failed) {
-                            (Some(o), _) if c.agrees => format!("{} too", o.name()),
-                            (Some(o), _) => format!("{}, DISAGREES", o.name()),
-                            (None, f) => format!("failed ({})", f.as_deref().unwrap_or("")),
-                        },
-                        e(c.q_error),
-                        e(c.psi_error),
-                        e(c.tau_error)
-                    );
-                }
             }
-        }
-        if let Some(u) = &self.units {
-            let _ = writeln!(
-                text,
-                "SI       tau = {}, xi = {}, |u| = {:.3e} m/s (mu {}, {} rpm, g {}: R_max = {}, 1/Omega = {})",
-                show_time(u.tau_s),
-                show_length(u.xi_m),
-                u.speed_m_s,
-                u.mu,
-                u.rpm,
-                u.g,
-                show_length(u.R_max_m),
-                show_time(u.T_s)
-            );
-        }
-        text
-    }
-}
-
-/// One run of a threshold's coarse scan.
-#[derive(Debug, Serialize)]
-pub struct ScanPoint {
-    pub v0: f64,
-    pub outcome: Outcome,
-}
-
-/// `escape --json`: the escape speed v_e(ξ0, φ) and how it was found.
-#[derive(Debug, Serialize)]
-pub struct EscapeReport {
-    pub xi0: f64,
-    pub phi: f64,
-    pub v_escape: f64,
-    pub stuck_at: Option<f64>,
-    pub escapes_at: f64,
-    pub interval: bool,
-    pub scan: Vec<ScanPoint>,
-    #[serde(flatten)]
-    pub solve: SolveReport,
-}
-
-/// `critical --json`: the critical radius ξ0c and, with `--omega --r0c`, μ by Eq. 22.
-#[derive(Debug, Serialize)]
-pub struct CriticalReport {
-    pub xi0c: f64,
-    pub stuck_at: Option<f64>,
-    pub escapes_at: f64,
-    pub interval: bool,
-    pub mu: Option<f64>,
-    #[serde(flatten)]
-    pub solve: SolveReport,
-}
-
-/// What a threshold search cost and what it can vouch for.
-#[derive(Debug, Serialize)]
-pub struct SolveReport {
-    /// μ_s/μ_k of the runs (1: the paper's).
-    pub mu_static_ratio: f64,
-    pub runs: u32,
-    pub rhs_evals: u64,
-    pub run_tol: Option<f64>,
-    /// How many times the search was run again tighter (said in the text only).
-    #[serde(skip)]
-    pub tightened: u32,
-    pub certified: Option<bool>,
-}
-
-impl SolveReport {
-    pub fn new(t: &Threshold, certified: Option<bool>, settings: &Settings) -> SolveReport {
-        SolveReport {
-            mu_static_ratio: settings.hold(),
-            runs: t.runs,
-            rhs_evals: t.rhs_evals,
-            run_tol: t.run_tol,
-            tightened: t.tightened,
-            certified,
-        }
-    }
-
-    fn text(&self) -> String {
-        let at = self
-            .run_tol
-            .map_or(String::new(), |tol| format!(" (runs at tol {tol:.0e})"));
-        let checked = match self.certified {
-            None => "",
-            Some(true) => {
-                "checked  certified: each end run in full ends as it says, and so does a run 1000x tighter in the other frame\n"
-            }
-            Some(false) => &format!(
-                "checked  NOT certified: an end of the bracket, run in full or by its second opinion, did not end as it says with a margin{}\n",
-                match self.tightened {
-                    0 => String::new(),
-                    n => format!(", even solved again with runs 10^{}x tighter", 2 * n),
-                }
-            ),
-        };
-        let hold = if self.mu_static_ratio == 1.0 {
-            String::new()
-        } else {
-            format!(
-                "static   mu_s/mu_k = {}: a particle at rest holds out to xi = {0}\n",
-                self.mu_static_ratio
-            )
-        };
-        format!(
-            "{hold}cost     {} runs, {} rhs evaluations{at}\n{checked}",
-            self.runs, self.rhs_evals
-        )
-    }
-}
-
-impl EscapeReport {
-    pub fn new(
-        xi0: f64,
-        phi: f64,
-        t: &Threshold,
-        certified: Option<bool>,
-        settings: &Settings,
-    ) -> EscapeReport {
-        EscapeReport {
-            xi0,
-            // + 0.0: −0 reads 0.
-            phi: turn_angle(phi) + 0.0,
-            v_escape: t.value,
-            stuck_at: t.stuck_at,
-            escapes_at: t.escapes_at,
-            interval: t.interval,
-            scan: t
-                .scan
-                .iter()
-                .map(|&(v0, e)| ScanPoint {
-                    v0,
-                    outcome: if e { Outcome::Escaped } else { Outcome::Stuck },
-                })
-                .collect(),
-            solve: SolveReport::new(t, certified, settings),
-        }
-    }
-
-    /// The scan as runs of equal outcome: "0 to 1.2 escape; 1.35 to 2.4 stick; …" (what is
-    /// known where the escaping values are not one interval).
-    fn scan_summary(&self) -> String {
-        let mut parts: Vec<String> = Vec::new();
-        for run in self.scan.chunk_by(|a, b| a.outcome == b.outcome) {
-            let (first, last) = (&run[0], &run[run.len() - 1]);
-            let range = if run.len() == 1 {
-                format!("{:.4}", first.v0)
-            } else {
-                format!("{:.4} to {:.4}", first.v0, last.v0)
-            };
-            let word = if first.outcome == Outcome::Escaped {
-                "escape"
-            } else {
-                "stick"
-            };
-            parts.push(format!("{range} {word}"));
-        }
-        parts.join("; ")
-    }
-}
-
-impl Report for EscapeReport {
-    fn text(&self) -> String {
-        let mut text = match self.stuck_at {
-            Some(lo) => format!(
-                "v_escape {:.10}  (the least escaping speed)\nbracket  stuck at {lo:.10}, escapes at {:.10}\n",
-                self.v_escape, self.escapes_at
-            ),
-            None => "v_escape 0  (released at rest on the table here, it already escapes)\n".into(),
-        };
-        text.push_str(&self.solve.text());
-        if !self.interval {
-            let _ = writeln!(
-                text,
-                "note     the escaping speeds are not one interval: some faster releases come to rest.\n         scanned v0: {}",
-                self.scan_summary()
-            );
-        }
-        text
-    }
-}
-
-impl CriticalReport {
-    pub fn new(
-        t: &Threshold,
-        certified: Option<bool>,
-        mu: Option<f64>,
-        settings: &Settings,
-    ) -> CriticalReport {
-        CriticalReport {
-            xi0c: t.value,
-            stuck_at: t.stuck_at,
-            escapes_at: t.escapes_at,
-            interval: t.interval,
-            mu,
-            solve: SolveReport::new(t, certified, settings),
-        }
-    }
-}
-
-impl Report for CriticalReport {
-    fn text(&self) -> String {
-        let mut text = format!(
-            "xi0c     {:.10}\nbracket  stuck at {:.10}, escapes at {:.10}\n{}",
-            self.xi0c,
-            self.stuck_at.unwrap_or(0.0),
-            self.escapes_at,
-            self.solve.text()
-        );
-        if let Some(mu) = self.mu {
-            let _ = writeln!(text, "mu       {mu:.6}  (Eq. 22: Omega² r0c / (xi0c g))");
         }
         text
     }
