@@ -1,6 +1,6 @@
 //! The report as a table and as braille work–precision charts.
 
-use super::{Report, Task};
+use super::{Report, Speed, Task};
 use crate::engine::Method;
 use crate::error::Error;
 use crate::theme::Theme;
@@ -8,6 +8,7 @@ use crate::ui::chart::{Chart, Mark, Series, extent, render};
 use crate::ui::export::plain_text;
 use ratatui::Terminal;
 use ratatui::backend::TestBackend;
+use std::fmt::Write as _;
 
 fn sci(x: f64) -> String {
     if x.is_nan() {
@@ -21,8 +22,19 @@ fn sci(x: f64) -> String {
 
 /// The aligned text table.
 pub fn table(r: &Report) -> String {
-    use std::fmt::Write as _;
     let mut o = String::new();
+    header(&mut o, r);
+    rows(&mut o, r);
+    savings(&mut o, r);
+    let _ = writeln!(o, "\nspeed goals (release build, this machine):");
+    speed_goals(&mut o, &r.speed);
+    comparisons(&mut o, r);
+    output_goals(&mut o, &r.speed);
+    o
+}
+
+/// What was run, and under what load.
+fn header(o: &mut String, r: &Report) {
     let _ = writeln!(
         o,
         "turntable bench ({}; {} random cases, seed {}; error = |Δposition| (rest: table frame), \
@@ -38,6 +50,10 @@ pub fn table(r: &Report) -> String {
             std::thread::available_parallelism().map_or(1, |n| n.get())
         );
     }
+}
+
+/// The reference's own agreement, then a row per task, method and setting.
+fn rows(o: &mut String, r: &Report) {
     let _ = writeln!(o, "\nreference and its own agreement:");
     for c in &r.reference {
         let _ = writeln!(
@@ -86,6 +102,10 @@ pub fn table(r: &Report) -> String {
             row.wall_ms
         );
     }
+}
+
+/// What modelling only what a scene requires saves.
+fn savings(o: &mut String, r: &Report) {
     let _ = writeln!(o, "\nmodel only what a scene requires (RHS evaluations):");
     for s in &r.savings {
         let factor = if (0.5..2.0).contains(&s.factor) {
@@ -104,8 +124,10 @@ pub fn table(r: &Report) -> String {
             s.what, s.baseline, s.baseline_evals, s.lean, s.lean_evals
         );
     }
-    let sp = &r.speed;
-    let _ = writeln!(o, "\nspeed goals (release build, this machine):");
+}
+
+/// The speed goals of the solvers, the pages and the sweeps.
+fn speed_goals(o: &mut String, sp: &Speed) {
     let _ = writeln!(
         o,
         "  escape speed to 1e-8 at (0.5, 0), dp54 tol=1e-10: {:.2} ms, {} RHS, v_e = {:.10}   {}",
@@ -167,6 +189,10 @@ pub fn table(r: &Report) -> String {
             );
         }
     }
+}
+
+/// dp54 against rk2 and dop853 against dp54, task by task.
+fn comparisons(o: &mut String, r: &Report) {
     if !r.ratios.is_empty() {
         let _ = writeln!(
             o,
@@ -210,6 +236,10 @@ pub fn table(r: &Report) -> String {
             );
         }
     }
+}
+
+/// The explorer's frame time, its output in bytes, a recording's bound and slow links.
+fn output_goals(o: &mut String, sp: &Speed) {
     let _ = writeln!(
         o,
         "  explorer frame at 160×48, {}-point trail, paper's run beside it (tick + draw): {:.2} ms   {}",
@@ -262,7 +292,6 @@ pub fn table(r: &Report) -> String {
             100.0 * l.time_kept
         );
     }
-    o
 }
 
 /// The letter that marks a method's points on a chart without colours.
