@@ -1,0 +1,109 @@
+//! The arrows at the particle: the forces in the frame shown (Sec. II), their sum and the
+//! velocity, scaled together and labelled at their heads.
+
+use crate::app::App;
+use crate::engine::Frame;
+use crate::engine::model::{coupled_forces, rotate};
+use glam::DVec2;
+use ratatui::style::Color;
+
+/// A force arrow as drawn: its label at the head (so it reads without colour), the word the
+/// legend uses, and the vector in world units of the frame shown.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ForceArrow {
+    pub label: &'static str,
+    pub word: &'static str,
+    pub vec: DVec2,
+    pub color: Color,
+}
+
+/// Share of the visible half-width the longest force arrow takes.
+pub const FORCE_SHARE: f64 = 0.2;
+
+/// The forces on the particle in the frame shown (Sec. II). In the lab, an inertial frame,
+/// only friction acts in the plane (gravity and the normal force cancel; at μ = 0 nothing
+/// does). In the rotating frame the fictitious Coriolis and centrifugal forces act too. All
+/// are scaled together so the longest is [`FORCE_SHARE`] of `half_width`.
+pub fn force_arrows(app: &App, half_width: f64) -> Vec<ForceArrow> {
+    forces(app, half_width).0
+}
+
+/// [`force_arrows`], and the net force at their scale (their sum: du/dτ in the rotating
+/// frame, dv/dτ in the lab).
+fn forces(app: &App, half_width: f64) -> (Vec<ForceArrow>, DVec2) {
+    let th = &app.theme;
+    let now = app.sim().now();
+    let [fr, co, ce] = coupled_forces(&now, app.initial().frictionless, app.settings().coupling);
+    let mut out = Vec::new();
+    let mut push = |label, word, vec: DVec2, color| {
+        if vec.length() > 0.0 {
+            out.push(ForceArrow {
+                label,
+                word,
+                vec,
+                color,
+            });
+        }
+    };
+    match app.view {
+        Frame::Lab => push("fr", "friction", rotate(fr, now.tau), th.friction),
+        Frame::Table => {
+            push("fr", "friction", fr, th.friction);
+            push("co", "Coriolis", co, th.coriolis);
+            push("cf", "centrifugal", ce, th.centrifugal);
+        }
+    }
+    let mut net: DVec2 = out.iter().map(|f| f.vec).sum();
+    let longest = out.iter().fold(0.0, |m: f64, f| m.max(f.vec.length()));
+    if longest > 0.0 {
+        let k = FORCE_SHARE * half_width / longest;
+        for f in &mut out {
+            f.vec *= k;
+        }
+        net *= k;
+    }
+    (out, net)
+}
+
+/// The arrows the canvas draws at the particle, each labelled at its head: the forces (`a`),
+/// the net force (`A`, at the forces' scale) and the velocity (`i`: relative to the table in
+/// the rotating frame, the lab velocity in the lab; `speed_scale` world units per unit speed,
+/// as the initial velocity's arrow). A zero vector is not drawn.
+pub fn arrows(app: &App, half_width: f64, speed_scale: f64) -> Vec<ForceArrow> {
+    let th = &app.theme;
+    let (mut out, net) = forces(app, half_width);
+    if !app.forces {
+        out.clear();
+    }
+    // Below this the sum is rounding: the forces balance (stuck).
+    let balanced = 1e-9 * half_width;
+    if app.net_force && net.length() > balanced {
+        out.push(ForceArrow {
+            label: "net",
+            word: "net force",
+            vec: net,
+            color: th.foreground,
+        });
+    }
+    if app.velocity {
+        let (label, word, v) = velocity(app);
+        if v.length() > 0.0 {
+            out.push(ForceArrow {
+                label,
+                word,
+                vec: v * speed_scale,
+                color: th.arrow,
+            });
+        }
+    }
+    out
+}
+
+/// The velocity the frame shown sees: `u` relative to the table (rotating), `v` (lab).
+pub fn velocity(app: &App) -> (&'static str, &'static str, DVec2) {
+    let now = app.sim().now();
+    match app.view {
+        Frame::Lab => ("v", "velocity (lab)", now.v),
+        Frame::Table => ("u", "velocity rel. table", now.u()),
+    }
+}
