@@ -14,6 +14,11 @@ use ratatui::text::{Line, Span};
 use ratatui::widgets::Paragraph;
 use std::f64::consts::PI;
 
+mod body;
+
+use body::body_lines;
+pub use body::{BodyNow, body_end, body_now, phase_word};
+
 pub use crate::present::num;
 
 /// A release speed: four decimals, up to six where they are not zeros (C's v0 = 0.6078 and
@@ -133,9 +138,56 @@ const XI_LINE: usize = 2;
 fn readouts(app: &App) -> (Vec<Line<'static>>, std::ops::Range<usize>, Option<usize>) {
     let th = &app.theme;
     let s = app.sim().now();
-    let i = &app.initial();
     let mut out: Vec<Line<'static>> = Vec::new();
-    let init = match i.release {
+    out.push(Line::from(Span::styled(
+        release(&app.initial()),
+        Style::default().fg(th.accent),
+    )));
+    motion_lines(app, &s, &mut out);
+    let (st, col) = status_text(app.sim(), th);
+    let status_start = out.len();
+    for l in st.lines() {
+        out.push(Line::from(Span::styled(
+            l.to_string(),
+            Style::default().fg(col).add_modifier(Modifier::BOLD),
+        )));
+    }
+    let status = status_start..out.len();
+    if let Some(u) = app.units {
+        table_lines(app, u, &mut out);
+    }
+    model_lines(app, &mut out);
+    let rod = app.scene().body.map(|b| body_lines(app, b, &s, &mut out));
+    cost_lines(app, &mut out);
+    if let Some(p) = &app.paper() {
+        let (st, col) = status_text(p, th);
+        out.push(Line::from(Span::styled(
+            "paper: rk2-raw dt=1e-3 ○",
+            Style::default().fg(th.accent),
+        )));
+        for l in st.lines() {
+            out.push(Line::from(Span::styled(
+                l.to_string(),
+                Style::default().fg(col),
+            )));
+        }
+        out.push(kv("  ξ", num(p.now().xi(), 5), th));
+    }
+    if !app.pins.is_empty() {
+        let names: Vec<String> = app
+            .pins
+            .iter()
+            .map(|p| format!("{}{}", p.marker, p.spec.label))
+            .collect();
+        out.push(kv("pins", names.join(" "), th));
+    }
+    arrow_legend(app, &mut out);
+    (out, status, rod)
+}
+
+/// The release, in the panel's first line.
+fn release(i: &crate::engine::Initial) -> String {
+    match i.release {
         crate::engine::Release::Velocity => format!(
             "ξ0 {} φ {}π v0 {}",
             num(i.xi0, 3),
@@ -144,12 +196,13 @@ fn readouts(app: &App) -> (Vec<Line<'static>>, std::ops::Range<usize>, Option<us
         ),
         crate::engine::Release::TableRest => format!("ξ0 {} rest on table", num(i.xi0, 3)),
         crate::engine::Release::LabRest => format!("ξ0 {} rest in lab", num(i.xi0, 3)),
-    };
-    out.push(Line::from(Span::styled(
-        init,
-        Style::default().fg(th.accent),
-    )));
-    // With a real table (--mu, --rpm), the SI value beside the dimensionless one.
+    }
+}
+
+/// Where the particle is and how it moves at `s`: τ, ξ, the angles in the frame shown, ξ′
+/// and |u|, each with its SI value beside it with a real table (--mu, --rpm).
+fn motion_lines(app: &App, s: &crate::engine::State, out: &mut Vec<Line<'static>>) {
+    let th = &app.theme;
     let si = |x: f64, show: fn(f64) -> String| {
         app.units
             .map_or(String::new(), |_| format!(" = {}", show(x)))
@@ -208,51 +261,49 @@ fn readouts(app: &App) -> (Vec<Line<'static>>, std::ops::Range<usize>, Option<us
     }
     out.push(kv("ξ′", format!("{}{xi_dot_si}", num(s.xi_dot(), 4)), th));
     out.push(kv("|u|", format!("{}{u_si}", num(s.u().length(), 4)), th));
-    let (st, col) = status_text(app.sim(), th);
-    let status_start = out.len();
-    for l in st.lines() {
-        out.push(Line::from(Span::styled(
-            l.to_string(),
-            Style::default().fg(col).add_modifier(Modifier::BOLD),
-        )));
-    }
-    let status = status_start..out.len();
-    if let Some(u) = app.units {
-        // The table and the release in SI, while units are on: what μ, rpm and g change.
-        use crate::engine::units::show_length as len;
-        let deg = turn_angle(i.phi).to_degrees();
-        let r0 = match i.release {
-            crate::engine::Release::Velocity => {
-                format!("{} φ {}°", len(i.xi0 * u.r_max_m()), num(deg, 0))
-            }
-            _ => format!("{} at rest", len(i.xi0 * u.r_max_m())),
-        };
-        out.push(kv("r0", r0, th));
-        if i.release == crate::engine::Release::Velocity {
-            out.push(kv("v0", show_speed(i.v0 * u.speed_m_s()), th));
+}
+
+/// The table and the release in SI, while units are on: what μ, rpm and g change.
+fn table_lines(app: &App, u: crate::engine::units::Units, out: &mut Vec<Line<'static>>) {
+    use crate::engine::units::{show_length as len, show_rate, show_speed};
+    let th = &app.theme;
+    let i = &app.initial();
+    let deg = turn_angle(i.phi).to_degrees();
+    let r0 = match i.release {
+        crate::engine::Release::Velocity => {
+            format!("{} φ {}°", len(i.xi0 * u.r_max_m()), num(deg, 0))
         }
-        out.push(kv(
-            "μ g",
-            format!("{}, {} m/s²", num(u.mu, 2), num(u.g, 2)),
-            th,
-        ));
-        out.push(kv(
-            "Ω",
-            format!(
-                "{} {} rpm",
-                show_rate(u.omega()),
-                num(u.rpm, if u.rpm < 100.0 { 1 } else { 0 })
-            ),
-            th,
-        ));
-        out.push(kv(
-            "R_max",
-            u.unit_of(crate::engine::units::Quantity::Length),
-            th,
-        ));
+        _ => format!("{} at rest", len(i.xi0 * u.r_max_m())),
+    };
+    out.push(kv("r0", r0, th));
+    if i.release == crate::engine::Release::Velocity {
+        out.push(kv("v0", show_speed(i.v0 * u.speed_m_s()), th));
     }
-    let c = app.sim().run.cost();
-    if i.frictionless {
+    out.push(kv(
+        "μ g",
+        format!("{}, {} m/s²", num(u.mu, 2), num(u.g, 2)),
+        th,
+    ));
+    out.push(kv(
+        "Ω",
+        format!(
+            "{} {} rpm",
+            show_rate(u.omega()),
+            num(u.rpm, if u.rpm < 100.0 { 1 } else { 0 })
+        ),
+        th,
+    ));
+    out.push(kv(
+        "R_max",
+        u.unit_of(crate::engine::units::Quantity::Length),
+        th,
+    ));
+}
+
+/// The model run: μ = 0's closed form, Stokes drag, or the friction's integrator.
+fn model_lines(app: &App, out: &mut Vec<Line<'static>>) {
+    let th = &app.theme;
+    if app.initial().frictionless {
         out.push(kv("μ = 0", "closed form".into(), th));
     } else if let Some(gamma) = app.settings().stokes() {
         out.push(kv("Stokes γ", num(gamma, 4), th));
@@ -271,7 +322,13 @@ fn readouts(app: &App) -> (Vec<Line<'static>>, std::ops::Range<usize>, Option<us
             th,
         ));
     }
-    let rod = app.scene().body.map(|b| body_lines(app, b, &s, &mut out));
+}
+
+/// What the run costs (steps, the last step in step mode, right-hand sides) and how fast it
+/// plays.
+fn cost_lines(app: &App, out: &mut Vec<Line<'static>>) {
+    let th = &app.theme;
+    let c = app.sim().run.cost();
     out.push(kv("steps", format!("{} rej {}", c.steps, c.rejected), th));
     if app.step_mode
         && let Some(st) = app.sim().run.last_step()
@@ -289,36 +346,18 @@ fn readouts(app: &App) -> (Vec<Line<'static>>, std::ops::Range<usize>, Option<us
     out.push(kv("RHS", format!("{}", c.rhs_evals), th));
     let play = if app.playing { "▶" } else { "❚❚" };
     out.push(kv("speed", format!("×{} {play}", fmt_speed(app.speed)), th));
-    if let Some(p) = &app.paper() {
-        let (st, col) = status_text(p, th);
-        out.push(Line::from(Span::styled(
-            "paper: rk2-raw dt=1e-3 ○",
-            Style::default().fg(th.accent),
-        )));
-        for l in st.lines() {
-            out.push(Line::from(Span::styled(
-                l.to_string(),
-                Style::default().fg(col),
-            )));
-        }
-        out.push(kv("  ξ", num(p.now().xi(), 5), th));
-    }
-    if !app.pins.is_empty() {
-        let names: Vec<String> = app
-            .pins
-            .iter()
-            .map(|p| format!("{}{}", p.marker, p.spec.label))
-            .collect();
-        out.push(kv("pins", names.join(" "), th));
-    }
+}
+
+/// The arrows' legend: exactly the arrows drawn, by their head labels; what is not drawn for
+/// being zero says so.
+fn arrow_legend(app: &App, out: &mut Vec<Line<'static>>) {
+    let th = &app.theme;
     if (app.forces || app.net_force || app.velocity) && !app.point_shown() {
         out.push(Line::from(Span::styled(
             "arrows: point's, hidden (C)",
             Style::default().fg(th.muted),
         )));
     } else if app.forces || app.net_force || app.velocity {
-        // The legend names exactly the arrows drawn, by their head labels; what is not drawn
-        // for being zero says so.
         let drawn = crate::ui::canvas::arrows(app, 1.0, 1.0);
         let has = |l: &str| drawn.iter().any(|a| a.label == l);
         if app.forces && !drawn.iter().any(|a| ["fr", "co", "cf"].contains(&a.label)) {
@@ -346,182 +385,6 @@ fn readouts(app: &App) -> (Vec<Line<'static>>, std::ops::Range<usize>, Option<us
                 Style::default().fg(th.muted),
             )));
         }
-    }
-    (out, status, rod)
-}
-
-/// The body at the τ on screen, as the panel judges it: its centre's radius, whether it rests,
-/// and its state and phase where its track has them.
-pub struct BodyNow {
-    pub xi: f64,
-    pub rests: bool,
-    pub at: Option<(crate::engine::rod::RodState, crate::engine::rod::Phase)>,
-}
-
-/// The body's state at `tau` from its track: where the track ends before `tau` (an escape's
-/// certificate, a cut), its last state, not resting.
-pub fn body_now(rod: &crate::engine::rod::RodTrack, tau: f64) -> Option<BodyNow> {
-    use crate::engine::rod::Phase;
-    match rod.at_with_phase(tau) {
-        Some((st, ph)) => Some(BodyNow {
-            xi: st.q.length(),
-            rests: ph == Phase::Rest || (rod.outcome == Outcome::Stuck && tau >= rod.end_tau()),
-            at: Some((st, ph)),
-        }),
-        None => rod.states.last().map(|l| BodyNow {
-            xi: l.q.length(),
-            rests: false,
-            at: None,
-        }),
-    }
-}
-
-/// A body's phase in words: sliding, pivoting about one contact, riding the table.
-pub fn phase_word(p: crate::engine::rod::Phase) -> &'static str {
-    match p {
-        crate::engine::rod::Phase::Slip => "sliding",
-        crate::engine::rod::Phase::Pivot { .. } => "pivoting",
-        crate::engine::rod::Phase::Rest => "riding the table",
-    }
-}
-
-/// How the body's track ends, once the τ on screen has reached its end (None before): a key
-/// and words that fit the panel, and the reason a cut track stopped. An escape ends at its
-/// certificate, though the track follows the body on past it.
-pub fn body_end(rod: &crate::engine::rod::RodTrack, tau: f64) -> Option<(String, Option<String>)> {
-    use crate::engine::rod::Cut;
-    if let Some(c) = rod.escape {
-        return (tau >= c).then(|| (format!("escapes (τ = {})", num(c, 3)), None));
-    }
-    let end = rod.end_tau();
-    if tau < end {
-        return None;
-    }
-    Some(match (&rod.cut, rod.outcome) {
-        (Some(Cut::Budget(n)), _) => (
-            format!("cut at τ = {}", num(end, 2)),
-            Some(format!("{n}-step budget")),
-        ),
-        (Some(Cut::Failed(_)), _) => (
-            format!("cut at τ = {}", num(end, 2)),
-            Some("its run failed".into()),
-        ),
-        (None, Outcome::Stuck) => {
-            let xi = rod.states.last().map_or(f64::NAN, |s| s.q.length());
-            (format!("rests at ξ = {}", num(xi, 5)), None)
-        }
-        (None, Outcome::Escaped) => (format!("escapes (τ = {})", num(end, 3)), None),
-        (None, Outcome::Running) => (format!("slides past τ = {}", num(end, 0)), None),
-    })
-}
-
-/// The appendix's body: its size, its own phase and centre at the τ on screen (from its
-/// track), the two conditions for treating it as a point judged at the body's state (the
-/// point's without a track), a warning when either is not ≪ 1, and how the body ends once the
-/// τ on screen reaches it. Returns the index of the phase line.
-fn body_lines(
-    app: &App,
-    b: crate::engine::body::Body,
-    s: &crate::engine::State,
-    out: &mut Vec<Line<'static>>,
-) -> usize {
-    let th = &app.theme;
-    let tau = s.tau;
-    let now = app.rod().and_then(|r| body_now(r, tau));
-    let (xi, stuck) = match &now {
-        Some(n) => (n.xi, n.rests),
-        None => (s.xi(), app.sim().outcome_now() == Outcome::Stuck),
-    };
-    let f = crate::engine::body::friction(&app.settings(), app.initial().frictionless, stuck, xi);
-    let c = b.conditions(xi, f, app.units.map(|u| u.mu));
-    // In exponent form when small: a body 1e-9 long is not "L 0.0000".
-    let size = match b.height {
-        Some(h) => format!("L {} h {}", small(b.length), small(h)),
-        None => format!("L {}", small(b.length)),
-    };
-    out.push(kv("body", size, th));
-    if let Some(u) = app.units {
-        // The same sizes in SI, on a line of their own under the value (the panel is 30
-        // wide); one indented span, so plain mode reads it on the body's line.
-        let m = |x: f64| crate::engine::units::show_length(x * u.r_max_m());
-        let si = match b.height {
-            Some(h) => format!("       = {} h {}", m(b.length), m(h)),
-            None => format!("       = {}", m(b.length)),
-        };
-        out.push(Line::from(Span::styled(
-            si,
-            Style::default().fg(th.foreground),
-        )));
-    }
-    let phase_line = out.len();
-    let phase = match (&app.rod(), &now) {
-        (None, _) if app.initial().frictionless => "not run: μ = 0".to_string(),
-        (None, _) if app.settings().stokes().is_some() => "not run: Stokes".to_string(),
-        (None, _) => "not run".to_string(),
-        (
-            Some(_),
-            Some(BodyNow {
-                at: Some((_, p)), ..
-            }),
-        ) => phase_word(*p).to_string(),
-        (Some(r), _) if r.escape.is_some() => "escaped".into(),
-        (Some(_), _) => "not computed here".into(),
-    };
-    out.push(kv("rod", phase, th));
-    if let Some(BodyNow {
-        at: Some((st, _)), ..
-    }) = &now
-    {
-        out.push(kv(
-            "rod ξ",
-            format!("{} ψ {}", num(st.q.length(), 5), num(wrap_angle(st.psi), 4)),
-            th,
-        ));
-    }
-    let topple = match (c.topple, c.topple_verdict(), b.height) {
-        // Without a real table μ_k = 1 bounds it: the number is an upper bound (but 0, with
-        // no friction at all, is exact).
-        (Some(t), Some(v), _) => format!(
-            "{}{} {}",
-            if c.mu_assumed && t > 0.0 { "≤ " } else { "" },
-            small(t),
-            v.word()
-        ),
-        (_, _, None) => "no height given".into(),
-        _ => "not judged (Stokes)".into(),
-    };
-    out.push(kv("μh/L", topple, th));
-    let rotation = if c.rotation.is_finite() {
-        small(c.rotation)
-    } else {
-        "∞ at ξ = 0".into()
-    };
-    out.push(kv(
-        "L/ξ",
-        format!("{rotation} {}", c.rotation_verdict().word()),
-        th,
-    ));
-    if c.out_of_depth() {
-        out.push(Line::from(Span::styled(
-            "point model out of its depth",
-            Style::default().fg(th.notice).add_modifier(Modifier::BOLD),
-        )));
-    }
-    if let Some((end, why)) = app.rod().and_then(|r| body_end(r, tau)) {
-        out.push(kv("ends", end, th));
-        if let Some(why) = why {
-            out.push(kv("  by", why, th));
-        }
-    }
-    phase_line
-}
-
-/// A ratio for the body's readouts: four decimals, or exponent form when small or large.
-fn small(x: f64) -> String {
-    if (1e-3..1e4).contains(&x) || x == 0.0 {
-        num(x, 4)
-    } else {
-        format!("{x:.2e}")
     }
 }
 

@@ -1,0 +1,184 @@
+//! The appendix's body in the panel: its size, its phase and centre at the τ on screen, the
+//! two conditions for treating it as a point, and how its track ends.
+
+use super::{kv, num};
+use crate::app::App;
+use crate::engine::Outcome;
+use crate::engine::model::wrap_angle;
+use ratatui::style::{Modifier, Style};
+use ratatui::text::{Line, Span};
+
+/// The body at the τ on screen, as the panel judges it: its centre's radius, whether it rests,
+/// and its state and phase where its track has them.
+pub struct BodyNow {
+    pub xi: f64,
+    pub rests: bool,
+    pub at: Option<(crate::engine::rod::RodState, crate::engine::rod::Phase)>,
+}
+
+/// The body's state at `tau` from its track: where the track ends before `tau` (an escape's
+/// certificate, a cut), its last state, not resting.
+pub fn body_now(rod: &crate::engine::rod::RodTrack, tau: f64) -> Option<BodyNow> {
+    use crate::engine::rod::Phase;
+    match rod.at_with_phase(tau) {
+        Some((st, ph)) => Some(BodyNow {
+            xi: st.q.length(),
+            rests: ph == Phase::Rest || (rod.outcome == Outcome::Stuck && tau >= rod.end_tau()),
+            at: Some((st, ph)),
+        }),
+        None => rod.states.last().map(|l| BodyNow {
+            xi: l.q.length(),
+            rests: false,
+            at: None,
+        }),
+    }
+}
+
+/// A body's phase in words: sliding, pivoting about one contact, riding the table.
+pub fn phase_word(p: crate::engine::rod::Phase) -> &'static str {
+    match p {
+        crate::engine::rod::Phase::Slip => "sliding",
+        crate::engine::rod::Phase::Pivot { .. } => "pivoting",
+        crate::engine::rod::Phase::Rest => "riding the table",
+    }
+}
+
+/// How the body's track ends, once the τ on screen has reached its end (None before): a key
+/// and words that fit the panel, and the reason a cut track stopped. An escape ends at its
+/// certificate, though the track follows the body on past it.
+pub fn body_end(rod: &crate::engine::rod::RodTrack, tau: f64) -> Option<(String, Option<String>)> {
+    use crate::engine::rod::Cut;
+    if let Some(c) = rod.escape {
+        return (tau >= c).then(|| (format!("escapes (τ = {})", num(c, 3)), None));
+    }
+    let end = rod.end_tau();
+    if tau < end {
+        return None;
+    }
+    Some(match (&rod.cut, rod.outcome) {
+        (Some(Cut::Budget(n)), _) => (
+            format!("cut at τ = {}", num(end, 2)),
+            Some(format!("{n}-step budget")),
+        ),
+        (Some(Cut::Failed(_)), _) => (
+            format!("cut at τ = {}", num(end, 2)),
+            Some("its run failed".into()),
+        ),
+        (None, Outcome::Stuck) => {
+            let xi = rod.states.last().map_or(f64::NAN, |s| s.q.length());
+            (format!("rests at ξ = {}", num(xi, 5)), None)
+        }
+        (None, Outcome::Escaped) => (format!("escapes (τ = {})", num(end, 3)), None),
+        (None, Outcome::Running) => (format!("slides past τ = {}", num(end, 0)), None),
+    })
+}
+
+/// The appendix's body: its size, its own phase and centre at the τ on screen (from its
+/// track), the two conditions for treating it as a point judged at the body's state (the
+/// point's without a track), a warning when either is not ≪ 1, and how the body ends once the
+/// τ on screen reaches it. Returns the index of the phase line.
+pub(super) fn body_lines(
+    app: &App,
+    b: crate::engine::body::Body,
+    s: &crate::engine::State,
+    out: &mut Vec<Line<'static>>,
+) -> usize {
+    let th = &app.theme;
+    let tau = s.tau;
+    let now = app.rod().and_then(|r| body_now(r, tau));
+    let (xi, stuck) = match &now {
+        Some(n) => (n.xi, n.rests),
+        None => (s.xi(), app.sim().outcome_now() == Outcome::Stuck),
+    };
+    let f = crate::engine::body::friction(&app.settings(), app.initial().frictionless, stuck, xi);
+    let c = b.conditions(xi, f, app.units.map(|u| u.mu));
+    // In exponent form when small: a body 1e-9 long is not "L 0.0000".
+    let size = match b.height {
+        Some(h) => format!("L {} h {}", small(b.length), small(h)),
+        None => format!("L {}", small(b.length)),
+    };
+    out.push(kv("body", size, th));
+    if let Some(u) = app.units {
+        // The same sizes in SI, on a line of their own under the value (the panel is 30
+        // wide); one indented span, so plain mode reads it on the body's line.
+        let m = |x: f64| crate::engine::units::show_length(x * u.r_max_m());
+        let si = match b.height {
+            Some(h) => format!("       = {} h {}", m(b.length), m(h)),
+            None => format!("       = {}", m(b.length)),
+        };
+        out.push(Line::from(Span::styled(
+            si,
+            Style::default().fg(th.foreground),
+        )));
+    }
+    let phase_line = out.len();
+    let phase = match (&app.rod(), &now) {
+        (None, _) if app.initial().frictionless => "not run: μ = 0".to_string(),
+        (None, _) if app.settings().stokes().is_some() => "not run: Stokes".to_string(),
+        (None, _) => "not run".to_string(),
+        (
+            Some(_),
+            Some(BodyNow {
+                at: Some((_, p)), ..
+            }),
+        ) => phase_word(*p).to_string(),
+        (Some(r), _) if r.escape.is_some() => "escaped".into(),
+        (Some(_), _) => "not computed here".into(),
+    };
+    out.push(kv("rod", phase, th));
+    if let Some(BodyNow {
+        at: Some((st, _)), ..
+    }) = &now
+    {
+        out.push(kv(
+            "rod ξ",
+            format!("{} ψ {}", num(st.q.length(), 5), num(wrap_angle(st.psi), 4)),
+            th,
+        ));
+    }
+    let topple = match (c.topple, c.topple_verdict(), b.height) {
+        // Without a real table μ_k = 1 bounds it: the number is an upper bound (but 0, with
+        // no friction at all, is exact).
+        (Some(t), Some(v), _) => format!(
+            "{}{} {}",
+            if c.mu_assumed && t > 0.0 { "≤ " } else { "" },
+            small(t),
+            v.word()
+        ),
+        (_, _, None) => "no height given".into(),
+        _ => "not judged (Stokes)".into(),
+    };
+    out.push(kv("μh/L", topple, th));
+    let rotation = if c.rotation.is_finite() {
+        small(c.rotation)
+    } else {
+        "∞ at ξ = 0".into()
+    };
+    out.push(kv(
+        "L/ξ",
+        format!("{rotation} {}", c.rotation_verdict().word()),
+        th,
+    ));
+    if c.out_of_depth() {
+        out.push(Line::from(Span::styled(
+            "point model out of its depth",
+            Style::default().fg(th.notice).add_modifier(Modifier::BOLD),
+        )));
+    }
+    if let Some((end, why)) = app.rod().and_then(|r| body_end(r, tau)) {
+        out.push(kv("ends", end, th));
+        if let Some(why) = why {
+            out.push(kv("  by", why, th));
+        }
+    }
+    phase_line
+}
+
+/// A ratio for the body's readouts: four decimals, or exponent form when small or large.
+fn small(x: f64) -> String {
+    if (1e-3..1e4).contains(&x) || x == 0.0 {
+        num(x, 4)
+    } else {
+        format!("{x:.2e}")
+    }
+}
