@@ -87,235 +87,13 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) {
     let block = super::titled(format!(" {} ", super::fit::fit(&title, "\0", room)), th);
     let inner = block.inner(area);
     f.render_widget(block, area);
-    let p = path(app.sim());
-    let paper = app.paper().map(path);
     let now = app.sim().now().tau;
     // The τ window: the run so far, or a span the user fixed (t / T).
     let span = app.tau_window.unwrap_or(app.plot_span()).max(1e-3);
     let x = [0.0, span];
-    let mut marks = vec![Mark::VLine {
-        x: now,
-        label: format!("τ={}", num(now, 2)),
-        color: th.accent,
-    }];
-    if let Status::Stuck { tau, .. } = app.sim().run.status()
-        && tau <= now
-    {
-        marks.push(Mark::VLine {
-            x: tau,
-            label: "stop".into(),
-            color: th.stuck,
-        });
-    }
-    if let Some(e) = app.sim().run.escape()
-        && e.tau <= now
-    {
-        marks.push(Mark::VLine {
-            x: e.tau,
-            label: "escape cert.".into(),
-            color: th.escaped,
-        });
-    }
-    let i = app.initial();
-    let approx_window = match i.release {
-        _ if i.frictionless => None,
-        Release::LabRest => Some(lab_rest_window(i.xi0)),
-        Release::TableRest if i.xi0 > 1.0 => Some(TABLE_REST_WINDOW),
-        _ => None,
-    };
-    if let Some(w) = approx_window.filter(|w| *w <= now) {
-        marks.push(Mark::VLine {
-            x: w,
-            label: "approx. valid ←".into(),
-            color: th.muted,
-        });
-    }
-    let approx = |y: &dyn Fn(f64) -> Option<f64>| -> Option<Series> {
-        approx_window?;
-        let n = 200;
-        let pts = (0..=n)
-            .map(|k| now * k as f64 / n as f64)
-            .filter_map(|t| y(t).map(|v| (t, v)))
-            .collect();
-        // Dots: told from the run's line without colour.
-        Some(Series {
-            name: "Sec. III approx.".into(),
-            color: th.muted,
-            points: pts,
-            joined: false,
-        })
-    };
-    let rotating = app.view == Frame::Table;
-    let (theta_name, shift) = if rotating {
-        ("Θ′", 1.0)
-    } else {
-        ("θ′", 0.0)
-    };
-    let paper_series = |name: &str, y: &dyn Fn(&State) -> f64| {
-        paper.as_ref().map(|pp| Series {
-            name: format!("{name} paper RK2"),
-            color: th.spokes,
-            points: pp.iter().map(|s| (s.tau, y(s))).collect(),
-            joined: true,
-        })
-    };
-    // Each pin dimmer, named in the legend by its marker and label, the marker along its
-    // line and the label at its end: told apart without colour.
-    let mut pin_marks: [Vec<Mark>; 4] = Default::default();
-    // `dims`: the powers of length and time in the plot's y, to convert a pin run on
-    // another table (ξ: length; θ′: 1/time; |u|: length/time).
-    let mut pin_series = |k: usize, dims: (i32, i32), y: &PathPoints<'_>| -> Vec<Series> {
-        app.pins
-            .iter()
-            .map(|pin| {
-                let (kl, kt) = pin.scale(app.units);
-                let ky = kl.powi(dims.0) * kt.powi(dims.1);
-                let points: Vec<(f64, f64)> = y(&pin.path)
-                    .into_iter()
-                    .map(|(x, y)| (x * kt, y * ky))
-                    .collect();
-                let n = points.len();
-                for j in 1..PIN_MARKS {
-                    let (x, y) = points[j * (n - 1) / PIN_MARKS];
-                    pin_marks[k].push(Mark::Text {
-                        x,
-                        y,
-                        label: pin.marker.to_string(),
-                        color: th.muted,
-                    });
-                }
-                let (x, y) = points[n - 1];
-                pin_marks[k].push(Mark::Text {
-                    x,
-                    y,
-                    label: format!("{}{}", pin.marker, pin.spec.label),
-                    color: th.muted,
-                });
-                Series {
-                    name: format!("{}{}", pin.marker, pin.spec.label),
-                    color: th.muted,
-                    points,
-                    joined: true,
-                }
-            })
-            .collect()
-    };
-    let xi_of = |s: &State| s.xi();
-    let th_of = move |s: &State| s.theta_dot().map_or(f64::NAN, |t| t - shift);
-    let u_of = |s: &State| s.u_lab().length();
-    // θ unwrapped along the path (Figs. 1–2), Θ = θ − τ in the rotating view.
-    let angle = |path: &[State]| -> Vec<(f64, f64)> {
-        let mut out: Vec<(f64, f64)> = Vec::with_capacity(path.len());
-        let mut last = 0.0;
-        let mut turns = 0.0;
-        for (k, s) in path.iter().enumerate() {
-            let a = s.r.y.atan2(s.r.x);
-            if k > 0 {
-                let d = a - last;
-                turns -= std::f64::consts::TAU * (d / std::f64::consts::TAU).round();
-            }
-            last = a;
-            out.push((s.tau, a + turns - shift * s.tau));
-        }
-        out
-    };
-    let mut xi_s = vec![series("ξ", th.trail, &p, xi_of)];
-    xi_s.extend(paper_series("ξ", &xi_of));
-    xi_s.extend(pin_series(0, (1, 0), &|p| along(p, &xi_of)));
-    xi_s.extend(approx(&|t| match i.release {
-        Release::LabRest => Some(lab_rest(i.xi0, t).0),
-        _ => Some(table_rest(i.xi0, t).0),
-    }));
-    let mut th_s = vec![series(theta_name, th.trail, &p, th_of)];
-    th_s.extend(paper_series(theta_name, &th_of));
-    th_s.extend(pin_series(2, (0, -1), &|p| along(p, &th_of)));
-    th_s.extend(approx(&|t| match i.release {
-        // θ = τ²/(2ξ0) (Eq. 16): θ′ = τ/ξ0 in the lab.
-        Release::LabRest => Some(t / i.xi0 - shift),
-        // Θ′ = 2 ln(ξ0/ξ) (Eq. 25), table frame.
-        _ => Some(table_rest(i.xi0, t).1 + 1.0 - shift),
-    }));
-    let angle_name = if rotating { "Θ" } else { "θ" };
-    let mut a_s = vec![Series {
-        name: angle_name.into(),
-        color: th.trail,
-        points: angle(&p),
-        joined: true,
-    }];
-    a_s.extend(paper.as_ref().map(|pp| Series {
-        name: format!("{angle_name} paper RK2"),
-        color: th.spokes,
-        points: angle(pp),
-        joined: true,
-    }));
-    a_s.extend(pin_series(1, (0, 0), &angle));
-    // The approximation's θ: its θ′ integrated (trapezoids on its own 200 points).
-    if let Some(rate) = th_s.iter().find(|s| s.name == "Sec. III approx.") {
-        let mut acc = 0.0;
-        let pts = rate
-            .points
-            .iter()
-            .enumerate()
-            .map(|(k, &(t, v))| {
-                if k > 0 {
-                    let (t0, v0) = rate.points[k - 1];
-                    acc += 0.5 * (t - t0) * (v + v0);
-                }
-                (t, acc)
-            })
-            .collect();
-        a_s.push(Series {
-            name: "Sec. III approx.".into(),
-            color: th.muted,
-            points: pts,
-            joined: false,
-        });
-    }
-    let mut u_s = vec![series("|u|", th.trail, &p, u_of)];
-    u_s.extend(paper_series("|u|", &u_of));
-    u_s.extend(pin_series(3, (1, -1), &|p| along(p, &u_of)));
-    let drag = if app.initial().frictionless {
-        None
-    } else {
-        app.settings().stokes()
-    };
-    let [e, w] = energy_pair_drag(&p, drag);
-    let e_s = vec![
-        Series {
-            name: "E − E(0)".into(),
-            color: th.trail,
-            points: e,
-            joined: true,
-        },
-        Series {
-            name: if drag.is_some() {
-                "−γ∫|u|²dτ"
-            } else {
-                "−∫|u|dτ"
-            }
-            .into(),
-            color: th.centrifugal,
-            points: w,
-            joined: false,
-        },
-    ];
-    let [xi_m, a_m, th_m, u_m] = pin_marks;
-    let plots = [
-        ("ξ", Some(Quantity::Length), xi_s, xi_m),
-        (angle_name, None, a_s, a_m),
-        (theta_name, Some(Quantity::Rate), th_s, th_m),
-        ("|u|", Some(Quantity::Speed), u_s, u_m),
-        (
-            if drag.is_some() {
-                "dE/dτ = −γ|u|²:"
-            } else {
-                "dE/dτ = −|u|:"
-            },
-            None,
-            e_s,
-            Vec::new(),
-        ),
-    ];
+    let window = approx_window(&app.initial());
+    let marks = marks(app, now, window);
+    let plots = plots(app, now, window);
     // As many plots as fit (ξ first), each at least a legend line and three rows; the τ axis
     // under the last.
     let fit = ((inner.height.saturating_sub(2)) / 4).clamp(0, plots.len() as u16) as usize;
@@ -369,4 +147,285 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) {
     for (k, c) in charts.iter().enumerate() {
         chart::render_bare(f, rows[k], th, c, k + 1 == fit, gutter);
     }
+}
+
+/// Where the paper's Sec. III approximations hold, for releases at rest (none otherwise).
+fn approx_window(i: &crate::engine::Initial) -> Option<f64> {
+    match i.release {
+        _ if i.frictionless => None,
+        Release::LabRest => Some(lab_rest_window(i.xi0)),
+        Release::TableRest if i.xi0 > 1.0 => Some(TABLE_REST_WINDOW),
+        _ => None,
+    }
+}
+
+/// The lines every plot marks: the cursor at the τ on screen, the stop, the escape
+/// certificate and the end of the approximations' window, once reached.
+fn marks(app: &App, now: f64, window: Option<f64>) -> Vec<Mark> {
+    let th = &app.theme;
+    let mut marks = vec![Mark::VLine {
+        x: now,
+        label: format!("τ={}", num(now, 2)),
+        color: th.accent,
+    }];
+    if let Status::Stuck { tau, .. } = app.sim().run.status()
+        && tau <= now
+    {
+        marks.push(Mark::VLine {
+            x: tau,
+            label: "stop".into(),
+            color: th.stuck,
+        });
+    }
+    if let Some(e) = app.sim().run.escape()
+        && e.tau <= now
+    {
+        marks.push(Mark::VLine {
+            x: e.tau,
+            label: "escape cert.".into(),
+            color: th.escaped,
+        });
+    }
+    if let Some(w) = window.filter(|w| *w <= now) {
+        marks.push(Mark::VLine {
+            x: w,
+            label: "approx. valid ←".into(),
+            color: th.muted,
+        });
+    }
+    marks
+}
+
+/// One plot: its y axis name, the quantity it shows (for SI units), its series and its
+/// own marks (the pins').
+type Plot<'a> = (&'a str, Option<Quantity>, Vec<Series>, Vec<Mark>);
+
+/// What the plots draw from: the run's path, the paper's, the pins', the approximations.
+struct Sources<'a> {
+    app: &'a App,
+    /// The run's path and the paper's, up to the τ on screen.
+    p: Vec<State>,
+    paper: Option<Vec<State>>,
+    now: f64,
+    window: Option<f64>,
+    /// The pins' markers per plot (ξ, θ, θ′, |u|).
+    pin_marks: [Vec<Mark>; 4],
+}
+
+impl Sources<'_> {
+    /// The approximation `y` over its window, as dots: told from the run's line without
+    /// colour.
+    fn approx(&self, y: &dyn Fn(f64) -> Option<f64>) -> Option<Series> {
+        self.window?;
+        let n = 200;
+        let now = self.now;
+        let pts = (0..=n)
+            .map(|k| now * k as f64 / n as f64)
+            .filter_map(|t| y(t).map(|v| (t, v)))
+            .collect();
+        Some(Series {
+            name: "Sec. III approx.".into(),
+            color: self.app.theme.muted,
+            points: pts,
+            joined: false,
+        })
+    }
+
+    fn paper_series(&self, name: &str, y: &dyn Fn(&State) -> f64) -> Option<Series> {
+        self.paper.as_ref().map(|pp| Series {
+            name: format!("{name} paper RK2"),
+            color: self.app.theme.spokes,
+            points: pp.iter().map(|s| (s.tau, y(s))).collect(),
+            joined: true,
+        })
+    }
+
+    /// Each pin dimmer, named in the legend by its marker and label, the marker along its
+    /// line and the label at its end (into plot `k`'s marks): told apart without colour.
+    /// `dims`: the powers of length and time in the plot's y, to convert a pin run on
+    /// another table (ξ: length; θ′: 1/time; |u|: length/time).
+    fn pin_series(&mut self, k: usize, dims: (i32, i32), y: &PathPoints<'_>) -> Vec<Series> {
+        let (app, th) = (self.app, &self.app.theme);
+        let pin_marks = &mut self.pin_marks;
+        app.pins
+            .iter()
+            .map(|pin| {
+                let (kl, kt) = pin.scale(app.units);
+                let ky = kl.powi(dims.0) * kt.powi(dims.1);
+                let points: Vec<(f64, f64)> = y(&pin.path)
+                    .into_iter()
+                    .map(|(x, y)| (x * kt, y * ky))
+                    .collect();
+                let n = points.len();
+                for j in 1..PIN_MARKS {
+                    let (x, y) = points[j * (n - 1) / PIN_MARKS];
+                    pin_marks[k].push(Mark::Text {
+                        x,
+                        y,
+                        label: pin.marker.to_string(),
+                        color: th.muted,
+                    });
+                }
+                let (x, y) = points[n - 1];
+                pin_marks[k].push(Mark::Text {
+                    x,
+                    y,
+                    label: format!("{}{}", pin.marker, pin.spec.label),
+                    color: th.muted,
+                });
+                Series {
+                    name: format!("{}{}", pin.marker, pin.spec.label),
+                    color: th.muted,
+                    points,
+                    joined: true,
+                }
+            })
+            .collect()
+    }
+}
+
+/// θ unwrapped along the path (Figs. 1–2), Θ = θ − τ in the rotating view (`shift` 1).
+fn unwrapped_angle(path: &[State], shift: f64) -> Vec<(f64, f64)> {
+    let mut out: Vec<(f64, f64)> = Vec::with_capacity(path.len());
+    let mut last = 0.0;
+    let mut turns = 0.0;
+    for (k, s) in path.iter().enumerate() {
+        let a = s.r.y.atan2(s.r.x);
+        if k > 0 {
+            let d = a - last;
+            turns -= std::f64::consts::TAU * (d / std::f64::consts::TAU).round();
+        }
+        last = a;
+        out.push((s.tau, a + turns - shift * s.tau));
+    }
+    out
+}
+
+/// The approximation's θ: its θ′ `rate` integrated (trapezoids on its own 200 points).
+fn integrated(rate: &Series, color: ratatui::style::Color) -> Series {
+    let mut acc = 0.0;
+    let pts = rate
+        .points
+        .iter()
+        .enumerate()
+        .map(|(k, &(t, v))| {
+            if k > 0 {
+                let (t0, v0) = rate.points[k - 1];
+                acc += 0.5 * (t - t0) * (v + v0);
+            }
+            (t, acc)
+        })
+        .collect();
+    Series {
+        name: "Sec. III approx.".into(),
+        color,
+        points: pts,
+        joined: false,
+    }
+}
+
+/// The five plots in order: ξ, θ (Θ), θ′ (Θ′), |u| and the energy identity.
+fn plots(app: &App, now: f64, window: Option<f64>) -> [Plot<'static>; 5] {
+    let th = &app.theme;
+    let rotating = app.view == Frame::Table;
+    let (theta_name, shift) = if rotating {
+        ("Θ′", 1.0)
+    } else {
+        ("θ′", 0.0)
+    };
+    let mut src = Sources {
+        app,
+        p: path(app.sim()),
+        paper: app.paper().map(path),
+        now,
+        window,
+        pin_marks: Default::default(),
+    };
+    let i = app.initial();
+    let xi_of = |s: &State| s.xi();
+    let th_of = move |s: &State| s.theta_dot().map_or(f64::NAN, |t| t - shift);
+    let u_of = |s: &State| s.u_lab().length();
+    let angle = move |path: &[State]| unwrapped_angle(path, shift);
+    let mut xi_s = vec![series("ξ", th.trail, &src.p, xi_of)];
+    xi_s.extend(src.paper_series("ξ", &xi_of));
+    xi_s.extend(src.pin_series(0, (1, 0), &|p| along(p, &xi_of)));
+    xi_s.extend(src.approx(&|t| match i.release {
+        Release::LabRest => Some(lab_rest(i.xi0, t).0),
+        _ => Some(table_rest(i.xi0, t).0),
+    }));
+    let mut th_s = vec![series(theta_name, th.trail, &src.p, th_of)];
+    th_s.extend(src.paper_series(theta_name, &th_of));
+    th_s.extend(src.pin_series(2, (0, -1), &|p| along(p, &th_of)));
+    th_s.extend(src.approx(&|t| match i.release {
+        // θ = τ²/(2ξ0) (Eq. 16): θ′ = τ/ξ0 in the lab.
+        Release::LabRest => Some(t / i.xi0 - shift),
+        // Θ′ = 2 ln(ξ0/ξ) (Eq. 25), table frame.
+        _ => Some(table_rest(i.xi0, t).1 + 1.0 - shift),
+    }));
+    let angle_name = if rotating { "Θ" } else { "θ" };
+    let mut a_s = vec![Series {
+        name: angle_name.into(),
+        color: th.trail,
+        points: angle(&src.p),
+        joined: true,
+    }];
+    a_s.extend(src.paper.as_ref().map(|pp| Series {
+        name: format!("{angle_name} paper RK2"),
+        color: th.spokes,
+        points: angle(pp),
+        joined: true,
+    }));
+    a_s.extend(src.pin_series(1, (0, 0), &angle));
+    if let Some(rate) = th_s.iter().find(|s| s.name == "Sec. III approx.") {
+        a_s.push(integrated(rate, th.muted));
+    }
+    let mut u_s = vec![series("|u|", th.trail, &src.p, u_of)];
+    u_s.extend(src.paper_series("|u|", &u_of));
+    u_s.extend(src.pin_series(3, (1, -1), &|p| along(p, &u_of)));
+    let drag = if app.initial().frictionless {
+        None
+    } else {
+        app.settings().stokes()
+    };
+    let [xi_m, a_m, th_m, u_m] = std::mem::take(&mut src.pin_marks);
+    [
+        ("ξ", Some(Quantity::Length), xi_s, xi_m),
+        (angle_name, None, a_s, a_m),
+        (theta_name, Some(Quantity::Rate), th_s, th_m),
+        ("|u|", Some(Quantity::Speed), u_s, u_m),
+        (
+            if drag.is_some() {
+                "dE/dτ = −γ|u|²:"
+            } else {
+                "dE/dτ = −|u|:"
+            },
+            None,
+            energy_series(&src.p, drag, th),
+            Vec::new(),
+        ),
+    ]
+}
+
+/// The energy identity's two sides: E − E(0) as a line, the work integral as dots.
+fn energy_series(p: &[State], drag: Option<f64>, th: &crate::theme::Theme) -> Vec<Series> {
+    let [e, w] = energy_pair_drag(p, drag);
+    vec![
+        Series {
+            name: "E − E(0)".into(),
+            color: th.trail,
+            points: e,
+            joined: true,
+        },
+        Series {
+            name: if drag.is_some() {
+                "−γ∫|u|²dτ"
+            } else {
+                "−∫|u|dτ"
+            }
+            .into(),
+            color: th.centrifugal,
+            points: w,
+            joined: false,
+        },
+    ]
 }
