@@ -1,0 +1,294 @@
+//! The escape speed page: v_e(φ) (Fig. 5) or, outside ξ = 1, the sticking window, and what
+//! the curve says of the release on screen.
+
+use super::geom;
+use crate::analysis::{PAPER_XI0, Speeds};
+use crate::app::pages::{Curve, Page};
+use crate::app::{App, CanvasGeom};
+use crate::engine::model::turn_angle;
+use crate::engine::units::Quantity;
+use crate::engine::{Outcome, Release, Settings};
+use crate::ui::chart::{self, Chart, Mark, Series};
+use crate::ui::panel::{num, speed};
+use ratatui::Frame as TuiFrame;
+use ratatui::layout::Rect;
+use std::f64::consts::{PI, TAU};
+
+/// v_e(φ) for the current ξ0 beside the paper's four, the release as a point, min and max.
+pub(super) fn escape_speed(f: &mut TuiFrame, area: Rect, app: &App) -> Option<CanvasGeom> {
+    let th = &app.theme;
+    let i = app.initial();
+    let settings = crate::analysis::settings_for(app.settings());
+    let mine = app.charts.curve(i.xi0, settings);
+    // Outside ξ = 1 a throw too slow escapes too: the sticking speeds are a window, and the
+    // paper's v_e curves (Fig. 5, inside ξ = 1) are another quantity.
+    let window = i.xi0 > 1.0;
+    let (mut series, mut marks) = paper_curves(app, settings, window);
+    let (note, progress) = match mine {
+        Some(c) => own_curve(app, c, window, &mut series, &mut marks),
+        None => (String::new(), ", computing…".into()),
+    };
+    let phi = turn_angle(i.phi);
+    let (verdict, tone) = release_verdict(app, mine);
+    let color = match tone {
+        Some(Outcome::Escaped) => th.escaped,
+        Some(Outcome::Stuck) => th.stuck,
+        Some(Outcome::Running) => th.notice,
+        None => th.particle,
+    };
+    let v_now = if i.release == Release::Velocity {
+        i.v0
+    } else {
+        0.0
+    };
+    marks.push(Mark::Point {
+        x: phi,
+        y: v_now,
+        label: format!("release{verdict}"),
+        color,
+    });
+    let top = series
+        .iter()
+        .flat_map(|s| s.points.iter().map(|p| p.1))
+        .fold(v_now, f64::max);
+    let title = if window {
+        "sticking window (Fig. 3 D)"
+    } else {
+        "escape speed v_e(φ)"
+    };
+    let c = Chart {
+        title: format!("{title}, ξ0 = {}{progress}", num(i.xi0, 3)),
+        note,
+        x_label: "φ".into(),
+        y_label: chart::axis(
+            if window { "v0" } else { "v_e" },
+            Quantity::Speed,
+            app.units,
+        ),
+        x: [0.0, TAU],
+        y: [0.0, (1.1 * top).max(0.1)],
+        series,
+        marks,
+    };
+    let plot = chart::render(f, area, th, &c)?;
+    Some(geom(plot, &c, Page::EscapeSpeed, app))
+}
+
+/// The paper's four v_e curves (Fig. 5) but the current ξ0's, faint, each named at its peak;
+/// none outside ξ = 1 (`window`).
+fn paper_curves(app: &App, settings: Settings, window: bool) -> (Vec<Series>, Vec<Mark>) {
+    let th = &app.theme;
+    let mut series = Vec::new();
+    let mut marks = Vec::new();
+    let others = if window { &[][..] } else { &PAPER_XI0[..] };
+    for &xi0 in others.iter().filter(|x| **x != app.initial().xi0) {
+        if let Some(c) = app.charts.curve(xi0, settings) {
+            let points = c.points();
+            // Named at its peak rather than in the legend (their faint colours are all one),
+            // which keeps the legend's room for the current curve.
+            if let Some(&(x, y)) = points.iter().max_by(|a, b| a.1.total_cmp(&b.1)) {
+                marks.push(Mark::Text {
+                    x,
+                    y,
+                    label: xi0.to_string(),
+                    color: th.muted,
+                });
+            }
+            series.push(Series {
+                name: String::new(),
+                color: th.muted,
+                points,
+                joined: true,
+            });
+        }
+    }
+    (series, marks)
+}
+
+/// The current ξ0's curve (and the window's floor, or its min and max marked), with the
+/// chart's note and how far its computation has come.
+fn own_curve(
+    app: &App,
+    c: &Curve,
+    window: bool,
+    series: &mut Vec<Series>,
+    marks: &mut Vec<Mark>,
+) -> (String, String) {
+    let th = &app.theme;
+    let i = app.initial();
+    let name = if window {
+        format!("ξ0={}: sticks between", num(i.xi0, 3))
+    } else {
+        format!("ξ0={} (now)", num(i.xi0, 3))
+    };
+    series.push(Series {
+        name,
+        color: th.trail,
+        points: c.points(),
+        joined: true,
+    });
+    if window {
+        series.push(Series {
+            name: String::new(),
+            color: th.trail,
+            points: c.floor(),
+            joined: true,
+        });
+    } else if let Some(((p0, v0), (p1, v1))) = extremes(c) {
+        marks.push(Mark::Point {
+            x: p0,
+            y: v0,
+            label: "min".into(),
+            color: th.stuck,
+        });
+        marks.push(Mark::Point {
+            x: p1,
+            y: v1,
+            label: "max".into(),
+            color: th.escaped,
+        });
+    }
+    let note = curve_note(c, window);
+    let done = c.ve.iter().filter(|v| v.is_some()).count();
+    let progress = if done < c.ve.len() {
+        format!(", {done}/{} angles", c.ve.len())
+    } else if !window && c.least.is_none() {
+        ", refining min…".into()
+    } else {
+        String::new()
+    };
+    (note, progress)
+}
+
+/// The least and greatest v_e of a curve as (φ, v_e): the least refined between the angles
+/// once it arrives, the grid's until then.
+fn extremes(c: &Curve) -> Option<((f64, f64), (f64, f64))> {
+    let (least, most) = c.extremes()?;
+    Some((c.least.flatten().unwrap_or(least), most))
+}
+
+/// The curve's note: the widest sticking window outside ξ = 1; inside, v_e's least (π to three
+/// decimals once refined, to two from the grid, only good to its 0.03π) and greatest.
+pub(super) fn curve_note(c: &Curve, window: bool) -> String {
+    if window {
+        return widest(c);
+    }
+    let Some(((p0, v0), (p1, v1))) = extremes(c) else {
+        return String::new();
+    };
+    let digits = if matches!(c.least, Some(Some(_))) {
+        3
+    } else {
+        2
+    };
+    format!(
+        "min {} at {}π, max {} at {}π",
+        speed(v0),
+        num(p0 / PI, digits),
+        speed(v1),
+        num(p1 / PI, 2)
+    )
+}
+
+/// What the curve says of the release on screen, in words, and its tone: the outcome it
+/// foretells (Running: too near an edge to tell), or None where it says nothing.
+pub(super) fn release_verdict(app: &App, mine: Option<&Curve>) -> (&'static str, Option<Outcome>) {
+    let i = app.initial();
+    let window = i.xi0 > 1.0;
+    let judged = match i.release {
+        Release::Velocity => mine.and_then(|c| judge(c, turn_angle(i.phi), i.v0)),
+        _ => None,
+    };
+    let (esc, stk, near) = (
+        Some(Outcome::Escaped),
+        Some(Outcome::Stuck),
+        Some(Outcome::Running),
+    );
+    match (judged, window) {
+        (Some(Verdict::Above), false) => (" escapes (above v_e)", esc),
+        (Some(Verdict::Inside), false) => (" sticks (below v_e)", stk),
+        // Between the computed angles' values: the chart cannot tell; the run can.
+        (Some(Verdict::Near), false) => (" ≈ v_e: Enter runs it to see", near),
+        (Some(Verdict::Above), true) => (" escapes (above the window)", esc),
+        (Some(Verdict::Below), _) => (" escapes (below the window)", esc),
+        (Some(Verdict::Inside), true) => (" sticks (in the window)", stk),
+        (Some(Verdict::Never), _) => (" escapes (no window at this φ)", esc),
+        (Some(Verdict::Near), true) => (" ≈ window's edge: Enter runs it", near),
+        (None, _) if i.release == Release::Velocity => ("", None),
+        (None, _) => (" (release at rest: v0 = 0)", None),
+    }
+}
+
+/// The widest sticking window of a curve outside ξ = 1, in words.
+fn widest(c: &Curve) -> String {
+    let n = c.ve.len();
+    let best = (0..n)
+        .filter_map(|k| match c.ve[k]? {
+            Speeds::Stick { lo, hi } => Some((crate::analysis::angle(k, n), lo, hi)),
+            _ => None,
+        })
+        .max_by(|a, b| (a.2 - a.1).total_cmp(&(b.2 - b.1)));
+    match best {
+        Some((p, lo, hi)) => {
+            let (lo, hi, p) = (speed(lo), speed(hi), num(p / PI, 2));
+            crate::ui::fit::alternatives(&[
+                format!("widest window: sticks for v0 {lo}–{hi}, at φ = {p}π"),
+                format!("widest: v0 {lo}–{hi} at φ = {p}π"),
+                format!("widest: v0 {lo}–{hi}"),
+                format!("v0 {lo}–{hi}"),
+            ])
+        }
+        None if c.complete() => "escapes at every speed and angle".into(),
+        None => String::new(),
+    }
+}
+
+/// How a release at (φ, v0) ends, read off the curve.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Verdict {
+    /// Below the window (outside ξ = 1): escapes.
+    Below,
+    /// Sticks.
+    Inside,
+    /// Above v_e or the window: escapes.
+    Above,
+    /// No speed sticks at this angle.
+    Never,
+    /// Too close to an edge for the chart to tell.
+    Near,
+}
+
+/// The verdict at φ from the curve: at a computed angle its own window, between two the span
+/// of their edges (v_e is monotone between neighbours but at its extremes, where it is flat),
+/// each widened by its bracket's half-width. `None` until both neighbours are known.
+fn judge(c: &Curve, phi: f64, v0: f64) -> Option<Verdict> {
+    let n = c.ve.len();
+    let x = phi / TAU * n as f64;
+    let on_grid = (x - x.round()).abs() < 1e-9;
+    let (a, b) = if on_grid {
+        let k = x.round() as usize % n;
+        (c.ve[k]?, c.ve[k]?)
+    } else {
+        let k = x.floor() as usize % n;
+        (c.ve[k]?, c.ve[(k + 1) % n]?)
+    };
+    let pad = 0.5 * crate::analysis::CURVE_VTOL;
+    match (a, b) {
+        (Speeds::Escapes, Speeds::Escapes) => Some(Verdict::Never),
+        (Speeds::Stick { lo: l1, hi: h1 }, Speeds::Stick { lo: l2, hi: h2 }) => {
+            // A floor of 0 (inside ξ = 1) is exact: no speed is below it.
+            let lo = |x: f64| if x > 0.0 { x + pad } else { 0.0 };
+            Some(if v0 > h1.max(h2) + pad {
+                Verdict::Above
+            } else if l1.min(l2) > 0.0 && v0 < l1.min(l2) - pad {
+                Verdict::Below
+            } else if v0 >= lo(l1.max(l2)) && v0 < h1.min(h2) - pad {
+                Verdict::Inside
+            } else {
+                Verdict::Near
+            })
+        }
+        (Speeds::Unknown, _) | (_, Speeds::Unknown) => None,
+        _ => Some(Verdict::Near),
+    }
+}

@@ -1,0 +1,143 @@
+//! The analysis pages: the escape speed v_e(φ) (Fig. 5), the outcome map over (φ, v0), and the
+//! rest radius against ξ0 (Fig. 6) with the paper's μ measurement (Eq. 22); the time plots are
+//! in `time_plots`. Pure: they draw what the app holds and never compute a run.
+
+use super::chart::{self, Chart};
+use crate::app::pages::Page;
+use crate::app::{App, CanvasGeom};
+use crate::ui::panel::num;
+use ratatui::Frame as TuiFrame;
+use ratatui::layout::Rect;
+use ratatui::style::Style;
+use ratatui::widgets::{Paragraph, Wrap};
+
+mod escape;
+mod map;
+mod rest;
+
+use escape::{curve_note, escape_speed, release_verdict};
+pub use map::map_grid;
+use map::outcome_map;
+use rest::rest_radius;
+
+/// Draws `app.page` in `area`; returns the plot's geometry where a click means a release.
+pub fn render(f: &mut TuiFrame, area: Rect, app: &App) -> Option<CanvasGeom> {
+    if let Some(gamma) = app.settings().stokes()
+        && !app.initial().frictionless
+        && matches!(
+            app.page,
+            Page::EscapeSpeed | Page::OutcomeMap | Page::RestRadius
+        )
+    {
+        no_threshold(f, area, app, gamma);
+        return None;
+    }
+    match app.page {
+        Page::Turntable => None,
+        Page::TimePlots => {
+            super::time_plots::render(f, area, app);
+            None
+        }
+        Page::EscapeSpeed => escape_speed(f, area, app),
+        Page::OutcomeMap => outcome_map(f, area, app),
+        Page::RestRadius => {
+            rest_radius(f, area, app);
+            None
+        }
+    }
+}
+
+/// Under Stokes drag (extends the paper) the threshold pages have nothing to draw: every release
+/// leaves. Said instead, with the rate.
+fn no_threshold(f: &mut TuiFrame, area: Rect, app: &App, gamma: f64) {
+    let th = &app.theme;
+    let block = super::titled(" Stokes drag: no threshold ".to_string(), th);
+    let text = format!(
+        "Under Stokes drag γ = {gamma} there is no escape speed, outcome map or rest radius: \
+         every release leaves, exponentially at the rate Re λ+ = {:.6}, except those with \
+         u0 = λ− q0 (the centre at rest, and one speed and direction at each radius), which \
+         spiral into the centre.",
+        crate::engine::stokes::growth_rate(gamma)
+    );
+    f.render_widget(
+        Paragraph::new(text)
+            .wrap(Wrap { trim: true })
+            .style(Style::default().fg(th.foreground))
+            .block(block),
+        area,
+    );
+}
+
+fn geom(plot: Rect, c: &Chart, page: Page, app: &App) -> CanvasGeom {
+    CanvasGeom {
+        area: plot,
+        x: chart::sane(c.x),
+        y: chart::sane(c.y),
+        arrow_scale: 1.0,
+        frame: app.view,
+        turn: 0.0,
+        page,
+    }
+}
+
+/// Whether `page` has numbers of its own to say in words ([`summary`]).
+pub fn summarized(page: Page) -> bool {
+    matches!(page, Page::EscapeSpeed | Page::RestRadius)
+}
+
+/// The analysis page on screen in words, for plain mode (a screen reader has no chart): what
+/// the chart shows once its data are in, and what it says of the release on screen, from the
+/// same pieces the chart is drawn from. None while they compute, and on the pages without a
+/// summary of their own (the turntable's and the time plots' readouts are spoken already).
+pub fn summary(app: &App) -> Option<(String, Option<String>)> {
+    let settings = crate::analysis::settings_for(app.settings());
+    let i = app.initial();
+    if app.settings().stokes().is_some() {
+        return None;
+    }
+    match app.page {
+        Page::EscapeSpeed => {
+            let window = i.xi0 > 1.0;
+            // Inside ξ = 1, once the least v_e is refined too: said once, not grid then refined.
+            let c = app
+                .charts
+                .curve(i.xi0, settings)
+                .filter(|c| c.complete() && (window || c.least.is_some()))?;
+            let what = if window {
+                "sticking window"
+            } else {
+                "escape speed v_e(φ)"
+            };
+            let note = curve_note(c, window);
+            let note = note.split(super::fit::OR).next().unwrap_or_default();
+            let (verdict, _) = release_verdict(app, Some(c));
+            Some((
+                format!("{what} at ξ0 = {}: {note}", num(i.xi0, 3)),
+                Some(format!(
+                    "on the chart the release{}",
+                    if verdict.is_empty() {
+                        " is not judged"
+                    } else {
+                        verdict
+                    }
+                )),
+            ))
+        }
+        Page::RestRadius => {
+            let rest = app
+                .charts
+                .rest
+                .as_ref()
+                .filter(|r| r.settings == settings)?;
+            let c = rest.critical??;
+            Some((
+                format!(
+                    "rest radius (Fig. 6): released at rest in the lab, it stays on the table up to ξ0c = {}",
+                    num(c, 6)
+                ),
+                None,
+            ))
+        }
+        _ => None,
+    }
+}
