@@ -96,6 +96,15 @@ pub fn opening(app: &App) -> Vec<String> {
 /// time playing on says nothing until the run's state changes).
 pub fn describe(was: &Seen, now: &Seen) -> Vec<String> {
     let mut out = Vec::new();
+    run_changes(was, now, &mut out);
+    view_changes(was, now, &mut out);
+    prompt_changes(was, now, &mut out);
+    out
+}
+
+/// The run's changes: a release or a restart, play and pause, its status, the body's events
+/// and the paper's run beside it.
+fn run_changes(was: &Seen, now: &Seen, out: &mut Vec<String>) {
     let tau = num(now.tau, 3);
     let released = now.release != was.release;
     let restarted = released || (now.fresh && !was.fresh);
@@ -135,6 +144,10 @@ pub fn describe(was: &Seen, now: &Seen) -> Vec<String> {
         (Some(a), Some(b)) if a != b || restarted => out.push(format!("paper's RK2: {b}")),
         _ => {}
     }
+}
+
+/// The view's changes: speed, frame, arrows, page (and its summary), help.
+fn view_changes(was: &Seen, now: &Seen, out: &mut Vec<String>) {
     if now.speed != was.speed {
         out.push(format!("speed ×{}", crate::ui::panel::fmt_speed(now.speed)));
     }
@@ -180,6 +193,12 @@ pub fn describe(was: &Seen, now: &Seen) -> Vec<String> {
             out.push("help closed".into());
         }
     }
+}
+
+/// The words asked for or shown: naming a scene, the readouts, a notice, a lesson's caption,
+/// a prompt.
+fn prompt_changes(was: &Seen, now: &Seen, out: &mut Vec<String>) {
+    let tau = num(now.tau, 3);
     match (&was.naming, &now.naming) {
         (None, Some(_)) => out.push("save as: type a name, Enter saves, Esc cancels".into()),
         (Some(a), Some(b)) if a != b => out.push(format!("name: {b}")),
@@ -213,7 +232,6 @@ pub fn describe(was: &Seen, now: &Seen) -> Vec<String> {
     {
         out.push(p.into());
     }
-    out
 }
 
 /// The release in words: scene, ξ0, φ, v0, how it is released, the method.
