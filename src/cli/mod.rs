@@ -96,53 +96,9 @@ fn explore(
         None => config::Config::default(),
     };
     let user_themes = config_dir.as_ref().map(|d| d.join("themes"));
-    let mut scene = match &look.scene {
-        Some(s) => crate::scene::Scene::load(s)?,
-        None => crate::scene::Scene::default_scene(),
-    };
-    if let Some(c) = cli.coupling.coupling()? {
-        if cli.record.is_some() {
-            // A recording names its scene, not these flags: its replay would differ.
-            return Err(Error::invalid(
-                "--record keeps the scene, not --coupling/--mu-static-ratio/--gamma: put them in a scene file ([settings] coupling, mu_static_ratio, gamma) and pass --scene",
-            ));
-        }
-        scene.settings.coupling = c;
-        crate::check::release(&scene.initial, &scene.settings, crate::check::Via::Flags)?;
-    }
-    let units = cli.units.units()?;
-    // The table a body's metres are measured on: the one the explorer opens on (the flags,
-    // else the scene's, else the configuration's; see below).
-    let table = units.or(scene.units).or(config.units);
-    let where_units =
-        "--mu and --rpm (and optionally --g), or a scene or configuration with [units]";
-    if let Some(b) = cli.body.body(table.as_ref(), where_units)? {
-        if cli.record.is_some() {
-            return Err(Error::invalid(
-                "--record keeps the scene, not --body-length/--body-height/--body-angle: put them in a scene file ([body] length, height, angle) and pass --scene",
-            ));
-        }
-        scene.body = Some(b);
-    }
-    let no_color = std::env::var_os("NO_COLOR").is_some_and(|v| !v.is_empty());
-    let (term, colorterm) = (std::env::var("TERM").ok(), std::env::var("COLORTERM").ok());
-    let marker = cli
-        .marker
-        .or(config.marker)
-        .unwrap_or_else(|| MarkerArg::from_locale(|v| std::env::var(v).ok()));
-    // The flag, else the configuration's (which, a user's choice, wins over NO_COLOR too).
-    let theme_name = look.theme.clone().or(config.theme.clone());
-    let theme =
-        crate::theme::Theme::resolve_in(theme_name.as_deref(), no_color, user_themes.as_deref())
-            .map_err(|e| match look.theme {
-                None if config.theme.is_some() => config.blame("theme", e),
-                _ => e,
-            })?
-            .with_depth(crate::theme::Depth::detect(
-                term.as_deref(),
-                colorterm.as_deref(),
-            ))
-            .with_marker(marker.marker());
+    let (scene, units) = scene_for(cli, look, &config)?;
+    let theme = theme_for(cli, look, &config, user_themes.as_deref())?;
+    let term = std::env::var("TERM").ok();
     let scene_ref = look.scene.as_deref().map(scene_reference);
     if term.as_deref() == Some("dumb") && !plain {
         return Err(Error::Invalid(
@@ -159,19 +115,7 @@ fn explore(
         })),
         None => None,
     };
-    use std::io::IsTerminal;
-    if plain {
-        // Plain mode writes lines: its output may go to a pipe or a file, its keys may not.
-        if !std::io::stdin().is_terminal() {
-            return Err(Error::Invalid(
-                "plain mode reads keys from a terminal (stdin must be a tty); headless, use `turntable replay --plain SCRIPT`".into(),
-            ));
-        }
-    } else if !(std::io::stdin().is_terminal() && std::io::stdout().is_terminal()) {
-        return Err(Error::Invalid(
-            "the explorer needs a terminal (stdin and stdout must be a tty); headless, use `turntable replay SCRIPT` or a subcommand (see --help)".into(),
-        ));
-    }
+    needs_terminal(plain)?;
     let mut app = crate::app::App::new(scene, theme);
     // Units: the flags, else the scene's own, else the configuration's.
     if units.is_some() {
@@ -201,6 +145,102 @@ fn explore(
     } else {
         crate::terminal::run(app, fps, save, lesson)
     };
+    keep_recording(cli, recording, script, result)
+}
+
+/// The scene the explorer opens on: `--scene` or the default, with the coupling and the body
+/// the flags give; and the units the flags give.
+fn scene_for(
+    cli: &Cli,
+    look: &Look,
+    config: &config::Config,
+) -> Result<(crate::scene::Scene, Option<crate::engine::units::Units>), Error> {
+    let mut scene = match &look.scene {
+        Some(s) => crate::scene::Scene::load(s)?,
+        None => crate::scene::Scene::default_scene(),
+    };
+    if let Some(c) = cli.coupling.coupling()? {
+        if cli.record.is_some() {
+            // A recording names its scene, not these flags: its replay would differ.
+            return Err(Error::invalid(
+                "--record keeps the scene, not --coupling/--mu-static-ratio/--gamma: put them in a scene file ([settings] coupling, mu_static_ratio, gamma) and pass --scene",
+            ));
+        }
+        scene.settings.coupling = c;
+        crate::check::release(&scene.initial, &scene.settings, crate::check::Via::Flags)?;
+    }
+    let units = cli.units.units()?;
+    // The table a body's metres are measured on: the one the explorer opens on (the flags,
+    // else the scene's, else the configuration's; see below).
+    let table = units.or(scene.units).or(config.units);
+    let where_units =
+        "--mu and --rpm (and optionally --g), or a scene or configuration with [units]";
+    if let Some(b) = cli.body.body(table.as_ref(), where_units)? {
+        if cli.record.is_some() {
+            return Err(Error::invalid(
+                "--record keeps the scene, not --body-length/--body-height/--body-angle: put them in a scene file ([body] length, height, angle) and pass --scene",
+            ));
+        }
+        scene.body = Some(b);
+    }
+    Ok((scene, units))
+}
+
+/// The theme: `--theme`, else the configuration's (which, a user's choice, wins over NO_COLOR
+/// too), at the terminal's colour depth, with the marker asked for or the locale's.
+fn theme_for(
+    cli: &Cli,
+    look: &Look,
+    config: &config::Config,
+    user_themes: Option<&std::path::Path>,
+) -> Result<crate::theme::Theme, Error> {
+    let no_color = std::env::var_os("NO_COLOR").is_some_and(|v| !v.is_empty());
+    let (term, colorterm) = (std::env::var("TERM").ok(), std::env::var("COLORTERM").ok());
+    let marker = cli
+        .marker
+        .or(config.marker)
+        .unwrap_or_else(|| MarkerArg::from_locale(|v| std::env::var(v).ok()));
+    // The flag, else the configuration's (which, a user's choice, wins over NO_COLOR too).
+    let theme_name = look.theme.clone().or(config.theme.clone());
+    let theme = crate::theme::Theme::resolve_in(theme_name.as_deref(), no_color, user_themes)
+        .map_err(|e| match look.theme {
+            None if config.theme.is_some() => config.blame("theme", e),
+            _ => e,
+        })?
+        .with_depth(crate::theme::Depth::detect(
+            term.as_deref(),
+            colorterm.as_deref(),
+        ))
+        .with_marker(marker.marker());
+    Ok(theme)
+}
+
+/// The explorer needs a terminal: plain mode for its keys, the full screen for both.
+fn needs_terminal(plain: bool) -> Result<(), Error> {
+    use std::io::IsTerminal;
+    if plain {
+        // Plain mode writes lines: its output may go to a pipe or a file, its keys may not.
+        if !std::io::stdin().is_terminal() {
+            return Err(Error::Invalid(
+                "plain mode reads keys from a terminal (stdin must be a tty); headless, use `turntable replay --plain SCRIPT`".into(),
+            ));
+        }
+    } else if !(std::io::stdin().is_terminal() && std::io::stdout().is_terminal()) {
+        return Err(Error::Invalid(
+            "the explorer needs a terminal (stdin and stdout must be a tty); headless, use `turntable replay SCRIPT` or a subcommand (see --help)".into(),
+        ));
+    }
+    Ok(())
+}
+
+/// The session's recording kept (where `--record` said, or beside it if that appeared in
+/// the meantime, which is said), and the session's result.
+fn keep_recording(
+    cli: &Cli,
+    recording: Option<std::sync::Arc<Recording>>,
+    script: Option<String>,
+    result: std::io::Result<Option<i32>>,
+) -> Result<Option<i32>, Error> {
     if let (Some(r), Some(script)) = (recording, script) {
         let saved = match (r.keep(script), &result) {
             (Ok(saved), _) => saved,
