@@ -86,6 +86,34 @@ fn equalize(x: [f64; 2], y: [f64; 2], w: f64, h: f64) -> ([f64; 2], [f64; 2]) {
     (widen(x, w), widen(y, h))
 }
 
+/// Where a panel's plot lies on the page and which data it shows.
+struct Axes {
+    x0: f64,
+    y0: f64,
+    w: f64,
+    h: f64,
+    xr: [f64; 2],
+    yr: [f64; 2],
+}
+
+impl Axes {
+    fn px(&self, v: f64) -> f64 {
+        self.x0 + (v - self.xr[0]) / (self.xr[1] - self.xr[0]) * self.w
+    }
+
+    fn py(&self, v: f64) -> f64 {
+        self.y0 + self.h - (v - self.yr[0]) / (self.yr[1] - self.yr[0]) * self.h
+    }
+
+    fn inside(&self, x: f64, y: f64) -> bool {
+        let (xr, yr) = (self.xr, self.yr);
+        x.is_finite()
+            && y.is_finite()
+            && (xr[0]..=xr[1]).contains(&x)
+            && (yr[0]..=yr[1]).contains(&y)
+    }
+}
+
 fn panel(s: &mut String, p: &Panel, top: f64, height: f64) {
     let (x0, y0) = (LEFT, top + TOP);
     let (w, h) = (WIDTH - LEFT - RIGHT, height - TOP - BOTTOM);
@@ -94,14 +122,30 @@ fn panel(s: &mut String, p: &Panel, top: f64, height: f64) {
         true => equalize(sane(p.x), sane(p.y), w, h),
         false => (sane(p.x), sane(p.y)),
     };
-    let px = |v: f64| x0 + (v - xr[0]) / (xr[1] - xr[0]) * w;
-    let py = |v: f64| y0 + h - (v - yr[0]) / (yr[1] - yr[0]) * h;
-    let inside = |x: f64, y: f64| {
-        x.is_finite()
-            && y.is_finite()
-            && (xr[0]..=xr[1]).contains(&x)
-            && (yr[0]..=yr[1]).contains(&y)
+    let ax = Axes {
+        x0,
+        y0,
+        w,
+        h,
+        xr,
+        yr,
     };
+    axes(s, p, &ax, top);
+    let legend = series(s, p, &ax);
+    marks(s, p, &ax);
+    frame_and_legend(s, &ax, &legend);
+}
+
+/// The panel's title, grid, ticks and axis names, and the clip its data are drawn in.
+fn axes(s: &mut String, p: &Panel, ax: &Axes, top: f64) {
+    let Axes {
+        x0,
+        y0,
+        w,
+        h,
+        xr,
+        yr,
+    } = *ax;
     let _ = writeln!(
         s,
         "<g class=\"panel\">\n<text class=\"panel-title\" x=\"{}\" y=\"{}\" text-anchor=\"middle\" font-size=\"14\">{}</text>",
@@ -111,7 +155,7 @@ fn panel(s: &mut String, p: &Panel, top: f64, height: f64) {
     );
     // Grid and ticks.
     for v in ticks(xr[0], xr[1], 8) {
-        let x = c(px(v));
+        let x = c(ax.px(v));
         let _ = writeln!(
             s,
             "<line x1=\"{x}\" y1=\"{}\" x2=\"{x}\" y2=\"{}\" stroke=\"#e4e4e4\"/>\n\
@@ -123,7 +167,7 @@ fn panel(s: &mut String, p: &Panel, top: f64, height: f64) {
         );
     }
     for v in ticks(yr[0], yr[1], 6) {
-        let y = c(py(v));
+        let y = c(ax.py(v));
         let _ = writeln!(
             s,
             "<line x1=\"{}\" y1=\"{y}\" x2=\"{}\" y2=\"{y}\" stroke=\"#e4e4e4\"/>\n\
@@ -156,6 +200,12 @@ fn panel(s: &mut String, p: &Panel, top: f64, height: f64) {
         c(h),
         c(top)
     );
+}
+
+/// The series, in the palette's colours and dashes in turn; returns each one's legend entry
+/// (its escaped name and a sample of its look).
+fn series(s: &mut String, p: &Panel, ax: &Axes) -> Vec<(String, String)> {
+    let Axes { w, h, xr, yr, .. } = *ax;
     let mut colours = 0;
     let mut legend = Vec::new();
     for ser in &p.series {
@@ -173,12 +223,12 @@ fn panel(s: &mut String, p: &Panel, top: f64, height: f64) {
                     "<g class=\"cells\" data-name=\"{name}\" fill=\"{fill}\">"
                 );
                 let (rw, rh) = (cw / (xr[1] - xr[0]) * w, ch / (yr[1] - yr[0]) * h);
-                for &(x, y) in ser.points.iter().filter(|(x, y)| inside(*x, *y)) {
+                for &(x, y) in ser.points.iter().filter(|(x, y)| ax.inside(*x, *y)) {
                     let _ = writeln!(
                         s,
                         "<rect class=\"cell\" x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\"/>",
-                        c(px(x) - rw / 2.0),
-                        c(py(y) - rh / 2.0),
+                        c(ax.px(x) - rw / 2.0),
+                        c(ax.py(y) - rh / 2.0),
                         c(rw),
                         c(rh)
                     );
@@ -193,12 +243,12 @@ fn panel(s: &mut String, p: &Panel, top: f64, height: f64) {
                     s,
                     "<g class=\"dots\" data-name=\"{name}\" fill=\"{colour}\">"
                 );
-                for &(x, y) in ser.points.iter().filter(|(x, y)| inside(*x, *y)) {
+                for &(x, y) in ser.points.iter().filter(|(x, y)| ax.inside(*x, *y)) {
                     let _ = writeln!(
                         s,
                         "<circle cx=\"{}\" cy=\"{}\" r=\"3\"/>",
-                        c(px(x)),
-                        c(py(y))
+                        c(ax.px(x)),
+                        c(ax.py(y))
                     );
                 }
                 s.push_str("</g>\n");
@@ -223,7 +273,7 @@ fn panel(s: &mut String, p: &Panel, top: f64, height: f64) {
                 {
                     let pts: Vec<String> = run
                         .iter()
-                        .map(|&(x, y)| format!("{},{}", c(px(x)), c(py(y))))
+                        .map(|&(x, y)| format!("{},{}", c(ax.px(x)), c(ax.py(y))))
                         .collect();
                     let _ = writeln!(
                         s,
@@ -240,14 +290,22 @@ fn panel(s: &mut String, p: &Panel, top: f64, height: f64) {
             }
         }
     }
+    legend
+}
+
+/// The marks: vertical lines and points, labelled on the side with room.
+fn marks(s: &mut String, p: &Panel, ax: &Axes) {
+    let Axes {
+        x0, y0, w, h, yr, ..
+    } = *ax;
     for m in &p.marks {
         match m {
-            Mark::VLine { x, label } if inside(*x, yr[0]) => {
-                let xp = c(px(*x));
+            Mark::VLine { x, label } if ax.inside(*x, yr[0]) => {
+                let xp = c(ax.px(*x));
                 // The label on the side with room for it.
-                let (lx, anchor) = match px(*x) > x0 + 0.6 * w {
-                    true => (px(*x) - 3.0, "end"),
-                    false => (px(*x) + 3.0, "start"),
+                let (lx, anchor) = match ax.px(*x) > x0 + 0.6 * w {
+                    true => (ax.px(*x) - 3.0, "end"),
+                    false => (ax.px(*x) + 3.0, "start"),
                 };
                 let _ = writeln!(
                     s,
@@ -260,25 +318,30 @@ fn panel(s: &mut String, p: &Panel, top: f64, height: f64) {
                     esc(label)
                 );
             }
-            Mark::Point { x, y, label } if inside(*x, *y) => {
-                let (lx, anchor) = match px(*x) > x0 + 0.6 * w {
-                    true => (px(*x) - 7.0, "end"),
-                    false => (px(*x) + 7.0, "start"),
+            Mark::Point { x, y, label } if ax.inside(*x, *y) => {
+                let (lx, anchor) = match ax.px(*x) > x0 + 0.6 * w {
+                    true => (ax.px(*x) - 7.0, "end"),
+                    false => (ax.px(*x) + 7.0, "start"),
                 };
                 let _ = writeln!(
                     s,
                     "<circle class=\"mark\" cx=\"{}\" cy=\"{}\" r=\"4.5\" fill=\"none\" stroke=\"black\" stroke-width=\"1.5\"/>\n\
                      <text class=\"mark-label\" x=\"{}\" y=\"{}\" font-size=\"11\" text-anchor=\"{anchor}\">{}</text>",
-                    c(px(*x)),
-                    c(py(*y)),
+                    c(ax.px(*x)),
+                    c(ax.py(*y)),
                     c(lx),
-                    c(py(*y) - 7.0),
+                    c(ax.py(*y) - 7.0),
                     esc(label)
                 );
             }
             _ => {}
         }
     }
+}
+
+/// The data's clip closed, the plot's frame and the legend beside it.
+fn frame_and_legend(s: &mut String, ax: &Axes, legend: &[(String, String)]) {
+    let Axes { x0, y0, w, h, .. } = *ax;
     s.push_str("</g>\n");
     let _ = writeln!(
         s,
