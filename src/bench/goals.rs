@@ -12,8 +12,21 @@ use crate::error::Error;
 use crate::scene::Scene;
 use std::time::Instant;
 
+/// The work saved by modelling only what a scene requires, one row a saving (or a cost, for
+/// the finite body).
 pub(super) fn savings(cs: &[Initial]) -> Result<Vec<Saving>, Error> {
     let mut out = Vec::new();
+    stop_at_the_stick(cs, &mut out)?;
+    stop_at_the_certificate(&mut out)?;
+    frame_far_out(&mut out)?;
+    closed_forms(&mut out)?;
+    static_friction(cs, &mut out)?;
+    finite_body(cs, &mut out)?;
+    Ok(out)
+}
+
+/// Stuck runs stopped at the stick and rotated in closed form.
+fn stop_at_the_stick(cs: &[Initial], out: &mut Vec<Saving>) -> Result<(), Error> {
     // Stuck: closed-form rotation after the stop, against the paper's stepping to τ = 50.
     let (mut raw, mut rk2, mut dp) = (0, 0, 0);
     for i in cs {
@@ -34,6 +47,11 @@ pub(super) fn savings(cs: &[Initial]) -> Result<Vec<Saving>, Error> {
             factor: raw as f64 / lean_evals as f64,
         });
     }
+    Ok(())
+}
+
+/// An escape stopped once certified.
+fn stop_at_the_certificate(out: &mut Vec<Saving>) -> Result<(), Error> {
     // Escaping: stop at the certificate instead of following it out to τ = 400.
     let far = Initial::velocity(0.5, 0.4, 1.5);
     let mut follow = Run::new(far, Settings::default())?;
@@ -48,6 +66,11 @@ pub(super) fn savings(cs: &[Initial]) -> Result<Vec<Saving>, Error> {
         lean_evals: stop.cost().rhs_evals,
         factor: follow.cost().rhs_evals as f64 / stop.cost().rhs_evals as f64,
     });
+    Ok(())
+}
+
+/// The lab frame far out.
+fn frame_far_out(out: &mut Vec<Saving>) -> Result<(), Error> {
     // Frame far out: ξ0 = 500 released at rest in the lab, to τ = 30 (Fig. 1).
     let fig1 = Initial::at_rest(500.0, Release::LabRest);
     let mut ev = [0u64; 2];
@@ -66,6 +89,11 @@ pub(super) fn savings(cs: &[Initial]) -> Result<Vec<Saving>, Error> {
         lean_evals: ev[1],
         factor: ev[0] as f64 / ev[1] as f64,
     });
+    Ok(())
+}
+
+/// μ = 0 and Stokes drag in closed form.
+fn closed_forms(out: &mut Vec<Saving>) -> Result<(), Error> {
     // μ = 0: the straight line in closed form, against integrating the frictionless
     // equations in the rotating frame (where the paper writes them) out to the view's edge.
     let free = Initial {
@@ -119,6 +147,11 @@ pub(super) fn savings(cs: &[Initial]) -> Result<Vec<Saving>, Error> {
         lean_evals: 0,
         factor: f64::INFINITY,
     });
+    Ok(())
+}
+
+/// Static friction above kinetic: what its threshold costs.
+fn static_friction(cs: &[Initial], out: &mut Vec<Saving>) -> Result<(), Error> {
     // μ_s > μ_k: the same stepping with another threshold, against the point model's.
     let (mut paper, mut held) = (0, 0);
     for i in cs {
@@ -140,6 +173,11 @@ pub(super) fn savings(cs: &[Initial]) -> Result<Vec<Saving>, Error> {
         lean_evals: held,
         factor: paper as f64 / held as f64,
     });
+    Ok(())
+}
+
+/// The appendix's body against the point.
+fn finite_body(cs: &[Initial], out: &mut Vec<Saving>) -> Result<(), Error> {
     // The appendix's body (issue 23): two contacts, a rotation and their events, against the
     // point from the same releases.
     let (mut point, mut body) = (0, 0);
@@ -165,7 +203,7 @@ pub(super) fn savings(cs: &[Initial]) -> Result<Vec<Saving>, Error> {
         lean_evals: body,
         factor: point as f64 / body as f64,
     });
-    Ok(out)
+    Ok(())
 }
 
 /// How long the Stokes saving runs: long enough for the growing mode to lead by far.
