@@ -145,7 +145,7 @@ fn explore(
     } else {
         crate::terminal::run(app, fps, save, lesson)
     };
-    keep_recording(cli, recording, script, result)
+    keep_recording(recording, script, result)
 }
 
 /// The scene the explorer opens on: `--scene` or the default, with the coupling and the body
@@ -236,7 +236,6 @@ fn needs_terminal(plain: bool) -> Result<(), Error> {
 /// The session's recording kept (where `--record` said, or beside it if that appeared in
 /// the meantime, which is said), and the session's result.
 fn keep_recording(
-    cli: &Cli,
     recording: Option<std::sync::Arc<Recording>>,
     script: Option<String>,
     result: std::io::Result<Option<i32>>,

@@ -34,7 +34,8 @@ pub fn in_frame(s: &State, frame: Frame) -> DVec2 {
 pub fn auto_extent(app: &App) -> f64 {
     let reach = |sim: &crate::sim::Sim| sim.trail().iter().fold(0.0, |m: f64, s| m.max(s.xi()));
     let own = reach(app.sim()).max(app.initial().xi0).max(1.0);
-    let m = app.paper()
+    let m = app
+        .paper()
         .map_or(own, |p| own.max(reach(p).min(1.5 * own)));
     // Pins widen it as the paper's run does, so a pinned D (from ξ0 = 1.1) stays in view.
     let m = app.pins.iter().fold(m, |m, p| {
@@ -210,7 +211,8 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) -> CanvasGeom {
     let th = app.theme.clone();
     // With the point model hidden (`C`), the body's centre is what a zoom follows.
     let point = app.point_shown();
-    let body_now = app.rod()
+    let body_now = app
+        .rod()
         .and_then(|rod| body_shown(rod, app.sim().now().tau));
     let block = super::titled(title(app, point), &th);
     let inner = block.inner(area);
