@@ -152,20 +152,6 @@ fn the_engine_names_no_flag() {
     assert!(bad.is_empty(), "{}", bad.join("\n"));
 }
 
-#[test]
-fn the_engine_depends_on_nothing_else_in_the_crate() {
-    let mut bad = vec![];
-    for (path, code) in sources(&src().join("engine")) {
-        for line in code.lines() {
-            let code = line.split("//").next().unwrap_or("");
-            if code.contains("crate::") && !code.contains("crate::engine") {
-                bad.push(format!("{}: {}", path.display(), line.trim()));
-            }
-        }
-    }
-    assert!(bad.is_empty(), "{}", bad.join("\n"));
-}
-
 /// Time advances by ticks inside the model, so the same keys give the same screens: the wall
 /// clock is read by the terminal loop (frame pacing) and the bench (timings) only.
 #[test]
