@@ -6,7 +6,7 @@ pub mod analysis;
 pub mod app;
 pub mod asciicast;
 pub mod bench;
-pub mod check;
+pub(crate) mod check;
 pub mod cli;
 pub mod engine;
 pub mod error;

@@ -3,7 +3,7 @@
 
 mod args;
 mod bench;
-pub mod config;
+pub(crate) mod config;
 pub mod lesson;
 mod numerics;
 mod plot;

@@ -1,13 +1,13 @@
 //! Pure rendering of the explorer's state into a ratatui frame.
 
 pub mod canvas;
-pub mod caption;
-pub mod chart;
+pub(crate) mod caption;
+pub(crate) mod chart;
 pub mod export;
-pub mod figure;
+pub(crate) mod figure;
 pub mod fit;
 pub mod help;
-pub mod layout;
+pub(crate) mod layout;
 pub mod pages;
 pub mod panel;
 pub mod plain;
