@@ -173,7 +173,7 @@ fn no_unsafe_code() {
 #[test]
 fn files_are_written_only_through_files() {
     for call in ["fs::write", "File::create", "fs::rename", "OpenOptions"] {
-        let bad = offenders(call, &["files.rs"]);
+        let bad = offenders(call, &["files/"]);
         assert!(bad.is_empty(), "{}", bad.join("\n"));
     }
 }
@@ -424,7 +424,7 @@ const FN_LINES: usize = 120;
 
 /// Files still over [`FILE_LINES`], each with its count when listed: remove an entry when its
 /// file is split (the test fails on an entry no longer needed).
-const LONG_FILES: [&str; 7] = [
+const LONG_FILES: [&str; 6] = [
     // The state: to be split into the view and the prompt (issue 30, item 1).
     "app/state.rs",
     // The engine: the body's run onto the shared stepper (issue 30, item 4).
@@ -434,8 +434,6 @@ const LONG_FILES: [&str; 7] = [
     "engine/stepper.rs",
     // The terminal's input decoding.
     "terminal/input.rs",
-    // Split on a branch that crossed the typed errors and the output policy; to be redone.
-    "files.rs",
 ];
 
 /// Functions still over [`FN_LINES`] (`file::name`), each with its count when listed: remove

@@ -1,8 +1,8 @@
 //! The command line as clap reads it: the explorer's flags, the subcommands and their
 //! arguments, and the checks that turn them into engine settings.
 
-use crate::engine::units::G_DEFAULT;
 use crate::engine::body::Body;
+use crate::engine::units::G_DEFAULT;
 use crate::engine::units::{Length, SizeRefused, Units};
 use crate::engine::{Coupling, CouplingName, Frame, Method, Release, Settings};
 use crate::error::Error;
