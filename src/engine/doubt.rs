@@ -36,7 +36,8 @@ pub struct Doubt {
     pub shadow: Option<Outcome>,
     /// |Δτ| and |Δq| (table frame) between the run's deciding state (the stop, the escape
     /// certificate, or τ-max) and the second opinion's: the measured error of the run's time and
-    /// place, to within the second opinion's own (about 1000× smaller). Infinite when the two
+    /// place, to within the second opinion's own (about 1000× smaller); |Δτ| at least what a
+    /// closed-form stop of either may have dropped ([`Run::snap_bound`]). Infinite when the two
     /// end differently.
     pub tau_error: f64,
     pub q_error: f64,
@@ -117,13 +118,18 @@ pub fn doubt(run: &Run, tau_max: f64) -> Doubt {
     let shadow = Run::checking(run.initial(), check).ok().and_then(|mut s| {
         let o = s.run(limit, true);
         check_evals = s.cost().rhs_evals;
-        o.ok().map(|o| (o, decided_state(&s)))
+        o.ok().map(|o| (o, decided_state(&s), s.snap_bound()))
     });
     match shadow {
-        Some((o, s)) => {
+        Some((o, s, shadow_snap)) => {
             let error = (measure(&s, outside, hold) - measure(&end, outside, hold)).abs();
+            // What both may have dropped in a closed-form stop is not in their difference.
             let (tau_error, q_error) = if o == own {
-                ((s.tau - end.tau).abs(), (s.q() - end.q()).length())
+                let dropped = run.snap_bound().max(shadow_snap);
+                (
+                    (s.tau - end.tau).abs().max(dropped),
+                    (s.q() - end.q()).length(),
+                )
             } else {
                 (f64::INFINITY, f64::INFINITY)
             };

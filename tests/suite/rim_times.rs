@@ -161,3 +161,24 @@ fn dop853(tol: f64) -> Settings {
         ..Settings::default()
     }
 }
+
+/// On the saddle itself (ξ0 = 1 thrown straight in at 1e-6) the particle stops inside at once,
+/// but whether û swings outward in the last 1e-18 of its speed, and crawls on at a deceleration
+/// of 2.5e-13, is beyond what τ resolves: runs stop at 5.0e-7 or at 9.4e-7. It used to fail with
+/// "step size underflow"; now it sticks, certain, and every setting states a τ error that covers
+/// both (what its closed-form stop may have dropped), not the 6e-20 by which two runs that
+/// stopped alike agreed.
+#[test]
+fn on_the_saddle_the_stop_time_states_what_it_cannot_resolve() {
+    for s in [
+        Settings::dp54(1e-6),
+        Settings::dp54(1e-10),
+        Settings::dp54(1e-13),
+        dop853(1e-12),
+    ] {
+        let c = case(1.0, PI, 1e-6, s);
+        assert!(c.certain && c.outcome == Outcome::Stuck, "{s:?}");
+        assert!((4.9e-7..9.5e-7).contains(&c.tau), "{s:?}: {}", c.tau);
+        assert!(c.stated >= 4.4e-7, "{s:?}: ±{:e}", c.stated);
+    }
+}

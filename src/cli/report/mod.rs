@@ -353,7 +353,7 @@ growth   {rate:.12}  (Re lambda+: every release leaves as e^(rate tau) but those
                 "check    closed form (Stokes drag): no integration error to check\n".to_string()
             }
             (Some(c), Some(true)) => format!(
-                "check    outcome certain: {} agrees; {}tau differs from it by {:.1e}, position by {:.1e}\n",
+                "check    outcome certain: {} agrees; {}tau measured within {:.1e} of it, position {:.1e}\n",
                 c.who(),
                 // Followed past the certificate (--follow): what was compared is the certificate.
                 match self.escape_tau {

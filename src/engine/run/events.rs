@@ -62,6 +62,7 @@ impl Run {
             let decel = 1.0 - q.dot(u) / speed;
             let t = speed / decel;
             if decel > 0.0 && t <= 1e-12 * t0.abs() {
+                self.snap_bound = self.snap_bound.max(super::worst_stop(q, u, t));
                 self.jump(t, q + u * (0.5 * t), DVec2::ZERO, Limit::ClosedForm);
                 return Ok(());
             }

@@ -139,6 +139,9 @@ pub struct Run {
     /// the end of the latest implicit step (see [`Run::table_y`]).
     implicit_h: f64,
     table: Option<(f64, Y, Y)>,
+    /// The largest error a closed-form stop of this run may have made in its time (see
+    /// [`Run::snap_bound`]).
+    snap_bound: f64,
     /// A second opinion ([`Run::checking`]): it must not share the run's closed forms, so it
     /// takes no [`frozen_stop`] and stops in closed form only a thousandth as far from the stop;
     /// and it holds |u| to its relative accuracy near the rim.
@@ -174,6 +177,7 @@ impl Run {
             implicit_h: 0.0,
             table: None,
             checking: false,
+            snap_bound: 0.0,
             stepper,
             stokes: settings
                 .stokes()
@@ -223,6 +227,14 @@ impl Run {
             checking: true,
             ..Run::new(initial, settings)?
         })
+    }
+
+    /// The largest error in a stop's time that the closed forms this run took may have made:
+    /// the time to the stop at the slowest deceleration it could have, |u|/(1 − ξ) inside the
+    /// rim, or the frozen stop's measured bound. A second opinion that took the same closed form
+    /// cannot see it, so [`super::doubt`] states at least this.
+    pub fn snap_bound(&self) -> f64 {
+        self.snap_bound
     }
 
     pub fn initial(&self) -> Initial {
@@ -398,6 +410,7 @@ impl Run {
         {
             let (t, dq) = frozen_stop(q, u);
             if t <= cap {
+                self.snap_bound = self.snap_bound.max(frozen_stop_error(q, u));
                 self.jump(t, q + dq, DVec2::ZERO, Limit::ClosedForm);
                 return Ok(());
             }
@@ -411,8 +424,9 @@ impl Run {
         }
         if self.settings.method().stick_events() {
             match self.stop_ahead(q, u) {
-                Ahead::Jump { t, q, u } if t <= cap => {
-                    self.jump(t, q, u, Limit::ClosedForm);
+                Ahead::Jump { t, q: to, u: end } if t <= cap => {
+                    self.snap_bound = self.snap_bound.max(worst_stop(q, u, t));
+                    self.jump(t, to, end, Limit::ClosedForm);
                     return Ok(());
                 }
                 Ahead::Cap(c, why) => {
@@ -530,5 +544,17 @@ impl Run {
         self.stepper.t = end;
         self.last = None;
         Ok(())
+    }
+}
+
+/// The slowest a stop from table-frame `q` at `u` could come: inside the rim the deceleration is
+/// at least 1 − |q| whichever way û turns, so within |u|/(1 − |q|); outside, where a snap is
+/// taken only once the stop is momentary, its constant-deceleration time `t`.
+fn worst_stop(q: DVec2, u: DVec2, t: f64) -> f64 {
+    let rho = q.length();
+    if rho < 1.0 {
+        (u.length() / (1.0 - rho)).max(t)
+    } else {
+        t
     }
 }
