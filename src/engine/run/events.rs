@@ -25,7 +25,7 @@ impl Run {
             return Ahead::Clear;
         }
         let t = speed / decel;
-        if self.snaps(q.length(), speed, t) {
+        if self.snaps(q, u, t) {
             // Constant deceleration over a tiny interval.
             return Ahead::Jump {
                 t,
@@ -134,13 +134,11 @@ impl Run {
     /// outside may hold, at ξ ≤ μ_s/μ_k: its place is the snap's, within s·t.)
     /// A stop closer than 1e-12 τ is one τ cannot resolve much better (a few thousand ulps):
     /// taken then too, within that.
-    fn snaps(&self, rho: f64, speed: f64, t: f64) -> bool {
+    /// (Either way within [`super::worst_stop`], which [`Run::snap_bound`] keeps.)
+    fn snaps(&self, q: DVec2, u: DVec2, t: f64) -> bool {
         let within = self.snap_time().max(1e-12 * self.stepper.t.abs());
-        if rho < 1.0 {
-            speed / (1.0 - rho) <= within
-        } else {
-            speed < rho - 1.0 && t <= within
-        }
+        let rho = q.length();
+        (rho < 1.0 || u.length() < rho - 1.0) && super::worst_stop(q, u, t) <= within
     }
 
     /// The error in a stop's time that a closed-form stop may make: dp54's tolerance, a fixed
