@@ -25,6 +25,8 @@ pub enum Via {
     Pin,
     /// The configuration file: `[units] rpm`.
     Config,
+    /// The explorer's prompt (`:`): `v0`, `rpm`, as typed there.
+    Prompt,
 }
 
 /// The values the engine checks by their flags' names (see [`flag`]), and each value's name
@@ -53,6 +55,7 @@ impl Via {
     pub fn name(self, key: &str) -> String {
         match self {
             Via::Flags => format!("--{key}"),
+            Via::Prompt => key.to_string(),
             Via::Scene | Via::Config | Via::Pin => {
                 let typed = KEYS
                     .iter()

@@ -52,6 +52,9 @@ pub struct Driver {
     at: usize,
     /// Ticks still to pass for the current `tick N`.
     ticks: u64,
+    /// Whether the script's own last word on time was `play` (not `pause`): then a `tick N`
+    /// waits for N ticks of play, and a pause from the keys holds the lesson there.
+    plays: bool,
 }
 
 impl Driver {
@@ -61,6 +64,7 @@ impl Driver {
             steps,
             at: 0,
             ticks: 0,
+            plays: true,
         }
     }
 
@@ -73,7 +77,22 @@ impl Driver {
         self.ticks = 0;
         let step = self.steps.get(self.at).cloned();
         self.at += usize::from(step.is_some());
+        match step {
+            Some(Step::Play(_)) => self.plays = true,
+            Some(Step::Pause) => self.plays = false,
+            _ => {}
+        }
         step
+    }
+
+    /// How many of the script's steps have been taken.
+    pub fn taken(&self) -> usize {
+        self.at
+    }
+
+    /// Whether the script's own last word on time was to play.
+    pub fn plays(&self) -> bool {
+        self.plays
     }
 
     /// A `tick N`: the next `n` ticks are the lesson's.

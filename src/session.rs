@@ -110,14 +110,14 @@ impl<B: Backend> Session<B> {
         self.ask_analysis();
     }
 
-    /// Pasted text: typed, letter by letter, only at the save prompt (there it is the name);
+    /// Pasted text: typed, letter by letter, only at the prompt (a name, values);
     /// elsewhere ignored, since a `q` in it would quit. Line breaks and other control
     /// characters are dropped: a name is one line.
     pub fn paste(&mut self, text: &str) {
-        if self.app.naming.is_none() {
+        if self.app.prompt.is_none() {
             return;
         }
-        // A name is one line: a pasted line break joins the lines. Then cleaned as any text
+        // The prompt is one line: a pasted line break joins the lines. Then cleaned as any text
         // from outside is (`crate::text`); what cleaning removed is not typed.
         let text = crate::text::Clean::new(&text.replace(['\r', '\n'], ""));
         for c in text.chars().filter(|&c| c != crate::text::MARK).take(200) {
@@ -148,10 +148,17 @@ impl<B: Backend> Session<B> {
             lock(r).tick();
         }
         self.ask_analysis();
+        // A lesson's `tick N` counts ticks of play: paused, the lesson holds where it is.
+        let played = self.app.playing;
         self.app.tick();
-        if let Some(d) = &mut self.lesson {
+        if let Some(d) = self.lesson.as_mut().filter(|_| played) {
             d.ticked();
         }
+    }
+
+    /// The interactive lesson's place in its script, while one runs.
+    pub fn lesson(&self) -> Option<&crate::lesson::Driver> {
+        self.lesson.as_ref()
     }
 
     /// Runs an interactive lesson: its steps are fed in by [`Session::pump_lesson`].
@@ -161,9 +168,10 @@ impl<B: Backend> Session<B> {
     }
 
     /// Applies the lesson's steps that are due: all of them up to a `tick N` still counting
-    /// (it counts the session's own ticks, and ends at once while time stands still, as in a
-    /// replay), a `wait` or an unanswered `ask` (until the keys answer; the loop and the clock
-    /// go on meanwhile), or the end. `resize` and `snapshot` mean nothing here.
+    /// (it counts the session's ticks of play: a pause from the keys holds it, and after the
+    /// script's own `pause` it ends at once, as in a replay), a `wait` or an unanswered `ask`
+    /// (until the keys answer; the loop and the clock go on meanwhile), or the end. `resize`
+    /// and `snapshot` mean nothing here.
     pub fn pump_lesson(&mut self) -> Result<(), B::Error> {
         let Some(mut d) = self.lesson.take() else {
             return Ok(());
@@ -175,7 +183,7 @@ impl<B: Backend> Session<B> {
 
     fn feed(&mut self, d: &mut crate::lesson::Driver) -> Result<(), B::Error> {
         while !(self.app.lesson.holds() || self.app.should_quit()) {
-            if d.counting() && self.is_playing() {
+            if d.counting() && (d.plays() || self.app.playing) {
                 return Ok(());
             }
             let Some(step) = d.next_step() else {
@@ -193,6 +201,8 @@ impl<B: Backend> Session<B> {
                 Step::Key(k) => self.press(k),
                 Step::Say(t) => self.app.say(t),
                 Step::Ask(t) => self.app.ask(t),
+                Step::Play(p) => self.app.play(p),
+                Step::Pause => self.app.pause(),
             }
         }
         Ok(())
@@ -432,6 +442,8 @@ impl Session<TestBackend> {
             Step::Ask(t) => self.app.ask(t.clone()),
             // Headless, a lesson goes on.
             Step::Wait => {}
+            Step::Play(p) => self.app.play(*p),
+            Step::Pause => self.app.pause(),
         }
     }
 }

@@ -57,7 +57,10 @@ pub enum Action {
     /// Opens the prompt for a name, then saves the scene under it.
     SaveAs,
     /// An edit of the name being typed (only while the prompt is open).
-    Name(NameEdit),
+    /// A key typed at the prompt (bound to no key: the prompt takes keys while open).
+    Type(Edit),
+    /// Opens the prompt for values (ξ0, φ, v0; μ, rpm, Ω, g).
+    SetValues,
     /// Write the page on screen as SVG to a new file.
     ExportSvg,
     ToggleMouse,
@@ -88,7 +91,7 @@ pub enum Action {
     ClearPins,
     /// A lesson's prediction: yes (it escapes) or no.
     Answer(bool),
-    /// A lesson waiting for Space or Enter goes on.
+    /// A lesson waiting for Enter goes on.
     GoOn,
 }
 
@@ -142,32 +145,32 @@ impl Action {
             ToggleFrame | ToggleForces | ToggleNetForce | ToggleVelocity | TogglePointModel
             | ZoomIn | ZoomOut | Pan(..) | ResetView | TauWindow(_) | NextPage | PrevPage
             | Choose | Omega(_) | R0c(_) | Unit(..) | UnitsOff | PinRun | ClearPins => Group::View,
-            Quit | Dismiss | ToggleHelp | HelpScroll(_) | HelpPage(_) | Save | SaveAs | Name(_)
-            | ExportSvg | ToggleMouse | Readouts => Group::App,
+            Quit | Dismiss | ToggleHelp | HelpScroll(_) | HelpPage(_) | Save | SaveAs | Type(_)
+            | SetValues | ExportSvg | ToggleMouse | Readouts => Group::App,
             Answer(_) | GoOn => Group::Lesson,
         }
     }
 }
 
-/// What a key does to the name typed at the save prompt.
+/// What a key does to the line typed at the prompt.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub enum NameEdit {
+pub enum Edit {
     Char(char),
     Back,
     Done,
     Cancel,
 }
 
-impl NameEdit {
+impl Edit {
     /// The edit a key makes at the prompt (none for keys it ignores: arrows, Tab, chords).
-    pub fn of(chord: super::Chord) -> Option<NameEdit> {
+    pub fn of(chord: super::Chord) -> Option<Edit> {
         use crossterm::event::{KeyCode, KeyModifiers};
         let plain = chord.mods.difference(KeyModifiers::SHIFT).is_empty();
         match chord.code {
-            KeyCode::Char(c) if plain && !crate::text::needs_escape(c) => Some(NameEdit::Char(c)),
-            KeyCode::Backspace => Some(NameEdit::Back),
-            KeyCode::Enter => Some(NameEdit::Done),
-            KeyCode::Esc => Some(NameEdit::Cancel),
+            KeyCode::Char(c) if plain && !crate::text::needs_escape(c) => Some(Edit::Char(c)),
+            KeyCode::Backspace => Some(Edit::Back),
+            KeyCode::Enter => Some(Edit::Done),
+            KeyCode::Esc => Some(Edit::Cancel),
             _ => None,
         }
     }

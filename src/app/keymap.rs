@@ -139,6 +139,7 @@ pub const KEYMAP: &[Binding] = &[
     b(KeyCode::PageDown, N, Action::HelpPage(1), "scroll help", "app"),
     b(ch('s'), N, Action::Save, "save scene (toml)", "app"),
     b(ch('S'), N, Action::SaveAs, "save scene as… (name, Enter)", "app"),
+    b(ch(':'), N, Action::SetValues, "type values: ξ0 φ v0 μ rpm g", "app"),
     b(ch('E'), N, Action::ExportSvg, "page as SVG (new file)", "app"),
     b(ch('M'), N, Action::ToggleMouse, "mouse capture on/off", "app"),
     b(ch('I'), N, Action::Readouts, "readouts in words", "app"),
@@ -148,7 +149,6 @@ pub const KEYMAP: &[Binding] = &[
     // Only while a lesson asks or waits (see `lookup_when`): then these keys are the lesson's.
     b(ch('y'), N, Action::Answer(true), "answer yes / no", "lesson"),
     b(ch('n'), N, Action::Answer(false), "answer yes / no", "lesson"),
-    b(ch(' '), N, Action::GoOn, "go on when it waits", "lesson"),
     b(KeyCode::Enter, N, Action::GoOn, "go on when it waits", "lesson"),
 ];
 
@@ -157,8 +157,8 @@ pub fn lookup(chord: Chord) -> Option<Action> {
     lookup_when(chord, Prompt::None)
 }
 
-/// The action bound to `chord` while a lesson awaits `prompt`: y/n answer its question, Space
-/// and Enter let it go on; otherwise the lesson's bindings are passed over.
+/// The action bound to `chord` while a lesson awaits `prompt`: y/n answer its question, Enter
+/// lets it go on; otherwise the lesson's bindings are passed over.
 pub fn lookup_when(chord: Chord, prompt: Prompt) -> Option<Action> {
     let live = |a: Action| match a {
         Action::Answer(_) => prompt == Prompt::Answer,

@@ -1,5 +1,5 @@
 //! A narrated lesson's part of the state: the caption over the scene, the prediction asked
-//! and its answer, and whether the lesson holds for Space or Enter. A lesson script sets them
+//! and its answer, and whether the lesson holds for Enter. A lesson script sets them
 //! (`say`, `ask`, `wait`; see `crate::lesson`), the keys answer and go on; the caption's words,
 //! the verdict included, are a function of this state and the run on screen.
 
@@ -13,7 +13,7 @@ pub struct Lesson {
     pub name: Option<String>,
     pub caption: Option<crate::text::Clean>,
     pub question: Option<Question>,
-    /// Held until Space or Enter (interactive lessons only: headless, `wait` goes on).
+    /// Held until Enter (interactive lessons only: headless, `wait` goes on).
     pub waiting: bool,
     /// The lesson's script has run to its end.
     pub done: bool,
@@ -30,13 +30,14 @@ pub struct Question {
 }
 
 /// What the lesson waits for from the keys now: their bindings in the lesson group take
-/// these keys first (see [`super::keymap::lookup_when`]).
+/// these keys first (see [`super::keymap::lookup_when`]). Space is never the lesson's: it
+/// plays and pauses at every moment.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Prompt {
     None,
     /// y or n.
     Answer,
-    /// Space or Enter.
+    /// Enter.
     GoOn,
 }
 
@@ -69,16 +70,23 @@ impl Lesson {
 }
 
 impl App {
-    /// `say`: a caption over the scene until the next `say` or `ask` (None clears it).
+    /// `say`: a caption over the scene until the next `say` or `ask` (None clears it), in
+    /// place of any notice.
     pub fn say(&mut self, text: Option<crate::text::Clean>) {
+        // The lesson's words supersede a notice (a preset's, which may tell the outcome).
+        if text.is_some() {
+            self.notice = None;
+        }
         self.lesson.caption = text;
         self.lesson.question = None;
         self.dirty = true;
     }
 
-    /// `ask`: a prediction for the user to make, y or n; the run then answers it.
+    /// `ask`: a prediction for the user to make, y or n; the run then answers it. A notice
+    /// (a preset's words) may tell the outcome: it goes.
     pub fn ask(&mut self, text: crate::text::Clean) {
         self.lesson.caption = None;
+        self.notice = None;
         self.lesson.question = Some(Question {
             text,
             answer: None,
@@ -87,9 +95,23 @@ impl App {
         self.dirty = true;
     }
 
-    /// `wait` in an interactive lesson: hold until Space or Enter.
+    /// `wait` in an interactive lesson: hold until Enter.
     pub fn wait(&mut self) {
         self.lesson.waiting = true;
+        self.dirty = true;
+    }
+
+    /// `play [SPEED]`: time plays at 2^`power` (×1 when None), whatever it did before.
+    pub fn play(&mut self, power: Option<i8>) {
+        self.playing = true;
+        self.step_mode = false;
+        self.speed = f64::from(power.unwrap_or(0)).exp2();
+        self.dirty = true;
+    }
+
+    /// `pause`: time stands still.
+    pub fn pause(&mut self) {
+        self.playing = false;
         self.dirty = true;
     }
 
@@ -106,11 +128,15 @@ impl App {
             (None, None) if l.waiting => String::new(),
             (None, None) => return None,
         };
-        let prompt = match l.prompt() {
-            Prompt::Answer => Some("y / n"),
-            Prompt::GoOn => Some("Space: go on"),
-            Prompt::None if l.done => Some("end · q quits"),
-            Prompt::None => None,
+        // Which key pauses is said wherever the lesson is (it never moves the lesson on).
+        let prompt = match (l.prompt(), self.playing) {
+            (Prompt::Answer, true) => Some("y / n · Space pauses"),
+            (Prompt::Answer, false) => Some("y / n · Space plays"),
+            (Prompt::GoOn, true) => Some("Enter: go on · Space pauses"),
+            (Prompt::GoOn, false) => Some("Enter: go on · Space plays"),
+            (Prompt::None, _) if l.done => Some("end · q quits"),
+            (Prompt::None, true) => Some("Space pauses"),
+            (Prompt::None, false) => Some("Space plays"),
         };
         let title = l
             .name
@@ -120,6 +146,15 @@ impl App {
             title,
             text,
             prompt,
+        })
+    }
+
+    /// Whether a prediction is open and nothing on screen may say how the run ends: asked,
+    /// and the line under it does not yet say (see [`App::verdict`]).
+    pub fn outcome_open(&self) -> bool {
+        self.lesson.question.as_ref().is_some_and(|q| {
+            self.sim().outcome_now() == Outcome::Running
+                || (q.answer.is_none() && self.now().tau <= q.asked_at)
         })
     }
 

@@ -8,6 +8,7 @@ pub mod exploration;
 pub mod keymap;
 pub mod lesson;
 pub mod pages;
+pub mod prompt;
 pub mod state;
 pub mod update;
 
@@ -16,7 +17,7 @@ pub use chord::Chord;
 pub use effect::{Effect, Effects};
 pub use exploration::Exploration;
 pub use keymap::{Binding, KEYMAP};
-pub use state::{App, CanvasGeom, MU_PROBE, Measured, TICK_DT, TICKS_PER_SECOND};
+pub use state::{App, CanvasGeom, MU_PROBE, Measured, SPEED_RANGE, TICK_DT, TICKS_PER_SECOND};
 pub use update::update;
 
 use crate::engine::Settings;
@@ -40,10 +41,10 @@ impl App {
 
     /// Keymap → action → update; returns what the shell must carry out.
     pub fn press(&mut self, chord: Chord) -> Effects {
-        // While a name is typed, keys are its letters; only Ctrl-C keeps its meaning (quit).
+        // While the prompt is open, keys are its letters; only Ctrl-C keeps its meaning (quit).
         let ctrl_c = Chord::new(KeyCode::Char('c'), KeyModifiers::CONTROL);
-        let action = match &self.naming {
-            Some(_) if chord != ctrl_c => action::NameEdit::of(chord).map(Action::Name),
+        let action = match &self.prompt {
+            Some(_) if chord != ctrl_c => action::Edit::of(chord).map(Action::Type),
             _ => keymap::lookup_when(chord, self.lesson.prompt()),
         };
         match action {

@@ -111,8 +111,8 @@ pub struct App {
     pub notice: Option<String>,
     /// How many times the readouts were asked for in words (`I`): plain mode prints them.
     pub readouts_asked: u64,
-    /// The name being typed at the save prompt (`S`), while it is open.
-    pub naming: Option<String>,
+    /// The line being typed (a name to save under, `S`, or values, `:`), while it is open.
+    pub prompt: Option<super::prompt::Prompt>,
     /// Where `s` saves (`S` beside it, `E` in its folder).
     pub save_path: PathBuf,
     pub quit: bool,
@@ -177,7 +177,7 @@ impl App {
             mouse: true,
             readouts_asked: 0,
             save_path: PathBuf::from(SAVE_PATH),
-            naming: None,
+            prompt: None,
             quit: false,
             page: view.map_or(Page::Turntable, |v| v.page),
             charts: Charts::default(),
@@ -301,8 +301,13 @@ impl App {
     }
 
     /// What the scene shows, one line: the scene's own words until it is edited, then what
-    /// the run on screen does at the τ on screen, in the panel's notation.
+    /// the run on screen does at the τ on screen, in the panel's notation; only its name while
+    /// a lesson's prediction is open.
     pub fn about(&self) -> String {
+        // A scene's words tell how it ends: not while a prediction is open.
+        if self.outcome_open() {
+            return self.scene().name.to_string();
+        }
         if !self.edited() {
             return self.scene().about.to_string();
         }

@@ -1,5 +1,6 @@
 //! `turntable lesson`: the narrated lessons shipped in the binary, listed, run in the explorer
-//! or headless (snapshots as `replay` prints them).
+//! or headless (snapshots as `replay` prints them); a teacher's own lesson, a key script file,
+//! runs the same way.
 
 use super::replay::{ReplayArgs, prepare};
 use super::{Error, Look};
@@ -9,8 +10,9 @@ use clap::Args;
 
 #[derive(Args, Debug, Default)]
 pub struct LessonArgs {
-    /// The lesson to take (see --list).
-    #[arg(value_name = "NAME")]
+    /// The lesson to take (see --list), or the path of a lesson of your own (a key script
+    /// with say, ask, wait, play and pause).
+    #[arg(value_name = "NAME|PATH")]
     pub name: Option<String>,
     /// List the lessons.
     #[arg(long, conflicts_with_all = ["name", "headless"])]
@@ -52,34 +54,70 @@ pub fn run(a: &LessonArgs) -> Result<Option<(Look, Driver)>, Error> {
             names()
         )));
     };
-    let lesson = find(name).ok_or_else(|| {
-        Error::Invalid(format!(
-            "unknown lesson '{name}' (lessons: {}; `turntable lesson --list` says what each covers)",
-            names()
-        ))
-    })?;
-    let look = Look {
-        scene: None,
-        theme: a.theme.clone(),
+    let lesson = match find(name) {
+        Some(l) => Source::from(l),
+        None => own(name)?,
     };
-    let (app, opts, steps) = prepared(lesson, a.size, a.ansi, a.plain, &look)?;
+    // A lesson of one's own may name its scene and theme (`# replay:`); the flag wins.
+    let own = crate::script::script_options(&lesson.script).map_err(|e| e.context(name))?;
+    let look = Look {
+        scene: own.scene,
+        theme: a.theme.clone().or(own.theme),
+    };
+    let (app, opts, steps) = prepared(&lesson, a.size, a.ansi, a.plain, &look)?;
     if !a.headless {
-        return Ok(Some((look, Driver::new(lesson.name, steps))));
+        return Ok(Some((look, Driver::new(&lesson.name, steps))));
     }
     let mut so = std::io::BufWriter::new(std::io::stdout().lock());
     crate::replay::replay_to(app, &steps, &opts, &mut so)?;
     Ok(None)
 }
 
+/// A lesson to run: its name (for the caption) and its key script.
+struct Source {
+    name: String,
+    script: String,
+}
+
+impl From<Lesson> for Source {
+    fn from(l: Lesson) -> Source {
+        Source {
+            name: l.name.into(),
+            script: l.script.into(),
+        }
+    }
+}
+
+/// A lesson of one's own: the key script at `path`, named by its file's stem.
+fn own(path: &str) -> Result<Source, Error> {
+    let p = std::path::Path::new(path);
+    if !p.is_file() {
+        return Err(Error::Invalid(format!(
+            "unknown lesson '{}': neither one of the lessons ({}; `turntable lesson --list` says what each covers) nor a key script file",
+            crate::files::escape_controls(path),
+            names()
+        )));
+    }
+    let script = crate::files::read_bounded(p, crate::files::READ_CAP)?;
+    let stem = p
+        .file_stem()
+        .map(|s| s.to_string_lossy())
+        .unwrap_or_default();
+    Ok(Source {
+        name: crate::text::clean(&stem).to_string(),
+        script,
+    })
+}
+
 /// What `lesson NAME --headless` prints, at `size` (default the lesson's own).
 pub fn headless(lesson: Lesson, size: Option<(u16, u16)>) -> Result<String, Error> {
-    let (app, opts, steps) = prepared(lesson, size, false, false, &Look::default())?;
+    let (app, opts, steps) = prepared(&lesson.into(), size, false, false, &Look::default())?;
     Ok(crate::replay::replay(app, &steps, &opts))
 }
 
 /// A lesson's app (its name on the caption), options and steps, as `replay` prepares a script.
 fn prepared(
-    lesson: Lesson,
+    lesson: &Source,
     size: Option<(u16, u16)>,
     ansi: bool,
     plain: bool,
@@ -101,7 +139,7 @@ fn prepared(
         asciicast: None,
         force: false,
     };
-    let (mut app, opts, steps) = prepare(lesson.script, &replay)?;
-    app.lesson.name = Some(lesson.name.to_string());
+    let (mut app, opts, steps) = prepare(&lesson.script, &replay)?;
+    app.lesson.name = Some(lesson.name.clone());
     Ok((app, opts, steps))
 }

@@ -17,8 +17,9 @@
 //!
 //! Three commands narrate a lesson (`crate::lesson`): `say TEXT` shows a caption over the
 //! scene (`say` alone clears it), `ask TEXT` asks a yes/no prediction (yes: the run on screen
-//! escapes) that the run then answers, and `wait` holds an interactive lesson until Space or
-//! Enter (headless it goes on).
+//! escapes) that the run then answers, and `wait` holds an interactive lesson until Enter
+//! (headless it goes on). `play [SPEED]` and `pause` set time going or standing outright (a
+//! toggle would depend on what the keys did before).
 
 mod header;
 mod record;
@@ -70,8 +71,13 @@ pub enum Step {
     Say(Option<Clean>),
     /// A prediction to make: yes means the run on screen escapes.
     Ask(Clean),
-    /// Interactive: hold the lesson until Space or Enter. Headless: nothing.
+    /// Interactive: hold the lesson until Enter. Headless: nothing.
     Wait,
+    /// Time plays, at speed 2^n when given (`play 0.25`), else at ×1: a lesson's scene names
+    /// its state outright, whatever keys were pressed before.
+    Play(Option<i8>),
+    /// Time stands still.
+    Pause,
 }
 
 /// Where and why a script failed to parse; `line` and `column` are 1-based
@@ -209,6 +215,15 @@ fn parse_line(line: &str, steps: &mut Vec<Step>, keys: &mut usize) -> Result<(),
             steps.push(Step::Wait);
             1
         }
+        "pause" => {
+            steps.push(Step::Pause);
+            1
+        }
+        "play" => {
+            let power = toks.get(1).map(|t| speed(t.text, t.column)).transpose()?;
+            steps.push(Step::Play(power));
+            2
+        }
         "mouse" => {
             let [_, action, x, y, ..] = toks.as_slice() else {
                 return Err(need("an action and X Y, e.g. `mouse click 10 5`"));
@@ -294,6 +309,31 @@ fn key_token(tok: &Token, first: bool) -> Result<(Chord, usize), Fail> {
 
 /// Parses a decimal number, insisting on plain digits so `+5` or `5.0` are
 /// reported rather than silently accepted.
+/// A `play` speed as its power of two (0.25, 1/4 or x0.25 is −2), a power of two in the
+/// app's speed range.
+fn speed(text: &str, column: usize) -> Result<i8, Fail> {
+    let x = match text.split_once('/') {
+        Some((a, b)) => a
+            .parse::<f64>()
+            .ok()
+            .zip(b.parse::<f64>().ok())
+            .map(|(a, b)| a / b),
+        None => text.trim_start_matches(['x', '×']).parse().ok(),
+    };
+    let (lo, hi) = crate::app::SPEED_RANGE;
+    x.map(|x| (x, x.log2().round()))
+        .filter(|&(x, n)| (lo..=hi).contains(&x) && x == n.exp2())
+        .map(|(_, n)| n as i8)
+        .ok_or_else(|| {
+            (
+                column,
+                format!(
+                    "play's speed '{text}' is not a power of two from 1/64 to 256 (e.g. 0.25, 1, 4)"
+                ),
+            )
+        })
+}
+
 fn number(text: &str, column: usize, range: RangeInclusive<u64>, what: &str) -> Result<u64, Fail> {
     if text.is_empty() || !text.bytes().all(|b| b.is_ascii_digit()) {
         return Err((column, format!("{what} '{text}' is not a number")));
@@ -463,12 +503,19 @@ mod tests {
     #[test]
     fn lesson_commands() {
         assert_eq!(
-            parse("say  Friction  holds it. # note\nSAY\nask Will it escape? (y/n)\nwait\n"),
+            parse(
+                "say  Friction  holds it. # note\nSAY\nask Will it escape? (y/n)\nwait\nplay\nplay 0.25\nPLAY 1/64\nplay x4\npause\n"
+            ),
             Ok(vec![
                 Step::Say(Some("Friction  holds it.".into())),
                 Step::Say(None),
                 Step::Ask("Will it escape? (y/n)".into()),
                 Step::Wait,
+                Step::Play(None),
+                Step::Play(Some(-2)),
+                Step::Play(Some(-6)),
+                Step::Play(Some(2)),
+                Step::Pause,
             ])
         );
     }
@@ -491,9 +538,13 @@ mod tests {
     #[test]
     fn errors_name_line_and_column() {
         assert_err("a\n  b nope", 2, 5, "unknown key 'nope'");
-        assert_err("pause 5", 1, 1, "unknown command or key 'pause'");
+        assert_err("hold 5", 1, 1, "unknown command or key 'hold'");
         assert_err("wait 5", 1, 6, "unexpected '5' after wait");
         assert_err("ask", 1, 1, "ask needs a question");
+        assert_err("play 3", 1, 6, "not a power of two");
+        assert_err("play 512", 1, 6, "from 1/64 to 256");
+        assert_err("play fast", 1, 6, "play's speed 'fast'");
+        assert_err("pause 2", 1, 7, "unexpected '2' after pause");
         assert_err("ask # only a comment", 1, 1, "ask needs a question");
         assert_err("ctrl-", 1, 1, "unknown key 'ctrl-'");
         assert_err("f13", 1, 1, "unknown key 'f13'");

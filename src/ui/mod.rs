@@ -107,7 +107,7 @@ pub fn lesson_line(app: &App) -> String {
             format!(" Stokes: leaves as e^({rate:.4}τ)"),
         ]);
     }
-    let Some(p) = &app.paper() else {
+    let Some(p) = app.paper().filter(|_| !app.outcome_open()) else {
         return fit::alternatives(&[
             " c: compare with the paper's scheme (raw RK2, fixed dt = 1e-3, no stick event)",
             " c: compare with the paper's scheme (RK2, dt = 1e-3)",
@@ -162,26 +162,23 @@ pub fn lesson_line(app: &App) -> String {
 
 fn status_line(app: &App, width: u16) -> Line<'static> {
     let th = &app.theme;
-    if let Some(name) = &app.naming {
-        // The end of a long name stays in sight: what is typed is what shows.
-        let room = usize::from(width).saturating_sub(" save as: ▏".width());
-        // The hint only where it leaves room for a name.
-        let hint = "  Enter saves · Esc cancels";
+    if let Some(p) = &app.prompt {
+        // The end of a long line stays in sight: what is typed is what shows.
+        let label = format!(" {}: ", p.label());
+        let room = usize::from(width).saturating_sub(label.width() + "▏".width());
+        // The hint (or why Enter was refused) only where it leaves room for the line.
+        let hint = format!("  {}", p.refused.as_deref().unwrap_or(p.hint()));
         let (hint, room) = match room.checked_sub(hint.width()) {
             Some(r) if r >= 20 => (hint, r),
-            _ => ("", room),
+            _ => (String::new(), room),
         };
-        let mut shown: Vec<char> = name.chars().rev().collect();
+        let mut shown: Vec<char> = p.typed.chars().rev().collect();
         while shown.iter().collect::<String>().width() > room {
             shown.pop();
         }
         let shown: String = shown.into_iter().rev().collect();
         return Line::from(Span::styled(
-            fit::fit(
-                &format!(" save as: {shown}▏{hint}"),
-                "\0",
-                usize::from(width),
-            ),
+            fit::fit(&format!("{label}{shown}▏{hint}"), "\0", usize::from(width)),
             Style::default().fg(th.notice),
         ));
     }
@@ -197,13 +194,7 @@ fn status_line(app: &App, width: u16) -> Line<'static> {
     // its end.
     let room = usize::from(width).saturating_sub(mouse.width());
     // Space's hint says what it does now (while a lesson waits, it goes on).
-    let space = if app.lesson.prompt() == crate::app::lesson::Prompt::GoOn {
-        "go on"
-    } else if app.playing {
-        "pause"
-    } else {
-        "play"
-    };
+    let space = if app.playing { "pause" } else { "play" };
     let long = format!(
         " ? help  Space {space}  .,  step  [] speed  f frame  m method  c compare  a forces  1-6 presets  x/p/v edit  q quit"
     );

@@ -35,7 +35,7 @@ pub struct Seen {
     summary: Option<(String, Option<String>)>,
     help: bool,
     notice: Option<String>,
-    naming: Option<String>,
+    typing: Option<crate::app::prompt::Prompt>,
     caption: Option<String>,
     prompt: Option<&'static str>,
     readouts_asked: u64,
@@ -60,11 +60,11 @@ impl Seen {
             summary: super::pages::summary(app),
             help: app.help,
             notice: app.notice.clone(),
-            naming: app.naming.clone(),
+            typing: app.prompt.clone(),
             caption: caption.as_ref().map(|c| c.text.clone()),
             prompt: match app.lesson.prompt() {
                 Prompt::Answer => Some("answer y or n"),
-                Prompt::GoOn => Some("Space or Enter goes on"),
+                Prompt::GoOn => Some("Enter goes on (Space plays and pauses)"),
                 Prompt::None if app.lesson.done && app.lesson.name.is_some() => {
                     Some("end of the lesson; q quits")
                 }
@@ -199,9 +199,13 @@ fn view_changes(was: &Seen, now: &Seen, out: &mut Vec<String>) {
 /// a prompt.
 fn prompt_changes(was: &Seen, now: &Seen, out: &mut Vec<String>) {
     let tau = num(now.tau, 3);
-    match (&was.naming, &now.naming) {
-        (None, Some(_)) => out.push("save as: type a name, Enter saves, Esc cancels".into()),
-        (Some(a), Some(b)) if a != b => out.push(format!("name: {b}")),
+    match (&was.typing, &now.typing) {
+        (None, Some(p)) => out.push(p.asking().into()),
+        (Some(a), Some(b)) if a.refused != b.refused && b.refused.is_some() => out.push(format!(
+            "refused: {}",
+            b.refused.clone().unwrap_or_default()
+        )),
+        (Some(a), Some(b)) if a.typed != b.typed => out.push(format!("{}: {}", b.what(), b.typed)),
         _ => {}
     }
     if now.readouts_asked != was.readouts_asked {

@@ -5,9 +5,10 @@ use common::render;
 use crossterm::event::{KeyCode, KeyEvent, KeyModifiers, MouseButton, MouseEvent, MouseEventKind};
 use turntable::app::keymap::KEYMAP;
 use turntable::app::pages::Page;
-use turntable::app::{Action, App};
+use turntable::app::{Action, App, Chord};
 use turntable::engine::{Frame, Outcome, Run, Settings, Status};
 use turntable::scene::{PRESETS, Scene};
+use turntable::session::Session;
 use turntable::theme::Theme;
 use turntable::ui::panel::num;
 
@@ -252,8 +253,9 @@ fn every_key_in_the_keymap_does_what_its_help_says() {
                 d.x * dx > 0.0 || d.y * dy > 0.0
             }
             Action::ResetView => a.zoom == 1.0 && a.pan == glam::DVec2::ZERO,
-            Action::SaveAs => a.naming.as_deref() == Some("") && after.contains("save as: ▏"),
-            Action::Name(_) => unreachable!("typed at the prompt, bound to no key"),
+            Action::SaveAs => typed(&a) == Some("") && after.contains("save as: ▏"),
+            Action::SetValues => typed(&a) == Some("") && after.contains("set: ▏"),
+            Action::Type(_) => unreachable!("typed at the prompt, bound to no key"),
             Action::Save => {
                 after.contains("saved \"")
                     && Scene::load(a.save_path.to_str().unwrap()).unwrap().initial == a.initial()
@@ -393,7 +395,7 @@ fn help_overlay_lists_every_binding() {
     );
     // The two columns put the lesson and app groups on the first page.
     assert!(
-        small.contains("Space/Enter    go on when it waits")
+        small.contains("Enter          go on when it waits")
             && small.contains("Esc            close help / notice"),
         "{small}"
     );
@@ -1193,14 +1195,14 @@ fn s_names_the_scene_it_saves() {
     );
     assert!(!a.should_quit());
     assert_eq!(a.initial().xi0, xi0, "x typed a letter, no edit");
-    assert_eq!(a.naming.as_deref(), Some("Case Dx, μ × 2"));
+    assert_eq!(typed(&a), Some("Case Dx, μ × 2"));
     let screen = render(&mut a, 40, 12);
     assert!(
         screen.contains(" save as: Case Dx, μ × 2▏"),
         "the prompt shows what is typed:\n{screen}"
     );
     press(&mut a, KeyEvent::new(KeyCode::Enter, KeyModifiers::NONE));
-    assert_eq!(a.naming, None);
+    assert_eq!(a.prompt, None);
     let path = dir.join("case-dx-μ-2.toml");
     let saved = Scene::load(path.to_str().unwrap()).unwrap();
     assert_eq!(saved.name, "Case Dx, μ × 2");
@@ -1220,12 +1222,12 @@ fn s_names_the_scene_it_saves() {
     assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 2);
     key(&mut a, 'x');
     assert!(a.initial().xi0 > xi0);
-    // A name is at most NAME_MAX characters.
+    // A name is at most TYPED_MAX characters.
     key(&mut a, 'S');
     for _ in 0..60 {
         key(&mut a, 'n');
     }
-    assert_eq!(a.naming.as_ref().unwrap().chars().count(), 40);
+    assert_eq!(typed(&a).unwrap().chars().count(), 40);
     // Too long for 40 columns: its end stays in sight, by the cursor.
     let screen = render(&mut a, 40, 12);
     let prompt = screen.lines().last().unwrap();
@@ -1249,11 +1251,11 @@ fn a_paste_types_the_name_at_the_prompt_only() {
     use turntable::session::Session;
     let mut s = Session::headless(app("B"), 80, 24, true);
     s.paste("q x\nstill nothing");
-    assert!(!s.app.should_quit() && s.app.naming.is_none());
+    assert!(!s.app.should_quit() && s.app.prompt.is_none());
     assert_eq!(s.app.initial(), app("B").initial());
     s.press("S".parse().unwrap());
     s.paste("Fig. 3 B\r\n, again");
-    assert_eq!(s.app.naming.as_deref(), Some("Fig. 3 B, again"));
+    assert_eq!(typed(&s.app), Some("Fig. 3 B, again"));
     let script = s.take_recording().unwrap();
     assert!(script.contains("S F i g"), "{script}");
     assert!(!script.contains("still"), "{script}");
@@ -1264,7 +1266,7 @@ fn a_paste_types_the_name_at_the_prompt_only() {
 /// have written) and reports back as a notice.
 #[test]
 fn saving_and_exporting_are_effects_the_shell_carries_out() {
-    use turntable::app::action::NameEdit;
+    use turntable::app::action::Edit;
     use turntable::app::{Effect, update};
     let dir = std::env::temp_dir().join(format!("turntable-effects-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
@@ -1288,9 +1290,9 @@ fn saving_and_exporting_are_effects_the_shell_carries_out() {
     );
     assert!(update(&mut a, Action::SaveAs).is_empty());
     for c in "Mine".chars() {
-        assert!(update(&mut a, Action::Name(NameEdit::Char(c))).is_empty());
+        assert!(update(&mut a, Action::Type(Edit::Char(c))).is_empty());
     }
-    let named = update(&mut a, Action::Name(NameEdit::Done));
+    let named = update(&mut a, Action::Type(Edit::Done));
     assert!(
         matches!(&named[..], [Effect::SaveScene { scene, path }]
             if scene.name == "Mine" && *path == dir.join("mine.toml")),
@@ -1328,4 +1330,74 @@ fn saving_and_exporting_are_effects_the_shell_carries_out() {
     assert!(dir.join("scene.toml").exists() && dir.join("mine.toml").exists());
     assert!(dir.join("turntable-turntable-1.svg").exists());
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// What is typed at the prompt, while it is open.
+fn typed(a: &App) -> Option<&str> {
+    a.prompt.as_ref().map(|p| p.typed.as_str())
+}
+
+/// `:` takes values as typed: the run restarts from them; a bad line is refused with the
+/// reason beside it and kept to mend; Esc changes nothing.
+#[test]
+fn values_typed_at_the_prompt() {
+    let mut s = Session::headless(
+        App::new(Scene::preset("B").unwrap(), theme()),
+        80,
+        24,
+        false,
+    );
+    let typed_keys = |s: &mut Session<ratatui::backend::TestBackend>, text: &str| {
+        for c in text.chars() {
+            s.press(Chord::new(KeyCode::Char(c), KeyModifiers::NONE));
+        }
+    };
+    s.press(":".parse().unwrap());
+    typed_keys(&mut s, "v0 0.6078");
+    let screen = turntable::ui::export::plain_text(s.screen());
+    assert!(screen.contains(" set: v0 0.6078▏"), "{screen}");
+    s.press("enter".parse().unwrap());
+    assert_eq!(s.app.prompt, None);
+    assert_eq!(s.app.initial().v0, 0.6078);
+    assert_eq!(s.app.sim().now().tau, 0.0, "the run restarts");
+    assert_eq!(
+        s.app.notice.as_deref(),
+        Some("set: ξ0 = 0.5, φ = 0.0000π, v0 = 0.6078")
+    );
+    // Refused: the reason beside the line, which stays to mend; nothing changes.
+    s.press(":".parse().unwrap());
+    typed_keys(&mut s, "xi0 -1");
+    s.press("enter".parse().unwrap());
+    let refused = s
+        .app
+        .prompt
+        .as_ref()
+        .and_then(|p| p.refused.clone())
+        .unwrap();
+    assert!(refused.contains("xi0"), "{refused}");
+    let screen = turntable::ui::export::plain_text(s.screen());
+    assert!(screen.contains(" set: xi0 -1▏"), "{screen}");
+    assert_eq!(s.app.initial().xi0, 0.5);
+    s.press("backspace".parse().unwrap());
+    s.press("backspace".parse().unwrap());
+    typed_keys(&mut s, "1.1 phi 1.2pi mu 0.2");
+    s.press("enter".parse().unwrap());
+    let i = s.app.initial();
+    assert_eq!(i.xi0, 1.1);
+    assert!(
+        (i.phi + 0.8 * std::f64::consts::PI).abs() < 1e-12,
+        "{}",
+        i.phi
+    );
+    assert_eq!(s.app.units.map(|u| u.mu), Some(0.2));
+    // Esc: nothing set; q typed is a letter, not quit.
+    s.press(":".parse().unwrap());
+    typed_keys(&mut s, "q");
+    assert!(!s.app.should_quit());
+    s.press("esc".parse().unwrap());
+    assert_eq!(
+        (s.app.prompt.clone(), s.app.notice.as_deref()),
+        (None, Some("nothing set"))
+    );
+    assert_eq!(s.app.initial().xi0, 1.1);
 }

@@ -462,44 +462,71 @@ fn press(s: &mut Session<ratatui::backend::TestBackend>, key: &str) {
     s.press(chord);
 }
 
-/// Interactive: `wait` and an unanswered `ask` hold the lesson, not time; Space, Enter and
-/// y/n are the lesson's only then; `tick N` counts the session's ticks.
+/// Interactive: `wait` and an unanswered `ask` hold the lesson, not time; Enter and y/n are
+/// the lesson's only then; Space plays and pauses at every moment and never moves the lesson
+/// on; `tick N` counts the session's ticks of play.
 #[test]
 fn an_interactive_lesson_holds_as_state_and_time_goes_on() {
-    let script = "space\nsay one\nwait\nspace\ntick 3\nsay two\nask Will it escape? (y/n)\nspace\ntick 200\nsay three\n";
+    let script = "pause\nsay one\nwait\nplay\ntick 3\nsay two\nask Will it escape? (y/n)\nplay 0.5\ntick 200\nsay three\n";
     let mut s = Session::headless(app(), 80, 24, false);
     s.start_lesson(Driver::new("t", parse(script).unwrap()));
     s.pump_lesson().unwrap();
-    // Paused by the lesson's Space, held at its wait with the caption up.
+    // Paused by the lesson's `pause`, held at its wait with the caption up.
     assert!(!s.app.playing && s.app.lesson.waiting);
     assert_eq!(s.app.lesson.caption.as_deref(), Some("one"));
-    // The user can still play the scene while it waits: time goes on, the lesson holds.
-    s.app.playing = true;
+    let screen = turntable::ui::export::plain_text(s.screen());
+    assert!(screen.contains("Enter: go on · Space plays"), "{screen}");
+    // Space plays the scene while it waits: time goes on, the lesson holds.
+    press(&mut s, "space");
+    assert!(s.app.playing && s.app.lesson.waiting);
     let tau = s.app.now().tau;
     s.tick();
     s.pump_lesson().unwrap();
     assert!(s.app.now().tau > tau);
     assert!(s.app.lesson.waiting);
-    // The footer says so, and Space goes on (it does not pause while the lesson waits).
-    let footer = turntable::ui::export::plain_text(s.screen());
-    assert!(footer.contains("Space go on"), "{footer}");
+    let screen = turntable::ui::export::plain_text(s.screen());
+    assert!(screen.contains("Enter: go on · Space pauses"), "{screen}");
+    // Space again pauses, and still the lesson waits; Enter goes on.
     press(&mut s, "space");
-    assert!(!s.app.lesson.waiting && s.app.playing);
     s.pump_lesson().unwrap();
-    // The lesson's own Space paused it: its `tick 3` ends at once, as in a replay.
-    assert!(!s.app.playing);
+    assert!(!s.app.playing && s.app.lesson.waiting);
+    press(&mut s, "enter");
+    assert!(!s.app.lesson.waiting);
+    s.pump_lesson().unwrap();
+    // The lesson's `play` set time going whatever the keys did; `tick 3` counts.
+    assert!(s.app.playing);
+    s.tick();
+    // A pause from the keys holds the lesson inside its `tick 3`, however long.
+    press(&mut s, "space");
+    for _ in 0..10 {
+        s.tick();
+        s.pump_lesson().unwrap();
+    }
+    assert_eq!(s.app.lesson.caption.as_deref(), Some("one"));
+    press(&mut s, "space");
+    s.tick();
+    s.pump_lesson().unwrap();
+    assert_eq!(
+        s.app.lesson.caption.as_deref(),
+        Some("one"),
+        "two ticks of three"
+    );
+    s.tick();
+    s.pump_lesson().unwrap();
     assert_eq!(s.app.lesson.caption, None);
     let q = s.app.lesson.question.clone().unwrap();
     assert_eq!((q.text.as_str(), q.answer), ("Will it escape? (y/n)", None));
-    // Held at the question: Space is play/pause again, n answers and does not step.
+    // Held at the question: n answers and does not step.
     s.pump_lesson().unwrap();
     assert!(s.app.lesson.question.is_some());
     press(&mut s, "n");
     assert!(!s.app.step_mode);
     assert_eq!(s.app.lesson.question.as_ref().unwrap().answer, Some(false));
+    // A speed key before the lesson's `play 0.5`: the scene plays at the speed it names.
+    press(&mut s, "]");
     s.pump_lesson().unwrap();
-    // Now it plays, and `tick 200` counts the session's ticks.
     assert!(s.app.playing);
+    assert_eq!(s.app.speed, 0.5);
     for _ in 0..199 {
         s.tick();
         s.pump_lesson().unwrap();
@@ -519,37 +546,51 @@ fn an_interactive_lesson_holds_as_state_and_time_goes_on() {
 #[test]
 fn the_run_answers_the_prediction() {
     let mut s = Session::headless(app(), 80, 24, false);
-    let mut text = |script: &str| {
+    fn text(
+        s: &mut Session<ratatui::backend::TestBackend>,
+        script: &str,
+    ) -> (String, Option<&'static str>) {
         for step in parse(script).unwrap() {
             s.apply(&step);
         }
         let c = s.app.caption().unwrap();
         (c.text, c.prompt)
-    };
-    let (t, prompt) = text("ask Will it escape?");
-    assert_eq!((t.as_str(), prompt), ("Will it escape?", Some("y / n")));
-    let (t, prompt) = text("y");
+    }
+    let (t, prompt) = text(&mut s, "ask Will it escape?");
+    assert_eq!(
+        (t.as_str(), prompt),
+        ("Will it escape?", Some("y / n · Space pauses"))
+    );
+    let (t, prompt) = text(&mut s, "y");
     assert_eq!(t, "Will it escape?\nYou said it escapes. Watch the run.");
-    assert_eq!(prompt, None);
-    let (t, _) = text("tick 130");
+    assert_eq!(prompt, Some("Space pauses"));
+    let (t, _) = text(&mut s, "tick 130");
     assert_eq!(
         t,
         "Will it escape?\nNot so: you said it escapes, but it sticks at ξ = 0.9972 (τ = 5.602)."
     );
-    let (t, _) = text("3\nask Will C escape?\nn\ntick 130");
+    let (t, _) = text(&mut s, "3\nask Will C escape?\nn\ntick 130");
     assert_eq!(
         t,
         "Will C escape?\nRight: it sticks at ξ = 0.9972 (τ = 5.602)."
     );
-    let (t, _) = text("6\nspace\nask Will it escape?");
+    let (t, _) = text(&mut s, "6\npause\nask Will it escape?");
     assert_eq!(t, "Will it escape?", "decided at τ = 0, not yet told");
-    let (t, _) = text("space\ntick");
+    // Nor do the title and the panel tell it (the scene's words say it escapes).
+    let screen = turntable::ui::export::plain_text(s.screen());
+    assert!(!screen.contains("escape certified"), "{screen}");
+    assert!(
+        !screen.contains("at rest on the table at ξ0 = 1.1"),
+        "{screen}"
+    );
+    assert!(screen.contains("y or n: will it escape?"), "{screen}");
+    let (t, _) = text(&mut s, "play\ntick");
     assert_eq!(
         t,
         "Will it escape?\nThe run: it escapes (certified at τ = 0.000)."
     );
     // Answered late, the answer still counts.
-    let (t, _) = text("n");
+    let (t, _) = text(&mut s, "n");
     assert!(
         t.ends_with(
             "Not so: you said it does not escape, but it escapes (certified at τ = 0.000)."
@@ -557,7 +598,7 @@ fn the_run_answers_the_prediction() {
         "{t}"
     );
     // A caption replaces the question; `say` alone clears it.
-    let (t, _) = text("say Next.");
+    let (t, _) = text(&mut s, "say Next.");
     assert_eq!(t, "Next.");
     assert!(text_none(&mut s, "say"));
 }
@@ -600,6 +641,43 @@ fn the_lesson_command() {
             assert!(err.contains("unknown lesson 'nope'"), "{err}");
         }
     }
+    // A lesson of one's own, from its file, runs as a built-in one does (named by its stem).
+    let dir = std::env::temp_dir().join(format!("turntable-own-lesson-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let own = dir.join("inertia.keys");
+    std::fs::write(
+        &own,
+        "# replay: --size 60x20\n2\npause\nsay Newton's first law, on a table.\nsnapshot set\nplay 0.25\ntick 40\nsnapshot slid\n",
+    )
+    .unwrap();
+    let out = turntable(&["lesson", own.to_str().unwrap(), "--headless"]);
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(
+        text.contains("--- snapshot 1: set (60x20, tau=0.000)"),
+        "{text}"
+    );
+    assert!(
+        text.contains("--- snapshot 2: slid (60x20, tau=0.500)"),
+        "{text}"
+    );
+    assert!(text.contains("lesson: inertia"), "{text}");
+    assert!(text.contains("Newton's first law, on a"), "{text}");
+    assert!(text.contains("×1/4"), "{text}");
+    // A bad one says where.
+    std::fs::write(&own, "play 3\n").unwrap();
+    let out = turntable(&["lesson", own.to_str().unwrap(), "--headless"]);
+    let err = String::from_utf8(out.stderr).unwrap();
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("line 1, column 6") && err.contains("power of two"),
+        "{err}"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
     // --size without --headless is refused; headless prints the snapshots as replay does.
     let out = turntable(&["lesson", "stick", "--size", "40x12"]);
     assert_eq!(out.status.code(), Some(2));
@@ -647,4 +725,105 @@ fn a_long_caption_at_every_size() {
     let mut s = Session::headless(app(), 39, 11, false);
     s.app.say(Some(words.into()));
     assert!(turntable::ui::export::plain_text(s.screen()).contains("too small"));
+}
+
+/// What a lesson's scene is, where the lesson holds: what its script names (the release,
+/// the settings, the page and frame, the caption and question), the same whatever the keys.
+#[derive(Debug, PartialEq)]
+struct Held {
+    at: usize,
+    initial: Initial,
+    settings: Settings,
+    page: turntable::app::pages::Page,
+    frame: turntable::engine::Frame,
+    caption: Option<String>,
+    question: Option<String>,
+}
+
+fn held(s: &Session<ratatui::backend::TestBackend>) -> Held {
+    Held {
+        at: s.lesson().unwrap().taken(),
+        initial: s.app.initial(),
+        settings: s.app.settings(),
+        page: s.app.page,
+        frame: s.app.view,
+        caption: s.app.lesson.caption.as_ref().map(|c| c.to_string()),
+        question: s.app.lesson.question.as_ref().map(|q| q.text.to_string()),
+    }
+}
+
+/// Keys a teacher presses to pace a class: play/pause, step, speed.
+const PACING: [&str; 5] = ["space", ".", ",", "[", "]"];
+
+/// Runs lesson `name` as the terminal loop does (a tick only while time plays), pressing
+/// `keys[i]` before the i-th hold point's ticks (`None`: the lesson's own pace); at a wait or
+/// a question the user goes on (Enter, y), and plays when paused. Returns the scene at each
+/// hold point, and checks that a pacing key never moves the lesson.
+fn take_lesson(name: &str, keys: &[Option<(usize, u8)>]) -> Vec<Held> {
+    let steps = parse(find(name).unwrap().script).unwrap();
+    let mut s = Session::headless(app(), 80, 24, false);
+    s.start_lesson(Driver::new(name, steps));
+    s.pump_lesson().unwrap();
+    let (mut out, mut last, mut presses) = (Vec::new(), usize::MAX, keys.iter().cycle());
+    for _ in 0..20_000 {
+        if s.app.lesson.done {
+            return out;
+        }
+        let at = s.lesson().unwrap().taken();
+        if at != last {
+            out.push(held(&s));
+            last = at;
+        }
+        if let Some(Some((k, n))) = (!keys.is_empty()).then(|| presses.next()).flatten() {
+            for _ in 0..*n {
+                press(&mut s, PACING[*k]);
+                s.pump_lesson().unwrap();
+                assert_eq!(
+                    s.lesson().unwrap().taken(),
+                    at,
+                    "{name}: `{}` moved the lesson on",
+                    PACING[*k]
+                );
+            }
+        }
+        if s.app.lesson.waiting {
+            press(&mut s, "enter");
+        } else if s
+            .app
+            .lesson
+            .question
+            .as_ref()
+            .is_some_and(|q| q.answer.is_none())
+        {
+            press(&mut s, "y");
+        } else if !s.app.playing {
+            press(&mut s, "space");
+        } else {
+            s.tick();
+        }
+        s.pump_lesson().unwrap();
+    }
+    panic!("{name}: the lesson did not end");
+}
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig {
+        cases: crate::common::budget("TURNTABLE_FUZZ", 8) as u32 + 4,
+        ..Default::default()
+    })]
+    /// Any pause, step and speed keys between a lesson's own steps: the lesson reaches each
+    /// hold point with its scene as the script names it, and reaches its end.
+    #[test]
+    fn pacing_keys_never_put_a_lesson_out_of_step(
+        lesson in 0..LESSONS.len(),
+        keys in proptest::collection::vec(
+            proptest::option::weighted(0.3, (0..PACING.len(), 1u8..4)),
+            1..40,
+        ),
+    ) {
+        let name = LESSONS[lesson].name;
+        let reference = take_lesson(name, &[]);
+        let taken = take_lesson(name, &keys);
+        proptest::prop_assert_eq!(reference, taken);
+    }
 }

@@ -1,8 +1,10 @@
 //! The "app" group: help, notices, saving, the mouse, quitting.
 
-use super::super::action::{Action, NameEdit};
+use super::super::action::{Action, Edit};
 use super::super::effect::{Effect, Effects};
-use super::super::state::App;
+use super::super::prompt::TYPED_MAX;
+use super::super::prompt::{Asks, Prompt};
+use super::super::state::{App, record_player};
 
 pub(super) fn apply(app: &mut App, action: Action) -> Effects {
     match action {
@@ -20,8 +22,9 @@ pub(super) fn apply(app: &mut App, action: Action) -> Effects {
             scroll_help(app, i32::from(pages) * i32::from(page));
         }
         Action::Save => return vec![save(app, None)],
-        Action::SaveAs => app.naming = Some(String::new()),
-        Action::Name(edit) => return name(app, edit),
+        Action::SaveAs => app.prompt = Some(Prompt::new(Asks::Name)),
+        Action::SetValues => app.prompt = Some(Prompt::new(Asks::Values)),
+        Action::Type(edit) => return typed(app, edit),
         Action::ExportSvg => {
             return vec![Effect::ExportSvg {
                 dir: app
@@ -53,29 +56,60 @@ pub(super) fn apply(app: &mut App, action: Action) -> Effects {
     Effects::new()
 }
 
-/// Longest name the prompt takes (a scene's name is one line of its panel).
-pub const NAME_MAX: usize = 40;
-
-/// An edit at the save prompt: letters up to [`NAME_MAX`], Enter saves under the name (an
-/// empty name is the scene's own), Esc closes the prompt without saving.
-fn name(app: &mut App, edit: NameEdit) -> Effects {
-    let Some(typed) = app.naming.as_mut() else {
+/// An edit at the prompt: letters up to [`TYPED_MAX`]; Enter saves under the name (an empty
+/// name is the scene's own) or sets the values (refused with the reason, the line kept to
+/// mend); Esc closes the prompt and changes nothing.
+fn typed(app: &mut App, edit: Edit) -> Effects {
+    let Some(p) = app.prompt.as_mut() else {
         return Effects::new();
     };
+    p.refused = None;
     match edit {
-        NameEdit::Char(c) if typed.chars().count() < NAME_MAX => typed.push(c),
-        NameEdit::Char(_) => app.notice = Some(format!("a name has at most {NAME_MAX} characters")),
-        NameEdit::Back => {
-            typed.pop();
+        Edit::Char(c) if p.typed.chars().count() < TYPED_MAX => p.typed.push(c),
+        Edit::Char(_) => p.refused = Some(format!("at most {TYPED_MAX} characters")),
+        Edit::Back => {
+            p.typed.pop();
         }
-        NameEdit::Cancel => {
-            app.naming = None;
-            app.notice = Some("not saved".into());
+        Edit::Cancel => {
+            app.notice = Some(match p.asks {
+                Asks::Name => "not saved".into(),
+                Asks::Values => "nothing set".into(),
+            });
+            app.prompt = None;
         }
-        NameEdit::Done => {
-            let typed = app.naming.take().unwrap_or_default();
+        Edit::Done if p.asks == Asks::Name => {
+            let typed = app.prompt.take().map(|p| p.typed).unwrap_or_default();
             let typed = typed.trim();
             return vec![save(app, (!typed.is_empty()).then_some(typed))];
+        }
+        Edit::Done => {
+            let line = p.typed.clone();
+            match super::super::prompt::values(&line, app.initial(), app.units, record_player()) {
+                Ok((i, u)) => {
+                    app.prompt = None;
+                    if u != app.units
+                        && let Some(u) = u
+                    {
+                        super::view::set_units(app, u);
+                    }
+                    app.explore().set_initial(i);
+                    // As the app holds it (φ wrapped into (−π, π]).
+                    let i = app.initial();
+                    app.notice = Some(format!(
+                        "set: ξ0 = {}, φ = {:.4}π, v0 = {}{}",
+                        i.xi0,
+                        i.phi / std::f64::consts::PI,
+                        i.v0,
+                        app.units
+                            .map_or_else(String::new, |u| format!("; {}", u.describe()))
+                    ));
+                }
+                Err(why) => {
+                    if let Some(p) = app.prompt.as_mut() {
+                        p.refused = Some(why);
+                    }
+                }
+            }
         }
     }
     Effects::new()

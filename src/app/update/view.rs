@@ -131,7 +131,7 @@ pub(super) fn apply(app: &mut App, action: Action) {
 /// m/s, and the body (if any) in metres: its dimensionless ξ0, v0, L and h are recomputed
 /// for the new table, and the run and the body's track restart (a larger μ changes the
 /// outcome, not only the labels).
-fn set_units(app: &mut App, to: Units) {
+pub(super) fn set_units(app: &mut App, to: Units) {
     let Ok(to) = Units::new(to.mu, to.rpm, to.g) else {
         return;
     };

@@ -156,17 +156,21 @@ such a script from an interactive session.";
 const LESSON_ABOUT: &str = "Narrated lessons through the paper, shipped in the binary.
 
 `turntable lesson --list` lists them; `turntable lesson NAME` runs one in the explorer, with a
-caption over the scene: Space or Enter goes on where it waits, y or n answers its predictions
-(\"Will it escape?\"), and the run then says whether the prediction was right; every other key
-works as in the explorer. `turntable lesson NAME --headless [--size WxH]` prints its snapshots as
-`replay` does (a wait goes on, a question stays unanswered).
+caption over the scene: Enter goes on where it waits, y or n answers its predictions (\"Will it
+escape?\"), and the run then says whether the prediction was right; Space plays and pauses at
+every moment (a pause holds the lesson, it never moves it on); every other key works as in the
+explorer. `turntable lesson PATH` runs a lesson of your own, a key script file, the same way.
+`turntable lesson NAME|PATH --headless [--size WxH]` prints its snapshots as `replay` does (a
+wait goes on, a question stays unanswered).
 
-A lesson is a key script (see `turntable replay --help`) with three more commands, which any key
+A lesson is a key script (see `turntable replay --help`) with five more commands, which any key
 script may use:
 
     say TEXT        # a caption over the scene until the next say or ask (say alone clears it)
     ask TEXT        # a prediction, y or n: yes means the run on screen escapes
-    wait            # interactive: hold until Space or Enter; headless: go on";
+    wait            # interactive: hold until Enter; headless: go on
+    play [SPEED]    # time plays, at SPEED (a power of two, e.g. 0.25) or x1
+    pause           # time stands still";
 
 #[derive(Subcommand, Debug)]
 pub enum Command {

@@ -144,7 +144,12 @@ fn readouts(app: &App) -> (Vec<Line<'static>>, std::ops::Range<usize>, Option<us
         Style::default().fg(th.accent),
     )));
     motion_lines(app, &s, &mut out);
-    let (st, col) = status_text(app.sim(), th);
+    // A lesson's open prediction: the status says nothing the run has not shown yet.
+    let (st, col) = if app.outcome_open() && app.sim().outcome_now() != Outcome::Running {
+        ("y or n: will it escape?".into(), th.slipping)
+    } else {
+        status_text(app.sim(), th)
+    };
     let status_start = out.len();
     for l in st.lines() {
         out.push(Line::from(Span::styled(
