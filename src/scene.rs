@@ -205,6 +205,17 @@ pub struct View {
     /// when hidden.
     #[serde(default = "shown", skip_serializing_if = "is_shown")]
     pub point: bool,
+    /// How fast time plays (a power of two, ×1/64 to ×256); saved unless ×1.
+    #[serde(default = "one", skip_serializing_if = "is_one")]
+    pub speed: f64,
+}
+
+fn one() -> f64 {
+    1.0
+}
+
+fn is_one(x: &f64) -> bool {
+    *x == 1.0
 }
 
 fn shown() -> bool {
@@ -315,6 +326,14 @@ impl Scene {
         }
         if let Some(u) = scene.units {
             crate::check::units(&u, scene_file).map_err(|e| e.context(&file))?;
+        }
+        if let Some(v) = scene.view
+            && crate::app::speed_power(v.speed).is_none()
+        {
+            return Err(Error::Invalid(format!(
+                "{file}: [view] speed must be a power of two from 1/64 to 256, got {}",
+                crate::engine::Initial::show(v.speed)
+            )));
         }
         if let Some(b) = scene.body {
             crate::check::body(&b, scene_file).map_err(|e| e.context(&file))?;

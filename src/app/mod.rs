@@ -17,7 +17,9 @@ pub use chord::Chord;
 pub use effect::{Effect, Effects};
 pub use exploration::Exploration;
 pub use keymap::{Binding, KEYMAP};
-pub use state::{App, CanvasGeom, MU_PROBE, Measured, SPEED_RANGE, TICK_DT, TICKS_PER_SECOND};
+pub use state::{
+    App, CanvasGeom, MU_PROBE, Measured, SPEED_RANGE, TICK_DT, TICKS_PER_SECOND, speed_power,
+};
 pub use update::update;
 
 use crate::engine::Settings;

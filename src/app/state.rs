@@ -18,6 +18,13 @@ pub const TICK_DT: f64 = 0.05;
 pub const TICKS_PER_SECOND: u32 = 30;
 /// Speed factor bounds (powers of two).
 pub const SPEED_RANGE: (f64, f64) = (1.0 / 64.0, 256.0);
+
+/// `x` as a speed: a power of two in [`SPEED_RANGE`] (what `[` and `]` step through), with
+/// its exponent; None otherwise.
+pub fn speed_power(x: f64) -> Option<i8> {
+    let n = x.log2().round();
+    ((SPEED_RANGE.0..=SPEED_RANGE.1).contains(&x) && x == n.exp2()).then_some(n as i8)
+}
 pub const ZOOM_RANGE: (f64, f64) = (1.0 / 64.0, 1024.0);
 /// The μ measurement's starting values, an example (the paper gives Eq. 22, no table):
 /// Ω = 3.3 rad/s and r0c = 0.12 m.
@@ -162,7 +169,7 @@ impl App {
             point_model: view.is_none_or(|v| v.point),
             theme,
             playing: true,
-            speed: 1.0,
+            speed: view.map_or(1.0, |v| v.speed),
             view: view.map_or(Frame::Lab, |v| v.frame),
             forces: view.is_some_and(|v| v.forces),
             net_force: view.is_some_and(|v| v.net_force),
@@ -373,6 +380,7 @@ impl App {
                 net_force: self.net_force,
                 velocity: self.velocity,
                 point: self.point_model,
+                speed: self.speed,
             }),
             pins: self.pins.iter().map(|p| p.spec.clone()).collect(),
         }

@@ -9,7 +9,7 @@ use std::ffi::OsString;
 use std::path::{Path, PathBuf};
 
 /// The keys a configuration file may hold, as its error messages list them.
-const KEYS: &str = "theme, fps, mouse, marker, units";
+const KEYS: &str = "theme, fps, mouse, marker, speed, paused, units";
 
 /// What a configuration file sets; `None` where it says nothing.
 #[derive(Debug, Default, Clone, PartialEq)]
@@ -21,6 +21,9 @@ pub struct Config {
     pub fps: Option<u32>,
     pub mouse: Option<bool>,
     pub marker: Option<MarkerArg>,
+    /// How fast time plays at the start (a power of two), and whether it starts paused.
+    pub speed: Option<f64>,
+    pub paused: Option<bool>,
     pub units: Option<Units>,
 }
 
@@ -85,6 +88,22 @@ impl Config {
                             .filter(|n| (1..=240).contains(n))
                             .ok_or_else(|| bad("must lie in 1..=240"))?,
                     );
+                }
+                "speed" => {
+                    let x = value
+                        .as_float()
+                        .or_else(|| value.as_integer().map(|n| n as f64))
+                        .ok_or_else(|| bad("expected a number"))?;
+                    crate::app::speed_power(x)
+                        .ok_or_else(|| bad("must be a power of two from 1/64 to 256"))?;
+                    c.speed = Some(x);
+                }
+                "paused" => {
+                    c.paused = Some(
+                        value
+                            .as_bool()
+                            .ok_or_else(|| bad("expected true or false"))?,
+                    )
                 }
                 "mouse" => {
                     c.mouse = Some(

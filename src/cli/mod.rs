@@ -123,6 +123,14 @@ fn explore(
     } else if app.units.is_none() {
         app.units = config.units;
     }
+    // Speed: the flag, else a saved scene's own, else the configuration's.
+    if let Some(x) = cli
+        .speed
+        .or(config.speed.filter(|_| app.scene().view.is_none()))
+    {
+        app.speed = x;
+    }
+    app.playing = !(cli.paused || config.paused == Some(true));
     app.mouse = match (cli.no_mouse, cli.mouse) {
         (true, _) => false,
         (_, true) => true,

@@ -320,18 +320,14 @@ fn speed(text: &str, column: usize) -> Result<i8, Fail> {
             .map(|(a, b)| a / b),
         None => text.trim_start_matches(['x', '×']).parse().ok(),
     };
-    let (lo, hi) = crate::app::SPEED_RANGE;
-    x.map(|x| (x, x.log2().round()))
-        .filter(|&(x, n)| (lo..=hi).contains(&x) && x == n.exp2())
-        .map(|(_, n)| n as i8)
-        .ok_or_else(|| {
-            (
-                column,
-                format!(
-                    "play's speed '{text}' is not a power of two from 1/64 to 256 (e.g. 0.25, 1, 4)"
-                ),
-            )
-        })
+    x.and_then(crate::app::speed_power).ok_or_else(|| {
+        (
+            column,
+            format!(
+                "play's speed '{text}' is not a power of two from 1/64 to 256 (e.g. 0.25, 1, 4)"
+            ),
+        )
+    })
 }
 
 fn number(text: &str, column: usize, range: RangeInclusive<u64>, what: &str) -> Result<u64, Fail> {

@@ -107,4 +107,20 @@ fn stuck_the_forces_balance_and_nothing_moves_on_the_table() {
     let back: Scene = toml::from_str(&text).unwrap();
     let b = App::new(back, Theme::builtin("dark").unwrap());
     assert!(b.forces && b.net_force && b.velocity);
+    assert!(!text.contains("speed"), "×1 is not saved: {text}");
+    // So is the speed (slow motion for a class), and a bad one in a file is refused.
+    a.speed = 0.25;
+    let text = a.current_scene().to_toml();
+    assert!(text.contains("speed = 0.25"), "{text}");
+    let path = std::env::temp_dir().join(format!("turntable-speed-{}.toml", std::process::id()));
+    std::fs::write(&path, &text).unwrap();
+    let back = Scene::load(path.to_str().unwrap()).unwrap();
+    assert_eq!(App::new(back, Theme::builtin("dark").unwrap()).speed, 0.25);
+    std::fs::write(&path, text.replace("speed = 0.25", "speed = 0.3")).unwrap();
+    let err = Scene::load(path.to_str().unwrap()).unwrap_err().to_string();
+    assert!(
+        err.ends_with("[view] speed must be a power of two from 1/64 to 256, got 0.3"),
+        "{err}"
+    );
+    std::fs::remove_file(&path).unwrap();
 }

@@ -64,6 +64,16 @@ fn a_bad_configuration_exits_2_naming_the_file_and_the_key() {
         ("marker", "marker = \"dots\"\n", "key `marker`:"),
         ("mouse", "mouse = \"no\"\n", "key `mouse`:"),
         (
+            "speed",
+            "speed = 3\n",
+            "key `speed`: must be a power of two from 1/64 to 256, got 3",
+        ),
+        (
+            "paused",
+            "paused = 1\n",
+            "key `paused`: expected true or false",
+        ),
+        (
             "units",
             "[units]\nmu = 0.1\n",
             "key `units`: missing field `rpm`",
@@ -329,6 +339,19 @@ fn the_explorer_takes_the_configuration_and_flags_win() {
     let out = explorer_output(&d, &["--theme", "light", "--mouse"]).unwrap();
     assert!(!has(&out, MY_BACKGROUND), "--theme wins");
     assert!(has(&out, MOUSE_ON), "--mouse wins");
+    // Slow motion, paused, from the configuration; the flag's speed wins.
+    std::fs::write(
+        d.join("turntable/config.toml"),
+        "speed = 0.25\npaused = true\n",
+    )
+    .unwrap();
+    let out = explorer_output(&d, &[]).unwrap();
+    assert!(has(&out, "×1/4 ❚❚".as_bytes()), "speed and paused");
+    let out = explorer_output(&d, &["--speed", "2"]).unwrap();
+    assert!(has(&out, "×2 ❚❚".as_bytes()), "--speed wins");
+    let (code, _, err) = run(&d, &["--speed", "0.3"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("'0.3' is not a power of two"), "{err}");
     // A user theme named as a built-in replaces it, by name and as the default.
     std::fs::write(d.join("turntable/config.toml"), "").unwrap();
     std::fs::write(d.join("turntable/themes/dark.toml"), my_theme("dark")).unwrap();

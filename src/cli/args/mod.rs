@@ -37,6 +37,13 @@ pub struct Cli {
     /// not UTF-8.
     #[arg(long, value_enum, value_name = "KIND")]
     pub marker: Option<MarkerArg>,
+    /// Explorer: how fast time plays at the start, a power of two from 1/64 to 256 (0.25 is
+    /// slow motion; `[` and `]` halve and double it inside) [default: the scene's, else 1].
+    #[arg(long, value_name = "X", value_parser = parse_speed)]
+    pub speed: Option<f64>,
+    /// Explorer: start paused (Space plays).
+    #[arg(long)]
+    pub paused: bool,
     /// Explorer: do not capture the mouse (M toggles it inside).
     #[arg(long, overrides_with = "mouse")]
     pub no_mouse: bool,
@@ -118,6 +125,8 @@ flags, which win over it:
 
     theme = \"light\"        # a built-in, one of yours, or a .toml path (relative: to this folder)
     fps = 60
+    speed = 0.25           # slow motion (a power of two; a saved scene's own speed wins)
+    paused = true          # start paused
     mouse = false
     marker = \"block\"       # braille, block or ascii
     [units]                # as --mu, --rpm, --g (a scene's own [units] wins over these)
@@ -389,4 +398,12 @@ impl NumericsArgs {
         crate::check::settings(&s, crate::check::Via::Flags)?;
         Ok(s)
     }
+}
+
+/// `--speed`: a power of two in the explorer's speed range.
+fn parse_speed(s: &str) -> Result<f64, String> {
+    s.parse::<f64>()
+        .ok()
+        .filter(|&x| crate::app::speed_power(x).is_some())
+        .ok_or_else(|| format!("'{s}' is not a power of two from 1/64 to 256 (e.g. 0.25, 1, 4)"))
 }
