@@ -3,6 +3,7 @@
 use super::RodRun;
 use super::state::{Phase, RodState};
 use crate::engine::run::Outcome;
+use crate::engine::track::Track;
 
 /// Most steps (accepted and rejected) a [`RodTrack`] takes: the explorer computes a track
 /// inside a key press, so its cost is bounded whatever the release, to a frame: 50 000 steps
@@ -56,15 +57,15 @@ impl RodTrack {
     pub fn from_run(mut run: RodRun, tau_max: f64, max_steps: u64, max_states: usize) -> RodTrack {
         let mut track = RodTrack {
             l: run.l,
-            states: vec![run.state],
-            phases: vec![run.phase],
+            states: vec![],
+            phases: vec![],
             outcome: Outcome::Running,
             escape: None,
             follow_to: run.follow_to,
             steps: 0,
             cut: None,
         };
-        let mut keep = Thinned::new(max_states.max(4));
+        let mut keep = Track::new((run.state, run.phase), max_states);
         track.outcome = loop {
             if run.steps() >= max_steps {
                 track.cut = Some(Cut::Budget(max_steps));
@@ -90,7 +91,7 @@ impl RodTrack {
                 break Outcome::Running;
             }
             if (s, run.phase) != before {
-                keep.push(&mut track, s, run.phase, run.phase != before.1);
+                keep.push((s, run.phase), run.phase != before.1);
             }
             if end != Outcome::Running {
                 break end;
@@ -100,7 +101,7 @@ impl RodTrack {
                 break run.step(tau_max).unwrap_or(Outcome::Running);
             }
         };
-        keep.finish(&mut track);
+        (track.states, track.phases) = keep.finish().into_iter().unzip();
         track.steps = run.steps();
         track.escape = run.certificate();
         if track.escape.is_some() {
@@ -156,79 +157,5 @@ impl RodTrack {
     /// Where the track ends: its last state's τ.
     pub fn end_tau(&self) -> f64 {
         self.states.last().map_or(0.0, |s| s.tau)
-    }
-}
-
-/// Step ends kept at a density that halves when `cap` are held: every `stride`-th step end,
-/// and every phase change (so the phase at any τ is the run's), the newest end always.
-struct Thinned {
-    cap: usize,
-    stride: u64,
-    /// Step ends since the last kept one.
-    since: u64,
-    /// The newest step end when it was not kept (put back at the end).
-    pending: Option<(RodState, Phase)>,
-}
-
-impl Thinned {
-    fn new(cap: usize) -> Thinned {
-        Thinned {
-            cap,
-            stride: 1,
-            since: 0,
-            pending: None,
-        }
-    }
-
-    fn push(&mut self, t: &mut RodTrack, s: RodState, p: Phase, event: bool) {
-        self.since += 1;
-        if !event && self.since < self.stride {
-            self.pending = Some((s, p));
-            return;
-        }
-        if event && let Some((ps, pp)) = self.pending.take() {
-            // The step end just before a phase change: kept, so the old phase's last stretch
-            // is drawn on its own chord.
-            Thinned::keep(t, ps, pp);
-        }
-        self.pending = None;
-        self.since = 0;
-        Thinned::keep(t, s, p);
-        if t.states.len() >= self.cap {
-            self.halve(t);
-        }
-    }
-
-    fn keep(t: &mut RodTrack, s: RodState, p: Phase) {
-        t.states.push(s);
-        t.phases.push(p);
-    }
-
-    /// Every other kept state dropped (events kept while that halves them enough, then
-    /// every other of whatever is left), the first and the newest always.
-    fn halve(&mut self, t: &mut RodTrack) {
-        self.stride *= 2;
-        for events_too in [false, true] {
-            if t.states.len() < self.cap * 3 / 4 {
-                return;
-            }
-            let n = t.states.len();
-            // A phase change: a state whose phase is not its predecessor's.
-            let change = |k: usize| k > 0 && t.phases[k] != t.phases[k - 1];
-            let keep: Vec<bool> = (0..n)
-                .map(|k| k == 0 || k + 1 == n || k % 2 == 0 || (!events_too && change(k)))
-                .collect();
-            let mut it = keep.iter();
-            t.states.retain(|_| *it.next().unwrap_or(&true));
-            let mut it = keep.iter();
-            t.phases.retain(|_| *it.next().unwrap_or(&true));
-        }
-    }
-
-    /// The newest step end, if it was not kept.
-    fn finish(&mut self, t: &mut RodTrack) {
-        if let Some((s, p)) = self.pending.take() {
-            Thinned::keep(t, s, p);
-        }
     }
 }
