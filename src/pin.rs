@@ -2,14 +2,15 @@
 //! computed once, when pinned, from its release and settings (never while drawing). A scene
 //! saves a pin as its release; loading computes the path again, the same path.
 
+use crate::engine::track::Track;
 use crate::engine::units::Units;
 use crate::engine::{Initial, Outcome, Run, Settings, State, Status};
 use serde::{Deserialize, Serialize};
 
 /// Most pins shown at once: a seventh replaces the oldest.
 pub const MAX_PINS: usize = 6;
-/// Most points a pin's path holds: past twice this the path keeps every other point, so a
-/// run of any length costs the same memory.
+/// Most points a pin's path holds: at twice this the path keeps every other point (a
+/// [`Track`] on a τ grid), so a run of any length costs the same memory.
 pub const PIN_POINTS: usize = 1024;
 /// Most steps a pin's run may take (rk2-raw chatters forever about a stop it has no event
 /// for), and the latest τ it is followed to (μ = 0 at rest in the lab never leaves).
@@ -69,7 +70,7 @@ impl Pin {
         } else {
             PIN_TAU_MAX
         };
-        let mut path = Decimated::new(run.state());
+        let mut path = Track::new(run.state(), 2 * PIN_POINTS);
         loop {
             let out = run.state().xi() > view_radius && run.escape().is_some();
             if out || !run.goes_on(tau_max, false) || run.step(tau_max).is_err() {
@@ -80,17 +81,16 @@ impl Pin {
                 Status::Stuck { tau, .. } => tau,
                 Status::Slipping => run.tau(),
             };
-            path.extend_to(end, |t| run.state_at(t).ok());
+            extend_to(&mut path, end, |t| run.state_at(t).ok());
         }
         let end = match run.status() {
             Status::Stuck { tau, q } => State::riding(q, tau),
             Status::Slipping => run.state(),
         };
-        path.finish(end);
         Ok(Pin {
             spec,
             marker,
-            path: path.points,
+            path: path.end_at(end, |s| s.tau),
             outcome: run.outcome(),
         })
     }
@@ -125,51 +125,20 @@ fn free_exit(initial: &Initial, radius: f64) -> f64 {
     ((-b + disc.sqrt()) / a).max(0.0)
 }
 
-/// A path on a τ grid that halves its density when full.
-struct Decimated {
-    points: Vec<State>,
-    dt: f64,
-    /// The next grid index.
-    k: u64,
-}
-
-impl Decimated {
-    fn new(s0: State) -> Decimated {
-        Decimated {
-            points: vec![s0],
-            dt: crate::sim::TRAIL_DT,
-            k: 1,
+/// `path` on its τ grid ([`crate::sim::TRAIL_DT`], its spacing doubled with each halving)
+/// through `end`, the state at each grid point from `at` (its points between, which the
+/// track would drop, are not computed).
+fn extend_to(path: &mut Track<State>, end: f64, at: impl Fn(f64) -> Option<State>) {
+    loop {
+        let k = path.next_index();
+        let t = k as f64 * crate::sim::TRAIL_DT;
+        if t > end {
+            return;
         }
-    }
-
-    fn extend_to(&mut self, end: f64, at: impl Fn(f64) -> Option<State>) {
-        while self.k as f64 * self.dt <= end {
-            let Some(s) = at(self.k as f64 * self.dt) else {
-                return;
-            };
-            self.points.push(s);
-            self.k += 1;
-            if self.points.len() >= 2 * PIN_POINTS {
-                // Grid indices 0, 2, 4, …: the grid of twice the spacing.
-                let mut i = 0;
-                self.points.retain(|_| {
-                    i += 1;
-                    i % 2 == 1
-                });
-                self.dt *= 2.0;
-                self.k = self.k.div_ceil(2);
-            }
-        }
-    }
-
-    /// The end itself, exactly, after the grid points before it.
-    fn finish(&mut self, end: State) {
-        while self.points.last().is_some_and(|s| s.tau >= end.tau) && self.points.len() > 1 {
-            self.points.pop();
-        }
-        if self.points.last() != Some(&end) {
-            self.points.push(end);
-        }
+        let Some(s) = at(t) else {
+            return;
+        };
+        path.push_at(k, s);
     }
 }
 
@@ -181,11 +150,6 @@ mod tests {
     /// path never holds 2 × PIN_POINTS points.
     #[test]
     fn decimation_keeps_a_grid_and_a_bound() {
-        let mut d = Decimated::new(State {
-            tau: 0.0,
-            r: glam::DVec2::X,
-            v: glam::DVec2::ZERO,
-        });
         let at = |t: f64| {
             Some(State {
                 tau: t,
@@ -193,18 +157,15 @@ mod tests {
                 v: glam::DVec2::ZERO,
             })
         };
-        d.extend_to(1000.0, at);
-        assert!(d.points.len() < 2 * PIN_POINTS && d.points.len() >= PIN_POINTS / 2);
-        for s in &d.points {
-            let k = s.tau / d.dt;
-            assert!(
-                (k - k.round()).abs() < 1e-6,
-                "{} off the grid {}",
-                s.tau,
-                d.dt
-            );
+        let mut d = Track::new(at(0.0).unwrap(), 2 * PIN_POINTS);
+        extend_to(&mut d, 1000.0, at);
+        assert!(d.len() < 2 * PIN_POINTS && d.len() >= PIN_POINTS / 2);
+        let dt = d[1].tau - d[0].tau;
+        for s in d.iter() {
+            let k = s.tau / dt;
+            assert!((k - k.round()).abs() < 1e-6, "{} off the grid {dt}", s.tau);
         }
-        let last = d.points.last().unwrap().tau;
-        assert!(1000.0 - last < d.dt + 1e-9, "{last}");
+        let last = d.last().unwrap().tau;
+        assert!(1000.0 - last < dt + 1e-9, "{last}");
     }
 }

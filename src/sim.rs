@@ -5,6 +5,7 @@
 use crate::engine::doubt::{Doubt, doubt};
 use crate::engine::method::TOL_RANGE;
 use crate::engine::run::{Outcome, Run, RunError, Status};
+use crate::engine::track::Track;
 use crate::engine::{Initial, Settings, State};
 use crate::error::Error;
 
@@ -14,7 +15,8 @@ pub const HISTORY: usize = 100_000;
 pub const MAX_MARKS: usize = 2000;
 /// Spacing in τ of the trail's points, whatever the speed: the same curve at ×1 and ×256.
 pub const TRAIL_DT: f64 = 0.025;
-/// Most trail points kept (older ones are dropped first).
+/// Most trail points kept: at this many the path keeps every other one (a [`Track`] on the
+/// τ grid, its spacing doubled), so a run of any length costs the same memory.
 pub const TRAIL_MAX: usize = 200_000;
 /// Most integration steps one tick may take, so a tiny dt at high speed cannot freeze the
 /// screen: the sample then lags behind the tick's target time.
@@ -33,13 +35,13 @@ pub struct Sim {
     pub run: Run,
     /// One sample per tick, oldest first: the history stepped through.
     pub samples: Vec<State>,
-    /// The path on a fixed τ grid ([`TRAIL_DT`]), from the run's dense output (closed form
-    /// once stuck, one turn of the table at most): the trail is drawn from these.
-    pub path: Vec<State>,
+    /// The path on a τ grid ([`TRAIL_DT`], doubled as often as [`TRAIL_MAX`] needs), from the
+    /// run's dense output (closed form once stuck, one turn of the table at most), with the
+    /// stop in its place: the trail is drawn from these.
+    pub path: Track<State>,
     /// End points of the integrator steps taken one at a time ([`Sim::step_once`]).
     pub step_marks: Vec<State>,
-    /// The next grid index of the path, and whether the stop is in it.
-    next_k: u64,
+    /// Whether the stop is in the path.
     stop_in_path: bool,
     /// Index of the sample on screen.
     pub cursor: usize,
@@ -60,9 +62,8 @@ impl Sim {
         Ok(Sim {
             run,
             samples: vec![s0],
-            path: vec![s0],
+            path: Track::new(s0, TRAIL_MAX),
             step_marks: Vec::new(),
-            next_k: 1,
             stop_in_path: false,
             cursor: 0,
             view_radius,
@@ -85,28 +86,35 @@ impl Sim {
     }
 
     /// Extends the path on its τ grid through the latest step, from its dense output (or the
-    /// closed form once stuck, where one turn of the table draws the whole circle).
+    /// closed form once stuck, where one turn of the table draws the whole circle), the stop
+    /// itself in its place. Only the grid points the path keeps are computed: one μ = 0
+    /// stride of 1000 τ spans 40,000.
     fn extend_path(&mut self, tau: f64) {
-        let end = match self.run.status() {
-            Status::Stuck { tau: ts, .. } => tau.min(ts + std::f64::consts::TAU),
+        let (end, stop) = match self.run.status() {
+            Status::Stuck { tau: ts, q } => (tau.min(ts + std::f64::consts::TAU), Some((ts, q))),
             // All the latest step covers: its dense output is gone after the next step.
-            Status::Slipping => self.run.tau(),
+            Status::Slipping => (self.run.tau(), None),
         };
-        // Points older than the newest TRAIL_MAX would be dropped as soon as made: skip
-        // them (one μ = 0 stride of 1000 τ holds 40,000).
-        let last_k = (end / TRAIL_DT).floor() as u64;
-        if last_k >= self.next_k + TRAIL_MAX as u64 {
-            self.path.clear();
-            self.next_k = last_k + 1 - TRAIL_MAX as u64;
+        if end.is_finite() {
+            self.path.reserve_for((end / TRAIL_DT) as u64);
         }
-        while self.next_k as f64 * TRAIL_DT <= end {
-            match self.run.state_at(self.next_k as f64 * TRAIL_DT) {
+        loop {
+            let k = self.path.next_index();
+            let t = k as f64 * TRAIL_DT;
+            if let Some((ts, q)) = stop
+                && !self.stop_in_path
+                && ts <= end
+                && ts <= t
+            {
+                self.path.insert(State::riding(q, ts));
+                self.stop_in_path = true;
+            }
+            if t > end {
+                return;
+            }
+            match self.run.state_at(t) {
                 Ok(s) => {
-                    // Trimmed as it grows, so it never holds more than TRAIL_MAX points.
-                    if self.path.len() == TRAIL_MAX {
-                        self.path.drain(..TRAIL_MAX / 10);
-                    }
-                    self.path.push(s);
+                    self.path.push_at(k, s);
                     self.work.points += 1;
                 }
                 Err(e) => {
@@ -114,19 +122,6 @@ impl Sim {
                     return;
                 }
             }
-            self.next_k += 1;
-        }
-        if let Status::Stuck { tau: ts, q } = self.run.status()
-            && !self.stop_in_path
-            && ts <= end
-        {
-            // The stop itself, exactly, in its place on the grid.
-            if self.path.len() == TRAIL_MAX {
-                self.path.drain(..TRAIL_MAX / 10);
-            }
-            let at = self.path.partition_point(|s| s.tau < ts);
-            self.path.insert(at, State::riding(q, ts));
-            self.stop_in_path = true;
         }
     }
 

@@ -135,7 +135,8 @@ fn rod_motion(
     }
     let tol = settings.scheme.tol().unwrap_or(1e-10);
     let end = |tol: f64| -> Result<_, Error> {
-        let mut rod = crate::engine::rod::RodRun::new(body, settings.hold(), initial, tol)?;
+        let mut rod = crate::engine::rod::RodRun::new(body, settings.hold(), initial, tol)?
+            .within(settings.max_steps);
         let outcome = rod.finish(tau_max, |_| {})?;
         Ok((rod, outcome))
     };

@@ -67,7 +67,8 @@ fn sweep_body(a: &super::BodySweepArgs) -> CmdResult {
     let tol = settings.scheme.tol().unwrap_or(1e-10);
     let mut csv = String::from("length,l_over_r,outcome,xi,xi_point,xi_error,tau,tau_point\n");
     for b in bodies {
-        let mut rod = crate::engine::rod::RodRun::new(b, settings.hold(), &initial, tol)?;
+        let mut rod = crate::engine::rod::RodRun::new(b, settings.hold(), &initial, tol)?
+            .within(settings.max_steps);
         let o = rod.finish(a.tau_max, |_| {})?;
         let xi = rod.state.q.length();
         // The error is a rest radius's: defined where both stop.

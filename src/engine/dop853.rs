@@ -3,7 +3,7 @@
 //! and II.6; coefficients as in `dop853.f`). The accept/reject loop is the one in `stepper`.
 #![allow(clippy::excessive_precision, clippy::unreadable_literal)]
 
-use super::model::Y;
+use super::stepper::Vector;
 
 const B1: f64 = 5.42937341165687622380535766363e-2;
 const B6: f64 = 4.45031289275240888144113950566e0;
@@ -166,17 +166,17 @@ const D: [[f64; 12]; 4] = [
 /// One DOP853 trial step from `y` (slope `k1`) of size `h`: the eighth-order point, the two
 /// embedded error estimates (fifth and third order, each already times h) and the stages the
 /// dense output needs if the step is accepted. Eleven new right-hand-side evaluations.
-pub struct Trial {
-    pub y1: Y,
-    pub err5: Y,
-    pub err3: Y,
+pub struct Trial<V> {
+    pub y1: V,
+    pub err5: V,
+    pub err3: V,
     h: f64,
-    y0: Y,
+    y0: V,
     /// k1, k6 … k12: the stages the dense output reuses.
-    k: [Y; 8],
+    k: [V; 8],
 }
 
-pub fn trial(rhs: impl Fn(Y) -> Y, y: Y, k1: Y, h: f64) -> Trial {
+pub fn trial<V: Vector>(rhs: impl Fn(V) -> V, y: V, k1: V, h: f64) -> Trial<V> {
     let k2 = rhs(y + k1 * (h * A21));
     let k3 = rhs(y + (k1 * A31 + k2 * A32) * h);
     let k4 = rhs(y + (k1 * A41 + k3 * A43) * h);
@@ -242,10 +242,10 @@ pub fn combined_err(err5: f64, err3: f64) -> f64 {
     }
 }
 
-impl Trial {
+impl<V: Vector> Trial<V> {
     /// The accepted step's end slope (first same as last) and the coefficients of its
     /// seventh-order continuous extension. Four right-hand-side evaluations.
-    pub fn dense(&self, rhs: impl Fn(Y) -> Y) -> (Y, [Y; 8]) {
+    pub fn dense(&self, rhs: impl Fn(V) -> V) -> (V, [V; 8]) {
         let (y, h, y1) = (self.y0, self.h, self.y1);
         let [k1, k6, k7, k8, k9, k10, k11, k12] = self.k;
         let k13 = rhs(y1);
@@ -284,7 +284,7 @@ impl Trial {
             stages
                 .iter()
                 .zip(d)
-                .fold(Y::default(), |acc, (k, w)| acc + *k * *w)
+                .fold(V::default(), |acc, (k, w)| acc + *k * *w)
                 * h
         };
         let dy = y1 - y;
@@ -306,7 +306,7 @@ impl Trial {
 }
 
 /// The continuous extension at fraction `s` of the step (Hairer's `contd8`).
-pub fn at(r: &[Y; 8], s: f64) -> Y {
+pub fn at<V: Vector>(r: &[V; 8], s: f64) -> V {
     let s1 = 1.0 - s;
     r[0] + (r[1] + (r[2] + (r[3] + (r[4] + (r[5] + (r[6] + r[7] * s) * s1) * s) * s1) * s) * s1) * s
 }

@@ -18,6 +18,7 @@ pub mod solve;
 pub mod stepper;
 pub mod stokes;
 pub mod stop;
+pub mod track;
 pub mod units;
 
 pub use method::{Coupling, CouplingName, Method, Settings};

@@ -117,7 +117,7 @@ impl MotionReport {
             xi: s.q.length(),
             angle: turn_angle(s.q.y.atan2(s.q.x)),
             psi: turn_angle(s.psi),
-            steps: run.steps,
+            steps: run.steps(),
             check: check.map(|(tol, c)| match c {
                 Ok((c, o)) => {
                     let agrees = o == outcome;

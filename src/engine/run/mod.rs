@@ -12,74 +12,13 @@ use crate::engine::error::Error;
 use glam::DVec2;
 
 mod events;
+mod free;
+mod limit;
 mod outcome;
 
+pub use limit::{Limit, StepInfo, Stop};
 use outcome::certificate;
 pub use outcome::{Certificate, Escape, Outcome, RunError, Status, raw_at_rest};
-
-/// Where a step left the run (as diffsol's `step() -> StopReason`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Stop {
-    /// Still slipping, before τ-max.
-    Stepped,
-    /// The escape certificate first held in this step (later steps, following an escaped
-    /// particle, are `Stepped`).
-    Escaped,
-    /// At rest on the table: it rides the table from now on.
-    Stuck,
-    /// τ-max reached.
-    End,
-}
-
-/// What bounded a step (shown by the explorer's integrator step mode).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Limit {
-    /// dp54's error control chose it.
-    Tolerance,
-    /// The fixed step dt.
-    FixedStep,
-    /// Capped to a fraction of the time to the stop ahead, |u|/(1 − q·û): never stepped
-    /// through.
-    StopAhead,
-    /// An implicit step (Radau IIA) where explicit ones would be held to the stability limit
-    /// |u|/|q| while û turns: the stretch before a stop.
-    Implicit,
-    /// A stop within the run's time tolerance, or the launch from rest outside ξ = 1, taken in
-    /// closed form.
-    ClosedForm,
-    /// μ = 0: the straight line in closed form.
-    Frictionless,
-    /// Stokes drag: the linear solution in closed form.
-    Drag,
-    /// τ-max.
-    End,
-}
-
-impl Limit {
-    pub fn describe(self) -> &'static str {
-        match self {
-            Limit::Tolerance => "tolerance",
-            Limit::FixedStep => "fixed dt",
-            Limit::StopAhead => "stop ahead",
-            Limit::Implicit => "implicit",
-            Limit::ClosedForm => "closed form",
-            Limit::Frictionless => "μ=0 exact",
-            Limit::Drag => "Stokes exact",
-            Limit::End => "τ-max",
-        }
-    }
-}
-
-/// The latest step: its length, what bounded it, dp54's error estimate against the
-/// tolerance (≤ 1 accepts), and the tries rejected before it.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct StepInfo {
-    pub t0: f64,
-    pub h: f64,
-    pub limit: Limit,
-    pub err_ratio: Option<f64>,
-    pub rejected: u32,
-}
 
 /// Fraction of the predicted time to a stop that one step may cover: the stop is approached in
 /// steps that shrink geometrically, never stepped through.
@@ -100,9 +39,6 @@ const STIFF: f64 = 2.0;
 const FROZEN_SHARE: f64 = 0.1;
 const FROZEN_K: f64 = 0.95;
 
-/// How far one closed-form stride of a frictionless run reaches when no end is given: any
-/// length costs the same.
-const FREE_STRIDE: f64 = 1e3;
 /// A relative speed below this is a stop now: its square underflows (|u|² < 1e-300 loses
 /// digits, below 1e-308 it is zero, and û = u/|u| with it), so the equations can no longer
 /// tell it from rest. The stop is |u|/(1 − q·û) ≤ 1e-150 ahead, beyond what τ can resolve.
@@ -488,61 +424,6 @@ impl Run {
         {
             self.escape = Some(self.locate_escape(&seg));
         }
-        Ok(())
-    }
-
-    /// The closed-form state at τ: the straight line (μ = 0) or the Stokes solution.
-    fn exact_state(&self, tau: f64) -> State {
-        match &self.stokes {
-            Some(st) => st.state(tau),
-            None => self.initial.free_state(tau),
-        }
-    }
-
-    /// μ = 0 or Stokes drag: one closed-form stride to `tau_max` (or [`FREE_STRIDE`] on when
-    /// that is infinite), stopping at the escape certificate on the way.
-    #[cold]
-    #[inline(never)]
-    fn free_step(&mut self, tau_max: f64) -> Result<(), RunError> {
-        let mut end = if tau_max.is_finite() {
-            tau_max
-        } else {
-            self.stepper.t + FREE_STRIDE
-        };
-        if self.escape.is_none()
-            && let Some(te) = match &self.stokes {
-                Some(st) => st.escape(),
-                None => self.initial.free_escape(),
-            }
-            && te <= end
-        {
-            end = te.max(self.stepper.t);
-            self.escape = Some(Escape {
-                tau: te,
-                by: Certificate::Radial,
-                state: self.exact_state(te),
-            });
-        }
-        let to = self.exact_state(end);
-        if !(to.r.is_finite() && to.v.is_finite()) {
-            // Stokes drag grows exponentially: e^{Re λ+ τ} past f64's range.
-            return Err(RunError::Overflow { tau: end });
-        }
-        let frame = self.settings.frame;
-        self.last_step = Some(StepInfo {
-            t0: self.stepper.t,
-            h: end - self.stepper.t,
-            limit: if self.stokes.is_some() {
-                Limit::Drag
-            } else {
-                Limit::Frictionless
-            },
-            err_ratio: None,
-            rejected: 0,
-        });
-        self.stepper.y = frame.from_state(&to);
-        self.stepper.t = end;
-        self.last = None;
         Ok(())
     }
 }
