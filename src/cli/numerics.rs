@@ -18,7 +18,7 @@ const TRAJECTORY_HEADER: &[u8] = b"tau,x,y,xq,yq,u,stuck,energy,work,approx_xi\n
 /// Writes trajectory rows: the state, E = ½|u|² − ½ξ² and −∫|u|dτ (Gauss–Legendre on each
 /// step's dense output, [`step_work`]; dE/dτ = −|u|, so the two differ by E(0) up to the run's
 /// own error), and the Sec. III
-/// approximation of ξ for a release at rest (Eq. 17 in the lab, Eq. 24 on the table for
+/// approximation of ξ for a release at rest (Eq. 13 in the lab, Eq. 19 on the table for
 /// ξ0 > 1; valid only early, see README), empty otherwise. Under Stokes drag the work is
 /// −γ∫|u|²dτ, and no approximation applies.
 struct Rows {

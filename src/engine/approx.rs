@@ -1,8 +1,8 @@
 //! The paper's Sec. III analytic approximations for short times after a release from rest,
 //! with the windows in which the paper's own assumptions hold.
 
-/// Sec. III A (Fig. 1), released at rest in the lab at ξ0 ≫ 1: θ = τ²/(2ξ0) (Eq. 16) and
-/// ξ = τ⁴/(12ξ0) + ξ0 (Eq. 17). Returns (ξ, θ) with θ the lab angle.
+/// Sec. III A (Fig. 1), released at rest in the lab at ξ0 ≫ 1: θ = τ²/(2ξ0) (Eq. 12) and
+/// ξ = τ⁴/(12ξ0) + ξ0 (Eq. 13). Returns (ξ, θ) with θ the lab angle.
 pub fn lab_rest(xi0: f64, tau: f64) -> (f64, f64) {
     (tau.powi(4) / (12.0 * xi0) + xi0, tau * tau / (2.0 * xi0))
 }
@@ -15,7 +15,7 @@ pub fn lab_rest_window(xi0: f64) -> f64 {
 }
 
 /// Sec. III B (Fig. 2), released at rest on the table at ξ0 > 1: ξ = (ξ0 − 1) cosh τ + 1
-/// (Eq. 24) and the table-frame angular velocity Θ′ = 2 ln(ξ0/ξ) (Eq. 25), integrated here
+/// (Eq. 19) and the table-frame angular velocity Θ′ = 2 ln(ξ0/ξ) (Eq. 20), integrated here
 /// by Simpson's rule for Θ. Returns (ξ, Θ′, Θ).
 pub fn table_rest(xi0: f64, tau: f64) -> (f64, f64, f64) {
     let xi = |t: f64| (xi0 - 1.0) * t.cosh() + 1.0;
@@ -37,7 +37,7 @@ pub fn table_rest(xi0: f64, tau: f64) -> (f64, f64, f64) {
     (xi(tau), omega(tau), sum * h / 3.0)
 }
 
-/// Sec. III B's approximation for ξ holds for τ ≲ 1 (Fig. 2). Its Θ′ (Eq. 25) drops the
+/// Sec. III B's approximation for ξ holds for τ ≲ 1 (Fig. 2). Its Θ′ (Eq. 20) drops the
 /// friction term ξΘ′/ξ′, which near a release from rest is the larger one: the converged
 /// Θ is several times smaller at ξ0 = 1.1 (see tests/suite/approx.rs).
 pub const TABLE_REST_WINDOW: f64 = 1.0;

@@ -52,7 +52,7 @@ fn fig2_table_rest_just_outside_xi_1() {
     }
 }
 
-/// Eq. 25 for the table-frame angle drops the friction term that dominates right after a
+/// Eq. 20 for the table-frame angle drops the friction term that dominates right after a
 /// release from rest: it overstates how far the particle falls behind the table.
 #[test]
 fn fig2_eq25_overstates_the_lag() {
@@ -61,5 +61,5 @@ fn fig2_eq25_overstates_the_lag() {
     let (_, _, theta) = table_rest(1.1, 0.25);
     let num = q.y.atan2(q.x);
     assert!(num < 0.0 && theta < 0.0);
-    assert!(theta / num > 5.0, "Eq. 25 gives {theta}, converged {num}");
+    assert!(theta / num > 5.0, "Eq. 20 gives {theta}, converged {num}");
 }

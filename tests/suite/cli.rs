@@ -83,7 +83,7 @@ fn run_json_and_trajectory_agree() {
     for l in csv.lines().skip(1) {
         assert!((col(l, 7) - e0 - col(l, 8)).abs() < 1e-7, "{l}");
     }
-    // Released at rest in the lab far out (Fig. 1), the approx_xi column is Eq. 17.
+    // Released at rest in the lab far out (Fig. 1), the approx_xi column is Eq. 13.
     let (code, _, err) = turntable(&[
         "run",
         "--xi0",

@@ -261,6 +261,44 @@ fn claims(lesson: &str) -> Vec<Claim> {
                         assert!(shows(v, "0.5700"), "{v}");
                     }),
                 ),
+                // Where v_e is least moves with ξ0; the paper's "≈ 0.4 for all" holds near 0.7 only.
+                c(
+                    "0.70",
+                    Box::new(|| {
+                        let (phi, _) =
+                            easiest_angle(0.2, 36, Settings::dp54(1e-10), 1e-10, 1e-4).unwrap();
+                        assert!(shows(phi, "0.70"), "{phi}");
+                    }),
+                ),
+                // Two of Fig. 5's curves.
+                c(
+                    "0.2",
+                    Box::new(|| assert!(turntable::analysis::PAPER_XI0.contains(&0.2))),
+                ),
+                c(
+                    "0.31",
+                    Box::new(|| {
+                        let (phi, _) =
+                            easiest_angle(0.8, 36, Settings::dp54(1e-10), 1e-10, 1e-4).unwrap();
+                        assert!(shows(phi, "0.31"), "{phi}");
+                    }),
+                ),
+                c(
+                    "0.8",
+                    Box::new(|| assert!(turntable::analysis::PAPER_XI0.contains(&0.8))),
+                ),
+                c(
+                    "0.4",
+                    Box::new(|| {
+                        // The paper's value: at ξ0 = 0.2, 0.5 and 0.8 the least v_e is off it by
+                        // more than 0.09 rad.
+                        for xi0 in [0.2, 0.5, 0.8] {
+                            let (phi, _) =
+                                easiest_angle(xi0, 36, Settings::dp54(1e-10), 1e-10, 1e-4).unwrap();
+                            assert!((phi - 0.4).abs() > 0.09, "{xi0}: {phi}");
+                        }
+                    }),
+                ),
                 c(
                     "0.557",
                     Box::new(|| {

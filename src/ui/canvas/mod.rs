@@ -141,14 +141,14 @@ fn followed(app: &App, body_now: Option<RodState>, point: bool) -> DVec2 {
     }
 }
 
-/// Where and when it stuck: the rest point in the frame shown (in the lab, where it was at
-/// the stop; it rides the table from there), turned as the picture is.
+/// Where and when it stuck: the rest point on the table, in the frame shown (in the lab,
+/// where that point of the table is now: the particle rides it), turned as the picture is.
 fn stuck_at(app: &App, point: bool) -> Option<(DVec2, f64)> {
     let now = app.sim().now();
     match app.sim().run.status() {
         crate::engine::Status::Stuck { tau, q } if now.tau >= tau && point => {
             let at = match app.view {
-                Frame::Lab => rotate(q, tau),
+                Frame::Lab => rotate(q, now.tau),
                 Frame::Table => q,
             };
             Some((rotate(at, app.turn), tau))

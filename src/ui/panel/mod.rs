@@ -34,6 +34,16 @@ pub fn speed(v: f64) -> String {
     }
 }
 
+/// A rate that may be below what `prec` places show (|u| near a stop): in scientific
+/// notation then, so that "slipping" never stands beside a row of zeros.
+pub fn small(x: f64, prec: usize) -> String {
+    if x != 0.0 && x.abs() < 0.5 * 10f64.powi(-(prec as i32)) {
+        format!("{x:.1e}")
+    } else {
+        num(x, prec)
+    }
+}
+
 /// Status of a run at the sample on screen, and its colour.
 pub fn status_text(sim: &Sim, th: &Theme) -> (String, ratatui::style::Color) {
     if let Some(e) = &sim.error {
@@ -264,8 +274,8 @@ fn motion_lines(app: &App, s: &crate::engine::State, out: &mut Vec<Line<'static>
             out.push(kv("θ′ lab", theta_dot.map_or("—".into(), lab_rate), th));
         }
     }
-    out.push(kv("ξ′", format!("{}{xi_dot_si}", num(s.xi_dot(), 4)), th));
-    out.push(kv("|u|", format!("{}{u_si}", num(s.u().length(), 4)), th));
+    out.push(kv("ξ′", format!("{}{xi_dot_si}", small(s.xi_dot(), 4)), th));
+    out.push(kv("|u|", format!("{}{u_si}", small(s.u().length(), 4)), th));
 }
 
 /// The table and the release in SI, while units are on: what μ, rpm and g change.
@@ -411,4 +421,20 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) {
             .style(Style::default().bg(th.background)),
         area,
     );
+}
+
+#[cfg(test)]
+mod tests {
+    use super::small;
+
+    #[test]
+    fn rates_below_the_places_shown_keep_their_size() {
+        assert_eq!(small(0.61234, 4), "0.6123");
+        assert_eq!(small(0.0, 4), "0.0000");
+        // Below half the last place shown: scientific, never a row of zeros beside "slipping".
+        assert_eq!(small(4.9e-5, 4), "4.9e-5");
+        assert_eq!(small(-3.2e-12, 4), "-3.2e-12");
+        assert_eq!(small(5e-5, 4), "0.0001");
+        assert_eq!(small(f64::NAN, 4), "—");
+    }
 }
