@@ -347,8 +347,7 @@ impl App {
         self.scene_named(None)
     }
 
-    /// The scene on screen as [`App::current_scene`], under the name `name` if given: a named
-    /// scene is the user's own, so its description is what the run does.
+    /// The scene on screen as [`App::current_scene`], under the name `name` if given.
     pub fn scene_named(&self, name: Option<&str>) -> Scene {
         let changed = self.edited() || name.is_some();
         Scene {
@@ -363,10 +362,14 @@ impl App {
             } else {
                 self.scene().name.clone()
             },
-            about: if changed {
-                self.ending().into()
-            } else {
+            // Unedited, the scene's own words stay (a preset saved under a name of one's own);
+            // edited, how the run ends, or the release while that is undecided.
+            about: if !self.edited() {
                 self.scene().about.clone()
+            } else if self.ending().is_empty() {
+                release_words(&self.initial()).into()
+            } else {
+                self.ending().into()
             },
             initial: self.initial(),
             settings: self.settings(),
@@ -458,6 +461,18 @@ impl App {
             .map(|p| p.end().tau * p.scale(self.units).1)
             .fold(self.sim().now().tau, f64::max)
     }
+}
+
+/// A release in words, for a scene's description before its run has decided.
+fn release_words(i: &Initial) -> String {
+    // Shortest digits of the values rounded as the panel's precision goes (0.5, not 0.5000).
+    let r = |x: f64| (x * 1e4).round() / 1e4 + 0.0;
+    format!(
+        "released at ξ0 = {}, φ = {}π, v0 = {}",
+        r(i.xi0),
+        r(i.phi / std::f64::consts::PI),
+        r(i.v0)
+    )
 }
 
 /// A pin of `spec`, its marker the first one `pins` leaves free.

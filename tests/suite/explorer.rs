@@ -1064,14 +1064,34 @@ fn the_title_and_a_saved_scene_tell_what_is_on_screen() {
         "{title}"
     );
     assert!(!title.contains("tau") && !title.contains("xi"), "{title}");
-    // Undecided: saved with no words about its end.
+    // Undecided: saved with the release in words, nothing about its end.
     a.save_path = dir.join("undecided.toml");
     key(&mut a, 's');
     let saved = Scene::load(dir.join("undecided.toml").to_str().unwrap()).unwrap();
     assert_eq!(
         (saved.name.as_str(), saved.about.as_str()),
-        ("C (edited)", "")
+        ("C (edited)", "released at ξ0 = 0.5, φ = 0π, v0 = 0.6068")
     );
+    // An unedited preset saved under a name of one's own keeps its words (the title too).
+    let mut b = app("B");
+    b.save_path = dir.join("b.toml");
+    b.prompt = Some(turntable::app::prompt::Prompt::new(
+        turntable::app::prompt::Asks::Name,
+    ));
+    for c in "mine".chars() {
+        b.press(Chord::new(KeyCode::Char(c), KeyModifiers::NONE));
+    }
+    let effects = b.press("enter".parse().unwrap());
+    turntable::session::carry_out(&mut b, effects);
+    let saved = Scene::load(dir.join("mine.toml").to_str().unwrap()).unwrap();
+    assert_eq!(saved.about, Scene::preset("B").unwrap().about);
+    let mut back = App::new(saved, theme());
+    let title = render(&mut back, 100, 30)
+        .lines()
+        .next()
+        .unwrap()
+        .to_string();
+    assert!(title.contains("thrown outward, comes to rest"), "{title}");
     // Decided: how it ends, and the view it was shown in.
     for _ in 0..200 {
         a.tick();
