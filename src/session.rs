@@ -305,7 +305,7 @@ pub fn carry_out(app: &mut App, effects: Effects) {
 fn export_svg(app: &App, dir: &std::path::Path, page: crate::app::pages::Page) -> String {
     use std::io::Write;
     let (fig, whole) = crate::ui::figure::page(app);
-    let text = crate::figure::to_svg(&fig);
+    let text = crate::plot::to_svg(&fig);
     let slug = crate::ui::figure::slug(page);
     for n in 1..=999 {
         let path = dir.join(format!("turntable-{slug}-{n}.svg"));

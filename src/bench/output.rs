@@ -3,8 +3,9 @@
 use super::{Report, Speed, Task};
 use crate::engine::Method;
 use crate::error::Error;
+use crate::plot::extent;
 use crate::theme::Theme;
-use crate::ui::chart::{Chart, Mark, Series, extent, render};
+use crate::ui::chart::{Chart, Mark, Series, render};
 use crate::ui::export::plain_text;
 use ratatui::Terminal;
 use ratatui::backend::TestBackend;

@@ -7,8 +7,8 @@ use super::{CmdResult, PlotArgs, PlotFigure, PlotRun, SvgOut};
 use crate::engine::solve::critical_radius;
 use crate::engine::{Initial, Release, State, Status};
 use crate::error::Error;
-use crate::figure::{Figure, build};
 use crate::files::Output;
+use crate::plot::{Figure, build};
 use std::io::Write as _;
 
 pub fn plot(a: PlotArgs) -> CmdResult {
@@ -90,7 +90,7 @@ fn open(svg: &SvgOut) -> Result<Output, Error> {
 
 /// Writes the figure and puts the file in place (never over a file that appeared meanwhile).
 fn write(mut out: Output, svg: &SvgOut, fig: &Figure) -> CmdResult {
-    let text = crate::figure::to_svg(fig);
+    let text = crate::plot::to_svg(fig);
     out.write_all(text.as_bytes())
         .and_then(|()| out.finish())
         .map_err(|e| {

@@ -5,7 +5,7 @@ use crate::analysis::{PAPER_XI0, REST_POINTS, REST_XI0_MAX, map_cell, settings_f
 use crate::app::App;
 use crate::app::pages::Page;
 use crate::engine::{Outcome, Release, State, Status};
-use crate::figure::{Figure, build};
+use crate::plot::{Figure, build};
 
 /// The page's figure, and whether it is whole (false while the page is still computing).
 pub fn page(app: &App) -> (Figure, bool) {

@@ -2,11 +2,12 @@
 //! dE/dτ = −|u| against τ, with the paper's Sec. III approximations (Eqs. 16–17, 24–25) over
 //! their window for releases at rest, and the paper's RK2 run beside the converged one.
 
-use super::chart::{self, Chart, Mark, Series, extent};
+use super::chart::{self, Chart, Mark, Series};
 use crate::app::App;
 use crate::engine::approx::{TABLE_REST_WINDOW, lab_rest, lab_rest_window, table_rest};
 use crate::engine::units::Quantity;
 use crate::engine::{Frame, Release, State, Status};
+use crate::plot::extent;
 use crate::ui::panel::num;
 use ratatui::Frame as TuiFrame;
 use ratatui::layout::{Constraint, Layout, Rect};
@@ -45,32 +46,6 @@ fn series(
         points: along(path, &y),
         joined: true,
     }
-}
-
-/// E − E(0) and −∫|u|dτ (trapezoids on the path's grid): equal, since dE/dτ = −|u|.
-pub fn energy_pair(path: &[State]) -> [Vec<(f64, f64)>; 2] {
-    energy_pair_drag(path, None)
-}
-
-/// [`energy_pair`], or under Stokes drag γ (extends the paper) E − E(0) and −γ∫|u|²dτ, equal
-/// since there dE/dτ = −γ|u|².
-pub fn energy_pair_drag(path: &[State], drag: Option<f64>) -> [Vec<(f64, f64)>; 2] {
-    let power = |s: &State| {
-        let u = s.u_lab().length();
-        drag.map_or(u, |g| g * u * u)
-    };
-    let e0 = path.first().map_or(0.0, State::energy);
-    let mut work = 0.0;
-    let mut w = Vec::with_capacity(path.len());
-    for (i, s) in path.iter().enumerate() {
-        if i > 0 {
-            let p = &path[i - 1];
-            work -= 0.5 * (s.tau - p.tau) * (power(s) + power(p));
-        }
-        w.push((s.tau, work));
-    }
-    let e = path.iter().map(|s| (s.tau, s.energy() - e0)).collect();
-    [e, w]
 }
 
 /// The time plots: ξ, θ′ (Θ′ in the rotating view), |u| and the energy identity, aligned in τ
@@ -408,7 +383,7 @@ fn plots(app: &App, now: f64, window: Option<f64>) -> [Plot<'static>; 5] {
 
 /// The energy identity's two sides: E − E(0) as a line, the work integral as dots.
 fn energy_series(p: &[State], drag: Option<f64>, th: &crate::theme::Theme) -> Vec<Series> {
-    let [e, w] = energy_pair_drag(p, drag);
+    let [e, w] = crate::analysis::energy::energy_pair_drag(p, drag);
     vec![
         Series {
             name: "E − E(0)".into(),

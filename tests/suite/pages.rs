@@ -230,7 +230,7 @@ fn the_time_plots_show_the_energy_identity() {
         a.tick();
     }
     let path = a.sim().trail().to_vec();
-    let [e, w] = turntable::ui::time_plots::energy_pair(&path);
+    let [e, w] = turntable::analysis::energy::energy_pair(&path);
     let worst = e
         .iter()
         .zip(&w)

@@ -2,7 +2,7 @@
 //! rest radius against ξ0 (Fig. 6) with the paper's μ measurement (Eq. 22); the time plots are
 //! in `time_plots`. Pure: they draw what the app holds and never compute a run.
 
-use super::chart::{self, Chart};
+use super::chart::Chart;
 use crate::app::pages::Page;
 use crate::app::{App, CanvasGeom};
 use crate::ui::panel::num;
@@ -71,8 +71,8 @@ fn no_threshold(f: &mut TuiFrame, area: Rect, app: &App, gamma: f64) {
 fn geom(plot: Rect, c: &Chart, page: Page, app: &App) -> CanvasGeom {
     CanvasGeom {
         area: plot,
-        x: chart::sane(c.x),
-        y: chart::sane(c.y),
+        x: crate::plot::sane(c.x),
+        y: crate::plot::sane(c.y),
         arrow_scale: 1.0,
         frame: app.view,
         turn: 0.0,

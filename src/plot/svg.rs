@@ -3,7 +3,7 @@
 //! Coordinates carry four decimals of a pixel: the data can be read back from them.
 
 use super::{Figure, Mark, Panel, Style};
-use crate::ui::chart::{tick_label, ticks};
+use super::{sane, tick_label, ticks};
 use std::fmt::Write as _;
 
 const WIDTH: f64 = 800.0;
@@ -117,7 +117,6 @@ impl Axes {
 fn panel(s: &mut String, p: &Panel, top: f64, height: f64) {
     let (x0, y0) = (LEFT, top + TOP);
     let (w, h) = (WIDTH - LEFT - RIGHT, height - TOP - BOTTOM);
-    let sane = |r: [f64; 2]| crate::ui::chart::sane(r);
     let (xr, yr) = match p.equal_aspect {
         true => equalize(sane(p.x), sane(p.y), w, h),
         false => (sane(p.x), sane(p.y)),
@@ -367,7 +366,7 @@ fn frame_and_legend(s: &mut String, ax: &Axes, legend: &[(String, String)]) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::figure::Series;
+    use crate::plot::Series;
 
     #[test]
     fn text_is_escaped_and_coordinates_are_clean() {

@@ -2,7 +2,7 @@
 //! engine and the analysis) and the explorer's `E` (which takes what it already holds). Axis
 //! names carry the paper's units: lengths in R_max = μg/Ω², time in 1/Ω, speeds in μg/Ω.
 
-use super::{Figure, Mark, Panel, Series, Style, span};
+use super::{Figure, Mark, Panel, Series, Style, extent};
 use crate::engine::{Frame, State};
 use std::f64::consts::TAU;
 
@@ -78,7 +78,7 @@ pub fn time(title: &str, path: &[State], stop: Option<f64>) -> Figure {
     let over = |f: &dyn Fn(&State) -> f64| -> Vec<(f64, f64)> {
         path.iter().map(|s| (s.tau, f(s))).collect()
     };
-    let x = span(path.iter().map(|s| s.tau));
+    let x = extent(path.iter().map(|s| s.tau));
     let x = [path.first().map_or(x[0], |s| s.tau), x[1]];
     let marks: Vec<Mark> = stop
         .map(|t| Mark::VLine {
@@ -92,12 +92,12 @@ pub fn time(title: &str, path: &[State], stop: Option<f64>) -> Figure {
         x_label: TAU_AXIS.into(),
         y_label: y_label.into(),
         x,
-        y: span(series.iter().flat_map(|s| s.points.iter().map(|p| p.1))),
+        y: extent(series.iter().flat_map(|s| s.points.iter().map(|p| p.1))),
         equal_aspect: false,
         series,
         marks: marks.clone(),
     };
-    let [e, w] = crate::ui::time_plots::energy_pair(path);
+    let [e, w] = crate::analysis::energy::energy_pair(path);
     Figure {
         title: title.into(),
         panels: vec![

@@ -8,9 +8,11 @@
 //! (a test maps the polyline back to v_e to 1e-6), and what is drawn here (lines, dots, cells,
 //! text) is a few hundred lines, not worth three more crates.
 
+mod axis;
 pub mod build;
 mod svg;
 
+pub use axis::{extent, sane, tick_label, ticks};
 pub use svg::to_svg;
 
 /// A figure: a title over panels stacked top to bottom.
@@ -71,23 +73,4 @@ impl Series {
             style: Style::Line { dash },
         }
     }
-}
-
-/// A range around finite `values` with a 5 % margin (or a unit one around a single value);
-/// `[0, 1]` when there are none.
-pub fn span(values: impl Iterator<Item = f64>) -> [f64; 2] {
-    let (lo, hi) = values
-        .filter(|v| v.is_finite())
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| {
-            (l.min(v), h.max(v))
-        });
-    if !(lo.is_finite() && hi.is_finite()) {
-        return [0.0, 1.0];
-    }
-    if hi - lo <= 1e-12 * lo.abs().max(hi.abs()).max(1e-300) {
-        let pad = 0.5 * lo.abs().max(1e-3);
-        return [lo - pad, hi + pad];
-    }
-    let pad = 0.05 * (hi - lo);
-    [lo - pad, hi + pad]
 }
