@@ -1,6 +1,17 @@
 //! Axes for both backends: round tick values, their labels, and ranges that can always be
 //! drawn. The terminal's charts and the SVG writer place the same ticks.
 
+use crate::engine::units::{Quantity, Units};
+
+/// An axis name with the SI value of its unit beside it when the table is real:
+/// `τ (1 = 303 ms)`.
+pub fn axis(name: &str, q: Quantity, units: Option<Units>) -> String {
+    match units {
+        Some(u) => format!("{name} (1 = {})", u.unit_of(q)),
+        None => name.to_string(),
+    }
+}
+
 /// Tick values: a 1-2-5 step giving about `n` ticks over `[a, b]`.
 pub fn ticks(a: f64, b: f64, n: usize) -> Vec<f64> {
     let span = b - a;

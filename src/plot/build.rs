@@ -2,7 +2,7 @@
 //! engine and the analysis) and the explorer's `E` (which takes what it already holds). Axis
 //! names carry the paper's units: lengths in R_max = μg/Ω², time in 1/Ω, speeds in μg/Ω.
 
-use super::{Figure, Mark, Panel, Series, Style, extent};
+use super::{Figure, Ink, Mark, Panel, Series, Style, extent};
 use crate::engine::{Frame, State};
 use std::f64::consts::TAU;
 
@@ -43,11 +43,13 @@ pub fn trajectory(title: &str, path: &[State], frame: Frame, end: &str) -> Figur
             x: first.0,
             y: first.1,
             label: "release".into(),
+            ink: Ink::Foreground,
         });
         marks.push(Mark::Point {
             x: last.0,
             y: last.1,
             label: end.into(),
+            ink: Ink::Foreground,
         });
     }
     let (name, axes) = match frame {
@@ -68,6 +70,7 @@ pub fn trajectory(title: &str, path: &[State], frame: Frame, end: &str) -> Figur
             equal_aspect: true,
             series: vec![Series::line("particle", 0, pts), rim()],
             marks,
+            ..Panel::default()
         }],
     }
 }
@@ -84,6 +87,7 @@ pub fn time(title: &str, path: &[State], stop: Option<f64>) -> Figure {
         .map(|t| Mark::VLine {
             x: t,
             label: format!("stuck τ={t:.3}"),
+            ink: Ink::Stuck,
         })
         .into_iter()
         .collect();
@@ -96,6 +100,7 @@ pub fn time(title: &str, path: &[State], stop: Option<f64>) -> Figure {
         equal_aspect: false,
         series,
         marks: marks.clone(),
+        ..Panel::default()
     };
     let [e, w] = crate::analysis::energy::energy_pair(path);
     Figure {
@@ -161,9 +166,15 @@ pub fn escape_speed(
             equal_aspect: false,
             series,
             marks: release
-                .map(|(x, y, label)| Mark::Point { x, y, label })
+                .map(|(x, y, label)| Mark::Point {
+                    x,
+                    y,
+                    label,
+                    ink: Ink::Particle,
+                })
                 .into_iter()
                 .collect(),
+            ..Panel::default()
         }],
     }
 }
@@ -194,9 +205,11 @@ pub fn rest_radius(title: &str, points: &[(f64, Option<f64>)], xi0c: Option<f64>
                 .map(|c| Mark::VLine {
                     x: c,
                     label: format!("ξ0c = {c:.6}"),
+                    ink: Ink::Escaped,
                 })
                 .into_iter()
                 .collect(),
+            ..Panel::default()
         }],
     }
 }
@@ -211,25 +224,7 @@ pub fn outcome_map(
     curve: Option<Vec<(f64, f64)>>,
     v_axis: &str,
 ) -> Figure {
-    let (w, h) = (TAU / size.0.max(1) as f64, v0_max / size.1.max(1) as f64);
-    let bands = [
-        ("stuck, rest ξ < ¼", 0.0, 0.25, 0.12),
-        ("stuck, ¼ ≤ ξ < ½", 0.25, 0.5, 0.3),
-        ("stuck, ½ ≤ ξ < ¾", 0.5, 0.75, 0.5),
-        ("stuck, ξ ≥ ¾", 0.75, f64::INFINITY, 0.7),
-    ];
-    let mut series: Vec<Series> = bands
-        .iter()
-        .map(|&(name, lo, hi, shade)| Series {
-            name: name.into(),
-            points: cells
-                .iter()
-                .filter(|c| c.2.is_some_and(|xi| (lo..hi).contains(&xi)))
-                .map(|c| (c.0, c.1))
-                .collect(),
-            style: Style::Cells { w, h, shade },
-        })
-        .collect();
+    let mut series = cells_by_rest(cells, size, v0_max);
     if let Some(pts) = curve {
         series.push(Series::line("v_e(φ)", 0, pts));
     }
@@ -244,6 +239,36 @@ pub fn outcome_map(
             equal_aspect: false,
             series,
             marks: vec![],
+            ..Panel::default()
         }],
     }
+}
+
+/// An outcome map's cells over (φ, v0) (`size` = angles × speeds up to `v0_max`) as four
+/// series shaded by where a stuck release rests; an escape is blank.
+pub fn cells_by_rest(
+    cells: &[(f64, f64, Option<f64>)],
+    size: (usize, usize),
+    v0_max: f64,
+) -> Vec<Series> {
+    let (w, h) = (TAU / size.0.max(1) as f64, v0_max / size.1.max(1) as f64);
+    let bands = [
+        ("stuck, rest ξ < ¼", 0.0, 0.25, 0.12),
+        ("stuck, ¼ ≤ ξ < ½", 0.25, 0.5, 0.3),
+        ("stuck, ½ ≤ ξ < ¾", 0.5, 0.75, 0.5),
+        ("stuck, ξ ≥ ¾", 0.75, f64::INFINITY, 0.7),
+    ];
+    bands
+        .iter()
+        .map(|&(name, lo, hi, shade)| Series {
+            name: name.into(),
+            points: cells
+                .iter()
+                .filter(|c| c.2.is_some_and(|xi| (lo..hi).contains(&xi)))
+                .map(|c| (c.0, c.1))
+                .collect(),
+            style: Style::Cells { w, h, shade },
+            ink: Ink::Stuck,
+        })
+        .collect()
 }

@@ -1,9 +1,10 @@
-//! A braille chart with labelled axes, tick values and a legend: what every analysis page
-//! draws with. The plot area it returns maps mouse cells back to data (see `CanvasGeom`).
+//! A panel described in `plot` drawn as a braille chart with labelled axes, tick values and a
+//! legend: what every analysis page draws with (the same panel an export writes as SVG; its
+//! cells the page paints beneath). The plot area it returns maps mouse cells back to data
+//! (see `CanvasGeom`).
 
 use super::fit::{fit, fit_label};
-use crate::engine::units::{Quantity, Units};
-use crate::plot::{sane, tick_label, ticks};
+use crate::plot::{Ink, Mark, Panel as Chart, Series, sane, tick_label, ticks};
 use crate::theme::Theme;
 use ratatui::Frame as TuiFrame;
 use ratatui::layout::Rect;
@@ -13,59 +14,24 @@ use ratatui::widgets::canvas::{Canvas, Context, Line as Seg, Points};
 use ratatui::widgets::{Block, Borders, Paragraph};
 use unicode_width::UnicodeWidthStr;
 
-/// One curve or point set.
-#[derive(Clone, Debug)]
-pub struct Series {
-    pub name: String,
-    pub color: Color,
-    pub points: Vec<(f64, f64)>,
-    /// Joined by lines (else dots). A gap (NaN) breaks the line.
-    pub joined: bool,
-}
-
-/// Something marked on the chart: a vertical line at x, or a point, each with a label.
-#[derive(Clone, Debug)]
-pub enum Mark {
-    VLine {
-        x: f64,
-        label: String,
-        color: Color,
-    },
-    Point {
-        x: f64,
-        y: f64,
-        label: String,
-        color: Color,
-    },
-    /// A label alone, its left end at (x, y) (or its right end at the plot's edge, when it
-    /// would run past it).
-    Text {
-        x: f64,
-        y: f64,
-        label: String,
-        color: Color,
-    },
-}
-
-#[derive(Clone, Debug)]
-pub struct Chart {
-    pub title: String,
-    /// A line of readouts under the x ticks, left of the x axis name.
-    pub note: String,
-    pub x_label: String,
-    pub y_label: String,
-    pub x: [f64; 2],
-    pub y: [f64; 2],
-    pub series: Vec<Series>,
-    pub marks: Vec<Mark>,
-}
-
-/// An axis name with the SI value of its unit beside it when the table is real:
-/// `τ (1 = 303 ms)`.
-pub fn axis(name: &str, q: Quantity, units: Option<Units>) -> String {
-    match units {
-        Some(u) => format!("{name} (1 = {})", u.unit_of(q)),
-        None => name.to_string(),
+/// The theme's colour for what a thing drawn is.
+pub fn ink(th: &Theme, ink: Ink) -> Color {
+    match ink {
+        Ink::Trail => th.trail,
+        Ink::Muted => th.muted,
+        Ink::Accent => th.accent,
+        Ink::Paper => th.spokes,
+        Ink::Particle => th.particle,
+        Ink::Foreground => th.foreground,
+        Ink::Stuck => th.stuck,
+        Ink::Escaped => th.escaped,
+        Ink::Notice => th.notice,
+        Ink::Arrow => th.arrow,
+        Ink::Friction => th.friction,
+        Ink::Coriolis => th.coriolis,
+        Ink::Centrifugal => th.centrifugal,
+        Ink::TableEdge => th.table_edge,
+        Ink::LimitCircle => th.limit_circle,
     }
 }
 
@@ -151,14 +117,22 @@ pub fn render_bare(
         .y_bounds(y)
         .paint(|ctx| {
             for m in &chart.marks {
-                if let Mark::VLine { x: mx, color, .. } = m {
-                    ctx.draw(&Seg::new(*mx, y[0], *mx, y[1], *color));
+                match m {
+                    Mark::VLine { x: mx, ink: i, .. } => {
+                        ctx.draw(&Seg::new(*mx, y[0], *mx, y[1], ink(th, *i)));
+                    }
+                    Mark::Arrow {
+                        from, to, ink: i, ..
+                    } => {
+                        ctx.draw(&Seg::new(from.0, from.1, to.0, to.1, ink(th, *i)));
+                    }
+                    _ => {}
                 }
             }
             ctx.layer();
-            paint_series(ctx, &chart.series);
+            paint_series(ctx, th, &chart.series);
             ctx.layer();
-            paint_labels(ctx, &chart.marks, x, rows, col);
+            paint_labels(ctx, th, &chart.marks, x, rows, col);
         });
     f.render_widget(canvas, plot);
     Some(plot)
@@ -170,14 +144,18 @@ fn legend(f: &mut TuiFrame, inner: Rect, th: &Theme, chart: &Chart) {
     let muted = Style::default().fg(th.muted);
     let mut legend = vec![Span::styled(format!("{} ", chart.y_label), muted)];
     let mut used = legend[0].width();
-    for s in chart.series.iter().filter(|s| !s.name.is_empty()) {
+    for s in chart
+        .series
+        .iter()
+        .filter(|s| !s.name.is_empty() && !is_cells(s))
+    {
         // Lines and dots named by their own mark, not by colour alone (mono, NO_COLOR).
-        let text = format!("{} {}  ", if s.joined { "━" } else { "··" }, s.name);
+        let text = format!("{} {}  ", if s.joined() { "━" } else { "··" }, s.name);
         if used + text.trim_end().width() > usize::from(inner.width) {
             break;
         }
         used += text.width();
-        legend.push(Span::styled(text, Style::default().fg(s.color)));
+        legend.push(Span::styled(text, Style::default().fg(ink(th, s.ink))));
     }
     f.render_widget(
         Paragraph::new(Line::from(legend)),
@@ -279,20 +257,26 @@ fn x_ticks(f: &mut TuiFrame, inner: Rect, plot: Rect, th: &Theme, chart: &Chart,
     );
 }
 
+/// Cells are the page's to paint, a character each, beneath the braille.
+fn is_cells(s: &Series) -> bool {
+    matches!(s.style, crate::plot::Style::Cells { .. })
+}
+
 /// The series: lines (a gap where a value is not finite) or dots.
-fn paint_series(ctx: &mut Context, series: &[Series]) {
-    for s in series {
-        if s.joined {
+fn paint_series(ctx: &mut Context, th: &Theme, series: &[Series]) {
+    for s in series.iter().filter(|s| !is_cells(s)) {
+        let color = ink(th, s.ink);
+        if s.joined() {
             for w in s.points.windows(2) {
                 let ((x1, y1), (x2, y2)) = (w[0], w[1]);
                 if [x1, y1, x2, y2].iter().all(|v| v.is_finite()) {
-                    ctx.draw(&Seg::new(x1, y1, x2, y2, s.color));
+                    ctx.draw(&Seg::new(x1, y1, x2, y2, color));
                 }
             }
         } else {
             ctx.draw(&Points {
                 coords: &s.points,
-                color: s.color,
+                color,
             });
         }
     }
@@ -327,7 +311,7 @@ impl Taken {
 /// The marks' dots and labels. Labels never overwrite one another: line labels go along the
 /// top, a row lower where the row is taken; a point keeps its dot and its words move a row up
 /// or down if they must. The last marks (the release) are placed first.
-fn paint_labels(ctx: &mut Context, marks: &[Mark], x: [f64; 2], rows: Rows, col: f64) {
+fn paint_labels(ctx: &mut Context, th: &Theme, marks: &[Mark], x: [f64; 2], rows: Rows, col: f64) {
     let at_row = |r: i64| rows.text_y(r);
     let mut taken = Taken {
         rows: i64::from(rows.h),
@@ -338,10 +322,11 @@ fn paint_labels(ctx: &mut Context, marks: &[Mark], x: [f64; 2], rows: Rows, col:
         if let Mark::Point {
             x: px,
             y: py,
-            color,
+            ink: i,
             ..
         } = *m
         {
+            let color = ink(th, i);
             let r0 = i64::from(rows.dot_row(py));
             taken.place(px, col, &mut std::iter::once(r0));
             ctx.print(
@@ -353,9 +338,10 @@ fn paint_labels(ctx: &mut Context, marks: &[Mark], x: [f64; 2], rows: Rows, col:
     }
     for m in marks.iter().rev() {
         let (label, color) = match m {
-            Mark::VLine { label, color, .. }
-            | Mark::Text { label, color, .. }
-            | Mark::Point { label, color, .. } => (label, *color),
+            Mark::VLine { label, ink: i, .. }
+            | Mark::Text { label, ink: i, .. }
+            | Mark::Point { label, ink: i, .. }
+            | Mark::Arrow { label, ink: i, .. } => (label, ink(th, *i)),
         };
         let style = Style::default().fg(color);
         // Whole words only, as many as the wider side of a point has room for.
@@ -378,7 +364,9 @@ fn paint_labels(ctx: &mut Context, marks: &[Mark], x: [f64; 2], rows: Rows, col:
                 let r = taken.place(a, w, &mut (0..taken.rows));
                 ctx.print(a, at_row(r), Span::styled(label.clone(), style));
             }
-            Mark::Point { x: px, y: py, .. } | Mark::Text { x: px, y: py, .. } => {
+            Mark::Point { x: px, y: py, .. }
+            | Mark::Text { x: px, y: py, .. }
+            | Mark::Arrow { to: (px, py), .. } => {
                 let r0 = i64::from(rows.dot_row(py));
                 // A point's words right of its dot, or left of it when they would run
                 // past the plot's edge (never cut).
@@ -405,39 +393,38 @@ mod tests {
     fn labels_never_cover_one_another() {
         use ratatui::{Terminal, backend::TestBackend};
         let th = Theme::builtin("mono").unwrap();
-        let c = Color::Reset;
+        let c = Ink::Foreground;
         let chart = Chart {
             title: "t".into(),
-            note: String::new(),
             x_label: "x".into(),
             y_label: "y".into(),
             x: [0.0, 10.0],
             y: [0.0, 1.0],
-            series: vec![],
             marks: vec![
                 Mark::Point {
                     x: 0.5,
                     y: 0.5,
                     label: "min".into(),
-                    color: c,
+                    ink: c,
                 },
                 Mark::Point {
                     x: 0.2,
                     y: 0.5,
                     label: "release sticks".into(),
-                    color: c,
+                    ink: c,
                 },
                 Mark::VLine {
                     x: 0.3,
                     label: "stop".into(),
-                    color: c,
+                    ink: c,
                 },
                 Mark::VLine {
                     x: 0.4,
                     label: "τ=6".into(),
-                    color: c,
+                    ink: c,
                 },
             ],
+            ..Chart::default()
         };
         let mut t = Terminal::new(TestBackend::new(40, 14)).unwrap();
         let mut plot = None;

@@ -155,6 +155,16 @@ fn text_of<'a>(tags: &'a [Tag], class: &str) -> Vec<&'a str> {
         .collect()
 }
 
+/// The one line of the series named `name`.
+fn named<'a>(tags: &'a [Tag], name: &str) -> &'a Tag {
+    let found: Vec<_> = with_class(tags, "series")
+        .into_iter()
+        .filter(|t| t.attr("data-name") == Some(name))
+        .collect();
+    assert_eq!(found.len(), 1, "{name}");
+    found[0]
+}
+
 /// The names in the (first) legend.
 fn legend(tags: &[Tag]) -> Vec<String> {
     let start = tags
@@ -399,7 +409,7 @@ fn the_explorer_writes_the_page_to_a_new_file() {
     let tags = parse(&std::fs::read_to_string(&first).unwrap());
     let (x, y) = (axis(&tags, "x-tick"), axis(&tags, "y-tick"));
     // The trail ends where the particle is on screen: B at rest (docs/numerics.md).
-    let end = *points(with_class(&tags, "series")[0]).last().unwrap();
+    let end = *points(named(&tags, "particle")).last().unwrap();
     let now = app.sim().now();
     assert!((x(end.0) - now.r.x).abs() < 1e-5 && (y(end.1) - now.r.y).abs() < 1e-5);
     assert!(
@@ -432,7 +442,7 @@ fn the_explorer_writes_the_page_to_a_new_file() {
     let lines = with_class(&tags, "series");
     assert_eq!(lines.len(), 4, "ξ0 0.5 and the paper's 0.8, 0.2, 0.001");
     let (x, y) = (axis(&tags, "x-tick"), axis(&tags, "y-tick"));
-    let mine = points(lines[0]);
+    let mine = points(named(&tags, "ξ0=0.500 (now)"));
     assert_eq!(mine.len(), turntable::analysis::CURVE_POINTS);
     assert!(x(mine[0].0).abs() < 1e-5);
     assert!(
@@ -440,7 +450,12 @@ fn the_explorer_writes_the_page_to_a_new_file() {
         "{}",
         y(mine[0].1)
     );
-    assert_eq!(legend(&tags)[0], "ξ0 = 0.5");
+    // The legend as the page's: the paper's curves are named at their peaks instead.
+    assert_eq!(legend(&tags), ["ξ0=0.500 (now)"]);
+    assert_eq!(
+        text_of(&tags, "mark-label"),
+        ["0.8", "0.2", "0.001", "min", "max", "release sticks (below v_e)"]
+    );
     std::fs::remove_dir_all(&dir).unwrap();
 }
 

@@ -1,22 +1,18 @@
 //! The escape speed page: v_e(φ) (Fig. 5) or, outside ξ = 1, the sticking window, and what
 //! the curve says of the release on screen.
 
-use super::geom;
+use super::super::{Ink, Mark, Panel as Chart, Series, Style};
 use crate::analysis::{PAPER_XI0, Speeds};
-use crate::app::pages::{Curve, Page};
-use crate::app::{App, CanvasGeom};
+use crate::app::App;
+use crate::app::pages::Curve;
 use crate::engine::model::turn_angle;
 use crate::engine::units::Quantity;
 use crate::engine::{Outcome, Release, Settings};
-use crate::ui::chart::{self, Chart, Mark, Series};
-use crate::ui::panel::{num, speed};
-use ratatui::Frame as TuiFrame;
-use ratatui::layout::Rect;
+use crate::present::{num, speed};
 use std::f64::consts::{PI, TAU};
 
 /// v_e(φ) for the current ξ0 beside the paper's four, the release as a point, min and max.
-pub(super) fn escape_speed(f: &mut TuiFrame, area: Rect, app: &App) -> Option<CanvasGeom> {
-    let th = &app.theme;
+pub fn chart(app: &App) -> Chart {
     let i = app.initial();
     let settings = crate::analysis::settings_for(app.settings());
     let mine = app.charts.curve(i.xi0, settings);
@@ -31,10 +27,10 @@ pub(super) fn escape_speed(f: &mut TuiFrame, area: Rect, app: &App) -> Option<Ca
     let phi = turn_angle(i.phi);
     let (verdict, tone) = release_verdict(app, mine);
     let color = match tone {
-        Some(Outcome::Escaped) => th.escaped,
-        Some(Outcome::Stuck) => th.stuck,
-        Some(Outcome::Running) => th.notice,
-        None => th.particle,
+        Some(Outcome::Escaped) => Ink::Escaped,
+        Some(Outcome::Stuck) => Ink::Stuck,
+        Some(Outcome::Running) => Ink::Notice,
+        None => Ink::Particle,
     };
     let v_now = if i.release == Release::Velocity {
         i.v0
@@ -45,7 +41,7 @@ pub(super) fn escape_speed(f: &mut TuiFrame, area: Rect, app: &App) -> Option<Ca
         x: phi,
         y: v_now,
         label: format!("release{verdict}"),
-        color,
+        ink: color,
     });
     let top = series
         .iter()
@@ -56,11 +52,11 @@ pub(super) fn escape_speed(f: &mut TuiFrame, area: Rect, app: &App) -> Option<Ca
     } else {
         "escape speed v_e(φ)"
     };
-    let c = Chart {
+    Chart {
         title: format!("{title}, ξ0 = {}{progress}", num(i.xi0, 3)),
         note,
         x_label: "φ".into(),
-        y_label: chart::axis(
+        y_label: crate::plot::axis(
             if window { "v0" } else { "v_e" },
             Quantity::Speed,
             app.units,
@@ -69,15 +65,13 @@ pub(super) fn escape_speed(f: &mut TuiFrame, area: Rect, app: &App) -> Option<Ca
         y: [0.0, (1.1 * top).max(0.1)],
         series,
         marks,
-    };
-    let plot = chart::render(f, area, th, &c)?;
-    Some(geom(plot, &c, Page::EscapeSpeed, app))
+        ..Chart::default()
+    }
 }
 
 /// The paper's four v_e curves (Fig. 5) but the current ξ0's, faint, each named at its peak;
 /// none outside ξ = 1 (`window`).
 fn paper_curves(app: &App, settings: Settings, window: bool) -> (Vec<Series>, Vec<Mark>) {
-    let th = &app.theme;
     let mut series = Vec::new();
     let mut marks = Vec::new();
     let others = if window { &[][..] } else { &PAPER_XI0[..] };
@@ -91,14 +85,14 @@ fn paper_curves(app: &App, settings: Settings, window: bool) -> (Vec<Series>, Ve
                     x,
                     y,
                     label: xi0.to_string(),
-                    color: th.muted,
+                    ink: Ink::Muted,
                 });
             }
             series.push(Series {
                 name: String::new(),
-                color: th.muted,
+                ink: Ink::Muted,
                 points,
-                joined: true,
+                style: Style::Line { dash: 0 },
             });
         }
     }
@@ -114,7 +108,6 @@ fn own_curve(
     series: &mut Vec<Series>,
     marks: &mut Vec<Mark>,
 ) -> (String, String) {
-    let th = &app.theme;
     let i = app.initial();
     let name = if window {
         format!("ξ0={}: sticks between", num(i.xi0, 3))
@@ -123,29 +116,29 @@ fn own_curve(
     };
     series.push(Series {
         name,
-        color: th.trail,
+        ink: Ink::Trail,
         points: c.points(),
-        joined: true,
+        style: Style::Line { dash: 0 },
     });
     if window {
         series.push(Series {
             name: String::new(),
-            color: th.trail,
+            ink: Ink::Trail,
             points: c.floor(),
-            joined: true,
+            style: Style::Line { dash: 0 },
         });
     } else if let Some(((p0, v0), (p1, v1))) = extremes(c) {
         marks.push(Mark::Point {
             x: p0,
             y: v0,
             label: "min".into(),
-            color: th.stuck,
+            ink: Ink::Stuck,
         });
         marks.push(Mark::Point {
             x: p1,
             y: v1,
             label: "max".into(),
-            color: th.escaped,
+            ink: Ink::Escaped,
         });
     }
     let note = curve_note(c, window);
@@ -169,7 +162,7 @@ fn extremes(c: &Curve) -> Option<((f64, f64), (f64, f64))> {
 
 /// The curve's note: the widest sticking window outside ξ = 1; inside, v_e's least (π to three
 /// decimals once refined, to two from the grid, only good to its 0.03π) and greatest.
-pub(super) fn curve_note(c: &Curve, window: bool) -> String {
+pub fn curve_note(c: &Curve, window: bool) -> String {
     if window {
         return widest(c);
     }
@@ -192,7 +185,7 @@ pub(super) fn curve_note(c: &Curve, window: bool) -> String {
 
 /// What the curve says of the release on screen, in words, and its tone: the outcome it
 /// foretells (Running: too near an edge to tell), or None where it says nothing.
-pub(super) fn release_verdict(app: &App, mine: Option<&Curve>) -> (&'static str, Option<Outcome>) {
+pub fn release_verdict(app: &App, mine: Option<&Curve>) -> (&'static str, Option<Outcome>) {
     let i = app.initial();
     let window = i.xi0 > 1.0;
     let judged = match i.release {
@@ -231,7 +224,7 @@ fn widest(c: &Curve) -> String {
     match best {
         Some((p, lo, hi)) => {
             let (lo, hi, p) = (speed(lo), speed(hi), num(p / PI, 2));
-            crate::ui::fit::alternatives(&[
+            crate::present::alternatives(&[
                 format!("widest window: sticks for v0 {lo}–{hi}, at φ = {p}π"),
                 format!("widest: v0 {lo}–{hi} at φ = {p}π"),
                 format!("widest: v0 {lo}–{hi}"),
