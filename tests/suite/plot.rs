@@ -454,7 +454,14 @@ fn the_explorer_writes_the_page_to_a_new_file() {
     assert_eq!(legend(&tags), ["ξ0=0.500 (now)"]);
     assert_eq!(
         text_of(&tags, "mark-label"),
-        ["0.8", "0.2", "0.001", "min", "max", "release sticks (below v_e)"]
+        [
+            "0.8",
+            "0.2",
+            "0.001",
+            "min",
+            "max",
+            "release sticks (below v_e)"
+        ]
     );
     std::fs::remove_dir_all(&dir).unwrap();
 }
@@ -471,4 +478,142 @@ fn a_replay_only_says_what_e_would_write() {
         "{screen}"
     );
     std::fs::remove_file(&keys).unwrap();
+}
+
+/// The SVG split at its panels: each panel's tags, its own axes among them.
+fn panels(tags: &[Tag]) -> Vec<&[Tag]> {
+    let starts: Vec<usize> = tags
+        .iter()
+        .enumerate()
+        .filter(|(_, t)| t.name == "g" && t.attr("class") == Some("panel"))
+        .map(|(k, _)| k)
+        .collect();
+    let ends = starts.iter().skip(1).copied().chain([tags.len()]);
+    starts.iter().zip(ends).map(|(&a, b)| &tags[a..b]).collect()
+}
+
+/// The names of what a panel draws (lines, dots, cells, arrows), each once, in order.
+fn drawn(tags: &[Tag]) -> Vec<String> {
+    let mut names: Vec<String> = Vec::new();
+    for t in tags {
+        if let Some(n) = t.attr("data-name")
+            && !names.iter().any(|m| m == n)
+        {
+            names.push(n.to_string());
+        }
+    }
+    names
+}
+
+/// `E` writes what the screen shows: on the turntable the pinned run, the paper's RK2 run
+/// under `c`, the release's velocity and the arrows at the particle; on the time plots the
+/// same, with the Sec. III approximations and the θ panel, each panel's legend the screen's.
+#[test]
+fn an_export_carries_what_the_screen_shows() {
+    use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
+    use turntable::app::App;
+    let dir = std::env::temp_dir().join(format!("turntable-shows-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    // Fig. 2: at rest on the table at ξ0 = 1.1, where Sec. III's approximations hold early.
+    let mut app = App::new(
+        turntable::scene::Scene::preset("fig2").unwrap(),
+        turntable::theme::Theme::builtin("dark").unwrap(),
+    );
+    app.save_path = dir.join("turntable-scene.toml");
+    let press = |app: &mut App, code| {
+        let effects = app.handle_key(KeyEvent::new(code, KeyModifiers::NONE));
+        turntable::session::carry_out(app, effects);
+    };
+    for _ in 0..40 {
+        app.tick();
+    }
+    for key in ['b', 'c', 'i', 'a'] {
+        press(&mut app, KeyCode::Char(key));
+    }
+    for _ in 0..40 {
+        app.tick();
+    }
+    let pin = format!("{}{}", app.pins[0].marker, app.pins[0].spec.label.as_str());
+    assert!(app.paper().is_some() && app.velocity && app.forces);
+    common::render(&mut app, 160, 50);
+    press(&mut app, KeyCode::Char('E'));
+    let svg = std::fs::read_to_string(dir.join("turntable-turntable-1.svg")).unwrap();
+    let tags = parse(&svg);
+    assert_eq!(
+        drawn(&tags),
+        [
+            "table edge",
+            "ξ = 1 (R_max)",
+            pin.as_str(),
+            "the paper's RK2 run (c)",
+            "particle",
+            "release velocity",
+            // In the lab only friction acts in the plane.
+            "fr (friction)",
+            "v (velocity (lab))",
+        ]
+        .map(String::from)
+    );
+    // The paper's run ends where its ○ is on screen, the particle's where ● is.
+    let (x, y) = (axis(&tags, "x-tick"), axis(&tags, "y-tick"));
+    for (name, now) in [
+        ("the paper's RK2 run (c)", app.paper().unwrap().now()),
+        ("particle", app.sim().now()),
+    ] {
+        let end = *points(named(&tags, name)).last().unwrap();
+        assert!(
+            (x(end.0) - now.r.x).abs() < 1e-4 && (y(end.1) - now.r.y).abs() < 1e-4,
+            "{name}: {end:?} {:?}",
+            now.r
+        );
+    }
+    // The time plots: five panels, each drawing what its legend on screen names.
+    press(&mut app, KeyCode::Tab);
+    let screen = common::render(&mut app, 160, 50);
+    press(&mut app, KeyCode::Char('E'));
+    let svg = std::fs::read_to_string(dir.join("turntable-time-plots-1.svg")).unwrap();
+    let tags = parse(&svg);
+    let panels = panels(&tags);
+    let names: Vec<Vec<String>> = panels.iter().map(|p| drawn(p)).collect();
+    let with_pin = |a: &str, b: &str| {
+        [a, b, pin.as_str(), "Sec. III approx."]
+            .map(String::from)
+            .to_vec()
+    };
+    assert_eq!(
+        names,
+        [
+            with_pin("ξ", "ξ paper RK2"),
+            with_pin("θ", "θ paper RK2"),
+            with_pin("θ′", "θ′ paper RK2"),
+            ["|u|", "|u| paper RK2", pin.as_str()]
+                .map(String::from)
+                .to_vec(),
+            ["E − E(0)", "−∫|u|dτ"].map(String::from).to_vec(),
+        ]
+    );
+    for n in names.iter().flatten() {
+        assert!(screen.contains(n.as_str()), "{n} not on screen:\n{screen}");
+    }
+    // Sec. III's ξ starts at the release, ξ0 = 1.1 (Eq. 24), and the run's ξ ends at the ξ
+    // on screen.
+    let (x, y) = (axis(panels[0], "x-tick"), axis(panels[0], "y-tick"));
+    let dots: Vec<f64> = panels[0]
+        .iter()
+        .skip_while(|t| t.attr("data-name") != Some("Sec. III approx."))
+        .take_while(|t| t.name != "g" || t.attr("data-name") == Some("Sec. III approx."))
+        .filter(|t| t.name == "circle")
+        .map(|t| y(t.num("cy")))
+        .collect();
+    assert!((dots[0] - 1.1).abs() < 1e-4, "{dots:?}");
+    let lines: Vec<&Tag> = panels[0]
+        .iter()
+        .filter(|t| t.attr("data-name") == Some("ξ") && t.name == "polyline")
+        .collect();
+    let end = *points(lines[lines.len() - 1]).last().unwrap();
+    let now = app.sim().now();
+    assert!((x(end.0) - now.tau).abs() < 1e-4, "{end:?} {}", now.tau);
+    assert!((y(end.1) - now.xi()).abs() < 1e-4, "{end:?} {}", now.xi());
+    std::fs::remove_dir_all(&dir).unwrap();
 }
