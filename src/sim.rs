@@ -5,6 +5,7 @@
 use crate::engine::doubt::{Doubt, doubt};
 use crate::engine::method::TOL_RANGE;
 use crate::engine::run::{Outcome, Run, RunError, Status};
+use crate::engine::work::Tally;
 use crate::engine::{Initial, Settings, State};
 use crate::error::Error;
 
@@ -36,6 +37,10 @@ pub struct Sim {
     /// The path on a fixed τ grid ([`TRAIL_DT`]), from the run's dense output (closed form
     /// once stuck, one turn of the table at most): the trail is drawn from these.
     pub path: Vec<State>,
+    /// The work friction did up to each point of `path` (−∫|u|dτ, [`Tally`]): the energy
+    /// plot's second side.
+    path_work: Vec<f64>,
+    tally: Tally,
     /// End points of the integrator steps taken one at a time ([`Sim::step_once`]).
     pub step_marks: Vec<State>,
     /// The next grid index of the path, and whether the stop is in it.
@@ -58,9 +63,11 @@ impl Sim {
         let run = Run::new(initial, settings)?;
         let s0 = run.state();
         Ok(Sim {
+            tally: Tally::new(&run),
             run,
             samples: vec![s0],
             path: vec![s0],
+            path_work: vec![0.0],
             step_marks: Vec::new(),
             next_k: 1,
             stop_in_path: false,
@@ -84,6 +91,11 @@ impl Sim {
         &self.path[..n.max(1)]
     }
 
+    /// The work done up to each point of [`Sim::trail`].
+    pub fn trail_work(&self) -> &[f64] {
+        &self.path_work[..self.trail().len()]
+    }
+
     /// Extends the path on its τ grid through the latest step, from its dense output (or the
     /// closed form once stuck, where one turn of the table draws the whole circle).
     fn extend_path(&mut self, tau: f64) {
@@ -97,16 +109,24 @@ impl Sim {
         let last_k = (end / TRAIL_DT).floor() as u64;
         if last_k >= self.next_k + TRAIL_MAX as u64 {
             self.path.clear();
+            self.path_work.clear();
             self.next_k = last_k + 1 - TRAIL_MAX as u64;
         }
         while self.next_k as f64 * TRAIL_DT <= end {
-            match self.run.state_at(self.next_k as f64 * TRAIL_DT) {
-                Ok(s) => {
+            let t = self.next_k as f64 * TRAIL_DT;
+            match self
+                .run
+                .state_at(t)
+                .and_then(|s| Ok((s, self.tally.to(&self.run, t)?)))
+            {
+                Ok((s, w)) => {
                     // Trimmed as it grows, so it never holds more than TRAIL_MAX points.
                     if self.path.len() == TRAIL_MAX {
                         self.path.drain(..TRAIL_MAX / 10);
+                        self.path_work.drain(..TRAIL_MAX / 10);
                     }
                     self.path.push(s);
+                    self.path_work.push(w);
                     self.work.points += 1;
                 }
                 Err(e) => {
@@ -123,10 +143,21 @@ impl Sim {
             // The stop itself, exactly, in its place on the grid.
             if self.path.len() == TRAIL_MAX {
                 self.path.drain(..TRAIL_MAX / 10);
+                self.path_work.drain(..TRAIL_MAX / 10);
             }
             let at = self.path.partition_point(|s| s.tau < ts);
             self.path.insert(at, State::riding(q, ts));
+            // Nothing slides after the stop: the tally holds there.
+            let w = self.tally.to(&self.run, ts).unwrap_or(f64::NAN);
+            self.path_work.insert(at, w);
             self.stop_in_path = true;
+        }
+        // Through the latest step's end, before the next replaces its dense output (a
+        // closed form has one at every τ: its grid points carry the tally).
+        if !self.run.closed_form()
+            && let Err(e) = self.tally.to(&self.run, self.run.tau())
+        {
+            self.error = Some(e);
         }
     }
 

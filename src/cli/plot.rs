@@ -77,7 +77,7 @@ pub fn plot(a: PlotArgs) -> CmdResult {
             let (initial, settings) = pick(&run)?;
             let out = open(&svg)?;
             let r = play(initial, settings, run.tau_max)?;
-            write(out, &svg, &build::time(&r.title, &r.path, r.stop))
+            write(out, &svg, &build::time(&r.title, &r.path, &r.work, r.stop))
         }
     }
 }
@@ -116,6 +116,8 @@ fn pick(r: &PlotRun) -> Result<(Initial, crate::engine::Settings), Error> {
 /// the stop (or the escape out of view, or τ-max), how it ended, and a title.
 struct Played {
     path: Vec<State>,
+    /// The work done up to each point of `path`.
+    work: Vec<f64>,
     stop: Option<f64>,
     end: String,
     title: String,
@@ -142,12 +144,13 @@ fn play(i: Initial, settings: crate::engine::Settings, tau_max: f64) -> Result<P
         _ => (None, format!("τ = {}", sim.now().tau)),
     };
     let until = stop.unwrap_or(f64::INFINITY).min(tau_max);
-    let path: Vec<State> = sim
-        .path
+    let (path, work): (Vec<State>, Vec<f64>) = sim
+        .trail()
         .iter()
-        .copied()
-        .filter(|s| s.tau <= until)
-        .collect();
+        .zip(sim.trail_work())
+        .filter(|(s, _)| s.tau <= until)
+        .map(|(s, w)| (*s, *w))
+        .unzip();
     let release = match i.release {
         Release::Velocity => format!("ξ0 = {}, φ = {}, v0 = {}", i.xi0, i.phi, i.v0),
         Release::TableRest => format!("ξ0 = {}, at rest on the table", i.xi0),
@@ -164,6 +167,7 @@ fn play(i: Initial, settings: crate::engine::Settings, tau_max: f64) -> Result<P
     );
     Ok(Played {
         path,
+        work,
         stop,
         end,
         title,

@@ -19,6 +19,7 @@ pub mod stepper;
 pub mod stokes;
 pub mod stop;
 pub mod units;
+pub mod work;
 
 pub use method::{Coupling, CouplingName, Method, Settings};
 pub use model::{Frame, Initial, Release, State};

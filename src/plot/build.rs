@@ -75,9 +75,9 @@ pub fn trajectory(title: &str, path: &[State], frame: Frame, end: &str) -> Figur
     }
 }
 
-/// The time plots: ξ, θ′, |u| and the energy identity E − E(0) = −∫|u|dτ against τ, with
-/// the stop marked at `stop` (if any).
-pub fn time(title: &str, path: &[State], stop: Option<f64>) -> Figure {
+/// The time plots: ξ, θ′, |u| and the energy identity E − E(0) = −∫|u|dτ (the run's work
+/// at each point of the path, `work`) against τ, with the stop marked at `stop` (if any).
+pub fn time(title: &str, path: &[State], work: &[f64], stop: Option<f64>) -> Figure {
     let over = |f: &dyn Fn(&State) -> f64| -> Vec<(f64, f64)> {
         path.iter().map(|s| (s.tau, f(s))).collect()
     };
@@ -102,7 +102,7 @@ pub fn time(title: &str, path: &[State], stop: Option<f64>) -> Figure {
         marks: marks.clone(),
         ..Panel::default()
     };
-    let [e, w] = crate::analysis::energy::energy_pair(path);
+    let [e, w] = energy_pair(path, path, work);
     Figure {
         title: title.into(),
         panels: vec![
@@ -271,4 +271,14 @@ pub fn cells_by_rest(
             ink: Ink::Stuck,
         })
         .collect()
+}
+
+/// E − E(0) along `path`, beside the work done up to each point of `grid` (`work`, the run's
+/// own tally, `engine::work`): the two sides of dE/dτ = −|u|.
+pub fn energy_pair(path: &[State], grid: &[State], work: &[f64]) -> [Vec<(f64, f64)>; 2] {
+    let e0 = path.first().map_or(0.0, State::energy);
+    [
+        path.iter().map(|s| (s.tau, s.energy() - e0)).collect(),
+        grid.iter().zip(work).map(|(s, w)| (s.tau, *w)).collect(),
+    ]
 }

@@ -320,15 +320,15 @@ fn plots(app: &App, now: f64, window: Option<f64>) -> [Plot<'static>; 5] {
                 "dE/dτ = −|u|:"
             },
             None,
-            energy_series(&src.p, drag),
+            energy_series(&src.p, app.sim(), drag),
             Vec::new(),
         ),
     ]
 }
 
-/// The energy identity's two sides: E − E(0) as a line, the work integral as dots.
-fn energy_series(p: &[State], drag: Option<f64>) -> Vec<Series> {
-    let [e, w] = crate::analysis::energy::energy_pair_drag(p, drag);
+/// The energy identity's two sides: E − E(0) as a line, the run's work tally as dots.
+fn energy_series(p: &[State], sim: &crate::sim::Sim, drag: Option<f64>) -> Vec<Series> {
+    let [e, w] = super::super::build::energy_pair(p, sim.trail(), sim.trail_work());
     vec![
         Series {
             name: "E − E(0)".into(),
