@@ -2,7 +2,8 @@
 //! the curve says of the release on screen.
 
 use super::super::{Ink, Mark, Panel as Chart, Series, Style};
-use crate::analysis::{PAPER_XI0, Speeds};
+use crate::analysis::PAPER_XI0;
+use crate::analysis::verdict::{Verdict, judge, widest_window};
 use crate::app::App;
 use crate::app::pages::Curve;
 use crate::engine::model::turn_angle;
@@ -189,7 +190,7 @@ pub fn release_verdict(app: &App, mine: Option<&Curve>) -> (&'static str, Option
     let i = app.initial();
     let window = i.xi0 > 1.0;
     let judged = match i.release {
-        Release::Velocity => mine.and_then(|c| judge(c, turn_angle(i.phi), i.v0)),
+        Release::Velocity => mine.and_then(|c| judge(&c.ve, turn_angle(i.phi), i.v0)),
         _ => None,
     };
     let (esc, stk, near) = (
@@ -214,13 +215,7 @@ pub fn release_verdict(app: &App, mine: Option<&Curve>) -> (&'static str, Option
 
 /// The widest sticking window of a curve outside ξ = 1, in words.
 fn widest(c: &Curve) -> String {
-    let n = c.ve.len();
-    let best = (0..n)
-        .filter_map(|k| match c.ve[k]? {
-            Speeds::Stick { lo, hi } => Some((crate::analysis::angle(k, n), lo, hi)),
-            _ => None,
-        })
-        .max_by(|a, b| (a.2 - a.1).total_cmp(&(b.2 - b.1)));
+    let best = widest_window(&c.ve);
     match best {
         Some((p, lo, hi)) => {
             let (lo, hi, p) = (speed(lo), speed(hi), num(p / PI, 2));
@@ -233,55 +228,5 @@ fn widest(c: &Curve) -> String {
         }
         None if c.complete() => "escapes at every speed and angle".into(),
         None => String::new(),
-    }
-}
-
-/// How a release at (φ, v0) ends, read off the curve.
-#[derive(Clone, Copy, Debug, PartialEq)]
-enum Verdict {
-    /// Below the window (outside ξ = 1): escapes.
-    Below,
-    /// Sticks.
-    Inside,
-    /// Above v_e or the window: escapes.
-    Above,
-    /// No speed sticks at this angle.
-    Never,
-    /// Too close to an edge for the chart to tell.
-    Near,
-}
-
-/// The verdict at φ from the curve: at a computed angle its own window, between two the span
-/// of their edges (v_e is monotone between neighbours but at its extremes, where it is flat),
-/// each widened by its bracket's half-width. `None` until both neighbours are known.
-fn judge(c: &Curve, phi: f64, v0: f64) -> Option<Verdict> {
-    let n = c.ve.len();
-    let x = phi / TAU * n as f64;
-    let on_grid = (x - x.round()).abs() < 1e-9;
-    let (a, b) = if on_grid {
-        let k = x.round() as usize % n;
-        (c.ve[k]?, c.ve[k]?)
-    } else {
-        let k = x.floor() as usize % n;
-        (c.ve[k]?, c.ve[(k + 1) % n]?)
-    };
-    let pad = 0.5 * crate::analysis::CURVE_VTOL;
-    match (a, b) {
-        (Speeds::Escapes, Speeds::Escapes) => Some(Verdict::Never),
-        (Speeds::Stick { lo: l1, hi: h1 }, Speeds::Stick { lo: l2, hi: h2 }) => {
-            // A floor of 0 (inside ξ = 1) is exact: no speed is below it.
-            let lo = |x: f64| if x > 0.0 { x + pad } else { 0.0 };
-            Some(if v0 > h1.max(h2) + pad {
-                Verdict::Above
-            } else if l1.min(l2) > 0.0 && v0 < l1.min(l2) - pad {
-                Verdict::Below
-            } else if v0 >= lo(l1.max(l2)) && v0 < h1.min(h2) - pad {
-                Verdict::Inside
-            } else {
-                Verdict::Near
-            })
-        }
-        (Speeds::Unknown, _) | (_, Speeds::Unknown) => None,
-        _ => Some(Verdict::Near),
     }
 }
