@@ -283,6 +283,36 @@ fn the_map_has_a_cell_per_stuck_release() {
     std::fs::remove_file(&f).unwrap();
 }
 
+/// Outside ξ = 1 the default speed range covers the sticking window (Fig. 3 D): some cells
+/// stick, in `sweep map` and in `plot map` alike (all escaped when the range stopped at the
+/// window's floor), and the window's top lies below the range's.
+#[test]
+fn the_default_range_outside_the_rim_shows_the_sticking_window() {
+    let f = out("map-window");
+    let p = f.to_str().unwrap();
+    let args = ["--xi0", "1.2", "--phi-points", "12", "--v0-points", "10"];
+    let (code, csv, err) = turntable(&[&["sweep", "map"][..], &args].concat());
+    assert_eq!(code, 0, "{err}");
+    let stuck: Vec<f64> = csv
+        .lines()
+        .filter(|l| l.contains(",stuck,"))
+        .map(|l| l.split(',').nth(1).unwrap().parse().unwrap())
+        .collect();
+    let v0s: Vec<f64> = csv
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').nth(1).unwrap().parse().unwrap())
+        .collect();
+    let top = v0s.iter().copied().fold(0.0, f64::max);
+    assert!(stuck.len() >= 5, "{csv}");
+    assert!(stuck.iter().all(|v| *v < top), "{stuck:?} {top}");
+    let (code, _, err) = turntable(&[&["plot", "map"][..], &args, &["--out", p]].concat());
+    assert_eq!(code, 0, "{err}");
+    let tags = parse(&std::fs::read_to_string(&f).unwrap());
+    assert_eq!(with_class(&tags, "cell").len(), stuck.len());
+    std::fs::remove_file(&f).unwrap();
+}
+
 #[test]
 fn the_trajectory_ends_where_the_run_stops() {
     let f = out("traj");

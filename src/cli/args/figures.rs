@@ -124,7 +124,7 @@ pub struct MapData {
     /// Number of speeds v0 in (0, --v0-max].
     #[arg(long, default_value_t = 60)]
     pub v0_points: usize,
-    /// Largest v0 [default: 1.3 × the largest v_e over phi, plus xi0 for lab-rest].
+    /// Largest v0 [default: 1.3 × the largest v_e over phi (outside xi = 1, the top of the sticking window), plus xi0 for lab-rest].
     #[arg(long, allow_hyphen_values = true)]
     pub v0_max: Option<f64>,
     /// Width of the bracket on the escape speeds that set the default --v0-max.
