@@ -21,9 +21,18 @@ fn rim() -> Series {
     Series::line("ξ = 1 (R_max)", 2, pts)
 }
 
-/// A path in the plane of `frame` (lab: r; rotating: the table-frame position q), with the
-/// rim, the release and where the path ends, labelled `end`.
-pub fn trajectory(title: &str, path: &[State], frame: Frame, end: &str) -> Figure {
+/// One run a trajectory figure draws: its name, its path, and how it ended.
+pub struct Traced<'a> {
+    pub name: String,
+    pub path: &'a [State],
+    pub end: String,
+}
+
+/// Paths in the plane of `frame` (lab: r; rotating: the table-frame position q), with the rim,
+/// each release with its initial velocity (lab: v; rotating: u, relative to the table) as an
+/// arrow, and where each path ends, labelled by its `end` (and its name when there are
+/// several).
+pub fn trajectory(title: &str, runs: &[Traced], frame: Frame) -> Figure {
     let at = |s: &State| {
         let p = match frame {
             Frame::Lab => s.r,
@@ -31,27 +40,53 @@ pub fn trajectory(title: &str, path: &[State], frame: Frame, end: &str) -> Figur
         };
         (p.x, p.y)
     };
-    let pts: Vec<(f64, f64)> = path.iter().map(at).collect();
-    let reach = pts
+    let paths: Vec<Vec<(f64, f64)>> = runs
         .iter()
+        .map(|r| r.path.iter().map(at).collect())
+        .collect();
+    let reach = paths
+        .iter()
+        .flatten()
         .map(|(x, y)| x.abs().max(y.abs()))
         .fold(1.0_f64, f64::max)
         * 1.08;
     let mut marks = Vec::new();
-    if let (Some(&first), Some(&last)) = (pts.first(), pts.last()) {
+    let mut arrows = Vec::new();
+    for (r, pts) in runs.iter().zip(&paths) {
+        let named = |what: &str| match runs.len() {
+            1 => what.to_string(),
+            _ => format!("{}: {what}", r.name),
+        };
+        let (Some(&first), Some(&last), Some(s0)) = (pts.first(), pts.last(), r.path.first())
+        else {
+            continue;
+        };
         marks.push(Mark::Point {
             x: first.0,
             y: first.1,
-            label: "release".into(),
+            label: named("release"),
             ink: Ink::Foreground,
         });
         marks.push(Mark::Point {
             x: last.0,
             y: last.1,
-            label: end.into(),
+            label: named(&r.end),
             ink: Ink::Foreground,
         });
+        // As the canvas draws it: 0.3 of the view's reach per unit speed, beyond ξ = 1 less.
+        let (v, word) = match frame {
+            Frame::Lab => (s0.v, "v0"),
+            Frame::Table => (s0.u(), "u0"),
+        };
+        let k = 0.3 * reach / s0.xi().max(1.0);
+        arrows.push(Mark::Arrow {
+            from: first,
+            to: (first.0 + k * v.x, first.1 + k * v.y),
+            label: named(word),
+            ink: Ink::Arrow,
+        });
     }
+    marks.append(&mut arrows);
     let (name, axes) = match frame {
         Frame::Lab => ("lab frame", ("x (R_max)", "y (R_max)")),
         Frame::Table => (
@@ -59,6 +94,13 @@ pub fn trajectory(title: &str, path: &[State], frame: Frame, end: &str) -> Figur
             ("x on the table (R_max)", "y on the table (R_max)"),
         ),
     };
+    let mut series: Vec<Series> = runs
+        .iter()
+        .zip(paths)
+        .enumerate()
+        .map(|(k, (r, pts))| Series::line(&r.name, k, pts))
+        .collect();
+    series.push(rim());
     Figure {
         title: title.into(),
         panels: vec![Panel {
@@ -68,7 +110,7 @@ pub fn trajectory(title: &str, path: &[State], frame: Frame, end: &str) -> Figur
             x: [-reach, reach],
             y: [-reach, reach],
             equal_aspect: true,
-            series: vec![Series::line("particle", 0, pts), rim()],
+            series,
             marks,
             ..Panel::default()
         }],

@@ -361,6 +361,58 @@ fn the_trajectory_ends_where_the_run_stops() {
     std::fs::remove_file(&f).unwrap();
 }
 
+/// Several runs on one slide: C converged comes to rest inside ξ = 1, C by the paper's RK2
+/// (`--method rk2-raw`) steps over the stop and escapes; each release carries its initial
+/// velocity as an arrow. The time plots take one run.
+#[test]
+fn a_trajectory_draws_several_runs_with_their_arrows() {
+    let f = out("traj-several");
+    let p = f.to_str().unwrap();
+    let (code, _, err) = turntable(&[
+        "plot",
+        "trajectory",
+        "--scene",
+        "C",
+        "--method",
+        "dp54",
+        "--method",
+        "rk2-raw",
+        "--out",
+        p,
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let tags = parse(&std::fs::read_to_string(&f).unwrap());
+    assert_eq!(legend(&tags), ["C (dp54)", "C (rk2-raw)", "ξ = 1 (R_max)"]);
+    let marks = text_of(&tags, "mark-label");
+    assert_eq!(marks[0], "C (dp54): release");
+    assert!(
+        marks[1].starts_with("C (dp54): stuck at ξ = 0.997"),
+        "{marks:?}"
+    );
+    assert!(marks[3].starts_with("C (rk2-raw): escaped"), "{marks:?}");
+    // C's release: ξ0 = 0.5 thrown radially at 0.6078 relative to the table, so in the lab
+    // v0 = (0.6078, 0.5) (the table's Ω×r added): the arrow points along it.
+    let (x, y) = (axis(&tags, "x-tick"), axis(&tags, "y-tick"));
+    let arrows: Vec<&Tag> = tags
+        .iter()
+        .filter(|t| t.name == "line")
+        .filter(|t| t.attr("x1").is_some() && t.attr("stroke").is_none())
+        .collect();
+    assert_eq!(arrows.len(), 2, "one arrow per run");
+    for a in arrows {
+        let (x0, y0) = (x(a.num("x1")), y(a.num("y1")));
+        let (dx, dy) = (x(a.num("x2")) - x0, y(a.num("y2")) - y0);
+        assert!((x0 - 0.5).abs() < 1e-4 && y0.abs() < 1e-4, "{x0} {y0}");
+        assert!((dy / dx - 0.5 / 0.6078).abs() < 1e-3, "{dx} {dy}");
+    }
+    let (code, _, err) = turntable(&[
+        "plot", "time", "--scene", "C", "--scene", "B", "--out", p, "--force",
+    ]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("plot time draws one run"), "{err}");
+    std::fs::remove_file(&f).unwrap();
+}
+
 #[test]
 fn the_time_plots_hold_four_panels() {
     let f = out("time");
