@@ -95,7 +95,8 @@ pub fn plot(a: PlotArgs) -> CmdResult {
             };
             let out = open(&svg)?;
             let r = play(*initial, *settings, run.tau_max)?;
-            write(out, &svg, &build::time(&r.title, &r.path, &r.work, r.stop))
+            let fig = build::time(&r.title, initial, &r.path, &r.work, r.stop);
+            write(out, &svg, &fig)
         }
     }
 }

@@ -3,7 +3,7 @@
 //! names carry the paper's units: lengths in R_max = μg/Ω², time in 1/Ω, speeds in μg/Ω.
 
 use super::{Figure, Ink, Mark, Panel, Series, Style, extent};
-use crate::engine::{Frame, State};
+use crate::engine::{Frame, Initial, State};
 use std::f64::consts::TAU;
 
 const TAU_AXIS: &str = "τ (1/Ω)";
@@ -117,15 +117,27 @@ pub fn trajectory(title: &str, runs: &[Traced], frame: Frame) -> Figure {
     }
 }
 
-/// The time plots: ξ, θ′, |u| and the energy identity E − E(0) = −∫|u|dτ (the run's work
-/// at each point of the path, `work`) against τ, with the stop marked at `stop` (if any).
-pub fn time(title: &str, path: &[State], work: &[f64], stop: Option<f64>) -> Figure {
+/// The time plots of a run released as `initial`: ξ, θ′, |u| and the energy identity
+/// E − E(0) = −∫|u|dτ (the run's work at each point of the path, `work`) against τ, with the
+/// stop marked at `stop` (if any). A release at rest shows Sec. III's ξ beside the run's, and
+/// the figure frames twice the window where it holds when the run goes on beyond that.
+pub fn time(
+    title: &str,
+    initial: &Initial,
+    path: &[State],
+    work: &[f64],
+    stop: Option<f64>,
+) -> Figure {
     let over = |f: &dyn Fn(&State) -> f64| -> Vec<(f64, f64)> {
         path.iter().map(|s| (s.tau, f(s))).collect()
     };
     let x = extent(path.iter().map(|s| s.tau));
-    let x = [path.first().map_or(x[0], |s| s.tau), x[1]];
-    let marks: Vec<Mark> = stop
+    let window = crate::engine::approx::window(initial);
+    let x = [
+        path.first().map_or(x[0], |s| s.tau),
+        window.map_or(x[1], |w| x[1].min(2.0 * w)),
+    ];
+    let mut marks: Vec<Mark> = stop
         .map(|t| Mark::VLine {
             x: t,
             label: format!("stuck τ={t:.3}"),
@@ -133,12 +145,30 @@ pub fn time(title: &str, path: &[State], work: &[f64], stop: Option<f64>) -> Fig
         })
         .into_iter()
         .collect();
+    let mut xi = vec![Series::line("ξ", 0, over(&State::xi))];
+    if let Some(w) = window {
+        marks.push(Mark::VLine {
+            x: w,
+            label: "approx. valid ←".into(),
+            ink: Ink::Muted,
+        });
+        let pts = (0..=200)
+            .map(|k| x[1] * f64::from(k) / 200.0)
+            .map(|t| (t, crate::engine::approx::xi(initial, t)))
+            .collect();
+        xi.push(Series::new("Sec. III approx.", Ink::Trail, false, pts));
+    }
+    // Each y range is what the τ range shows.
     let panel = |title: &str, y_label: &str, series: Vec<Series>| Panel {
         title: title.into(),
         x_label: TAU_AXIS.into(),
         y_label: y_label.into(),
         x,
-        y: extent(series.iter().flat_map(|s| s.points.iter().map(|p| p.1))),
+        y: extent(
+            series
+                .iter()
+                .flat_map(|s| s.points.iter().filter(|p| p.0 <= x[1]).map(|p| p.1)),
+        ),
         equal_aspect: false,
         series,
         marks: marks.clone(),
@@ -148,11 +178,7 @@ pub fn time(title: &str, path: &[State], work: &[f64], stop: Option<f64>) -> Fig
     Figure {
         title: title.into(),
         panels: vec![
-            panel(
-                "distance from the centre",
-                "ξ (R_max)",
-                vec![Series::line("ξ", 0, over(&State::xi))],
-            ),
+            panel("distance from the centre", "ξ (R_max)", xi),
             panel(
                 "angular speed in the lab",
                 "θ′ (Ω)",

@@ -413,6 +413,43 @@ fn a_trajectory_draws_several_runs_with_their_arrows() {
     std::fs::remove_file(&f).unwrap();
 }
 
+/// `plot time --scene fig1` frames where Sec. III A holds (τ ≲ √ξ0 ≈ 22.4 at ξ0 = 500, twice
+/// that shown), with Eq. 17's ξ beside the run's: they agree early, to 1e-3 of ξ0.
+#[test]
+fn the_time_plots_of_fig1_frame_the_approximations_window() {
+    let f = out("time-fig1");
+    let p = f.to_str().unwrap();
+    let (code, _, err) = turntable(&["plot", "time", "--scene", "fig1", "--out", p]);
+    assert_eq!(code, 0, "{err}");
+    let tags = parse(&std::fs::read_to_string(&f).unwrap());
+    let xi = panels(&tags)[0];
+    let (x, y) = (axis(xi, "x-tick"), axis(xi, "y-tick"));
+    let frame = with_class(xi, "frame")[0];
+    let right = x(frame.num("x") + frame.num("width"));
+    assert!((right - 2.0 * 500f64.sqrt()).abs() < 1e-3, "{right}");
+    assert!(text_of(xi, "mark-label").contains(&"approx. valid ←"));
+    let dots: Vec<(f64, f64)> = xi
+        .iter()
+        .skip_while(|t| t.attr("data-name") != Some("Sec. III approx."))
+        .take_while(|t| t.name != "g" || t.attr("data-name").is_some())
+        .filter(|t| t.name == "circle")
+        .map(|t| (x(t.num("cx")), y(t.num("cy"))))
+        .collect();
+    assert_eq!(dots.len(), 201);
+    let run = points(named(xi, "ξ"));
+    for &(t, v) in dots.iter().filter(|d| d.0 <= 10.0) {
+        // Eq. 17, ξ = τ⁴/(12ξ0) + ξ0, against the run's line at the nearest point.
+        assert!((v - (t.powi(4) / 6000.0 + 500.0)).abs() < 1e-3, "{t}: {v}");
+        let near = run
+            .iter()
+            .map(|&(a, b)| (x(a), y(b)))
+            .min_by(|a, b| (a.0 - t).abs().total_cmp(&(b.0 - t).abs()))
+            .unwrap();
+        assert!((near.1 - v).abs() < 0.5, "{t}: run {near:?}, Eq. 17 {v}");
+    }
+    std::fs::remove_file(&f).unwrap();
+}
+
 #[test]
 fn the_time_plots_hold_four_panels() {
     let f = out("time");

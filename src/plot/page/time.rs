@@ -5,7 +5,7 @@
 
 use super::super::{Ink, Mark, Panel, Series, Style, extent};
 use crate::app::App;
-use crate::engine::approx::{TABLE_REST_WINDOW, lab_rest, lab_rest_window, table_rest};
+use crate::engine::approx::table_rest;
 use crate::engine::units::Quantity;
 use crate::engine::{Frame, Release, State, Status};
 use crate::present::num;
@@ -47,7 +47,7 @@ fn series(name: &str, ink: Ink, path: &[State], y: impl Fn(&State) -> f64) -> Se
 pub fn panels(app: &App) -> Vec<Panel> {
     let now = app.sim().now().tau;
     let span = app.tau_window.unwrap_or(app.plot_span()).max(1e-3);
-    let window = approx_window(&app.initial());
+    let window = crate::engine::approx::window(&app.initial());
     let marks = marks(app, now, window);
     plots(app, now, window)
         .into_iter()
@@ -69,16 +69,6 @@ pub fn panels(app: &App) -> Vec<Panel> {
             ..Panel::default()
         })
         .collect()
-}
-
-/// Where the paper's Sec. III approximations hold, for releases at rest (none otherwise).
-fn approx_window(i: &crate::engine::Initial) -> Option<f64> {
-    match i.release {
-        _ if i.frictionless => None,
-        Release::LabRest => Some(lab_rest_window(i.xi0)),
-        Release::TableRest if i.xi0 > 1.0 => Some(TABLE_REST_WINDOW),
-        _ => None,
-    }
 }
 
 /// The lines every plot marks: the cursor at the τ on screen, the stop, the escape
@@ -269,10 +259,7 @@ fn plots(app: &App, now: f64, window: Option<f64>) -> [Plot<'static>; 5] {
     let mut xi_s = vec![series("ξ", Ink::Trail, &src.p, xi_of)];
     xi_s.extend(src.paper_series("ξ", &xi_of));
     xi_s.extend(src.pin_series(0, (1, 0), &|p| along(p, &xi_of)));
-    xi_s.extend(src.approx(&|t| match i.release {
-        Release::LabRest => Some(lab_rest(i.xi0, t).0),
-        _ => Some(table_rest(i.xi0, t).0),
-    }));
+    xi_s.extend(src.approx(&|t| Some(crate::engine::approx::xi(&i, t))));
     let mut th_s = vec![series(theta_name, Ink::Trail, &src.p, th_of)];
     th_s.extend(src.paper_series(theta_name, &th_of));
     th_s.extend(src.pin_series(2, (0, -1), &|p| along(p, &th_of)));
