@@ -2,6 +2,7 @@
 //! drawn. The terminal's charts and the SVG writer place the same ticks.
 
 use crate::engine::units::{Quantity, Units};
+pub use crate::present::tick_label;
 
 /// An axis name with the SI value of its unit beside it when the table is real:
 /// `τ (1 = 303 ms)`.
@@ -34,20 +35,6 @@ pub fn ticks(a: f64, b: f64, n: usize) -> Vec<f64> {
         if e < 0 { v / 10f64.powi(-e) } else { v * mag }
     };
     (first..=last).take(1000).map(at).collect()
-}
-
-/// A tick value, short: `0.5`, `12`, `1e-3`, `-0.25`.
-pub fn tick_label(v: f64) -> String {
-    let a = v.abs();
-    if a == 0.0 {
-        "0".into()
-    } else if !(1e-3..1e5).contains(&a) {
-        format!("{v:.0e}")
-    } else {
-        let s = format!("{v:.3}");
-        let s = s.trim_end_matches('0').trim_end_matches('.');
-        s.to_string()
-    }
 }
 
 /// Widens a degenerate or non-finite range so a chart can always be drawn.

@@ -19,7 +19,7 @@ mod body;
 use body::body_lines;
 pub use body::{BodyNow, body_end, body_now, phase_word};
 
-pub use crate::present::{num, speed};
+pub use crate::present::{fmt_speed, num, speed};
 
 /// Status of a run at the sample on screen, and its colour.
 pub fn status_text(sim: &Sim, th: &Theme) -> (String, ratatui::style::Color) {
@@ -373,14 +373,6 @@ fn arrow_legend(app: &App, out: &mut Vec<Line<'static>>) {
                 Style::default().fg(th.muted),
             )));
         }
-    }
-}
-
-pub fn fmt_speed(s: f64) -> String {
-    if s >= 1.0 {
-        format!("{s}")
-    } else {
-        format!("1/{}", (1.0 / s).round())
     }
 }
 
