@@ -212,7 +212,7 @@ pub fn answer(app: &mut App, effects: Effects) {
             ),
             Effect::ExportSvg { page, .. } => format!(
                 "replay saves nothing: this page → turntable-{}-N.svg (the first free N)",
-                crate::ui::figure::slug(page)
+                crate::plot::page::slug(page)
             ),
             // Words on screen, not a file: said as in the explorer.
             Effect::Readouts => crate::ui::plain::summary(app),

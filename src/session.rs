@@ -314,9 +314,9 @@ pub fn carry_out(app: &mut App, effects: Effects) {
 /// over a file. Says where, or why not.
 fn export_svg(app: &App, dir: &std::path::Path, page: crate::app::pages::Page) -> String {
     use std::io::Write;
-    let (fig, whole) = crate::ui::figure::page(app);
-    let text = crate::figure::to_svg(&fig);
-    let slug = crate::ui::figure::slug(page);
+    let (fig, whole) = crate::plot::page::figure(app);
+    let text = crate::plot::to_svg(&fig);
+    let slug = crate::plot::page::slug(page);
     for n in 1..=999 {
         let path = dir.join(format!("turntable-{slug}-{n}.svg"));
         if path.symlink_metadata().is_ok() {

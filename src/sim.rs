@@ -6,6 +6,7 @@ use crate::engine::doubt::{Doubt, doubt};
 use crate::engine::method::TOL_RANGE;
 use crate::engine::run::{Outcome, Run, RunError, Status};
 use crate::engine::track::Track;
+use crate::engine::work::Tally;
 use crate::engine::{Initial, Settings, State};
 use crate::error::Error;
 
@@ -39,6 +40,10 @@ pub struct Sim {
     /// run's dense output (closed form once stuck, one turn of the table at most), with the
     /// stop in its place: the trail is drawn from these.
     pub path: Track<State>,
+    /// The work friction did up to each point of `path` (−∫|u|dτ, [`Tally`]): the energy
+    /// plot's second side, thinned in lockstep with the path (the same offers and events).
+    path_work: Track<f64>,
+    tally: Tally,
     /// End points of the integrator steps taken one at a time ([`Sim::step_once`]).
     pub step_marks: Vec<State>,
     /// Whether the stop is in the path.
@@ -60,9 +65,11 @@ impl Sim {
         let run = Run::new(initial, settings)?;
         let s0 = run.state();
         Ok(Sim {
+            tally: Tally::new(&run),
             run,
             samples: vec![s0],
             path: Track::new(s0, TRAIL_MAX),
+            path_work: Track::new(0.0, TRAIL_MAX),
             step_marks: Vec::new(),
             stop_in_path: false,
             cursor: 0,
@@ -85,6 +92,11 @@ impl Sim {
         &self.path[..n.max(1)]
     }
 
+    /// The work done up to each point of [`Sim::trail`].
+    pub fn trail_work(&self) -> &[f64] {
+        &self.path_work[..self.trail().len()]
+    }
+
     /// Extends the path on its τ grid through the latest step, from its dense output (or the
     /// closed form once stuck, where one turn of the table draws the whole circle), the stop
     /// itself in its place. Only the grid points the path keeps are computed: one μ = 0
@@ -97,6 +109,7 @@ impl Sim {
         };
         if end.is_finite() {
             self.path.reserve_for((end / TRAIL_DT) as u64);
+            self.path_work.reserve_for((end / TRAIL_DT) as u64);
         }
         loop {
             let k = self.path.next_index();
@@ -107,14 +120,22 @@ impl Sim {
                 && ts <= t
             {
                 self.path.insert(State::riding(q, ts));
+                // Nothing slides after the stop: the tally holds there.
+                let w = self.tally.to(&self.run, ts).unwrap_or(f64::NAN);
+                self.path_work.insert(w);
                 self.stop_in_path = true;
             }
             if t > end {
-                return;
+                break;
             }
-            match self.run.state_at(t) {
-                Ok(s) => {
+            match self
+                .run
+                .state_at(t)
+                .and_then(|s| Ok((s, self.tally.to(&self.run, t)?)))
+            {
+                Ok((s, w)) => {
                     self.path.push_at(k, s);
+                    self.path_work.push_at(k, w);
                     self.work.points += 1;
                 }
                 Err(e) => {
@@ -122,6 +143,13 @@ impl Sim {
                     return;
                 }
             }
+        }
+        // Through the latest step's end, before the next replaces its dense output (a
+        // closed form has one at every τ: its grid points carry the tally).
+        if !self.run.closed_form()
+            && let Err(e) = self.tally.to(&self.run, self.run.tau())
+        {
+            self.error = Some(e);
         }
     }
 

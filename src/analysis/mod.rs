@@ -14,6 +14,7 @@ use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::mpsc::{Receiver, Sender, channel};
 
+pub mod verdict;
 mod worker;
 
 pub use worker::{Analysis, Progress};

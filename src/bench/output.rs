@@ -3,8 +3,10 @@
 use super::{Report, Speed, Task};
 use crate::engine::Method;
 use crate::error::Error;
+use crate::plot::extent;
+use crate::plot::{Ink, Mark, Panel as Chart, Series, Style};
 use crate::theme::Theme;
-use crate::ui::chart::{Chart, Mark, Series, extent, render};
+use crate::ui::chart::render;
 use crate::ui::export::plain_text;
 use ratatui::Terminal;
 use ratatui::backend::TestBackend;
@@ -323,16 +325,16 @@ pub fn plot(r: &Report, task: Task, width: u16, height: u16) -> Result<String, E
             Some(s) => s.points.push(p),
             None => series.push(Series {
                 name,
-                color: th.foreground,
+                ink: Ink::Foreground,
                 points: vec![p],
-                joined: true,
+                style: Style::Line { dash: 0 },
             }),
         }
         marks.push(Mark::Text {
             x: p.0,
             y: p.1,
             label: mark(row.method).to_string(),
-            color: th.foreground,
+            ink: Ink::Foreground,
         });
     }
     let pts = || series.iter().flat_map(|s| s.points.iter().copied());
@@ -348,6 +350,7 @@ pub fn plot(r: &Report, task: Task, width: u16, height: u16) -> Result<String, E
         y: extent(pts().map(|p| p.1)),
         series,
         marks,
+        ..Chart::default()
     };
     let mut term = Terminal::new(TestBackend::new(width, height))?;
     term.draw(|f| {

@@ -6,7 +6,7 @@ use super::{
     solver_budget,
 };
 use crate::engine::solve::{check_escape_xi0, critical_radius, escape_speed, solve_certified};
-use crate::engine::{Initial, Limit, Outcome, Run, State, Status};
+use crate::engine::{Initial, Outcome, Run, State, Status};
 use crate::files::{Output, emit};
 use std::io::{BufWriter, Write as _};
 
@@ -16,8 +16,8 @@ const TAU_MAX_LIMIT: f64 = 1e9;
 const TRAJECTORY_HEADER: &[u8] = b"tau,x,y,xq,yq,u,stuck,energy,work,approx_xi\n";
 
 /// Writes trajectory rows: the state, E = ½|u|² − ½ξ² and −∫|u|dτ (Gauss–Legendre on each
-/// step's dense output, [`step_work`]; dE/dτ = −|u|, so the two differ by E(0) up to the run's
-/// own error), and the Sec. III
+/// step's dense output, [`crate::engine::work::Tally`]; dE/dτ = −|u|, so the two differ by
+/// E(0) up to the run's own error), and the Sec. III
 /// approximation of ξ for a release at rest (Eq. 13 in the lab, Eq. 19 on the table for
 /// ξ0 > 1; valid only early, see README), empty otherwise. Under Stokes drag the work is
 /// −γ∫|u|²dτ, and no approximation applies.
@@ -26,28 +26,6 @@ struct Rows {
     work: f64,
     /// The run is in closed form (μ = 0 or Stokes drag).
     closed: bool,
-}
-
-/// −∫|u|dτ over [t0, t1] of `run`'s latest step, by 5-point Gauss–Legendre on its dense output:
-/// |u| is smooth inside a step (stops are its ends), so this is exact to the interpolant's
-/// order, where trapezoids between rows were off by up to 1.8e-4.
-fn step_work(run: &Run, t0: f64, t1: f64) -> Result<f64, crate::engine::RunError> {
-    let power = |u: f64| match run.settings().stokes() {
-        Some(gamma) => gamma * u * u,
-        None => u,
-    };
-    const NODES: [(f64, f64); 5] = [
-        (0.0, 0.568_888_888_888_888_9),
-        (0.538_469_310_105_683_1, 0.478_628_670_499_366_5),
-        (-0.538_469_310_105_683_1, 0.478_628_670_499_366_5),
-        (0.906_179_845_938_664, 0.236_926_885_056_189_08),
-        (-0.906_179_845_938_664, 0.236_926_885_056_189_08),
-    ];
-    let (mid, half) = (0.5 * (t0 + t1), 0.5 * (t1 - t0));
-    NODES.iter().try_fold(0.0, |w, &(x, weight)| {
-        let u = run.state_at(mid + half * x)?.u_lab().length();
-        Ok(w - half * weight * power(u))
-    })
 }
 
 impl Rows {
@@ -87,8 +65,8 @@ impl Rows {
 }
 
 /// Spacing in τ of the trajectory rows of a closed-form run (μ = 0, Stokes drag), which takes
-/// no steps.
-const FREE_SAMPLE: f64 = 1e-2;
+/// no steps: as far as one quadrature of its work reaches.
+const FREE_SAMPLE: f64 = crate::engine::work::CLOSED_PIECE;
 
 pub fn run(a: RunArgs) -> CmdResult {
     let (initial, settings) = run_inputs(&a)?;
@@ -187,36 +165,22 @@ fn integrate(
         rows.write(csv, &run.state(), run.status() != Status::Slipping)
             .map_err(write_err)?;
     }
+    let mut tally = crate::engine::work::Tally::new(run);
     while run.goes_on(tau_max, stop_on_escape) {
-        let (before, before_energy) = (run.tau(), run.state().energy());
+        let before = run.tau();
         run.step(tau_max)?;
         if let Some(csv) = csv.as_mut() {
             if rows.closed {
-                // No steps to write: sample the closed form instead (Stokes drag: with its
-                // work on each sample's stretch).
+                // No steps to write: sample the closed form instead.
                 let n = ((run.tau() - before) / FREE_SAMPLE).ceil().min(1e5) as usize;
-                let mut from = before;
                 for i in 1..n {
                     let t = before + (run.tau() - before) * i as f64 / n as f64;
                     let s = run.state_at(t)?;
-                    if !initial.frictionless {
-                        rows.work += step_work(run, from, t)?;
-                    }
-                    from = t;
+                    rows.work = tally.to(run, t)?;
                     rows.write(csv, &s, false).map_err(write_err)?;
                 }
-                if !initial.frictionless {
-                    rows.work += step_work(run, from, run.tau())?;
-                }
             }
-            rows.work += match run.last_step().map(|l| l.limit) {
-                // Closed forms: μ = 0 does no work; Stokes drag's is counted above.
-                _ if rows.closed => 0.0,
-                // A stretch taken in closed form has no dense output of its own (its segment
-                // is a cubic between the ends): the identity gives its work.
-                Some(Limit::ClosedForm) => run.state().energy() - before_energy,
-                _ => step_work(run, before, run.tau())?,
-            };
+            rows.work = tally.to(run, run.tau())?;
             rows.write(csv, &run.state(), run.status() != Status::Slipping)
                 .map_err(write_err)?;
         }

@@ -7,8 +7,8 @@ use super::{CmdResult, PlotArgs, PlotFigure, PlotRun, SvgOut};
 use crate::engine::solve::critical_radius;
 use crate::engine::{Initial, Release, State, Status};
 use crate::error::Error;
-use crate::figure::{Figure, build};
 use crate::files::Output;
+use crate::plot::{Figure, build};
 use std::io::Write as _;
 
 pub fn plot(a: PlotArgs) -> CmdResult {
@@ -67,17 +67,36 @@ pub fn plot(a: PlotArgs) -> CmdResult {
             write(out, &svg, &fig)
         }
         PlotFigure::Trajectory { run, frame, svg } => {
-            let (initial, settings) = pick(&run)?;
+            let picked = pick(&run)?;
             let out = open(&svg)?;
-            let r = play(initial, settings, run.tau_max)?;
-            let fig = build::trajectory(&r.title, &r.path, frame, &r.end);
-            write(out, &svg, &fig)
+            let played = picked
+                .into_iter()
+                .map(|(name, i, settings)| Ok((name, play(i, settings, run.tau_max)?)))
+                .collect::<Result<Vec<_>, Error>>()?;
+            let runs: Vec<build::Traced> = played
+                .iter()
+                .map(|(name, r)| build::Traced {
+                    name: name.clone(),
+                    path: &r.path,
+                    end: r.end.clone(),
+                })
+                .collect();
+            let title = match &played[..] {
+                [(_, one)] => one.title.clone(),
+                _ => format!("{} runs", played.len()),
+            };
+            write(out, &svg, &build::trajectory(&title, &runs, frame))
         }
         PlotFigure::Time { run, svg } => {
-            let (initial, settings) = pick(&run)?;
+            let [(_, initial, settings)] = &pick(&run)?[..] else {
+                return Err(Error::Invalid(
+                    "plot time draws one run: give one --scene and at most one --method".into(),
+                ));
+            };
             let out = open(&svg)?;
-            let r = play(initial, settings, run.tau_max)?;
-            write(out, &svg, &build::time(&r.title, &r.path, r.stop))
+            let r = play(*initial, *settings, run.tau_max)?;
+            let fig = build::time(&r.title, initial, &r.path, &r.work, r.stop);
+            write(out, &svg, &fig)
         }
     }
 }
@@ -90,7 +109,7 @@ fn open(svg: &SvgOut) -> Result<Output, Error> {
 
 /// Writes the figure and puts the file in place (never over a file that appeared meanwhile).
 fn write(mut out: Output, svg: &SvgOut, fig: &Figure) -> CmdResult {
-    let text = crate::figure::to_svg(fig);
+    let text = crate::plot::to_svg(fig);
     out.write_all(text.as_bytes())
         .and_then(|()| out.finish())
         .map_err(|e| {
@@ -99,23 +118,46 @@ fn write(mut out: Output, svg: &SvgOut, fig: &Figure) -> CmdResult {
         })
 }
 
-/// The scene's release with the flags' changes, and its integrator.
-fn pick(r: &PlotRun) -> Result<(Initial, crate::engine::Settings), Error> {
-    let scene = crate::scene::Scene::load(&r.scene)?;
-    let mut i = scene.initial;
-    i.xi0 = r.xi0.unwrap_or(i.xi0);
-    i.phi = r.phi.unwrap_or(i.phi);
-    i.v0 = r.v0.unwrap_or(i.v0);
-    i.release = r.release.unwrap_or(i.release);
-    crate::check::release(&i, &scene.settings, crate::check::Via::Flags)?;
+/// Each scene's release with the flags' changes, with each --method (else its own
+/// integrator), named for the legend.
+fn pick(r: &PlotRun) -> Result<Vec<(String, Initial, crate::engine::Settings)>, Error> {
     positive("tau-max", r.tau_max)?;
-    Ok((i, scene.settings))
+    let mut out = Vec::new();
+    for name in &r.scene {
+        let scene = crate::scene::Scene::load(name)?;
+        let mut i = scene.initial;
+        i.xi0 = r.xi0.unwrap_or(i.xi0);
+        i.phi = r.phi.unwrap_or(i.phi);
+        i.v0 = r.v0.unwrap_or(i.v0);
+        i.release = r.release.unwrap_or(i.release);
+        let methods = match r.method.is_empty() {
+            true => vec![None],
+            false => r.method.iter().copied().map(Some).collect(),
+        };
+        for m in methods {
+            let mut settings = scene.settings;
+            if let Some(m) = m.filter(|m| *m != settings.method()) {
+                settings.scheme = m.with(m.default_knob());
+            }
+            crate::check::settings(&settings, crate::check::Via::Flags)?;
+            crate::check::release(&i, &settings, crate::check::Via::Flags)?;
+            // The scene's name is cleaned where it is read (`text::Clean`).
+            out.push((
+                format!("{} ({})", scene.name.as_str(), settings.method()),
+                i,
+                settings,
+            ));
+        }
+    }
+    Ok(out)
 }
 
 /// One run as the explorer plays it, tick by tick: its path on the explorer's τ grid up to
 /// the stop (or the escape out of view, or τ-max), how it ended, and a title.
 struct Played {
     path: Vec<State>,
+    /// The work done up to each point of `path`.
+    work: Vec<f64>,
     stop: Option<f64>,
     end: String,
     title: String,
@@ -142,12 +184,13 @@ fn play(i: Initial, settings: crate::engine::Settings, tau_max: f64) -> Result<P
         _ => (None, format!("τ = {}", sim.now().tau)),
     };
     let until = stop.unwrap_or(f64::INFINITY).min(tau_max);
-    let path: Vec<State> = sim
-        .path
+    let (path, work): (Vec<State>, Vec<f64>) = sim
+        .trail()
         .iter()
-        .copied()
-        .filter(|s| s.tau <= until)
-        .collect();
+        .zip(sim.trail_work())
+        .filter(|(s, _)| s.tau <= until)
+        .map(|(s, w)| (*s, *w))
+        .unzip();
     let release = match i.release {
         Release::Velocity => format!("ξ0 = {}, φ = {}, v0 = {}", i.xi0, i.phi, i.v0),
         Release::TableRest => format!("ξ0 = {}, at rest on the table", i.xi0),
@@ -164,6 +207,7 @@ fn play(i: Initial, settings: crate::engine::Settings, tau_max: f64) -> Result<P
     );
     Ok(Played {
         path,
+        work,
         stop,
         end,
         title,

@@ -265,17 +265,31 @@ pub(super) fn map_data(
     a: &MapData,
     settings: crate::engine::Settings,
 ) -> Result<MapComputed, Error> {
+    let lab = if a.release == crate::engine::Release::LabRest {
+        a.xi0
+    } else {
+        0.0
+    };
     let (v0_max, curve) = match a.v0_max {
         Some(v) => (v, None),
+        // Outside ξ = 1 the speeds that stick are a window (Fig. 3 D), not those below a v_e
+        // (the solver's v_e there is the window's floor, and a range above it alone showed
+        // every cell escaping): the range covers the window's top, as the explorer's map.
+        None if a.xi0 > 1.0 => {
+            let n = a.phi_points;
+            let phis: Vec<f64> = (0..n).map(|i| crate::analysis::angle(i, n)).collect();
+            let top = crate::engine::par::par_map(&phis, |&phi| {
+                crate::analysis::sticking_speeds(a.xi0, phi, settings, a.vtol).hi()
+            })
+            .into_iter()
+            .flatten()
+            .fold(0.0, f64::max);
+            ((1.3 * (top + lab)).max(0.2), None)
+        }
         None => {
             let curve = sweep_escape(&[a.xi0], a.phi_points, settings, a.vtol)
                 .map_err(solver_budget("--vtol"))?;
             let top = curve.iter().map(|p| p.v_escape).fold(0.0, f64::max);
-            let lab = if a.release == crate::engine::Release::LabRest {
-                a.xi0
-            } else {
-                0.0
-            };
             ((1.3 * (top + lab)).max(0.2), Some(curve))
         }
     };

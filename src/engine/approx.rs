@@ -41,3 +41,22 @@ pub fn table_rest(xi0: f64, tau: f64) -> (f64, f64, f64) {
 /// friction term ξΘ′/ξ′, which near a release from rest is the larger one: the converged
 /// Θ is several times smaller at ξ0 = 1.1 (see tests/suite/approx.rs).
 pub const TABLE_REST_WINDOW: f64 = 1.0;
+
+/// Where Sec. III's approximations hold for a release at rest (none for a throw, nor at μ = 0):
+/// τ ≲ √ξ0 in the lab (Sec. III A), τ ≲ 1 on the table outside ξ = 1 (Sec. III B).
+pub fn window(i: &super::Initial) -> Option<f64> {
+    match i.release {
+        _ if i.frictionless => None,
+        super::Release::LabRest => Some(lab_rest_window(i.xi0)),
+        super::Release::TableRest if i.xi0 > 1.0 => Some(TABLE_REST_WINDOW),
+        _ => None,
+    }
+}
+
+/// Sec. III's ξ at τ for a release at rest (the lab's Eq. 17, else the table's Eq. 24).
+pub fn xi(i: &super::Initial, tau: f64) -> f64 {
+    match i.release {
+        super::Release::LabRest => lab_rest(i.xi0, tau).0,
+        _ => table_rest(i.xi0, tau).0,
+    }
+}

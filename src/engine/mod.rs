@@ -20,6 +20,7 @@ pub mod stokes;
 pub mod stop;
 pub mod track;
 pub mod units;
+pub mod work;
 
 pub use method::{Coupling, CouplingName, Method, Settings};
 pub use model::{Frame, Initial, Release, State};

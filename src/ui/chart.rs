@@ -1,8 +1,10 @@
-//! A braille chart with labelled axes, tick values and a legend: what every analysis page
-//! draws with. The plot area it returns maps mouse cells back to data (see `CanvasGeom`).
+//! A panel described in `plot` drawn as a braille chart with labelled axes, tick values and a
+//! legend: what every analysis page draws with (the same panel an export writes as SVG; its
+//! cells the page paints beneath). The plot area it returns maps mouse cells back to data
+//! (see `CanvasGeom`).
 
 use super::fit::{fit, fit_label};
-use crate::engine::units::{Quantity, Units};
+use crate::plot::{Ink, Mark, Panel as Chart, Series, sane, tick_label, ticks};
 use crate::theme::Theme;
 use ratatui::Frame as TuiFrame;
 use ratatui::layout::Rect;
@@ -12,123 +14,25 @@ use ratatui::widgets::canvas::{Canvas, Context, Line as Seg, Points};
 use ratatui::widgets::{Block, Borders, Paragraph};
 use unicode_width::UnicodeWidthStr;
 
-/// One curve or point set.
-#[derive(Clone, Debug)]
-pub struct Series {
-    pub name: String,
-    pub color: Color,
-    pub points: Vec<(f64, f64)>,
-    /// Joined by lines (else dots). A gap (NaN) breaks the line.
-    pub joined: bool,
-}
-
-/// Something marked on the chart: a vertical line at x, or a point, each with a label.
-#[derive(Clone, Debug)]
-pub enum Mark {
-    VLine {
-        x: f64,
-        label: String,
-        color: Color,
-    },
-    Point {
-        x: f64,
-        y: f64,
-        label: String,
-        color: Color,
-    },
-    /// A label alone, its left end at (x, y) (or its right end at the plot's edge, when it
-    /// would run past it).
-    Text {
-        x: f64,
-        y: f64,
-        label: String,
-        color: Color,
-    },
-}
-
-#[derive(Clone, Debug)]
-pub struct Chart {
-    pub title: String,
-    /// A line of readouts under the x ticks, left of the x axis name.
-    pub note: String,
-    pub x_label: String,
-    pub y_label: String,
-    pub x: [f64; 2],
-    pub y: [f64; 2],
-    pub series: Vec<Series>,
-    pub marks: Vec<Mark>,
-}
-
-/// An axis name with the SI value of its unit beside it when the table is real:
-/// `τ (1 = 303 ms)`.
-pub fn axis(name: &str, q: Quantity, units: Option<Units>) -> String {
-    match units {
-        Some(u) => format!("{name} (1 = {})", u.unit_of(q)),
-        None => name.to_string(),
+/// The theme's colour for what a thing drawn is.
+pub fn ink(th: &Theme, ink: Ink) -> Color {
+    match ink {
+        Ink::Trail => th.trail,
+        Ink::Muted => th.muted,
+        Ink::Accent => th.accent,
+        Ink::Paper => th.spokes,
+        Ink::Particle => th.particle,
+        Ink::Foreground => th.foreground,
+        Ink::Stuck => th.stuck,
+        Ink::Escaped => th.escaped,
+        Ink::Notice => th.notice,
+        Ink::Arrow => th.arrow,
+        Ink::Friction => th.friction,
+        Ink::Coriolis => th.coriolis,
+        Ink::Centrifugal => th.centrifugal,
+        Ink::TableEdge => th.table_edge,
+        Ink::LimitCircle => th.limit_circle,
     }
-}
-
-/// Tick values: a 1-2-5 step giving about `n` ticks over `[a, b]`.
-pub fn ticks(a: f64, b: f64, n: usize) -> Vec<f64> {
-    let span = b - a;
-    if !(span.is_finite() && span > 0.0) || n == 0 {
-        return vec![a];
-    }
-    let raw = span / n as f64;
-    let e = raw.log10().floor() as i32;
-    let mag = 10f64.powi(e);
-    let m = [1.0, 2.0, 5.0, 10.0]
-        .into_iter()
-        .find(|m| m * mag >= raw)
-        .unwrap_or(10.0);
-    let step = m * mag;
-    let first = (a / step).ceil() as i64;
-    let last = (b / step).floor() as i64;
-    // k·m·10^e, divided rather than multiplied for e < 0 so 0.6 is 0.6.
-    let at = |k: i64| {
-        let v = k as f64 * m;
-        if e < 0 { v / 10f64.powi(-e) } else { v * mag }
-    };
-    (first..=last).take(1000).map(at).collect()
-}
-
-/// A tick value, short: `0.5`, `12`, `1e-3`, `-0.25`.
-pub fn tick_label(v: f64) -> String {
-    let a = v.abs();
-    if a == 0.0 {
-        "0".into()
-    } else if !(1e-3..1e5).contains(&a) {
-        format!("{v:.0e}")
-    } else {
-        let s = format!("{v:.3}");
-        let s = s.trim_end_matches('0').trim_end_matches('.');
-        s.to_string()
-    }
-}
-
-/// Widens a degenerate or non-finite range so a chart can always be drawn.
-pub fn sane(r: [f64; 2]) -> [f64; 2] {
-    let [a, b] = r;
-    if !(a.is_finite() && b.is_finite()) {
-        return [0.0, 1.0];
-    }
-    if b - a > 1e-12 * a.abs().max(b.abs()).max(1e-300) {
-        [a, b]
-    } else {
-        let pad = 0.5 * a.abs().max(1e-3);
-        [a - pad, b + pad]
-    }
-}
-
-/// The bounds of some points with a small margin.
-pub fn extent(points: impl Iterator<Item = f64>) -> [f64; 2] {
-    let (lo, hi) = points
-        .filter(|v| v.is_finite())
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| {
-            (l.min(v), h.max(v))
-        });
-    let pad = 0.05 * (hi - lo);
-    sane([lo - pad, hi + pad])
 }
 
 /// Draws `chart` in `area`: a titled block around [`render_bare`] with its τ axis. Returns
@@ -213,14 +117,22 @@ pub fn render_bare(
         .y_bounds(y)
         .paint(|ctx| {
             for m in &chart.marks {
-                if let Mark::VLine { x: mx, color, .. } = m {
-                    ctx.draw(&Seg::new(*mx, y[0], *mx, y[1], *color));
+                match m {
+                    Mark::VLine { x: mx, ink: i, .. } => {
+                        ctx.draw(&Seg::new(*mx, y[0], *mx, y[1], ink(th, *i)));
+                    }
+                    Mark::Arrow {
+                        from, to, ink: i, ..
+                    } => {
+                        ctx.draw(&Seg::new(from.0, from.1, to.0, to.1, ink(th, *i)));
+                    }
+                    _ => {}
                 }
             }
             ctx.layer();
-            paint_series(ctx, &chart.series);
+            paint_series(ctx, th, &chart.series);
             ctx.layer();
-            paint_labels(ctx, &chart.marks, x, rows, col);
+            paint_labels(ctx, th, &chart.marks, x, rows, col);
         });
     f.render_widget(canvas, plot);
     Some(plot)
@@ -232,14 +144,18 @@ fn legend(f: &mut TuiFrame, inner: Rect, th: &Theme, chart: &Chart) {
     let muted = Style::default().fg(th.muted);
     let mut legend = vec![Span::styled(format!("{} ", chart.y_label), muted)];
     let mut used = legend[0].width();
-    for s in chart.series.iter().filter(|s| !s.name.is_empty()) {
+    for s in chart
+        .series
+        .iter()
+        .filter(|s| !s.name.is_empty() && !is_cells(s))
+    {
         // Lines and dots named by their own mark, not by colour alone (mono, NO_COLOR).
-        let text = format!("{} {}  ", if s.joined { "━" } else { "··" }, s.name);
+        let text = format!("{} {}  ", if s.joined() { "━" } else { "··" }, s.name);
         if used + text.trim_end().width() > usize::from(inner.width) {
             break;
         }
         used += text.width();
-        legend.push(Span::styled(text, Style::default().fg(s.color)));
+        legend.push(Span::styled(text, Style::default().fg(ink(th, s.ink))));
     }
     f.render_widget(
         Paragraph::new(Line::from(legend)),
@@ -341,20 +257,26 @@ fn x_ticks(f: &mut TuiFrame, inner: Rect, plot: Rect, th: &Theme, chart: &Chart,
     );
 }
 
+/// Cells are the page's to paint, a character each, beneath the braille.
+fn is_cells(s: &Series) -> bool {
+    matches!(s.style, crate::plot::Style::Cells { .. })
+}
+
 /// The series: lines (a gap where a value is not finite) or dots.
-fn paint_series(ctx: &mut Context, series: &[Series]) {
-    for s in series {
-        if s.joined {
+fn paint_series(ctx: &mut Context, th: &Theme, series: &[Series]) {
+    for s in series.iter().filter(|s| !is_cells(s)) {
+        let color = ink(th, s.ink);
+        if s.joined() {
             for w in s.points.windows(2) {
                 let ((x1, y1), (x2, y2)) = (w[0], w[1]);
                 if [x1, y1, x2, y2].iter().all(|v| v.is_finite()) {
-                    ctx.draw(&Seg::new(x1, y1, x2, y2, s.color));
+                    ctx.draw(&Seg::new(x1, y1, x2, y2, color));
                 }
             }
         } else {
             ctx.draw(&Points {
                 coords: &s.points,
-                color: s.color,
+                color,
             });
         }
     }
@@ -389,7 +311,7 @@ impl Taken {
 /// The marks' dots and labels. Labels never overwrite one another: line labels go along the
 /// top, a row lower where the row is taken; a point keeps its dot and its words move a row up
 /// or down if they must. The last marks (the release) are placed first.
-fn paint_labels(ctx: &mut Context, marks: &[Mark], x: [f64; 2], rows: Rows, col: f64) {
+fn paint_labels(ctx: &mut Context, th: &Theme, marks: &[Mark], x: [f64; 2], rows: Rows, col: f64) {
     let at_row = |r: i64| rows.text_y(r);
     let mut taken = Taken {
         rows: i64::from(rows.h),
@@ -400,10 +322,11 @@ fn paint_labels(ctx: &mut Context, marks: &[Mark], x: [f64; 2], rows: Rows, col:
         if let Mark::Point {
             x: px,
             y: py,
-            color,
+            ink: i,
             ..
         } = *m
         {
+            let color = ink(th, i);
             let r0 = i64::from(rows.dot_row(py));
             taken.place(px, col, &mut std::iter::once(r0));
             ctx.print(
@@ -415,9 +338,10 @@ fn paint_labels(ctx: &mut Context, marks: &[Mark], x: [f64; 2], rows: Rows, col:
     }
     for m in marks.iter().rev() {
         let (label, color) = match m {
-            Mark::VLine { label, color, .. }
-            | Mark::Text { label, color, .. }
-            | Mark::Point { label, color, .. } => (label, *color),
+            Mark::VLine { label, ink: i, .. }
+            | Mark::Text { label, ink: i, .. }
+            | Mark::Point { label, ink: i, .. }
+            | Mark::Arrow { label, ink: i, .. } => (label, ink(th, *i)),
         };
         let style = Style::default().fg(color);
         // Whole words only, as many as the wider side of a point has room for.
@@ -440,7 +364,9 @@ fn paint_labels(ctx: &mut Context, marks: &[Mark], x: [f64; 2], rows: Rows, col:
                 let r = taken.place(a, w, &mut (0..taken.rows));
                 ctx.print(a, at_row(r), Span::styled(label.clone(), style));
             }
-            Mark::Point { x: px, y: py, .. } | Mark::Text { x: px, y: py, .. } => {
+            Mark::Point { x: px, y: py, .. }
+            | Mark::Text { x: px, y: py, .. }
+            | Mark::Arrow { to: (px, py), .. } => {
                 let r0 = i64::from(rows.dot_row(py));
                 // A point's words right of its dot, or left of it when they would run
                 // past the plot's edge (never cut).
@@ -461,67 +387,44 @@ fn paint_labels(ctx: &mut Context, marks: &[Mark], x: [f64; 2], rows: Rows, col:
 mod tests {
     use super::*;
 
-    #[test]
-    fn ticks_are_round_and_inside() {
-        assert_eq!(ticks(0.0, 1.0, 5), vec![0.0, 0.2, 0.4, 0.6, 0.8, 1.0]);
-        assert_eq!(
-            ticks(0.0, std::f64::consts::TAU, 4),
-            vec![0.0, 2.0, 4.0, 6.0]
-        );
-        let t = ticks(-0.37, 12.5, 3);
-        assert_eq!(t, vec![0.0, 5.0, 10.0]);
-        assert_eq!(ticks(1.0, 1.0, 3), vec![1.0]);
-    }
-
-    #[test]
-    fn labels_are_short() {
-        assert_eq!(tick_label(0.6), "0.6");
-        assert_eq!(tick_label(1.0 / 3.0), "0.333");
-        assert_eq!(tick_label(12.0), "12");
-        assert_eq!(tick_label(-0.25), "-0.25");
-        assert_eq!(tick_label(1e-4), "1e-4");
-        assert_eq!(tick_label(0.0), "0");
-    }
-
     /// Two points side by side and a line label over them: every dot and every word shows,
     /// and each dot sits on the row of its value's braille.
     #[test]
     fn labels_never_cover_one_another() {
         use ratatui::{Terminal, backend::TestBackend};
         let th = Theme::builtin("mono").unwrap();
-        let c = Color::Reset;
+        let c = Ink::Foreground;
         let chart = Chart {
             title: "t".into(),
-            note: String::new(),
             x_label: "x".into(),
             y_label: "y".into(),
             x: [0.0, 10.0],
             y: [0.0, 1.0],
-            series: vec![],
             marks: vec![
                 Mark::Point {
                     x: 0.5,
                     y: 0.5,
                     label: "min".into(),
-                    color: c,
+                    ink: c,
                 },
                 Mark::Point {
                     x: 0.2,
                     y: 0.5,
                     label: "release sticks".into(),
-                    color: c,
+                    ink: c,
                 },
                 Mark::VLine {
                     x: 0.3,
                     label: "stop".into(),
-                    color: c,
+                    ink: c,
                 },
                 Mark::VLine {
                     x: 0.4,
                     label: "τ=6".into(),
-                    color: c,
+                    ink: c,
                 },
             ],
+            ..Chart::default()
         };
         let mut t = Terminal::new(TestBackend::new(40, 14)).unwrap();
         let mut plot = None;
@@ -536,14 +439,5 @@ mod tests {
         let row = (0.5 * (4.0 * f64::from(plot.height) - 1.0)) as u16 / 4;
         let line = text.lines().nth(usize::from(plot.y + row)).unwrap();
         assert_eq!(line.matches('●').count(), 2, "{text}");
-    }
-
-    #[test]
-    fn ranges_are_never_degenerate() {
-        assert_eq!(sane([f64::NAN, 1.0]), [0.0, 1.0]);
-        let [a, b] = sane([2.0, 2.0]);
-        assert!(a < 2.0 && b > 2.0);
-        let [a, b] = extent([f64::INFINITY, 1.0, 3.0].into_iter());
-        assert!(a < 1.0 && b > 3.0);
     }
 }

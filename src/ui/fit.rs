@@ -3,15 +3,7 @@
 
 use unicode_width::UnicodeWidthStr;
 
-/// Separates a text's wordings, longest first (see [`alternatives`]).
-pub const OR: char = '\u{1f}';
-
-/// A text said several ways, longest first: `fit` shows the first that fits whole, so a narrow
-/// screen reads a shorter sentence, not a long one cut after "for" or "dt =".
-pub fn alternatives<S: AsRef<str>>(wordings: &[S]) -> String {
-    let all: Vec<&str> = wordings.iter().map(AsRef::as_ref).collect();
-    all.join(&OR.to_string())
-}
+pub use crate::present::{OR, alternatives};
 
 /// `text` cut to `width` columns: its first wording that fits whole; else, of its last,
 /// whole fields (separated by `sep`) from the end, then whole words of the last field kept;

@@ -4,7 +4,6 @@ pub mod canvas;
 pub(crate) mod caption;
 pub(crate) mod chart;
 pub mod export;
-pub(crate) mod figure;
 pub mod fit;
 pub mod help;
 pub(crate) mod layout;

@@ -304,7 +304,7 @@ const LAYERS: &[&[&str]] = &[
         "asciicast",
     ],
     &["ui"],
-    &["present", "figure", "theme"],
+    &["present", "plot", "theme"],
     &["app", "scene"],
     &["analysis"],
     &["sim", "pin"],
@@ -321,10 +321,6 @@ const KNOWN: &[(&str, &str)] = &[
     // The scene file holds the explorer's view and pins; the app builds from a scene.
     ("app", "scene"),
     ("scene", "app"),
-    // Figures take their axis ticks from the terminal's chart, and the terminal exports the
-    // page as a figure: each page is described twice (item 3).
-    ("figure", "ui"),
-    ("ui", "figure"),
 ];
 
 /// Which room `rel` (a path under src/) is in.

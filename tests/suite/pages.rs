@@ -229,21 +229,71 @@ fn the_time_plots_show_the_energy_identity() {
     for _ in 0..60 {
         a.tick();
     }
-    let path = a.sim().trail().to_vec();
-    let [e, w] = turntable::ui::time_plots::energy_pair(&path);
-    let worst = e
+    // The work tally (Gauss–Legendre on each step's dense output) against E − E(0) at every
+    // point of the trail: dE/dτ = −|u| to the run's own error (trapezoids on the 0.025 grid
+    // were off by up to 1.8e-4).
+    let (path, work) = (a.sim().trail(), a.sim().trail_work());
+    assert_eq!(path.len(), work.len());
+    let e0 = path[0].energy();
+    let worst = path
         .iter()
-        .zip(&w)
-        .map(|(a, b)| (a.1 - b.1).abs())
+        .zip(work)
+        .map(|(s, w)| (s.energy() - e0 - w).abs())
         .fold(0.0, f64::max);
-    // Trapezoids on the 0.025 grid: dE/dτ = −|u| to O(Δτ²).
-    assert!(worst < 1e-3, "{worst}");
-    assert!(e.last().unwrap().1 < -0.1);
+    assert!(worst < 1e-10, "{worst}");
+    assert!(work.last().unwrap() < &-0.1);
     press(&mut a, KeyCode::Tab);
     let screen = render(&mut a, 100, 30);
     for words in ["ξ", "θ′", "|u|", "E − E(0)", "−∫|u|dτ", "stop"] {
         assert!(screen.contains(words), "{words}:\n{screen}");
     }
+}
+
+/// The work the energy plot shows at the stop is the work `run --trajectory` writes there:
+/// one tally (`engine::work`) for both.
+#[test]
+fn the_screens_work_is_the_clis() {
+    let mut a = app("C");
+    for _ in 0..400 {
+        a.tick();
+    }
+    let turntable::engine::Status::Stuck { tau, .. } = a.sim().run.status() else {
+        panic!("C stops inside ξ = 1");
+    };
+    let (path, work) = (a.sim().trail(), a.sim().trail_work());
+    let at = path.iter().position(|s| s.tau == tau).unwrap();
+    let csv = std::env::temp_dir().join(format!("turntable-work-{}.csv", std::process::id()));
+    let i = a.initial();
+    let (code, _, err) = common::turntable(&[
+        "run",
+        "--xi0",
+        &i.xi0.to_string(),
+        "--phi",
+        &i.phi.to_string(),
+        "--v0",
+        &i.v0.to_string(),
+        "--trajectory",
+        csv.to_str().unwrap(),
+        "--force",
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let rows = std::fs::read_to_string(&csv).unwrap();
+    std::fs::remove_file(&csv).unwrap();
+    let last: Vec<f64> = rows
+        .lines()
+        .last()
+        .unwrap()
+        .split(',')
+        .take(9)
+        .map(|x| x.parse().unwrap())
+        .collect();
+    assert_eq!(last[0], tau);
+    assert!(
+        (last[8] - work[at]).abs() < 1e-12,
+        "{} vs {}",
+        last[8],
+        work[at]
+    );
 }
 
 #[test]

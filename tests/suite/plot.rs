@@ -155,6 +155,16 @@ fn text_of<'a>(tags: &'a [Tag], class: &str) -> Vec<&'a str> {
         .collect()
 }
 
+/// The one line of the series named `name`.
+fn named<'a>(tags: &'a [Tag], name: &str) -> &'a Tag {
+    let found: Vec<_> = with_class(tags, "series")
+        .into_iter()
+        .filter(|t| t.attr("data-name") == Some(name))
+        .collect();
+    assert_eq!(found.len(), 1, "{name}");
+    found[0]
+}
+
 /// The names in the (first) legend.
 fn legend(tags: &[Tag]) -> Vec<String> {
     let start = tags
@@ -273,6 +283,36 @@ fn the_map_has_a_cell_per_stuck_release() {
     std::fs::remove_file(&f).unwrap();
 }
 
+/// Outside ξ = 1 the default speed range covers the sticking window (Fig. 3 D): some cells
+/// stick, in `sweep map` and in `plot map` alike (all escaped when the range stopped at the
+/// window's floor), and the window's top lies below the range's.
+#[test]
+fn the_default_range_outside_the_rim_shows_the_sticking_window() {
+    let f = out("map-window");
+    let p = f.to_str().unwrap();
+    let args = ["--xi0", "1.2", "--phi-points", "12", "--v0-points", "10"];
+    let (code, csv, err) = turntable(&[&["sweep", "map"][..], &args].concat());
+    assert_eq!(code, 0, "{err}");
+    let stuck: Vec<f64> = csv
+        .lines()
+        .filter(|l| l.contains(",stuck,"))
+        .map(|l| l.split(',').nth(1).unwrap().parse().unwrap())
+        .collect();
+    let v0s: Vec<f64> = csv
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').nth(1).unwrap().parse().unwrap())
+        .collect();
+    let top = v0s.iter().copied().fold(0.0, f64::max);
+    assert!(stuck.len() >= 5, "{csv}");
+    assert!(stuck.iter().all(|v| *v < top), "{stuck:?} {top}");
+    let (code, _, err) = turntable(&[&["plot", "map"][..], &args, &["--out", p]].concat());
+    assert_eq!(code, 0, "{err}");
+    let tags = parse(&std::fs::read_to_string(&f).unwrap());
+    assert_eq!(with_class(&tags, "cell").len(), stuck.len());
+    std::fs::remove_file(&f).unwrap();
+}
+
 #[test]
 fn the_trajectory_ends_where_the_run_stops() {
     let f = out("traj");
@@ -317,6 +357,95 @@ fn the_trajectory_ends_where_the_run_stops() {
             marks[1].starts_with("stuck at ξ = 0.94527, τ = 2.700"),
             "{marks:?}"
         );
+    }
+    std::fs::remove_file(&f).unwrap();
+}
+
+/// Several runs on one slide: C converged comes to rest inside ξ = 1, C by the paper's RK2
+/// (`--method rk2-raw`) steps over the stop and escapes; each release carries its initial
+/// velocity as an arrow. The time plots take one run.
+#[test]
+fn a_trajectory_draws_several_runs_with_their_arrows() {
+    let f = out("traj-several");
+    let p = f.to_str().unwrap();
+    let (code, _, err) = turntable(&[
+        "plot",
+        "trajectory",
+        "--scene",
+        "C",
+        "--method",
+        "dp54",
+        "--method",
+        "rk2-raw",
+        "--out",
+        p,
+    ]);
+    assert_eq!(code, 0, "{err}");
+    let tags = parse(&std::fs::read_to_string(&f).unwrap());
+    assert_eq!(legend(&tags), ["C (dp54)", "C (rk2-raw)", "ξ = 1 (R_max)"]);
+    let marks = text_of(&tags, "mark-label");
+    assert_eq!(marks[0], "C (dp54): release");
+    assert!(
+        marks[1].starts_with("C (dp54): stuck at ξ = 0.997"),
+        "{marks:?}"
+    );
+    assert!(marks[3].starts_with("C (rk2-raw): escaped"), "{marks:?}");
+    // C's release: ξ0 = 0.5 thrown radially at 0.6078 relative to the table, so in the lab
+    // v0 = (0.6078, 0.5) (the table's Ω×r added): the arrow points along it.
+    let (x, y) = (axis(&tags, "x-tick"), axis(&tags, "y-tick"));
+    let arrows: Vec<&Tag> = tags
+        .iter()
+        .filter(|t| t.name == "line")
+        .filter(|t| t.attr("x1").is_some() && t.attr("stroke").is_none())
+        .collect();
+    assert_eq!(arrows.len(), 2, "one arrow per run");
+    for a in arrows {
+        let (x0, y0) = (x(a.num("x1")), y(a.num("y1")));
+        let (dx, dy) = (x(a.num("x2")) - x0, y(a.num("y2")) - y0);
+        assert!((x0 - 0.5).abs() < 1e-4 && y0.abs() < 1e-4, "{x0} {y0}");
+        assert!((dy / dx - 0.5 / 0.6078).abs() < 1e-3, "{dx} {dy}");
+    }
+    let (code, _, err) = turntable(&[
+        "plot", "time", "--scene", "C", "--scene", "B", "--out", p, "--force",
+    ]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("plot time draws one run"), "{err}");
+    std::fs::remove_file(&f).unwrap();
+}
+
+/// `plot time --scene fig1` frames where Sec. III A holds (τ ≲ √ξ0 ≈ 22.4 at ξ0 = 500, twice
+/// that shown), with Eq. 17's ξ beside the run's: they agree early, to 1e-3 of ξ0.
+#[test]
+fn the_time_plots_of_fig1_frame_the_approximations_window() {
+    let f = out("time-fig1");
+    let p = f.to_str().unwrap();
+    let (code, _, err) = turntable(&["plot", "time", "--scene", "fig1", "--out", p]);
+    assert_eq!(code, 0, "{err}");
+    let tags = parse(&std::fs::read_to_string(&f).unwrap());
+    let xi = panels(&tags)[0];
+    let (x, y) = (axis(xi, "x-tick"), axis(xi, "y-tick"));
+    let frame = with_class(xi, "frame")[0];
+    let right = x(frame.num("x") + frame.num("width"));
+    assert!((right - 2.0 * 500f64.sqrt()).abs() < 1e-3, "{right}");
+    assert!(text_of(xi, "mark-label").contains(&"approx. valid ←"));
+    let dots: Vec<(f64, f64)> = xi
+        .iter()
+        .skip_while(|t| t.attr("data-name") != Some("Sec. III approx."))
+        .take_while(|t| t.name != "g" || t.attr("data-name").is_some())
+        .filter(|t| t.name == "circle")
+        .map(|t| (x(t.num("cx")), y(t.num("cy"))))
+        .collect();
+    assert_eq!(dots.len(), 201);
+    let run = points(named(xi, "ξ"));
+    for &(t, v) in dots.iter().filter(|d| d.0 <= 10.0) {
+        // Eq. 17, ξ = τ⁴/(12ξ0) + ξ0, against the run's line at the nearest point.
+        assert!((v - (t.powi(4) / 6000.0 + 500.0)).abs() < 1e-3, "{t}: {v}");
+        let near = run
+            .iter()
+            .map(|&(a, b)| (x(a), y(b)))
+            .min_by(|a, b| (a.0 - t).abs().total_cmp(&(b.0 - t).abs()))
+            .unwrap();
+        assert!((near.1 - v).abs() < 0.5, "{t}: run {near:?}, Eq. 17 {v}");
     }
     std::fs::remove_file(&f).unwrap();
 }
@@ -399,7 +528,7 @@ fn the_explorer_writes_the_page_to_a_new_file() {
     let tags = parse(&std::fs::read_to_string(&first).unwrap());
     let (x, y) = (axis(&tags, "x-tick"), axis(&tags, "y-tick"));
     // The trail ends where the particle is on screen: B at rest (docs/numerics.md).
-    let end = *points(with_class(&tags, "series")[0]).last().unwrap();
+    let end = *points(named(&tags, "particle")).last().unwrap();
     let now = app.sim().now();
     assert!((x(end.0) - now.r.x).abs() < 1e-5 && (y(end.1) - now.r.y).abs() < 1e-5);
     assert!(
@@ -432,7 +561,7 @@ fn the_explorer_writes_the_page_to_a_new_file() {
     let lines = with_class(&tags, "series");
     assert_eq!(lines.len(), 4, "ξ0 0.5 and the paper's 0.8, 0.2, 0.001");
     let (x, y) = (axis(&tags, "x-tick"), axis(&tags, "y-tick"));
-    let mine = points(lines[0]);
+    let mine = points(named(&tags, "ξ0=0.500 (now)"));
     assert_eq!(mine.len(), turntable::analysis::CURVE_POINTS);
     assert!(x(mine[0].0).abs() < 1e-5);
     assert!(
@@ -440,7 +569,19 @@ fn the_explorer_writes_the_page_to_a_new_file() {
         "{}",
         y(mine[0].1)
     );
-    assert_eq!(legend(&tags)[0], "ξ0 = 0.5");
+    // The legend as the page's: the paper's curves are named at their peaks instead.
+    assert_eq!(legend(&tags), ["ξ0=0.500 (now)"]);
+    assert_eq!(
+        text_of(&tags, "mark-label"),
+        [
+            "0.8",
+            "0.2",
+            "0.001",
+            "min",
+            "max",
+            "release sticks (below v_e)"
+        ]
+    );
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
@@ -456,4 +597,142 @@ fn a_replay_only_says_what_e_would_write() {
         "{screen}"
     );
     std::fs::remove_file(&keys).unwrap();
+}
+
+/// The SVG split at its panels: each panel's tags, its own axes among them.
+fn panels(tags: &[Tag]) -> Vec<&[Tag]> {
+    let starts: Vec<usize> = tags
+        .iter()
+        .enumerate()
+        .filter(|(_, t)| t.name == "g" && t.attr("class") == Some("panel"))
+        .map(|(k, _)| k)
+        .collect();
+    let ends = starts.iter().skip(1).copied().chain([tags.len()]);
+    starts.iter().zip(ends).map(|(&a, b)| &tags[a..b]).collect()
+}
+
+/// The names of what a panel draws (lines, dots, cells, arrows), each once, in order.
+fn drawn(tags: &[Tag]) -> Vec<String> {
+    let mut names: Vec<String> = Vec::new();
+    for t in tags {
+        if let Some(n) = t.attr("data-name")
+            && !names.iter().any(|m| m == n)
+        {
+            names.push(n.to_string());
+        }
+    }
+    names
+}
+
+/// `E` writes what the screen shows: on the turntable the pinned run, the paper's RK2 run
+/// under `c`, the release's velocity and the arrows at the particle; on the time plots the
+/// same, with the Sec. III approximations and the θ panel, each panel's legend the screen's.
+#[test]
+fn an_export_carries_what_the_screen_shows() {
+    use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
+    use turntable::app::App;
+    let dir = std::env::temp_dir().join(format!("turntable-shows-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    // Fig. 2: at rest on the table at ξ0 = 1.1, where Sec. III's approximations hold early.
+    let mut app = App::new(
+        turntable::scene::Scene::preset("fig2").unwrap(),
+        turntable::theme::Theme::builtin("dark").unwrap(),
+    );
+    app.save_path = dir.join("turntable-scene.toml");
+    let press = |app: &mut App, code| {
+        let effects = app.handle_key(KeyEvent::new(code, KeyModifiers::NONE));
+        turntable::session::carry_out(app, effects);
+    };
+    for _ in 0..40 {
+        app.tick();
+    }
+    for key in ['b', 'c', 'i', 'a'] {
+        press(&mut app, KeyCode::Char(key));
+    }
+    for _ in 0..40 {
+        app.tick();
+    }
+    let pin = format!("{}{}", app.pins[0].marker, app.pins[0].spec.label.as_str());
+    assert!(app.paper().is_some() && app.velocity && app.forces);
+    common::render(&mut app, 160, 50);
+    press(&mut app, KeyCode::Char('E'));
+    let svg = std::fs::read_to_string(dir.join("turntable-turntable-1.svg")).unwrap();
+    let tags = parse(&svg);
+    assert_eq!(
+        drawn(&tags),
+        [
+            "table edge",
+            "ξ = 1 (R_max)",
+            pin.as_str(),
+            "the paper's RK2 run (c)",
+            "particle",
+            "release velocity",
+            // In the lab only friction acts in the plane.
+            "fr (friction)",
+            "v (velocity (lab))",
+        ]
+        .map(String::from)
+    );
+    // The paper's run ends where its ○ is on screen, the particle's where ● is.
+    let (x, y) = (axis(&tags, "x-tick"), axis(&tags, "y-tick"));
+    for (name, now) in [
+        ("the paper's RK2 run (c)", app.paper().unwrap().now()),
+        ("particle", app.sim().now()),
+    ] {
+        let end = *points(named(&tags, name)).last().unwrap();
+        assert!(
+            (x(end.0) - now.r.x).abs() < 1e-4 && (y(end.1) - now.r.y).abs() < 1e-4,
+            "{name}: {end:?} {:?}",
+            now.r
+        );
+    }
+    // The time plots: five panels, each drawing what its legend on screen names.
+    press(&mut app, KeyCode::Tab);
+    let screen = common::render(&mut app, 160, 50);
+    press(&mut app, KeyCode::Char('E'));
+    let svg = std::fs::read_to_string(dir.join("turntable-time-plots-1.svg")).unwrap();
+    let tags = parse(&svg);
+    let panels = panels(&tags);
+    let names: Vec<Vec<String>> = panels.iter().map(|p| drawn(p)).collect();
+    let with_pin = |a: &str, b: &str| {
+        [a, b, pin.as_str(), "Sec. III approx."]
+            .map(String::from)
+            .to_vec()
+    };
+    assert_eq!(
+        names,
+        [
+            with_pin("ξ", "ξ paper RK2"),
+            with_pin("θ", "θ paper RK2"),
+            with_pin("θ′", "θ′ paper RK2"),
+            ["|u|", "|u| paper RK2", pin.as_str()]
+                .map(String::from)
+                .to_vec(),
+            ["E − E(0)", "−∫|u|dτ"].map(String::from).to_vec(),
+        ]
+    );
+    for n in names.iter().flatten() {
+        assert!(screen.contains(n.as_str()), "{n} not on screen:\n{screen}");
+    }
+    // Sec. III's ξ starts at the release, ξ0 = 1.1 (Eq. 24), and the run's ξ ends at the ξ
+    // on screen.
+    let (x, y) = (axis(panels[0], "x-tick"), axis(panels[0], "y-tick"));
+    let dots: Vec<f64> = panels[0]
+        .iter()
+        .skip_while(|t| t.attr("data-name") != Some("Sec. III approx."))
+        .take_while(|t| t.name != "g" || t.attr("data-name") == Some("Sec. III approx."))
+        .filter(|t| t.name == "circle")
+        .map(|t| y(t.num("cy")))
+        .collect();
+    assert!((dots[0] - 1.1).abs() < 1e-4, "{dots:?}");
+    let lines: Vec<&Tag> = panels[0]
+        .iter()
+        .filter(|t| t.attr("data-name") == Some("ξ") && t.name == "polyline")
+        .collect();
+    let end = *points(lines[lines.len() - 1]).last().unwrap();
+    let now = app.sim().now();
+    assert!((x(end.0) - now.tau).abs() < 1e-4, "{end:?} {}", now.tau);
+    assert!((y(end.1) - now.xi()).abs() < 1e-4, "{end:?} {}", now.xi());
+    std::fs::remove_dir_all(&dir).unwrap();
 }

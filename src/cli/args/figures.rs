@@ -124,7 +124,7 @@ pub struct MapData {
     /// Number of speeds v0 in (0, --v0-max].
     #[arg(long, default_value_t = 60)]
     pub v0_points: usize,
-    /// Largest v0 [default: 1.3 × the largest v_e over phi, plus xi0 for lab-rest].
+    /// Largest v0 [default: 1.3 × the largest v_e over phi (outside xi = 1, the top of the sticking window), plus xi0 for lab-rest].
     #[arg(long, allow_hyphen_values = true)]
     pub v0_max: Option<f64>,
     /// Width of the bracket on the escape speeds that set the default --v0-max.
@@ -175,7 +175,8 @@ pub enum PlotFigure {
         #[command(flatten)]
         svg: SvgOut,
     },
-    /// One run's path in the lab or the rotating frame, with the rim xi = 1.
+    /// Runs' paths in the lab or the rotating frame (one per --scene and --method), each with
+    /// its initial velocity, and the rim xi = 1.
     Trajectory {
         #[command(flatten)]
         run: PlotRun,
@@ -194,12 +195,17 @@ pub enum PlotFigure {
     },
 }
 
-/// The run a trajectory or time figure shows: a scene, its release changed by the flags.
+/// The runs a trajectory or time figure shows: scenes, their releases changed by the flags.
 #[derive(Args, Debug)]
 pub struct PlotRun {
     /// A preset (A, B, C, D, fig1, fig2) or a .toml scene file: its release and integrator.
-    #[arg(long, default_value = "C", value_name = "NAME|PATH")]
-    pub scene: String,
+    /// Repeated, a trajectory draws each (the time plots take one).
+    #[arg(long, default_values_t = ["C".to_string()], value_name = "NAME|PATH")]
+    pub scene: Vec<String>,
+    /// The integrator, instead of the scene's, at its default step or tolerance (rk2-raw: the
+    /// paper's scheme). Repeated, a trajectory draws each scene with each.
+    #[arg(long, value_parser = variant::<Method>())]
+    pub method: Vec<Method>,
     /// Release radius xi0, instead of the scene's.
     #[arg(long, allow_hyphen_values = true)]
     pub xi0: Option<f64>,

@@ -11,41 +11,14 @@ use ratatui::layout::Rect;
 use ratatui::style::Style;
 use ratatui::widgets::canvas::Canvas;
 
-mod forces;
 mod paint;
 
-pub use forces::{FORCE_SHARE, ForceArrow, arrows, force_arrows, velocity};
+pub use crate::plot::page::arrows::{FORCE_SHARE, ForceArrow, arrows, force_arrows, velocity};
+pub use crate::plot::page::table::{auto_extent, in_frame};
 use paint::Picture;
 
 /// Most trail segments drawn per run (longer trails are thinned evenly).
 const MAX_SEGMENTS: usize = 3000;
-
-/// A sample's position in the frame shown: lab `r`, or `q = R(−τ) r`.
-pub fn in_frame(s: &State, frame: Frame) -> DVec2 {
-    match frame {
-        Frame::Lab => s.r,
-        Frame::Table => s.q(),
-    }
-}
-
-/// The auto-framed half-width: the table, the release point and everything the run's trail
-/// reached, a little beyond. The paper's run beside it may widen the view by half at most, so
-/// when it escapes it is seen leaving rather than shrinking the table to a dot.
-pub fn auto_extent(app: &App) -> f64 {
-    let reach = |sim: &crate::sim::Sim| sim.trail().iter().fold(0.0, |m: f64, s| m.max(s.xi()));
-    let own = reach(app.sim()).max(app.initial().xi0).max(1.0);
-    let m = app
-        .paper()
-        .map_or(own, |p| own.max(reach(p).min(1.5 * own)));
-    // Pins widen it as the paper's run does, so a pinned D (from ξ0 = 1.1) stays in view.
-    let m = app.pins.iter().fold(m, |m, p| {
-        let r = p.path.iter().fold(0.0, |m: f64, s| m.max(s.xi())) * p.scale(app.units).0;
-        m.max(r.min(1.5 * own))
-    });
-    (m * 1.1)
-        .max(1.5)
-        .min(crate::app::state::view_radius(&app.initial()) * 1.1)
-}
 
 /// World bounds of a canvas of `w`×`h` cells showing a disc of radius `r` around `c`, with
 /// cells twice as tall as wide: circles come out round.

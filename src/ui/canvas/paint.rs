@@ -302,7 +302,8 @@ impl Picture<'_> {
         let cell = self.cell;
         for fa in &self.forces {
             let vec = rotate(fa.vec, self.turn);
-            arrow(ctx, at, vec, fa.color);
+            let color = crate::ui::chart::ink(&self.th, fa.ink);
+            arrow(ctx, at, vec, color);
             let mut head = at + vec * 1.15;
             // Never under the particle's glyph (`co` read `●o`): right of it instead.
             let n = fa.label.chars().count();
@@ -322,7 +323,7 @@ impl Picture<'_> {
             ctx.print(
                 head.x,
                 head.y,
-                Span::styled(fa.label, Style::default().fg(fa.color)),
+                Span::styled(fa.label, Style::default().fg(color)),
             );
         }
     }

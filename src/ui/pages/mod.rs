@@ -2,20 +2,19 @@
 //! rest radius against ξ0 (Fig. 6) with the paper's μ measurement (Eq. 22); the time plots are
 //! in `time_plots`. Pure: they draw what the app holds and never compute a run.
 
-use super::chart::{self, Chart};
 use crate::app::pages::Page;
 use crate::app::{App, CanvasGeom};
+use crate::plot::Panel as Chart;
 use crate::ui::panel::num;
 use ratatui::Frame as TuiFrame;
 use ratatui::layout::Rect;
 use ratatui::style::Style;
 use ratatui::widgets::{Paragraph, Wrap};
 
-mod escape;
 mod map;
 mod rest;
 
-use escape::{curve_note, escape_speed, release_verdict};
+use crate::plot::page::escape::{curve_note, release_verdict};
 pub use map::map_grid;
 use map::outcome_map;
 use rest::rest_radius;
@@ -38,7 +37,11 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) -> Option<CanvasGeom> {
             super::time_plots::render(f, area, app);
             None
         }
-        Page::EscapeSpeed => escape_speed(f, area, app),
+        Page::EscapeSpeed => {
+            let c = crate::plot::page::escape::chart(app);
+            let plot = super::chart::render(f, area, &app.theme, &c)?;
+            Some(geom(plot, &c, Page::EscapeSpeed, app))
+        }
         Page::OutcomeMap => outcome_map(f, area, app),
         Page::RestRadius => {
             rest_radius(f, area, app);
@@ -71,8 +74,8 @@ fn no_threshold(f: &mut TuiFrame, area: Rect, app: &App, gamma: f64) {
 fn geom(plot: Rect, c: &Chart, page: Page, app: &App) -> CanvasGeom {
     CanvasGeom {
         area: plot,
-        x: chart::sane(c.x),
-        y: chart::sane(c.y),
+        x: crate::plot::sane(c.x),
+        y: crate::plot::sane(c.y),
         arrow_scale: 1.0,
         frame: app.view,
         turn: 0.0,

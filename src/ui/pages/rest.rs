@@ -1,11 +1,8 @@
 //! The rest radius page: Fig. 6, where a particle released at rest in the lab comes to rest,
 //! and the paper's μ measurement (Eq. 22) beside it.
 
-use crate::analysis::{REST_POINTS, REST_XI0_MAX};
 use crate::app::App;
-use crate::app::pages::Rest;
-use crate::engine::units::Quantity;
-use crate::ui::chart::{self, Chart, Mark, Series};
+use crate::ui::chart;
 use crate::ui::panel::num;
 use ratatui::Frame as TuiFrame;
 use ratatui::layout::{Constraint, Layout, Rect};
@@ -19,77 +16,10 @@ use unicode_width::UnicodeWidthStr;
 /// beside it Eq. 22, μ = Ω² r0c / (g ξ0c), from an Ω and r0c the user enters.
 pub(super) fn rest_radius(f: &mut TuiFrame, area: Rect, app: &App) {
     let th = &app.theme;
-    let settings = crate::analysis::settings_for(app.settings());
-    let rest = app.charts.rest.as_ref().filter(|r| r.settings == settings);
     let [top, bottom] = Layout::vertical([Constraint::Min(6), Constraint::Length(5)]).areas(area);
-    let xi0c = rest.and_then(|r| r.critical.flatten());
-    chart::render(f, top, th, &rest_chart(app, rest, xi0c));
+    let xi0c = crate::plot::page::rest::shown(app).and_then(|r| r.critical.flatten());
+    chart::render(f, top, th, &crate::plot::page::rest::chart(app));
     measure_mu(f, bottom, app, xi0c);
-}
-
-/// Fig. 6's chart: the final ξ of each release at rest in the lab against its ξ0 (those that
-/// escape drawn at 1), ξ0c and the ξ0 on screen marked.
-fn rest_chart(app: &App, rest: Option<&Rest>, xi0c: Option<f64>) -> Chart {
-    let th = &app.theme;
-    let mut points = Vec::new();
-    let mut escaped = Vec::new();
-    let mut marks = Vec::new();
-    let mut progress = ", computing…".to_string();
-    if let Some(r) = rest {
-        for (k, v) in r.xi.iter().enumerate() {
-            let xi0 = REST_XI0_MAX * k as f64 / (REST_POINTS - 1) as f64;
-            match v {
-                Some(Some(xi)) => points.push((xi0, *xi)),
-                Some(None) => escaped.push((xi0, 1.0)),
-                None => {}
-            }
-        }
-        let done = r.xi.iter().filter(|v| v.is_some()).count();
-        progress = if done < r.xi.len() || r.critical.is_none() {
-            format!(", {done}/{} radii", r.xi.len())
-        } else {
-            String::new()
-        };
-        if let Some(c) = xi0c {
-            marks.push(Mark::VLine {
-                x: c,
-                label: format!("ξ0c={}", num(c, 4)),
-                color: th.escaped,
-            });
-        }
-    }
-    marks.push(Mark::VLine {
-        x: app.initial().xi0.min(REST_XI0_MAX),
-        label: "now".into(),
-        color: th.particle,
-    });
-    Chart {
-        title: crate::ui::fit::alternatives(&[
-            format!("rest radius (Fig. 6): at rest in the lab at ξ0{progress}"),
-            format!("rest radius (Fig. 6){progress}"),
-            "rest radius".to_string(),
-        ]),
-        note: xi0c.map_or(String::new(), |c| format!("ξ0c = {}", num(c, 6))),
-        x_label: chart::axis("ξ0", Quantity::Length, app.units),
-        y_label: chart::axis("final ξ", Quantity::Length, app.units),
-        x: [0.0, REST_XI0_MAX],
-        y: [0.0, 1.05],
-        series: vec![
-            Series {
-                name: "stuck".into(),
-                color: th.trail,
-                points,
-                joined: false,
-            },
-            Series {
-                name: "escapes (drawn at 1)".into(),
-                color: th.escaped,
-                points: escaped,
-                joined: false,
-            },
-        ],
-        marks,
-    }
 }
 
 /// Eq. 22, μ = Ω² r0c / (g ξ0c), from the Ω and r0c the user enters and ξ0c once computed.

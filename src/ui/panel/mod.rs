@@ -19,20 +19,7 @@ mod body;
 use body::body_lines;
 pub use body::{BodyNow, body_end, body_now, phase_word};
 
-pub use crate::present::num;
-
-/// A release speed: four decimals, up to six where they are not zeros (C's v0 = 0.6078 and
-/// its escape speed 0.607797… differ in the sixth).
-pub fn speed(v: f64) -> String {
-    let s = num(v, 6);
-    match s.find('.') {
-        Some(dot) => {
-            let keep = (dot + 5).max(s.trim_end_matches('0').len());
-            s[..keep.min(s.len())].to_string()
-        }
-        None => s,
-    }
-}
+pub use crate::present::{fmt_speed, num, speed};
 
 /// A rate that may be below what `prec` places show (|u| near a stop): in scientific
 /// notation then, so that "slipping" never stands beside a row of zeros.
@@ -382,9 +369,10 @@ fn arrow_legend(app: &App, out: &mut Vec<Line<'static>>) {
             )));
         }
         for fa in &drawn {
+            let color = crate::ui::chart::ink(th, fa.ink);
             out.push(Line::from(vec![
-                Span::styled(format!("{:<2} ", fa.label), Style::default().fg(fa.color)),
-                Span::styled(fa.word, Style::default().fg(fa.color)),
+                Span::styled(format!("{:<2} ", fa.label), Style::default().fg(color)),
+                Span::styled(fa.word, Style::default().fg(color)),
             ]));
         }
         if app.net_force && !has("net") {
@@ -400,14 +388,6 @@ fn arrow_legend(app: &App, out: &mut Vec<Line<'static>>) {
                 Style::default().fg(th.muted),
             )));
         }
-    }
-}
-
-pub fn fmt_speed(s: f64) -> String {
-    if s >= 1.0 {
-        format!("{s}")
-    } else {
-        format!("1/{}", (1.0 / s).round())
     }
 }
 

@@ -1,22 +1,19 @@
 //! The escape speed page: v_e(φ) (Fig. 5) or, outside ξ = 1, the sticking window, and what
 //! the curve says of the release on screen.
 
-use super::geom;
-use crate::analysis::{PAPER_XI0, Speeds};
-use crate::app::pages::{Curve, Page};
-use crate::app::{App, CanvasGeom};
+use super::super::{Ink, Mark, Panel as Chart, Series, Style};
+use crate::analysis::PAPER_XI0;
+use crate::analysis::verdict::{Verdict, judge, widest_window};
+use crate::app::App;
+use crate::app::pages::Curve;
 use crate::engine::model::turn_angle;
 use crate::engine::units::Quantity;
 use crate::engine::{Outcome, Release, Settings};
-use crate::ui::chart::{self, Chart, Mark, Series};
-use crate::ui::panel::{num, speed};
-use ratatui::Frame as TuiFrame;
-use ratatui::layout::Rect;
+use crate::present::{num, speed};
 use std::f64::consts::{PI, TAU};
 
 /// v_e(φ) for the current ξ0 beside the paper's four, the release as a point, min and max.
-pub(super) fn escape_speed(f: &mut TuiFrame, area: Rect, app: &App) -> Option<CanvasGeom> {
-    let th = &app.theme;
+pub fn chart(app: &App) -> Chart {
     let i = app.initial();
     let settings = crate::analysis::settings_for(app.settings());
     let mine = app.charts.curve(i.xi0, settings);
@@ -31,10 +28,10 @@ pub(super) fn escape_speed(f: &mut TuiFrame, area: Rect, app: &App) -> Option<Ca
     let phi = turn_angle(i.phi);
     let (verdict, tone) = release_verdict(app, mine);
     let color = match tone {
-        Some(Outcome::Escaped) => th.escaped,
-        Some(Outcome::Stuck) => th.stuck,
-        Some(Outcome::Running) => th.notice,
-        None => th.particle,
+        Some(Outcome::Escaped) => Ink::Escaped,
+        Some(Outcome::Stuck) => Ink::Stuck,
+        Some(Outcome::Running) => Ink::Notice,
+        None => Ink::Particle,
     };
     let v_now = if i.release == Release::Velocity {
         i.v0
@@ -45,7 +42,7 @@ pub(super) fn escape_speed(f: &mut TuiFrame, area: Rect, app: &App) -> Option<Ca
         x: phi,
         y: v_now,
         label: format!("release{verdict}"),
-        color,
+        ink: color,
     });
     let top = series
         .iter()
@@ -56,11 +53,11 @@ pub(super) fn escape_speed(f: &mut TuiFrame, area: Rect, app: &App) -> Option<Ca
     } else {
         "escape speed v_e(φ)"
     };
-    let c = Chart {
+    Chart {
         title: format!("{title}, ξ0 = {}{progress}", num(i.xi0, 3)),
         note,
         x_label: "φ".into(),
-        y_label: chart::axis(
+        y_label: crate::plot::axis(
             if window { "v0" } else { "v_e" },
             Quantity::Speed,
             app.units,
@@ -69,15 +66,13 @@ pub(super) fn escape_speed(f: &mut TuiFrame, area: Rect, app: &App) -> Option<Ca
         y: [0.0, (1.1 * top).max(0.1)],
         series,
         marks,
-    };
-    let plot = chart::render(f, area, th, &c)?;
-    Some(geom(plot, &c, Page::EscapeSpeed, app))
+        ..Chart::default()
+    }
 }
 
 /// The paper's four v_e curves (Fig. 5) but the current ξ0's, faint, each named at its peak;
 /// none outside ξ = 1 (`window`).
 fn paper_curves(app: &App, settings: Settings, window: bool) -> (Vec<Series>, Vec<Mark>) {
-    let th = &app.theme;
     let mut series = Vec::new();
     let mut marks = Vec::new();
     let others = if window { &[][..] } else { &PAPER_XI0[..] };
@@ -91,14 +86,14 @@ fn paper_curves(app: &App, settings: Settings, window: bool) -> (Vec<Series>, Ve
                     x,
                     y,
                     label: xi0.to_string(),
-                    color: th.muted,
+                    ink: Ink::Muted,
                 });
             }
             series.push(Series {
                 name: String::new(),
-                color: th.muted,
+                ink: Ink::Muted,
                 points,
-                joined: true,
+                style: Style::Line { dash: 0 },
             });
         }
     }
@@ -114,7 +109,6 @@ fn own_curve(
     series: &mut Vec<Series>,
     marks: &mut Vec<Mark>,
 ) -> (String, String) {
-    let th = &app.theme;
     let i = app.initial();
     let name = if window {
         format!("ξ0={}: sticks between", num(i.xi0, 3))
@@ -123,29 +117,29 @@ fn own_curve(
     };
     series.push(Series {
         name,
-        color: th.trail,
+        ink: Ink::Trail,
         points: c.points(),
-        joined: true,
+        style: Style::Line { dash: 0 },
     });
     if window {
         series.push(Series {
             name: String::new(),
-            color: th.trail,
+            ink: Ink::Trail,
             points: c.floor(),
-            joined: true,
+            style: Style::Line { dash: 0 },
         });
     } else if let Some(((p0, v0), (p1, v1))) = extremes(c) {
         marks.push(Mark::Point {
             x: p0,
             y: v0,
             label: "min".into(),
-            color: th.stuck,
+            ink: Ink::Stuck,
         });
         marks.push(Mark::Point {
             x: p1,
             y: v1,
             label: "max".into(),
-            color: th.escaped,
+            ink: Ink::Escaped,
         });
     }
     let note = curve_note(c, window);
@@ -169,7 +163,7 @@ fn extremes(c: &Curve) -> Option<((f64, f64), (f64, f64))> {
 
 /// The curve's note: the widest sticking window outside ξ = 1; inside, v_e's least (π to three
 /// decimals once refined, to two from the grid, only good to its 0.03π) and greatest.
-pub(super) fn curve_note(c: &Curve, window: bool) -> String {
+pub fn curve_note(c: &Curve, window: bool) -> String {
     if window {
         return widest(c);
     }
@@ -192,11 +186,11 @@ pub(super) fn curve_note(c: &Curve, window: bool) -> String {
 
 /// What the curve says of the release on screen, in words, and its tone: the outcome it
 /// foretells (Running: too near an edge to tell), or None where it says nothing.
-pub(super) fn release_verdict(app: &App, mine: Option<&Curve>) -> (&'static str, Option<Outcome>) {
+pub fn release_verdict(app: &App, mine: Option<&Curve>) -> (&'static str, Option<Outcome>) {
     let i = app.initial();
     let window = i.xi0 > 1.0;
     let judged = match i.release {
-        Release::Velocity => mine.and_then(|c| judge(c, turn_angle(i.phi), i.v0)),
+        Release::Velocity => mine.and_then(|c| judge(&c.ve, turn_angle(i.phi), i.v0)),
         _ => None,
     };
     let (esc, stk, near) = (
@@ -221,17 +215,11 @@ pub(super) fn release_verdict(app: &App, mine: Option<&Curve>) -> (&'static str,
 
 /// The widest sticking window of a curve outside ξ = 1, in words.
 fn widest(c: &Curve) -> String {
-    let n = c.ve.len();
-    let best = (0..n)
-        .filter_map(|k| match c.ve[k]? {
-            Speeds::Stick { lo, hi } => Some((crate::analysis::angle(k, n), lo, hi)),
-            _ => None,
-        })
-        .max_by(|a, b| (a.2 - a.1).total_cmp(&(b.2 - b.1)));
+    let best = widest_window(&c.ve);
     match best {
         Some((p, lo, hi)) => {
             let (lo, hi, p) = (speed(lo), speed(hi), num(p / PI, 2));
-            crate::ui::fit::alternatives(&[
+            crate::present::alternatives(&[
                 format!("widest window: sticks for v0 {lo}–{hi}, at φ = {p}π"),
                 format!("widest: v0 {lo}–{hi} at φ = {p}π"),
                 format!("widest: v0 {lo}–{hi}"),
@@ -240,55 +228,5 @@ fn widest(c: &Curve) -> String {
         }
         None if c.complete() => "escapes at every speed and angle".into(),
         None => String::new(),
-    }
-}
-
-/// How a release at (φ, v0) ends, read off the curve.
-#[derive(Clone, Copy, Debug, PartialEq)]
-enum Verdict {
-    /// Below the window (outside ξ = 1): escapes.
-    Below,
-    /// Sticks.
-    Inside,
-    /// Above v_e or the window: escapes.
-    Above,
-    /// No speed sticks at this angle.
-    Never,
-    /// Too close to an edge for the chart to tell.
-    Near,
-}
-
-/// The verdict at φ from the curve: at a computed angle its own window, between two the span
-/// of their edges (v_e is monotone between neighbours but at its extremes, where it is flat),
-/// each widened by its bracket's half-width. `None` until both neighbours are known.
-fn judge(c: &Curve, phi: f64, v0: f64) -> Option<Verdict> {
-    let n = c.ve.len();
-    let x = phi / TAU * n as f64;
-    let on_grid = (x - x.round()).abs() < 1e-9;
-    let (a, b) = if on_grid {
-        let k = x.round() as usize % n;
-        (c.ve[k]?, c.ve[k]?)
-    } else {
-        let k = x.floor() as usize % n;
-        (c.ve[k]?, c.ve[(k + 1) % n]?)
-    };
-    let pad = 0.5 * crate::analysis::CURVE_VTOL;
-    match (a, b) {
-        (Speeds::Escapes, Speeds::Escapes) => Some(Verdict::Never),
-        (Speeds::Stick { lo: l1, hi: h1 }, Speeds::Stick { lo: l2, hi: h2 }) => {
-            // A floor of 0 (inside ξ = 1) is exact: no speed is below it.
-            let lo = |x: f64| if x > 0.0 { x + pad } else { 0.0 };
-            Some(if v0 > h1.max(h2) + pad {
-                Verdict::Above
-            } else if l1.min(l2) > 0.0 && v0 < l1.min(l2) - pad {
-                Verdict::Below
-            } else if v0 >= lo(l1.max(l2)) && v0 < h1.min(h2) - pad {
-                Verdict::Inside
-            } else {
-                Verdict::Near
-            })
-        }
-        (Speeds::Unknown, _) | (_, Speeds::Unknown) => None,
-        _ => Some(Verdict::Near),
     }
 }

@@ -2,8 +2,8 @@
 //! engine and the analysis) and the explorer's `E` (which takes what it already holds). Axis
 //! names carry the paper's units: lengths in R_max = μg/Ω², time in 1/Ω, speeds in μg/Ω.
 
-use super::{Figure, Mark, Panel, Series, Style, span};
-use crate::engine::{Frame, State};
+use super::{Figure, Ink, Mark, Panel, Series, Style, extent};
+use crate::engine::{Frame, Initial, State};
 use std::f64::consts::TAU;
 
 const TAU_AXIS: &str = "τ (1/Ω)";
@@ -21,9 +21,18 @@ fn rim() -> Series {
     Series::line("ξ = 1 (R_max)", 2, pts)
 }
 
-/// A path in the plane of `frame` (lab: r; rotating: the table-frame position q), with the
-/// rim, the release and where the path ends, labelled `end`.
-pub fn trajectory(title: &str, path: &[State], frame: Frame, end: &str) -> Figure {
+/// One run a trajectory figure draws: its name, its path, and how it ended.
+pub struct Traced<'a> {
+    pub name: String,
+    pub path: &'a [State],
+    pub end: String,
+}
+
+/// Paths in the plane of `frame` (lab: r; rotating: the table-frame position q), with the rim,
+/// each release with its initial velocity (lab: v; rotating: u, relative to the table) as an
+/// arrow, and where each path ends, labelled by its `end` (and its name when there are
+/// several).
+pub fn trajectory(title: &str, runs: &[Traced], frame: Frame) -> Figure {
     let at = |s: &State| {
         let p = match frame {
             Frame::Lab => s.r,
@@ -31,25 +40,53 @@ pub fn trajectory(title: &str, path: &[State], frame: Frame, end: &str) -> Figur
         };
         (p.x, p.y)
     };
-    let pts: Vec<(f64, f64)> = path.iter().map(at).collect();
-    let reach = pts
+    let paths: Vec<Vec<(f64, f64)>> = runs
         .iter()
+        .map(|r| r.path.iter().map(at).collect())
+        .collect();
+    let reach = paths
+        .iter()
+        .flatten()
         .map(|(x, y)| x.abs().max(y.abs()))
         .fold(1.0_f64, f64::max)
         * 1.08;
     let mut marks = Vec::new();
-    if let (Some(&first), Some(&last)) = (pts.first(), pts.last()) {
+    let mut arrows = Vec::new();
+    for (r, pts) in runs.iter().zip(&paths) {
+        let named = |what: &str| match runs.len() {
+            1 => what.to_string(),
+            _ => format!("{}: {what}", r.name),
+        };
+        let (Some(&first), Some(&last), Some(s0)) = (pts.first(), pts.last(), r.path.first())
+        else {
+            continue;
+        };
         marks.push(Mark::Point {
             x: first.0,
             y: first.1,
-            label: "release".into(),
+            label: named("release"),
+            ink: Ink::Foreground,
         });
         marks.push(Mark::Point {
             x: last.0,
             y: last.1,
-            label: end.into(),
+            label: named(&r.end),
+            ink: Ink::Foreground,
+        });
+        // As the canvas draws it: 0.3 of the view's reach per unit speed, beyond ξ = 1 less.
+        let (v, word) = match frame {
+            Frame::Lab => (s0.v, "v0"),
+            Frame::Table => (s0.u(), "u0"),
+        };
+        let k = 0.3 * reach / s0.xi().max(1.0);
+        arrows.push(Mark::Arrow {
+            from: first,
+            to: (first.0 + k * v.x, first.1 + k * v.y),
+            label: named(word),
+            ink: Ink::Arrow,
         });
     }
+    marks.append(&mut arrows);
     let (name, axes) = match frame {
         Frame::Lab => ("lab frame", ("x (R_max)", "y (R_max)")),
         Frame::Table => (
@@ -57,6 +94,13 @@ pub fn trajectory(title: &str, path: &[State], frame: Frame, end: &str) -> Figur
             ("x on the table (R_max)", "y on the table (R_max)"),
         ),
     };
+    let mut series: Vec<Series> = runs
+        .iter()
+        .zip(paths)
+        .enumerate()
+        .map(|(k, (r, pts))| Series::line(&r.name, k, pts))
+        .collect();
+    series.push(rim());
     Figure {
         title: title.into(),
         panels: vec![Panel {
@@ -66,46 +110,75 @@ pub fn trajectory(title: &str, path: &[State], frame: Frame, end: &str) -> Figur
             x: [-reach, reach],
             y: [-reach, reach],
             equal_aspect: true,
-            series: vec![Series::line("particle", 0, pts), rim()],
+            series,
             marks,
+            ..Panel::default()
         }],
     }
 }
 
-/// The time plots: ξ, θ′, |u| and the energy identity E − E(0) = −∫|u|dτ against τ, with
-/// the stop marked at `stop` (if any).
-pub fn time(title: &str, path: &[State], stop: Option<f64>) -> Figure {
+/// The time plots of a run released as `initial`: ξ, θ′, |u| and the energy identity
+/// E − E(0) = −∫|u|dτ (the run's work at each point of the path, `work`) against τ, with the
+/// stop marked at `stop` (if any). A release at rest shows Sec. III's ξ beside the run's, and
+/// the figure frames twice the window where it holds when the run goes on beyond that.
+pub fn time(
+    title: &str,
+    initial: &Initial,
+    path: &[State],
+    work: &[f64],
+    stop: Option<f64>,
+) -> Figure {
     let over = |f: &dyn Fn(&State) -> f64| -> Vec<(f64, f64)> {
         path.iter().map(|s| (s.tau, f(s))).collect()
     };
-    let x = span(path.iter().map(|s| s.tau));
-    let x = [path.first().map_or(x[0], |s| s.tau), x[1]];
-    let marks: Vec<Mark> = stop
+    let x = extent(path.iter().map(|s| s.tau));
+    let window = crate::engine::approx::window(initial);
+    let x = [
+        path.first().map_or(x[0], |s| s.tau),
+        window.map_or(x[1], |w| x[1].min(2.0 * w)),
+    ];
+    let mut marks: Vec<Mark> = stop
         .map(|t| Mark::VLine {
             x: t,
             label: format!("stuck τ={t:.3}"),
+            ink: Ink::Stuck,
         })
         .into_iter()
         .collect();
+    let mut xi = vec![Series::line("ξ", 0, over(&State::xi))];
+    if let Some(w) = window {
+        marks.push(Mark::VLine {
+            x: w,
+            label: "approx. valid ←".into(),
+            ink: Ink::Muted,
+        });
+        let pts = (0..=200)
+            .map(|k| x[1] * f64::from(k) / 200.0)
+            .map(|t| (t, crate::engine::approx::xi(initial, t)))
+            .collect();
+        xi.push(Series::new("Sec. III approx.", Ink::Trail, false, pts));
+    }
+    // Each y range is what the τ range shows.
     let panel = |title: &str, y_label: &str, series: Vec<Series>| Panel {
         title: title.into(),
         x_label: TAU_AXIS.into(),
         y_label: y_label.into(),
         x,
-        y: span(series.iter().flat_map(|s| s.points.iter().map(|p| p.1))),
+        y: extent(
+            series
+                .iter()
+                .flat_map(|s| s.points.iter().filter(|p| p.0 <= x[1]).map(|p| p.1)),
+        ),
         equal_aspect: false,
         series,
         marks: marks.clone(),
+        ..Panel::default()
     };
-    let [e, w] = crate::ui::time_plots::energy_pair(path);
+    let [e, w] = energy_pair(path, path, work);
     Figure {
         title: title.into(),
         panels: vec![
-            panel(
-                "distance from the centre",
-                "ξ (R_max)",
-                vec![Series::line("ξ", 0, over(&State::xi))],
-            ),
+            panel("distance from the centre", "ξ (R_max)", xi),
             panel(
                 "angular speed in the lab",
                 "θ′ (Ω)",
@@ -161,9 +234,15 @@ pub fn escape_speed(
             equal_aspect: false,
             series,
             marks: release
-                .map(|(x, y, label)| Mark::Point { x, y, label })
+                .map(|(x, y, label)| Mark::Point {
+                    x,
+                    y,
+                    label,
+                    ink: Ink::Particle,
+                })
                 .into_iter()
                 .collect(),
+            ..Panel::default()
         }],
     }
 }
@@ -194,9 +273,11 @@ pub fn rest_radius(title: &str, points: &[(f64, Option<f64>)], xi0c: Option<f64>
                 .map(|c| Mark::VLine {
                     x: c,
                     label: format!("ξ0c = {c:.6}"),
+                    ink: Ink::Escaped,
                 })
                 .into_iter()
                 .collect(),
+            ..Panel::default()
         }],
     }
 }
@@ -211,25 +292,7 @@ pub fn outcome_map(
     curve: Option<Vec<(f64, f64)>>,
     v_axis: &str,
 ) -> Figure {
-    let (w, h) = (TAU / size.0.max(1) as f64, v0_max / size.1.max(1) as f64);
-    let bands = [
-        ("stuck, rest ξ < ¼", 0.0, 0.25, 0.12),
-        ("stuck, ¼ ≤ ξ < ½", 0.25, 0.5, 0.3),
-        ("stuck, ½ ≤ ξ < ¾", 0.5, 0.75, 0.5),
-        ("stuck, ξ ≥ ¾", 0.75, f64::INFINITY, 0.7),
-    ];
-    let mut series: Vec<Series> = bands
-        .iter()
-        .map(|&(name, lo, hi, shade)| Series {
-            name: name.into(),
-            points: cells
-                .iter()
-                .filter(|c| c.2.is_some_and(|xi| (lo..hi).contains(&xi)))
-                .map(|c| (c.0, c.1))
-                .collect(),
-            style: Style::Cells { w, h, shade },
-        })
-        .collect();
+    let mut series = cells_by_rest(cells, size, v0_max);
     if let Some(pts) = curve {
         series.push(Series::line("v_e(φ)", 0, pts));
     }
@@ -244,6 +307,46 @@ pub fn outcome_map(
             equal_aspect: false,
             series,
             marks: vec![],
+            ..Panel::default()
         }],
     }
+}
+
+/// An outcome map's cells over (φ, v0) (`size` = angles × speeds up to `v0_max`) as four
+/// series shaded by where a stuck release rests; an escape is blank.
+pub fn cells_by_rest(
+    cells: &[(f64, f64, Option<f64>)],
+    size: (usize, usize),
+    v0_max: f64,
+) -> Vec<Series> {
+    let (w, h) = (TAU / size.0.max(1) as f64, v0_max / size.1.max(1) as f64);
+    let bands = [
+        ("stuck, rest ξ < ¼", 0.0, 0.25, 0.12),
+        ("stuck, ¼ ≤ ξ < ½", 0.25, 0.5, 0.3),
+        ("stuck, ½ ≤ ξ < ¾", 0.5, 0.75, 0.5),
+        ("stuck, ξ ≥ ¾", 0.75, f64::INFINITY, 0.7),
+    ];
+    bands
+        .iter()
+        .map(|&(name, lo, hi, shade)| Series {
+            name: name.into(),
+            points: cells
+                .iter()
+                .filter(|c| c.2.is_some_and(|xi| (lo..hi).contains(&xi)))
+                .map(|c| (c.0, c.1))
+                .collect(),
+            style: Style::Cells { w, h, shade },
+            ink: Ink::Stuck,
+        })
+        .collect()
+}
+
+/// E − E(0) along `path`, beside the work done up to each point of `grid` (`work`, the run's
+/// own tally, `engine::work`): the two sides of dE/dτ = −|u|.
+pub fn energy_pair(path: &[State], grid: &[State], work: &[f64]) -> [Vec<(f64, f64)>; 2] {
+    let e0 = path.first().map_or(0.0, State::energy);
+    [
+        path.iter().map(|s| (s.tau, s.energy() - e0)).collect(),
+        grid.iter().zip(work).map(|(s, w)| (s.tau, *w)).collect(),
+    ]
 }

@@ -2,8 +2,8 @@
 //! safe palette (Okabe & Ito) and a dash pattern per curve, so it prints in grey too.
 //! Coordinates carry four decimals of a pixel: the data can be read back from them.
 
-use super::{Figure, Mark, Panel, Style};
-use crate::ui::chart::{tick_label, ticks};
+use super::{Figure, Ink, Mark, Panel, Style};
+use super::{sane, tick_label, ticks};
 use std::fmt::Write as _;
 
 const WIDTH: f64 = 800.0;
@@ -21,8 +21,13 @@ const PALETTE: [&str; 7] = [
 ];
 const DASHES: [&str; 5] = ["", "8 4", "2 3", "10 3 2 3", "4 4"];
 
-/// Text for an SVG element or attribute.
+/// Grey for second things (`Ink::Muted`): pins, the paper's other curves, approximations.
+const MUTED: &str = "#999999";
+
+/// Text for an SVG element or attribute: the first of its wordings (see
+/// `present::alternatives`), the longest, as a page has room for it.
 fn esc(s: &str) -> String {
+    let s = s.split(crate::present::OR).next().unwrap_or_default();
     let mut out = String::with_capacity(s.len());
     for c in s.chars() {
         match c {
@@ -117,7 +122,6 @@ impl Axes {
 fn panel(s: &mut String, p: &Panel, top: f64, height: f64) {
     let (x0, y0) = (LEFT, top + TOP);
     let (w, h) = (WIDTH - LEFT - RIGHT, height - TOP - BOTTOM);
-    let sane = |r: [f64; 2]| crate::ui::chart::sane(r);
     let (xr, yr) = match p.equal_aspect {
         true => equalize(sane(p.x), sane(p.y), w, h),
         false => (sane(p.x), sane(p.y)),
@@ -151,7 +155,10 @@ fn axes(s: &mut String, p: &Panel, ax: &Axes, top: f64) {
         "<g class=\"panel\">\n<text class=\"panel-title\" x=\"{}\" y=\"{}\" text-anchor=\"middle\" font-size=\"14\">{}</text>",
         c(x0 + w / 2.0),
         c(top + TOP - 10.0),
-        esc(&p.title)
+        esc(&match p.note.is_empty() {
+            true => p.title.clone(),
+            false => format!("{} — {}", p.title, p.note),
+        })
     );
     // Grid and ticks.
     for v in ticks(xr[0], xr[1], 8) {
@@ -207,6 +214,13 @@ fn axes(s: &mut String, p: &Panel, ax: &Axes, top: f64) {
 fn series(s: &mut String, p: &Panel, ax: &Axes) -> Vec<(String, String)> {
     let Axes { w, h, xr, yr, .. } = *ax;
     let mut colours = 0;
+    let mut next_colour = |ink: Ink| match ink {
+        Ink::Muted => MUTED,
+        _ => {
+            colours += 1;
+            PALETTE[(colours - 1) % PALETTE.len()]
+        }
+    };
     let mut legend = Vec::new();
     for ser in &p.series {
         let name = esc(&ser.name);
@@ -237,8 +251,7 @@ fn series(s: &mut String, p: &Panel, ax: &Axes) -> Vec<(String, String)> {
                 legend.push((name, format!("<rect width=\"18\" height=\"10\" y=\"-5\" fill=\"{fill}\" stroke=\"#888\"/>")));
             }
             Style::Dots => {
-                let colour = PALETTE[colours % PALETTE.len()];
-                colours += 1;
+                let colour = next_colour(ser.ink);
                 let _ = writeln!(
                     s,
                     "<g class=\"dots\" data-name=\"{name}\" fill=\"{colour}\">"
@@ -258,8 +271,7 @@ fn series(s: &mut String, p: &Panel, ax: &Axes) -> Vec<(String, String)> {
                 ));
             }
             Style::Line { dash } => {
-                let colour = PALETTE[colours % PALETTE.len()];
-                colours += 1;
+                let colour = next_colour(ser.ink);
                 let dash = DASHES[dash % DASHES.len()];
                 let dash_attr = match dash {
                     "" => String::new(),
@@ -300,7 +312,7 @@ fn marks(s: &mut String, p: &Panel, ax: &Axes) {
     } = *ax;
     for m in &p.marks {
         match m {
-            Mark::VLine { x, label } if ax.inside(*x, yr[0]) => {
+            Mark::VLine { x, label, .. } if ax.inside(*x, yr[0]) => {
                 let xp = c(ax.px(*x));
                 // The label on the side with room for it.
                 let (lx, anchor) = match ax.px(*x) > x0 + 0.6 * w {
@@ -318,7 +330,22 @@ fn marks(s: &mut String, p: &Panel, ax: &Axes) {
                     esc(label)
                 );
             }
-            Mark::Point { x, y, label } if ax.inside(*x, *y) => {
+            Mark::Text { x, y, label, .. } if ax.inside(*x, *y) => {
+                let _ = writeln!(
+                    s,
+                    "<text class=\"mark-label\" x=\"{}\" y=\"{}\" font-size=\"11\">{}</text>",
+                    c(ax.px(*x)),
+                    c(ax.py(*y)),
+                    esc(label)
+                );
+            }
+            Mark::Arrow {
+                from,
+                to,
+                label,
+                ink,
+            } => arrow(s, ax, *from, *to, label, *ink),
+            Mark::Point { x, y, label, .. } if ax.inside(*x, *y) => {
                 let (lx, anchor) = match ax.px(*x) > x0 + 0.6 * w {
                     true => (ax.px(*x) - 7.0, "end"),
                     false => (ax.px(*x) + 7.0, "start"),
@@ -337,6 +364,51 @@ fn marks(s: &mut String, p: &Panel, ax: &Axes) {
             _ => {}
         }
     }
+}
+
+/// An arrow from `from` to `to` (data units) with its head and its label beyond it.
+fn arrow(s: &mut String, ax: &Axes, from: (f64, f64), to: (f64, f64), label: &str, ink: Ink) {
+    let (x0, y0, x1, y1) = (ax.px(from.0), ax.py(from.1), ax.px(to.0), ax.py(to.1));
+    let (dx, dy) = (x1 - x0, y1 - y0);
+    let len = dx.hypot(dy);
+    if !(len.is_finite() && len > 0.0) {
+        return;
+    }
+    let colour = match ink {
+        Ink::Muted => MUTED,
+        _ => "#000000",
+    };
+    // The head: two strokes back from the tip, 9 px long, ±25° off the shaft.
+    let (ux, uy) = (dx / len, dy / len);
+    let head = |a: f64| {
+        let (sa, ca) = a.sin_cos();
+        (
+            x1 - 9.0 * (ux * ca - uy * sa),
+            y1 - 9.0 * (uy * ca + ux * sa),
+        )
+    };
+    let ((ax1, ay1), (ax2, ay2)) = (head(0.45), head(-0.45));
+    let _ = writeln!(
+        s,
+        "<g class=\"arrow\" data-name=\"{}\" stroke=\"{colour}\" stroke-width=\"1.5\">\
+         <line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\"/>\
+         <polyline fill=\"none\" points=\"{},{} {},{} {},{}\"/></g>\n\
+         <text class=\"mark-label\" x=\"{}\" y=\"{}\" font-size=\"11\" fill=\"{colour}\">{}</text>",
+        esc(label),
+        c(x0),
+        c(y0),
+        c(x1),
+        c(y1),
+        c(ax1),
+        c(ay1),
+        c(x1),
+        c(y1),
+        c(ax2),
+        c(ay2),
+        c(x1 + 4.0 * ux + 2.0),
+        c(y1 + 4.0 * uy),
+        esc(label)
+    );
 }
 
 /// The data's clip closed, the plot's frame and the legend beside it.
@@ -367,7 +439,7 @@ fn frame_and_legend(s: &mut String, ax: &Axes, legend: &[(String, String)]) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::figure::Series;
+    use crate::plot::Series;
 
     #[test]
     fn text_is_escaped_and_coordinates_are_clean() {
@@ -393,6 +465,7 @@ mod tests {
                     vec![(0.0, 0.0), (5.0, f64::NAN), (10.0, 1.0), (2.0, 0.5)],
                 )],
                 marks: vec![],
+                ..Panel::default()
             }],
         };
         let svg = to_svg(&fig);

@@ -1,11 +1,11 @@
 //! The arrows at the particle: the forces in the frame shown (Sec. II), their sum and the
 //! velocity, scaled together and labelled at their heads.
 
+use super::super::Ink;
 use crate::app::App;
 use crate::engine::Frame;
 use crate::engine::model::{coupled_forces, rotate};
 use glam::DVec2;
-use ratatui::style::Color;
 
 /// A force arrow as drawn: its label at the head (so it reads without colour), the word the
 /// legend uses, and the vector in world units of the frame shown.
@@ -14,7 +14,7 @@ pub struct ForceArrow {
     pub label: &'static str,
     pub word: &'static str,
     pub vec: DVec2,
-    pub color: Color,
+    pub ink: Ink,
 }
 
 /// Share of the visible half-width the longest force arrow takes.
@@ -31,26 +31,25 @@ pub fn force_arrows(app: &App, half_width: f64) -> Vec<ForceArrow> {
 /// [`force_arrows`], and the net force at their scale (their sum: du/dτ in the rotating
 /// frame, dv/dτ in the lab).
 fn forces(app: &App, half_width: f64) -> (Vec<ForceArrow>, DVec2) {
-    let th = &app.theme;
     let now = app.sim().now();
     let [fr, co, ce] = coupled_forces(&now, app.initial().frictionless, app.settings().coupling);
     let mut out = Vec::new();
-    let mut push = |label, word, vec: DVec2, color| {
+    let mut push = |label, word, vec: DVec2, ink| {
         if vec.length() > 0.0 {
             out.push(ForceArrow {
                 label,
                 word,
                 vec,
-                color,
+                ink,
             });
         }
     };
     match app.view {
-        Frame::Lab => push("fr", "friction", rotate(fr, now.tau), th.friction),
+        Frame::Lab => push("fr", "friction", rotate(fr, now.tau), Ink::Friction),
         Frame::Table => {
-            push("fr", "friction", fr, th.friction);
-            push("co", "Coriolis", co, th.coriolis);
-            push("cf", "centrifugal", ce, th.centrifugal);
+            push("fr", "friction", fr, Ink::Friction);
+            push("co", "Coriolis", co, Ink::Coriolis);
+            push("cf", "centrifugal", ce, Ink::Centrifugal);
         }
     }
     let mut net: DVec2 = out.iter().map(|f| f.vec).sum();
@@ -70,7 +69,6 @@ fn forces(app: &App, half_width: f64) -> (Vec<ForceArrow>, DVec2) {
 /// the rotating frame, the lab velocity in the lab; `speed_scale` world units per unit speed,
 /// as the initial velocity's arrow). A zero vector is not drawn.
 pub fn arrows(app: &App, half_width: f64, speed_scale: f64) -> Vec<ForceArrow> {
-    let th = &app.theme;
     let (mut out, net) = forces(app, half_width);
     if !app.forces {
         out.clear();
@@ -82,7 +80,7 @@ pub fn arrows(app: &App, half_width: f64, speed_scale: f64) -> Vec<ForceArrow> {
             label: "net",
             word: "net force",
             vec: net,
-            color: th.foreground,
+            ink: Ink::Foreground,
         });
     }
     if app.velocity {
@@ -92,7 +90,7 @@ pub fn arrows(app: &App, half_width: f64, speed_scale: f64) -> Vec<ForceArrow> {
                 label,
                 word,
                 vec: v * speed_scale,
-                color: th.arrow,
+                ink: Ink::Arrow,
             });
         }
     }

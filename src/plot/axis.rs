@@ -1,0 +1,99 @@
+//! Axes for both backends: round tick values, their labels, and ranges that can always be
+//! drawn. The terminal's charts and the SVG writer place the same ticks.
+
+use crate::engine::units::{Quantity, Units};
+pub use crate::present::tick_label;
+
+/// An axis name with the SI value of its unit beside it when the table is real:
+/// `τ (1 = 303 ms)`.
+pub fn axis(name: &str, q: Quantity, units: Option<Units>) -> String {
+    match units {
+        Some(u) => format!("{name} (1 = {})", u.unit_of(q)),
+        None => name.to_string(),
+    }
+}
+
+/// Tick values: a 1-2-5 step giving about `n` ticks over `[a, b]`.
+pub fn ticks(a: f64, b: f64, n: usize) -> Vec<f64> {
+    let span = b - a;
+    if !(span.is_finite() && span > 0.0) || n == 0 {
+        return vec![a];
+    }
+    let raw = span / n as f64;
+    let e = raw.log10().floor() as i32;
+    let mag = 10f64.powi(e);
+    let m = [1.0, 2.0, 5.0, 10.0]
+        .into_iter()
+        .find(|m| m * mag >= raw)
+        .unwrap_or(10.0);
+    let step = m * mag;
+    let first = (a / step).ceil() as i64;
+    let last = (b / step).floor() as i64;
+    // k·m·10^e, divided rather than multiplied for e < 0 so 0.6 is 0.6.
+    let at = |k: i64| {
+        let v = k as f64 * m;
+        if e < 0 { v / 10f64.powi(-e) } else { v * mag }
+    };
+    (first..=last).take(1000).map(at).collect()
+}
+
+/// Widens a degenerate or non-finite range so a chart can always be drawn.
+pub fn sane(r: [f64; 2]) -> [f64; 2] {
+    let [a, b] = r;
+    if !(a.is_finite() && b.is_finite()) {
+        return [0.0, 1.0];
+    }
+    if b - a > 1e-12 * a.abs().max(b.abs()).max(1e-300) {
+        [a, b]
+    } else {
+        let pad = 0.5 * a.abs().max(1e-3);
+        [a - pad, b + pad]
+    }
+}
+
+/// The bounds of some points with a small margin.
+pub fn extent(points: impl Iterator<Item = f64>) -> [f64; 2] {
+    let (lo, hi) = points
+        .filter(|v| v.is_finite())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| {
+            (l.min(v), h.max(v))
+        });
+    let pad = 0.05 * (hi - lo);
+    sane([lo - pad, hi + pad])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ticks_are_round_and_inside() {
+        assert_eq!(ticks(0.0, 1.0, 5), vec![0.0, 0.2, 0.4, 0.6, 0.8, 1.0]);
+        assert_eq!(
+            ticks(0.0, std::f64::consts::TAU, 4),
+            vec![0.0, 2.0, 4.0, 6.0]
+        );
+        let t = ticks(-0.37, 12.5, 3);
+        assert_eq!(t, vec![0.0, 5.0, 10.0]);
+        assert_eq!(ticks(1.0, 1.0, 3), vec![1.0]);
+    }
+
+    #[test]
+    fn labels_are_short() {
+        assert_eq!(tick_label(0.6), "0.6");
+        assert_eq!(tick_label(1.0 / 3.0), "0.333");
+        assert_eq!(tick_label(12.0), "12");
+        assert_eq!(tick_label(-0.25), "-0.25");
+        assert_eq!(tick_label(1e-4), "1e-4");
+        assert_eq!(tick_label(0.0), "0");
+    }
+
+    #[test]
+    fn ranges_are_never_degenerate() {
+        assert_eq!(sane([f64::NAN, 1.0]), [0.0, 1.0]);
+        let [a, b] = sane([2.0, 2.0]);
+        assert!(a < 2.0 && b > 2.0);
+        let [a, b] = extent([f64::INFINITY, 1.0, 3.0].into_iter());
+        assert!(a < 1.0 && b > 3.0);
+    }
+}
