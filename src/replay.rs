@@ -24,7 +24,7 @@ pub const OUTPUT_MAX: u64 = 256 << 20;
 pub const CAST_BYTES_MAX: u64 = 256 << 20;
 
 /// How to run a script.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Options {
     /// Initial terminal size (a `resize` step changes it).
     pub size: (u16, u16),
@@ -32,6 +32,8 @@ pub struct Options {
     pub ansi: bool,
     /// Plain mode: the lines `--plain` prints, not screens (a snapshot reads the readouts).
     pub plain: bool,
+    /// How the screens are drawn.
+    pub theme: crate::theme::Theme,
 }
 
 impl Default for Options {
@@ -40,6 +42,7 @@ impl Default for Options {
             size: DEFAULT_SIZE,
             ansi: false,
             plain: false,
+            theme: crate::theme::Theme::builtin("dark").expect("dark is built in"),
         }
     }
 }
@@ -89,7 +92,7 @@ fn run(
     if opts.plain {
         return plain(app, steps, opts, out);
     }
-    let mut s = Session::headless(app, opts.size.0, opts.size.1, false);
+    let mut s = Session::headless(app, opts.theme.clone(), opts.size.0, opts.size.1, false);
     s.carry = answer;
     let mut shots = 0;
     // Ticks passed: the recording's clock.
@@ -150,7 +153,7 @@ fn plain(
     out: &mut dyn std::io::Write,
 ) -> std::io::Result<()> {
     use crate::ui::plain::{Seen, describe, opening};
-    let mut s = Session::headless(app, opts.size.0, opts.size.1, false);
+    let mut s = Session::headless(app, opts.theme.clone(), opts.size.0, opts.size.1, false);
     s.carry = answer;
     let mut seen = Seen::of(&s.app);
     let say = |s: &Session<TestBackend>, seen: &mut Seen, out: &mut dyn std::io::Write| {
@@ -246,10 +249,9 @@ mod tests {
     use super::*;
     use crate::scene::Scene;
     use crate::script::parse;
-    use crate::theme::Theme;
 
     fn app() -> App {
-        App::new(Scene::default_scene(), Theme::builtin("dark").unwrap())
+        App::new(Scene::default_scene())
     }
 
     fn run(script: &str) -> String {

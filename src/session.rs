@@ -6,6 +6,7 @@
 use crate::analysis::Analysis;
 use crate::app::{App, Chord, Effect, Effects};
 use crate::script::{Recorder, Step};
+use crate::theme::Theme;
 use crossterm::event::{KeyEvent, MouseEvent};
 use ratatui::Terminal;
 use ratatui::backend::{Backend, TestBackend};
@@ -32,6 +33,8 @@ pub fn lock(r: &SharedRecorder) -> MutexGuard<'_, Recorder> {
 /// Every event goes through here, in the interactive loop and in a replay alike.
 pub struct Session<B: Backend> {
     pub app: App,
+    /// How the app is drawn: the view's, not the model's.
+    pub theme: Theme,
     pub term: Terminal<B>,
     recorder: Option<SharedRecorder>,
     /// An interactive lesson's script, fed in as time passes (see [`Session::pump_lesson`]).
@@ -47,7 +50,12 @@ pub struct Session<B: Backend> {
 impl<B: Backend> Session<B> {
     /// With a `recorder` (see [`new_recorder`]), the script starts with the terminal's
     /// current size.
-    pub fn new(app: App, backend: B, recorder: Option<SharedRecorder>) -> Result<Self, B::Error> {
+    pub fn new(
+        app: App,
+        theme: Theme,
+        backend: B,
+        recorder: Option<SharedRecorder>,
+    ) -> Result<Self, B::Error> {
         let term = Terminal::new(backend)?;
         let size = term.size()?;
         if let Some(r) = &recorder {
@@ -55,13 +63,14 @@ impl<B: Backend> Session<B> {
         }
         let mut s = Session {
             app,
+            theme,
             term,
             recorder,
             lesson: None,
             carry: carry_out,
             analysis: Analysis::inline(),
         };
-        tell_size(&mut s.app, size.width, size.height);
+        tell_size(&mut s.app, &s.theme, size.width, size.height);
         s.ask_analysis();
         Ok(s)
     }
@@ -213,7 +222,7 @@ impl<B: Backend> Session<B> {
         if let Some(r) = &self.recorder {
             lock(r).resize(width, height);
         }
-        tell_size(&mut self.app, width, height);
+        tell_size(&mut self.app, &self.theme, width, height);
         self.ask_analysis();
     }
 
@@ -221,9 +230,9 @@ impl<B: Backend> Session<B> {
     pub fn draw(&mut self) -> Result<(), B::Error> {
         self.sync_analysis();
         let mut geom = None;
-        let ascii = self.app.theme.marker == Marker::Dot;
+        let ascii = self.theme.marker == Marker::Dot;
         self.term.draw(|f| {
-            geom = crate::ui::draw(f, &self.app);
+            geom = crate::ui::draw(f, &self.app, &self.theme);
             if ascii {
                 ascii_cells(f.buffer_mut());
             }
@@ -249,11 +258,11 @@ impl<B: Backend> Session<B> {
 
 /// Tells `app` the terminal is now `width` × `height`, and what the view measures there (the
 /// help's page and end).
-pub fn tell_size(app: &mut App, width: u16, height: u16) {
+pub fn tell_size(app: &mut App, theme: &Theme, width: u16, height: u16) {
     app.resize(width, height);
     app.measured(crate::app::Measured {
         help_page: crate::ui::help::page(height),
-        help_max_scroll: crate::ui::help::max_scroll(width, height, &app.theme),
+        help_max_scroll: crate::ui::help::max_scroll(width, height, theme),
     });
 }
 
@@ -404,9 +413,14 @@ fn ok<T>(r: Result<T, Infallible>) -> T {
 
 impl Session<TestBackend> {
     /// A session on an off-screen terminal of `width` × `height` cells.
-    pub fn headless(app: App, width: u16, height: u16, record: bool) -> Self {
+    pub fn headless(app: App, theme: Theme, width: u16, height: u16, record: bool) -> Self {
         let recorder = record.then(new_recorder);
-        ok(Session::new(app, TestBackend::new(width, height), recorder))
+        ok(Session::new(
+            app,
+            theme,
+            TestBackend::new(width, height),
+            recorder,
+        ))
     }
 
     pub fn resize(&mut self, width: u16, height: u16) {

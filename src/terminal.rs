@@ -141,6 +141,7 @@ pub type SaveRecording = Box<dyn FnOnce(String) + Send>;
 /// With `lesson`, its script is fed in as the session goes (`Session::pump_lesson`).
 pub fn run(
     app: App,
+    theme: crate::theme::Theme,
     fps: u32,
     record: Option<SaveRecording>,
     lesson: Option<crate::lesson::Driver>,
@@ -153,7 +154,7 @@ pub fn run(
         // The analysis pages fill in off this thread: keys never wait for them.
         |recorder| {
             setup(mouse)
-                .and_then(|b| Session::new(app, b, recorder))
+                .and_then(|b| Session::new(app, theme, b, recorder))
                 .map(Session::with_worker)
         },
         |session, flags| event_loop(session, fps.clamp(1, 240), flags),

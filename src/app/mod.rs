@@ -24,12 +24,11 @@ pub use update::update;
 
 use crate::engine::Settings;
 use crate::scene::Scene;
-use crate::theme::Theme;
 use crossterm::event::{KeyCode, KeyEvent, KeyModifiers, MouseButton, MouseEvent, MouseEventKind};
 
 impl App {
-    pub fn new(scene: Scene, theme: Theme) -> App {
-        App::build(scene, theme)
+    pub fn new(scene: Scene) -> App {
+        App::build(scene)
     }
 
     /// A terminal's key event: its chord, if it has one (releases have none). Returns what

@@ -6,7 +6,6 @@ use crate::engine::{Frame, Initial, Settings, State};
 use crate::present::num;
 use crate::scene::Scene;
 use crate::sim::Sim;
-use crate::theme::Theme;
 use ratatui::layout::Rect;
 use std::path::PathBuf;
 
@@ -92,7 +91,6 @@ pub struct App {
     pub(super) exploration: super::exploration::Exploration,
     /// In a body scene, the point model's path and marker drawn beside the body (`C`).
     pub point_model: bool,
-    pub theme: Theme,
     pub playing: bool,
     pub speed: f64,
     /// The frame the picture is drawn in (lab or rotating).
@@ -152,7 +150,7 @@ pub fn view_radius(initial: &Initial) -> f64 {
 }
 
 impl App {
-    pub(crate) fn build(scene: Scene, theme: Theme) -> App {
+    pub(crate) fn build(scene: Scene) -> App {
         let units = scene.units;
         let mut pins = Vec::new();
         for spec in scene.pins.iter().rev().take(crate::pin::MAX_PINS).rev() {
@@ -167,7 +165,6 @@ impl App {
             notice: exploration.take_rod_notice(),
             exploration,
             point_model: view.is_none_or(|v| v.point),
-            theme,
             playing: true,
             speed: view.map_or(1.0, |v| v.speed),
             view: view.map_or(Frame::Lab, |v| v.frame),

@@ -36,10 +36,10 @@ pub(super) fn counted(size: (u16, u16)) -> Result<(Counted, Rc<Cell<usize>>), Er
 }
 
 /// Draws `app` as the explorer does.
-pub(super) fn draw(term: &mut Counted, app: &mut App) -> Result<(), Error> {
+pub(super) fn draw(term: &mut Counted, app: &mut App, th: &Theme) -> Result<(), Error> {
     crate::session::sync(app, &mut crate::analysis::Analysis::inline(), true);
     let mut geom = None;
-    term.draw(|f| geom = crate::ui::draw(f, app))?;
+    term.draw(|f| geom = crate::ui::draw(f, app, th))?;
     app.drawn(geom);
     Ok(())
 }
@@ -72,13 +72,13 @@ pub fn measure(theme: &str, depth: Depth, size: (u16, u16), frames: usize) -> Re
     let th = Theme::builtin(theme)
         .ok_or_else(|| Error::invalid(format!("no theme {theme}")))?
         .with_depth(depth);
-    let mut app = App::new(Scene::default_scene(), th);
+    let mut app = App::new(Scene::default_scene());
     let (mut term, count) = counted(size)?;
-    draw(&mut term, &mut app)?;
+    draw(&mut term, &mut app, &th)?;
     let start = count.get();
     for _ in 0..frames {
         app.tick();
-        draw(&mut term, &mut app)?;
+        draw(&mut term, &mut app, &th)?;
     }
     let bytes = (count.get() - start) as f64 / frames.max(1) as f64;
     Ok(Bytes {
@@ -151,9 +151,10 @@ pub fn cast_worst(size: (u16, u16), ticks: usize) -> Result<CastBytes, Error> {
     for theme in crate::theme::BUILTIN {
         let th =
             Theme::builtin(theme).ok_or_else(|| Error::invalid(format!("no theme {theme}")))?;
-        let app = App::new(Scene::default_scene(), th);
+        let app = App::new(Scene::default_scene());
         let opts = crate::replay::Options {
             size,
+            theme: th,
             ..Default::default()
         };
         let steps = [crate::script::Step::Tick(ticks as u64)];

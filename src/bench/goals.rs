@@ -367,7 +367,7 @@ fn frame_time(reps: usize) -> Result<(f64, usize), Error> {
     use crate::app::{Action, App, update};
     use ratatui::{Terminal, backend::TestBackend};
     let theme = crate::theme::Theme::builtin("dark").ok_or(Error::invalid("no dark theme"))?;
-    let mut app = App::new(crate::scene::Scene::default_scene(), theme);
+    let mut app = App::new(crate::scene::Scene::default_scene());
     update(&mut app, Action::ToggleCompare);
     while app.sim().samples.len() < 20_000 {
         app.tick();
@@ -376,7 +376,7 @@ fn frame_time(reps: usize) -> Result<(f64, usize), Error> {
     let (r, ms) = timed(reps.max(5), || {
         app.tick();
         let mut geom = None;
-        term.draw(|f| geom = crate::ui::draw(f, &app))?;
+        term.draw(|f| geom = crate::ui::draw(f, &app, &theme))?;
         app.drawn(geom);
         Ok::<(), std::convert::Infallible>(())
     });

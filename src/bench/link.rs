@@ -63,7 +63,7 @@ pub fn simulate_scene(scene: &Scene, rate: f64, seconds: f64) -> Result<Link, Er
         .with_depth(Depth::Ansi256);
     let size = (120, 40);
     let (mut term, count) = counted(size)?;
-    let mut app = App::new(scene.clone(), theme.clone());
+    let mut app = App::new(scene.clone());
     let t0 = Instant::now();
     let mut clock = Clock::new(t0);
     let (mut now, mut ticks, mut frames) = (0.0, 0u64, 0usize);
@@ -78,7 +78,7 @@ pub fn simulate_scene(scene: &Scene, rate: f64, seconds: f64) -> Result<Link, Er
             ticks += 1;
         }
         let before = count.get();
-        draw(&mut term, &mut app)?;
+        draw(&mut term, &mut app, &theme)?;
         let trip = (count.get() - before) as f64 / rate;
         in_flight = in_flight.max(1 + usize::from(arrived > now));
         arrived = now + trip;
@@ -96,13 +96,13 @@ pub fn simulate_scene(scene: &Scene, rate: f64, seconds: f64) -> Result<Link, Er
     let paced_bytes = count.get() - first_bytes;
     // Unpaced: every tick drawn at once, the link carrying what it can.
     let (mut term, count) = counted(size)?;
-    let mut app = App::new(scene.clone(), theme);
+    let mut app = App::new(scene.clone());
     let mut ends = Vec::new();
-    draw(&mut term, &mut app)?;
+    draw(&mut term, &mut app, &theme)?;
     ends.push(count.get());
     for _ in 0..(seconds * f64::from(TICKS_PER_SECOND)) as usize {
         app.tick();
-        draw(&mut term, &mut app)?;
+        draw(&mut term, &mut app, &theme)?;
         ends.push(count.get());
     }
     let carried = (rate * seconds) as usize;

@@ -116,7 +116,7 @@ fn explore(
         None => None,
     };
     needs_terminal(plain)?;
-    let mut app = crate::app::App::new(scene, theme);
+    let mut app = crate::app::App::new(scene);
     // Units: the flags, else the scene's own, else the configuration's.
     if units.is_some() {
         app.units = units;
@@ -149,9 +149,9 @@ fn explore(
     });
     let fps = cli.fps.or(config.fps).unwrap_or(30);
     let (result, script) = if plain {
-        crate::terminal::plain::run(app, save, lesson)
+        crate::terminal::plain::run(app, theme, save, lesson)
     } else {
-        crate::terminal::run(app, fps, save, lesson)
+        crate::terminal::run(app, theme, fps, save, lesson)
     };
     keep_recording(recording, script, result)
 }

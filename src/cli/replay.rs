@@ -108,11 +108,12 @@ pub fn prepare(
             )),
             e => e,
         })?;
-    let app = crate::app::App::new(scene, theme);
+    let app = crate::app::App::new(scene);
     let opts = Options {
         size: a.size.or(own.size).unwrap_or(crate::replay::DEFAULT_SIZE),
         ansi: (a.ansi || own.ansi) && !a.plain,
         plain: a.plain,
+        theme,
     };
     Ok((app, opts, steps))
 }

@@ -41,6 +41,7 @@ fn enter() -> io::Result<()> {
 /// screens.
 pub fn run(
     app: App,
+    theme: crate::theme::Theme,
     record: Option<SaveRecording>,
     lesson: Option<crate::lesson::Driver>,
 ) -> (io::Result<Option<i32>>, Option<String>) {
@@ -55,7 +56,7 @@ pub fn run(
                 // The analysis pages compute off this thread, as in the explorer: their
                 // numbers are said when they arrive (`ui::pages::summary`), and keys never
                 // wait for them.
-                Session::new(app, TestBackend::new(w, h), recorder)
+                Session::new(app, theme, TestBackend::new(w, h), recorder)
                     .map(Session::with_worker)
                     .map_err(|e| match e {})
             })

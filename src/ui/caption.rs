@@ -5,6 +5,7 @@
 use super::fit::{fit, wrap};
 use super::layout::Regions;
 use crate::app::App;
+use crate::theme::Theme;
 use ratatui::Frame;
 use ratatui::layout::Rect;
 use ratatui::style::Style;
@@ -21,9 +22,8 @@ pub fn area(r: &Regions) -> Rect {
     }
 }
 
-pub fn render(frame: &mut Frame, r: &Regions, app: &App) {
+pub fn render(frame: &mut Frame, r: &Regions, app: &App, th: &Theme) {
     let Some(c) = app.caption() else { return };
-    let th = &app.theme;
     let room = area(r);
     if room.width < 3 || room.height < 3 {
         return;

@@ -187,8 +187,7 @@ pub fn page(height: u16) -> u16 {
     height.saturating_sub(3).max(1)
 }
 
-pub fn render(f: &mut TuiFrame, area: Rect, app: &App) {
-    let th = &app.theme;
+pub fn render(f: &mut TuiFrame, area: Rect, app: &App, th: &Theme) {
     let popup = popup(area);
     f.render_widget(Clear, popup);
     let cols = columns(popup.width.saturating_sub(2), th);

@@ -14,6 +14,7 @@ pub mod time_plots;
 
 use crate::app::{App, CanvasGeom};
 use crate::engine::Outcome;
+use crate::theme::Theme;
 use ratatui::Frame;
 use ratatui::layout::{Alignment, Rect};
 use ratatui::style::Style;
@@ -26,9 +27,8 @@ pub use layout::{MIN_SIZE, PANEL_W};
 /// Draws the whole screen and returns where the canvas went (None when there is none), for
 /// the caller to hand to [`App::drawn`] so mouse cells map to the table. Pure: it reads the
 /// state only. Never panics, whatever the size.
-pub fn draw(frame: &mut Frame, app: &App) -> Option<CanvasGeom> {
+pub fn draw(frame: &mut Frame, app: &App, th: &Theme) -> Option<CanvasGeom> {
     let area = frame.area();
-    let th = app.theme.clone();
     let base = Style::default().bg(th.background).fg(th.foreground);
     let Some(r) = layout::regions(area.width, area.height) else {
         let msg = format!(
@@ -57,10 +57,10 @@ pub fn draw(frame: &mut Frame, app: &App) -> Option<CanvasGeom> {
     );
     let (canvas_area, panel_area, lesson, status) = (r.canvas, r.panel, r.lesson, r.status);
     let geom = match app.page {
-        crate::app::pages::Page::Turntable => Some(canvas::render(frame, canvas_area, app)),
-        _ => pages::render(frame, canvas_area, app),
+        crate::app::pages::Page::Turntable => Some(canvas::render(frame, canvas_area, app, th)),
+        _ => pages::render(frame, canvas_area, app, th),
     };
-    panel::render(frame, panel_area, app);
+    panel::render(frame, panel_area, app, th);
     frame.render_widget(
         Paragraph::new(Span::styled(
             fit::fit(&lesson_line(app), "\0", usize::from(area.width)),
@@ -68,10 +68,10 @@ pub fn draw(frame: &mut Frame, app: &App) -> Option<CanvasGeom> {
         )),
         lesson,
     );
-    frame.render_widget(Paragraph::new(status_line(app, status.width)), status);
-    caption::render(frame, &r, app);
+    frame.render_widget(Paragraph::new(status_line(app, th, status.width)), status);
+    caption::render(frame, &r, app, th);
     if app.help {
-        help::render(frame, r.help, app);
+        help::render(frame, r.help, app, th);
     }
     // A theme that sets a background sets it on every cell: widgets that paint none (chart
     // interiors, cleared cells) would show the terminal's own, white boxes on a dark theme.
@@ -159,8 +159,7 @@ pub fn lesson_line(app: &App) -> String {
     }
 }
 
-fn status_line(app: &App, width: u16) -> Line<'static> {
-    let th = &app.theme;
+fn status_line(app: &App, th: &Theme, width: u16) -> Line<'static> {
     if let Some(p) = &app.prompt {
         // The end of a long line stays in sight: what is typed is what shows.
         let label = format!(" {}: ", p.label());

@@ -10,6 +10,7 @@ use crate::app::pages::Page;
 use crate::engine::model::turn_angle;
 use crate::engine::{Frame, Outcome, Release, Status};
 use crate::sim::Sim;
+use crate::theme::Theme;
 use crate::ui::panel::{num, speed};
 use std::f64::consts::PI;
 
@@ -353,7 +354,9 @@ fn body_events(app: &App) -> Vec<String> {
 /// itself (a single indented span) is joined back into one line.
 fn readouts(app: &App) -> Vec<String> {
     let mut out: Vec<String> = Vec::new();
-    for l in crate::ui::panel::lines(app) {
+    // Words only: any theme's colours are dropped.
+    let th = Theme::builtin("mono").expect("mono is built in");
+    for l in crate::ui::panel::lines(app, &th) {
         let text: String = l.spans.iter().map(|s| s.content.as_ref()).collect();
         let wrapped = l.spans.len() == 1 && text.starts_with("  ");
         // The panel pads keys into a column: one blank is enough to hear.

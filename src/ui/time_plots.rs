@@ -3,14 +3,14 @@
 
 use super::chart;
 use crate::app::App;
+use crate::theme::Theme;
 use ratatui::Frame as TuiFrame;
 use ratatui::layout::{Constraint, Layout, Rect};
 
 /// The time plots: ξ, θ′ (Θ′ in the rotating view), |u| and the energy identity, aligned in τ
 /// with the cursor at the τ on screen, the stop and the escape certificate marked, and the
 /// paper's Sec. III approximations over their window for releases at rest.
-pub fn render(f: &mut TuiFrame, area: Rect, app: &App) {
-    let th = &app.theme;
+pub fn render(f: &mut TuiFrame, area: Rect, app: &App, th: &Theme) {
     let title = super::fit::alternatives(&[
         "time plots: ξ, θ, θ′, |u|, energy against τ (t/T: τ window)",
         "time plots: ξ, θ, θ′, |u|, energy",

@@ -7,7 +7,6 @@ use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
 use turntable::app::App;
 use turntable::engine::{Frame, Outcome};
 use turntable::scene::Scene;
-use turntable::theme::Theme;
 use turntable::ui::canvas::{ForceArrow, arrows};
 
 fn key(app: &mut App, c: char) {
@@ -22,7 +21,7 @@ fn find<'a>(all: &'a [ForceArrow], label: &str) -> &'a ForceArrow {
 
 #[test]
 fn friction_opposes_the_slip_velocity_and_the_net_force_is_the_acceleration() {
-    let mut a = App::new(Scene::preset("C").unwrap(), Theme::builtin("mono").unwrap());
+    let mut a = App::new(Scene::preset("C").unwrap());
     for _ in 0..30 {
         a.tick();
     }
@@ -71,7 +70,7 @@ fn friction_opposes_the_slip_velocity_and_the_net_force_is_the_acceleration() {
 
 #[test]
 fn stuck_the_forces_balance_and_nothing_moves_on_the_table() {
-    let mut a = App::new(Scene::preset("B").unwrap(), Theme::builtin("dark").unwrap());
+    let mut a = App::new(Scene::preset("B").unwrap());
     for _ in 0..400 {
         a.tick();
     }
@@ -105,7 +104,7 @@ fn stuck_the_forces_balance_and_nothing_moves_on_the_table() {
         "{text}"
     );
     let back: Scene = toml::from_str(&text).unwrap();
-    let b = App::new(back, Theme::builtin("dark").unwrap());
+    let b = App::new(back);
     assert!(b.forces && b.net_force && b.velocity);
     assert!(!text.contains("speed"), "×1 is not saved: {text}");
     // So is the speed (slow motion for a class), and a bad one in a file is refused.
@@ -115,7 +114,7 @@ fn stuck_the_forces_balance_and_nothing_moves_on_the_table() {
     let path = std::env::temp_dir().join(format!("turntable-speed-{}.toml", std::process::id()));
     std::fs::write(&path, &text).unwrap();
     let back = Scene::load(path.to_str().unwrap()).unwrap();
-    assert_eq!(App::new(back, Theme::builtin("dark").unwrap()).speed, 0.25);
+    assert_eq!(App::new(back).speed, 0.25);
     std::fs::write(&path, text.replace("speed = 0.25", "speed = 0.3")).unwrap();
     let err = Scene::load(path.to_str().unwrap()).unwrap_err().to_string();
     assert!(

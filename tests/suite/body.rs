@@ -145,12 +145,11 @@ fn scene_file(name: &str, body: &str) -> std::path::PathBuf {
 }
 
 fn panel(scene: turntable::scene::Scene, ticks: usize) -> Vec<String> {
-    let mut app =
-        turntable::app::App::new(scene, turntable::theme::Theme::builtin("dark").unwrap());
+    let mut app = turntable::app::App::new(scene);
     for _ in 0..ticks {
         app.tick();
     }
-    turntable::ui::panel::lines(&app)
+    turntable::ui::panel::lines(&app, &turntable::theme::Theme::builtin("dark").unwrap())
         .iter()
         .map(|l| l.to_string())
         .collect()
@@ -195,15 +194,11 @@ fn scene_body_shows_the_conditions_on_the_panel() {
         "{lines:?}"
     );
     // The body itself is drawn, a bar between its masses: the picture differs from the point's.
-    let mut with = turntable::app::App::new(
-        scene.clone(),
-        turntable::theme::Theme::builtin("mono").unwrap(),
-    );
+    let mut with = turntable::app::App::new(scene.clone());
     assert!(with.rod().is_some());
     let mut bare = scene;
     bare.body = None;
-    let mut without =
-        turntable::app::App::new(bare, turntable::theme::Theme::builtin("mono").unwrap());
+    let mut without = turntable::app::App::new(bare);
     assert!(without.rod().is_none());
     let (a, b) = (
         common::render(&mut with, 100, 30),
@@ -281,7 +276,7 @@ fn body_app(length: f64) -> turntable::app::App {
         height: Some(0.01),
         angle: 0.4,
     });
-    turntable::app::App::new(scene, turntable::theme::Theme::builtin("mono").unwrap())
+    turntable::app::App::new(scene)
 }
 
 fn key(app: &mut turntable::app::App, c: char) {
@@ -292,7 +287,7 @@ fn key(app: &mut turntable::app::App, c: char) {
 }
 
 fn panel_of(app: &turntable::app::App) -> Vec<String> {
-    turntable::ui::panel::lines(app)
+    turntable::ui::panel::lines(app, &turntable::theme::Theme::builtin("dark").unwrap())
         .iter()
         .map(|l| l.to_string())
         .collect()
@@ -411,10 +406,7 @@ fn c_compares_the_body_with_the_point_model() {
     assert!(!app.current_scene().to_toml().contains("point ="));
     assert_eq!(canvas(&common::render(&mut app, 100, 30)), shown);
     // No body: nothing changes but the notice.
-    let mut point = turntable::app::App::new(
-        turntable::scene::Scene::preset("A").unwrap(),
-        turntable::theme::Theme::builtin("mono").unwrap(),
-    );
+    let mut point = turntable::app::App::new(turntable::scene::Scene::preset("A").unwrap());
     let before = canvas(&common::render(&mut point, 100, 30));
     key(&mut point, 'C');
     assert!(point.point_model);
@@ -600,7 +592,7 @@ fn the_bodys_size_reads_at_any_scale() {
         height: Some(1e-7),
         angle: 0.0,
     });
-    let app = turntable::app::App::new(scene, turntable::theme::Theme::builtin("mono").unwrap());
+    let app = turntable::app::App::new(scene);
     let lines = panel_of(&app);
     assert_eq!(value(&lines, "body"), "L 0.1000 h 1.00e-7", "{lines:?}");
     assert!(!lines.iter().any(|l| l.contains("NaN")), "{lines:?}");

@@ -10,7 +10,6 @@ use turntable::app::App;
 use turntable::engine::body::Body;
 use turntable::engine::units::{Length, Units, show_metres, show_r_max_in_metres};
 use turntable::scene::Scene;
-use turntable::theme::Theme;
 
 /// R_max = μg/Ω² in metres, Ω = 2π rpm/60, g = 9.81: computed here, not by the crate.
 fn r_max(mu: f64, rpm: f64) -> f64 {
@@ -291,7 +290,7 @@ fn coin() -> Scene {
 /// is twice R_max, so half the dimensionless L and h; the body's track restarts with it.
 #[test]
 fn doubling_mu_halves_the_bodys_dimensionless_size() {
-    let mut a = App::new(coin(), Theme::builtin("dark").unwrap());
+    let mut a = App::new(coin());
     for _ in 0..30 {
         a.tick();
     }
@@ -339,7 +338,7 @@ fn doubling_mu_halves_the_bodys_dimensionless_size() {
 /// The panel gives L and h in SI on a line of its own, whole at every size it shows at.
 #[test]
 fn the_panel_shows_the_body_in_si_without_cutting_it() {
-    let mut a = App::new(coin(), Theme::builtin("mono").unwrap());
+    let mut a = App::new(coin());
     a.units = Some(Units::new(0.2, 33.333, 9.81).unwrap());
     let r = r_max(0.2, 33.333);
     let want = format!(
@@ -347,10 +346,11 @@ fn the_panel_shows_the_body_in_si_without_cutting_it() {
         turntable::engine::units::show_length(0.1 * r),
         turntable::engine::units::show_length(0.01 * r)
     );
-    let lines: Vec<String> = turntable::ui::panel::lines(&a)
-        .iter()
-        .map(|l| l.to_string())
-        .collect();
+    let lines: Vec<String> =
+        turntable::ui::panel::lines(&a, &turntable::theme::Theme::builtin("dark").unwrap())
+            .iter()
+            .map(|l| l.to_string())
+            .collect();
     assert!(lines.iter().any(|l| l.trim() == want), "{want}: {lines:?}");
     for (w, h) in [(80, 24), (60, 20), (100, 30), (40, 12), (50, 30)] {
         let screen = render(&mut a, w, h);

@@ -6,18 +6,20 @@ use turntable::engine::{Initial, Release};
 use turntable::scene::Scene;
 use turntable::session::Session;
 use turntable::sim::STEPS_PER_TICK;
-use turntable::theme::Theme;
 
 fn key(c: char) -> KeyEvent {
     KeyEvent::new(KeyCode::Char(c), KeyModifiers::NONE)
 }
 
 fn session(scene: &str) -> Session<ratatui::backend::TestBackend> {
-    let app = App::new(
-        Scene::preset(scene).unwrap(),
-        Theme::builtin("mono").unwrap(),
-    );
-    Session::headless(app, 80, 24, false)
+    let app = App::new(Scene::preset(scene).unwrap());
+    Session::headless(
+        app,
+        turntable::theme::Theme::builtin("dark").unwrap(),
+        80,
+        24,
+        false,
+    )
 }
 
 /// `c` after a long frictionless session used to catch up 1e-3 τ at a time inside the key
@@ -34,8 +36,14 @@ fn compare_after_a_long_session_catches_up_over_ticks() {
                 ..Initial::at_rest(0.5, Release::LabRest)
             };
         }
-        let app = App::new(scene, Theme::builtin("mono").unwrap());
-        let mut s = Session::headless(app, 80, 24, false);
+        let app = App::new(scene);
+        let mut s = Session::headless(
+            app,
+            turntable::theme::Theme::builtin("dark").unwrap(),
+            80,
+            24,
+            false,
+        );
         for _ in 0..8 {
             s.key(key(']'));
         }
@@ -219,8 +227,14 @@ fn page_pieces_are_bounded_whatever_the_step() {
     assert!(run.cost().steps + run.cost().rejected <= PIECE_STEPS);
     let mut scene = Scene::preset("C").unwrap();
     scene.settings = tiny;
-    let app = App::new(scene, Theme::builtin("mono").unwrap());
-    let mut s = Session::headless(app, 80, 24, false);
+    let app = App::new(scene);
+    let mut s = Session::headless(
+        app,
+        turntable::theme::Theme::builtin("dark").unwrap(),
+        80,
+        24,
+        false,
+    );
     s.key(KeyEvent::new(KeyCode::Char(' '), KeyModifiers::NONE));
     s.key(KeyEvent::new(KeyCode::Tab, KeyModifiers::NONE));
     s.key(KeyEvent::new(KeyCode::Tab, KeyModifiers::NONE));

@@ -274,12 +274,12 @@ fn scene_files_carry_units_and_the_explorer_shows_si() {
     let scene = turntable::scene::Scene::load(good.to_str().unwrap()).unwrap();
     let u = scene.units.unwrap();
     assert_eq!((u.mu, u.rpm, u.g), (0.15, 31.5, 9.81));
-    let mut app =
-        turntable::app::App::new(scene, turntable::theme::Theme::builtin("dark").unwrap());
-    let lines: Vec<String> = turntable::ui::panel::lines(&app)
-        .iter()
-        .map(|l| l.to_string())
-        .collect();
+    let mut app = turntable::app::App::new(scene);
+    let lines: Vec<String> =
+        turntable::ui::panel::lines(&app, &turntable::theme::Theme::builtin("dark").unwrap())
+            .iter()
+            .map(|l| l.to_string())
+            .collect();
     assert!(
         lines
             .iter()

@@ -15,7 +15,6 @@ use turntable::engine::{
     Certificate, Coupling, Frame, Initial, Outcome, Release, Run, Settings, Status,
 };
 use turntable::scene::Scene;
-use turntable::theme::Theme;
 
 fn held(hold: f64) -> Settings {
     Settings {
@@ -587,10 +586,9 @@ fn run_reports_the_coupling() {
 /// shows its ratio.
 #[test]
 fn the_explorer_shows_the_coupling() {
-    let theme = Theme::builtin("dark").unwrap();
     let mut scene = Scene::preset("B").unwrap();
     scene.settings.coupling = Coupling::Stokes { gamma: 0.5 };
-    let mut app = App::new(scene, theme.clone());
+    let mut app = App::new(scene);
     for _ in 0..40 {
         app.tick();
     }
@@ -614,7 +612,7 @@ fn the_explorer_shows_the_coupling() {
     }
     let mut scene = Scene::preset("fig2").unwrap();
     scene.settings.coupling = Coupling::Coulomb { hold: 1.2 };
-    let mut app = App::new(scene, theme);
+    let mut app = App::new(scene);
     for _ in 0..40 {
         app.tick();
     }

@@ -17,7 +17,7 @@ fn theme() -> Theme {
 }
 
 fn app(scene: &str) -> App {
-    App::new(Scene::preset(scene).unwrap(), theme())
+    App::new(Scene::preset(scene).unwrap())
 }
 
 /// A key pressed, and what it asks for carried out as the explorer's session does (files
@@ -128,7 +128,7 @@ fn readouts_equal_the_engine_state() {
 fn theta_dot_at_the_centre_shows_a_dash_not_nan() {
     let mut scene = Scene::preset("B").unwrap();
     scene.initial.xi0 = 0.0;
-    let mut a = App::new(scene, theme());
+    let mut a = App::new(scene);
     let screen = render(&mut a, 80, 24);
     assert!(screen.contains("θ′     —"), "{screen}");
     assert!(!screen.contains("NaN"));
@@ -192,7 +192,11 @@ fn every_key_in_the_keymap_does_what_its_help_says() {
             Action::HelpPage(d) => {
                 a.help_scroll
                     == if d > 0 {
-                        turntable::ui::help::max_scroll(80, 24, &a.theme)
+                        turntable::ui::help::max_scroll(
+                            80,
+                            24,
+                            &turntable::theme::Theme::builtin("dark").unwrap(),
+                        )
                     } else {
                         0
                     }
@@ -387,7 +391,12 @@ fn help_overlay_lists_every_binding() {
     // 80×24 shows it in two pages.
     let small = render(&mut a, 80, 24);
     // As many rows as the keymap makes: 21 on screen, the rest a page down.
-    let all = 21 + turntable::ui::help::max_scroll(80, 24, &a.theme);
+    let all = 21
+        + turntable::ui::help::max_scroll(
+            80,
+            24,
+            &turntable::theme::Theme::builtin("dark").unwrap(),
+        );
     assert!(all > 30, "{all}");
     assert!(
         small.contains("presets A B C D fig1")
@@ -648,13 +657,13 @@ fn every_builtin_theme_renders_every_preset() {
     for t in ["dark", "light", "high-contrast", "mono"] {
         let theme = Theme::builtin(t).unwrap_or_else(|| panic!("theme {t}"));
         for p in PRESETS {
-            let mut a = App::new(Scene::preset(p).unwrap(), theme.clone());
+            let mut a = App::new(Scene::preset(p).unwrap());
             key(&mut a, 'c');
             key(&mut a, 'a');
             for _ in 0..20 {
                 a.tick();
             }
-            let s = render(&mut a, 80, 24);
+            let s = common::render_with(&mut a, &theme, 80, 24);
             assert!(s.contains(&format!("scene {p}")), "{t} {p}:\n{s}");
             a.check_invariants().unwrap();
         }
@@ -922,7 +931,7 @@ fn integrator_steps_one_at_a_time() {
 /// μ, rpm and g; the panel and the time plots' axes show SI values; Alt-u turns them off.
 #[test]
 fn unit_keys_give_si_readouts_and_axes() {
-    let mut a = App::new(Scene::default_scene(), Theme::builtin("dark").unwrap());
+    let mut a = App::new(Scene::default_scene());
     let press = |a: &mut App, c: char, m: KeyModifiers| {
         a.handle_key(KeyEvent::new(KeyCode::Char(c), m));
     };
@@ -984,7 +993,7 @@ fn the_trail_is_drawn_over_the_initial_velocity_arrow() {
     let mut t = ratatui::Terminal::new(ratatui::backend::TestBackend::new(80, 24)).unwrap();
     a.resize(80, 24);
     t.draw(|f| {
-        turntable::ui::draw(f, &a);
+        turntable::ui::draw(f, &a, &turntable::theme::Theme::builtin("dark").unwrap());
     })
     .unwrap();
     let buf = t.backend().buffer().clone();
@@ -1085,7 +1094,7 @@ fn the_title_and_a_saved_scene_tell_what_is_on_screen() {
     turntable::session::carry_out(&mut b, effects);
     let saved = Scene::load(dir.join("mine.toml").to_str().unwrap()).unwrap();
     assert_eq!(saved.about, Scene::preset("B").unwrap().about);
-    let mut back = App::new(saved, theme());
+    let mut back = App::new(saved);
     let title = render(&mut back, 100, 30)
         .lines()
         .next()
@@ -1121,7 +1130,7 @@ fn the_title_and_a_saved_scene_tell_what_is_on_screen() {
         (Frame::Table, true, a.zoom)
     );
     assert!(view.zoom > 1.0);
-    let back = App::new(saved, theme());
+    let back = App::new(saved);
     assert_eq!(
         (back.view, back.forces, back.zoom),
         (Frame::Table, true, a.zoom)
@@ -1270,7 +1279,13 @@ fn s_names_the_scene_it_saves() {
 #[test]
 fn a_paste_types_the_name_at_the_prompt_only() {
     use turntable::session::Session;
-    let mut s = Session::headless(app("B"), 80, 24, true);
+    let mut s = Session::headless(
+        app("B"),
+        turntable::theme::Theme::builtin("dark").unwrap(),
+        80,
+        24,
+        true,
+    );
     s.paste("q x\nstill nothing");
     assert!(!s.app.should_quit() && s.app.prompt.is_none());
     assert_eq!(s.app.initial(), app("B").initial());
@@ -1363,7 +1378,8 @@ fn typed(a: &App) -> Option<&str> {
 #[test]
 fn values_typed_at_the_prompt() {
     let mut s = Session::headless(
-        App::new(Scene::preset("B").unwrap(), theme()),
+        App::new(Scene::preset("B").unwrap()),
+        theme(),
         80,
         24,
         false,

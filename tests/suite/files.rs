@@ -266,9 +266,9 @@ fn a_replay_writes_no_files() {
 fn saving_twice_keeps_both() {
     use turntable::app::{Action, App, update};
     use turntable::scene::Scene;
-    use turntable::theme::Theme;
+
     let d = dir("save");
-    let mut app = App::new(Scene::default_scene(), Theme::builtin("mono").unwrap());
+    let mut app = App::new(Scene::default_scene());
     app.save_path = d.join("turntable-scene.toml");
     std::fs::write(&app.save_path, "mine").unwrap();
     let effects = update(&mut app, Action::Save);
@@ -354,9 +354,9 @@ fn replay_streams_its_snapshots() {
     use turntable::replay::{Options, replay_to};
     use turntable::scene::Scene;
     use turntable::script::parse;
-    use turntable::theme::Theme;
+
     let steps = parse("snapshot one\ntick 2\nsnapshot two\nsnapshot three").unwrap();
-    let app = App::new(Scene::default_scene(), Theme::builtin("mono").unwrap());
+    let app = App::new(Scene::default_scene());
     let mut w = FailAfter(100, Vec::new());
     assert!(replay_to(app, &steps, &Options::default(), &mut w).is_err());
     let text = String::from_utf8_lossy(&w.1);

@@ -68,10 +68,10 @@ fn fuzz(seed: u64, steps: usize) {
     let mut rng = Rng(seed);
     let scene = Scene::preset(rng.pick(&PRESETS)).unwrap();
     let theme = Theme::builtin(rng.pick(&BUILTIN)).unwrap();
-    let mut app = App::new(scene, theme);
+    let mut app = App::new(scene);
     let dir = std::env::temp_dir().join(format!("turntable-fuzz-{}", std::process::id()));
     app.save_path = dir.join("scene.toml");
-    let mut s = Session::headless(app, 80, 24, false);
+    let mut s = Session::headless(app, theme, 80, 24, false);
     let sizes = [
         (0, 0),
         (1, 1),
@@ -171,7 +171,8 @@ fn edits_at_the_bounds_clamp() {
                     ..scene.initial
                 };
                 let mut s = Session::headless(
-                    App::new(scene, Theme::builtin("mono").unwrap()),
+                    App::new(scene),
+                    Theme::builtin("mono").unwrap(),
                     80,
                     24,
                     false,

@@ -172,14 +172,20 @@ fn the_explorer_says_when_an_outcome_is_in_doubt() {
     use turntable::app::App;
     use turntable::scene::Scene;
     use turntable::session::Session;
-    use turntable::theme::Theme;
+
     use turntable::ui::export::plain_text;
     for (v0, tol, doubtful) in [(0.6078236, 1e-6, true), (0.6078, 1e-10, false)] {
         let mut scene = Scene::default_scene();
         scene.initial.v0 = v0;
         scene.settings = Settings::dp54(tol);
-        let app = App::new(scene, Theme::builtin("mono").unwrap());
-        let mut s = Session::headless(app, 80, 24, false);
+        let app = App::new(scene);
+        let mut s = Session::headless(
+            app,
+            turntable::theme::Theme::builtin("dark").unwrap(),
+            80,
+            24,
+            false,
+        );
         for _ in 0..200 {
             s.tick();
         }
@@ -195,10 +201,16 @@ fn the_explorer_shows_phi_as_the_paper_does() {
     use turntable::app::App;
     use turntable::scene::Scene;
     use turntable::session::Session;
-    use turntable::theme::Theme;
+
     use turntable::ui::export::plain_text;
-    let app = App::new(Scene::preset("D").unwrap(), Theme::builtin("mono").unwrap());
-    let mut s = Session::headless(app, 80, 24, false);
+    let app = App::new(Scene::preset("D").unwrap());
+    let mut s = Session::headless(
+        app,
+        turntable::theme::Theme::builtin("dark").unwrap(),
+        80,
+        24,
+        false,
+    );
     let screen = plain_text(s.screen());
     assert!(screen.contains("φ 1.20π"), "{screen}");
 }

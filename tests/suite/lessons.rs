@@ -12,7 +12,6 @@ use turntable::lesson::{Driver, LESSONS, find};
 use turntable::scene::Scene;
 use turntable::script::{Step, parse};
 use turntable::session::Session;
-use turntable::theme::Theme;
 use turntable::ui::fit::wrap;
 
 /// The captions and questions of a lesson, in order.
@@ -492,7 +491,7 @@ fn lessons_render_at_the_smallest_and_a_large_screen() {
 }
 
 fn app() -> App {
-    App::new(Scene::default_scene(), Theme::builtin("dark").unwrap())
+    App::new(Scene::default_scene())
 }
 
 fn press(s: &mut Session<ratatui::backend::TestBackend>, key: &str) {
@@ -506,7 +505,13 @@ fn press(s: &mut Session<ratatui::backend::TestBackend>, key: &str) {
 #[test]
 fn an_interactive_lesson_holds_as_state_and_time_goes_on() {
     let script = "pause\nsay one\nwait\nplay\ntick 3\nsay two\nask Will it escape? (y/n)\nplay 0.5\ntick 200\nsay three\n";
-    let mut s = Session::headless(app(), 80, 24, false);
+    let mut s = Session::headless(
+        app(),
+        turntable::theme::Theme::builtin("dark").unwrap(),
+        80,
+        24,
+        false,
+    );
     s.start_lesson(Driver::new("t", parse(script).unwrap()));
     s.pump_lesson().unwrap();
     // Paused by the lesson's `pause`, held at its wait with the caption up.
@@ -583,7 +588,13 @@ fn an_interactive_lesson_holds_as_state_and_time_goes_on() {
 /// has moved on from the question (scene C sticks; fig2 is decided at τ = 0).
 #[test]
 fn the_run_answers_the_prediction() {
-    let mut s = Session::headless(app(), 80, 24, false);
+    let mut s = Session::headless(
+        app(),
+        turntable::theme::Theme::builtin("dark").unwrap(),
+        80,
+        24,
+        false,
+    );
     fn text(
         s: &mut Session<ratatui::backend::TestBackend>,
         script: &str,
@@ -739,7 +750,13 @@ fn a_long_caption_at_every_size() {
         .step_by(9)
         .flat_map(|w| (12..=40).step_by(7).map(move |h| (w, h)))
     {
-        let mut s = Session::headless(app(), w, h, false);
+        let mut s = Session::headless(
+            app(),
+            turntable::theme::Theme::builtin("dark").unwrap(),
+            w,
+            h,
+            false,
+        );
         s.app.say(Some(words.as_str().into()));
         let screen = turntable::ui::export::plain_text(s.screen());
         let rows: Vec<&str> = screen
@@ -760,7 +777,13 @@ fn a_long_caption_at_every_size() {
         assert!(screen.contains(" …"), "{w}×{h}:\n{screen}");
     }
     // Too small for the explorer: its notice, and no caption.
-    let mut s = Session::headless(app(), 39, 11, false);
+    let mut s = Session::headless(
+        app(),
+        turntable::theme::Theme::builtin("dark").unwrap(),
+        39,
+        11,
+        false,
+    );
     s.app.say(Some(words.into()));
     assert!(turntable::ui::export::plain_text(s.screen()).contains("too small"));
 }
@@ -799,7 +822,13 @@ const PACING: [&str; 5] = ["space", ".", ",", "[", "]"];
 /// hold point, and checks that a pacing key never moves the lesson.
 fn take_lesson(name: &str, keys: &[Option<(usize, u8)>]) -> Vec<Held> {
     let steps = parse(find(name).unwrap().script).unwrap();
-    let mut s = Session::headless(app(), 80, 24, false);
+    let mut s = Session::headless(
+        app(),
+        turntable::theme::Theme::builtin("dark").unwrap(),
+        80,
+        24,
+        false,
+    );
     s.start_lesson(Driver::new(name, steps));
     s.pump_lesson().unwrap();
     let (mut out, mut last, mut presses) = (Vec::new(), usize::MAX, keys.iter().cycle());

@@ -445,12 +445,7 @@ fn a_script_cannot_drive_an_unbounded_recording() {
 fn bounded_outputs_stop_at_their_bound_and_say_so() {
     use turntable::files::{Capped, bound_reached};
     use turntable::replay::{Options, replay_cast, replay_to};
-    let app = || {
-        turntable::app::App::new(
-            turntable::scene::Scene::default_scene(),
-            turntable::theme::Theme::builtin("dark").unwrap(),
-        )
-    };
+    let app = || turntable::app::App::new(turntable::scene::Scene::default_scene());
     let scripts = [
         "tick 30\nsnapshot a\nx*3\nsnapshot b",
         "resize 120x40\nsnapshot\ntick 10\nsnapshot",

@@ -14,10 +14,7 @@ use turntable::scene::Scene;
 use turntable::theme::Theme;
 
 fn app(scene: &str) -> App {
-    App::new(
-        Scene::preset(scene).unwrap(),
-        Theme::builtin("dark").unwrap(),
-    )
+    App::new(Scene::preset(scene).unwrap())
 }
 
 fn press(app: &mut App, code: KeyCode) {
@@ -50,7 +47,13 @@ fn tab_cycles_the_pages_and_each_title_names_its_page() {
 
 #[test]
 fn nothing_is_computed_for_a_page_not_on_screen() {
-    let mut s = turntable::session::Session::headless(app("C"), 80, 24, false);
+    let mut s = turntable::session::Session::headless(
+        app("C"),
+        turntable::theme::Theme::builtin("dark").unwrap(),
+        80,
+        24,
+        false,
+    );
     s.tick();
     assert_eq!(s.analysis.current(), None);
     let c = &s.app.charts;
@@ -612,10 +615,7 @@ fn no_number_is_cut_at_any_width() {
 /// labels' width), plot θ as Figs. 1–2 do, and `t`/`T` fix the τ window (issue 18).
 #[test]
 fn the_time_plots_share_one_tau_axis_and_a_fixed_window() {
-    let mut a = App::new(
-        Scene::preset("fig2").unwrap(),
-        Theme::builtin("dark").unwrap(),
-    );
+    let mut a = App::new(Scene::preset("fig2").unwrap());
     for _ in 0..60 {
         a.tick();
     }
@@ -651,7 +651,7 @@ fn the_time_plots_share_one_tau_axis_and_a_fixed_window() {
 fn a_theme_s_background_covers_every_cell() {
     for theme in ["dark", "light", "high-contrast"] {
         let th = Theme::builtin(theme).unwrap();
-        let mut a = App::new(Scene::preset("C").unwrap(), th.clone());
+        let mut a = App::new(Scene::preset("C").unwrap());
         for help in [false, true] {
             a.help = help;
             for page in [
@@ -667,7 +667,7 @@ fn a_theme_s_background_covers_every_cell() {
                     ratatui::Terminal::new(ratatui::backend::TestBackend::new(80, 24)).unwrap();
                 a.resize(80, 24);
                 t.draw(|f| {
-                    turntable::ui::draw(f, &a);
+                    turntable::ui::draw(f, &a, &th);
                 })
                 .unwrap();
                 let bad = t
@@ -692,10 +692,7 @@ fn speeds_and_legends_read_without_colour() {
     assert_eq!(speed(1.3), "1.3000");
     assert_eq!(speed(0.6077971), "0.607797");
     assert_eq!(speed(f64::NAN), "—");
-    let mut a = App::new(
-        Scene::preset("fig2").unwrap(),
-        Theme::builtin("mono").unwrap(),
-    );
+    let mut a = App::new(Scene::preset("fig2").unwrap());
     for _ in 0..20 {
         a.tick();
     }

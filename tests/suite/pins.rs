@@ -10,13 +10,9 @@ use turntable::app::pages::Page;
 use turntable::engine::{Initial, Outcome, Run, Settings, Status};
 use turntable::pin::{MARKERS, MAX_PINS, PIN_POINTS};
 use turntable::scene::Scene;
-use turntable::theme::Theme;
 
 fn app(scene: &str) -> App {
-    App::new(
-        Scene::preset(scene).unwrap(),
-        Theme::builtin("dark").unwrap(),
-    )
+    App::new(Scene::preset(scene).unwrap())
 }
 
 fn key(app: &mut App, c: char) {
@@ -185,10 +181,7 @@ fn pins_are_saved_with_the_scene_and_load_back() {
     let path = a.current_scene().save_new(&dir.join("pins.toml")).unwrap();
     let text = std::fs::read_to_string(&path).unwrap();
     assert_eq!(text.matches("[[pins]]").count(), 4, "{text}");
-    let back = App::new(
-        Scene::load(path.to_str().unwrap()).unwrap(),
-        Theme::builtin("dark").unwrap(),
-    );
+    let back = App::new(Scene::load(path.to_str().unwrap()).unwrap());
     assert_eq!(back.pins, a.pins, "the same paths, recomputed");
     // Too many pins are refused with the file's name.
     let eight = text.clone() + &text[text.find("[[pins]]").unwrap()..];

@@ -9,7 +9,6 @@ use turntable::app::keymap::KEYMAP;
 use turntable::app::{App, Chord};
 use turntable::engine::{Outcome, Run, Settings, Status};
 use turntable::scene::Scene;
-use turntable::theme::Theme;
 use turntable::ui::panel::num;
 use turntable::ui::plain::{Seen, describe, opening};
 
@@ -22,10 +21,7 @@ struct Plain {
 
 impl Plain {
     fn new(scene: &str) -> Plain {
-        let app = App::new(
-            Scene::preset(scene).unwrap(),
-            Theme::builtin("dark").unwrap(),
-        );
+        let app = App::new(Scene::preset(scene).unwrap());
         Plain {
             seen: Seen::of(&app),
             lines: opening(&app),
@@ -365,7 +361,7 @@ fn a_body_scene_says_the_bodys_pivot_rest_and_escape_as_time_reaches_them() {
     use turntable::engine::rod::Phase;
     let scene = Scene::load("tests/replay/body.toml").unwrap();
     let body = scene.body.unwrap();
-    let app = App::new(scene, Theme::builtin("dark").unwrap());
+    let app = App::new(scene);
     let track = common::rod_track(body, 1.0, &app.initial(), 1e-10, 200.0);
     let k = track
         .phases

@@ -505,10 +505,7 @@ fn the_explorer_writes_the_page_to_a_new_file() {
     let dir = std::env::temp_dir().join(format!("turntable-export-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
-    let mut app = App::new(
-        turntable::scene::Scene::preset("B").unwrap(),
-        turntable::theme::Theme::builtin("dark").unwrap(),
-    );
+    let mut app = App::new(turntable::scene::Scene::preset("B").unwrap());
     app.save_path = dir.join("turntable-scene.toml");
     let press = |app: &mut App, code| {
         let effects = app.handle_key(KeyEvent::new(code, KeyModifiers::NONE));
@@ -635,10 +632,7 @@ fn an_export_carries_what_the_screen_shows() {
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     // Fig. 2: at rest on the table at ξ0 = 1.1, where Sec. III's approximations hold early.
-    let mut app = App::new(
-        turntable::scene::Scene::preset("fig2").unwrap(),
-        turntable::theme::Theme::builtin("dark").unwrap(),
-    );
+    let mut app = App::new(turntable::scene::Scene::preset("fig2").unwrap());
     app.save_path = dir.join("turntable-scene.toml");
     let press = |app: &mut App, code| {
         let effects = app.handle_key(KeyEvent::new(code, KeyModifiers::NONE));

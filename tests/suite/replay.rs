@@ -17,7 +17,6 @@ use turntable::replay::{Options, replay};
 use turntable::scene::Scene;
 use turntable::script::parse;
 use turntable::session::Session;
-use turntable::theme::Theme;
 use turntable::ui::export::plain_text;
 
 fn dir() -> PathBuf {
@@ -200,11 +199,16 @@ use turntable::rng::SplitMix64 as Rng;
 fn record_then_replay_gives_the_same_screen() {
     for seed in 1..=4u64 {
         let mut rng = Rng(seed);
-        let theme = Theme::builtin("dark").unwrap();
-        let mut app = App::new(Scene::default_scene(), theme.clone());
+        let mut app = App::new(Scene::default_scene());
         let tmp = std::env::temp_dir().join(format!("turntable-record-{}", std::process::id()));
         app.save_path = tmp.join("scene.toml");
-        let mut s = Session::headless(app, 80, 24, true);
+        let mut s = Session::headless(
+            app,
+            turntable::theme::Theme::builtin("dark").unwrap(),
+            80,
+            24,
+            true,
+        );
         let keys: Vec<KeyEvent> = KEYMAP
             .iter()
             .filter(|b| !matches!(b.action, turntable::app::Action::Quit))
@@ -260,7 +264,7 @@ fn record_then_replay_gives_the_same_screen() {
         let tau = s.app.now().tau;
         let script = s.take_recording().unwrap();
         let steps = parse(&script).expect("a recording parses");
-        let fresh = App::new(Scene::default_scene(), theme);
+        let fresh = App::new(Scene::default_scene());
         let out = replay(fresh, &steps, &Options::default());
         let (head, screen) = out.split_once('\n').unwrap();
         assert!(head.contains(&format!("tau={tau:.3}")), "{head}");

@@ -10,7 +10,6 @@ use turntable::app::pages::Page;
 use turntable::engine::units::{Units, show_length, show_rate};
 use turntable::engine::{Initial, Outcome, Run};
 use turntable::scene::Scene;
-use turntable::theme::Theme;
 
 fn key(app: &mut App, c: char) {
     app.handle_key(KeyEvent::new(KeyCode::Char(c), KeyModifiers::NONE));
@@ -26,7 +25,7 @@ fn outcome(a: &App) -> Outcome {
 
 #[test]
 fn doubling_mu_doubles_r_max_and_halves_xi0_for_the_same_metres() {
-    let mut a = App::new(Scene::preset("C").unwrap(), Theme::builtin("dark").unwrap());
+    let mut a = App::new(Scene::preset("C").unwrap());
     // Thrown outward faster than C: it escapes on this table.
     a.explore().set_initial(Initial::velocity(0.5, 0.0, 0.7));
     assert_eq!(outcome(&a), Outcome::Escaped);
@@ -82,7 +81,7 @@ fn rpm_and_g_rescale_the_release_as_r_max_says() {
 
 #[test]
 fn the_table_stays_in_the_panel_and_the_mu_probe_reads_its_omega() {
-    let mut a = App::new(Scene::preset("B").unwrap(), Theme::builtin("dark").unwrap());
+    let mut a = App::new(Scene::preset("B").unwrap());
     key(&mut a, 'u');
     key(&mut a, 'w');
     a.handle_key(KeyEvent::new(KeyCode::Esc, KeyModifiers::NONE));
@@ -100,7 +99,7 @@ fn the_table_stays_in_the_panel_and_the_mu_probe_reads_its_omega() {
         }
     }
     // The largest table the knobs reach still fits the panel whole.
-    let mut big = App::new(Scene::preset("B").unwrap(), Theme::builtin("dark").unwrap());
+    let mut big = App::new(Scene::preset("B").unwrap());
     big.units = Some(Units::new(10.0, 1e4, 1000.0).unwrap());
     let screen = render(&mut big, 80, 24);
     for want in [
@@ -135,7 +134,7 @@ fn the_table_stays_in_the_panel_and_the_mu_probe_reads_its_omega() {
 /// drawn in the new table's units: the same metres start at the same point.
 #[test]
 fn a_pin_from_another_table_is_drawn_in_this_ones_units() {
-    let mut a = App::new(Scene::preset("C").unwrap(), Theme::builtin("dark").unwrap());
+    let mut a = App::new(Scene::preset("C").unwrap());
     a.explore().set_initial(Initial::velocity(0.5, 0.0, 0.7));
     key(&mut a, 'u');
     key(&mut a, 'b');

@@ -239,7 +239,6 @@ fn random_control_laden_text_never_reaches_an_output() {
     use turntable::app::App;
     use turntable::replay::{Options, replay};
     use turntable::scene::Scene;
-    use turntable::theme::Theme;
 
     let piece = prop_oneof![
         Just("\x1b".to_string()),
@@ -267,7 +266,6 @@ fn random_control_laden_text_never_reaches_an_output() {
     ];
     let text = prop::collection::vec(piece, 0..24).prop_map(|v| v.concat());
     let dir = tmp("prop");
-    let theme = Theme::builtin("dark").unwrap();
     let counts: [std::cell::Cell<usize>; 4] = Default::default();
     let bump = |k: usize| counts[k].set(counts[k].get() + 1);
     const NAMES: [&str; 4] = [
@@ -325,7 +323,7 @@ fn random_control_laden_text_never_reaches_an_output() {
                 plain,
                 ..Options::default()
             };
-            let out = replay(App::new(scene.clone(), theme.clone()), &steps, &opts);
+            let out = replay(App::new(scene.clone()), &steps, &opts);
             if let Err(e) = clean_output(&out, false) {
                 return Err(TestCaseError::fail(format!("{s:?}: {e}")));
             }

@@ -5,6 +5,7 @@ use crate::app::{App, CanvasGeom};
 use crate::engine::model::rotate;
 use crate::engine::rod::{RodState, RodTrack};
 use crate::engine::{Frame, State};
+use crate::theme::Theme;
 use glam::DVec2;
 use ratatui::Frame as TuiFrame;
 use ratatui::layout::Rect;
@@ -153,13 +154,18 @@ fn rod_path(app: &App) -> Vec<DVec2> {
 }
 
 /// The bar between the body's two masses, and where its centre's glyph is printed.
-fn bar(app: &App, bounds: ([f64; 2], [f64; 2]), inner: Rect) -> Option<([DVec2; 2], DVec2)> {
+fn bar(
+    app: &App,
+    th: &Theme,
+    bounds: ([f64; 2], [f64; 2]),
+    inner: Rect,
+) -> Option<([DVec2; 2], DVec2)> {
     let (now, view, turn) = (app.sim().now(), app.view, app.turn);
     app.rod().and_then(|rod| {
         let s = body_shown(rod, now.tau)?;
         let spin = turn + if view == Frame::Lab { s.tau } else { 0.0 };
         let q = rotate(s.q, spin);
-        let centre = on_cell(q, bounds, (inner.width, inner.height), app.theme.marker);
+        let centre = on_cell(q, bounds, (inner.width, inner.height), th.marker);
         Some((s.contacts(rod.l).map(|c| rotate(c, spin)), centre))
     })
 }
@@ -180,14 +186,13 @@ fn step_marks(app: &App, point: bool) -> Vec<State> {
 }
 
 /// Draws the canvas and returns its geometry (where it is and which world it shows).
-pub fn render(f: &mut TuiFrame, area: Rect, app: &App) -> CanvasGeom {
-    let th = app.theme.clone();
+pub fn render(f: &mut TuiFrame, area: Rect, app: &App, th: &Theme) -> CanvasGeom {
     // With the point model hidden (`C`), the body's centre is what a zoom follows.
     let point = app.point_shown();
     let body_now = app
         .rod()
         .and_then(|rod| body_shown(rod, app.sim().now().tau));
-    let block = super::titled(title(app, point), &th);
+    let block = super::titled(title(app, point), th);
     let inner = block.inner(area);
     let r0 = auto_extent(app);
     let r = r0 / app.zoom;
@@ -237,7 +242,7 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) -> CanvasGeom {
         units: app.units,
         pin_style: Style::default().fg(th.muted),
         rod_path: rod_path(app),
-        bar: bar(app, (xb, yb), inner),
+        bar: bar(app, th, (xb, yb), inner),
         // The arrows are the point's: hidden with it.
         forces: if point {
             arrows(app, half_width, arrow_scale)

@@ -12,8 +12,12 @@ use ratatui::Frame as TuiFrame;
 use ratatui::layout::Rect;
 
 /// Stuck or escaped over (φ, v0), stuck cells shaded by their rest radius, the v_e curve on it.
-pub(super) fn outcome_map(f: &mut TuiFrame, area: Rect, app: &App) -> Option<CanvasGeom> {
-    let th = &app.theme;
+pub(super) fn outcome_map(
+    f: &mut TuiFrame,
+    area: Rect,
+    app: &App,
+    th: &Theme,
+) -> Option<CanvasGeom> {
     let c = map::chart(app);
     // The cells first, then the chart's braille over them.
     let plot = chart::plot_area(area, &c)?;

@@ -5,6 +5,7 @@
 use crate::app::pages::Page;
 use crate::app::{App, CanvasGeom};
 use crate::plot::Panel as Chart;
+use crate::theme::Theme;
 use crate::ui::panel::num;
 use ratatui::Frame as TuiFrame;
 use ratatui::layout::Rect;
@@ -20,7 +21,7 @@ use map::outcome_map;
 use rest::rest_radius;
 
 /// Draws `app.page` in `area`; returns the plot's geometry where a click means a release.
-pub fn render(f: &mut TuiFrame, area: Rect, app: &App) -> Option<CanvasGeom> {
+pub fn render(f: &mut TuiFrame, area: Rect, app: &App, th: &Theme) -> Option<CanvasGeom> {
     if let Some(gamma) = app.settings().stokes()
         && !app.initial().frictionless
         && matches!(
@@ -28,23 +29,23 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) -> Option<CanvasGeom> {
             Page::EscapeSpeed | Page::OutcomeMap | Page::RestRadius
         )
     {
-        no_threshold(f, area, app, gamma);
+        no_threshold(f, area, th, gamma);
         return None;
     }
     match app.page {
         Page::Turntable => None,
         Page::TimePlots => {
-            super::time_plots::render(f, area, app);
+            super::time_plots::render(f, area, app, th);
             None
         }
         Page::EscapeSpeed => {
             let c = crate::plot::page::escape::chart(app);
-            let plot = super::chart::render(f, area, &app.theme, &c)?;
+            let plot = super::chart::render(f, area, th, &c)?;
             Some(geom(plot, &c, Page::EscapeSpeed, app))
         }
-        Page::OutcomeMap => outcome_map(f, area, app),
+        Page::OutcomeMap => outcome_map(f, area, app, th),
         Page::RestRadius => {
-            rest_radius(f, area, app);
+            rest_radius(f, area, app, th);
             None
         }
     }
@@ -52,8 +53,7 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App) -> Option<CanvasGeom> {
 
 /// Under Stokes drag (extends the paper) the threshold pages have nothing to draw: every release
 /// leaves. Said instead, with the rate.
-fn no_threshold(f: &mut TuiFrame, area: Rect, app: &App, gamma: f64) {
-    let th = &app.theme;
+fn no_threshold(f: &mut TuiFrame, area: Rect, th: &Theme, gamma: f64) {
     let block = super::titled(" Stokes drag: no threshold ".to_string(), th);
     let text = format!(
         "Under Stokes drag γ = {gamma} there is no escape speed, outcome map or rest radius: \

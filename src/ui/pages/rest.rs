@@ -2,6 +2,7 @@
 //! and the paper's μ measurement (Eq. 22) beside it.
 
 use crate::app::App;
+use crate::theme::Theme;
 use crate::ui::chart;
 use crate::ui::panel::num;
 use ratatui::Frame as TuiFrame;
@@ -14,17 +15,15 @@ use unicode_width::UnicodeWidthStr;
 
 /// Fig. 6: where a particle released at rest in the lab comes to rest, against ξ0, with ξ0c;
 /// beside it Eq. 22, μ = Ω² r0c / (g ξ0c), from an Ω and r0c the user enters.
-pub(super) fn rest_radius(f: &mut TuiFrame, area: Rect, app: &App) {
-    let th = &app.theme;
+pub(super) fn rest_radius(f: &mut TuiFrame, area: Rect, app: &App, th: &Theme) {
     let [top, bottom] = Layout::vertical([Constraint::Min(6), Constraint::Length(5)]).areas(area);
     let xi0c = crate::plot::page::rest::shown(app).and_then(|r| r.critical.flatten());
     chart::render(f, top, th, &crate::plot::page::rest::chart(app));
-    measure_mu(f, bottom, app, xi0c);
+    measure_mu(f, bottom, app, th, xi0c);
 }
 
 /// Eq. 22, μ = Ω² r0c / (g ξ0c), from the Ω and r0c the user enters and ξ0c once computed.
-fn measure_mu(f: &mut TuiFrame, bottom: Rect, app: &App, xi0c: Option<f64>) {
-    let th = &app.theme;
+fn measure_mu(f: &mut TuiFrame, bottom: Rect, app: &App, th: &Theme, xi0c: Option<f64>) {
     // With SI units on, the table's Ω and g (o/O turn the table).
     let (omega, g) = app
         .units

@@ -5,6 +5,7 @@ use super::{kv, num};
 use crate::app::App;
 use crate::engine::Outcome;
 use crate::engine::model::wrap_angle;
+use crate::theme::Theme;
 use ratatui::style::{Modifier, Style};
 use ratatui::text::{Line, Span};
 
@@ -79,11 +80,11 @@ pub fn body_end(rod: &crate::engine::rod::RodTrack, tau: f64) -> Option<(String,
 /// τ on screen reaches it. Returns the index of the phase line.
 pub(super) fn body_lines(
     app: &App,
+    th: &Theme,
     b: crate::engine::body::Body,
     s: &crate::engine::State,
     out: &mut Vec<Line<'static>>,
 ) -> usize {
-    let th = &app.theme;
     let tau = s.tau;
     let now = app.rod().and_then(|r| body_now(r, tau));
     let (xi, stuck) = match &now {

@@ -98,15 +98,15 @@ fn kv<'a>(k: &'a str, v: String, th: &Theme) -> Line<'a> {
 }
 
 /// The readout lines in reading order.
-pub fn lines(app: &App) -> Vec<Line<'static>> {
-    readouts(app).0
+pub fn lines(app: &App, th: &Theme) -> Vec<Line<'static>> {
+    readouts(app, th).0
 }
 
 /// The readout lines that fit in `rows`, most important first when not all do: the status
 /// (stuck / slipping / escape certified), then ξ, τ, the body's phase (first of all when the
 /// point model is hidden, `C`) and the release, then the rest.
-pub fn lines_in(app: &App, rows: usize) -> Vec<Line<'static>> {
-    let (all, status, rod) = readouts(app);
+pub fn lines_in(app: &App, th: &Theme, rows: usize) -> Vec<Line<'static>> {
+    let (all, status, rod) = readouts(app, th);
     if all.len() <= rows {
         return all;
     }
@@ -132,15 +132,14 @@ const TAU_LINE: usize = 1;
 const XI_LINE: usize = 2;
 
 /// The readout lines, which of them hold the status, and which the body's phase.
-fn readouts(app: &App) -> (Vec<Line<'static>>, std::ops::Range<usize>, Option<usize>) {
-    let th = &app.theme;
+fn readouts(app: &App, th: &Theme) -> (Vec<Line<'static>>, std::ops::Range<usize>, Option<usize>) {
     let s = app.sim().now();
     let mut out: Vec<Line<'static>> = Vec::new();
     out.push(Line::from(Span::styled(
         release(&app.initial()),
         Style::default().fg(th.accent),
     )));
-    motion_lines(app, &s, &mut out);
+    motion_lines(app, th, &s, &mut out);
     // A lesson's open prediction: the status says nothing the run has not shown yet.
     let (st, col) = if app.outcome_open() && app.sim().outcome_now() != Outcome::Running {
         ("y or n: will it escape?".into(), th.slipping)
@@ -156,11 +155,14 @@ fn readouts(app: &App) -> (Vec<Line<'static>>, std::ops::Range<usize>, Option<us
     }
     let status = status_start..out.len();
     if let Some(u) = app.units {
-        table_lines(app, u, &mut out);
+        table_lines(app, th, u, &mut out);
     }
-    model_lines(app, &mut out);
-    let rod = app.scene().body.map(|b| body_lines(app, b, &s, &mut out));
-    cost_lines(app, &mut out);
+    model_lines(app, th, &mut out);
+    let rod = app
+        .scene()
+        .body
+        .map(|b| body_lines(app, th, b, &s, &mut out));
+    cost_lines(app, th, &mut out);
     if let Some(p) = &app.paper() {
         let (st, col) = status_text(p, th);
         out.push(Line::from(Span::styled(
@@ -183,7 +185,7 @@ fn readouts(app: &App) -> (Vec<Line<'static>>, std::ops::Range<usize>, Option<us
             .collect();
         out.push(kv("pins", names.join(" "), th));
     }
-    arrow_legend(app, &mut out);
+    arrow_legend(app, th, &mut out);
     (out, status, rod)
 }
 
@@ -203,8 +205,7 @@ fn release(i: &crate::engine::Initial) -> String {
 
 /// Where the particle is and how it moves at `s`: τ, ξ, the angles in the frame shown, ξ′
 /// and |u|, each with its SI value beside it with a real table (--mu, --rpm).
-fn motion_lines(app: &App, s: &crate::engine::State, out: &mut Vec<Line<'static>>) {
-    let th = &app.theme;
+fn motion_lines(app: &App, th: &Theme, s: &crate::engine::State, out: &mut Vec<Line<'static>>) {
     let si = |x: f64, show: fn(f64) -> String| {
         app.units
             .map_or(String::new(), |_| format!(" = {}", show(x)))
@@ -266,9 +267,13 @@ fn motion_lines(app: &App, s: &crate::engine::State, out: &mut Vec<Line<'static>
 }
 
 /// The table and the release in SI, while units are on: what μ, rpm and g change.
-fn table_lines(app: &App, u: crate::engine::units::Units, out: &mut Vec<Line<'static>>) {
+fn table_lines(
+    app: &App,
+    th: &Theme,
+    u: crate::engine::units::Units,
+    out: &mut Vec<Line<'static>>,
+) {
     use crate::engine::units::{show_length as len, show_rate, show_speed};
-    let th = &app.theme;
     let i = &app.initial();
     let deg = turn_angle(i.phi).to_degrees();
     let r0 = match i.release {
@@ -303,8 +308,7 @@ fn table_lines(app: &App, u: crate::engine::units::Units, out: &mut Vec<Line<'st
 }
 
 /// The model run: μ = 0's closed form, Stokes drag, or the friction's integrator.
-fn model_lines(app: &App, out: &mut Vec<Line<'static>>) {
-    let th = &app.theme;
+fn model_lines(app: &App, th: &Theme, out: &mut Vec<Line<'static>>) {
     if app.initial().frictionless {
         out.push(kv("μ = 0", "closed form".into(), th));
     } else if let Some(gamma) = app.settings().stokes() {
@@ -328,8 +332,7 @@ fn model_lines(app: &App, out: &mut Vec<Line<'static>>) {
 
 /// What the run costs (steps, the last step in step mode, right-hand sides) and how fast it
 /// plays.
-fn cost_lines(app: &App, out: &mut Vec<Line<'static>>) {
-    let th = &app.theme;
+fn cost_lines(app: &App, th: &Theme, out: &mut Vec<Line<'static>>) {
     let c = app.sim().run.cost();
     out.push(kv("steps", format!("{} rej {}", c.steps, c.rejected), th));
     if app.step_mode
@@ -352,8 +355,7 @@ fn cost_lines(app: &App, out: &mut Vec<Line<'static>>) {
 
 /// The arrows' legend: exactly the arrows drawn, by their head labels; what is not drawn for
 /// being zero says so.
-fn arrow_legend(app: &App, out: &mut Vec<Line<'static>>) {
-    let th = &app.theme;
+fn arrow_legend(app: &App, th: &Theme, out: &mut Vec<Line<'static>>) {
     if (app.forces || app.net_force || app.velocity) && !app.point_shown() {
         out.push(Line::from(Span::styled(
             "arrows: point's, hidden (C)",
@@ -391,12 +393,11 @@ fn arrow_legend(app: &App, out: &mut Vec<Line<'static>>) {
     }
 }
 
-pub fn render(f: &mut TuiFrame, area: Rect, app: &App) {
-    let th = &app.theme;
+pub fn render(f: &mut TuiFrame, area: Rect, app: &App, th: &Theme) {
     let block = super::titled(format!(" scene {} ", app.scene().name), th);
     let rows = usize::from(block.inner(area).height);
     f.render_widget(
-        Paragraph::new(lines_in(app, rows))
+        Paragraph::new(lines_in(app, th, rows))
             .block(block)
             .style(Style::default().bg(th.background)),
         area,

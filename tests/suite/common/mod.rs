@@ -26,11 +26,27 @@ pub fn turntable(args: &[&str]) -> (i32, String, String) {
 /// Draws `app` on a `w` × `h` off-screen terminal (recording the geometry, as the terminal
 /// loop does) and returns the screen as text, one line per row.
 pub fn render(app: &mut turntable::app::App, w: u16, h: u16) -> String {
+    render_with(
+        app,
+        &turntable::theme::Theme::builtin("dark").unwrap(),
+        w,
+        h,
+    )
+}
+
+/// [`render`] in `theme`.
+pub fn render_with(
+    app: &mut turntable::app::App,
+    theme: &turntable::theme::Theme,
+    w: u16,
+    h: u16,
+) -> String {
     let mut t = ratatui::Terminal::new(ratatui::backend::TestBackend::new(w, h)).unwrap();
-    turntable::session::tell_size(app, w, h);
+    turntable::session::tell_size(app, theme, w, h);
     sync(app);
     let mut geom = None;
-    t.draw(|f| geom = turntable::ui::draw(f, app)).unwrap();
+    t.draw(|f| geom = turntable::ui::draw(f, app, theme))
+        .unwrap();
     app.drawn(geom);
     let buf = t.backend().buffer();
     (0..buf.area.height)
