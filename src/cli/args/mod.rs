@@ -185,6 +185,9 @@ pub enum Command {
     /// Run a key script headlessly and print its snapshots.
     #[command(long_about = REPLAY_ABOUT)]
     Replay(super::replay::ReplayArgs),
+    /// Serve the explorer over SSH to a class: each connection its own explorer, a presenter
+    /// who leads (`ssh -p 2222 class@HOST`).
+    Serve(super::serve::ServeArgs),
     /// Narrated lessons through the paper: --list, NAME (in the explorer), NAME --headless.
     #[command(long_about = LESSON_ABOUT)]
     Lesson(super::lesson::LessonArgs),
