@@ -9,6 +9,7 @@
 //! as there are cores).
 
 mod auth;
+pub mod client;
 mod conn;
 pub mod explorer;
 pub mod keys;

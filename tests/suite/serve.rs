@@ -1,0 +1,318 @@
+//! `turntable serve` over the loopback, driven by an in-process SSH client
+//! (`turntable::serve::client`): connect, keys to screen, resize, refusals, limits, a dropped
+//! client, the class led by a presenter; and one session with OpenSSH's `ssh -tt` where the
+//! machine has it.
+
+use russh::keys::PrivateKey;
+use russh::keys::ssh_key::private::Ed25519Keypair;
+use std::time::Duration;
+use turntable::serve::client::{Login, Term, eventually, login};
+use turntable::serve::{Limits, Options, Running, start};
+
+const SECS: Duration = Duration::from_secs(10);
+
+fn key(n: u8) -> PrivateKey {
+    PrivateKey::from(Ed25519Keypair::from_seed(&[n; 32]))
+}
+
+fn server(limits: Limits) -> Running {
+    start(Options {
+        listen: "127.0.0.1:0".parse().unwrap(),
+        host_key: key(1),
+        keys: vec![key(2).public_key().clone()],
+        passphrase: Some("ba-ke-di-lo".into()),
+        presenter_keys: vec![key(3).public_key().clone()],
+        presenter_passphrase: Some("mu-ra-te-vo".into()),
+        limits,
+    })
+    .unwrap()
+}
+
+fn rt() -> tokio::runtime::Runtime {
+    tokio::runtime::Builder::new_current_thread()
+        .enable_all()
+        .build()
+        .unwrap()
+}
+
+#[test]
+fn a_student_gets_an_explorer_of_their_own() {
+    let s = server(Limits::default());
+    rt().block_on(async {
+        let h = login(s.addr, "class", Login::Key(&key(2)))
+            .await
+            .unwrap()
+            .expect("the authorized key gets in");
+        let mut t = Term::open(&h, 80, 24).await.unwrap();
+        assert!(
+            t.until(0, b"lab frame", SECS).await,
+            "the explorer's first screen"
+        );
+        // Keys to screen: help opens.
+        let at = t.seen.len();
+        t.send(b"?").await.unwrap();
+        assert!(t.until(at, b"help", SECS).await);
+        t.send(b"\x1b").await.unwrap();
+        // A resize: the next frame is drawn at the new size (a clear, then the panel).
+        let at = t.seen.len();
+        t.channel.window_change(60, 20, 0, 0).await.unwrap();
+        assert!(t.until(at, b"\x1b[2J", SECS).await);
+        // An enormous window costs what the clamp costs.
+        t.channel.window_change(10_000, 10_000, 0, 0).await.unwrap();
+        let at = t.seen.len();
+        t.send(b"f").await.unwrap();
+        assert!(t.until(at, b"rotating", SECS).await);
+        // `q` ends this connection's explorer, saying so.
+        let at = t.seen.len();
+        t.send(b"q").await.unwrap();
+        assert!(t.until(at, b"turntable: bye", SECS).await);
+        assert!(t.until_closed(SECS).await);
+        assert_eq!(t.exit, Some(0));
+        assert!(eventually(SECS, || s.shared.sessions() == 0).await);
+    });
+    s.stop("done");
+}
+
+#[test]
+fn the_passphrase_gets_in_and_nothing_else_does() {
+    let s = server(Limits::default());
+    rt().block_on(async {
+        let ok = login(s.addr, "anyone", Login::Password("ba-ke-di-lo")).await;
+        assert!(ok.unwrap().is_some());
+        for wrong in ["ba-ke-di-l", "", "ba-ke-di-lox"] {
+            let no = login(s.addr, "class", Login::Password(wrong)).await;
+            assert!(no.unwrap().is_none(), "{wrong:?} got in");
+        }
+        let no = login(s.addr, "class", Login::Key(&key(9))).await;
+        assert!(no.unwrap().is_none(), "an unknown key got in");
+    });
+    s.stop("done");
+}
+
+#[test]
+fn commands_sftp_and_forwarding_are_refused() {
+    let s = server(Limits::default());
+    rt().block_on(async {
+        let h = login(s.addr, "class", Login::Key(&key(2)))
+            .await
+            .unwrap()
+            .unwrap();
+        let ch = h.channel_open_session().await.unwrap();
+        ch.exec(true, "cat /etc/passwd").await.unwrap();
+        let mut t = Term::on(ch);
+        assert!(t.until_closed(SECS).await);
+        assert!(t.refused && t.seen.is_empty());
+        assert_eq!(t.exit, Some(1));
+        assert!(String::from_utf8_lossy(&t.errors).contains("explorer only"));
+        let ch = h.channel_open_session().await.unwrap();
+        ch.request_subsystem(true, "sftp").await.unwrap();
+        let mut t = Term::on(ch);
+        assert!(t.until_closed(SECS).await);
+        assert!(t.refused && t.seen.is_empty());
+        assert!(
+            h.channel_open_direct_tcpip("127.0.0.1", 22, "127.0.0.1", 4000)
+                .await
+                .is_err(),
+            "a port forward was opened"
+        );
+        assert!(h.tcpip_forward("127.0.0.1", 0).await.is_err());
+        assert_eq!(s.shared.sessions(), 0);
+    });
+    s.stop("done");
+}
+
+#[test]
+fn sessions_and_connections_are_limited() {
+    let s = server(Limits {
+        sessions: 1,
+        per_minute: 3,
+        ..Limits::default()
+    });
+    rt().block_on(async {
+        let a = login(s.addr, "a", Login::Key(&key(2)))
+            .await
+            .unwrap()
+            .unwrap();
+        let mut ta = Term::open(&a, 80, 24).await.unwrap();
+        assert!(ta.until(0, b"lab frame", SECS).await);
+        let b = login(s.addr, "b", Login::Key(&key(2)))
+            .await
+            .unwrap()
+            .unwrap();
+        let mut tb = Term::open(&b, 80, 24).await.unwrap();
+        assert!(tb.until(0, b"the class is full", SECS).await);
+        assert!(tb.until_closed(SECS).await);
+        // The third connection this minute from this address is the last one let in.
+        let _c = login(s.addr, "c", Login::Key(&key(2))).await.unwrap();
+        assert!(login(s.addr, "d", Login::Key(&key(2))).await.is_err());
+        assert_eq!(s.shared.sessions(), 1);
+    });
+    s.stop("done");
+}
+
+#[test]
+fn a_dropped_client_leaves_and_the_others_go_on() {
+    let s = server(Limits::default());
+    rt().block_on(async {
+        let a = login(s.addr, "a", Login::Key(&key(2)))
+            .await
+            .unwrap()
+            .unwrap();
+        let mut ta = Term::open(&a, 80, 24).await.unwrap();
+        let b = login(s.addr, "b", Login::Key(&key(2)))
+            .await
+            .unwrap()
+            .unwrap();
+        let mut tb = Term::open(&b, 80, 24).await.unwrap();
+        assert!(ta.until(0, b"lab frame", SECS).await);
+        assert!(tb.until(0, b"lab frame", SECS).await);
+        assert_eq!(s.shared.sessions(), 2);
+        // Killed mid-session: its TCP connection just goes.
+        drop(ta);
+        drop(a);
+        assert!(eventually(SECS, || s.shared.sessions() == 1).await);
+        let at = tb.seen.len();
+        tb.send(b"?").await.unwrap();
+        assert!(
+            tb.until(at, b"help", SECS).await,
+            "the other session goes on"
+        );
+    });
+    s.stop("done");
+}
+
+#[test]
+fn followers_get_the_presenters_keys_and_can_step_out() {
+    let s = server(Limits::default());
+    rt().block_on(async {
+        let p = login(s.addr, "teacher", Login::Key(&key(3)))
+            .await
+            .unwrap()
+            .unwrap();
+        let mut tp = Term::open(&p, 100, 30).await.unwrap();
+        assert!(tp.until(0, b"lab frame", SECS).await);
+        let f = login(s.addr, "class", Login::Password("ba-ke-di-lo"))
+            .await
+            .unwrap()
+            .unwrap();
+        let mut tf = Term::open(&f, 60, 20).await.unwrap();
+        assert!(tf.until(0, b"following the class", SECS).await);
+        // The presenter's key turns the follower's view too, at the follower's own size.
+        let at = tf.seen.len();
+        tp.send(b"f").await.unwrap();
+        assert!(tf.until(at, b"rotating", SECS).await);
+        // The follower's own keys wait while it follows.
+        let at = tf.seen.len();
+        tf.send(b"?").await.unwrap();
+        assert!(!tf.until(at, b"help", Duration::from_millis(500)).await);
+        // F2 steps out: now its keys are its own, and the presenter's are not applied.
+        tf.send(b"\x1bOQ").await.unwrap();
+        assert!(tf.until(at, b"stepped out", SECS).await);
+        let at = tf.seen.len();
+        tf.send(b"f").await.unwrap();
+        assert!(tf.until(at, b"lab frame", SECS).await);
+        // F2 again: back to where the class is (the rotating frame).
+        let at = tf.seen.len();
+        tf.send(b"\x1bOQ").await.unwrap();
+        assert!(tf.until(at, b"following the class", SECS).await);
+        assert!(tf.until(at, b"rotating", SECS).await);
+    });
+    s.stop("done");
+}
+
+#[test]
+fn stopping_closes_every_session_with_a_message() {
+    let s = server(Limits::default());
+    let rt = rt();
+    let (h, mut t) = rt.block_on(async {
+        let h = login(s.addr, "a", Login::Key(&key(2)))
+            .await
+            .unwrap()
+            .unwrap();
+        let mut t = Term::open(&h, 80, 24).await.unwrap();
+        assert!(t.until(0, b"lab frame", SECS).await);
+        (h, t)
+    });
+    let at = t.seen.len();
+    s.stop("the server is shutting down");
+    rt.block_on(async {
+        assert!(t.until(at, b"shutting down", SECS).await);
+    });
+    drop(h);
+}
+
+/// OpenSSH's own client, where the machine has it: `ssh -tt` forces a PTY with no terminal
+/// of its own, so this runs headless too.
+#[test]
+fn openssh_ssh_tt_gets_the_explorer() {
+    use std::io::{Read, Write};
+    use std::process::{Command, Stdio};
+    if Command::new("ssh").arg("-V").output().is_err() {
+        eprintln!("no ssh on this machine: skipped");
+        return;
+    }
+    let s = server(Limits::default());
+    let dir = tempfile::tempdir().unwrap();
+    let id = dir.path().join("id");
+    let text = key(2)
+        .to_openssh(russh::keys::ssh_key::LineEnding::LF)
+        .unwrap();
+    turntable::files::write_secret(&id, text.as_bytes()).unwrap();
+    let mut child = Command::new("ssh")
+        .args(["-tt", "-p", &s.addr.port().to_string(), "-i"])
+        .arg(&id)
+        .args([
+            "-F",
+            "/dev/null",
+            "-o",
+            "BatchMode=yes",
+            "-o",
+            "StrictHostKeyChecking=no",
+            "-o",
+            "UserKnownHostsFile=/dev/null",
+            "-o",
+            "LogLevel=ERROR",
+            "class@127.0.0.1",
+        ])
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    let mut out = child.stdout.take().unwrap();
+    let seen = std::sync::Arc::new(std::sync::Mutex::new(Vec::new()));
+    let reader = {
+        let seen = std::sync::Arc::clone(&seen);
+        std::thread::spawn(move || {
+            let mut buf = [0u8; 4096];
+            while let Ok(n) = out.read(&mut buf) {
+                if n == 0 {
+                    break;
+                }
+                seen.lock().unwrap().extend_from_slice(&buf[..n]);
+            }
+        })
+    };
+    let has = |needle: &[u8]| {
+        let end = std::time::Instant::now() + SECS;
+        while std::time::Instant::now() < end {
+            if seen
+                .lock()
+                .unwrap()
+                .windows(needle.len())
+                .any(|w| w == needle)
+            {
+                return true;
+            }
+            std::thread::sleep(Duration::from_millis(20));
+        }
+        false
+    };
+    assert!(has(b"lab frame"), "no explorer over ssh -tt");
+    child.stdin.as_mut().unwrap().write_all(b"q").unwrap();
+    assert!(has(b"turntable: bye"));
+    let status = child.wait().unwrap();
+    reader.join().unwrap();
+    assert!(status.success(), "{status:?}");
+    s.stop("done");
+}
