@@ -316,3 +316,194 @@ fn openssh_ssh_tt_gets_the_explorer() {
     assert!(status.success(), "{status:?}");
     s.stop("done");
 }
+
+/// A client's connection whose reads stop when told: a client that never reads its screen.
+struct Frozen {
+    tcp: tokio::net::TcpStream,
+    frozen: std::sync::Arc<std::sync::atomic::AtomicBool>,
+}
+
+impl tokio::io::AsyncRead for Frozen {
+    fn poll_read(
+        mut self: std::pin::Pin<&mut Self>,
+        cx: &mut std::task::Context<'_>,
+        buf: &mut tokio::io::ReadBuf<'_>,
+    ) -> std::task::Poll<std::io::Result<()>> {
+        if self.frozen.load(std::sync::atomic::Ordering::Relaxed) {
+            return std::task::Poll::Pending;
+        }
+        std::pin::Pin::new(&mut self.tcp).poll_read(cx, buf)
+    }
+}
+
+impl tokio::io::AsyncWrite for Frozen {
+    fn poll_write(
+        mut self: std::pin::Pin<&mut Self>,
+        cx: &mut std::task::Context<'_>,
+        buf: &[u8],
+    ) -> std::task::Poll<std::io::Result<usize>> {
+        std::pin::Pin::new(&mut self.tcp).poll_write(cx, buf)
+    }
+
+    fn poll_flush(
+        mut self: std::pin::Pin<&mut Self>,
+        cx: &mut std::task::Context<'_>,
+    ) -> std::task::Poll<std::io::Result<()>> {
+        std::pin::Pin::new(&mut self.tcp).poll_flush(cx)
+    }
+
+    fn poll_shutdown(
+        mut self: std::pin::Pin<&mut Self>,
+        cx: &mut std::task::Context<'_>,
+    ) -> std::task::Poll<std::io::Result<()>> {
+        std::pin::Pin::new(&mut self.tcp).poll_shutdown(cx)
+    }
+}
+
+#[test]
+fn a_client_that_never_reads_is_closed_and_the_others_go_on() {
+    use std::sync::atomic::{AtomicBool, Ordering};
+    let s = server(Limits {
+        stall: Duration::from_secs(2),
+        ..Limits::default()
+    });
+    rt().block_on(async {
+        let frozen = std::sync::Arc::new(AtomicBool::new(false));
+        let tcp = tokio::net::TcpStream::connect(s.addr).await.unwrap();
+        let stream = Frozen {
+            tcp,
+            frozen: std::sync::Arc::clone(&frozen),
+        };
+        // A small window (as a slow link's client may keep), so it fills in seconds.
+        let config = std::sync::Arc::new(russh::client::Config {
+            window_size: 16 * 1024,
+            ..Default::default()
+        });
+        let mut a = russh::client::connect_stream(config, stream, turntable::serve::client::Trust)
+            .await
+            .unwrap();
+        let k = russh::keys::PrivateKeyWithHashAlg::new(std::sync::Arc::new(key(2)), None);
+        assert!(a.authenticate_publickey("a", k).await.unwrap().success());
+        let mut ta = Term::open(&a, 200, 60).await.unwrap();
+        assert!(ta.until(0, b"lab frame", SECS).await);
+        // From now on its screen is never read: its window fills, and its frames stop.
+        frozen.store(true, Ordering::Relaxed);
+        let b = login(s.addr, "b", Login::Key(&key(2)))
+            .await
+            .unwrap()
+            .unwrap();
+        let mut tb = Term::open(&b, 80, 24).await.unwrap();
+        assert!(tb.until(0, b"lab frame", SECS).await);
+        assert!(
+            eventually(Duration::from_secs(40), || s.shared.sessions() == 1).await,
+            "the stalled session was not closed"
+        );
+        let at = tb.seen.len();
+        tb.send(b"?").await.unwrap();
+        assert!(tb.until(at, b"help", SECS).await);
+    });
+    s.stop("done");
+}
+
+#[test]
+fn a_flood_of_keys_is_bounded_and_the_session_still_answers() {
+    let s = server(Limits::default());
+    rt().block_on(async {
+        let a = login(s.addr, "a", Login::Key(&key(2)))
+            .await
+            .unwrap()
+            .unwrap();
+        let mut t = Term::open(&a, 80, 24).await.unwrap();
+        assert!(t.until(0, b"lab frame", SECS).await);
+        // 4 MB of a key bound to nothing, and an unpaired paste start among them.
+        let chunk = "ä".repeat(16 * 1024);
+        t.send(b"\x1b[200~").await.unwrap();
+        for _ in 0..128 {
+            t.send(chunk.as_bytes()).await.unwrap();
+        }
+        let at = t.seen.len();
+        t.send(b"\x1b[201~?").await.unwrap();
+        assert!(t.until(at, b"help", Duration::from_secs(30)).await);
+    });
+    s.stop("done");
+}
+
+#[test]
+fn a_hostile_or_silent_handshake_is_closed() {
+    use std::io::{Read, Write};
+    let s = server(Limits {
+        handshake: Duration::from_secs(1),
+        ..Limits::default()
+    });
+    let mut garbage = std::net::TcpStream::connect(s.addr).unwrap();
+    garbage
+        .set_read_timeout(Some(Duration::from_secs(10)))
+        .unwrap();
+    garbage.write_all(b"GET / HTTP/1.1\r\n\r\n").unwrap();
+    garbage.write_all(&[0xff; 4096]).unwrap();
+    let mut buf = vec![];
+    // The server's banner, then the end: the read ends (0 or reset), not the timeout.
+    let r = garbage.read_to_end(&mut buf);
+    assert!(
+        r.as_ref()
+            .map_or_else(|e| e.kind() != std::io::ErrorKind::WouldBlock, |_| true),
+        "{r:?}"
+    );
+    let mut silent = std::net::TcpStream::connect(s.addr).unwrap();
+    silent
+        .set_read_timeout(Some(Duration::from_secs(10)))
+        .unwrap();
+    let t0 = std::time::Instant::now();
+    let mut buf = vec![];
+    let _ = silent.read_to_end(&mut buf);
+    assert!(
+        t0.elapsed() < Duration::from_secs(8),
+        "a silent client held on"
+    );
+    // And the server still serves.
+    rt().block_on(async {
+        let ok = login(s.addr, "x", Login::Key(&key(2))).await.unwrap();
+        assert!(ok.is_some());
+    });
+    s.stop("done");
+}
+
+/// SIGTERM closes every session with a message, and `turntable serve` exits 0.
+#[test]
+fn sigterm_closes_every_session_and_exits_0() {
+    use std::io::BufRead;
+    use std::process::{Command, Stdio};
+    let dir = tempfile::tempdir().unwrap();
+    let keys = dir.path().join("keys");
+    let line = key(2).public_key().to_openssh().unwrap();
+    turntable::files::write_secret(&keys, line.as_bytes()).unwrap();
+    let mut child = Command::new(env!("CARGO_BIN_EXE_turntable"))
+        .args(["serve", "--listen", "127.0.0.1:0", "--authorized-keys"])
+        .arg(&keys)
+        .arg("--host-key")
+        .arg(dir.path().join("host"))
+        .stdout(Stdio::piped())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    let mut out = std::io::BufReader::new(child.stdout.take().unwrap());
+    let mut first = String::new();
+    out.read_line(&mut first).unwrap();
+    let addr: std::net::SocketAddr = first.trim().rsplit(' ').next().unwrap().parse().unwrap();
+    let rest = std::thread::spawn(move || std::io::read_to_string(out).unwrap());
+    rt().block_on(async {
+        let h = login(addr, "a", Login::Key(&key(2)))
+            .await
+            .unwrap()
+            .unwrap();
+        let mut t = Term::open(&h, 80, 24).await.unwrap();
+        assert!(t.until(0, b"lab frame", SECS).await);
+        let at = t.seen.len();
+        let pid = rustix::process::Pid::from_raw(child.id() as i32).unwrap();
+        rustix::process::kill_process(pid, rustix::process::Signal::TERM).unwrap();
+        assert!(t.until(at, b"shutting down", SECS).await);
+    });
+    assert!(child.wait().unwrap().success());
+    let said = rest.join().unwrap();
+    assert!(said.contains("host key SHA256:"), "{said}");
+}
