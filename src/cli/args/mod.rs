@@ -206,6 +206,14 @@ pub struct CompletionsArgs {
 
 #[derive(Args, Debug)]
 pub struct BenchArgs {
+    /// Measure `turntable serve` instead: the server on 127.0.0.1 and this many in-process
+    /// SSH clients at 80x24, each playing and pressing a key every 200 ms (a list, e.g.
+    /// 10,30,60: one row each).
+    #[arg(long, value_name = "N,...", value_delimiter = ',')]
+    pub serve: Vec<usize>,
+    /// Seconds each --serve row runs.
+    #[arg(long, default_value_t = 60.0, requires = "serve")]
+    pub seconds: f64,
     /// A small bench that finishes in seconds (fewer settings, cases and angles).
     #[arg(long)]
     pub quick: bool,
