@@ -42,8 +42,11 @@ pub struct Client {
 fn guest(app: &mut App, effects: Effects) {
     for effect in effects {
         let notice = match effect {
-            Effect::SaveScene { .. } | Effect::ExportSvg { .. } => {
+            Effect::SaveScene { .. } => {
                 "not saved: over ssh nothing is written on the server".to_string()
+            }
+            Effect::ExportSvg { .. } => {
+                "not exported: over ssh nothing is written on the server".to_string()
             }
             Effect::Readouts => crate::ui::plain::summary(app),
         };
@@ -190,8 +193,11 @@ impl Run<'_> {
             let frame_due = self.last_frame.map_or(now, |t| t + gap);
             if self.in_flight.is_none() {
                 if s.app.needs_redraw() && now >= frame_due {
+                    // The analysis pages are computed through the gate (as many at once as
+                    // cores); the frame itself is drawn outside it.
+                    self.shared.gate.run(|| s.sync_analysis());
                     queue!(s.term.backend_mut(), BeginSynchronizedUpdate)?;
-                    self.shared.gate.run(|| s.draw())?;
+                    s.draw()?;
                     queue!(s.term.backend_mut(), EndSynchronizedUpdate)?;
                     self.last_frame = Some(now);
                 }
