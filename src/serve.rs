@@ -88,6 +88,8 @@ pub enum In {
     Join(u64),
     /// (To a follower.) The class as it is now; what it is sent next applies to this.
     Class(Box<App>),
+    /// (To a follower.) The presenter left.
+    Unled,
 }
 
 /// What the presenter's session did, for the followers to do alike.
@@ -186,7 +188,10 @@ impl Shared {
         let mut class = lock(&self.class);
         if class.presenter == Some(id) {
             class.presenter = None;
-            class.followers.clear();
+            // Followers go on from where the class was, on their own clocks.
+            for f in std::mem::take(&mut class.followers) {
+                self.send(f, In::Unled);
+            }
         }
         class.followers.retain(|&f| f != id);
     }

@@ -262,6 +262,12 @@ impl Run<'_> {
                 Lead::Tick => s.tick(),
             },
             In::Lead(_) => {}
+            In::Unled if self.following => {
+                self.following = false;
+                s.app
+                    .report("the presenter left: exploring on your own".into());
+            }
+            In::Unled => {}
             In::Join(follower) => self.shared.welcome(follower, &s.app),
             In::Class(app) => {
                 let (w, h) = (s.app.screen.0, s.app.screen.1);
@@ -292,7 +298,10 @@ impl Run<'_> {
                 Event::Key(k) => {
                     if let Some(chord) = Chord::from_event(&k) {
                         s.press(chord);
-                        self.shared.lead(self.id, Lead::Key(chord));
+                        // The presenter quitting ends its own session, not the class's.
+                        if !s.app.should_quit() {
+                            self.shared.lead(self.id, Lead::Key(chord));
+                        }
                     }
                 }
                 Event::Mouse(_) if self.following => {}

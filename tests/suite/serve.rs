@@ -224,6 +224,18 @@ fn followers_get_the_presenters_keys_and_can_step_out() {
         tf.send(b"\x1bOQ").await.unwrap();
         assert!(tf.until(at, b"following", SECS).await);
         assert!(tf.until(at, b"rotating", SECS).await);
+        // The presenter leaves: the follower goes on from there, on its own clock.
+        let at = tp.seen.len();
+        tp.send(b"q").await.unwrap();
+        assert!(tp.until(at, b"bye", SECS).await);
+        assert!(eventually(SECS, || s.shared.sessions() == 1).await);
+        tokio::time::sleep(Duration::from_millis(300)).await;
+        let at = tf.seen.len();
+        tf.channel.window_change(64, 20, 0, 0).await.unwrap();
+        assert!(tf.until(at, b"left:", SECS).await);
+        let at = tf.seen.len();
+        tf.send(b"f").await.unwrap();
+        assert!(tf.until(at, b"lab frame", SECS).await);
     });
     s.stop("done");
 }
