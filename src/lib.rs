@@ -19,6 +19,7 @@ pub mod replay;
 pub mod rng;
 pub mod scene;
 pub mod script;
+pub mod serve;
 pub mod session;
 pub mod sim;
 pub mod terminal;

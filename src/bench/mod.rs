@@ -9,6 +9,7 @@ mod goals;
 pub mod link;
 mod output;
 mod runs;
+pub mod serve;
 mod tasks;
 
 use crate::engine::{Method, Settings};

@@ -5,6 +5,9 @@ use crate::bench::{self, Config, Task};
 use crate::files::emit;
 
 pub fn bench(a: BenchArgs) -> CmdResult {
+    if !a.serve.is_empty() {
+        return serve(&a);
+    }
     let mut cfg = if a.quick {
         Config::quick()
     } else {
@@ -34,5 +37,25 @@ pub fn bench(a: BenchArgs) -> CmdResult {
         }
     }
     emit(None, &out)?;
+    Ok(())
+}
+
+/// `--serve N,...`: one row per client count, printed as it is measured.
+fn serve(a: &BenchArgs) -> CmdResult {
+    if !(1.0..=3600.0).contains(&a.seconds) || a.serve.iter().any(|&n| !(1..=1000).contains(&n)) {
+        return Err(Error::Invalid(
+            "--serve takes 1 to 1000 clients a row, --seconds 1 to 3600".into(),
+        ));
+    }
+    for &n in &a.serve {
+        eprintln!("bench: serve with {n} clients for {} s…", a.seconds);
+        let row = bench::serve::run(n, a.seconds)?;
+        let line = if a.json {
+            serde_json::to_string(&row).map_err(|e| Error::Failed(e.to_string()))?
+        } else {
+            bench::serve::line(&row)
+        };
+        emit(None, &(line + "\n"))?;
+    }
     Ok(())
 }

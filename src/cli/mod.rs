@@ -9,6 +9,7 @@ mod numerics;
 mod plot;
 pub mod replay;
 mod report;
+mod serve;
 mod sweep;
 
 use crate::engine::Initial;
@@ -439,6 +440,7 @@ pub fn main() -> ExitCode {
         Some(Command::Plot(a)) => plot::plot(a),
         Some(Command::Bench(a)) => bench::bench(a),
         Some(Command::Replay(a)) => replay::run(a),
+        Some(Command::Serve(ref a)) => serve::run(a),
         Some(Command::Completions(a)) => completions(a.shell),
         Some(Command::Man) => man(),
     };

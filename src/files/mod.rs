@@ -34,7 +34,9 @@ mod capped;
 mod output;
 
 pub use capped::{BoundReached, Capped, bound_reached, show_bytes};
-pub use output::{Output, numbered, open_output, remove_stale, write_atomic, write_new};
+pub use output::{
+    Output, numbered, open_output, remove_stale, write_atomic, write_new, write_secret,
+};
 
 /// Largest scene, theme or key script read.
 pub const READ_CAP: u64 = 1 << 20;

@@ -446,6 +446,25 @@ pub fn write_new(path: &Path, contents: &[u8], max: u32) -> io::Result<PathBuf> 
     ))
 }
 
+/// Writes a secret (`serve`'s host key) to a new file at `path` that only its owner may read
+/// (0600), in a folder made 0700 where missing; never over a file.
+pub fn write_secret(path: &Path, contents: &[u8]) -> io::Result<()> {
+    use std::os::unix::fs::DirBuilderExt;
+    if let Some(dir) = path.parent() {
+        std::fs::DirBuilder::new()
+            .recursive(true)
+            .mode(0o700)
+            .create(dir)
+            .map_err(|e| at(dir, e))?;
+    }
+    let mut out = Output::create(path, false)?;
+    out.file()
+        .set_permissions(std::fs::Permissions::from_mode(0o600))
+        .map_err(|e| at(path, e))?;
+    out.write_all(contents).map_err(|e| at(path, e))?;
+    out.finish()
+}
+
 /// Writes `contents` to `path` as [`Output`] does (replacing a file there only with `force`).
 pub fn write_atomic(path: &Path, contents: &[u8], force: bool) -> io::Result<()> {
     let mut out = Output::create(path, force)?;

@@ -30,6 +30,9 @@ pub const PASTE_IDLE: Duration = Duration::from_millis(500);
 pub const PASTE_TIME: Duration = Duration::from_secs(3);
 /// Longest escape sequence waited for (a longer one is dropped, not kept growing).
 const SEQ_MAX: usize = 64;
+/// A lone ESC at the end of a read is held this long for the rest of a sequence: a link that
+/// splits a terminal's reply (`ESC` | `[30;21R`) must not have its tail read as keys.
+pub const ESC_WAIT: Duration = Duration::from_millis(30);
 
 const PASTE_START: &[u8] = b"\x1b[200~";
 const PASTE_END: &[u8] = b"\x1b[201~";
@@ -57,6 +60,8 @@ pub struct Decoder {
     /// A sequence begun and not yet complete.
     seq: Vec<u8>,
     paste: Option<Paste>,
+    /// When a lone ESC ending a read becomes the Esc key, if nothing follows it.
+    esc_until: Option<Instant>,
     out: VecDeque<Input>,
 }
 
@@ -77,6 +82,10 @@ fn plain(code: KeyCode) -> Parsed {
     key(code, KeyModifiers::NONE)
 }
 
+fn esc() -> Input {
+    Input::Event(Event::Key(KeyEvent::new(KeyCode::Esc, KeyModifiers::NONE)))
+}
+
 impl Decoder {
     pub fn new() -> Decoder {
         Decoder::default()
@@ -86,13 +95,24 @@ impl Decoder {
     /// buffer), so that a lone ESC at the end is not yet taken for the Esc key.
     pub fn feed(&mut self, bytes: &[u8], more: bool, now: Instant) {
         self.expire(now);
+        self.esc_until = None;
         for (i, &b) in bytes.iter().enumerate() {
             let more = more || i + 1 < bytes.len();
             if self.paste.is_some() {
                 self.paste_byte(b, now);
                 continue;
             }
+            // ESC ESC: the first is the Esc key, the second begins what follows (a reply
+            // `ESC[30;21R` behind an Esc is a reply, not `[30;21R` typed).
+            if b == 0x1b && self.seq == [0x1b] {
+                self.out.push_back(esc());
+                self.seq.clear();
+            }
             self.seq.push(b);
+            if self.seq == [0x1b] && !more {
+                self.esc_until = Some(now + ESC_WAIT);
+                continue;
+            }
             if self.seq == PASTE_START {
                 self.seq.clear();
                 self.paste = Some(Paste {
@@ -152,18 +172,34 @@ impl Decoder {
         }
     }
 
-    /// Ends a paste that has waited past its bounds by `now`.
+    /// Ends a paste that has waited past its bounds by `now`; a held ESC past [`ESC_WAIT`] is
+    /// the Esc key.
     pub fn expire(&mut self, now: Instant) {
-        if self.deadline().is_some_and(|d| now >= d) {
+        if self.esc_until.is_some_and(|d| now >= d) {
+            self.esc_until = None;
+            self.seq.clear();
+            self.out.push_back(esc());
+        }
+        let paste = self
+            .paste
+            .as_ref()
+            .map(|p| (p.last + PASTE_IDLE).min(p.began + PASTE_TIME));
+        if paste.is_some_and(|d| now >= d) {
             self.end_paste();
         }
     }
 
-    /// When the paste under way will be ended if nothing ends it first.
+    /// When the paste under way will be ended, or a held ESC taken for the key, if nothing
+    /// comes first.
     pub fn deadline(&self) -> Option<Instant> {
-        self.paste
+        let paste = self
+            .paste
             .as_ref()
-            .map(|p| (p.last + PASTE_IDLE).min(p.began + PASTE_TIME))
+            .map(|p| (p.last + PASTE_IDLE).min(p.began + PASTE_TIME));
+        match (paste, self.esc_until) {
+            (Some(a), Some(b)) => Some(a.min(b)),
+            (a, b) => a.or(b),
+        }
     }
 
     /// Whether a paste is under way.
@@ -617,8 +653,38 @@ mod tests {
 
     fn decode(bytes: &[u8]) -> Vec<Input> {
         let mut d = Decoder::new();
-        d.feed(bytes, false, Instant::now());
+        let now = Instant::now();
+        d.feed(bytes, false, now);
+        d.expire(now + ESC_WAIT);
         std::iter::from_fn(|| d.next_input()).collect()
+    }
+
+    /// An Esc pressed as the terminal answers a cursor-position query: over ssh both arrive
+    /// in one read (`ESC ESC[30;21R`), or the reply's ESC ends one read and its tail begins
+    /// the next. Neither is `[30;21R` typed.
+    #[test]
+    fn a_reply_behind_an_esc_is_never_keys() {
+        let esc = k(KeyCode::Esc, KeyModifiers::NONE);
+        assert_eq!(
+            decode(b"\x1b\x1b[30;21R"),
+            vec![esc.clone(), Input::Cursor(20, 29)]
+        );
+        assert_eq!(
+            decode(b"\x1b\x1b[A"),
+            vec![esc.clone(), k(KeyCode::Up, KeyModifiers::NONE)]
+        );
+        let t0 = Instant::now();
+        let mut d = Decoder::new();
+        d.feed(b"\x1b", false, t0);
+        assert_eq!(d.next_input(), None, "a lone ESC waits for what may follow");
+        assert_eq!(d.deadline(), Some(t0 + ESC_WAIT));
+        d.feed(b"[30;21R", false, t0 + ESC_WAIT / 2);
+        assert_eq!(d.next_input(), Some(Input::Cursor(20, 29)));
+        assert_eq!(d.next_input(), None);
+        // Alone, it is the Esc key once the wait is over.
+        d.feed(b"\x1b", false, t0);
+        d.expire(t0 + ESC_WAIT);
+        assert_eq!(d.next_input(), Some(esc));
     }
 
     fn k(code: KeyCode, m: KeyModifiers) -> Input {

@@ -164,11 +164,12 @@ fn the_engine_names_no_flag() {
 }
 
 /// Time advances by ticks inside the model, so the same keys give the same screens: the wall
-/// clock is read by the terminal loop (frame pacing) and the bench (timings) only.
+/// clock is read by the terminal loop and serve's sessions (frame pacing, ticks, limits) and
+/// the bench (timings) only.
 #[test]
 fn no_clock_outside_the_terminal_and_the_bench() {
     for clock in ["Instant", "SystemTime"] {
-        let bad = offenders(clock, &["terminal", "bench/"]);
+        let bad = offenders(clock, &["terminal", "serve", "bench/"]);
         assert!(bad.is_empty(), "{}", bad.join("\n"));
     }
 }
@@ -298,6 +299,7 @@ const LAYERS: &[&[&str]] = &[
     &[
         "session",
         "terminal",
+        "serve",
         "replay",
         "script",
         "lesson",

@@ -817,10 +817,10 @@ fn held(s: &Session<ratatui::backend::TestBackend>) -> Held {
 const PACING: [&str; 5] = ["space", ".", ",", "[", "]"];
 
 /// Runs lesson `name` as the terminal loop does (a tick only while time plays), pressing
-/// `keys[i]` before the i-th hold point's ticks (`None`: the lesson's own pace); at a wait or
-/// a question the user goes on (Enter, y), and plays when paused. Returns the scene at each
-/// hold point, and checks that a pacing key never moves the lesson.
-fn take_lesson(name: &str, keys: &[Option<(usize, u8)>]) -> Vec<Held> {
+/// each of `keys` (`(gap, key, times)`: `gap` loop turns after the one before) between its
+/// ticks; at a wait or a question the user goes on (Enter, y), and plays when paused. Returns
+/// the scene at each hold point, and checks that a pacing key never moves the lesson.
+fn take_lesson(name: &str, keys: &[(u16, usize, u8)]) -> Vec<Held> {
     let steps = parse(find(name).unwrap().script).unwrap();
     let mut s = Session::headless(
         app(),
@@ -831,8 +831,9 @@ fn take_lesson(name: &str, keys: &[Option<(usize, u8)>]) -> Vec<Held> {
     );
     s.start_lesson(Driver::new(name, steps));
     s.pump_lesson().unwrap();
-    let (mut out, mut last, mut presses) = (Vec::new(), usize::MAX, keys.iter().cycle());
-    for _ in 0..20_000 {
+    let (mut out, mut last, mut presses) = (Vec::new(), usize::MAX, keys.iter().peekable());
+    let mut due = keys.first().map_or(0, |k| usize::from(k.0));
+    for turn in 0..20_000 {
         if s.app.lesson.done {
             return out;
         }
@@ -841,7 +842,10 @@ fn take_lesson(name: &str, keys: &[Option<(usize, u8)>]) -> Vec<Held> {
             out.push(held(&s));
             last = at;
         }
-        if let Some(Some((k, n))) = (!keys.is_empty()).then(|| presses.next()).flatten() {
+        while turn >= due
+            && let Some((_, k, n)) = presses.next()
+        {
+            due = turn + presses.peek().map_or(0, |k| usize::from(k.0));
             for _ in 0..*n {
                 press(&mut s, PACING[*k]);
                 s.pump_lesson().unwrap();
@@ -883,10 +887,7 @@ proptest::proptest! {
     #[test]
     fn pacing_keys_never_put_a_lesson_out_of_step(
         lesson in 0..LESSONS.len(),
-        keys in proptest::collection::vec(
-            proptest::option::weighted(0.3, (0..PACING.len(), 1u8..4)),
-            1..40,
-        ),
+        keys in proptest::collection::vec((1u16..120, 0..PACING.len(), 1u8..4), 1..40),
     ) {
         let name = LESSONS[lesson].name;
         let reference = take_lesson(name, &[]);

@@ -36,6 +36,7 @@ mod replay;
 mod rim;
 mod rim_times;
 mod rod;
+mod serve;
 mod si;
 mod terminal;
 mod terminals;

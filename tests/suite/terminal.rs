@@ -566,3 +566,37 @@ fn q_quits_with_the_help_open() {
     assert_eq!(child.wait().unwrap().code(), Some(0));
     let _ = std::fs::remove_file(&path);
 }
+
+/// The Esc race (an Esc pressed as the terminal answers the frame pacing's cursor query):
+/// over ssh `ESC ESC[30;21R` arrives in one read, and its tail was once typed as `[`, `3`,
+/// `0`, `;`, `2`, `1`, `R`, reloading a preset, halving the speed and switching the release.
+/// No reply is ever keys: the scene is what it was.
+#[test]
+fn an_esc_beside_a_cursor_reply_leaves_the_scene_alone() {
+    use turntable::terminal::input::{Decoder, ESC_WAIT, Input};
+    let scene = turntable::scene::Scene::preset("C").unwrap();
+    let theme = turntable::theme::Theme::builtin("dark").unwrap();
+    let mut s = turntable::session::Session::headless(
+        turntable::app::App::new(scene),
+        theme,
+        80,
+        24,
+        false,
+    );
+    let before = s.app.current_scene();
+    let t0 = Instant::now();
+    let mut d = Decoder::new();
+    d.feed(b"\x1b\x1b[30;21R", false, t0);
+    d.feed(b"\x1b", false, t0);
+    d.feed(b"[12;3R\x1b", false, t0 + ESC_WAIT / 2);
+    d.expire(t0 + ESC_WAIT * 2);
+    let mut keys = 0;
+    while let Some(input) = d.next_input() {
+        if let Input::Event(crossterm::event::Event::Key(k)) = input {
+            keys += 1;
+            s.key(k);
+        }
+    }
+    assert_eq!(keys, 2, "two Esc keys, nothing else");
+    assert_eq!(s.app.current_scene(), before);
+}

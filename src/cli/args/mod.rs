@@ -198,6 +198,9 @@ pub enum Command {
     /// Run a key script headlessly and print its snapshots.
     #[command(long_about = REPLAY_ABOUT)]
     Replay(super::replay::ReplayArgs),
+    /// Serve the explorer over SSH to a class: each connection its own explorer, a presenter
+    /// who leads (`ssh -p 2222 class@HOST`).
+    Serve(super::serve::ServeArgs),
     /// Narrated lessons through the paper: --list, NAME (in the explorer), NAME --headless.
     #[command(long_about = LESSON_ABOUT)]
     Lesson(super::lesson::LessonArgs),
@@ -216,6 +219,14 @@ pub struct CompletionsArgs {
 
 #[derive(Args, Debug)]
 pub struct BenchArgs {
+    /// Measure `turntable serve` instead: the server on 127.0.0.1 and this many in-process
+    /// SSH clients at 80x24, each playing and pressing a key every 200 ms (a list, e.g.
+    /// 10,30,60: one row each).
+    #[arg(long, value_name = "N,...", value_delimiter = ',')]
+    pub serve: Vec<usize>,
+    /// Seconds each --serve row runs.
+    #[arg(long, default_value_t = 60.0, requires = "serve")]
+    pub seconds: f64,
     /// A small bench that finishes in seconds (fewer settings, cases and angles).
     #[arg(long)]
     pub quick: bool,

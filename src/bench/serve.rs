@@ -1,0 +1,201 @@
+//! `turntable bench --serve N`: `turntable serve` on 127.0.0.1 and N SSH clients in this
+//! process (`serve::client`) at 80×24, each playing and pressing `?` (help on, help off)
+//! every 200 ms: the time from a key to the screen that shows it, per client; the process's
+//! CPU; its memory per session (clients included: an upper bound on the server's); the bytes
+//! each client receives a second; and the memory once they have all left.
+
+use crate::serve::client::{Login, Term, login};
+use crate::serve::{Limits, Options};
+use russh::keys::PrivateKey;
+use russh::keys::ssh_key::private::Ed25519Keypair;
+use std::time::{Duration, Instant};
+
+/// One measurement.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct Row {
+    pub clients: usize,
+    pub seconds: f64,
+    /// Key → screen over every key of every client, in ms.
+    pub p50_ms: f64,
+    pub p95_ms: f64,
+    /// The worst client's own p95, in ms.
+    pub worst_p95_ms: f64,
+    /// Keys whose screen never came (within 2 s; counted as 2 s above).
+    pub lost: usize,
+    pub keys: usize,
+    /// CPU time of the process (server and clients) over wall time, in cores.
+    pub cpu_cores: f64,
+    /// Resident memory added per session while all are open (clients included), in MB.
+    pub rss_per_session_mb: f64,
+    pub bytes_per_s_per_client: f64,
+    pub rss_before_mb: f64,
+    pub rss_after_mb: f64,
+}
+
+const PRESS_EVERY: Duration = Duration::from_millis(200);
+const ANSWER_WAIT: Duration = Duration::from_secs(2);
+
+/// Resident memory, in MB (Linux's /proc; 0 elsewhere).
+fn rss_mb() -> f64 {
+    let pages: f64 = std::fs::read_to_string("/proc/self/statm")
+        .ok()
+        .and_then(|s| s.split_whitespace().nth(1)?.parse().ok())
+        .unwrap_or(0.0);
+    pages * 4096.0 / 1e6
+}
+
+/// CPU time used by the process (user and system), in seconds (USER_HZ is 100 on Linux).
+fn cpu_s() -> f64 {
+    let stat = std::fs::read_to_string("/proc/self/stat").unwrap_or_default();
+    let after = stat.rsplit(')').next().unwrap_or("");
+    let f: Vec<f64> = after
+        .split_whitespace()
+        .filter_map(|x| x.parse().ok())
+        .collect();
+    // Fields 14 and 15 of the file, 12 and 13 after the name's `)` and the state.
+    (f.get(10).copied().unwrap_or(0.0) + f.get(11).copied().unwrap_or(0.0)) / 100.0
+}
+
+fn key(seed: u8) -> PrivateKey {
+    PrivateKey::from(Ed25519Keypair::from_seed(&[seed; 32]))
+}
+
+/// One client: logs in, then presses `?` every 200 ms for `seconds`; its latencies and the
+/// bytes it received.
+async fn client(addr: std::net::SocketAddr, until: Instant) -> (Vec<Duration>, usize, usize) {
+    let Ok(Some(h)) = login(addr, "bench", Login::Key(&key(2))).await else {
+        return (vec![], 0, 1);
+    };
+    let Ok(mut t) = Term::open(&h, 80, 24).await else {
+        return (vec![], 0, 1);
+    };
+    if !t.until(0, b"lab frame", Duration::from_secs(30)).await {
+        return (vec![], 0, 1);
+    }
+    let (mut lat, mut bytes, mut lost, mut help) = (vec![], 0, 0, false);
+    let mut next = Instant::now();
+    while Instant::now() < until {
+        bytes += t.seen.len();
+        t.seen.clear();
+        let sent = Instant::now();
+        if t.send(b"?").await.is_err() {
+            break;
+        }
+        help = !help;
+        let needle: &[u8] = if help { b"help:" } else { b"lab frame" };
+        if t.until(0, needle, ANSWER_WAIT).await {
+            lat.push(sent.elapsed());
+        } else {
+            lat.push(ANSWER_WAIT);
+            lost += 1;
+        }
+        next += PRESS_EVERY;
+        let now = Instant::now();
+        if next > now {
+            // Read (and count) what comes meanwhile.
+            t.until(t.seen.len(), b"\x00never", next - now).await;
+        }
+    }
+    bytes += t.seen.len();
+    (lat, bytes, lost)
+}
+
+fn pct(sorted: &[Duration], p: f64) -> f64 {
+    if sorted.is_empty() {
+        return f64::NAN;
+    }
+    let i = ((sorted.len() - 1) as f64 * p).round() as usize;
+    sorted[i].as_secs_f64() * 1e3
+}
+
+/// Runs the measurement with `clients` clients for `seconds`.
+pub fn run(clients: usize, seconds: f64) -> std::io::Result<Row> {
+    let rss_before = rss_mb();
+    let server = crate::serve::start(Options {
+        listen: std::net::SocketAddr::from(([127, 0, 0, 1], 0)),
+        host_key: key(1),
+        keys: vec![key(2).public_key().clone()],
+        passphrase: None,
+        presenter_keys: vec![],
+        presenter_passphrase: None,
+        limits: Limits {
+            sessions: clients + 1,
+            per_minute: clients * 2 + 10,
+            ..Limits::default()
+        },
+    })?;
+    let rt = tokio::runtime::Builder::new_multi_thread()
+        .worker_threads(2)
+        .enable_all()
+        .build()?;
+    let addr = server.addr;
+    let start = Instant::now();
+    let until = start + Duration::from_secs_f64(seconds);
+    let tasks: Vec<_> = (0..clients)
+        .map(|_| rt.spawn(client(addr, until)))
+        .collect();
+    // Midway, with every session open: memory and CPU so far.
+    std::thread::sleep(Duration::from_secs_f64(seconds / 2.0));
+    let rss_during = rss_mb();
+    let (cpu0, t0) = (cpu_s(), Instant::now());
+    std::thread::sleep(until.saturating_duration_since(Instant::now()));
+    let cpu_cores = (cpu_s() - cpu0) / t0.elapsed().as_secs_f64().max(1e-9);
+    let results: Vec<_> = rt.block_on(async {
+        let mut out = vec![];
+        for t in tasks {
+            out.extend(t.await.ok());
+        }
+        out
+    });
+    drop(rt);
+    let end = Instant::now() + Duration::from_secs(10);
+    while server.shared.sessions() > 0 && Instant::now() < end {
+        std::thread::sleep(Duration::from_millis(50));
+    }
+    server.stop("bench done");
+    let rss_after = rss_mb();
+    let mut all: Vec<Duration> = results.iter().flat_map(|r| r.0.clone()).collect();
+    all.sort();
+    let worst = results
+        .iter()
+        .map(|r| {
+            let mut v = r.0.clone();
+            v.sort();
+            pct(&v, 0.95)
+        })
+        .fold(0.0, f64::max);
+    let bytes: usize = results.iter().map(|r| r.1).sum();
+    Ok(Row {
+        clients,
+        seconds,
+        p50_ms: pct(&all, 0.5),
+        p95_ms: pct(&all, 0.95),
+        worst_p95_ms: worst,
+        lost: results.iter().map(|r| r.2).sum(),
+        keys: all.len(),
+        cpu_cores,
+        rss_per_session_mb: (rss_during - rss_before) / clients.max(1) as f64,
+        bytes_per_s_per_client: bytes as f64 / seconds / clients.max(1) as f64,
+        rss_before_mb: rss_before,
+        rss_after_mb: rss_after,
+    })
+}
+
+/// A row as the bench prints it.
+pub fn line(r: &Row) -> String {
+    format!(
+        "serve {:>3} clients {:>4.0} s: key→screen p50 {:>6.1} ms p95 {:>6.1} ms (worst client p95 {:>6.1} ms, {} of {} keys unanswered in 2 s), CPU {:.2} cores, RSS {:.2} MB/session, {:.0} B/s/client, RSS {:.0} MB before, {:.0} MB after",
+        r.clients,
+        r.seconds,
+        r.p50_ms,
+        r.p95_ms,
+        r.worst_p95_ms,
+        r.lost,
+        r.keys,
+        r.cpu_cores,
+        r.rss_per_session_mb,
+        r.bytes_per_s_per_client,
+        r.rss_before_mb,
+        r.rss_after_mb
+    )
+}

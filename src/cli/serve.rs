@@ -1,0 +1,132 @@
+//! `turntable serve`: the explorer over SSH for a class (see `crate::serve`). Prints where it
+//! listens, the host key's fingerprint and the passphrases; runs until SIGTERM or SIGINT,
+//! which close every session with a message, and exits 0.
+
+use super::{CmdResult, Error};
+use crate::script::parse_size;
+use crate::serve::{Limits, Options};
+use clap::Args;
+use std::io::Write;
+use std::path::PathBuf;
+use std::time::Duration;
+
+#[derive(Args, Debug)]
+pub struct ServeArgs {
+    /// Address and port to listen on. Another address than the loopback is your choice to
+    /// make: every machine that reaches it may try to get in.
+    #[arg(long, value_name = "ADDR:PORT", default_value = "127.0.0.1:2222")]
+    pub listen: std::net::SocketAddr,
+    /// Public keys (OpenSSH authorized_keys format) that get in as students.
+    #[arg(long, value_name = "FILE")]
+    pub authorized_keys: Option<PathBuf>,
+    /// The class's passphrase (typed at ssh's password prompt, any user name). Without it or
+    /// --authorized-keys, one is made and printed.
+    #[arg(long, value_name = "WORDS")]
+    pub passphrase: Option<String>,
+    /// Public keys that get in as the presenter, whom every follower's explorer follows.
+    #[arg(long, value_name = "FILE")]
+    pub presenter_keys: Option<PathBuf>,
+    /// The presenter's passphrase. Without it or --presenter-keys, one is made and printed.
+    #[arg(long, value_name = "WORDS")]
+    pub presenter_passphrase: Option<String>,
+    /// The host key (made there, 0600, if missing). Default:
+    /// $XDG_DATA_HOME/turntable/ssh_host_ed25519_key.
+    #[arg(long, value_name = "FILE")]
+    pub host_key: Option<PathBuf>,
+    /// Explorers open at once.
+    #[arg(long, default_value_t = Limits::default().sessions, value_name = "N")]
+    pub max_sessions: usize,
+    /// New connections from one address in a minute.
+    #[arg(long, default_value_t = Limits::default().per_minute, value_name = "N")]
+    pub per_minute: usize,
+    /// Seconds without a key before a session is closed.
+    #[arg(long, default_value_t = Limits::default().idle.as_secs(), value_name = "SECONDS")]
+    pub idle: u64,
+    /// The largest terminal drawn, WxH (a larger window is drawn at this size).
+    #[arg(long, value_name = "WxH", value_parser = parse_size, default_value = "400x150")]
+    pub max_size: (u16, u16),
+}
+
+impl ServeArgs {
+    /// The options, with the keys and passphrases read or made; and what to print.
+    fn options(&self) -> Result<(Options, Vec<String>), Error> {
+        let path = match &self.host_key {
+            Some(p) => p.clone(),
+            None => crate::serve::host_key_path(|v| std::env::var_os(v)).ok_or_else(|| {
+                Error::Invalid("no XDG_DATA_HOME or HOME for the host key: pass --host-key".into())
+            })?,
+        };
+        let host_key = crate::serve::host_key(&path)?;
+        let read = |f: &Option<PathBuf>| f.as_deref().map(crate::serve::authorized_keys);
+        let keys = read(&self.authorized_keys).transpose()?.unwrap_or_default();
+        let presenter_keys = read(&self.presenter_keys).transpose()?.unwrap_or_default();
+        let mut said = vec![format!(
+            "host key {} ({})",
+            crate::serve::fingerprint(&host_key),
+            crate::files::escape_controls(&path.display().to_string())
+        )];
+        let passphrase = match (&self.passphrase, &self.authorized_keys) {
+            (Some(p), _) => Some(p.clone()),
+            (None, Some(_)) => None,
+            (None, None) => Some(crate::serve::passphrase()?),
+        };
+        if let Some(p) = passphrase.as_ref().filter(|_| self.passphrase.is_none()) {
+            said.push(format!("class passphrase: {p}"));
+        }
+        let presenter_passphrase = match (&self.presenter_passphrase, &self.presenter_keys) {
+            (Some(p), _) => Some(p.clone()),
+            (None, Some(_)) => None,
+            (None, None) => Some(crate::serve::passphrase()?),
+        };
+        if let Some(p) = presenter_passphrase
+            .as_ref()
+            .filter(|_| self.presenter_passphrase.is_none())
+        {
+            said.push(format!("presenter passphrase (yours alone): {p}"));
+        }
+        let limits = Limits {
+            sessions: self.max_sessions.max(1),
+            per_minute: self.per_minute.max(1),
+            idle: Duration::from_secs(self.idle.max(1)),
+            max_cols: self.max_size.0,
+            max_rows: self.max_size.1,
+            ..Limits::default()
+        };
+        let options = Options {
+            listen: self.listen,
+            host_key,
+            keys,
+            passphrase,
+            presenter_keys,
+            presenter_passphrase,
+            limits,
+        };
+        Ok((options, said))
+    }
+}
+
+pub fn run(a: &ServeArgs) -> CmdResult {
+    let (options, said) = a.options()?;
+    let mut signals = signal_hook::iterator::Signals::new([libc::SIGTERM, libc::SIGINT])?;
+    let running = crate::serve::start(options).map_err(|e| Error::Io {
+        what: format!("listening on {}", a.listen),
+        source: std::sync::Arc::new(e),
+    })?;
+    let port = running.addr.port();
+    let mut out = std::io::stdout().lock();
+    writeln!(out, "turntable serve: listening on {}", running.addr)?;
+    for line in said {
+        writeln!(out, "{line}")?;
+    }
+    writeln!(
+        out,
+        "students: ssh -p {port} class@HOST   (F2 steps out of the class and back in)"
+    )?;
+    out.flush()?;
+    drop(out);
+    if let Some(n) = signals.forever().next() {
+        running.stop("the server is shutting down");
+        let _ = writeln!(std::io::stderr(), "turntable serve: ended by signal {n}");
+    }
+    Ok(())
+}

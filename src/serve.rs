@@ -1,0 +1,368 @@
+//! `turntable serve`: the explorer over SSH, for a class. Each connection that gets in (an
+//! authorized key, or the passphrase) and asks for a shell gets its own explorer
+//! ([`explorer`]), on the same [`Session`](crate::session::Session) the terminal and replay
+//! use, drawn at the client's size into the channel; nothing else is served (no command, no
+//! SFTP, no forwarding: [`conn`]). A presenter leads: followers apply the presenter's keys
+//! and ticks, not its frames. Guests write no file on the server. Limits bound what any
+//! client can cost: sessions, connections per address per minute, idle time, terminal size,
+//! a stalled reader, the handshake's time, and the analysis work (on as many threads at once
+//! as there are cores).
+
+mod auth;
+pub mod client;
+mod conn;
+pub mod explorer;
+pub mod keys;
+mod screen;
+
+pub use auth::{authorized_keys, fingerprint, host_key, host_key_path, passphrase};
+
+use crate::app::{App, Chord};
+use russh::keys::{PrivateKey, PublicKey};
+use std::collections::{HashMap, VecDeque};
+use std::net::{IpAddr, SocketAddr};
+use std::sync::atomic::{AtomicBool, AtomicU64, AtomicUsize, Ordering};
+use std::sync::mpsc::Sender;
+use std::sync::{Arc, Condvar, Mutex, MutexGuard};
+use std::time::{Duration, Instant};
+
+/// What bounds a client's cost (each has a flag; see `turntable serve --help`).
+#[derive(Clone, Copy, Debug)]
+pub struct Limits {
+    /// Explorers open at once.
+    pub sessions: usize,
+    /// New connections from one address in a minute.
+    pub per_minute: usize,
+    /// A session with no input this long is closed.
+    pub idle: Duration,
+    /// The largest terminal drawn (a larger window is drawn at this size).
+    pub max_cols: u16,
+    pub max_rows: u16,
+    /// A connection not in (authenticated) by then is closed.
+    pub handshake: Duration,
+    /// A client that takes no bytes this long (its window and the socket full) is closed.
+    pub stall: Duration,
+}
+
+impl Default for Limits {
+    fn default() -> Limits {
+        Limits {
+            sessions: 64,
+            per_minute: 30,
+            idle: Duration::from_secs(30 * 60),
+            max_cols: 400,
+            max_rows: 150,
+            handshake: Duration::from_secs(30),
+            stall: Duration::from_secs(60),
+        }
+    }
+}
+
+/// Who gets in, and as what.
+#[derive(Clone, Debug)]
+pub struct Options {
+    pub listen: SocketAddr,
+    pub host_key: PrivateKey,
+    /// Keys that get in as guests.
+    pub keys: Vec<PublicKey>,
+    /// The class's passphrase (any user name).
+    pub passphrase: Option<String>,
+    /// Keys that get in as the presenter.
+    pub presenter_keys: Vec<PublicKey>,
+    /// The presenter's passphrase.
+    pub presenter_passphrase: Option<String>,
+    pub limits: Limits,
+}
+
+/// To a session's thread: from its connection, its writer, or the class.
+pub enum In {
+    Data(Vec<u8>),
+    Resize(u16, u16),
+    /// The channel took the last frame.
+    Sent,
+    /// End, saying why.
+    Close(String),
+    /// The presenter's key or tick (applied while following).
+    Lead(Lead),
+    /// (To the presenter.) This session asks to follow: send it the class.
+    Join(u64),
+    /// (To a follower.) The class as it is now; what it is sent next applies to this.
+    Class(Box<App>),
+    /// (To a follower.) The presenter left.
+    Unled,
+}
+
+/// What the presenter's session did, for the followers to do alike.
+#[derive(Clone, Copy, Debug)]
+pub enum Lead {
+    Key(Chord),
+    Tick,
+}
+
+/// From a session's thread to its channel.
+pub enum Out {
+    Frame(Vec<u8>),
+    /// The last bytes; then the channel closes.
+    End(Vec<u8>),
+}
+
+/// At most `n` at once: the analysis and drawing work of all sessions shares the cores.
+pub struct Gate {
+    busy: Mutex<usize>,
+    free: Condvar,
+    n: usize,
+}
+
+impl Gate {
+    fn new(n: usize) -> Gate {
+        Gate {
+            busy: Mutex::new(0),
+            free: Condvar::new(),
+            n: n.max(1),
+        }
+    }
+
+    pub fn run<T>(&self, work: impl FnOnce() -> T) -> T {
+        let mut busy = lock(&self.busy);
+        while *busy >= self.n {
+            busy = self.free.wait(busy).unwrap_or_else(|e| e.into_inner());
+        }
+        *busy += 1;
+        drop(busy);
+        let out = work();
+        *lock(&self.busy) -= 1;
+        self.free.notify_one();
+        out
+    }
+}
+
+fn lock<T>(m: &Mutex<T>) -> MutexGuard<'_, T> {
+    m.lock().unwrap_or_else(|e| e.into_inner())
+}
+
+/// The class: who presents, who follows.
+#[derive(Default)]
+struct Class {
+    presenter: Option<u64>,
+    followers: Vec<u64>,
+}
+
+/// What every connection and session shares.
+pub struct Shared {
+    pub limits: Limits,
+    options: Options,
+    config: Arc<russh::server::Config>,
+    sessions: Mutex<HashMap<u64, Sender<In>>>,
+    class: Mutex<Class>,
+    next: AtomicU64,
+    connections: AtomicUsize,
+    /// Input bytes received and not yet taken by their session (all sessions).
+    queued: AtomicUsize,
+    pub gate: Gate,
+    stopping: AtomicBool,
+}
+
+/// Input queued beyond this waits (the connection stops reading): a flood of keys costs
+/// memory up to this bound only.
+const QUEUED_MAX: usize = 1 << 20;
+
+impl Shared {
+    /// A new session's number and inbox, or None when the server is full.
+    fn enter(&self, tx: Sender<In>, presenter: bool) -> Option<u64> {
+        let mut sessions = lock(&self.sessions);
+        if sessions.len() >= self.limits.sessions || self.stopping.load(Ordering::Relaxed) {
+            return None;
+        }
+        let id = self.next.fetch_add(1, Ordering::Relaxed);
+        sessions.insert(id, tx);
+        // The class's lock is taken before the sessions' everywhere: never inside it.
+        drop(sessions);
+        if presenter {
+            lock(&self.class).presenter = Some(id);
+        }
+        Some(id)
+    }
+
+    fn leave(&self, id: u64) {
+        lock(&self.sessions).remove(&id);
+        let mut class = lock(&self.class);
+        if class.presenter == Some(id) {
+            class.presenter = None;
+            // Followers go on from where the class was, on their own clocks.
+            for f in std::mem::take(&mut class.followers) {
+                self.send(f, In::Unled);
+            }
+        }
+        class.followers.retain(|&f| f != id);
+    }
+
+    fn send(&self, id: u64, msg: In) {
+        if let Some(tx) = lock(&self.sessions).get(&id) {
+            let _ = tx.send(msg);
+        }
+    }
+
+    fn took(&self, n: usize) {
+        self.queued.fetch_sub(n, Ordering::Relaxed);
+    }
+
+    /// Whether a presenter other than `id` leads a class.
+    fn class_led(&self, id: u64) -> bool {
+        lock(&self.class).presenter.is_some_and(|p| p != id)
+    }
+
+    /// `id` asks to follow: the presenter sends it the class (see [`Shared::welcome`]).
+    fn join(&self, id: u64) {
+        let presenter = lock(&self.class).presenter;
+        if let Some(p) = presenter {
+            self.send(p, In::Join(id));
+        }
+    }
+
+    /// (The presenter's thread.) `follower` gets the class as it is, and from now on what
+    /// the presenter does: one lock, so nothing falls between.
+    fn welcome(&self, follower: u64, app: &App) {
+        let mut class = lock(&self.class);
+        if !class.followers.contains(&follower) {
+            class.followers.push(follower);
+        }
+        self.send(follower, In::Class(Box::new(app.clone())));
+    }
+
+    fn unfollow(&self, id: u64) {
+        lock(&self.class).followers.retain(|&f| f != id);
+    }
+
+    /// (A session's thread.) If `id` presents, its followers do `lead` too.
+    fn lead(&self, id: u64, lead: Lead) {
+        let class = lock(&self.class);
+        if class.presenter != Some(id) {
+            return;
+        }
+        let sessions = lock(&self.sessions);
+        for f in &class.followers {
+            if let Some(tx) = sessions.get(f) {
+                let _ = tx.send(In::Lead(lead));
+            }
+        }
+    }
+
+    /// Sessions open now.
+    pub fn sessions(&self) -> usize {
+        lock(&self.sessions).len()
+    }
+}
+
+/// A server running on its own threads.
+pub struct Running {
+    pub addr: SocketAddr,
+    pub shared: Arc<Shared>,
+    runtime: Option<tokio::runtime::Runtime>,
+}
+
+/// Starts serving on `options.listen` (port 0: any free port; see [`Running::addr`]).
+pub fn start(options: Options) -> std::io::Result<Running> {
+    let cores = std::thread::available_parallelism().map_or(2, |n| n.get());
+    let runtime = tokio::runtime::Builder::new_multi_thread()
+        .worker_threads(cores.min(4))
+        .enable_io()
+        .enable_time()
+        .thread_name("turntable-serve")
+        .build()?;
+    let listener = std::net::TcpListener::bind(options.listen)?;
+    listener.set_nonblocking(true)?;
+    let addr = listener.local_addr()?;
+    let config = Arc::new(conn::config(&options));
+    let shared = Arc::new(Shared {
+        limits: options.limits,
+        options,
+        config,
+        sessions: Mutex::default(),
+        class: Mutex::default(),
+        next: AtomicU64::new(1),
+        connections: AtomicUsize::new(0),
+        queued: AtomicUsize::new(0),
+        gate: Gate::new(cores),
+        stopping: AtomicBool::new(false),
+    });
+    let listener = {
+        let _guard = runtime.enter();
+        tokio::net::TcpListener::from_std(listener)?
+    };
+    runtime.spawn(accept(listener, Arc::clone(&shared)));
+    Ok(Running {
+        addr,
+        shared,
+        runtime: Some(runtime),
+    })
+}
+
+impl Running {
+    /// Closes every session, saying `why` to each, waits (a few seconds at most) for them to
+    /// go, and stops.
+    pub fn stop(mut self, why: &str) {
+        self.shared.stopping.store(true, Ordering::Relaxed);
+        let ids: Vec<u64> = lock(&self.shared.sessions).keys().copied().collect();
+        for id in ids {
+            self.shared.send(id, In::Close(why.to_string()));
+        }
+        let until = Instant::now() + Duration::from_secs(3);
+        while self.shared.sessions() > 0 && Instant::now() < until {
+            std::thread::sleep(Duration::from_millis(20));
+        }
+        // The last bytes a moment to leave.
+        std::thread::sleep(Duration::from_millis(200));
+        if let Some(rt) = self.runtime.take() {
+            rt.shutdown_timeout(Duration::from_secs(1));
+        }
+    }
+}
+
+/// Who came in within the last minute, by address.
+#[derive(Default)]
+struct Recent(HashMap<IpAddr, VecDeque<Instant>>);
+
+impl Recent {
+    fn admit(&mut self, ip: IpAddr, per_minute: usize, now: Instant) -> bool {
+        let minute = Duration::from_secs(60);
+        self.0
+            .retain(|_, v| v.back().is_some_and(|&t| now - t < minute));
+        let v = self.0.entry(ip).or_default();
+        while v.front().is_some_and(|&t| now - t >= minute) {
+            v.pop_front();
+        }
+        if v.len() >= per_minute {
+            return false;
+        }
+        v.push_back(now);
+        true
+    }
+}
+
+async fn accept(listener: tokio::net::TcpListener, shared: Arc<Shared>) {
+    let mut recent = Recent::default();
+    loop {
+        let (tcp, peer) = match listener.accept().await {
+            Ok(x) => x,
+            Err(_) => {
+                // Out of descriptors, or the like: wait, rather than spin.
+                tokio::time::sleep(Duration::from_millis(100)).await;
+                continue;
+            }
+        };
+        let l = shared.limits;
+        // Handshakes cost too: a few more connections than sessions, no more.
+        if !recent.admit(peer.ip(), l.per_minute, Instant::now())
+            || shared.connections.load(Ordering::Relaxed) >= l.sessions + 16
+        {
+            drop(tcp);
+            continue;
+        }
+        shared.connections.fetch_add(1, Ordering::Relaxed);
+        let shared = Arc::clone(&shared);
+        tokio::spawn(async move {
+            conn::serve(tcp, Arc::clone(&shared)).await;
+            shared.connections.fetch_sub(1, Ordering::Relaxed);
+        });
+    }
+}

@@ -1,0 +1,139 @@
+//! Who may come in, and as what: the host key (made once, kept 0600 under the XDG data
+//! folder), the authorized keys, the passphrases (the class's and the presenter's: given, or
+//! made from the system's randomness and printed at start), compared in constant time.
+
+use crate::error::Error;
+use russh::keys::ssh_key::{HashAlg, LineEnding, private::Ed25519Keypair};
+use russh::keys::{PrivateKey, PublicKey};
+use std::path::{Path, PathBuf};
+
+/// Where the host key lives: `$XDG_DATA_HOME/turntable/ssh_host_ed25519_key`
+/// (`~/.local/share/…` when XDG_DATA_HOME is unset).
+pub fn host_key_path(var: impl Fn(&str) -> Option<std::ffi::OsString>) -> Option<PathBuf> {
+    let data = var("XDG_DATA_HOME")
+        .map(PathBuf::from)
+        .filter(|p| p.is_absolute())
+        .or_else(|| var("HOME").map(|h| PathBuf::from(h).join(".local/share")))?;
+    Some(data.join("turntable").join("ssh_host_ed25519_key"))
+}
+
+/// The host key at `path`, made there (Ed25519, 0600) the first time.
+pub fn host_key(path: &Path) -> Result<PrivateKey, Error> {
+    let shown = crate::files::escape_controls(&path.display().to_string());
+    if path.exists() {
+        let text = crate::files::read_bounded(path, 64 * 1024)?;
+        return PrivateKey::from_openssh(text.as_bytes())
+            .map_err(|e| Error::Invalid(format!("{shown}: not an OpenSSH private key: {e}")));
+    }
+    let mut seed = [0u8; 32];
+    random(&mut seed)?;
+    let key = PrivateKey::from(Ed25519Keypair::from_seed(&seed));
+    let text = key
+        .to_openssh(LineEnding::LF)
+        .map_err(|e| Error::Failed(format!("encoding the host key: {e}")))?;
+    crate::files::write_secret(path, text.as_bytes()).map_err(|e| Error::Io {
+        what: format!("writing the host key {shown}"),
+        source: std::sync::Arc::new(e),
+    })?;
+    Ok(key)
+}
+
+/// The key's SHA-256 fingerprint, as `ssh` shows it.
+pub fn fingerprint(key: &PrivateKey) -> String {
+    key.public_key().fingerprint(HashAlg::Sha256).to_string()
+}
+
+fn random(buf: &mut [u8]) -> Result<(), Error> {
+    getrandom::fill(buf).map_err(|e| Error::Failed(format!("the system's randomness: {e}")))
+}
+
+/// Words a class can type, from the system's randomness: four of 256, 32 bits.
+pub fn passphrase() -> Result<String, Error> {
+    const SYL: [&str; 16] = [
+        "ba", "ke", "di", "lo", "mu", "ra", "te", "vo", "si", "na", "po", "gu", "fe", "ji", "ko",
+        "ze",
+    ];
+    let mut b = [0u8; 4];
+    random(&mut b)?;
+    let word = |x: u8| format!("{}{}", SYL[usize::from(x >> 4)], SYL[usize::from(x & 15)]);
+    Ok(b.iter().map(|&x| word(x)).collect::<Vec<_>>().join("-"))
+}
+
+/// The public keys of an `authorized_keys` file: one a line, `#` comments; a line with
+/// options before its key is read from its key on.
+pub fn authorized_keys(path: &Path) -> Result<Vec<PublicKey>, Error> {
+    let text = crate::files::read_bounded(path, 1 << 20)?;
+    let shown = crate::files::escape_controls(&path.display().to_string());
+    let mut keys = vec![];
+    for (n, line) in text.lines().enumerate() {
+        let line = line.trim();
+        if line.is_empty() || line.starts_with('#') {
+            continue;
+        }
+        let key = PublicKey::from_openssh(line).or_else(|e| {
+            line.split_once(char::is_whitespace)
+                .map_or(Err(e), |(_, rest)| PublicKey::from_openssh(rest.trim()))
+        });
+        match key {
+            Ok(k) => keys.push(k),
+            Err(e) => {
+                return Err(Error::Invalid(format!(
+                    "{shown}:{}: not a public key: {e}",
+                    n + 1
+                )));
+            }
+        }
+    }
+    Ok(keys)
+}
+
+/// Whether `given` is `expected`, in time that depends on their lengths only.
+pub fn same(given: &str, expected: &str) -> bool {
+    let (a, b) = (given.as_bytes(), expected.as_bytes());
+    let diff = a
+        .iter()
+        .zip(b.iter().cycle())
+        .fold(a.len() ^ b.len(), |d, (x, y)| d | usize::from(x ^ y));
+    diff == 0 && !b.is_empty()
+}
+
+/// Whether `key` is among `keys` (compared by the key itself, not its comment).
+pub fn known(keys: &[PublicKey], key: &PublicKey) -> bool {
+    keys.iter().any(|k| k.key_data() == key.key_data())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn passphrases_compare_whole() {
+        assert!(same("ba-ke", "ba-ke"));
+        assert!(!same("ba-k", "ba-ke"));
+        assert!(!same("ba-kee", "ba-ke"));
+        assert!(!same("", ""));
+        let p = passphrase().unwrap();
+        assert_eq!(p.split('-').count(), 4);
+        assert_ne!(p, passphrase().unwrap());
+    }
+
+    #[test]
+    fn the_host_key_is_made_once_and_kept_private() {
+        use std::os::unix::fs::PermissionsExt;
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("t/key");
+        let a = host_key(&path).unwrap();
+        let mode = std::fs::metadata(&path).unwrap().permissions().mode();
+        assert_eq!(mode & 0o777, 0o600);
+        let b = host_key(&path).unwrap();
+        assert_eq!(fingerprint(&a), fingerprint(&b));
+        assert!(fingerprint(&a).starts_with("SHA256:"));
+        let home = |v: &str| (v == "HOME").then(|| "/h".into());
+        assert_eq!(
+            host_key_path(home),
+            Some(PathBuf::from(
+                "/h/.local/share/turntable/ssh_host_ed25519_key"
+            ))
+        );
+    }
+}

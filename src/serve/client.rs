@@ -1,0 +1,145 @@
+//! An SSH client of the explorer in this process (russh's client): what the tests and the
+//! bench drive the server with over the loopback, as a student's `ssh` would.
+
+use russh::ChannelMsg;
+use russh::client::{Handle, Msg};
+use russh::keys::{PrivateKey, PrivateKeyWithHashAlg};
+use std::net::SocketAddr;
+use std::sync::Arc;
+use std::time::Duration;
+use tokio::time::Instant;
+
+/// Trusts the server's key: the tests make it, and check its fingerprint elsewhere.
+pub struct Trust;
+
+impl russh::client::Handler for Trust {
+    type Error = russh::Error;
+
+    async fn check_server_key(
+        &mut self,
+        _key: &russh::keys::PublicKeyOrCertificate,
+    ) -> Result<bool, Self::Error> {
+        Ok(true)
+    }
+}
+
+/// How a client gets in.
+pub enum Login<'a> {
+    Key(&'a PrivateKey),
+    Password(&'a str),
+}
+
+/// Connects to `addr` and logs in as `user`; `Ok(None)` when refused.
+pub async fn login(
+    addr: SocketAddr,
+    user: &str,
+    how: Login<'_>,
+) -> Result<Option<Handle<Trust>>, russh::Error> {
+    let config = Arc::new(russh::client::Config::default());
+    let mut handle = russh::client::connect(config, addr, Trust).await?;
+    let ok = match how {
+        Login::Key(key) => {
+            let key = PrivateKeyWithHashAlg::new(Arc::new(key.clone()), None);
+            handle.authenticate_publickey(user, key).await?
+        }
+        Login::Password(p) => handle.authenticate_password(user, p).await?,
+    };
+    Ok(ok.success().then_some(handle))
+}
+
+/// A terminal on one session channel: what it has received so far.
+pub struct Term {
+    pub channel: russh::Channel<Msg>,
+    /// The bytes received on the channel, in order.
+    pub seen: Vec<u8>,
+    /// What came on the error stream (a refusal's reason).
+    pub errors: Vec<u8>,
+    pub exit: Option<u32>,
+    /// The server asked for the channel's request and refused it.
+    pub refused: bool,
+    pub closed: bool,
+}
+
+impl Term {
+    /// A session channel with a PTY of `cols` × `rows` and a shell.
+    pub async fn open(handle: &Handle<Trust>, cols: u32, rows: u32) -> Result<Term, russh::Error> {
+        let channel = handle.channel_open_session().await?;
+        channel
+            .request_pty(true, "xterm-256color", cols, rows, 0, 0, &[])
+            .await?;
+        channel.request_shell(true).await?;
+        Ok(Term::on(channel))
+    }
+
+    pub fn on(channel: russh::Channel<Msg>) -> Term {
+        Term {
+            channel,
+            seen: vec![],
+            errors: vec![],
+            exit: None,
+            refused: false,
+            closed: false,
+        }
+    }
+
+    pub async fn send(&self, bytes: &[u8]) -> Result<(), russh::Error> {
+        self.channel.data(bytes).await
+    }
+
+    /// Reads until `needle` is among the bytes received from `from` on, the channel closes
+    /// or `within` passes; whether it was found.
+    pub async fn until(&mut self, from: usize, needle: &[u8], within: Duration) -> bool {
+        let end = Instant::now() + within;
+        loop {
+            if self.seen[from.min(self.seen.len())..]
+                .windows(needle.len())
+                .any(|w| w == needle)
+            {
+                return true;
+            }
+            if self.closed || !self.next(end).await {
+                return false;
+            }
+        }
+    }
+
+    /// Reads until the channel closes (or `within` passes); whether it closed.
+    pub async fn until_closed(&mut self, within: Duration) -> bool {
+        let end = Instant::now() + within;
+        while !self.closed && self.next(end).await {}
+        self.closed
+    }
+
+    /// One message, by `end`; false when none came.
+    async fn next(&mut self, end: Instant) -> bool {
+        let msg = match tokio::time::timeout_at(end, self.channel.wait()).await {
+            Ok(Some(msg)) => msg,
+            Ok(None) => {
+                self.closed = true;
+                return true;
+            }
+            Err(_) => return false,
+        };
+        match msg {
+            ChannelMsg::Data { data } => self.seen.extend_from_slice(&data),
+            ChannelMsg::ExtendedData { data, .. } => self.errors.extend_from_slice(&data),
+            ChannelMsg::ExitStatus { exit_status } => self.exit = Some(exit_status),
+            ChannelMsg::Failure => self.refused = true,
+            ChannelMsg::Close => self.closed = true,
+            _ => {}
+        }
+        true
+    }
+}
+
+/// Waits up to `within` for `done`, checking every few milliseconds.
+pub async fn eventually(within: Duration, mut done: impl FnMut() -> bool) -> bool {
+    let end = Instant::now() + within;
+    while Instant::now() < end {
+        if done() {
+            return true;
+        }
+        tokio::time::sleep(Duration::from_millis(20)).await;
+    }
+    done()
+}

@@ -1,0 +1,341 @@
+//! One client's explorer: a [`Session`] on a [`Screen`], on its own thread, with its own tick
+//! clock. A frame is drawn only once the last one has been taken by the channel (its flow
+//! control: a client that reads slowly gets fewer frames, never older ones), while τ keeps
+//! wall-clock time. A follower applies the presenter's keys and ticks instead of its clock.
+
+use super::keys::Keys;
+use super::screen::Screen;
+use super::{In, Lead, Out, Shared};
+use crate::app::{App, Chord, Effect, Effects};
+use crate::session::Session;
+use crate::terminal::pace::{Clock, coalesce_drags};
+use crossterm::event::{
+    DisableBracketedPaste, DisableMouseCapture, EnableBracketedPaste, EnableMouseCapture, Event,
+    KeyCode, KeyModifiers,
+};
+use crossterm::terminal::{
+    BeginSynchronizedUpdate, EndSynchronizedUpdate, EnterAlternateScreen, LeaveAlternateScreen,
+};
+use crossterm::{cursor, queue};
+use std::io;
+use std::sync::Arc;
+use std::sync::mpsc::{Receiver, RecvTimeoutError};
+use std::time::{Duration, Instant};
+
+/// Frames a second at most, as the local explorer's default.
+const FPS: u32 = 30;
+/// The key that steps out of the class, and back into it (not bound in the explorer).
+pub const FOLLOW_KEY: KeyCode = KeyCode::F(2);
+
+/// What the client said about its terminal.
+#[derive(Clone, Debug, Default)]
+pub struct Client {
+    pub term: String,
+    pub width: u16,
+    pub height: u16,
+    /// LANG (or LC_ALL, LC_CTYPE), if the client sent it.
+    pub lang: Option<String>,
+    pub colorterm: Option<String>,
+}
+
+/// A guest writes nothing on the server: saving and exporting are refused with a notice.
+fn guest(app: &mut App, effects: Effects) {
+    for effect in effects {
+        let notice = match effect {
+            Effect::SaveScene { .. } => {
+                "not saved: over ssh nothing is written on the server".to_string()
+            }
+            Effect::ExportSvg { .. } => {
+                "not exported: over ssh nothing is written on the server".to_string()
+            }
+            Effect::Readouts => crate::ui::plain::summary(app),
+        };
+        app.report(notice);
+    }
+}
+
+/// The client's screen size within the server's bound.
+fn clamp(shared: &Shared, width: u16, height: u16) -> (u16, u16) {
+    let l = &shared.limits;
+    (width.clamp(1, l.max_cols), height.clamp(1, l.max_rows))
+}
+
+fn theme(client: &Client) -> Option<crate::theme::Theme> {
+    use crate::theme::{Depth, Theme};
+    let utf8 = client
+        .lang
+        .as_deref()
+        .is_none_or(|l| l.is_empty() || l.to_ascii_lowercase().replace('-', "").contains("utf8"));
+    let marker = if utf8 {
+        ratatui::symbols::Marker::Braille
+    } else {
+        ratatui::symbols::Marker::Dot
+    };
+    Some(
+        Theme::builtin("dark")?
+            .with_depth(Depth::detect(
+                Some(&client.term),
+                client.colorterm.as_deref(),
+            ))
+            .with_marker(marker),
+    )
+}
+
+/// The explorer for one client, until it quits, idles, stalls, leaves or the server stops;
+/// then its last bytes (the terminal put back, and why it ended) go out.
+pub fn run(shared: Arc<Shared>, id: u64, client: Client, inbox: Receiver<In>, out: Outbox) {
+    let (w, h) = clamp(&shared, client.width, client.height);
+    let Some(theme) = theme(&client) else {
+        shared.leave(id);
+        return;
+    };
+    let mut app = App::new(crate::scene::Scene::default_scene());
+    app.mouse = true;
+    let mut s = match Session::new(app, theme, Screen::new(w, h), None) {
+        Ok(s) => s,
+        Err(_) => {
+            shared.leave(id);
+            return;
+        }
+    };
+    s.carry = guest;
+    let mut run = Run {
+        shared: &shared,
+        id,
+        out: &out,
+        keys: Keys::default(),
+        clock: Clock::new(Instant::now()),
+        in_flight: None,
+        last_frame: None,
+        last_input: Instant::now(),
+        mouse_on: s.app.mouse_capture(),
+        following: false,
+    };
+    let said = run
+        .start(&mut s)
+        .and_then(|()| run.event_loop(&mut s, &inbox));
+    let why = said.unwrap_or_else(|e| format!("error: {e}"));
+    let mut bytes = s.term.backend_mut().take();
+    let _ = queue!(
+        bytes,
+        DisableMouseCapture,
+        DisableBracketedPaste,
+        LeaveAlternateScreen,
+        cursor::Show
+    );
+    bytes.extend(format!("turntable: {why}\r\n").as_bytes());
+    out.end(bytes);
+    shared.leave(id);
+}
+
+/// Where a session's bytes go: the channel's writer task.
+pub struct Outbox(pub tokio::sync::mpsc::Sender<Out>);
+
+impl Outbox {
+    fn frame(&self, bytes: Vec<u8>) -> bool {
+        self.0.try_send(Out::Frame(bytes)).is_ok()
+    }
+
+    fn end(&self, bytes: Vec<u8>) {
+        let _ = self.0.try_send(Out::End(bytes));
+    }
+}
+
+struct Run<'a> {
+    shared: &'a Shared,
+    id: u64,
+    out: &'a Outbox,
+    keys: Keys,
+    clock: Clock,
+    /// When the frame the channel has not yet taken was handed to it.
+    in_flight: Option<Instant>,
+    last_frame: Option<Instant>,
+    last_input: Instant,
+    mouse_on: bool,
+    /// Applying the presenter's keys and ticks.
+    following: bool,
+}
+
+impl Run<'_> {
+    fn start(&mut self, s: &mut Session<Screen>) -> io::Result<()> {
+        let b = s.term.backend_mut();
+        queue!(b, EnterAlternateScreen, cursor::Hide, EnableBracketedPaste)?;
+        if self.mouse_on {
+            queue!(b, EnableMouseCapture)?;
+        }
+        if self.shared.class_led(self.id) {
+            self.shared.join(self.id);
+        }
+        Ok(())
+    }
+
+    /// Returns why it ended, to be said to the client.
+    fn event_loop(&mut self, s: &mut Session<Screen>, inbox: &Receiver<In>) -> io::Result<String> {
+        let limits = self.shared.limits;
+        let gap = Duration::from_secs(1) / FPS;
+        loop {
+            if s.app.should_quit() {
+                return Ok("bye".into());
+            }
+            let now = Instant::now();
+            if !self.following && s.is_playing() {
+                for _ in 0..self.clock.due(now) {
+                    if !s.is_playing() {
+                        break;
+                    }
+                    s.tick();
+                    self.shared.lead(self.id, Lead::Tick);
+                    s.pump_lesson()?;
+                }
+            }
+            s.pump_lesson()?;
+            self.mouse(s)?;
+            let frame_due = self.last_frame.map_or(now, |t| t + gap);
+            if self.in_flight.is_none() {
+                if s.app.needs_redraw() && now >= frame_due {
+                    // The analysis pages are computed through the gate (as many at once as
+                    // cores); the frame itself is drawn outside it.
+                    self.shared.gate.run(|| s.sync_analysis());
+                    queue!(s.term.backend_mut(), BeginSynchronizedUpdate)?;
+                    s.draw()?;
+                    queue!(s.term.backend_mut(), EndSynchronizedUpdate)?;
+                    self.last_frame = Some(now);
+                }
+                let bytes = s.term.backend_mut().take();
+                if !bytes.is_empty() && self.out.frame(bytes) {
+                    self.in_flight = Some(now);
+                }
+            }
+            if self.in_flight.is_some_and(|t| now - t > limits.stall) {
+                return Ok("your connection stopped taking the screen".into());
+            }
+            if now - self.last_input > limits.idle {
+                return Ok(format!("idle for {} s: closed", limits.idle.as_secs()));
+            }
+            let mut wake = now + Duration::from_millis(250);
+            if s.is_playing() && !self.following {
+                wake = wake.min(self.clock.next());
+            }
+            if s.app.needs_redraw() && self.in_flight.is_none() {
+                wake = wake.min(frame_due);
+            }
+            if let Some(d) = self.keys.deadline() {
+                wake = wake.min(d);
+            }
+            match inbox.recv_timeout(wake.saturating_duration_since(now)) {
+                Ok(msg) => {
+                    if let Some(why) = self.receive(s, msg)? {
+                        return Ok(why);
+                    }
+                }
+                Err(RecvTimeoutError::Timeout) => {
+                    let events = self.keys.expire(Instant::now());
+                    self.events(s, events)?;
+                }
+                Err(RecvTimeoutError::Disconnected) => return Ok(String::new()),
+            }
+            if !s.is_playing() || self.following {
+                self.clock.restart(Instant::now());
+            }
+        }
+    }
+
+    /// One message from the connection, the writer or the class; `Some` ends the session.
+    fn receive(&mut self, s: &mut Session<Screen>, msg: In) -> io::Result<Option<String>> {
+        match msg {
+            In::Data(bytes) => {
+                self.shared.took(bytes.len());
+                let now = Instant::now();
+                self.last_input = now;
+                let events = self.keys.feed(&bytes, now);
+                self.events(s, events)?;
+            }
+            In::Resize(w, h) => {
+                let (w, h) = clamp(self.shared, w, h);
+                s.term.backend_mut().resize(w, h);
+                s.resized(w, h);
+            }
+            In::Sent => self.in_flight = None,
+            In::Close(why) => return Ok(Some(why)),
+            In::Lead(lead) if self.following => match lead {
+                Lead::Key(chord) => s.press(chord),
+                Lead::Tick => s.tick(),
+            },
+            In::Lead(_) => {}
+            In::Unled if self.following => {
+                self.following = false;
+                s.app
+                    .report("the presenter left: exploring on your own".into());
+            }
+            In::Unled => {}
+            In::Join(follower) => self.shared.welcome(follower, &s.app),
+            In::Class(app) => {
+                let (w, h) = (s.app.screen.0, s.app.screen.1);
+                // The class's state, drawn in this client's own theme and size.
+                s.app = *app;
+                crate::session::tell_size(&mut s.app, &s.theme, w, h);
+                s.app.notice = Some("following the class: F2 steps out".into());
+                s.app.invalidate();
+                s.ask_analysis();
+                self.following = true;
+            }
+        }
+        Ok(None)
+    }
+
+    fn events(&mut self, s: &mut Session<Screen>, events: Vec<Event>) -> io::Result<()> {
+        for ev in coalesce_drags(events) {
+            match ev {
+                Event::Key(k) if k.code == FOLLOW_KEY && k.modifiers == KeyModifiers::NONE => {
+                    self.follow_key(s)
+                }
+                // A follower's own keys wait until it steps out (Ctrl-C and q still end it).
+                Event::Key(k)
+                    if self.following
+                        && !matches!(k.code, KeyCode::Char('q'))
+                        && !k.modifiers.contains(KeyModifiers::CONTROL) => {}
+                Event::Key(k) => {
+                    if let Some(chord) = Chord::from_event(&k) {
+                        s.press(chord);
+                        // The presenter quitting ends its own session, not the class's.
+                        if !s.app.should_quit() {
+                            self.shared.lead(self.id, Lead::Key(chord));
+                        }
+                    }
+                }
+                Event::Mouse(_) if self.following => {}
+                Event::Mouse(m) => s.mouse(m)?,
+                Event::Paste(text) => s.paste(&text),
+                _ => {}
+            }
+        }
+        Ok(())
+    }
+
+    /// F2: a follower steps out (and explores from where the class is); out, it rejoins.
+    fn follow_key(&mut self, s: &mut Session<Screen>) {
+        if self.following {
+            self.following = false;
+            self.shared.unfollow(self.id);
+            s.app
+                .report("stepped out of the class: F2 rejoins it".into());
+        } else if self.shared.class_led(self.id) {
+            self.shared.join(self.id);
+        } else {
+            s.app
+                .report("no class to follow (no presenter, or you are it)".into());
+        }
+    }
+
+    fn mouse(&mut self, s: &mut Session<Screen>) -> io::Result<()> {
+        if s.app.mouse_capture() != self.mouse_on {
+            self.mouse_on = s.app.mouse_capture();
+            if self.mouse_on {
+                queue!(s.term.backend_mut(), EnableMouseCapture)?;
+            } else {
+                queue!(s.term.backend_mut(), DisableMouseCapture)?;
+            }
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,529 @@
+//! `turntable serve` over the loopback, driven by an in-process SSH client
+//! (`turntable::serve::client`): connect, keys to screen, resize, refusals, limits, a dropped
+//! client, the class led by a presenter; and one session with OpenSSH's `ssh -tt` where the
+//! machine has it.
+
+use russh::keys::PrivateKey;
+use russh::keys::ssh_key::private::Ed25519Keypair;
+use std::time::Duration;
+use turntable::serve::client::{Login, Term, eventually, login};
+use turntable::serve::{Limits, Options, Running, start};
+
+const SECS: Duration = Duration::from_secs(10);
+
+fn key(n: u8) -> PrivateKey {
+    PrivateKey::from(Ed25519Keypair::from_seed(&[n; 32]))
+}
+
+fn server(limits: Limits) -> Running {
+    start(Options {
+        listen: "127.0.0.1:0".parse().unwrap(),
+        host_key: key(1),
+        keys: vec![key(2).public_key().clone()],
+        passphrase: Some("ba-ke-di-lo".into()),
+        presenter_keys: vec![key(3).public_key().clone()],
+        presenter_passphrase: Some("mu-ra-te-vo".into()),
+        limits,
+    })
+    .unwrap()
+}
+
+fn rt() -> tokio::runtime::Runtime {
+    tokio::runtime::Builder::new_current_thread()
+        .enable_all()
+        .build()
+        .unwrap()
+}
+
+#[test]
+fn a_student_gets_an_explorer_of_their_own() {
+    let s = server(Limits::default());
+    rt().block_on(async {
+        let h = login(s.addr, "class", Login::Key(&key(2)))
+            .await
+            .unwrap()
+            .expect("the authorized key gets in");
+        let mut t = Term::open(&h, 80, 24).await.unwrap();
+        assert!(
+            t.until(0, b"lab frame", SECS).await,
+            "the explorer's first screen"
+        );
+        // Keys to screen: help opens.
+        let at = t.seen.len();
+        t.send(b"?").await.unwrap();
+        assert!(t.until(at, b"help", SECS).await);
+        t.send(b"\x1b").await.unwrap();
+        // A resize: the next frame is drawn at the new size (a clear, then the panel).
+        let at = t.seen.len();
+        t.channel.window_change(60, 20, 0, 0).await.unwrap();
+        assert!(t.until(at, b"\x1b[2J", SECS).await);
+        // An enormous window costs what the clamp costs.
+        t.channel.window_change(10_000, 10_000, 0, 0).await.unwrap();
+        let at = t.seen.len();
+        t.send(b"f").await.unwrap();
+        assert!(t.until(at, b"rotating", SECS).await);
+        // A guest writes no file on the server: saving and exporting say so.
+        // (A resize redraws every cell, so the notice's words arrive whole.)
+        for (k, said, w) in [(b"s", &b"saved:"[..], 100), (b"E", b"exported:", 90)] {
+            let at = t.seen.len();
+            t.send(k).await.unwrap();
+            t.channel.window_change(w, 30, 0, 0).await.unwrap();
+            assert!(t.until(at, said, SECS).await);
+        }
+        // `q` ends this connection's explorer, saying so.
+        let at = t.seen.len();
+        t.send(b"q").await.unwrap();
+        assert!(t.until(at, b"bye", SECS).await);
+        assert!(t.until_closed(SECS).await);
+        assert_eq!(t.exit, Some(0));
+        assert!(eventually(SECS, || s.shared.sessions() == 0).await);
+    });
+    s.stop("done");
+}
+
+#[test]
+fn the_passphrase_gets_in_and_nothing_else_does() {
+    let s = server(Limits::default());
+    rt().block_on(async {
+        let ok = login(s.addr, "anyone", Login::Password("ba-ke-di-lo")).await;
+        assert!(ok.unwrap().is_some());
+        for wrong in ["ba-ke-di-l", "", "ba-ke-di-lox"] {
+            let no = login(s.addr, "class", Login::Password(wrong)).await;
+            assert!(no.unwrap().is_none(), "{wrong:?} got in");
+        }
+        let no = login(s.addr, "class", Login::Key(&key(9))).await;
+        assert!(no.unwrap().is_none(), "an unknown key got in");
+    });
+    s.stop("done");
+}
+
+#[test]
+fn commands_sftp_and_forwarding_are_refused() {
+    let s = server(Limits::default());
+    rt().block_on(async {
+        let h = login(s.addr, "class", Login::Key(&key(2)))
+            .await
+            .unwrap()
+            .unwrap();
+        let ch = h.channel_open_session().await.unwrap();
+        ch.exec(true, "cat /etc/passwd").await.unwrap();
+        let mut t = Term::on(ch);
+        assert!(t.until_closed(SECS).await);
+        assert!(t.refused && t.seen.is_empty());
+        assert_eq!(t.exit, Some(1));
+        assert!(String::from_utf8_lossy(&t.errors).contains("explorer only"));
+        let ch = h.channel_open_session().await.unwrap();
+        ch.request_subsystem(true, "sftp").await.unwrap();
+        let mut t = Term::on(ch);
+        assert!(t.until_closed(SECS).await);
+        assert!(t.refused && t.seen.is_empty());
+        assert!(
+            h.channel_open_direct_tcpip("127.0.0.1", 22, "127.0.0.1", 4000)
+                .await
+                .is_err(),
+            "a port forward was opened"
+        );
+        assert!(h.tcpip_forward("127.0.0.1", 0).await.is_err());
+        assert_eq!(s.shared.sessions(), 0);
+    });
+    s.stop("done");
+}
+
+#[test]
+fn sessions_and_connections_are_limited() {
+    let s = server(Limits {
+        sessions: 1,
+        per_minute: 3,
+        ..Limits::default()
+    });
+    rt().block_on(async {
+        let a = login(s.addr, "a", Login::Key(&key(2)))
+            .await
+            .unwrap()
+            .unwrap();
+        let mut ta = Term::open(&a, 80, 24).await.unwrap();
+        assert!(ta.until(0, b"lab frame", SECS).await);
+        let b = login(s.addr, "b", Login::Key(&key(2)))
+            .await
+            .unwrap()
+            .unwrap();
+        let mut tb = Term::open(&b, 80, 24).await.unwrap();
+        assert!(tb.until(0, b"full", SECS).await);
+        assert!(tb.until_closed(SECS).await);
+        // The third connection this minute from this address is the last one let in.
+        let _c = login(s.addr, "c", Login::Key(&key(2))).await.unwrap();
+        assert!(login(s.addr, "d", Login::Key(&key(2))).await.is_err());
+        assert_eq!(s.shared.sessions(), 1);
+    });
+    s.stop("done");
+}
+
+#[test]
+fn a_dropped_client_leaves_and_the_others_go_on() {
+    let s = server(Limits::default());
+    rt().block_on(async {
+        let a = login(s.addr, "a", Login::Key(&key(2)))
+            .await
+            .unwrap()
+            .unwrap();
+        let mut ta = Term::open(&a, 80, 24).await.unwrap();
+        let b = login(s.addr, "b", Login::Key(&key(2)))
+            .await
+            .unwrap()
+            .unwrap();
+        let mut tb = Term::open(&b, 80, 24).await.unwrap();
+        assert!(ta.until(0, b"lab frame", SECS).await);
+        assert!(tb.until(0, b"lab frame", SECS).await);
+        assert_eq!(s.shared.sessions(), 2);
+        // Killed mid-session: its TCP connection just goes.
+        drop(ta);
+        drop(a);
+        assert!(eventually(SECS, || s.shared.sessions() == 1).await);
+        let at = tb.seen.len();
+        tb.send(b"?").await.unwrap();
+        assert!(
+            tb.until(at, b"help", SECS).await,
+            "the other session goes on"
+        );
+    });
+    s.stop("done");
+}
+
+#[test]
+fn followers_get_the_presenters_keys_and_can_step_out() {
+    let s = server(Limits::default());
+    rt().block_on(async {
+        let p = login(s.addr, "teacher", Login::Key(&key(3)))
+            .await
+            .unwrap()
+            .unwrap();
+        let mut tp = Term::open(&p, 100, 30).await.unwrap();
+        assert!(tp.until(0, b"lab frame", SECS).await);
+        let f = login(s.addr, "class", Login::Password("ba-ke-di-lo"))
+            .await
+            .unwrap()
+            .unwrap();
+        let mut tf = Term::open(&f, 60, 20).await.unwrap();
+        assert!(tf.until(0, b"following", SECS).await);
+        // The presenter's key turns the follower's view too, at the follower's own size.
+        let at = tf.seen.len();
+        tp.send(b"f").await.unwrap();
+        assert!(tf.until(at, b"rotating", SECS).await);
+        // The follower's own keys wait while it follows.
+        let at = tf.seen.len();
+        tf.send(b"?").await.unwrap();
+        assert!(!tf.until(at, b"help", Duration::from_millis(500)).await);
+        // F2 steps out: now its keys are its own, and the presenter's are not applied.
+        tf.send(b"\x1bOQ").await.unwrap();
+        assert!(tf.until(at, b"stepped", SECS).await);
+        let at = tf.seen.len();
+        tf.send(b"f").await.unwrap();
+        assert!(tf.until(at, b"lab frame", SECS).await);
+        // F2 again: back to where the class is (the rotating frame).
+        let at = tf.seen.len();
+        tf.send(b"\x1bOQ").await.unwrap();
+        assert!(tf.until(at, b"following", SECS).await);
+        assert!(tf.until(at, b"rotating", SECS).await);
+        // The presenter leaves: the follower goes on from there, on its own clock.
+        let at = tp.seen.len();
+        tp.send(b"q").await.unwrap();
+        assert!(tp.until(at, b"bye", SECS).await);
+        assert!(eventually(SECS, || s.shared.sessions() == 1).await);
+        tokio::time::sleep(Duration::from_millis(300)).await;
+        let at = tf.seen.len();
+        tf.channel.window_change(64, 20, 0, 0).await.unwrap();
+        assert!(tf.until(at, b"left:", SECS).await);
+        let at = tf.seen.len();
+        tf.send(b"f").await.unwrap();
+        assert!(tf.until(at, b"lab frame", SECS).await);
+    });
+    s.stop("done");
+}
+
+#[test]
+fn stopping_closes_every_session_with_a_message() {
+    let s = server(Limits::default());
+    let rt = rt();
+    let (h, mut t) = rt.block_on(async {
+        let h = login(s.addr, "a", Login::Key(&key(2)))
+            .await
+            .unwrap()
+            .unwrap();
+        let mut t = Term::open(&h, 80, 24).await.unwrap();
+        assert!(t.until(0, b"lab frame", SECS).await);
+        (h, t)
+    });
+    let at = t.seen.len();
+    s.stop("the server is shutting down");
+    rt.block_on(async {
+        assert!(t.until(at, b"shutting", SECS).await);
+    });
+    drop(h);
+}
+
+/// OpenSSH's own client, where the machine has it: `ssh -tt` forces a PTY with no terminal
+/// of its own, so this runs headless too.
+#[test]
+fn openssh_ssh_tt_gets_the_explorer() {
+    use std::io::{Read, Write};
+    use std::process::{Command, Stdio};
+    if Command::new("ssh").arg("-V").output().is_err() {
+        eprintln!("no ssh on this machine: skipped");
+        return;
+    }
+    let s = server(Limits::default());
+    let dir = tempfile::tempdir().unwrap();
+    let id = dir.path().join("id");
+    let text = key(2)
+        .to_openssh(russh::keys::ssh_key::LineEnding::LF)
+        .unwrap();
+    turntable::files::write_secret(&id, text.as_bytes()).unwrap();
+    let mut child = Command::new("ssh")
+        .args(["-tt", "-p", &s.addr.port().to_string(), "-i"])
+        .arg(&id)
+        .args([
+            "-F",
+            "/dev/null",
+            "-o",
+            "BatchMode=yes",
+            "-o",
+            "StrictHostKeyChecking=no",
+            "-o",
+            "UserKnownHostsFile=/dev/null",
+            "-o",
+            "LogLevel=ERROR",
+            "class@127.0.0.1",
+        ])
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    let mut out = child.stdout.take().unwrap();
+    let seen = std::sync::Arc::new(std::sync::Mutex::new(Vec::new()));
+    let reader = {
+        let seen = std::sync::Arc::clone(&seen);
+        std::thread::spawn(move || {
+            let mut buf = [0u8; 4096];
+            while let Ok(n) = out.read(&mut buf) {
+                if n == 0 {
+                    break;
+                }
+                seen.lock().unwrap().extend_from_slice(&buf[..n]);
+            }
+        })
+    };
+    let has = |needle: &[u8]| {
+        let end = std::time::Instant::now() + SECS;
+        while std::time::Instant::now() < end {
+            if seen
+                .lock()
+                .unwrap()
+                .windows(needle.len())
+                .any(|w| w == needle)
+            {
+                return true;
+            }
+            std::thread::sleep(Duration::from_millis(20));
+        }
+        false
+    };
+    assert!(has(b"lab frame"), "no explorer over ssh -tt");
+    child.stdin.as_mut().unwrap().write_all(b"q").unwrap();
+    assert!(has(b"bye"));
+    let status = child.wait().unwrap();
+    reader.join().unwrap();
+    assert!(status.success(), "{status:?}");
+    s.stop("done");
+}
+
+/// A client's connection whose reads stop when told: a client that never reads its screen.
+struct Frozen {
+    tcp: tokio::net::TcpStream,
+    frozen: std::sync::Arc<std::sync::atomic::AtomicBool>,
+}
+
+impl tokio::io::AsyncRead for Frozen {
+    fn poll_read(
+        mut self: std::pin::Pin<&mut Self>,
+        cx: &mut std::task::Context<'_>,
+        buf: &mut tokio::io::ReadBuf<'_>,
+    ) -> std::task::Poll<std::io::Result<()>> {
+        if self.frozen.load(std::sync::atomic::Ordering::Relaxed) {
+            return std::task::Poll::Pending;
+        }
+        std::pin::Pin::new(&mut self.tcp).poll_read(cx, buf)
+    }
+}
+
+impl tokio::io::AsyncWrite for Frozen {
+    fn poll_write(
+        mut self: std::pin::Pin<&mut Self>,
+        cx: &mut std::task::Context<'_>,
+        buf: &[u8],
+    ) -> std::task::Poll<std::io::Result<usize>> {
+        std::pin::Pin::new(&mut self.tcp).poll_write(cx, buf)
+    }
+
+    fn poll_flush(
+        mut self: std::pin::Pin<&mut Self>,
+        cx: &mut std::task::Context<'_>,
+    ) -> std::task::Poll<std::io::Result<()>> {
+        std::pin::Pin::new(&mut self.tcp).poll_flush(cx)
+    }
+
+    fn poll_shutdown(
+        mut self: std::pin::Pin<&mut Self>,
+        cx: &mut std::task::Context<'_>,
+    ) -> std::task::Poll<std::io::Result<()>> {
+        std::pin::Pin::new(&mut self.tcp).poll_shutdown(cx)
+    }
+}
+
+#[test]
+fn a_client_that_never_reads_is_closed_and_the_others_go_on() {
+    use std::sync::atomic::{AtomicBool, Ordering};
+    let s = server(Limits {
+        stall: Duration::from_secs(2),
+        ..Limits::default()
+    });
+    rt().block_on(async {
+        let frozen = std::sync::Arc::new(AtomicBool::new(false));
+        let tcp = tokio::net::TcpStream::connect(s.addr).await.unwrap();
+        let stream = Frozen {
+            tcp,
+            frozen: std::sync::Arc::clone(&frozen),
+        };
+        // A small window (as a slow link's client may keep), so it fills in seconds.
+        let config = std::sync::Arc::new(russh::client::Config {
+            window_size: 16 * 1024,
+            ..Default::default()
+        });
+        let mut a = russh::client::connect_stream(config, stream, turntable::serve::client::Trust)
+            .await
+            .unwrap();
+        let k = russh::keys::PrivateKeyWithHashAlg::new(std::sync::Arc::new(key(2)), None);
+        assert!(a.authenticate_publickey("a", k).await.unwrap().success());
+        let mut ta = Term::open(&a, 200, 60).await.unwrap();
+        assert!(ta.until(0, b"lab frame", SECS).await);
+        // From now on its screen is never read: its window fills, and its frames stop.
+        frozen.store(true, Ordering::Relaxed);
+        let b = login(s.addr, "b", Login::Key(&key(2)))
+            .await
+            .unwrap()
+            .unwrap();
+        let mut tb = Term::open(&b, 80, 24).await.unwrap();
+        assert!(tb.until(0, b"lab frame", SECS).await);
+        assert!(
+            eventually(Duration::from_secs(40), || s.shared.sessions() == 1).await,
+            "the stalled session was not closed"
+        );
+        let at = tb.seen.len();
+        tb.send(b"?").await.unwrap();
+        assert!(tb.until(at, b"help", SECS).await);
+    });
+    s.stop("done");
+}
+
+#[test]
+fn a_flood_of_keys_is_bounded_and_the_session_still_answers() {
+    let s = server(Limits::default());
+    rt().block_on(async {
+        let a = login(s.addr, "a", Login::Key(&key(2)))
+            .await
+            .unwrap()
+            .unwrap();
+        let mut t = Term::open(&a, 80, 24).await.unwrap();
+        assert!(t.until(0, b"lab frame", SECS).await);
+        // 4 MB of a key bound to nothing, and an unpaired paste start among them.
+        let chunk = "ä".repeat(16 * 1024);
+        t.send(b"\x1b[200~").await.unwrap();
+        for _ in 0..128 {
+            t.send(chunk.as_bytes()).await.unwrap();
+        }
+        let at = t.seen.len();
+        t.send(b"\x1b[201~?").await.unwrap();
+        assert!(t.until(at, b"help", Duration::from_secs(30)).await);
+    });
+    s.stop("done");
+}
+
+#[test]
+fn a_hostile_or_silent_handshake_is_closed() {
+    use std::io::{Read, Write};
+    let s = server(Limits {
+        handshake: Duration::from_secs(1),
+        ..Limits::default()
+    });
+    let mut garbage = std::net::TcpStream::connect(s.addr).unwrap();
+    garbage
+        .set_read_timeout(Some(Duration::from_secs(10)))
+        .unwrap();
+    garbage.write_all(b"GET / HTTP/1.1\r\n\r\n").unwrap();
+    garbage.write_all(&[0xff; 4096]).unwrap();
+    let mut buf = vec![];
+    // The server's banner, then the end: the read ends (0 or reset), not the timeout.
+    let r = garbage.read_to_end(&mut buf);
+    assert!(
+        r.as_ref()
+            .map_or_else(|e| e.kind() != std::io::ErrorKind::WouldBlock, |_| true),
+        "{r:?}"
+    );
+    let mut silent = std::net::TcpStream::connect(s.addr).unwrap();
+    silent
+        .set_read_timeout(Some(Duration::from_secs(10)))
+        .unwrap();
+    let t0 = std::time::Instant::now();
+    let mut buf = vec![];
+    let _ = silent.read_to_end(&mut buf);
+    assert!(
+        t0.elapsed() < Duration::from_secs(8),
+        "a silent client held on"
+    );
+    // And the server still serves.
+    rt().block_on(async {
+        let ok = login(s.addr, "x", Login::Key(&key(2))).await.unwrap();
+        assert!(ok.is_some());
+    });
+    s.stop("done");
+}
+
+/// SIGTERM closes every session with a message, and `turntable serve` exits 0.
+#[test]
+fn sigterm_closes_every_session_and_exits_0() {
+    use std::io::BufRead;
+    use std::process::{Command, Stdio};
+    let dir = tempfile::tempdir().unwrap();
+    let keys = dir.path().join("keys");
+    let line = key(2).public_key().to_openssh().unwrap();
+    turntable::files::write_secret(&keys, line.as_bytes()).unwrap();
+    let mut child = Command::new(env!("CARGO_BIN_EXE_turntable"))
+        .args(["serve", "--listen", "127.0.0.1:0", "--authorized-keys"])
+        .arg(&keys)
+        .arg("--host-key")
+        .arg(dir.path().join("host"))
+        .stdout(Stdio::piped())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    let mut out = std::io::BufReader::new(child.stdout.take().unwrap());
+    let mut first = String::new();
+    out.read_line(&mut first).unwrap();
+    let addr: std::net::SocketAddr = first.trim().rsplit(' ').next().unwrap().parse().unwrap();
+    let rest = std::thread::spawn(move || std::io::read_to_string(out).unwrap());
+    rt().block_on(async {
+        let h = login(addr, "a", Login::Key(&key(2)))
+            .await
+            .unwrap()
+            .unwrap();
+        let mut t = Term::open(&h, 80, 24).await.unwrap();
+        assert!(t.until(0, b"lab frame", SECS).await);
+        let at = t.seen.len();
+        let pid = rustix::process::Pid::from_raw(child.id() as i32).unwrap();
+        rustix::process::kill_process(pid, rustix::process::Signal::TERM).unwrap();
+        assert!(t.until(at, b"shutting", SECS).await);
+    });
+    assert!(child.wait().unwrap().success());
+    let said = rest.join().unwrap();
+    assert!(said.contains("host key SHA256:"), "{said}");
+}
