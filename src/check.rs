@@ -31,7 +31,7 @@ pub enum Via {
 
 /// The values the engine checks by their flags' names (see [`flag`]), and each value's name
 /// in a scene or configuration file.
-const KEYS: [(&str, &str); 16] = [
+const KEYS: [(&str, &str); 18] = [
     ("frictionless", "[initial] frictionless"),
     ("coupling", "[settings] coupling"),
     ("xi0", "[initial] xi0"),
@@ -48,6 +48,8 @@ const KEYS: [(&str, &str); 16] = [
     ("body-length", "[body] length"),
     ("body-height", "[body] height"),
     ("body-angle", "[body] angle"),
+    ("rate", "[spin] rate"),
+    ("omega0", "[spin] omega0"),
 ];
 
 impl Via {
@@ -89,6 +91,8 @@ pub fn flag(f: Field) -> Option<&'static str> {
         Field::BodyLength => "body-length",
         Field::BodyHeight => "body-height",
         Field::BodyAngle => "body-angle",
+        Field::SpinRate => "rate",
+        Field::Omega0 => "omega0",
         Field::Bracket => return None,
     })
 }
