@@ -37,6 +37,7 @@ mod rim;
 mod rim_times;
 mod rod;
 mod si;
+mod spinup;
 mod terminal;
 mod terminals;
 mod text;
