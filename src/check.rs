@@ -173,6 +173,19 @@ pub fn body(b: &Body, via: Via) -> Result<(), Error> {
     b.validate().map_err(|e| named(e, via))
 }
 
+/// A spin-up (`engine::spinup`): its ramp, and a coin at rest at ξ0 under settings it takes
+/// (dry friction, stick events).
+pub fn spin(
+    r: &crate::engine::spinup::Ramp,
+    xi0: f64,
+    s: &Settings,
+    via: Via,
+) -> Result<(), Error> {
+    crate::engine::spinup::SpinRun::new(*r, xi0, *s)
+        .map(|_| ())
+        .map_err(|e| named(e, via))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -4,9 +4,9 @@
 
 use super::report::Report;
 use super::{CmdResult, Error, NumericsArgs, UnitsArgs, num};
-use crate::engine::Initial;
 use crate::engine::spinup::{Onset, Phase, Ramp, SpinRun};
 use crate::engine::units::Units;
+use crate::engine::{Initial, Settings};
 use clap::Args;
 use serde::Serialize;
 use std::fmt::Write as _;
@@ -18,11 +18,14 @@ pub struct SpinupArgs {
     #[arg(long, default_value_t = 0.5, allow_hyphen_values = true)]
     pub xi0: f64,
     /// The table's angular acceleration dOmega/dtau (> 0, units of Omega_ref^2).
-    #[arg(long, allow_hyphen_values = true)]
-    pub rate: f64,
+    #[arg(long, allow_hyphen_values = true, required_unless_present = "scene")]
+    pub rate: Option<f64>,
     /// The table's rate when the ramp starts (≥ 0, units of Omega_ref).
     #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
     pub omega0: f64,
+    /// A scene file with [spin] (rate, omega0): its coin at rest, ramp, settings and units.
+    #[arg(long, value_name = "PATH", conflicts_with_all = ["rate", "xi0", "omega0", "method", "tol", "dt", "frame", "max_steps", "coupling", "mu_static_ratio", "gamma", "mu", "rpm", "gravity"])]
+    pub scene: Option<String>,
     #[command(flatten)]
     pub numerics: NumericsArgs,
     /// Stop at this time if escape is not certified by then.
@@ -70,26 +73,39 @@ pub struct SpinupUnits {
     pub mu_inferred: Option<f64>,
 }
 
-pub fn spinup(a: SpinupArgs) -> CmdResult {
+/// The coin, ramp, settings and units asked for: a scene's, or the flags'.
+fn inputs(a: &SpinupArgs) -> Result<(f64, Ramp, Settings, Option<Units>), Error> {
+    if let Some(path) = &a.scene {
+        let scene = crate::scene::Scene::load_spin(path)?;
+        let Some(ramp) = scene.spin else {
+            return Err(Error::Invalid(format!(
+                "scene {path} has no [spin] (rate, omega0): add one, or give --rate"
+            )));
+        };
+        return Ok((scene.initial.xi0, ramp, scene.settings, scene.units));
+    }
     let ramp = Ramp {
-        rate: a.rate,
+        rate: a.rate.unwrap_or(f64::NAN),
         omega0: a.omega0,
     };
+    Ok((a.xi0, ramp, a.numerics.settings()?, a.units.units()?))
+}
+
+pub fn spinup(a: SpinupArgs) -> CmdResult {
+    let (xi0, ramp, settings, units) = inputs(&a)?;
     if !(a.tau_max.is_finite() && a.tau_max > 0.0 && a.tau_max <= 1e9) {
         return Err(Error::Invalid(format!(
             "--tau-max must lie in (0, 1e9], got {}",
             Initial::show(a.tau_max)
         )));
     }
-    let settings = a.numerics.settings()?;
     let named = |e| crate::check::named(e, crate::check::Via::Flags);
-    let units = a.units.units()?;
-    let mut run = SpinRun::new(ramp, a.xi0, settings).map_err(named)?;
+    let mut run = SpinRun::new(ramp, xi0, settings).map_err(named)?;
     run.run(a.tau_max, true)?;
     let hold = settings.hold();
-    let (closed_tau, closed_omega) = match ramp.onset(a.xi0, hold) {
+    let (closed_tau, closed_omega) = match ramp.onset(xi0, hold) {
         Onset::At { tau, omega } => (Some(tau), Some(omega)),
-        Onset::AtOnce => (Some(0.0), Some(a.omega0)),
+        Onset::AtOnce => (Some(0.0), Some(ramp.omega0)),
         Onset::Never => (None, None),
     };
     let slip = run.slip();
@@ -99,9 +115,9 @@ pub fn spinup(a: SpinupArgs) -> CmdResult {
         (None, Phase::Sliding) => ("running", run.state_at(run.tau())?),
     };
     let report = SpinupReport {
-        xi0: a.xi0,
-        rate: a.rate,
-        omega0: a.omega0,
+        xi0,
+        rate: ramp.rate,
+        omega0: ramp.omega0,
         mu_static_ratio: hold,
         slip_tau: slip.map(|s| s.tau),
         slip_omega: slip.map(|s| s.omega),
@@ -114,7 +130,7 @@ pub fn spinup(a: SpinupArgs) -> CmdResult {
         xi: end.xi(),
         steps: run.cost().steps,
         rhs_evals: run.cost().rhs_evals,
-        units: units.map(|u| si(&u, &a, hold, slip.map(|s| (s.omega, s.inferred_mu)))),
+        units: units.map(|u| si(&u, xi0, ramp, hold, slip.map(|s| (s.omega, s.inferred_mu)))),
     };
     let out = if a.json {
         serde_json::to_string(&report).map_err(|e| Error::Failed(e.to_string()))? + "\n"
@@ -126,13 +142,13 @@ pub fn spinup(a: SpinupArgs) -> CmdResult {
 }
 
 /// The slip on the table `u`, its rpm the reference rate.
-fn si(u: &Units, a: &SpinupArgs, hold: f64, slip: Option<(f64, f64)>) -> SpinupUnits {
+fn si(u: &Units, xi0: f64, ramp: Ramp, hold: f64, slip: Option<(f64, f64)>) -> SpinupUnits {
     SpinupUnits {
         mu: u.mu,
         rpm: u.rpm,
         g: u.g,
-        r0_m: a.xi0 * u.r_max_m(),
-        alpha_rad_s2: a.rate * u.omega() * u.omega(),
+        r0_m: xi0 * u.r_max_m(),
+        alpha_rad_s2: ramp.rate * u.omega() * u.omega(),
         slip_rpm: slip.map(|(w, _)| w * u.rpm),
         mu_s: hold * u.mu,
         mu_inferred: slip.map(|(_, m)| m * u.mu),

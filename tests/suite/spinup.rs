@@ -126,3 +126,70 @@ fn a_slow_ramp_is_the_constant_tables_stick_condition() {
         assert_eq!(s.inferred_mu, inferred_mu(s.omega, 0.8));
     }
 }
+
+/// A scene with `[spin]` is run by `spinup --scene`, its values checked as typed there (exit
+/// 2); the explorer, replay and plot run the constant-Ω model, so they refuse it (exit 2)
+/// rather than show another run.
+#[test]
+fn a_spin_scene_is_run_by_spinup_and_refused_elsewhere() {
+    let dir = std::env::temp_dir().join(format!("turntable-spin-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let scene = |name: &str, spin: &str, release: &str| {
+        let path = dir.join(name);
+        std::fs::write(
+            &path,
+            format!(
+                "name = \"spin\"\n[initial]\nxi0 = 0.5\nphi = 0.0\nv0 = 0.0\nrelease = \"{release}\"\n[units]\nmu = 0.3\nrpm = 30\n[spin]\n{spin}\n"
+            ),
+        )
+        .unwrap();
+        path.to_str().unwrap().to_string()
+    };
+    let good = scene("good.toml", "rate = 1.0", "table-rest");
+    let v = json(&["spinup", "--scene", &good, "--json"]);
+    assert_eq!(
+        format!("{:.4}", v["mu_inferred"].as_f64().unwrap()),
+        "0.8660"
+    );
+    assert_eq!(v["units"]["rpm"], 30.0);
+    for (path, says) in [
+        (
+            scene("zero.toml", "rate = 0.0", "table-rest"),
+            "[spin] rate (dOmega/dtau, units of Omega_ref^2) must be > 0, got 0",
+        ),
+        (
+            scene("neg.toml", "rate = 1.0\nomega0 = -1.0", "table-rest"),
+            "[spin] omega0 (units of Omega_ref) must lie in [0, 1e6], got -1",
+        ),
+        (
+            scene("typo.toml", "rat = 1.0", "table-rest"),
+            "unknown field `rat`",
+        ),
+        (
+            scene("thrown.toml", "rate = 1.0", "velocity"),
+            "it needs [initial] release = \"table-rest\"",
+        ),
+    ] {
+        let (code, _, err) = turntable(&["spinup", "--scene", &path]);
+        assert_eq!(code, 2, "{err}");
+        assert!(err.contains(says), "{err}");
+    }
+    let (code, _, err) = turntable(&["spinup", "--scene", &good, "--rate", "1"]);
+    assert_eq!(code, 2, "{err}");
+    for args in [
+        vec!["--scene", good.as_str()],
+        vec![
+            "plot",
+            "trajectory",
+            "--scene",
+            good.as_str(),
+            "--out",
+            "x.svg",
+        ],
+    ] {
+        let (code, _, err) = turntable(&args);
+        assert_eq!(code, 2, "{err}");
+        assert!(err.contains("is run by `turntable spinup --scene"), "{err}");
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
