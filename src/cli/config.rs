@@ -197,7 +197,7 @@ mod tests {
         for (text, want) in [
             (
                 "colour = 1",
-                "unknown key `colour` (known: theme, fps, mouse, marker, units)",
+                "unknown key `colour` (known: theme, fps, mouse, marker, speed, paused, units)",
             ),
             (
                 "fps = \"fast\"",
