@@ -31,7 +31,7 @@ pub enum Via {
 
 /// The values the engine checks by their flags' names (see [`flag`]), and each value's name
 /// in a scene or configuration file.
-const KEYS: [(&str, &str); 16] = [
+const KEYS: [(&str, &str); 18] = [
     ("frictionless", "[initial] frictionless"),
     ("coupling", "[settings] coupling"),
     ("xi0", "[initial] xi0"),
@@ -48,6 +48,8 @@ const KEYS: [(&str, &str); 16] = [
     ("body-length", "[body] length"),
     ("body-height", "[body] height"),
     ("body-angle", "[body] angle"),
+    ("rate", "[spin] rate"),
+    ("omega0", "[spin] omega0"),
 ];
 
 impl Via {
@@ -89,6 +91,8 @@ pub fn flag(f: Field) -> Option<&'static str> {
         Field::BodyLength => "body-length",
         Field::BodyHeight => "body-height",
         Field::BodyAngle => "body-angle",
+        Field::SpinRate => "rate",
+        Field::Omega0 => "omega0",
         Field::Bracket => return None,
     })
 }
@@ -167,6 +171,19 @@ pub fn units(u: &Units, via: Via) -> Result<Units, Error> {
 /// A finite body's size and angle.
 pub fn body(b: &Body, via: Via) -> Result<(), Error> {
     b.validate().map_err(|e| named(e, via))
+}
+
+/// A spin-up (`engine::spinup`): its ramp, and a coin at rest at ξ0 under settings it takes
+/// (dry friction, stick events).
+pub fn spin(
+    r: &crate::engine::spinup::Ramp,
+    xi0: f64,
+    s: &Settings,
+    via: Via,
+) -> Result<(), Error> {
+    crate::engine::spinup::SpinRun::new(*r, xi0, *s)
+        .map(|_| ())
+        .map_err(|e| named(e, via))
 }
 
 #[cfg(test)]

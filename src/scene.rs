@@ -31,6 +31,10 @@ pub struct Scene {
     /// conditions on the panel.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub body: Option<crate::engine::body::Body>,
+    /// The table spun up under a coin at rest (`engine::spinup`): only `turntable spinup`
+    /// runs such a scene (see [`Scene::load_spin`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub spin: Option<crate::engine::spinup::Ramp>,
     /// How the explorer showed it when saved.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub view: Option<View>,
@@ -54,6 +58,8 @@ struct SceneFile {
     units: Option<Units>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     body: Option<BodyFile>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    spin: Option<crate::engine::spinup::Ramp>,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     view: Option<View>,
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
@@ -144,6 +150,7 @@ impl TryFrom<SceneFile> for Scene {
             settings: f.settings,
             units,
             body,
+            spin: f.spin,
             view: f.view,
             pins: f.pins,
         })
@@ -182,6 +189,7 @@ impl From<Scene> for SceneFile {
             settings: s.settings,
             units: s.units,
             body,
+            spin: s.spin,
             view: s.view,
             pins: s.pins,
         }
@@ -269,6 +277,7 @@ impl Scene {
             settings: Settings::default(),
             units: None,
             body: None,
+            spin: None,
             view: None,
             pins: Vec::new(),
         })
@@ -281,7 +290,21 @@ impl Scene {
     }
 
     /// A preset name, or a path to a TOML scene file. Errors name the file and the problem.
+    /// A spin-up scene is refused: the explorer, replays and plots run the constant-Ω model,
+    /// and would show something else than the scene asks for.
     pub fn load(name_or_path: &str) -> Result<Scene, Error> {
+        let scene = Scene::load_spin(name_or_path)?;
+        if scene.spin.is_some() {
+            return Err(Error::Invalid(format!(
+                "scene file {name_or_path}: [spin] is run by `turntable spinup --scene {name_or_path}`; the explorer, replay and plot do not run the spin-up yet"
+            )));
+        }
+        Ok(scene)
+    }
+
+    /// [`Scene::load`], a spin-up scene's `[spin]` checked and kept: at rest on the table
+    /// (the model's release), with a ramp and settings the spin-up takes.
+    pub fn load_spin(name_or_path: &str) -> Result<Scene, Error> {
         if let Some(s) = Scene::preset(name_or_path) {
             return Ok(s);
         }
@@ -337,6 +360,18 @@ impl Scene {
         }
         if let Some(b) = scene.body {
             crate::check::body(&b, scene_file).map_err(|e| e.context(&file))?;
+        }
+        if let Some(r) = scene.spin {
+            if scene.initial.release != Release::TableRest
+                || scene.body.is_some()
+                || !scene.pins.is_empty()
+            {
+                return Err(Error::Invalid(format!(
+                    "{file}: [spin] spins the table up under a coin at rest on it: it needs [initial] release = \"table-rest\", and no [body] or pins"
+                )));
+            }
+            crate::check::spin(&r, scene.initial.xi0, &scene.settings, scene_file)
+                .map_err(|e| e.context(&file))?;
         }
         Ok(scene)
     }

@@ -372,6 +372,7 @@ impl App {
             settings: self.settings(),
             units: self.units,
             body: self.scene().body,
+            spin: self.scene().spin,
             view: Some(crate::scene::View {
                 page: self.page,
                 frame: self.view,

@@ -10,6 +10,7 @@ mod plot;
 pub mod replay;
 mod report;
 mod serve;
+mod spinup;
 mod sweep;
 
 use crate::engine::Initial;
@@ -437,6 +438,7 @@ pub fn main() -> ExitCode {
         Some(Command::Escape(a)) => numerics::escape(a),
         Some(Command::Critical(a)) => numerics::critical(a),
         Some(Command::Sweep(a)) => sweep::sweep(a),
+        Some(Command::Spinup(a)) => spinup::spinup(a),
         Some(Command::Plot(a)) => plot::plot(a),
         Some(Command::Bench(a)) => bench::bench(a),
         Some(Command::Replay(a)) => replay::run(a),

@@ -41,11 +41,15 @@ pub enum Field {
     BodyAngle,
     /// A solver's target width: how close the ends of the bracket it certifies may be.
     Bracket,
+    /// The table's angular acceleration Ω̇ as it spins up (units of Ω_ref², `spinup`).
+    SpinRate,
+    /// The table's rate when the spin-up starts (units of Ω_ref, `spinup`).
+    Omega0,
 }
 
 impl Field {
     /// Every field, for tables that name them all.
-    pub const ALL: [Field; 15] = [
+    pub const ALL: [Field; 17] = [
         Field::Xi0,
         Field::Phi,
         Field::V0,
@@ -61,6 +65,8 @@ impl Field {
         Field::BodyHeight,
         Field::BodyAngle,
         Field::Bracket,
+        Field::SpinRate,
+        Field::Omega0,
     ];
 
     /// The engine's own name for the value (the paper's symbol, in ASCII).
@@ -81,6 +87,8 @@ impl Field {
             Field::BodyHeight => "body height",
             Field::BodyAngle => "body angle",
             Field::Bracket => "bracket width",
+            Field::SpinRate => "spin rate",
+            Field::Omega0 => "omega0",
         }
     }
 
@@ -92,6 +100,8 @@ impl Field {
             Field::Gamma => " (Stokes drag rate, units of Omega)",
             Field::BodyLength | Field::BodyHeight => " (units of R_max)",
             Field::BodyAngle => " (rad)",
+            Field::SpinRate => " (dOmega/dtau, units of Omega_ref^2)",
+            Field::Omega0 => " (units of Omega_ref)",
             _ => "",
         }
     }

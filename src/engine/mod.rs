@@ -15,6 +15,7 @@ pub mod roots;
 pub mod run;
 pub mod saddle;
 pub mod solve;
+pub mod spinup;
 pub mod stepper;
 pub mod stokes;
 pub mod stop;

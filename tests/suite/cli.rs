@@ -359,6 +359,12 @@ fn json_reports_are_the_fields_readme_lists() {
             "`critical --json`:",
             &["critical", "--json", "--xtol", "1e-6"],
         ),
+        (
+            "`spinup --json`:",
+            &[
+                "spinup", "--rate", "0.3", "--json", "--mu", "0.3", "--rpm", "30",
+            ],
+        ),
     ] {
         let (code, out, err) = turntable(args);
         assert_eq!(code, 0, "{err}");

@@ -38,6 +38,7 @@ mod rim_times;
 mod rod;
 mod serve;
 mod si;
+mod spinup;
 mod terminal;
 mod terminals;
 mod text;

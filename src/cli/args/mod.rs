@@ -191,6 +191,8 @@ pub enum Command {
     Critical(CriticalArgs),
     /// CSV for Fig. 5 (v_e over phi), Fig. 6 (final rest xi over xi0) or the outcome map.
     Sweep(SweepArgs),
+    /// Spin the table up under a coin at rest until it slides: the slip, the mu it suggests.
+    Spinup(super::spinup::SpinupArgs),
     /// A figure as SVG, for slides and notes: fig5, fig6, map, trajectory or time.
     Plot(PlotArgs),
     /// Work–precision measurements: error against cost for every method, and the speed goals.
