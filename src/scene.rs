@@ -200,7 +200,7 @@ impl From<Scene> for SceneFile {
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct View {
-    pub page: crate::app::pages::Page,
+    pub page: Page,
     pub frame: crate::engine::Frame,
     pub forces: bool,
     pub zoom: f64,
@@ -232,6 +232,59 @@ fn shown() -> bool {
 
 fn is_shown(b: &bool) -> bool {
     *b
+}
+
+/// What the body of the screen shows, in `Tab` order.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Page {
+    #[default]
+    Turntable,
+    TimePlots,
+    EscapeSpeed,
+    OutcomeMap,
+    RestRadius,
+}
+
+impl Page {
+    const ORDER: [Page; 5] = [
+        Page::Turntable,
+        Page::TimePlots,
+        Page::EscapeSpeed,
+        Page::OutcomeMap,
+        Page::RestRadius,
+    ];
+
+    pub fn next(self) -> Page {
+        let i = Page::ORDER.iter().position(|p| *p == self).unwrap_or(0);
+        Page::ORDER[(i + 1) % Page::ORDER.len()]
+    }
+
+    pub fn prev(self) -> Page {
+        let i = Page::ORDER.iter().position(|p| *p == self).unwrap_or(0);
+        Page::ORDER[(i + Page::ORDER.len() - 1) % Page::ORDER.len()]
+    }
+
+    /// The page's name, in its title.
+    pub fn title(self) -> &'static str {
+        match self {
+            Page::Turntable => "turntable",
+            Page::TimePlots => "time plots",
+            Page::EscapeSpeed => "escape speed",
+            Page::OutcomeMap => "outcome map",
+            Page::RestRadius => "rest radius",
+        }
+    }
+}
+
+/// Speed factor bounds (powers of two).
+pub const SPEED_RANGE: (f64, f64) = (1.0 / 64.0, 256.0);
+
+/// `x` as a speed: a power of two in [`SPEED_RANGE`] (what the explorer's `[` and `]` step through), with
+/// its exponent; None otherwise.
+pub fn speed_power(x: f64) -> Option<i8> {
+    let n = x.log2().round();
+    ((SPEED_RANGE.0..=SPEED_RANGE.1).contains(&x) && x == n.exp2()).then_some(n as i8)
 }
 
 /// The paper's reference cases (CONVENTIONS.md), in the order of their keys.
@@ -351,7 +404,7 @@ impl Scene {
             crate::check::units(&u, scene_file).map_err(|e| e.context(&file))?;
         }
         if let Some(v) = scene.view
-            && crate::app::speed_power(v.speed).is_none()
+            && speed_power(v.speed).is_none()
         {
             return Err(Error::Invalid(format!(
                 "{file}: [view] speed must be a power of two from 1/64 to 256, got {}",

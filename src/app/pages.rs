@@ -6,48 +6,7 @@ use crate::analysis::{
 };
 use crate::engine::{Initial, Release, Settings};
 
-/// What the body of the screen shows, in `Tab` order.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum Page {
-    #[default]
-    Turntable,
-    TimePlots,
-    EscapeSpeed,
-    OutcomeMap,
-    RestRadius,
-}
-
-impl Page {
-    const ORDER: [Page; 5] = [
-        Page::Turntable,
-        Page::TimePlots,
-        Page::EscapeSpeed,
-        Page::OutcomeMap,
-        Page::RestRadius,
-    ];
-
-    pub fn next(self) -> Page {
-        let i = Page::ORDER.iter().position(|p| *p == self).unwrap_or(0);
-        Page::ORDER[(i + 1) % Page::ORDER.len()]
-    }
-
-    pub fn prev(self) -> Page {
-        let i = Page::ORDER.iter().position(|p| *p == self).unwrap_or(0);
-        Page::ORDER[(i + Page::ORDER.len() - 1) % Page::ORDER.len()]
-    }
-
-    /// The page's name, in its title.
-    pub fn title(self) -> &'static str {
-        match self {
-            Page::Turntable => "turntable",
-            Page::TimePlots => "time plots",
-            Page::EscapeSpeed => "escape speed",
-            Page::OutcomeMap => "outcome map",
-            Page::RestRadius => "rest radius",
-        }
-    }
-}
+pub use crate::scene::Page;
 
 /// The sticking speeds over φ at one ξ0 (v_e(φ) inside ξ = 1), filled in as they arrive
 /// (`None`: not yet).

@@ -15,15 +15,7 @@ pub const TICK_DT: f64 = 0.05;
 /// The app's clock rate in wall-clock time (the terminal's, an asciicast's): each tick is
 /// `TICK_DT × speed` of sim time.
 pub const TICKS_PER_SECOND: u32 = 30;
-/// Speed factor bounds (powers of two).
-pub const SPEED_RANGE: (f64, f64) = (1.0 / 64.0, 256.0);
-
-/// `x` as a speed: a power of two in [`SPEED_RANGE`] (what `[` and `]` step through), with
-/// its exponent; None otherwise.
-pub fn speed_power(x: f64) -> Option<i8> {
-    let n = x.log2().round();
-    ((SPEED_RANGE.0..=SPEED_RANGE.1).contains(&x) && x == n.exp2()).then_some(n as i8)
-}
+pub use crate::scene::{SPEED_RANGE, speed_power};
 pub const ZOOM_RANGE: (f64, f64) = (1.0 / 64.0, 1024.0);
 /// The μ measurement's starting values, an example (the paper gives Eq. 22, no table):
 /// Ω = 3.3 rad/s and r0c = 0.12 m.
