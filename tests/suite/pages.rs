@@ -736,3 +736,42 @@ fn the_lesson_line_is_a_whole_sentence_at_every_width() {
         }
     }
 }
+
+/// The paper's RK2 escape of case C, where a student sees it (issue 29 item 4): ξ = 1 drawn on
+/// the ξ plot, zoomed on the stop so that 0.99717 is told from the rim, and the paper's run
+/// crossing it and leaving through the top.
+#[test]
+fn the_xi_plot_zooms_on_a_stop_at_the_rim_beside_the_papers_escape() {
+    let mut a = App::new(Scene::preset("C").unwrap());
+    turntable::app::update(&mut a, turntable::app::Action::ToggleCompare);
+    a.speed = 2.0;
+    for _ in 0..300 {
+        a.tick();
+        a.catch_up();
+    }
+    let xi = &turntable::plot::page::time::panels(&a)[0];
+    let rim = xi
+        .series
+        .iter()
+        .find(|s| s.name == "ξ = 1 (R_max)")
+        .unwrap();
+    assert!(rim.points.iter().all(|p| p.1 == 1.0));
+    let stop = 0.99717;
+    // A stop 0.0028 inside the rim is a fifth of the plot's height below it.
+    assert!(
+        xi.y[0] < stop && xi.y[1] > 1.0 && xi.y[1] - xi.y[0] < 0.03,
+        "{:?}",
+        xi.y
+    );
+    assert!(xi.y_label.contains("zoom on the stop"), "{}", xi.y_label);
+    let paper = xi.series.iter().find(|s| s.name == "ξ paper RK2").unwrap();
+    let top = paper.points.iter().map(|p| p.1).fold(0.0, f64::max);
+    assert!(
+        top > xi.y[1],
+        "the paper's run leaves through the top: {top}"
+    );
+    // Without the paper's run beside it, the whole run is in view.
+    turntable::app::update(&mut a, turntable::app::Action::ToggleCompare);
+    let xi = &turntable::plot::page::time::panels(&a)[0];
+    assert!(xi.y[0] <= 0.5 && xi.y[1] >= 1.0, "{:?}", xi.y);
+}

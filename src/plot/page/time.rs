@@ -49,7 +49,7 @@ pub fn panels(app: &App) -> Vec<Panel> {
     let span = app.tau_window.unwrap_or(app.plot_span()).max(1e-3);
     let window = crate::engine::approx::window(&app.initial());
     let marks = marks(app, now, window);
-    plots(app, now, window)
+    let mut panels: Vec<Panel> = plots(app, now, window)
         .into_iter()
         .map(|(name, quantity, s, pm)| Panel {
             y: extent(
@@ -68,7 +68,36 @@ pub fn panels(app: &App) -> Vec<Panel> {
             marks: marks.iter().cloned().chain(pm).collect(),
             ..Panel::default()
         })
-        .collect()
+        .collect();
+    if let Some(xi) = panels.first_mut() {
+        near_the_rim(app, xi, span);
+    }
+    panels
+}
+
+/// The ξ plot near the rim: ξ = 1 drawn where the plot reaches it, and, with the paper's RK2
+/// beside a run that stopped just inside ξ = 1, zoomed on the stop (a few times its distance
+/// from the rim each way), where a stop at 0.997 is told from the rim and the paper's run is
+/// seen crossing it and leaving through the top.
+fn near_the_rim(app: &App, xi: &mut Panel, span: f64) {
+    if xi.y[0] > 1.2 || xi.y[1] < 0.8 {
+        return;
+    }
+    xi.series.push(Series {
+        name: "ξ = 1 (R_max)".into(),
+        ink: Ink::Muted,
+        points: vec![(0.0, 1.0), (span, 1.0)],
+        style: Style::Line { dash: 1 },
+    });
+    xi.y = [xi.y[0].min(1.0), xi.y[1].max(1.0)];
+    if let (Some(_), Status::Stuck { tau, q }) = (app.paper(), app.sim().run.status())
+        && tau <= app.sim().now().tau
+        && (0.95..1.0).contains(&q.length())
+    {
+        let gap = 1.0 - q.length();
+        xi.y = [1.0 - 4.0 * gap, 1.0 + 4.0 * gap];
+        xi.y_label = format!("{} (zoom on the stop)", xi.y_label);
+    }
 }
 
 /// The lines every plot marks: the cursor at the τ on screen, the stop, the escape
