@@ -4,9 +4,9 @@
 //! the initial conditions and settings shown: no caller places a `restart()` by hand, and
 //! nothing checks at run time what the type holds.
 
-use super::state::{make_rod, make_sim, rod_cut_notice, sanitize};
 use crate::engine::rod::{RodTrack, TRACK_STEPS};
 use crate::engine::{Initial, Settings};
+use crate::present::num;
 use crate::scene::Scene;
 use crate::sim::Sim;
 
@@ -169,4 +169,67 @@ fn valid(settings: Settings) -> Settings {
     } else {
         Settings::default()
     }
+}
+
+/// Radius past which an escaped particle is no longer integrated.
+pub fn view_radius(initial: &Initial) -> f64 {
+    3.0 * initial.xi0.max(1.5)
+}
+
+/// Keeps user-edited values valid: ξ0, v0 finite and clamped to [0, [`Initial::MAX`]] (an
+/// edit past the bound stops there, it never panics); φ wrapped into (−π, π].
+pub fn sanitize(mut i: Initial) -> Initial {
+    let fin = |x: f64| if x.is_finite() { x } else { 0.0 };
+    let clamp = |x: f64| ((fin(x) * 1e9).round() / 1e9).clamp(0.0, Initial::MAX);
+    i.xi0 = clamp(i.xi0);
+    i.v0 = clamp(i.v0);
+    i.phi = crate::engine::model::wrap_angle(fin(i.phi));
+    i
+}
+
+/// The body's track to draw, up to [`ROD_TAU`], an escaping body followed past its
+/// certificate out to the point's [`view_radius`] (the class sees it leave), within the
+/// track's step and state budgets; None where there is no body, no dry friction, or the body
+/// is refused (the panel's conditions still show).
+pub(super) fn make_rod(
+    body: Option<crate::engine::body::Body>,
+    initial: &Initial,
+    settings: Settings,
+    steps: u64,
+) -> Option<crate::engine::rod::RodTrack> {
+    let body = body?;
+    if initial.frictionless || settings.stokes().is_some() {
+        return None;
+    }
+    let tol = settings.scheme.tol().unwrap_or(1e-10);
+    use crate::engine::rod::{RodRun, RodTrack, TRACK_STATES};
+    let run = RodRun::new(body, settings.hold(), initial, tol).ok()?;
+    let run = run.following(view_radius(initial));
+    Some(RodTrack::from_run(run, ROD_TAU, steps, TRACK_STATES))
+}
+
+/// How far in τ the explorer runs the body.
+pub const ROD_TAU: f64 = 200.0;
+
+/// What to say when a body's track stopped short of its run's end: where, and why.
+pub fn rod_cut_notice(rod: &crate::engine::rod::RodTrack) -> Option<String> {
+    use crate::engine::rod::Cut;
+    let at = num(rod.end_tau(), 3);
+    if let (Some(c), Some(Cut::Budget(n))) = (rod.escape, rod.cut.as_ref()) {
+        // Past the certificate the escape stands: only the drawing of it leaving stops.
+        return Some(format!(
+            "body escapes (τ = {}), drawn leaving to τ = {at} only: its {n}-step budget ran out",
+            num(c, 3)
+        ));
+    }
+    Some(match rod.cut.as_ref()? {
+        Cut::Budget(n) => format!("body drawn to τ = {at} only: its {n}-step budget ran out"),
+        Cut::Failed(e) => format!("body drawn to τ = {at} only: its run failed ({e})"),
+    })
+}
+
+pub(super) fn make_sim(initial: Initial, settings: Settings) -> Sim {
+    Sim::new(initial, settings, view_radius(&initial))
+        .or_else(|_| Sim::new(sanitize(initial), Settings::default(), 4.5))
+        .expect("sanitized initial conditions and default settings are valid")
 }

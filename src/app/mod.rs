@@ -8,6 +8,7 @@ pub mod exploration;
 pub mod keymap;
 pub mod lesson;
 pub mod pages;
+pub mod pins;
 pub mod prompt;
 pub mod state;
 pub mod update;

@@ -1,7 +1,9 @@
 //! The explorer's state: the scene being edited, its run (and the paper's, to compare), and
 //! how it is shown. Nothing here reads the clock: time passes only through ticks.
 
+use super::exploration::sanitize;
 use super::pages::{Charts, Page};
+use super::pins::pin_of;
 use crate::engine::{Frame, Initial, Settings, State};
 use crate::present::num;
 use crate::scene::Scene;
@@ -134,11 +136,6 @@ pub struct App {
     pub(crate) measured: Measured,
     /// Mouse drag in progress: setting the initial velocity.
     pub(crate) dragging: bool,
-}
-
-/// Radius past which an escaped particle is no longer integrated.
-pub fn view_radius(initial: &Initial) -> f64 {
-    3.0 * initial.xi0.max(1.5)
 }
 
 impl App {
@@ -378,79 +375,6 @@ impl App {
             pins: self.pins.iter().map(|p| p.spec.clone()).collect(),
         }
     }
-
-    /// Pins the run on screen (`b`): its whole path, computed now at bounded cost, labelled
-    /// by the scene's name, or by a letter once edited. A seventh pin replaces the oldest.
-    pub fn pin_run(&mut self) {
-        let dropped = if self.pins.len() >= crate::pin::MAX_PINS {
-            Some(self.pins.remove(0))
-        } else {
-            None
-        };
-        let label = if self.edited() {
-            let used = |c: char| self.pins.iter().any(|p| *p.spec.label == *c.to_string());
-            ('A'..='Z').find(|c| !used(*c)).unwrap_or('?').to_string()
-        } else {
-            self.scene()
-                .name
-                .chars()
-                .take(crate::pin::LABEL_MAX)
-                .collect()
-        };
-        let spec = crate::pin::PinSpec {
-            label: label.into(),
-            initial: self.initial(),
-            settings: self.settings(),
-            turn: self.turn,
-            units: self.units,
-        };
-        match pin_of(spec, &self.pins) {
-            Ok(p) => {
-                let what = match p.outcome {
-                    crate::engine::Outcome::Stuck => {
-                        format!("sticks at ξ = {}", num(p.end().xi(), 4))
-                    }
-                    crate::engine::Outcome::Escaped => "escapes".into(),
-                    crate::engine::Outcome::Running if p.end().tau < crate::pin::PIN_TAU_MAX => {
-                        format!(
-                            "still slides at τ = {}, where a pin's {} steps ran out",
-                            num(p.end().tau, 3),
-                            crate::pin::PIN_STEPS
-                        )
-                    }
-                    crate::engine::Outcome::Running => {
-                        format!("still slides at τ = {}", num(p.end().tau, 1))
-                    }
-                };
-                let mut n = format!(
-                    "pinned {}{} ({} of {}): {what}; B clears the pins",
-                    p.marker,
-                    p.spec.label,
-                    self.pins.len() + 1,
-                    crate::pin::MAX_PINS
-                );
-                if let Some(d) = dropped {
-                    n.push_str(&format!(
-                        "; {} pins at most: the oldest, {}{}, unpinned",
-                        crate::pin::MAX_PINS,
-                        d.marker,
-                        d.spec.label
-                    ));
-                }
-                self.pins.push(p);
-                self.notice = Some(n);
-            }
-            Err(e) => self.notice = Some(format!("cannot pin this run: {e}")),
-        }
-    }
-
-    /// The τ span the time plots show by default: the run so far, or the longest pin.
-    pub fn plot_span(&self) -> f64 {
-        self.pins
-            .iter()
-            .map(|p| p.end().tau * p.scale(self.units).1)
-            .fold(self.sim().now().tau, f64::max)
-    }
 }
 
 /// A release in words, for a scene's description before its run has decided.
@@ -463,75 +387,4 @@ fn release_words(i: &Initial) -> String {
         r(i.phi / std::f64::consts::PI),
         r(i.v0)
     )
-}
-
-/// A pin of `spec`, its marker the first one `pins` leaves free.
-fn pin_of(
-    spec: crate::pin::PinSpec,
-    pins: &[crate::pin::Pin],
-) -> Result<crate::pin::Pin, crate::error::Error> {
-    let marker = crate::pin::MARKERS
-        .into_iter()
-        .find(|m| pins.iter().all(|p| p.marker != *m))
-        .unwrap_or(crate::pin::MARKERS[0]);
-    let radius = view_radius(&spec.initial);
-    crate::pin::Pin::compute(spec, marker, radius)
-}
-
-/// Keeps user-edited values valid: ξ0, v0 finite and clamped to [0, [`Initial::MAX`]] (an
-/// edit past the bound stops there, it never panics); φ wrapped into (−π, π].
-pub fn sanitize(mut i: Initial) -> Initial {
-    let fin = |x: f64| if x.is_finite() { x } else { 0.0 };
-    let clamp = |x: f64| ((fin(x) * 1e9).round() / 1e9).clamp(0.0, Initial::MAX);
-    i.xi0 = clamp(i.xi0);
-    i.v0 = clamp(i.v0);
-    i.phi = crate::engine::model::wrap_angle(fin(i.phi));
-    i
-}
-
-/// The body's track to draw, up to [`ROD_TAU`], an escaping body followed past its
-/// certificate out to the point's [`view_radius`] (the class sees it leave), within the
-/// track's step and state budgets; None where there is no body, no dry friction, or the body
-/// is refused (the panel's conditions still show).
-pub(super) fn make_rod(
-    body: Option<crate::engine::body::Body>,
-    initial: &Initial,
-    settings: Settings,
-    steps: u64,
-) -> Option<crate::engine::rod::RodTrack> {
-    let body = body?;
-    if initial.frictionless || settings.stokes().is_some() {
-        return None;
-    }
-    let tol = settings.scheme.tol().unwrap_or(1e-10);
-    use crate::engine::rod::{RodRun, RodTrack, TRACK_STATES};
-    let run = RodRun::new(body, settings.hold(), initial, tol).ok()?;
-    let run = run.following(view_radius(initial));
-    Some(RodTrack::from_run(run, ROD_TAU, steps, TRACK_STATES))
-}
-
-/// How far in τ the explorer runs the body.
-pub const ROD_TAU: f64 = 200.0;
-
-/// What to say when a body's track stopped short of its run's end: where, and why.
-pub fn rod_cut_notice(rod: &crate::engine::rod::RodTrack) -> Option<String> {
-    use crate::engine::rod::Cut;
-    let at = num(rod.end_tau(), 3);
-    if let (Some(c), Some(Cut::Budget(n))) = (rod.escape, rod.cut.as_ref()) {
-        // Past the certificate the escape stands: only the drawing of it leaving stops.
-        return Some(format!(
-            "body escapes (τ = {}), drawn leaving to τ = {at} only: its {n}-step budget ran out",
-            num(c, 3)
-        ));
-    }
-    Some(match rod.cut.as_ref()? {
-        Cut::Budget(n) => format!("body drawn to τ = {at} only: its {n}-step budget ran out"),
-        Cut::Failed(e) => format!("body drawn to τ = {at} only: its run failed ({e})"),
-    })
-}
-
-pub(super) fn make_sim(initial: Initial, settings: Settings) -> Sim {
-    Sim::new(initial, settings, view_radius(&initial))
-        .or_else(|_| Sim::new(sanitize(initial), Settings::default(), 4.5))
-        .expect("sanitized initial conditions and default settings are valid")
 }

@@ -164,7 +164,7 @@ struct Played {
 }
 
 fn play(i: Initial, settings: crate::engine::Settings, tau_max: f64) -> Result<Played, Error> {
-    let mut sim = crate::sim::Sim::new(i, settings, crate::app::state::view_radius(&i))?;
+    let mut sim = crate::sim::Sim::new(i, settings, crate::app::exploration::view_radius(&i))?;
     // Until the τ on screen passes the stop, so that the path holds the stop itself.
     while sim.live()
         && sim.now().tau < tau_max

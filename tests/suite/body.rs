@@ -455,7 +455,7 @@ fn a_cut_track_says_where_it_stopped() {
     let cut = common::rod_track_within(b, 1.0, &app.initial(), 1e-10, 200.0, 30, usize::MAX);
     let end = cut.end_tau();
     assert!(
-        turntable::app::state::rod_cut_notice(&cut)
+        turntable::app::exploration::rod_cut_notice(&cut)
             .unwrap()
             .contains("30-step budget")
     );
@@ -550,7 +550,7 @@ fn fig2s_body_is_drawn_leaving_past_its_certificate() {
     assert_eq!(rod.escape, Some(run.state.tau));
     assert_eq!(rod.escape, Some(0.0));
     assert_eq!((rod.outcome, rod.cut.clone()), (Outcome::Escaped, None));
-    let radius = turntable::app::state::view_radius(&app.initial());
+    let radius = turntable::app::exploration::view_radius(&app.initial());
     let last = *rod.states.last().unwrap();
     assert!(last.q.length() >= radius, "{} < {radius}", last.q.length());
     assert!(rod.steps <= turntable::engine::rod::TRACK_STEPS);

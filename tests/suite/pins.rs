@@ -74,7 +74,7 @@ fn an_escaping_pin_is_followed_out_of_view_and_a_long_one_is_bounded() {
     key(&mut a, 'b');
     let p = &a.pins[0];
     assert_eq!(p.outcome, Outcome::Escaped);
-    assert!(p.end().xi() > turntable::app::state::view_radius(&p.spec.initial));
+    assert!(p.end().xi() > turntable::app::exploration::view_radius(&p.spec.initial));
     assert_eq!(p.spec.label, "A", "an edited run is lettered");
     // Its end is out of view: labelled where it leaves (on the canvas, left of the panel).
     let screen = render(&mut a, 80, 24);

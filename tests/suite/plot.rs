@@ -697,7 +697,12 @@ fn an_export_carries_what_the_screen_shows() {
     assert_eq!(
         names,
         [
-            with_pin("ξ", "ξ paper RK2"),
+            // ξ = 1 where the ξ plot reaches it (fig2 starts at 1.1).
+            [
+                with_pin("ξ", "ξ paper RK2"),
+                vec!["ξ = 1 (R_max)".to_string()]
+            ]
+            .concat(),
             with_pin("θ", "θ paper RK2"),
             with_pin("θ′", "θ′ paper RK2"),
             ["|u|", "|u| paper RK2", pin.as_str()]
@@ -709,7 +714,7 @@ fn an_export_carries_what_the_screen_shows() {
     for n in names.iter().flatten() {
         assert!(screen.contains(n.as_str()), "{n} not on screen:\n{screen}");
     }
-    // Sec. III's ξ starts at the release, ξ0 = 1.1 (Eq. 24), and the run's ξ ends at the ξ
+    // Sec. III's ξ starts at the release, ξ0 = 1.1 (Eq. 19), and the run's ξ ends at the ξ
     // on screen.
     let (x, y) = (axis(panels[0], "x-tick"), axis(panels[0], "y-tick"));
     let dots: Vec<f64> = panels[0]

@@ -167,7 +167,7 @@ proptest! {
 fn the_explorations_runs_always_match_its_initial_conditions() {
     use strum::VariantArray;
     use turntable::app::Exploration;
-    use turntable::app::state::sanitize;
+    use turntable::app::exploration::sanitize;
     use turntable::engine::Release;
     use turntable::engine::body::Body;
     use turntable::scene::{PRESETS, Scene};

@@ -36,7 +36,7 @@ pub fn auto_extent(app: &App) -> f64 {
     });
     (m * 1.1)
         .max(1.5)
-        .min(crate::app::state::view_radius(&app.initial()) * 1.1)
+        .min(crate::app::exploration::view_radius(&app.initial()) * 1.1)
 }
 
 /// A circle of radius `r` about the centre, as a closed line.
