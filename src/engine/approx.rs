@@ -53,7 +53,7 @@ pub fn window(i: &super::Initial) -> Option<f64> {
     }
 }
 
-/// Sec. III's ξ at τ for a release at rest (the lab's Eq. 17, else the table's Eq. 24).
+/// Sec. III's ξ at τ for a release at rest (the lab's Eq. 13, else the table's Eq. 19).
 pub fn xi(i: &super::Initial, tau: f64) -> f64 {
     match i.release {
         super::Release::LabRest => lab_rest(i.xi0, tau).0,

@@ -414,7 +414,7 @@ fn a_trajectory_draws_several_runs_with_their_arrows() {
 }
 
 /// `plot time --scene fig1` frames where Sec. III A holds (τ ≲ √ξ0 ≈ 22.4 at ξ0 = 500, twice
-/// that shown), with Eq. 17's ξ beside the run's: they agree early, to 1e-3 of ξ0.
+/// that shown), with Eq. 13's ξ beside the run's: they agree early, to 1e-3 of ξ0.
 #[test]
 fn the_time_plots_of_fig1_frame_the_approximations_window() {
     let f = out("time-fig1");
@@ -438,14 +438,14 @@ fn the_time_plots_of_fig1_frame_the_approximations_window() {
     assert_eq!(dots.len(), 201);
     let run = points(named(xi, "ξ"));
     for &(t, v) in dots.iter().filter(|d| d.0 <= 10.0) {
-        // Eq. 17, ξ = τ⁴/(12ξ0) + ξ0, against the run's line at the nearest point.
+        // Eq. 13, ξ = τ⁴/(12ξ0) + ξ0, against the run's line at the nearest point.
         assert!((v - (t.powi(4) / 6000.0 + 500.0)).abs() < 1e-3, "{t}: {v}");
         let near = run
             .iter()
             .map(|&(a, b)| (x(a), y(b)))
             .min_by(|a, b| (a.0 - t).abs().total_cmp(&(b.0 - t).abs()))
             .unwrap();
-        assert!((near.1 - v).abs() < 0.5, "{t}: run {near:?}, Eq. 17 {v}");
+        assert!((near.1 - v).abs() < 0.5, "{t}: run {near:?}, Eq. 13 {v}");
     }
     std::fs::remove_file(&f).unwrap();
 }

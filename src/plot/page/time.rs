@@ -293,9 +293,9 @@ fn plots(app: &App, now: f64, window: Option<f64>) -> [Plot<'static>; 5] {
     th_s.extend(src.paper_series(theta_name, &th_of));
     th_s.extend(src.pin_series(2, (0, -1), &|p| along(p, &th_of)));
     th_s.extend(src.approx(&|t| match i.release {
-        // θ = τ²/(2ξ0) (Eq. 16): θ′ = τ/ξ0 in the lab.
+        // θ = τ²/(2ξ0) (Eq. 12): θ′ = τ/ξ0 in the lab.
         Release::LabRest => Some(t / i.xi0 - shift),
-        // Θ′ = 2 ln(ξ0/ξ) (Eq. 25), table frame.
+        // Θ′ = 2 ln(ξ0/ξ) (Eq. 20), table frame.
         _ => Some(table_rest(i.xi0, t).1 + 1.0 - shift),
     }));
     let angle_name = if rotating { "Θ" } else { "θ" };
