@@ -1,6 +1,6 @@
 //! The time plots' panels: ξ, θ (Θ), θ′ (Θ′ in the rotating view), |u| and the energy
-//! identity dE/dτ = −|u| against τ, with the paper's Sec. III approximations (Eqs. 16–17,
-//! 24–25) over their window for releases at rest, the paper's RK2 run beside the converged
+//! identity dE/dτ = −|u| against τ, with the paper's Sec. III approximations (Eqs. 12–13,
+//! 19–20) over their window for releases at rest, the paper's RK2 run beside the converged
 //! one and the pins': what the page draws and `E` writes.
 
 use super::super::{Ink, Mark, Panel, Series, Style, extent};
