@@ -8,6 +8,7 @@ mod crossover;
 mod goals;
 pub mod link;
 mod output;
+pub mod pages;
 mod runs;
 mod tasks;
 
@@ -174,6 +175,8 @@ pub struct Report {
     pub ratios: Vec<TaskRatio>,
     /// dop853 against dp54 at equal error, task by task.
     pub crossovers: Vec<Crossover>,
+    /// Issue 34: the pages' work on one thread and on all cores, and a key's wait for them.
+    pub pages: pages::PageTimes,
 }
 
 fn median(v: &mut [f64]) -> f64 {
@@ -260,6 +263,8 @@ pub fn run(cfg: &Config, mut progress: impl FnMut(&str)) -> Result<Report, Error
     let savings = savings(&all)?;
     progress("speed goals");
     let speed = speed(cfg, &all, &rest)?;
+    progress("the pages on all cores");
+    let pages = pages::page_times(cfg.reps, if cfg.quick { 4 } else { 8 })?;
     let load = std::fs::read_to_string("/proc/loadavg")
         .ok()
         .map(|l| l.split_whitespace().take(3).collect::<Vec<_>>().join(" "));
@@ -272,6 +277,7 @@ pub fn run(cfg: &Config, mut progress: impl FnMut(&str)) -> Result<Report, Error
         rows,
         savings,
         speed,
+        pages,
     })
 }
 

@@ -30,6 +30,7 @@ pub fn table(r: &Report) -> String {
     savings(&mut o, r);
     let _ = writeln!(o, "\nspeed goals (release build, this machine):");
     speed_goals(&mut o, &r.speed);
+    page_goals(&mut o, &r.pages);
     comparisons(&mut o, r);
     output_goals(&mut o, &r.speed);
     o
@@ -190,6 +191,70 @@ fn speed_goals(o: &mut String, sp: &Speed) {
                 sci(sp.rk2_err_median)
             );
         }
+    }
+}
+
+/// The pages on all cores and a key's wait for them (issue 34).
+fn page_goals(o: &mut String, p: &super::pages::PageTimes) {
+    let (w, h) = super::pages::SIZE;
+    let _ = writeln!(
+        o,
+        "  the pages at {w}×{h} on {} cores: one thread → all cores (wall), speedup; the most the split gives idle cores (CPU over the larger of a core's share and the longest piece)",
+        p.cores
+    );
+    let rows = [
+        (
+            "escape-speed curve, ξ0 = 0.5, 72 angles".to_string(),
+            &p.curve,
+        ),
+        (
+            format!(
+                "outcome map {}×{}, first runs at tol {:.0e}, {} refined",
+                p.grid.0,
+                p.grid.1,
+                crate::analysis::CELL_TOL,
+                p.refined
+            ),
+            &p.map,
+        ),
+        ("four Fig. 5 curves × 24 angles".to_string(), &p.fig5),
+    ];
+    for (what, s) in rows {
+        let verdict = if p.cores < 2 {
+            "one core: no goal".to_string()
+        } else {
+            goal_at_least(s.speedup(), 1.8, "×")
+        };
+        let _ = writeln!(
+            o,
+            "    {what:<58} {:>6.1} → {:>6.1} ms  {:>4.2}× {verdict}; at most {:.2}×",
+            s.one_ms,
+            s.all_ms,
+            s.speedup(),
+            s.bound()
+        );
+    }
+    let _ = writeln!(
+        o,
+        "    outcome map {}×{}, every cell at the page's tol 1e-10 (before issue 34), one thread: {:.1} ms",
+        p.grid.0, p.grid.1, p.map_full_one_ms
+    );
+    let keys = [
+        ("outcome map complete", p.key_map_ms, Some(60.0)),
+        ("escape-speed curve complete", p.key_curve_ms, Some(40.0)),
+        (
+            "escape-speed page complete (least v_e too)",
+            p.key_escape_ms,
+            None,
+        ),
+    ];
+    for (what, (median, worst), limit) in keys {
+        let _ = writeln!(
+            o,
+            "    `x` → {what:<43} (threaded session, drawn; median / worst of {}): {median:>4.0} / {worst:>4.0} ms   {}",
+            p.presses,
+            limit.map_or(String::new(), |l| goal(median, l, "ms"))
+        );
     }
 }
 
@@ -357,6 +422,12 @@ pub fn plot(r: &Report, task: Task, width: u16, height: u16) -> Result<String, E
         render(f, f.area(), &th, &chart);
     })?;
     Ok(plain_text(term.backend().buffer()))
+}
+
+/// A goal on a value that must be at least `limit`.
+fn goal_at_least(value: f64, limit: f64, unit: &str) -> String {
+    let met = if value >= limit { "met" } else { "MISSED" };
+    format!("(goal ≥ {limit}{unit}: {met})")
 }
 
 /// A speed goal and whether this run met it: a missed goal says so.
