@@ -7,6 +7,7 @@ pub mod bytes;
 mod crossover;
 mod goals;
 pub mod link;
+pub mod models;
 mod output;
 pub mod pages;
 mod runs;
@@ -177,6 +178,8 @@ pub struct Report {
     pub crossovers: Vec<Crossover>,
     /// Issue 34: the pages' work on one thread and on all cores, and a key's wait for them.
     pub pages: pages::PageTimes,
+    /// Issue 34: the price of each model, one run and one frame.
+    pub models: Vec<models::ModelCost>,
 }
 
 fn median(v: &mut [f64]) -> f64 {
@@ -261,6 +264,8 @@ pub fn run(cfg: &Config, mut progress: impl FnMut(&str)) -> Result<Report, Error
     }
     progress("model only what a scene requires");
     let savings = savings(&all)?;
+    progress("the price of each model");
+    let models = models::model_costs(&all, cfg.reps)?;
     progress("speed goals");
     let speed = speed(cfg, &all, &rest)?;
     progress("the pages on all cores");
@@ -278,6 +283,7 @@ pub fn run(cfg: &Config, mut progress: impl FnMut(&str)) -> Result<Report, Error
         savings,
         speed,
         pages,
+        models,
     })
 }
 

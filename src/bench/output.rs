@@ -28,6 +28,7 @@ pub fn table(r: &Report) -> String {
     header(&mut o, r);
     rows(&mut o, r);
     savings(&mut o, r);
+    models(&mut o, r);
     let _ = writeln!(o, "\nspeed goals (release build, this machine):");
     speed_goals(&mut o, &r.speed);
     page_goals(&mut o, &r.pages);
@@ -125,6 +126,27 @@ fn savings(o: &mut String, r: &Report) {
             o,
             "  {}\n    {:<44} {:>10}\n    {:<44} {:>10}   {factor}",
             s.what, s.baseline, s.baseline_evals, s.lean, s.lean_evals
+        );
+    }
+}
+
+/// The price of each model: one run, one frame.
+fn models(o: &mut String, r: &Report) {
+    let _ = writeln!(
+        o,
+        "\nthe price of each model ({} releases to τ = 50: median RHS and mean wall of one run; one frame of the explorer playing it at 120×40, tick + draw; its outcome-map page at 120×40, curve and cells, one thread):",
+        r.config.cases + 3
+    );
+    for m in &r.models {
+        let _ = writeln!(
+            o,
+            "  {:<36} run {:>7.0} RHS {:>8.1} µs   frame {:>5.2} ms   page {}",
+            m.model,
+            m.run_rhs,
+            m.run_us,
+            m.frame_ms,
+            m.page_ms
+                .map_or("the point's".into(), |ms| format!("{ms:>5.1} ms"))
         );
     }
 }
@@ -240,6 +262,11 @@ fn page_goals(o: &mut String, p: &super::pages::PageTimes) {
         p.grid.0, p.grid.1, p.map_full_one_ms
     );
     let keys = [
+        (
+            "its own frame while the map computes",
+            p.key_frame_ms,
+            Some(16.7),
+        ),
         ("outcome map complete", p.key_map_ms, Some(60.0)),
         ("escape-speed curve complete", p.key_curve_ms, Some(40.0)),
         (
@@ -251,7 +278,7 @@ fn page_goals(o: &mut String, p: &super::pages::PageTimes) {
     for (what, (median, worst), limit) in keys {
         let _ = writeln!(
             o,
-            "    `x` → {what:<43} (threaded session, drawn; median / worst of {}): {median:>4.0} / {worst:>4.0} ms   {}",
+            "    `x` → {what:<43} (threaded session, drawn; median / worst of {}): {median:>5.1} / {worst:>5.1} ms   {}",
             p.presses,
             limit.map_or(String::new(), |l| goal(median, l, "ms"))
         );

@@ -63,6 +63,9 @@ pub struct PageTimes {
     /// median and worst over the presses: the outcome map, the escape-speed page's curve, and
     /// that page whole (its least v_e refined too).
     pub presses: usize,
+    /// `x`'s own frame (the new ξ0 in the title) while the map computes: keys are answered
+    /// within a frame whatever the workers do.
+    pub key_frame_ms: (f64, f64),
     pub key_map_ms: (f64, f64),
     pub key_curve_ms: (f64, f64),
     pub key_escape_ms: (f64, f64),
@@ -137,8 +140,8 @@ pub fn page_times(reps: usize, presses: usize) -> Result<PageTimes, Error> {
     let (_, fig5) = split(reps, &points, |&(x, p)| {
         escape_speed(x, p, Settings::default(), 1e-6).map(|t| t.value)
     });
-    let [key_curve_ms, key_escape_ms] = key_to_page(Page::EscapeSpeed, presses)?;
-    let [_, key_map_ms] = key_to_page(Page::OutcomeMap, presses)?;
+    let [_, key_curve_ms, key_escape_ms] = key_to_page(Page::EscapeSpeed, presses)?;
+    let [key_frame_ms, _, key_map_ms] = key_to_page(Page::OutcomeMap, presses)?;
     Ok(PageTimes {
         cores: cores(),
         curve,
@@ -148,6 +151,7 @@ pub fn page_times(reps: usize, presses: usize) -> Result<PageTimes, Error> {
         refined: answers.iter().filter(|a| a.1).count(),
         fig5,
         presses,
+        key_frame_ms,
         key_map_ms,
         key_curve_ms,
         key_escape_ms,
@@ -161,8 +165,9 @@ fn dark() -> Result<crate::theme::Theme, Error> {
 /// `x` pressed `presses` times on `page` in a threaded session at [`SIZE`], each time waiting
 /// for the page to be complete and drawn as the explorer's loop does (pieces taken as they
 /// arrive, a frame at most every 1/60 s while they do): the median and the worst wait (ms)
-/// until the curve at the new ξ0 is complete, and until the page is.
-fn key_to_page(page: Page, presses: usize) -> Result<[(f64, f64); 2], Error> {
+/// until the key's own frame is drawn, until the curve at the new ξ0 is complete, and until
+/// the page is.
+fn key_to_page(page: Page, presses: usize) -> Result<[(f64, f64); 3], Error> {
     let mut app = App::new(crate::scene::Scene::default_scene(), dark()?);
     app.page = page;
     let mut session = Session::headless(app, SIZE.0, SIZE.1, false).with_worker();
@@ -170,13 +175,16 @@ fn key_to_page(page: Page, presses: usize) -> Result<[(f64, f64); 2], Error> {
         crossterm::event::KeyCode::Char('x'),
         crossterm::event::KeyModifiers::NONE,
     );
-    let (mut curve, mut whole) = (Vec::new(), Vec::new());
+    let (mut frame, mut curve, mut whole) = (Vec::new(), Vec::new(), Vec::new());
     // The first press is a warm-up, as the page's first fill is (the paper's curves).
     for _ in 0..=presses {
         let t = Instant::now();
         session.press(x);
+        // The key's own frame (its new title), drawn while the workers compute.
+        session.screen();
+        frame.push(t.elapsed().as_secs_f64() * 1e3);
         let c = wait_for_page(&mut session)?;
-        curve.push(c.as_secs_f64() * 1e3);
+        curve.push((t.elapsed() - c).as_secs_f64() * 1e3);
         whole.push(t.elapsed().as_secs_f64() * 1e3);
     }
     let summary = |mut v: Vec<f64>| {
@@ -184,12 +192,12 @@ fn key_to_page(page: Page, presses: usize) -> Result<[(f64, f64); 2], Error> {
         let worst = v.iter().copied().fold(0.0, f64::max);
         (super::median(&mut v), worst)
     };
-    Ok([summary(curve), summary(whole)])
+    Ok([summary(frame), summary(curve), summary(whole)])
 }
 
 /// Waits until the page on screen needs nothing more and is drawn, drawing as pieces arrive
-/// (at most 60 frames a second); gives up after 10 s. How long until the curve at the app's
-/// ξ0 was complete.
+/// (at most 60 frames a second); gives up after 10 s. How long it waited after the curve at
+/// the app's ξ0 was complete.
 fn wait_for_page(session: &mut Session<ratatui::backend::TestBackend>) -> Result<Duration, Error> {
     let start = Instant::now();
     let frame = Duration::from_secs(1) / 60;
@@ -215,7 +223,7 @@ fn wait_for_page(session: &mut Session<ratatui::backend::TestBackend>) -> Result
             drawn = Instant::now();
         }
         if done {
-            return Ok(curve.unwrap_or_else(|| start.elapsed()));
+            return Ok(curve.map_or(Duration::ZERO, |c| start.elapsed() - c));
         }
         if start.elapsed() > Duration::from_secs(10) {
             return Err(Error::Failed("the page did not complete in 10 s".into()));
