@@ -28,7 +28,7 @@ use pace::{Clock, Flight};
 
 /// How often the loop looks for the analysis pages' pieces while they are coming: a key's page
 /// completes within this of its last piece (not a tick, 33 ms, later).
-const PIECES_POLL: Duration = Duration::from_millis(2);
+pub const PIECES_POLL: Duration = Duration::from_millis(2);
 
 /// Puts the terminal back as it was. Safe to call more than once and on a dead terminal.
 pub fn restore() {

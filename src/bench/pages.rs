@@ -195,8 +195,9 @@ fn key_to_page(page: Page, presses: usize) -> Result<[(f64, f64); 3], Error> {
     Ok([summary(frame), summary(curve), summary(whole)])
 }
 
-/// Waits until the page on screen needs nothing more and is drawn, drawing as pieces arrive
-/// (at most 60 frames a second); gives up after 10 s. How long it waited after the curve at
+/// Waits until the page on screen needs nothing more and is drawn, taking pieces as the
+/// explorer's loop does (every `terminal::PIECES_POLL`) and drawing as they arrive (at most 60
+/// frames a second); gives up after 10 s. How long it waited after the curve at
 /// the app's ξ0 was complete.
 fn wait_for_page(session: &mut Session<ratatui::backend::TestBackend>) -> Result<Duration, Error> {
     let start = Instant::now();
@@ -228,6 +229,6 @@ fn wait_for_page(session: &mut Session<ratatui::backend::TestBackend>) -> Result
         if start.elapsed() > Duration::from_secs(10) {
             return Err(Error::Failed("the page did not complete in 10 s".into()));
         }
-        std::thread::sleep(Duration::from_micros(500));
+        std::thread::sleep(crate::terminal::PIECES_POLL);
     }
 }
