@@ -283,6 +283,11 @@ fn page_goals(o: &mut String, p: &super::pages::PageTimes) {
             limit.map_or(String::new(), |l| goal(median, l, "ms"))
         );
     }
+    let _ = writeln!(
+        o,
+        "    `x` held (30 presses a second): {} of {} presses saw their map complete and drawn before the next",
+        p.held_complete, p.held
+    );
 }
 
 /// dp54 against rk2 and dop853 against dp54, task by task.

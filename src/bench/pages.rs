@@ -67,6 +67,10 @@ pub struct PageTimes {
     /// within a frame whatever the workers do.
     pub key_frame_ms: (f64, f64),
     pub key_map_ms: (f64, f64),
+    /// `x` held (pressed 30 times a second, as a key repeats): of `held` presses, how many
+    /// saw their map complete and drawn before the next.
+    pub held: usize,
+    pub held_complete: usize,
     pub key_curve_ms: (f64, f64),
     pub key_escape_ms: (f64, f64),
 }
@@ -142,6 +146,8 @@ pub fn page_times(reps: usize, presses: usize) -> Result<PageTimes, Error> {
     });
     let [_, key_curve_ms, key_escape_ms] = key_to_page(Page::EscapeSpeed, presses)?;
     let [key_frame_ms, _, key_map_ms] = key_to_page(Page::OutcomeMap, presses)?;
+    let held = 30;
+    let held_complete = held_key(held)?;
     Ok(PageTimes {
         cores: cores(),
         curve,
@@ -153,6 +159,8 @@ pub fn page_times(reps: usize, presses: usize) -> Result<PageTimes, Error> {
         presses,
         key_frame_ms,
         key_map_ms,
+        held,
+        held_complete,
         key_curve_ms,
         key_escape_ms,
     })
@@ -162,19 +170,66 @@ fn dark() -> Result<crate::theme::Theme, Error> {
     crate::theme::Theme::builtin("dark").ok_or(Error::invalid("no dark theme"))
 }
 
+/// A session at [`SIZE`] on `page`, with its workers, and the key `x`.
+fn session_on(page: Page) -> Result<(Session<ratatui::backend::TestBackend>, Chord), Error> {
+    let mut app = App::new(crate::scene::Scene::default_scene(), dark()?);
+    app.page = page;
+    let x = Chord::new(
+        crossterm::event::KeyCode::Char('x'),
+        crossterm::event::KeyModifiers::NONE,
+    );
+    Ok((
+        Session::headless(app, SIZE.0, SIZE.1, false).with_worker(),
+        x,
+    ))
+}
+
+/// Whether the page on screen needs nothing more.
+fn complete(session: &Session<ratatui::backend::TestBackend>) -> bool {
+    let app = &session.app;
+    app.wanted_job(|v| crate::ui::pages::map_grid(app, v))
+        .is_none()
+}
+
+/// `x` held on the outcome map: `presses` presses 1/30 s apart (after a warm-up), the loop
+/// taking pieces and drawing between them as the explorer's does; how many presses saw their
+/// map complete and drawn before the next.
+fn held_key(presses: usize) -> Result<usize, Error> {
+    let (mut session, x) = session_on(Page::OutcomeMap)?;
+    session.press(x);
+    wait_for_page(&mut session)?;
+    let period = Duration::from_secs(1) / 30;
+    let mut next = Instant::now();
+    let mut completed = 0;
+    for _ in 0..presses {
+        session.press(x);
+        next += period;
+        let mut drawn = Instant::now() - period;
+        let mut counted = false;
+        while Instant::now() < next {
+            session.ask_analysis();
+            let done = complete(&session);
+            if (done && !counted) || (session.app.needs_redraw() && drawn.elapsed() >= period / 2) {
+                session.screen();
+                drawn = Instant::now();
+            }
+            if done && !counted {
+                completed += 1;
+                counted = true;
+            }
+            std::thread::sleep(crate::terminal::PIECES_POLL);
+        }
+    }
+    Ok(completed)
+}
+
 /// `x` pressed `presses` times on `page` in a threaded session at [`SIZE`], each time waiting
 /// for the page to be complete and drawn as the explorer's loop does (pieces taken as they
 /// arrive, a frame at most every 1/60 s while they do): the median and the worst wait (ms)
 /// until the key's own frame is drawn, until the curve at the new ξ0 is complete, and until
 /// the page is.
 fn key_to_page(page: Page, presses: usize) -> Result<[(f64, f64); 3], Error> {
-    let mut app = App::new(crate::scene::Scene::default_scene(), dark()?);
-    app.page = page;
-    let mut session = Session::headless(app, SIZE.0, SIZE.1, false).with_worker();
-    let x = Chord::new(
-        crossterm::event::KeyCode::Char('x'),
-        crossterm::event::KeyModifiers::NONE,
-    );
+    let (mut session, x) = session_on(page)?;
     let (mut frame, mut curve, mut whole) = (Vec::new(), Vec::new(), Vec::new());
     // The first press is a warm-up, as the page's first fill is (the paper's curves).
     for _ in 0..=presses {
@@ -216,9 +271,7 @@ fn wait_for_page(session: &mut Session<ratatui::backend::TestBackend>) -> Result
         {
             curve = Some(start.elapsed());
         }
-        let done = app
-            .wanted_job(|v| crate::ui::pages::map_grid(app, v))
-            .is_none();
+        let done = complete(session);
         if done || (session.app.needs_redraw() && drawn.elapsed() >= frame) {
             session.screen();
             drawn = Instant::now();
