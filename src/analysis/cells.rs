@@ -12,7 +12,7 @@ use crate::engine::model::turn_angle;
 use crate::engine::{Outcome, Release, Settings};
 
 /// Tolerance of a cell's first run: its rest radius is off by at most 3.3e-6 on the bench's
-/// rest cases (median 4e-8), at a quarter of the work of the default 1e-10.
+/// rest cases (median 4e-8), for a quarter of the RHS evaluations of the default 1e-10.
 pub const CELL_TOL: f64 = 1e-6;
 /// The edges of the rest-radius shading (`·` `:` `▒` `▓`).
 pub const BANDS: [f64; 3] = [0.25, 0.5, 0.75];

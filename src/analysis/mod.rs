@@ -18,7 +18,7 @@ mod cells;
 pub mod verdict;
 mod worker;
 
-pub use cells::{BAND_MARGIN, BANDS, CELL_TOL, band, map_cell_answer};
+pub use cells::{CELL_TOL, band, map_cell_answer};
 pub use worker::{Analysis, Progress};
 
 /// Angles of an escape-speed curve (every 5°, as `sweep fig5`'s default).
