@@ -294,7 +294,14 @@ pub fn sync(app: &mut App, analysis: &mut Analysis, compute: bool) -> bool {
             break;
         }
         let todo = app.charts.missing(&job, settings);
-        analysis.request(job, settings, todo);
+        // A map's cells lean on the escape speeds at its ξ0, which the page computed first.
+        let curve = match job {
+            crate::analysis::Job::Map { xi0, .. } => {
+                app.charts.curve(xi0, settings).map(|c| c.ve.clone())
+            }
+            _ => None,
+        };
+        analysis.request(job, settings, todo, curve);
         moved = true;
     }
     if moved {

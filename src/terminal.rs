@@ -26,6 +26,10 @@ pub mod plain;
 use input::Reader;
 use pace::{Clock, Flight};
 
+/// How often the loop looks for the analysis pages' pieces while they are coming: a key's page
+/// completes within this of its last piece (not a tick, 33 ms, later).
+pub const PIECES_POLL: Duration = Duration::from_millis(2);
+
 /// Puts the terminal back as it was. Safe to call more than once and on a dead terminal.
 pub fn restore() {
     let mut out = io::stdout();
@@ -318,6 +322,11 @@ fn event_loop(
                 session.pump_lesson()?;
             }
         }
+        // Pieces are taken as they arrive, not at the next tick: a page's next job (the map
+        // after its curve) is asked for at once, and its last piece drawn without waiting.
+        if session.analysis.busy() {
+            session.ask_analysis();
+        }
         let gap = flight.gap(fps);
         let frame_due = last_frame.map_or(Instant::now(), |t| t + gap);
         if session.app.needs_redraw() && !flight.awaiting() && Instant::now() >= frame_due {
@@ -336,6 +345,9 @@ fn event_loop(
             let mut wake = Instant::now() + Duration::from_millis(250);
             if session.is_playing() {
                 wake = wake.min(clock.next());
+            }
+            if session.analysis.busy() {
+                wake = wake.min(Instant::now() + PIECES_POLL);
             }
             if session.app.needs_redraw() {
                 wake = wake.min(frame_due.max(Instant::now()));

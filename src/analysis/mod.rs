@@ -14,9 +14,11 @@ use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::mpsc::{Receiver, Sender, channel};
 
+mod cells;
 pub mod verdict;
 mod worker;
 
+pub use cells::{CELL_TOL, band, map_cell_answer};
 pub use worker::{Analysis, Progress};
 
 /// Angles of an escape-speed curve (every 5°, as `sweep fig5`'s default).
@@ -306,6 +308,18 @@ pub fn piece(job: &Job, k: usize, settings: Settings) -> Piece {
 /// Piece `k` of `job`, asking `go_on` before each run: `None` once it said stop (the piece is
 /// then moot, and its partial answer is dropped). `go_on` must stay false once it is false.
 pub fn piece_until(job: &Job, k: usize, settings: Settings, go_on: GoOn) -> Option<Piece> {
+    piece_with(job, k, settings, None, go_on)
+}
+
+/// [`piece_until`], a map's cells leaning on `curve`, the escape speeds at the map's ξ0 when
+/// the page has them (see [`map_cell_answer`]).
+pub fn piece_with(
+    job: &Job,
+    k: usize,
+    settings: Settings,
+    curve: Option<&[Option<Speeds>]>,
+    go_on: GoOn,
+) -> Option<Piece> {
     let p = match *job {
         Job::Curve { xi0 } => {
             let phi = angle(k, CURVE_POINTS);
@@ -319,12 +333,8 @@ pub fn piece_until(job: &Job, k: usize, settings: Settings, go_on: GoOn) -> Opti
             v0_max,
             size,
         } => {
-            let (phi, v0) = map_cell(k, size, v0_max);
-            let initial = map_release(xi0, release, phi, v0);
-            let cell = classify(initial, settings).unwrap_or(Cell {
-                outcome: Outcome::Running,
-                rest: None,
-            });
+            let (cell, _) =
+                map_cell_answer(xi0, release, map_cell(k, size, v0_max), settings, curve);
             Piece::Cell { i: k, cell }
         }
         Job::Rest if k == REST_POINTS => Piece::Critical(
@@ -340,5 +350,13 @@ pub fn piece_until(job: &Job, k: usize, settings: Settings, go_on: GoOn) -> Opti
     go_on().then_some(p)
 }
 
-/// A job: its generation (for the worker), the job, and the pieces still to compute.
-type Request = (u64, Job, Settings, Vec<usize>);
+/// A job: its generation (for the worker), the job, the pieces still to compute, and for a
+/// map the escape-speed curve at its ξ0 when known (see [`piece_with`]).
+#[derive(Clone, Debug)]
+struct Request {
+    generation: u64,
+    job: Job,
+    settings: Settings,
+    todo: Vec<usize>,
+    curve: Option<Vec<Option<Speeds>>>,
+}

@@ -35,6 +35,44 @@ pub enum Verdict {
 /// of their edges (v_e is monotone between neighbours but at its extremes, where it is flat),
 /// each widened by its bracket's half-width. `None` until both neighbours are known.
 pub fn judge(ve: &[Option<Speeds>], phi: f64, v0: f64) -> Option<Verdict> {
+    judge_padded(ve, phi, v0, 0.5 * super::CURVE_VTOL)
+}
+
+/// As [`judge`], for an outcome-map cell (`analysis::cells`), each edge also widened by how
+/// far the curve may bow past its neighbours between two computed angles: half the larger
+/// second difference of either edge at the two angles (a parabola bows by an eighth of it, a
+/// kink midway by half). A second difference that cannot be taken (a neighbour with no
+/// window) leaves the cell `Near`.
+pub fn judge_cell(ve: &[Option<Speeds>], phi: f64, v0: f64) -> Option<Verdict> {
+    let n = ve.len();
+    if n < 3 {
+        return Some(Verdict::Near);
+    }
+    let k = (phi / TAU * n as f64).floor() as usize % n;
+    let edges = |i: usize| match ve[i % n] {
+        Some(Speeds::Stick { lo, hi }) => Some((lo, hi)),
+        _ => None,
+    };
+    let bow = |i: usize| {
+        let (a, b, c) = (edges(i + n - 1), edges(i), edges(i + 1));
+        match (a, b, c) {
+            (Some(a), Some(b), Some(c)) => {
+                let d2 = |x: f64, y: f64, z: f64| (x - 2.0 * y + z).abs();
+                0.5 * d2(a.0, b.0, c.0).max(d2(a.1, b.1, c.1))
+            }
+            _ => f64::INFINITY,
+        }
+    };
+    judge_padded(
+        ve,
+        phi,
+        v0,
+        0.5 * super::CURVE_VTOL + bow(k).max(bow(k + 1)),
+    )
+}
+
+/// [`judge`] with each edge widened by `pad`.
+fn judge_padded(ve: &[Option<Speeds>], phi: f64, v0: f64, pad: f64) -> Option<Verdict> {
     let n = ve.len();
     let x = phi / TAU * n as f64;
     let on_grid = (x - x.round()).abs() < 1e-9;
@@ -45,7 +83,6 @@ pub fn judge(ve: &[Option<Speeds>], phi: f64, v0: f64) -> Option<Verdict> {
         let k = x.floor() as usize % n;
         (ve[k]?, ve[(k + 1) % n]?)
     };
-    let pad = 0.5 * super::CURVE_VTOL;
     match (a, b) {
         (Speeds::Escapes, Speeds::Escapes) => Some(Verdict::Never),
         (Speeds::Stick { lo: l1, hi: h1 }, Speeds::Stick { lo: l2, hi: h2 }) => {

@@ -1,5 +1,5 @@
 //! Where a job's pieces are computed: inline, when a frame is about to be drawn (headless,
-//! deterministic), or on a worker thread that a newer request cancels between pieces.
+//! deterministic), or on worker threads (one a core) that a newer request cancels between runs.
 
 use super::*;
 
@@ -11,7 +11,7 @@ pub struct Progress {
     pub done: usize,
 }
 
-/// Where pieces are computed: inline (headless, deterministic) or on a worker thread.
+/// Where pieces are computed: inline (headless, deterministic) or on worker threads.
 #[derive(Debug)]
 pub struct Analysis {
     worker: Option<Worker>,
@@ -64,24 +64,25 @@ impl Analysis {
         }
     }
 
-    /// Pieces computed on a worker thread and streamed back. A newer request stops the piece
-    /// running at its next run (see [`piece_until`]), so it waits for one bounded run at most.
+    /// Pieces computed on worker threads, one a core, and streamed back as each is done. A
+    /// newer request stops the pieces running at their next run (see [`piece_until`]), so it
+    /// waits for one bounded run at most; requests queued behind a newer one are skipped.
     pub fn threaded() -> Analysis {
         let (jobs, inbox) = channel::<Request>();
         let (out, received) = channel();
         let generation = Arc::new(AtomicU64::new(0));
         let current = Arc::clone(&generation);
+        let threads = crate::engine::par::cores();
         std::thread::spawn(move || {
-            while let Ok((gen_id, job, settings, todo)) = inbox.recv() {
-                let go_on = || current.load(Ordering::Relaxed) == gen_id;
-                for k in todo {
-                    let Some(p) = piece_until(&job, k, settings, &go_on) else {
-                        break;
-                    };
-                    if out.send((gen_id, p)).is_err() {
-                        return;
-                    }
+            while let Ok(mut r) = inbox.recv() {
+                while let Ok(newer) = inbox.try_recv() {
+                    r = newer;
                 }
+                let go_on = || current.load(Ordering::Relaxed) == r.generation;
+                crate::engine::par::par_each(&r.todo, threads, |&k| {
+                    piece_with(&r.job, k, r.settings, r.curve.as_deref(), &go_on)
+                        .is_some_and(|p| out.send((r.generation, p)).is_ok())
+                });
             }
         });
         Analysis {
@@ -98,9 +99,16 @@ impl Analysis {
     }
 
     /// Asks for the pieces `todo` of `job` (cancelling any other job in flight): those a
-    /// cancelled request left are not computed again. Inline, they wait for
+    /// cancelled request left are not computed again. A map's cells lean on `curve`, the
+    /// escape speeds at its ξ0, when given (see [`piece_with`]). Inline, they wait for
     /// [`Analysis::compute`].
-    pub fn request(&mut self, job: Job, settings: Settings, todo: Vec<usize>) {
+    pub fn request(
+        &mut self,
+        job: Job,
+        settings: Settings,
+        todo: Vec<usize>,
+        curve: Option<Vec<Option<Speeds>>>,
+    ) {
         self.inbox.clear();
         let done = pieces(&job) - todo.len().min(pieces(&job));
         self.progress = Some(Progress {
@@ -108,25 +116,37 @@ impl Analysis {
             settings,
             done,
         });
+        let mut r = Request {
+            generation: 0,
+            job,
+            settings,
+            todo,
+            curve,
+        };
         match &self.worker {
             Some(w) => {
-                let id = w.generation.fetch_add(1, Ordering::Relaxed) + 1;
-                if let Err(e) = w.jobs.send((id, job, settings, todo)) {
+                r.generation = w.generation.fetch_add(1, Ordering::Relaxed) + 1;
+                if let Err(e) = w.jobs.send(r) {
                     self.worker = None;
-                    self.request(job, settings, e.0.3);
+                    self.request(job, settings, e.0.todo, e.0.curve);
                 }
             }
-            None => self.pending = Some((0, job, settings, todo)),
+            None => self.pending = Some(r),
         }
     }
 
     /// Inline, computes the pending request now; with a worker, nothing (it computes as it goes).
     pub fn compute(&mut self) {
-        if let Some((_, job, settings, todo)) = self.pending.take() {
-            self.inbox = todo.iter().map(|&k| piece(&job, k, settings)).collect();
-            self.computed += todo.len() as u64;
+        if let Some(r) = self.pending.take() {
+            let curve = r.curve.as_deref();
+            self.inbox = r
+                .todo
+                .iter()
+                .filter_map(|&k| piece_with(&r.job, k, r.settings, curve, &always))
+                .collect();
+            self.computed += r.todo.len() as u64;
             if let Some(p) = self.progress.as_mut() {
-                p.done = pieces(&job);
+                p.done = pieces(&r.job);
             }
         }
     }

@@ -7,7 +7,9 @@ pub mod bytes;
 mod crossover;
 mod goals;
 pub mod link;
+pub mod models;
 mod output;
+pub mod pages;
 mod runs;
 pub mod serve;
 mod tasks;
@@ -175,6 +177,10 @@ pub struct Report {
     pub ratios: Vec<TaskRatio>,
     /// dop853 against dp54 at equal error, task by task.
     pub crossovers: Vec<Crossover>,
+    /// Issue 34: the pages' work on one thread and on all cores, and a key's wait for them.
+    pub pages: pages::PageTimes,
+    /// Issue 34: the price of each model, one run and one frame.
+    pub models: Vec<models::ModelCost>,
 }
 
 fn median(v: &mut [f64]) -> f64 {
@@ -259,8 +265,12 @@ pub fn run(cfg: &Config, mut progress: impl FnMut(&str)) -> Result<Report, Error
     }
     progress("model only what a scene requires");
     let savings = savings(&all)?;
+    progress("the price of each model");
+    let models = models::model_costs(&all, cfg.reps)?;
     progress("speed goals");
     let speed = speed(cfg, &all, &rest)?;
+    progress("the pages on all cores");
+    let pages = pages::page_times(cfg.reps, if cfg.quick { 4 } else { 8 })?;
     let load = std::fs::read_to_string("/proc/loadavg")
         .ok()
         .map(|l| l.split_whitespace().take(3).collect::<Vec<_>>().join(" "));
@@ -273,6 +283,8 @@ pub fn run(cfg: &Config, mut progress: impl FnMut(&str)) -> Result<Report, Error
         rows,
         savings,
         speed,
+        pages,
+        models,
     })
 }
 

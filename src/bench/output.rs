@@ -28,8 +28,10 @@ pub fn table(r: &Report) -> String {
     header(&mut o, r);
     rows(&mut o, r);
     savings(&mut o, r);
+    models(&mut o, r);
     let _ = writeln!(o, "\nspeed goals (release build, this machine):");
     speed_goals(&mut o, &r.speed);
+    page_goals(&mut o, &r.pages);
     comparisons(&mut o, r);
     output_goals(&mut o, &r.speed);
     o
@@ -128,6 +130,27 @@ fn savings(o: &mut String, r: &Report) {
     }
 }
 
+/// The price of each model: one run, one frame.
+fn models(o: &mut String, r: &Report) {
+    let _ = writeln!(
+        o,
+        "\nthe price of each model ({} releases to τ = 50: median RHS and mean wall of one run; one frame of the explorer playing it at 120×40, tick + draw; its outcome-map page at 120×40, curve and cells, one thread):",
+        r.config.cases + 3
+    );
+    for m in &r.models {
+        let _ = writeln!(
+            o,
+            "  {:<36} run {:>7.0} RHS {:>8.1} µs   frame {:>5.2} ms   page {}",
+            m.model,
+            m.run_rhs,
+            m.run_us,
+            m.frame_ms,
+            m.page_ms
+                .map_or("the point's".into(), |ms| format!("{ms:>5.1} ms"))
+        );
+    }
+}
+
 /// The speed goals of the solvers, the pages and the sweeps.
 fn speed_goals(o: &mut String, sp: &Speed) {
     let _ = writeln!(
@@ -191,6 +214,80 @@ fn speed_goals(o: &mut String, sp: &Speed) {
             );
         }
     }
+}
+
+/// The pages on all cores and a key's wait for them (issue 34).
+fn page_goals(o: &mut String, p: &super::pages::PageTimes) {
+    let (w, h) = super::pages::SIZE;
+    let _ = writeln!(
+        o,
+        "  the pages at {w}×{h} on {} cores: one thread → all cores (wall), speedup; the most the split gives idle cores (CPU over the larger of a core's share and the longest piece)",
+        p.cores
+    );
+    let rows = [
+        (
+            "escape-speed curve, ξ0 = 0.5, 72 angles".to_string(),
+            &p.curve,
+        ),
+        (
+            format!(
+                "outcome map {}×{}, first runs at tol {:.0e}, {} refined",
+                p.grid.0,
+                p.grid.1,
+                crate::analysis::CELL_TOL,
+                p.refined
+            ),
+            &p.map,
+        ),
+        ("four Fig. 5 curves × 24 angles".to_string(), &p.fig5),
+    ];
+    for (what, s) in rows {
+        let verdict = if p.cores < 2 {
+            "one core: no goal".to_string()
+        } else {
+            goal_at_least(s.speedup(), 1.8, "×")
+        };
+        let _ = writeln!(
+            o,
+            "    {what:<58} {:>6.1} → {:>6.1} ms  {:>4.2}× {verdict}; at most {:.2}×",
+            s.one_ms,
+            s.all_ms,
+            s.speedup(),
+            s.bound()
+        );
+    }
+    let _ = writeln!(
+        o,
+        "    outcome map {}×{}, every cell at the page's tol 1e-10 (before issue 34), one thread: {:.1} ms",
+        p.grid.0, p.grid.1, p.map_full_one_ms
+    );
+    let keys = [
+        (
+            "its own frame while the map computes",
+            p.key_frame_ms,
+            Some(16.7),
+        ),
+        ("outcome map complete", p.key_map_ms, Some(60.0)),
+        ("escape-speed curve complete", p.key_curve_ms, Some(40.0)),
+        (
+            "escape-speed page complete (least v_e too)",
+            p.key_escape_ms,
+            None,
+        ),
+    ];
+    for (what, (median, worst), limit) in keys {
+        let _ = writeln!(
+            o,
+            "    `x` → {what:<43} (threaded session, drawn; median / worst of {}): {median:>5.1} / {worst:>5.1} ms   {}",
+            p.presses,
+            limit.map_or(String::new(), |l| goal(median, l, "ms"))
+        );
+    }
+    let _ = writeln!(
+        o,
+        "    `x` held (30 presses a second): {} of {} presses saw their map complete and drawn before the next",
+        p.held_complete, p.held
+    );
 }
 
 /// dp54 against rk2 and dop853 against dp54, task by task.
@@ -357,6 +454,12 @@ pub fn plot(r: &Report, task: Task, width: u16, height: u16) -> Result<String, E
         render(f, f.area(), &th, &chart);
     })?;
     Ok(plain_text(term.backend().buffer()))
+}
+
+/// A goal on a value that must be at least `limit`.
+fn goal_at_least(value: f64, limit: f64, unit: &str) -> String {
+    let met = if value >= limit { "met" } else { "MISSED" };
+    format!("(goal ≥ {limit}{unit}: {met})")
 }
 
 /// A speed goal and whether this run met it: a missed goal says so.

@@ -115,6 +115,10 @@ fn event_loop(session: &mut Session<TestBackend>, flags: &Flags) -> io::Result<(
         if session.is_playing() {
             wake = wake.min(clock.next());
         }
+        // A page's pieces are taken as they arrive, as in the explorer's loop.
+        if session.analysis.busy() {
+            wake = wake.min(Instant::now() + super::PIECES_POLL);
+        }
         if input.poll(wake.saturating_duration_since(Instant::now()))? {
             let mut queued: Vec<Event> = std::iter::from_fn(|| input.read()).collect();
             while input.poll(Duration::ZERO)? {

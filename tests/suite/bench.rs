@@ -119,6 +119,25 @@ fn quick_bench_rows_are_finite_and_converge() {
     ] {
         assert!(plot.contains(want), "{want} not in\n{plot}");
     }
+    // Issue 34: the price of each model (closed forms take no step, the body more than the
+    // point), and the pages' rows (most map cells answered by their first run).
+    let rhs = |m: &str| {
+        report
+            .models
+            .iter()
+            .find(|r| r.model.starts_with(m))
+            .unwrap()
+    };
+    assert_eq!(report.models.len(), 5);
+    assert_eq!(rhs("μ = 0").run_rhs, 0.0);
+    assert_eq!(rhs("Stokes").run_rhs, 0.0);
+    assert!(rhs("the appendix's body").run_rhs > rhs("point").run_rhs);
+    assert!(rhs("μ = 0").page_ms.is_none() && rhs("point").page_ms.is_some());
+    let p = &report.pages;
+    assert!(p.refined * 5 < p.grid.0 * p.grid.1, "{p:?}");
+    for want in ["the price of each model", "`x` → outcome map complete"] {
+        assert!(bench::table(&report).contains(want), "{want}");
+    }
     let json = serde_json::to_string(&report).unwrap();
     assert!(
         json.contains("\"task\":\"drift τ=20\",\"method\":\"rk2-raw\""),

@@ -22,6 +22,7 @@ mod fuzz;
 mod honest;
 mod lessons;
 mod link;
+mod map_cells;
 mod outputs;
 mod pages;
 mod paper;

@@ -354,7 +354,8 @@ fn the_map_fills_the_plot_and_a_return_computes_only_what_is_missing() {
     let s = settings_for(a.settings());
     assert_eq!(charts.missing(&map.job, s), vec![3, 17]);
     let mut an = Analysis::inline();
-    an.request(map.job, s, charts.missing(&map.job, s));
+    let curve = a.charts.curve(0.5, s).map(|c| c.ve.clone());
+    an.request(map.job, s, charts.missing(&map.job, s), curve);
     assert!(an.take().is_empty(), "inline, a request waits for compute");
     an.compute();
     let got = an.take();
