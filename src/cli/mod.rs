@@ -93,11 +93,18 @@ fn explore(
     plain: bool,
 ) -> Result<Option<i32>, Error> {
     let config_dir = config::dir(|v| std::env::var_os(v));
+    let user_themes = config_dir.as_ref().map(|d| d.join("themes"));
+    // `--theme` without a name lists them: asked for, not an error (whatever the
+    // configuration says).
+    if look.theme.as_deref() == Some("") {
+        let list = crate::theme::available(user_themes.as_deref());
+        crate::files::emit(None, &format!("themes: {list}\n"))?;
+        return Ok(None);
+    }
     let config = match &config_dir {
         Some(d) => config::Config::load(d)?,
         None => config::Config::default(),
     };
-    let user_themes = config_dir.as_ref().map(|d| d.join("themes"));
     let (scene, units) = scene_for(cli, look, &config)?;
     let theme = theme_for(cli, look, &config, user_themes.as_deref())?;
     let term = std::env::var("TERM").ok();
