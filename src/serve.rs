@@ -33,7 +33,7 @@ pub struct Limits {
     pub sessions: usize,
     /// New connections from one address in a minute.
     pub per_minute: usize,
-    /// A session with no input this long is closed.
+    /// A session with no input this long, and not following the class, is closed.
     pub idle: Duration,
     /// The largest terminal drawn (a larger window is drawn at this size).
     pub max_cols: u16,

@@ -209,6 +209,11 @@ impl Run<'_> {
             if self.in_flight.is_some_and(|t| now - t > limits.stall) {
                 return Ok("your connection stopped taking the screen".into());
             }
+            // Following the class is attending it: a student who watches and types nothing
+            // for the idle time is not idle.
+            if self.following {
+                self.last_input = now;
+            }
             if now - self.last_input > limits.idle {
                 return Ok(format!("idle for {} s: closed", limits.idle.as_secs()));
             }

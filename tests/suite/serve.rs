@@ -240,6 +240,43 @@ fn followers_get_the_presenters_keys_and_can_step_out() {
     s.stop("done");
 }
 
+/// A student who follows the class and types nothing is attending, not idle; one who types
+/// nothing on their own is closed at the idle time.
+#[test]
+fn a_follower_who_only_watches_is_not_idle() {
+    let s = server(Limits {
+        idle: Duration::from_secs(1),
+        ..Limits::default()
+    });
+    rt().block_on(async {
+        let p = login(s.addr, "teacher", Login::Key(&key(3)))
+            .await
+            .unwrap()
+            .unwrap();
+        let mut tp = Term::open(&p, 80, 24).await.unwrap();
+        assert!(tp.until(0, b"lab frame", SECS).await);
+        let f = login(s.addr, "class", Login::Password("ba-ke-di-lo"))
+            .await
+            .unwrap()
+            .unwrap();
+        let mut tf = Term::open(&f, 80, 24).await.unwrap();
+        assert!(tf.until(0, b"following", SECS).await);
+        // Three idle times of the presenter's keys; the follower types nothing.
+        for _ in 0..10 {
+            tp.send(b"f").await.unwrap();
+            tokio::time::sleep(Duration::from_millis(300)).await;
+        }
+        assert_eq!(s.shared.sessions(), 2, "the follower is still in the class");
+        assert!(!String::from_utf8_lossy(&tf.seen).contains("idle for"));
+        // Stepped out and silent: closed at the idle time.
+        let at = tf.seen.len();
+        tf.send(b"\x1bOQ").await.unwrap();
+        assert!(tf.until(at, b"idle for", Duration::from_secs(5)).await);
+        assert!(eventually(SECS, || s.shared.sessions() == 1).await);
+    });
+    s.stop("done");
+}
+
 #[test]
 fn stopping_closes_every_session_with_a_message() {
     let s = server(Limits::default());
