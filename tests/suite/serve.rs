@@ -272,7 +272,8 @@ fn a_follower_who_only_watches_is_not_idle() {
         let at = tf.seen.len();
         tf.send(b"\x1bOQ").await.unwrap();
         assert!(tf.until(at, b"idle for", Duration::from_secs(5)).await);
-        assert!(eventually(SECS, || s.shared.sessions() == 1).await);
+        // (The presenter, silent too by then, may be closed as well.)
+        assert!(eventually(SECS, || s.shared.sessions() < 2).await);
     });
     s.stop("done");
 }
