@@ -7,19 +7,9 @@
 use crossterm::event::{Event, KeyCode, KeyEvent, KeyModifiers};
 use std::time::Instant;
 
+use crate::terminal::input::SEQ_MAX;
+use crate::terminal::input::paste::{PASTE_START, Paste, Step};
 pub use crate::terminal::input::{PASTE_IDLE, PASTE_MAX, PASTE_TIME};
-/// Longest escape sequence waited for (a longer one is dropped, not kept growing).
-const SEQ_MAX: usize = 64;
-const PASTE_START: &[u8] = b"\x1b[200~";
-const PASTE_END: &[u8] = b"\x1b[201~";
-
-struct Paste {
-    text: Vec<u8>,
-    /// The last bytes seen, to find `ESC[201~` once the text is no longer kept.
-    tail: Vec<u8>,
-    began: Instant,
-    last: Instant,
-}
 
 /// Bytes in, events out (see the module).
 #[derive(Default)]
@@ -63,12 +53,7 @@ impl Keys {
             self.seq.push(b);
             if self.seq == PASTE_START {
                 self.seq.clear();
-                self.paste = Some(Paste {
-                    text: Vec::new(),
-                    tail: Vec::new(),
-                    began: now,
-                    last: now,
-                });
+                self.paste = Some(Paste::new(now));
                 continue;
             }
             if self.seq == [0x1b] {
@@ -102,39 +87,22 @@ impl Keys {
         let Some(p) = self.paste.as_mut() else {
             return vec![];
         };
-        p.last = now;
-        if b == 0x03 {
+        let out = match p.byte(b, now) {
+            Step::Going => return vec![],
+            Step::Ended(text) => vec![Event::Paste(text)],
             // Ctrl-C always arrives: the paste ends, and the key follows it.
-            let mut out = self.end_paste();
-            out.push(Event::Key(KeyEvent::new(
-                KeyCode::Char('c'),
-                KeyModifiers::CONTROL,
-            )));
-            return out;
-        }
-        if p.text.len() < PASTE_MAX + PASTE_END.len() {
-            p.text.push(b);
-        }
-        p.tail.push(b);
-        if p.tail.len() > PASTE_END.len() {
-            p.tail.remove(0);
-        }
-        if p.tail == PASTE_END {
-            if p.text.ends_with(PASTE_END) {
-                let n = p.text.len() - PASTE_END.len();
-                p.text.truncate(n);
-            }
-            return self.end_paste();
-        }
-        vec![]
+            Step::CtrlC(text) => vec![
+                Event::Paste(text),
+                Event::Key(KeyEvent::new(KeyCode::Char('c'), KeyModifiers::CONTROL)),
+            ],
+        };
+        self.paste = None;
+        out
     }
 
     fn end_paste(&mut self) -> Vec<Event> {
         match self.paste.take() {
-            Some(mut p) => {
-                p.text.truncate(PASTE_MAX);
-                vec![Event::Paste(String::from_utf8_lossy(&p.text).into_owned())]
-            }
+            Some(mut p) => vec![Event::Paste(p.take())],
             None => vec![],
         }
     }
@@ -150,9 +118,7 @@ impl Keys {
 
     /// When a paste under way ends if nothing ends it first.
     pub fn deadline(&self) -> Option<Instant> {
-        self.paste
-            .as_ref()
-            .map(|p| (p.last + PASTE_IDLE).min(p.began + PASTE_TIME))
+        self.paste.as_ref().map(Paste::deadline)
     }
 }
 
@@ -238,7 +204,10 @@ mod tests {
         for _ in 0..(PASTE_MAX / chunk.len() + 2) {
             assert!(d.feed(&chunk, t0).is_empty());
         }
-        match d.feed(PASTE_END, t0).as_slice() {
+        match d
+            .feed(crate::terminal::input::paste::PASTE_END, t0)
+            .as_slice()
+        {
             [Event::Paste(t)] => assert_eq!(t.len(), PASTE_MAX),
             other => panic!("{other:?}"),
         }

@@ -21,7 +21,10 @@ use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
+pub(crate) mod paste;
 mod seq;
+
+use paste::{PASTE_START, Paste, Step};
 
 /// Most bytes of a paste kept (the rest is dropped; the paste goes on to its end).
 pub const PASTE_MAX: usize = 1 << 20;
@@ -30,13 +33,10 @@ pub const PASTE_IDLE: Duration = Duration::from_millis(500);
 /// A paste is ended this long after it began, whatever comes.
 pub const PASTE_TIME: Duration = Duration::from_secs(3);
 /// Longest escape sequence waited for (a longer one is dropped, not kept growing).
-const SEQ_MAX: usize = 64;
+pub(crate) const SEQ_MAX: usize = 64;
 /// A lone ESC at the end of a read is held this long for the rest of a sequence: a link that
 /// splits a terminal's reply (`ESC` | `[30;21R`) must not have its tail read as keys.
 pub const ESC_WAIT: Duration = Duration::from_millis(30);
-
-const PASTE_START: &[u8] = b"\x1b[200~";
-const PASTE_END: &[u8] = b"\x1b[201~";
 
 /// What the decoder read.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -44,15 +44,6 @@ pub enum Input {
     Event(Event),
     /// The terminal's answer to a cursor-position query (`ESC[6n`): column and row, 0-based.
     Cursor(u16, u16),
-}
-
-/// A paste under way.
-struct Paste {
-    text: Vec<u8>,
-    /// The last bytes seen, to find `ESC[201~` once the text is no longer kept.
-    tail: Vec<u8>,
-    began: Instant,
-    last: Instant,
 }
 
 /// Bytes in, [`Input`]s out (see the module).
@@ -99,12 +90,7 @@ impl Decoder {
             }
             if self.seq == PASTE_START {
                 self.seq.clear();
-                self.paste = Some(Paste {
-                    text: Vec::new(),
-                    tail: Vec::new(),
-                    began: now,
-                    last: now,
-                });
+                self.paste = Some(Paste::new(now));
                 continue;
             }
             match parse(&self.seq, more) {
@@ -122,37 +108,24 @@ impl Decoder {
         let Some(p) = self.paste.as_mut() else {
             return;
         };
-        p.last = now;
-        if b == 0x03 {
-            // Ctrl-C always reaches the program: the paste ends, and the key follows it.
-            self.end_paste();
-            self.out.push_back(Input::Event(Event::Key(KeyEvent::new(
-                KeyCode::Char('c'),
-                KeyModifiers::CONTROL,
-            ))));
-            return;
-        }
-        if p.text.len() < PASTE_MAX {
-            p.text.push(b);
-        }
-        p.tail.push(b);
-        if p.tail.len() > PASTE_END.len() {
-            p.tail.remove(0);
-        }
-        if p.tail == PASTE_END {
-            if p.text.ends_with(PASTE_END) {
-                let n = p.text.len() - PASTE_END.len();
-                p.text.truncate(n);
+        match p.byte(b, now) {
+            Step::Going => return,
+            Step::Ended(text) => self.out.push_back(Input::Event(Event::Paste(text))),
+            Step::CtrlC(text) => {
+                self.out.push_back(Input::Event(Event::Paste(text)));
+                self.out.push_back(Input::Event(Event::Key(KeyEvent::new(
+                    KeyCode::Char('c'),
+                    KeyModifiers::CONTROL,
+                ))));
             }
-            self.end_paste();
         }
+        self.paste = None;
     }
 
     /// Ends the paste under way: its text (as kept) is one event.
     fn end_paste(&mut self) {
-        if let Some(p) = self.paste.take() {
-            let text = String::from_utf8_lossy(&p.text).into_owned();
-            self.out.push_back(Input::Event(Event::Paste(text)));
+        if let Some(mut p) = self.paste.take() {
+            self.out.push_back(Input::Event(Event::Paste(p.take())));
         }
     }
 
@@ -164,10 +137,7 @@ impl Decoder {
             self.seq.clear();
             self.out.push_back(esc());
         }
-        let paste = self
-            .paste
-            .as_ref()
-            .map(|p| (p.last + PASTE_IDLE).min(p.began + PASTE_TIME));
+        let paste = self.paste.as_ref().map(Paste::deadline);
         if paste.is_some_and(|d| now >= d) {
             self.end_paste();
         }
@@ -176,10 +146,7 @@ impl Decoder {
     /// When the paste under way will be ended, or a held ESC taken for the key, if nothing
     /// comes first.
     pub fn deadline(&self) -> Option<Instant> {
-        let paste = self
-            .paste
-            .as_ref()
-            .map(|p| (p.last + PASTE_IDLE).min(p.began + PASTE_TIME));
+        let paste = self.paste.as_ref().map(Paste::deadline);
         match (paste, self.esc_until) {
             (Some(a), Some(b)) => Some(a.min(b)),
             (a, b) => a.or(b),
@@ -485,7 +452,7 @@ mod tests {
         for _ in 0..(PASTE_MAX / chunk.len() + 4) {
             d.feed(&chunk, true, t0);
         }
-        d.feed(PASTE_END, false, t0);
+        d.feed(paste::PASTE_END, false, t0);
         match d.next_input() {
             Some(Input::Event(Event::Paste(t))) => assert_eq!(t.len(), PASTE_MAX),
             other => panic!("{other:?}"),
