@@ -104,7 +104,7 @@ impl App {
     /// `play [SPEED]`: time plays at 2^`power` (×1 when None), whatever it did before.
     pub fn play(&mut self, power: Option<i8>) {
         self.playing = true;
-        self.step_mode = false;
+        self.view.step_mode = false;
         self.speed = f64::from(power.unwrap_or(0)).exp2();
         self.dirty = true;
     }

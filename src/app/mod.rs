@@ -12,6 +12,7 @@ pub mod pins;
 pub mod prompt;
 pub mod state;
 pub mod update;
+pub mod view;
 
 pub use action::Action;
 pub use chord::Chord;
@@ -22,6 +23,7 @@ pub use state::{
     App, CanvasGeom, MU_PROBE, Measured, SPEED_RANGE, TICK_DT, TICKS_PER_SECOND, speed_power,
 };
 pub use update::update;
+pub use view::View;
 
 use crate::engine::Settings;
 use crate::scene::Scene;
@@ -69,7 +71,7 @@ impl App {
         if !self.mouse {
             return Effects::new();
         }
-        if self.help {
+        if self.view.help {
             return match ev.kind {
                 MouseEventKind::ScrollUp => update(self, Action::HelpScroll(-3)),
                 MouseEventKind::ScrollDown => update(self, Action::HelpScroll(3)),
@@ -216,8 +218,11 @@ impl App {
         if !(state::SPEED_RANGE.0..=state::SPEED_RANGE.1).contains(&self.speed) {
             return Err(format!("speed {} out of range", self.speed));
         }
-        if !(self.zoom.is_finite() && self.zoom > 0.0 && self.pan.is_finite()) {
-            return Err(format!("bad view: zoom {} pan {}", self.zoom, self.pan));
+        if !(self.view.zoom.is_finite() && self.view.zoom > 0.0 && self.view.pan.is_finite()) {
+            return Err(format!(
+                "bad view: zoom {} pan {}",
+                self.view.zoom, self.view.pan
+            ));
         }
         Ok(())
     }

@@ -28,7 +28,7 @@ impl App {
             label: label.into(),
             initial: self.initial(),
             settings: self.settings(),
-            turn: self.turn,
+            turn: self.view.turn,
             units: self.units,
         };
         match pin_of(spec, &self.pins) {

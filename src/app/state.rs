@@ -17,8 +17,8 @@ pub const TICK_DT: f64 = 0.05;
 /// The app's clock rate in wall-clock time (the terminal's, an asciicast's): each tick is
 /// `TICK_DT × speed` of sim time.
 pub const TICKS_PER_SECOND: u32 = 30;
+pub use super::view::ZOOM_RANGE;
 pub use crate::scene::{SPEED_RANGE, speed_power};
-pub const ZOOM_RANGE: (f64, f64) = (1.0 / 64.0, 1024.0);
 /// The μ measurement's starting values, an example (the paper gives Eq. 22, no table):
 /// Ω = 3.3 rad/s and r0c = 0.12 m.
 pub const MU_PROBE: (f64, f64) = (3.3, 0.12);
@@ -83,29 +83,10 @@ pub struct App {
     /// through [`App::initial`], [`App::sim`] and the like, changed only through its
     /// setters, which restart the runs.
     pub(super) exploration: super::exploration::Exploration,
-    /// In a body scene, the point model's path and marker drawn beside the body (`C`).
-    pub point_model: bool,
     pub playing: bool,
     pub speed: f64,
-    /// The frame the picture is drawn in (lab or rotating).
-    pub view: Frame,
-    pub forces: bool,
-    /// The net force's arrow (`A`) and the velocity's (`i`).
-    pub net_force: bool,
-    pub velocity: bool,
-    /// Integrator step mode (`n`): step ends marked, step size and error shown.
-    pub step_mode: bool,
-    pub help: bool,
-    /// The help's first row shown.
-    pub help_scroll: u16,
-    /// The time plots' τ span when fixed (`t`/`T`); None: the run so far.
-    pub tau_window: Option<f64>,
-    pub zoom: f64,
-    /// The picture's turn (rad): the model releases on +x, the picture shows the release
-    /// where it was clicked.
-    pub turn: f64,
-    /// View centre offset, in units of the auto-framed half-width.
-    pub pan: glam::DVec2,
+    /// How it is shown: page, frame, framing, arrows, help.
+    pub view: super::view::View,
     pub mouse: bool,
     pub notice: Option<String>,
     /// How many times the readouts were asked for in words (`I`): plain mode prints them.
@@ -115,8 +96,6 @@ pub struct App {
     /// Where `s` saves (`S` beside it, `E` in its folder).
     pub save_path: PathBuf,
     pub quit: bool,
-    /// What the body shows (`Tab` cycles).
-    pub page: Page,
     /// What the analysis pages have received (the shell's worker computes them).
     pub charts: Charts,
     /// A real table (`--mu`, `--rpm`, `--g` or the scene's `[units]`): readouts in SI too.
@@ -153,26 +132,14 @@ impl App {
         App {
             notice: exploration.take_rod_notice(),
             exploration,
-            point_model: view.is_none_or(|v| v.point),
             playing: true,
             speed: view.map_or(1.0, |v| v.speed),
-            view: view.map_or(Frame::Lab, |v| v.frame),
-            forces: view.is_some_and(|v| v.forces),
-            net_force: view.is_some_and(|v| v.net_force),
-            velocity: view.is_some_and(|v| v.velocity),
-            step_mode: false,
-            help: false,
-            help_scroll: 0,
-            tau_window: None,
-            zoom: view.map_or(1.0, |v| v.zoom.clamp(ZOOM_RANGE.0, ZOOM_RANGE.1)),
-            turn: 0.0,
-            pan: glam::DVec2::ZERO,
+            view: super::view::View::of(view),
             mouse: true,
             readouts_asked: 0,
             save_path: PathBuf::from(SAVE_PATH),
             prompt: None,
             quit: false,
-            page: view.map_or(Page::Turntable, |v| v.page),
             charts: Charts::default(),
             mu_probe: MU_PROBE,
             units,
@@ -244,7 +211,7 @@ impl App {
     /// Whether the point model is drawn: always, but in a body scene whose body is drawn and
     /// `C` has hidden it.
     pub fn point_shown(&self) -> bool {
-        self.point_model || self.rod().is_none()
+        self.view.point_model || self.rod().is_none()
     }
 
     /// The state on screen.
@@ -260,7 +227,7 @@ impl App {
         map_grid: impl Fn(f64) -> Option<(usize, usize)>,
     ) -> Option<(crate::analysis::Job, Settings)> {
         let job = super::pages::wanted(
-            self.page,
+            self.view.page,
             &self.charts,
             &self.initial(),
             self.settings(),
@@ -362,16 +329,7 @@ impl App {
             units: self.units,
             body: self.scene().body,
             spin: self.scene().spin,
-            view: Some(crate::scene::View {
-                page: self.page,
-                frame: self.view,
-                forces: self.forces,
-                zoom: self.zoom,
-                net_force: self.net_force,
-                velocity: self.velocity,
-                point: self.point_model,
-                speed: self.speed,
-            }),
+            view: Some(self.view.saved(self.speed)),
             pins: self.pins.iter().map(|p| p.spec.clone()).collect(),
         }
     }

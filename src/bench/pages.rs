@@ -127,7 +127,7 @@ pub fn page_times(reps: usize, presses: usize) -> Result<PageTimes, Error> {
     let v0_max = Charts::map_v0_max(&c, Release::Velocity, 0.5);
     let mut app = App::new(crate::scene::Scene::default_scene());
     app.resize(SIZE.0, SIZE.1);
-    app.page = Page::OutcomeMap;
+    app.view.page = Page::OutcomeMap;
     let grid = crate::ui::pages::map_grid(&app, v0_max).ok_or(Error::invalid("no map fits"))?;
     let cells: Vec<usize> = (0..grid.0 * grid.1).collect();
     let cell = |k: &usize, curve: Option<&[Option<Speeds>]>| {
@@ -173,7 +173,7 @@ fn dark() -> Result<crate::theme::Theme, Error> {
 /// A session at [`SIZE`] on `page`, with its workers, and the key `x`.
 fn session_on(page: Page) -> Result<(Session<ratatui::backend::TestBackend>, Chord), Error> {
     let mut app = App::new(crate::scene::Scene::default_scene());
-    app.page = page;
+    app.view.page = page;
     let x = Chord::new(
         crossterm::event::KeyCode::Char('x'),
         crossterm::event::KeyModifiers::NONE,

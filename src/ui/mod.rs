@@ -56,7 +56,7 @@ pub fn draw(frame: &mut Frame, app: &App, th: &Theme) -> Option<CanvasGeom> {
         r.title,
     );
     let (canvas_area, panel_area, lesson, status) = (r.canvas, r.panel, r.lesson, r.status);
-    let geom = match app.page {
+    let geom = match app.view.page {
         crate::app::pages::Page::Turntable => Some(canvas::render(frame, canvas_area, app, th)),
         _ => pages::render(frame, canvas_area, app, th),
     };
@@ -70,7 +70,7 @@ pub fn draw(frame: &mut Frame, app: &App, th: &Theme) -> Option<CanvasGeom> {
     );
     frame.render_widget(Paragraph::new(status_line(app, th, status.width)), status);
     caption::render(frame, &r, app, th);
-    if app.help {
+    if app.view.help {
         help::render(frame, r.help, app, th);
     }
     // A theme that sets a background sets it on every cell: widgets that paint none (chart

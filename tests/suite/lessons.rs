@@ -563,7 +563,7 @@ fn an_interactive_lesson_holds_as_state_and_time_goes_on() {
     s.pump_lesson().unwrap();
     assert!(s.app.lesson.question.is_some());
     press(&mut s, "n");
-    assert!(!s.app.step_mode);
+    assert!(!s.app.view.step_mode);
     assert_eq!(s.app.lesson.question.as_ref().unwrap().answer, Some(false));
     // A speed key before the lesson's `play 0.5`: the scene plays at the speed it names.
     press(&mut s, "]");
@@ -581,7 +581,7 @@ fn an_interactive_lesson_holds_as_state_and_time_goes_on() {
     assert!(s.app.lesson.done);
     // Unheld, n is the integrator step again.
     press(&mut s, "n");
-    assert!(s.app.step_mode);
+    assert!(s.app.view.step_mode);
 }
 
 /// The run answers the prediction: right or not by the engine's outcome, and only once time
@@ -806,8 +806,8 @@ fn held(s: &Session<ratatui::backend::TestBackend>) -> Held {
         at: s.lesson().unwrap().taken(),
         initial: s.app.initial(),
         settings: s.app.settings(),
-        page: s.app.page,
-        frame: s.app.view,
+        page: s.app.view.page,
+        frame: s.app.view.frame,
         caption: s.app.lesson.caption.as_ref().map(|c| c.to_string()),
         question: s.app.lesson.question.as_ref().map(|q| q.text.to_string()),
     }

@@ -11,10 +11,10 @@ pub(super) fn apply(app: &mut App, action: Action) -> Effects {
         // `q` and Ctrl-C quit whatever is open (the help included); Esc closes it.
         Action::Quit => app.quit = true,
         // The notice is already cleared by `update`.
-        Action::Dismiss => app.help = false,
+        Action::Dismiss => app.view.help = false,
         Action::ToggleHelp => {
-            app.help = !app.help;
-            app.help_scroll = 0;
+            app.view.help = !app.view.help;
+            app.view.help_scroll = 0;
         }
         Action::HelpScroll(rows) => scroll_help(app, i32::from(rows)),
         Action::HelpPage(pages) => {
@@ -32,7 +32,7 @@ pub(super) fn apply(app: &mut App, action: Action) -> Effects {
                     .parent()
                     .unwrap_or(std::path::Path::new(""))
                     .to_path_buf(),
-                page: app.page,
+                page: app.view.page,
             }];
         }
         Action::ToggleMouse => {
@@ -146,9 +146,9 @@ fn file_stem(name: &str) -> String {
 
 /// Moves the help by `rows` (no further than its end at this size); nothing when it is shut.
 fn scroll_help(app: &mut App, rows: i32) {
-    if app.help {
+    if app.view.help {
         let end = i32::from(app.measured.help_max_scroll);
-        let to = (i32::from(app.help_scroll) + rows).clamp(0, end);
-        app.help_scroll = u16::try_from(to).unwrap_or(0);
+        let to = (i32::from(app.view.help_scroll) + rows).clamp(0, end);
+        app.view.help_scroll = u16::try_from(to).unwrap_or(0);
     }
 }

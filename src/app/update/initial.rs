@@ -45,16 +45,16 @@ pub(super) fn apply(app: &mut App, action: Action) {
                 };
                 app.notice = Some(format!("preset {}: {}{body}", scene.name, scene.about));
                 app.exploration.load(scene);
-                app.zoom = 1.0;
-                app.turn = 0.0;
-                app.pan = glam::DVec2::ZERO;
+                app.view.zoom = 1.0;
+                app.view.turn = 0.0;
+                app.view.pan = glam::DVec2::ZERO;
             }
         }
         Action::PlaceRelease(p) => {
             // Clicked at an angle: the picture turns there (p is in model coordinates, so its
             // angle adds to the turn already shown).
             if p.length() > 0.0 {
-                app.turn = wrap_angle(app.turn + p.y.atan2(p.x));
+                app.view.turn = wrap_angle(app.view.turn + p.y.atan2(p.x));
             }
             app.exploration.edit_initial(|i| i.xi0 = p.length());
             app.dragging = true;
@@ -68,7 +68,7 @@ pub(super) fn apply(app: &mut App, action: Action) {
             let r0 = glam::DVec2::new(app.initial().xi0, 0.0);
             // The arrow shows the lab velocity in the lab view and u0 in the rotating view.
             let drawn = (p - r0) / scale;
-            let u0 = match app.view {
+            let u0 = match app.view.frame {
                 Frame::Lab => drawn - zcross(r0),
                 Frame::Table => drawn,
             };
@@ -88,7 +88,7 @@ pub(super) fn apply(app: &mut App, action: Action) {
             ));
         }
         Action::PickRelease(p) => {
-            let release = match app.page {
+            let release = match app.view.page {
                 Page::OutcomeMap => app.initial().release,
                 _ => Release::Velocity,
             };

@@ -9,11 +9,11 @@ pub(super) fn apply(app: &mut App, action: Action) {
     match action {
         Action::PlayPause => {
             app.playing = !app.playing;
-            app.step_mode &= !app.playing;
+            app.view.step_mode &= !app.playing;
         }
         Action::IntegratorStep => {
             app.playing = false;
-            app.step_mode = true;
+            app.view.step_mode = true;
             if !app.exploration.runs_mut().0.step_once() {
                 app.notice = Some("no more steps: the run has ended (r restarts)".into());
             }

@@ -12,14 +12,14 @@ use std::f64::consts::TAU;
 pub(super) fn apply(app: &mut App, action: Action) {
     match action {
         Action::ToggleFrame => {
-            app.view = match app.view {
+            app.view.frame = match app.view.frame {
                 Frame::Lab => Frame::Table,
                 Frame::Table => Frame::Lab,
             }
         }
-        Action::ToggleForces => app.forces = !app.forces,
-        Action::ToggleNetForce => app.net_force = !app.net_force,
-        Action::ToggleVelocity => app.velocity = !app.velocity,
+        Action::ToggleForces => app.view.forces = !app.view.forces,
+        Action::ToggleNetForce => app.view.net_force = !app.view.net_force,
+        Action::ToggleVelocity => app.view.velocity = !app.view.velocity,
         Action::TogglePointModel if app.scene().body.is_none() => {
             app.notice = Some(
                 "no body to compare with the point model (--body-length, or [body] in a scene)"
@@ -27,9 +27,9 @@ pub(super) fn apply(app: &mut App, action: Action) {
             );
         }
         Action::TogglePointModel => {
-            app.point_model = !app.point_model;
+            app.view.point_model = !app.view.point_model;
             app.notice = Some(
-                match (app.rod().is_some(), app.point_model) {
+                match (app.rod().is_some(), app.view.point_model) {
                     (true, true) => "point model beside the body (C)",
                     (true, false) => "the body alone, point model hidden (C)",
                     // Nothing of the body is drawn to stand alone: the point stays.
@@ -39,27 +39,27 @@ pub(super) fn apply(app: &mut App, action: Action) {
                 .into(),
             );
         }
-        Action::ZoomIn => app.zoom = (app.zoom * 1.5).min(ZOOM_RANGE.1),
-        Action::ZoomOut => app.zoom = (app.zoom / 1.5).max(ZOOM_RANGE.0),
-        Action::Pan(dx, dy) => app.pan += glam::DVec2::new(dx, dy) / app.zoom,
+        Action::ZoomIn => app.view.zoom = (app.view.zoom * 1.5).min(ZOOM_RANGE.1),
+        Action::ZoomOut => app.view.zoom = (app.view.zoom / 1.5).max(ZOOM_RANGE.0),
+        Action::Pan(dx, dy) => app.view.pan += glam::DVec2::new(dx, dy) / app.view.zoom,
         Action::ResetView => {
-            app.zoom = 1.0;
-            app.pan = glam::DVec2::ZERO;
+            app.view.zoom = 1.0;
+            app.view.pan = glam::DVec2::ZERO;
         }
         Action::TauWindow(narrow) => {
             let now = app.plot_span().max(1e-3);
-            let span = app.tau_window.unwrap_or(now);
-            app.tau_window = if narrow {
+            let span = app.view.tau_window.unwrap_or(now);
+            app.view.tau_window = if narrow {
                 Some((0.5 * span).max(1e-3))
             } else {
                 Some(2.0 * span).filter(|s| *s < now)
             };
         }
-        Action::NextPage => app.page = app.page.next(),
-        Action::PrevPage => app.page = app.page.prev(),
+        Action::NextPage => app.view.page = app.view.page.next(),
+        Action::PrevPage => app.view.page = app.view.page.prev(),
         Action::Choose => {
-            if matches!(app.page, Page::EscapeSpeed | Page::OutcomeMap) {
-                app.page = Page::Turntable;
+            if matches!(app.view.page, Page::EscapeSpeed | Page::OutcomeMap) {
+                app.view.page = Page::Turntable;
                 app.playing = true;
                 app.exploration.restart();
             } else {
@@ -90,7 +90,7 @@ pub(super) fn apply(app: &mut App, action: Action) {
             } else {
                 *r0c = round_sig((*r0c + d).clamp(0.001, 10.0));
             }
-            if app.page != Page::RestRadius {
+            if app.view.page != Page::RestRadius {
                 app.notice = Some(format!(
                     "μ probe: Ω = {} rad/s, r0c = {} m (the rest-radius page reads μ)",
                     app.mu_probe.0, app.mu_probe.1

@@ -44,7 +44,7 @@ fn forces(app: &App, half_width: f64) -> (Vec<ForceArrow>, DVec2) {
             });
         }
     };
-    match app.view {
+    match app.view.frame {
         Frame::Lab => push("fr", "friction", rotate(fr, now.tau), Ink::Friction),
         Frame::Table => {
             push("fr", "friction", fr, Ink::Friction);
@@ -70,12 +70,12 @@ fn forces(app: &App, half_width: f64) -> (Vec<ForceArrow>, DVec2) {
 /// as the initial velocity's arrow). A zero vector is not drawn.
 pub fn arrows(app: &App, half_width: f64, speed_scale: f64) -> Vec<ForceArrow> {
     let (mut out, net) = forces(app, half_width);
-    if !app.forces {
+    if !app.view.forces {
         out.clear();
     }
     // Below this the sum is rounding: the forces balance (stuck).
     let balanced = 1e-9 * half_width;
-    if app.net_force && net.length() > balanced {
+    if app.view.net_force && net.length() > balanced {
         out.push(ForceArrow {
             label: "net",
             word: "net force",
@@ -83,7 +83,7 @@ pub fn arrows(app: &App, half_width: f64, speed_scale: f64) -> Vec<ForceArrow> {
             ink: Ink::Foreground,
         });
     }
-    if app.velocity {
+    if app.view.velocity {
         let (label, word, v) = velocity(app);
         if v.length() > 0.0 {
             out.push(ForceArrow {
@@ -100,7 +100,7 @@ pub fn arrows(app: &App, half_width: f64, speed_scale: f64) -> Vec<ForceArrow> {
 /// The velocity the frame shown sees: `u` relative to the table (rotating), `v` (lab).
 pub fn velocity(app: &App) -> (&'static str, &'static str, DVec2) {
     let now = app.sim().now();
-    match app.view {
+    match app.view.frame {
         Frame::Lab => ("v", "velocity (lab)", now.v),
         Frame::Table => ("u", "velocity rel. table", now.u()),
     }

@@ -61,7 +61,7 @@ pub fn shown_path(sim: &crate::sim::Sim) -> Vec<State> {
 
 /// The canvas as a figure titled `title`.
 pub fn figure(app: &App, title: String) -> Figure {
-    let (view, turn) = (app.view, app.turn);
+    let (view, turn) = (app.view.frame, app.view.turn);
     let place = |s: &State, turn: f64, k: f64| {
         let p = rotate(in_frame(s, view), turn) * k;
         (p.x, p.y)
@@ -130,13 +130,13 @@ pub fn figure(app: &App, title: String) -> Figure {
             .map(|s| place(s, turn, 1.0))
             .collect();
         series.push(Series::new("particle", Ink::Trail, true, pts));
-        particle_marks(app, at, r0 / app.zoom, arrow_scale, &mut marks);
+        particle_marks(app, at, r0 / app.view.zoom, arrow_scale, &mut marks);
     }
-    let centre = match app.zoom > 1.0 {
+    let centre = match app.view.zoom > 1.0 {
         true => at,
         false => DVec2::ZERO,
-    } + app.pan * r0;
-    let r = r0 / app.zoom;
+    } + app.view.pan * r0;
+    let r = r0 / app.view.zoom;
     let name = match view {
         Frame::Lab => "the lab frame",
         Frame::Table => "the rotating frame (the table's)",
@@ -165,11 +165,11 @@ fn particle_marks(app: &App, at: DVec2, half_width: f64, speed_scale: f64, marks
         && now.tau >= tau
     {
         let p = rotate(
-            match app.view {
+            match app.view.frame {
                 Frame::Lab => rotate(q, tau),
                 Frame::Table => q,
             },
-            app.turn,
+            app.view.turn,
         );
         marks.push(Mark::Point {
             x: p.x,
@@ -179,7 +179,7 @@ fn particle_marks(app: &App, at: DVec2, half_width: f64, speed_scale: f64, marks
         });
     }
     for fa in arrows(app, half_width, speed_scale) {
-        let tip = at + rotate(fa.vec, app.turn);
+        let tip = at + rotate(fa.vec, app.view.turn);
         marks.push(Mark::Arrow {
             from: (at.x, at.y),
             to: (tip.x, tip.y),

@@ -80,14 +80,14 @@ fn on_cell(
 
 /// The canvas's title: the frame shown and, zoomed, what the zoom follows.
 fn title(app: &App, point: bool) -> String {
-    let mut title = match app.view {
+    let mut title = match app.view.frame {
         Frame::Lab => " lab frame ".to_string(),
         Frame::Table => " rotating frame ".to_string(),
     };
-    if app.zoom != 1.0 {
+    if app.view.zoom != 1.0 {
         title.push_str(&format!(
             "zoom ×{} (follows {}) ",
-            crate::ui::panel::num(app.zoom, 2),
+            crate::ui::panel::num(app.view.zoom, 2),
             if point { "●" } else { "the body" }
         ));
     }
@@ -97,8 +97,8 @@ fn title(app: &App, point: bool) -> String {
 /// What a zoom follows, turned as the picture is: the particle, or with the point model
 /// hidden (`C`) the body's centre; the origin when not zoomed in.
 fn followed(app: &App, body_now: Option<RodState>, point: bool) -> DVec2 {
-    let (turn, view) = (app.turn, app.view);
-    if app.zoom > 1.0 {
+    let (turn, view) = (app.view.turn, app.view.frame);
+    if app.view.zoom > 1.0 {
         match body_now.filter(|_| !point) {
             Some(b) => rotate(
                 if view == Frame::Lab {
@@ -121,11 +121,11 @@ fn stuck_at(app: &App, point: bool) -> Option<(DVec2, f64)> {
     let now = app.sim().now();
     match app.sim().run.status() {
         crate::engine::Status::Stuck { tau, q } if now.tau >= tau && point => {
-            let at = match app.view {
+            let at = match app.view.frame {
                 Frame::Lab => rotate(q, now.tau),
                 Frame::Table => q,
             };
-            Some((rotate(at, app.turn), tau))
+            Some((rotate(at, app.view.turn), tau))
         }
         _ => None,
     }
@@ -134,7 +134,7 @@ fn stuck_at(app: &App, point: bool) -> Option<(DVec2, f64)> {
 /// The finite body's centre's path so far beside the point's (thinned as trails are), in
 /// the frame shown.
 fn rod_path(app: &App) -> Vec<DVec2> {
-    let (now, view, turn) = (app.sim().now(), app.view, app.turn);
+    let (now, view, turn) = (app.sim().now(), app.view.frame, app.view.turn);
     app.rod().map_or_else(Vec::new, |rod| {
         let n = rod.states.partition_point(|s| s.tau <= now.tau);
         let stride = n / MAX_SEGMENTS + 1;
@@ -160,7 +160,7 @@ fn bar(
     bounds: ([f64; 2], [f64; 2]),
     inner: Rect,
 ) -> Option<([DVec2; 2], DVec2)> {
-    let (now, view, turn) = (app.sim().now(), app.view, app.turn);
+    let (now, view, turn) = (app.sim().now(), app.view.frame, app.view.turn);
     app.rod().and_then(|rod| {
         let s = body_shown(rod, now.tau)?;
         let spin = turn + if view == Frame::Lab { s.tau } else { 0.0 };
@@ -173,7 +173,7 @@ fn bar(
 /// Integrator step mode: each step's end so far.
 fn step_marks(app: &App, point: bool) -> Vec<State> {
     let tau_now = app.sim().now().tau;
-    if app.step_mode && point {
+    if app.view.step_mode && point {
         app.sim()
             .step_marks
             .iter()
@@ -195,14 +195,14 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App, th: &Theme) -> CanvasGeom
     let block = super::titled(title(app, point), th);
     let inner = block.inner(area);
     let r0 = auto_extent(app);
-    let r = r0 / app.zoom;
+    let r = r0 / app.view.zoom;
     // The picture is turned by `app.turn` so a release point clicked anywhere shows there
     // (the physics is rotationally symmetric: the model keeps its release on +x). Zoomed in,
     // the view follows the particle.
-    let turn = app.turn;
+    let turn = app.view.turn;
     let now = app.sim().now();
-    let view = app.view;
-    let centre = followed(app, body_now, point) + app.pan * r0;
+    let view = app.view.frame;
+    let centre = followed(app, body_now, point) + app.view.pan * r0;
     let (xb, yb) = bounds(inner.width, inner.height, centre, r);
     let arrow_scale = 0.3 * r0 / app.initial().xi0.max(1.0);
     let geom = CanvasGeom {
@@ -210,7 +210,7 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App, th: &Theme) -> CanvasGeom
         x: xb,
         y: yb,
         arrow_scale,
-        frame: app.view,
+        frame: app.view.frame,
         turn,
         page: crate::app::pages::Page::Turntable,
     };

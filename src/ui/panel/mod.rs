@@ -247,7 +247,7 @@ fn motion_lines(app: &App, th: &Theme, s: &crate::engine::State, out: &mut Vec<L
         }
     };
     let theta_dot = s.theta_dot();
-    match app.view {
+    match app.view.frame {
         crate::engine::Frame::Lab => {
             out.push(kv("θ", angle(s.r), th));
             out.push(kv("θ′", theta_dot.map_or("—".into(), lab_rate), th));
@@ -335,7 +335,7 @@ fn model_lines(app: &App, th: &Theme, out: &mut Vec<Line<'static>>) {
 fn cost_lines(app: &App, th: &Theme, out: &mut Vec<Line<'static>>) {
     let c = app.sim().run.cost();
     out.push(kv("steps", format!("{} rej {}", c.steps, c.rejected), th));
-    if app.step_mode
+    if app.view.step_mode
         && let Some(st) = app.sim().run.last_step()
     {
         out.push(kv("h", format!("{:.1e} {}", st.h, st.limit.describe()), th));
@@ -356,15 +356,15 @@ fn cost_lines(app: &App, th: &Theme, out: &mut Vec<Line<'static>>) {
 /// The arrows' legend: exactly the arrows drawn, by their head labels; what is not drawn for
 /// being zero says so.
 fn arrow_legend(app: &App, th: &Theme, out: &mut Vec<Line<'static>>) {
-    if (app.forces || app.net_force || app.velocity) && !app.point_shown() {
+    if (app.view.forces || app.view.net_force || app.view.velocity) && !app.point_shown() {
         out.push(Line::from(Span::styled(
             "arrows: point's, hidden (C)",
             Style::default().fg(th.muted),
         )));
-    } else if app.forces || app.net_force || app.velocity {
+    } else if app.view.forces || app.view.net_force || app.view.velocity {
         let drawn = crate::ui::canvas::arrows(app, 1.0, 1.0);
         let has = |l: &str| drawn.iter().any(|a| a.label == l);
-        if app.forces && !drawn.iter().any(|a| ["fr", "co", "cf"].contains(&a.label)) {
+        if app.view.forces && !drawn.iter().any(|a| ["fr", "co", "cf"].contains(&a.label)) {
             out.push(Line::from(Span::styled(
                 "forces: none in the plane",
                 Style::default().fg(th.muted),
@@ -377,14 +377,14 @@ fn arrow_legend(app: &App, th: &Theme, out: &mut Vec<Line<'static>>) {
                 Span::styled(fa.word, Style::default().fg(color)),
             ]));
         }
-        if app.net_force && !has("net") {
+        if app.view.net_force && !has("net") {
             out.push(Line::from(Span::styled(
                 "net force 0: balanced",
                 Style::default().fg(th.muted),
             )));
         }
         let (label, _, _) = crate::ui::canvas::velocity(app);
-        if app.velocity && !has(label) {
+        if app.view.velocity && !has(label) {
             out.push(Line::from(Span::styled(
                 format!("{label} = 0"),
                 Style::default().fg(th.muted),
