@@ -37,6 +37,24 @@ pub fn dir(var: impl Fn(&str) -> Option<OsString>) -> Option<PathBuf> {
         .map(|d| d.join("turntable"))
 }
 
+/// What `turntable config` prints after the path: every key, commented out, with what it
+/// does. Uncommented, it is a valid configuration (a test reads it so).
+pub const TEMPLATE: &str = r#"# turntable's configuration: defaults for the explorer's flags (flags win).
+# Remove a leading '# ' to set a key.
+# theme = "light"     # dark, light, high-contrast, mono, one of yours (themes/NAME.toml
+#                     # beside this file), or a .toml path (relative: to this folder)
+# fps = 60            # frame-rate cap while playing, 1 to 240
+# speed = 0.25        # how fast time plays at the start: a power of two (0.25: slow
+#                     # motion); a saved scene's own speed wins
+# paused = true       # start paused (Space plays)
+# mouse = false       # do not capture the mouse (M toggles it)
+# marker = "block"    # braille, block or ascii
+# [units]             # a real table, as --mu, --rpm, --g (a scene's own [units] wins)
+# mu = 0.15
+# rpm = 33.3
+# g = 9.81
+"#;
+
 impl Config {
     /// Reads `DIR/config.toml`; a file that is not there is an empty configuration, one that
     /// cannot be read or says something wrong is refused (exit 2) with the file and the key.
@@ -46,9 +64,14 @@ impl Config {
             Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(Config::default()),
             _ => {}
         }
-        let text = crate::files::read_bounded(&path, crate::files::READ_CAP)
+        Config::read(&path)
+    }
+
+    /// Reads the configuration file `path` (`--config`): it must be there.
+    pub fn read(path: &Path) -> Result<Config, Error> {
+        let text = crate::files::read_bounded(path, crate::files::READ_CAP)
             .map_err(|e| Error::Invalid(format!("config file {e}")))?;
-        Config::parse(&text, &path)
+        Config::parse(&text, path)
     }
 
     /// A configuration file's text; `path` names it in errors (and anchors relative theme
@@ -164,6 +187,35 @@ mod tests {
             assert_eq!(e.exit_code(), 2);
             e.to_string()
         })
+    }
+
+    #[test]
+    fn the_template_uncommented_sets_every_key() {
+        let text: String = TEMPLATE
+            .lines()
+            .filter_map(|l| l.strip_prefix("# "))
+            .filter(|l| !l.starts_with(' ') && l.contains('='))
+            .map(|l| format!("{}\n", l.split("  #").next().unwrap_or(l)))
+            .collect();
+        // `[units]` has no `=`: put it before its keys.
+        let text = text.replacen("mu =", "[units]\nmu =", 1);
+        let c = parse(&text).unwrap();
+        assert_eq!(c.theme.as_deref(), Some("light"));
+        assert_eq!(
+            (c.fps, c.speed, c.paused, c.mouse),
+            (Some(60), Some(0.25), Some(true), Some(false))
+        );
+        assert_eq!(c.marker, Some(MarkerArg::Block));
+        assert_eq!(
+            c.units.map(|u| (u.mu, u.rpm, u.g)),
+            Some((0.15, 33.3, 9.81))
+        );
+        for key in KEYS.split(", ") {
+            assert!(
+                TEMPLATE.contains(&format!("# {key} ")) || TEMPLATE.contains(&format!("[{key}]")),
+                "{key}"
+            );
+        }
     }
 
     #[test]

@@ -401,9 +401,115 @@ fn completions_and_man_page() {
         "TURNTABLE ESCAPE",
         "TURNTABLE REPLAY",
         "xi0",
+        // Issue 32 item 3: the options of nested subcommands, and the keys.
+        "TURNTABLE SWEEP FIG5",
+        "TURNTABLE PLOT MAP",
+        ".SH KEYS",
+        "play / pause",
     ] {
         assert!(out.contains(section), "no {section}");
     }
+    // Every key of the table is in the page.
+    for b in turntable::app::KEYMAP {
+        assert!(out.contains(b.help), "no key {:?}: {}", b.chord, b.help);
+    }
+    // No page that does not exist: every subcommand is in this one.
+    assert!(
+        !out.contains("turntable\\-"),
+        "refers to a turntable-*(1) page"
+    );
+}
+
+/// Issue 32 item 3: `--help` fits an 80-column terminal, `-h` is the short form, and the
+/// options come under headings instead of "Explorer:" prefixes.
+#[test]
+fn help_fits_the_terminal_and_h_is_short() {
+    let help = |args: &[&str]| {
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_turntable"))
+            .args(args)
+            .env("COLUMNS", "80")
+            .output()
+            .unwrap();
+        assert_eq!(out.status.code(), Some(0), "{args:?}");
+        String::from_utf8(out.stdout).unwrap()
+    };
+    let subs = [
+        "run", "escape", "critical", "sweep", "spinup", "plot", "bench", "replay", "serve",
+        "lesson", "config",
+    ];
+    for sub in std::iter::once(None).chain(subs.iter().map(Some)) {
+        let args = |flag| sub.map_or(vec![flag], |s| vec![*s, flag]);
+        let long = help(&args("--help"));
+        let short = help(&args("-h"));
+        for text in [&long, &short] {
+            for line in text.lines() {
+                assert!(
+                    line.chars().count() <= 80,
+                    "{sub:?}: {} chars: {line}",
+                    line.chars().count()
+                );
+            }
+        }
+        assert!(short.len() <= long.len(), "{sub:?}");
+    }
+    let (long, short) = (help(&["--help"]), help(&["-h"]));
+    assert!(
+        short.len() * 3 < long.len() * 2,
+        "-h {} bytes, --help {}",
+        short.len(),
+        long.len()
+    );
+    assert!(
+        long.contains("\nExplorer:\n") && long.contains("\nFriction:\n"),
+        "{long}"
+    );
+    assert!(!long.contains("Explorer: "), "a prefix left: {long}");
+}
+
+/// Issue 32 item 5: the configuration can be found (`turntable config`) and named
+/// (`--config FILE`); its template, uncommented, is read (the library's test).
+#[test]
+fn the_configuration_can_be_found_and_named() {
+    let dir = tempfile::tempdir().unwrap();
+    let run = |args: &[&str]| {
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_turntable"))
+            .args(args)
+            .env("XDG_CONFIG_HOME", dir.path())
+            .output()
+            .unwrap();
+        let text = |b: Vec<u8>| String::from_utf8(b).unwrap();
+        (
+            out.status.code().unwrap_or(-1),
+            text(out.stdout),
+            text(out.stderr),
+        )
+    };
+    let want = dir.path().join("turntable").join("config.toml");
+    let (code, out, _) = run(&["config", "--path"]);
+    assert_eq!((code, out.trim()), (0, want.to_str().unwrap()));
+    let (code, out, _) = run(&["config"]);
+    assert_eq!(code, 0);
+    assert!(
+        out.starts_with(&format!("# {} (not there yet", want.display())),
+        "{out}"
+    );
+    for key in [
+        "theme", "fps", "speed", "paused", "mouse", "marker", "[units]",
+    ] {
+        assert!(out.contains(&format!("# {key}")), "{key}: {out}");
+    }
+    // A named file is read, and refused as the usual one is; a missing one is said.
+    let bad = dir.path().join("mine.toml");
+    std::fs::write(&bad, "fps = 500\n").unwrap();
+    let (code, _, err) = run(&["--config", bad.to_str().unwrap(), "--plain"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("mine.toml: key `fps`: must lie in 1..=240"),
+        "{err}"
+    );
+    let (code, _, err) = run(&["--config", "/nonexistent/turntable.toml", "--plain"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("/nonexistent/turntable.toml"), "{err}");
 }
 
 /// Issue 18 item 22: bracket widths no run can certify are refused up front (`sweep fig5

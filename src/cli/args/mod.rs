@@ -22,48 +22,57 @@ pub use model::*;
     about = "A particle sliding with dry friction on a rotating table (Agha, Gupta & Joseph 2015)",
     // The explorer's flags mean nothing to a subcommand: `turntable --fps 5 run` is an error.
     args_conflicts_with_subcommands = true,
-    after_help = CONFIG_HELP
+    after_help = "The explorer's defaults: `turntable config` prints where they are kept and how.",
+    after_long_help = CONFIG_HELP
 )]
 pub struct Cli {
     #[command(subcommand)]
     pub command: Option<Command>,
     #[command(flatten)]
     pub look: Look,
-    /// Explorer: frame-rate cap while playing [default: 30].
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=240))]
+    /// Frame-rate cap while playing [default: 30].
+    #[arg(long, help_heading = "Explorer", value_parser = clap::value_parser!(u32).range(1..=240))]
     pub fps: Option<u32>,
-    /// Explorer: how plots draw points: braille (2×4 dots a cell), block (half blocks) or
-    /// ascii (`*`). Default: braille, or ascii where the locale (LC_ALL, LC_CTYPE, LANG) is
-    /// not UTF-8.
-    #[arg(long, value_enum, value_name = "KIND")]
+    /// How plots draw points: braille, block or ascii.
+    ///
+    /// braille (2×4 dots a cell), block (half blocks) or ascii (`*`). Default: braille, or
+    /// ascii where the locale (LC_ALL, LC_CTYPE, LANG) is not UTF-8.
+    #[arg(long, help_heading = "Explorer", value_enum, value_name = "KIND")]
     pub marker: Option<MarkerArg>,
-    /// Explorer: how fast time plays at the start, a power of two from 1/64 to 256 (0.25 is
-    /// slow motion; `[` and `]` halve and double it inside) [default: the scene's, else 1].
-    #[arg(long, value_name = "X", value_parser = parse_speed)]
+    /// How fast time plays at the start: a power of two from 1/64 to 256.
+    ///
+    /// 0.25 is slow motion; `[` and `]` halve and double it inside [default: the scene's,
+    /// else 1].
+    #[arg(long, help_heading = "Explorer", value_name = "X", value_parser = parse_speed)]
     pub speed: Option<f64>,
-    /// Explorer: start paused (Space plays).
-    #[arg(long)]
+    /// Start paused (Space plays).
+    #[arg(long, help_heading = "Explorer")]
     pub paused: bool,
-    /// Explorer: do not capture the mouse (M toggles it inside).
-    #[arg(long, overrides_with = "mouse")]
+    /// Do not capture the mouse (M toggles it inside).
+    #[arg(long, help_heading = "Explorer", overrides_with = "mouse")]
     pub no_mouse: bool,
-    /// Explorer: capture the mouse (the default, unless the configuration says `mouse = false`).
-    #[arg(long, overrides_with = "no_mouse")]
+    /// Capture the mouse (the default, unless the configuration says `mouse = false`).
+    #[arg(long, help_heading = "Explorer", overrides_with = "no_mouse")]
     pub mouse: bool,
-    /// Explorer: record the session (keys, ticks, resizes, mouse) as a key script to FILE,
-    /// written when the explorer exits; `turntable replay FILE` shows the same screens. An
-    /// existing FILE is kept unless --force.
-    #[arg(long, value_name = "FILE")]
+    /// Record the session as a key script to FILE.
+    ///
+    /// Keys, ticks, resizes and the mouse, written when the explorer exits; `turntable replay
+    /// FILE` shows the same screens. An existing FILE is kept unless --force.
+    #[arg(long, help_heading = "Explorer", value_name = "FILE")]
     pub record: Option<PathBuf>,
-    /// Explorer: replace the --record file if it exists (never a file the session reads).
-    #[arg(long, requires = "record")]
+    /// Replace the --record file if it exists (never a file the session reads).
+    #[arg(long, help_heading = "Explorer", requires = "record")]
     pub force: bool,
-    /// Plain mode for screen readers: no canvas, no cursor movement, no colour; lines of text
-    /// on stdout (the release, each change of state as it happens, notices, the readouts on
-    /// `I`, the keys on `?`), keys as in the explorer. Works with TERM=dumb and with stdout
-    /// piped (`| tee log`).
-    #[arg(long)]
+    /// Plain mode for screen readers: lines of text, no screen.
+    ///
+    /// No canvas, no cursor movement, no colour; lines of text on stdout (the release, each
+    /// change of state as it happens, notices, the readouts on `I`, the keys on `?`), keys as
+    /// in the explorer. Works with TERM=dumb and with stdout piped (`| tee log`).
+    #[arg(long, help_heading = "Explorer")]
     pub plain: bool,
+    /// Read this configuration file instead of the usual one (`turntable config` shows it).
+    #[arg(long, value_name = "FILE", help_heading = "Explorer")]
+    pub config: Option<PathBuf>,
     #[command(flatten)]
     pub units: UnitsArgs,
     #[command(flatten)]
@@ -107,34 +116,27 @@ impl MarkerArg {
 /// What the explorer shows, for the explorer and for `replay`.
 #[derive(Args, Debug, Default, Clone)]
 pub struct Look {
-    /// Scene to open: a preset (A, B, C, D, fig1, fig2) or a .toml file. Default: C (replay:
-    /// the script's own `# replay: --scene` line first).
+    /// Scene to open: a preset (A, B, C, D, fig1, fig2) or a .toml file [default: C].
+    ///
+    /// For replay, the script's own `# replay: --scene` line comes first.
     #[arg(long, value_name = "NAME|PATH")]
     pub scene: Option<String>,
-    /// Colour theme: dark, light, high-contrast, mono, one of yours by name (explorer), or a
-    /// .toml file; without a name, lists them. The explorer respects NO_COLOR; replay ignores it
-    /// (its output depends on its arguments alone) and only --ansi shows colour.
+    /// Colour theme: dark, light, high-contrast, mono, yours, or a .toml file; alone, lists them.
+    ///
+    /// One of yours by name in the explorer (see the configuration below). The explorer
+    /// respects NO_COLOR; replay ignores it (its output depends on its arguments alone) and
+    /// only --ansi shows colour.
     #[arg(long, value_name = "NAME|PATH", num_args = 0..=1, default_missing_value = "")]
     pub theme: Option<String>,
 }
 
 /// `turntable --help`, after the flags: the configuration file.
 const CONFIG_HELP: &str = "Configuration (explorer only): $XDG_CONFIG_HOME/turntable/config.toml \
-(~/.config/turntable/config.toml when XDG_CONFIG_HOME is unset) sets defaults for the explorer's \
-flags, which win over it:
+(~/.config/turntable/config.toml when XDG_CONFIG_HOME is unset, or --config FILE) sets defaults \
+for the explorer's flags, which win over it: theme, fps, speed, paused, mouse, marker and \
+[units]. `turntable config` prints its path and a commented template.
 
-    theme = \"light\"        # a built-in, one of yours, or a .toml path (relative: to this folder)
-    fps = 60
-    speed = 0.25           # slow motion (a power of two; a saved scene's own speed wins)
-    paused = true          # start paused
-    mouse = false
-    marker = \"block\"       # braille, block or ascii
-    [units]                # as --mu, --rpm, --g (a scene's own [units] wins over these)
-    mu = 0.15
-    rpm = 33.3
-    g = 9.81
-
-Your themes: $XDG_CONFIG_HOME/turntable/themes/NAME.toml, chosen by NAME (`--theme NAME`); one \
+Your themes: themes/NAME.toml beside the configuration, chosen by NAME (`--theme NAME`); one \
 named as a built-in replaces it. A bad file exits with code 2 naming the file and the key. \
 `replay` and the numerical commands read no configuration (name a theme of yours by its path).";
 
@@ -210,6 +212,15 @@ pub enum Command {
     Completions(CompletionsArgs),
     /// Print the manual page (roff): `turntable man > ~/.local/share/man/man1/turntable.1`.
     Man,
+    /// Print where the explorer's configuration is kept, and a commented template.
+    Config(ConfigArgs),
+}
+
+#[derive(Args, Debug)]
+pub struct ConfigArgs {
+    /// Print only the path.
+    #[arg(long)]
+    pub path: bool,
 }
 
 #[derive(Args, Debug)]

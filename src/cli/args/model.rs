@@ -6,20 +6,26 @@ use super::*;
 /// A finite body instead of a point (the paper's appendix), for the explorer and `run`.
 /// Unset, a scene keeps its own.
 #[derive(Args, Debug, Clone, Default)]
+#[command(next_help_heading = "A finite body (the paper's appendix)")]
 pub struct BodyArgs {
-    /// The body's lateral size L (> 0): a plain number in units of R_max, or a length with a
-    /// unit, m, cm or mm (`2cm`, `0.02m`, `15 mm`), on the table --mu and --rpm give (the
+    /// The body's lateral size L (> 0), in R_max or with a unit: `0.1`, `2cm`.
+    ///
+    /// A plain number in units of R_max, or a length with a unit, m, cm or mm (`2cm`,
+    /// `0.02m`, `15 mm`), on the table --mu and --rpm give (the
     /// explorer also takes a scene's or the configuration's [units]). The panel and
     /// `run --json` judge the appendix's conditions for treating it as a point, μh/L ≪ 1 and
     /// L/ξ ≪ 1.
     #[arg(long, value_name = "L", allow_hyphen_values = true, value_parser = length)]
     pub body_length: Option<Length>,
-    /// The body's height h (≥ 0; with --body-length), as --body-length: R_max units or
-    /// m, cm, mm. Toppling: μh/L.
+    /// The body's height h (≥ 0), as --body-length.
+    ///
+    /// In R_max units or m, cm, mm (with --body-length). Toppling: μh/L.
     #[arg(long, value_name = "H", allow_hyphen_values = true, value_parser = length)]
     pub body_height: Option<Length>,
-    /// The rod's angle at release in the table frame, from radially outward, ccw (rad, or
-    /// degrees with `deg`: `30deg`; with --body-length).
+    /// The rod's angle at release, ccw from radially outward: rad, or `30deg`.
+    ///
+    /// In the table frame, from radially outward, ccw (rad, or degrees with `deg`: `30deg`;
+    /// with --body-length).
     #[arg(long, value_name = "A", allow_hyphen_values = true, value_parser = angle)]
     pub body_angle: Option<f64>,
 }
@@ -78,13 +84,18 @@ impl BodyArgs {
 /// How the particle is coupled to the table (extends the paper), shared by the explorer and
 /// every command. Unset, a scene keeps its own.
 #[derive(Args, Debug, Clone, Default)]
+#[command(next_help_heading = "Friction")]
 pub struct CouplingArgs {
-    /// coulomb (dry friction, the paper's) or stokes (drag −γ m u relative to the table, with
-    /// --gamma; solved in closed form, every release but a measure-zero few leaves).
+    /// coulomb (dry friction, the paper's) or stokes (linear drag, with --gamma).
+    ///
+    /// Stokes drag is −γ m u relative to the table, solved in closed form: every release but
+    /// a measure-zero few leaves.
     #[arg(long, value_parser = variant::<CouplingName>())]
     pub coupling: Option<CouplingName>,
-    /// Static over kinetic friction, mu_s/mu_k ≥ 1 (the paper: 1): at rest on the table the
-    /// particle holds out to xi = R, and slides at mu_k once loose.
+    /// Static over kinetic friction, mu_s/mu_k ≥ 1 (the paper: 1).
+    ///
+    /// At rest on the table the particle holds out to xi = R, and slides at mu_k once
+    /// loose.
     #[arg(long, value_name = "R", allow_hyphen_values = true)]
     pub mu_static_ratio: Option<f64>,
     /// Stokes drag rate in units of Omega, ≥ 0 (implies --coupling stokes).
@@ -114,8 +125,9 @@ impl CouplingArgs {
 
 /// A real table: every length, time and speed also in SI.
 #[derive(Args, Debug, Clone, Default)]
+#[command(next_help_heading = "A real table (SI beside R_max and 1/Omega)")]
 pub struct UnitsArgs {
-    /// Friction coefficient of a real table (with --rpm): SI values beside the dimensionless ones.
+    /// Friction coefficient of a real table (with --rpm).
     #[arg(long, allow_hyphen_values = true)]
     pub mu: Option<f64>,
     /// The table's speed in revolutions per minute (with --mu).
