@@ -95,6 +95,11 @@ pub fn run(a: RunArgs) -> CmdResult {
         }
         None => None,
     };
+    report.body_outcome = report
+        .body
+        .as_ref()
+        .and_then(|b| b.motion.as_ref())
+        .map(|m| m.outcome);
     print(&report, a.json)
 }
 

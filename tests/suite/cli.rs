@@ -218,8 +218,7 @@ fn sweep_map_prints_one_row_per_cell_that_agrees_with_v_e() {
         }
     }
     for bad in [
-        &["sweep", "map"][..],
-        &["sweep", "map", "--xi0", "0.5,0.2"],
+        &["sweep", "map", "--xi0", "0.5,0.2"][..],
         &["sweep", "map", "--xi0", "0.5", "--v0-points", "0"],
         &["sweep", "map", "--xi0", "0.5", "--v0-max", "-1"],
         &["sweep", "map", "--xi0", "0.5", "--release", "sideways"],
@@ -375,6 +374,54 @@ fn json_reports_are_the_fields_readme_lists() {
         listed.sort();
         assert_eq!(keys, listed, "{heading}");
     }
+}
+
+/// Issue 32 item 7: with a body, `run` says how the body ends first (JSON and text); `plot
+/// map`, `sweep map` and `escape` take ξ0 = 0.5 as `run` does.
+#[test]
+fn the_body_comes_first_and_the_map_has_a_default_radius() {
+    let args = ["run", "--xi0", "0.5", "--v0", "0.6", "--body-length", "0.1"];
+    let (code, out, err) = turntable(&[&args[..], &["--json"]].concat());
+    assert_eq!(code, 0, "{err}");
+    assert!(
+        out.starts_with("{\"body_outcome\":\"stuck\","),
+        "{}",
+        &out[..60]
+    );
+    let v: serde_json::Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(v["body_outcome"], v["body"]["motion"]["outcome"]);
+    let (code, out, _) = turntable(&args);
+    assert_eq!(code, 0);
+    assert!(
+        out.starts_with("rod      the two-mass body: stuck at tau 2.75"),
+        "{out}"
+    );
+    let (code, out, _) = turntable(&["run", "--xi0", "0.5", "--v0", "0.6", "--json"]);
+    assert_eq!(code, 0);
+    assert!(
+        out.starts_with("{\"outcome\":"),
+        "no body, no body_outcome: {out}"
+    );
+    let dir = tempfile::tempdir().unwrap();
+    let svg = dir.path().join("map.svg");
+    let (code, _, err) = turntable(&[
+        "plot",
+        "map",
+        "--phi-points",
+        "8",
+        "--v0-points",
+        "6",
+        "--out",
+        svg.to_str().unwrap(),
+    ]);
+    assert_eq!(code, 0, "{err}");
+    assert!(std::fs::read_to_string(&svg).unwrap().contains("0.5"));
+    let (code, csv, err) = turntable(&["sweep", "map", "--phi-points", "4", "--v0-points", "3"]);
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(csv.lines().count(), 1 + 4 * 3, "{csv}");
+    let (code, out, err) = turntable(&["escape", "--vtol", "1e-4", "--no-check"]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("v_escape"), "{out}");
 }
 
 /// Shell completions and the manual page come from the clap definitions, every subcommand in.

@@ -111,8 +111,8 @@ pub struct MapArgs {
 /// What the outcome map is computed from (`sweep map`, `plot map`).
 #[derive(Args, Debug)]
 pub struct MapData {
-    /// The release radius.
-    #[arg(long, allow_hyphen_values = true)]
+    /// The release radius [default: 0.5, as `run` and `escape`].
+    #[arg(long, default_value_t = 0.5, allow_hyphen_values = true)]
     pub xi0: f64,
     /// How phi and v0 are meant: velocity or table-rest, the speed relative to the table;
     /// lab-rest, the lab velocity (thrown from the lab, u0 = v − Ω×r).

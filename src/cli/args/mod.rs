@@ -328,7 +328,7 @@ pub struct RunArgs {
 #[derive(Args, Debug)]
 pub struct EscapeArgs {
     /// Release radius xi0 (units of R_max = mu g / Omega^2).
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, default_value_t = 0.5, allow_hyphen_values = true)]
     pub xi0: f64,
     /// Direction of the initial velocity in the table frame, from radially outward, ccw (rad).
     #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]

@@ -24,6 +24,11 @@ pub trait Report {
 /// `run --json`.
 #[derive(Debug, Serialize)]
 pub struct RunReport {
+    /// With a body (`--body-length`), how the two-mass body ends (`body.motion.outcome`),
+    /// first: the body is what was asked about; `outcome` and what follows are the point
+    /// model's from the same release.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub body_outcome: Option<Outcome>,
     pub outcome: Outcome,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub certain: Option<bool>,
@@ -109,6 +114,18 @@ pub struct MotionCheck {
 pub type RodEnd = Result<(RodRun, Outcome), crate::error::Error>;
 
 impl MotionReport {
+    /// Its line of `run`'s text (the first, see [`RunReport`]'s).
+    fn line(&self) -> String {
+        format!(
+            "rod      the two-mass body: {} at tau {:.9}, xi {:.12}, rod at psi {:.6} ({} steps)\n",
+            self.outcome.name(),
+            self.tau,
+            self.xi,
+            self.psi,
+            self.steps
+        )
+    }
+
     pub fn new(run: &RodRun, outcome: Outcome, check: Option<(f64, RodEnd)>) -> MotionReport {
         let s = run.state;
         MotionReport {
@@ -232,6 +249,7 @@ impl RunReport {
         let (q, speed) = (end.q(), end.u_lab().length());
         let settings: Settings = run.settings();
         RunReport {
+            body_outcome: None,
             outcome: run.outcome(),
             certain: doubt.map(|d| d.certain),
             check: doubt.as_ref().map(CheckReport::new),
@@ -278,7 +296,16 @@ impl RunReport {
 impl Report for RunReport {
     fn text(&self) -> String {
         let (how, cost, check) = (self.how(), self.cost(), self.check());
-        let mut text = format!(
+        // With a body, its run first: it is what was asked about.
+        let mut text = match self.body.as_ref().and_then(|b| b.motion.as_ref()) {
+            Some(m) => format!(
+                "{}point    the point model from the same release:\n",
+                m.line()
+            ),
+            None => String::new(),
+        };
+        let _ = write!(
+            text,
             "outcome  {how}\n{check}tau      {:.9}\nxi       {:.12}\nangle    {:.12} rad in [0, 2pi) (table frame, ccw from the release direction)\n|u|      {:.3e}\ncost     {cost}\n",
             self.tau, self.xi, self.angle, self.speed,
         );
@@ -414,32 +441,21 @@ impl BodyReport {
             text,
             "body     {size}: {topple}, {rot} at the end; {verdict}"
         );
-        if let Some(m) = &b.motion {
+        if let Some(c) = b.motion.as_ref().and_then(|m| m.check.as_ref()) {
+            let e = |x: Option<f64>| x.map_or("-".into(), |x| format!("{x:.1e}"));
             let _ = writeln!(
                 text,
-                "rod      the two-mass body: {} at tau {:.9}, xi {:.12}, rod at psi {:.6} ({} steps)",
-                m.outcome.name(),
-                m.tau,
-                m.xi,
-                m.psi,
-                m.steps
+                "rod      at tol {:e}: {}; the centre {} away, psi {}, tau {} (not independent: the same integrator)",
+                c.tol,
+                match (c.outcome, &c.failed) {
+                    (Some(o), _) if c.agrees => format!("{} too", o.name()),
+                    (Some(o), _) => format!("{}, DISAGREES", o.name()),
+                    (None, f) => format!("failed ({})", f.as_deref().unwrap_or("")),
+                },
+                e(c.q_error),
+                e(c.psi_error),
+                e(c.tau_error)
             );
-            if let Some(c) = &m.check {
-                let e = |x: Option<f64>| x.map_or("-".into(), |x| format!("{x:.1e}"));
-                let _ = writeln!(
-                    text,
-                    "rod      at tol {:e}: {}; the centre {} away, psi {}, tau {} (not independent: the same integrator)",
-                    c.tol,
-                    match (c.outcome, &c.failed) {
-                        (Some(o), _) if c.agrees => format!("{} too", o.name()),
-                        (Some(o), _) => format!("{}, DISAGREES", o.name()),
-                        (None, f) => format!("failed ({})", f.as_deref().unwrap_or("")),
-                    },
-                    e(c.q_error),
-                    e(c.psi_error),
-                    e(c.tau_error)
-                );
-            }
         }
         text
     }
