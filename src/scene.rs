@@ -11,7 +11,7 @@ use std::f64::consts::PI;
 use std::path::Path;
 
 /// A scene as the explorer holds it: every length in units of R_max. Its file form is
-/// [`SceneFile`], where the body's sizes may be in metres (`length = "2 cm"`) when the scene
+/// `SceneFile`, where the body's sizes may be in metres (`length = "2 cm"`) when the scene
 /// has `[units]`.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(try_from = "SceneFile", into = "SceneFile")]

@@ -2,7 +2,7 @@
 //! authorized key, or the passphrase) and asks for a shell gets its own explorer
 //! ([`explorer`]), on the same [`Session`](crate::session::Session) the terminal and replay
 //! use, drawn at the client's size into the channel; nothing else is served (no command, no
-//! SFTP, no forwarding: [`conn`]). A presenter leads: followers apply the presenter's keys
+//! SFTP, no forwarding: `conn`). A presenter leads: followers apply the presenter's keys
 //! and ticks, not its frames. Guests write no file on the server. Limits bound what any
 //! client can cost: sessions, connections per address per minute, idle time, terminal size,
 //! a stalled reader, the handshake's time, and the analysis work (on as many threads at once

@@ -26,7 +26,7 @@ const UNKNOWN: Cell = Cell {
     rest: None,
 };
 
-/// The quarter a rest radius is shaded by: how many of [`BANDS`] lie at or below it.
+/// The quarter a rest radius is shaded by: how many of `BANDS` lie at or below it.
 pub fn band(xi: f64) -> usize {
     BANDS.iter().filter(|&&b| xi >= b).count()
 }

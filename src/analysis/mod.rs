@@ -109,7 +109,7 @@ impl Speeds {
 const WINDOW_SCAN: usize = 200;
 
 /// The speeds at (ξ0, φ) that end stuck, to `tol`. Inside ξ = 1: below the escape speed (the
-/// engine's certified solver). Outside: a scan of [`WINDOW_SCAN`] speeds up to the solver's
+/// engine's certified solver). Outside: a scan of `WINDOW_SCAN` speeds up to the solver's
 /// ceiling 2(1 + ξ0) + 2 finds the window, bisection on the outcome sets each edge.
 pub fn sticking_speeds(xi0: f64, phi: f64, settings: Settings, tol: f64) -> Speeds {
     sticking_speeds_until(xi0, phi, settings, tol, &always)

@@ -150,7 +150,7 @@ impl App {
     }
 
     /// Whether a prediction is open and nothing on screen may say how the run ends: asked,
-    /// and the line under it does not yet say (see [`App::verdict`]).
+    /// and the line under it does not yet say (see `App::verdict`).
     pub fn outcome_open(&self) -> bool {
         self.lesson.question.as_ref().is_some_and(|q| {
             self.sim().outcome_now() == Outcome::Running

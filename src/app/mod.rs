@@ -35,7 +35,7 @@ impl App {
     }
 
     /// A terminal's key event: its chord, if it has one (releases have none). Returns what
-    /// the shell must carry out (see [`update`]).
+    /// the shell must carry out (see [`update()`]).
     pub fn handle_key(&mut self, key: KeyEvent) -> Effects {
         match Chord::from_event(&key) {
             Some(chord) => self.press(chord),
@@ -66,7 +66,7 @@ impl App {
 
     /// The mouse as actions, through the canvas as last drawn: a click places the release
     /// point, a drag sets the initial velocity, the wheel zooms. Returns what the shell must
-    /// carry out (see [`update`]).
+    /// carry out (see [`update()`]).
     pub fn handle_mouse(&mut self, ev: MouseEvent) -> Effects {
         if !self.mouse {
             return Effects::new();

@@ -53,7 +53,7 @@ pub struct CanvasGeom {
     pub arrow_scale: f64,
     /// The view frame the canvas was drawn in.
     pub frame: Frame,
-    /// How far the picture is turned (see [`App::turn`]).
+    /// How far the picture is turned (see `View::turn`).
     pub turn: f64,
     /// The page drawn: on the turntable a click places the release; on the escape-speed and
     /// outcome-map pages the plot is the (φ, v0) plane and a click picks that release.

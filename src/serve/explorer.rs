@@ -1,4 +1,4 @@
-//! One client's explorer: a [`Session`] on a [`Screen`], on its own thread, with its own tick
+//! One client's explorer: a [`Session`] on a `Screen`, on its own thread, with its own tick
 //! clock. A frame is drawn only once the last one has been taken by the channel (its flow
 //! control: a client that reads slowly gets fewer frames, never older ones), while τ keeps
 //! wall-clock time. A follower applies the presenter's keys and ticks instead of its clock.

@@ -12,7 +12,7 @@ pub struct BodyArgs {
     ///
     /// A plain number in units of R_max, or a length with a unit, m, cm or mm (`2cm`,
     /// `0.02m`, `15 mm`), on the table --mu and --rpm give (the
-    /// explorer also takes a scene's or the configuration's [units]). The panel and
+    /// explorer also takes a scene's or the configuration's `[units]`). The panel and
     /// `run --json` judge the appendix's conditions for treating it as a point, μh/L ≪ 1 and
     /// L/ξ ≪ 1.
     #[arg(long, value_name = "L", allow_hyphen_values = true, value_parser = length)]

@@ -11,7 +11,7 @@
 //! - both stuck: the body rides the table iff some axial force keeps both within their cones,
 //!   which works out to |q| ≤ μ_s/μ_k, the point's condition (Sec. II, property 1);
 //! - a contact breaking loose slips along the one direction its slip can grow in
-//!   ([`breakaway`]), taken as its friction's direction until its slip passes the stop floor.
+//!   (`breakaway`), taken as its friction's direction until its slip passes the stop floor.
 //!
 //! The Jacobi energy E = ½|u|² + (L²/8) ψ′² − ½|q|² falls at ½(|u₁| + |u₂|), so E < −½R²
 //! (R = μ_s/μ_k) certifies that the body never rests. As L → 0 it is the point.

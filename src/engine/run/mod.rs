@@ -157,7 +157,7 @@ impl Run {
     }
 
     /// A run for a second opinion: no closed-form stop but those within a thousandth of its
-    /// time tolerance ([`Run::snap_time`]); the stretch before a stop is integrated.
+    /// time tolerance (`Run::snap_time`); the stretch before a stop is integrated.
     pub fn checking(initial: Initial, settings: Settings) -> Result<Run, Error> {
         Ok(Run {
             checking: true,

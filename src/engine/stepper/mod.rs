@@ -181,7 +181,7 @@ impl<V: Vector> Stepper<V> {
     }
 
     /// One accepted step of at most `cap`, and the adaptive error against its tolerance (≤ 1),
-    /// the velocity's error scaled by at most `vel` (see [`err_norm`]).
+    /// the velocity's error scaled by at most `vel` (see `err_norm`).
     /// Rejected tries are counted in `cost`; accepted and rejected together stay below
     /// `max_steps`.
     pub fn step(
