@@ -1,13 +1,14 @@
 //! An asciicast v2 recording of a replay (asciinema's format): a header line
 //! `{"version": 2, "width": W, "height": H, ...}`, then one JSON array per event,
 //! `[time, "o", data]` for output, `[time, "r", "WxH"]` for a resize and `[time, "m", label]`
-//! for a marker (each snapshot). Every frame is the whole screen as ANSI text, written when it
-//! differs from the last one; its time is the ticks passed so far at the explorer's own rate
+//! for a marker (each snapshot). A frame is written when the screen differs from the last
+//! one: the first whole, then only the cells that changed, each run after a cursor move (a
+//! few hundred bytes a tick instead of the whole screen's twelve thousand); its time is the ticks passed so far at the explorer's own rate
 //! (`TICKS_PER_SECOND`), so the recording plays at the pace of the session and is the same
 //! bytes on every run.
 
 use crate::app::TICKS_PER_SECOND;
-use crate::ui::export::ansi_text;
+use crate::ui::export::ansi_changes;
 use ratatui::buffer::Buffer;
 use serde_json::json;
 use std::io::{self, Write};
@@ -19,8 +20,8 @@ pub const MAX_FRAMES: u64 = 3600 * TICKS_PER_SECOND as u64;
 /// The recording as it is written.
 pub struct Cast<'a> {
     out: &'a mut dyn Write,
-    /// The last frame written, to skip unchanged ones.
-    last: Option<String>,
+    /// The last frame written: unchanged cells (and frames) are not written again.
+    last: Option<Buffer>,
     /// Frames written so far.
     frames: u64,
 }
@@ -53,12 +54,12 @@ impl<'a> Cast<'a> {
         writeln!(self.out, "[{}, \"{kind}\", {data}]", time(ticks))
     }
 
-    /// The screen at `ticks`, if it changed: cursor home, then every row (the first frame and
-    /// the first after a resize clear the screen and hide the cursor first).
+    /// The screen at `ticks`, if it changed: the cells that differ from the last frame's
+    /// (the first frame and the first after a resize clear the screen, hide the cursor and
+    /// write every cell).
     pub fn frame(&mut self, ticks: u64, buf: &Buffer) -> io::Result<()> {
-        let rows = ansi_text(buf);
-        let screen = rows.trim_end_matches('\n').replace('\n', "\r\n");
-        if self.last.as_deref() == Some(screen.as_str()) {
+        let changes = ansi_changes(self.last.as_ref(), buf);
+        if changes.is_empty() {
             return Ok(());
         }
         if self.frames >= MAX_FRAMES {
@@ -74,8 +75,8 @@ impl<'a> Cast<'a> {
         } else {
             ""
         };
-        self.event(ticks, "o", &format!("{clear}\x1b[H{screen}"))?;
-        self.last = Some(screen);
+        self.event(ticks, "o", &format!("{clear}{changes}"))?;
+        self.last = Some(buf.clone());
         Ok(())
     }
 

@@ -51,6 +51,54 @@ pub fn ansi_text(buf: &Buffer) -> String {
     out
 }
 
+/// What turns the screen `prev` showed into `buf`: each run of changed cells after a move to
+/// its start, styled as [`ansi_text`] styles it, then a reset; every row when there is no
+/// `prev` (or it was another size). A cell beside a wide symbol, in either screen, is written
+/// again with it, so that no half of a wide symbol is left behind.
+pub fn ansi_changes(prev: Option<&Buffer>, buf: &Buffer) -> String {
+    let prev = prev.filter(|p| p.area == buf.area);
+    let w = usize::from(buf.area.width);
+    let wide = |b: &Buffer, i: usize| b.content.get(i).is_some_and(|c| c.symbol().width() > 1);
+    let differs = |i: usize| match prev {
+        None => true,
+        Some(p) => {
+            let (a, b) = (&p.content[i], &buf.content[i]);
+            a.symbol() != b.symbol()
+                || (a.fg, a.bg, a.modifier) != (b.fg, b.bg, b.modifier)
+                || (i % w > 0 && (wide(p, i - 1) || wide(buf, i - 1)))
+        }
+    };
+    let mut out = String::new();
+    for (y, row) in rows(buf).enumerate() {
+        let mut x = 0usize;
+        let mut current = None;
+        let mut in_run = false;
+        for c in row {
+            let i = y * w + x;
+            if differs(i) {
+                if !in_run {
+                    out.push_str(&format!("\x1b[{};{}H", y + 1, x + 1));
+                    current = None;
+                    in_run = true;
+                }
+                let style = (c.fg, c.bg, c.modifier);
+                if current != Some(style) {
+                    out.push_str(&sgr(c.fg, c.bg, c.modifier));
+                    current = Some(style);
+                }
+                out.push_str(c.symbol());
+            } else {
+                in_run = false;
+            }
+            x += c.symbol().width().max(1);
+        }
+        if current.is_some() {
+            out.push_str("\x1b[0m");
+        }
+    }
+    out
+}
+
 fn sgr(fg: Color, bg: Color, m: Modifier) -> String {
     let mut codes = vec!["0".to_string()];
     for (flag, code) in [

@@ -81,3 +81,48 @@ fn readme_example_script_replays() {
         "{out}"
     );
 }
+
+/// Runs the binary with `args` (an output path among them) and returns what it wrote there.
+fn written_by(args: &[&str], out: &Path) -> Vec<u8> {
+    let status = std::process::Command::new(env!("CARGO_BIN_EXE_turntable"))
+        .args(args)
+        .arg(out)
+        .arg("--force")
+        .stdout(std::process::Stdio::null())
+        .status()
+        .unwrap();
+    assert!(status.success(), "{args:?}");
+    std::fs::read(out).unwrap()
+}
+
+/// Issue 32 item 2: README's moving picture (`docs/demo.cast`, recorded by the tool from
+/// `docs/demo.keys`) and its Fig. 5 (`docs/fig5.svg`) are what the tool makes today, so they
+/// never go stale. `UPDATE_GOLDENS=1` writes them again.
+#[test]
+fn the_docs_pictures_are_what_the_tool_makes() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let tmp = tempfile::tempdir().unwrap();
+    let demo = root.join("docs/demo.keys");
+    let pictures: [(&str, Vec<&str>); 2] = [
+        (
+            "demo.cast",
+            vec!["replay", demo.to_str().unwrap(), "--asciicast"],
+        ),
+        ("fig5.svg", vec!["plot", "fig5", "--out"]),
+    ];
+    for (name, args) in pictures {
+        let made = written_by(&args, &tmp.path().join(name));
+        let kept = root.join("docs").join(name);
+        if std::env::var_os("UPDATE_GOLDENS").is_some() {
+            std::fs::write(&kept, &made).unwrap();
+        }
+        assert!(
+            std::fs::read(&kept).unwrap() == made,
+            "docs/{name} is stale: UPDATE_GOLDENS=1 cargo test --release --test suite readme::"
+        );
+    }
+    let readme = read("README.md");
+    for name in ["docs/demo.cast", "docs/fig5.svg"] {
+        assert!(readme.contains(name), "README does not show {name}");
+    }
+}

@@ -344,6 +344,55 @@ fn cli_output_matches_the_golden_and_ignores_no_color() {
     assert_eq!(plain("mono"), golden);
 }
 
+/// The screen a terminal of `w` × `h` shows after `frames`: the moves (`ESC[row;colH`, `ESC[H`),
+/// clears (`ESC[2J`) and text a cast's frames hold, styles and modes ignored.
+fn play(frames: &[&str], w: usize, h: usize) -> Vec<String> {
+    use unicode_width::UnicodeWidthChar;
+    let mut screen = vec![vec![" ".to_string(); w]; h];
+    let (mut row, mut col) = (0usize, 0usize);
+    for f in frames {
+        let mut chars = f.chars().peekable();
+        while let Some(c) = chars.next() {
+            if c == '\x1b' {
+                assert_eq!(chars.next(), Some('['), "{f}");
+                let mut params = String::new();
+                let end = loop {
+                    let c = chars.next().unwrap();
+                    if c.is_ascii_alphabetic() {
+                        break c;
+                    }
+                    params.push(c);
+                };
+                match (end, params.as_str()) {
+                    ('H', "") => (row, col) = (0, 0),
+                    ('H', p) => {
+                        let (r, c) = p.split_once(';').unwrap();
+                        (row, col) = (
+                            r.parse::<usize>().unwrap() - 1,
+                            c.parse::<usize>().unwrap() - 1,
+                        );
+                    }
+                    ('J', "2") => screen = vec![vec![" ".to_string(); w]; h],
+                    ('m', _) | ('l', "?25") => {}
+                    other => panic!("unexpected sequence {other:?}"),
+                }
+            } else if c == '\r' {
+                col = 0;
+            } else if c == '\n' {
+                row += 1;
+            } else {
+                let width = c.width().unwrap_or(1).max(1);
+                screen[row][col] = c.to_string();
+                for k in 1..width {
+                    screen[row][col + k] = String::new();
+                }
+                col += width;
+            }
+        }
+    }
+    screen.into_iter().map(|r| r.concat()).collect()
+}
+
 /// `replay --asciicast`: a header line (version 2, the size), then events whose times never go
 /// back, each a tick at 30 a second; the last frame shows what the last snapshot shows; the
 /// same script gives the same bytes.
@@ -388,7 +437,11 @@ fn asciicast_records_the_replay_at_the_pace_of_its_ticks() {
         last_time = t;
         match e[1].as_str().unwrap() {
             "o" => frames.push((t, e[2].as_str().unwrap().to_string())),
-            "r" => assert_eq!(e[2], "60x16"),
+            "r" => {
+                assert_eq!(e[2], "60x16");
+                // The screen starts again at the new size.
+                frames.clear();
+            }
             "m" => assert_eq!(e[2], "end"),
             k => panic!("event kind {k}"),
         }
@@ -396,26 +449,24 @@ fn asciicast_records_the_replay_at_the_pace_of_its_ticks() {
     // 60 ticks at 30 a second: 2 s, and a frame for (nearly) every tick while it plays.
     assert!((last_time - 2.0).abs() < 1e-6, "{last_time}");
     assert!(frames.len() > 50, "{} frames", frames.len());
-    // The last frame, its SGR sequences and cursor moves taken out, is the snapshot's screen.
-    let strip = |s: &str| {
-        let mut out = String::new();
-        let mut esc = false;
-        for c in s.chars() {
-            match (esc, c) {
-                (false, '\x1b') => esc = true,
-                (true, c) if c.is_ascii_alphabetic() => esc = false,
-                (true, _) => {}
-                (false, '\r') => {}
-                (false, c) => out.push(c),
-            }
-        }
-        out
-    };
-    let last = strip(&frames.last().unwrap().1);
+    // Every frame played on a screen as a terminal plays it, the last is the snapshot's: the
+    // frames after the first carry only the cells that changed.
+    let last = play(
+        &frames.iter().map(|f| f.1.as_str()).collect::<Vec<_>>(),
+        60,
+        16,
+    );
     let shot = stdout.split_once('\n').unwrap().1;
-    let last: Vec<&str> = last.lines().map(str::trim_end).collect();
+    let last: Vec<&str> = last.iter().map(|l| l.trim_end()).collect();
     let shot: Vec<&str> = shot.lines().collect();
     assert_eq!(last, shot);
+    // Only what changed: the frames after the first are far smaller than a screen.
+    let later: usize = frames[1..].iter().map(|f| f.1.len()).sum::<usize>() / (frames.len() - 1);
+    assert!(
+        later * 4 < frames[0].1.len(),
+        "{later} bytes a frame against {}",
+        frames[0].1.len()
+    );
     assert!(
         shot.iter().any(|l| l.contains("paper's RK2 (○)")),
         "{shot:?}"
