@@ -65,7 +65,7 @@ pub fn ansi_changes(prev: Option<&Buffer>, buf: &Buffer) -> String {
             let (a, b) = (&p.content[i], &buf.content[i]);
             a.symbol() != b.symbol()
                 || (a.fg, a.bg, a.modifier) != (b.fg, b.bg, b.modifier)
-                || (i % w > 0 && (wide(p, i - 1) || wide(buf, i - 1)))
+                || (!i.is_multiple_of(w) && (wide(p, i - 1) || wide(buf, i - 1)))
         }
     };
     let mut out = String::new();
