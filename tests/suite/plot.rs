@@ -657,7 +657,8 @@ fn an_export_carries_what_the_screen_shows() {
         drawn(&tags),
         [
             "table edge",
-            "ξ = 1 (R_max)",
+            "ξ=1 (R_max)",
+            "the table's turn",
             pin.as_str(),
             "the paper's RK2 run (c)",
             "particle",
