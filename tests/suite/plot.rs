@@ -6,6 +6,8 @@ use crate::reference;
 use common::turntable;
 use std::path::PathBuf;
 
+mod table;
+
 fn out(tag: &str) -> PathBuf {
     let p = std::env::temp_dir().join(format!("turntable-plot-{tag}-{}.svg", std::process::id()));
     let _ = std::fs::remove_file(&p);
