@@ -6,6 +6,8 @@ use crate::reference;
 use common::turntable;
 use std::path::PathBuf;
 
+mod table;
+
 fn out(tag: &str) -> PathBuf {
     let p = std::env::temp_dir().join(format!("turntable-plot-{tag}-{}.svg", std::process::id()));
     let _ = std::fs::remove_file(&p);
@@ -657,7 +659,8 @@ fn an_export_carries_what_the_screen_shows() {
         drawn(&tags),
         [
             "table edge",
-            "ξ = 1 (R_max)",
+            "ξ=1 (R_max)",
+            "the table's turn",
             pin.as_str(),
             "the paper's RK2 run (c)",
             "particle",
