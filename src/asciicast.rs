@@ -17,6 +17,12 @@ use std::io::{self, Write};
 /// `tick 10000000` ends there, with an error naming the bound.
 pub const MAX_FRAMES: u64 = 3600 * TICKS_PER_SECOND as u64;
 
+/// Most cells a recording looks at, frame by frame: an hour of an 80×24 screen. Frames carry
+/// only what changed, so bytes no longer bound a huge screen's work (a 1000×1000 screen whose
+/// particle moves writes little a tick, but each tick draws and compares a million cells):
+/// this does, at about 200 such frames.
+pub const MAX_CELLS: u64 = MAX_FRAMES * 80 * 24;
+
 /// The recording as it is written.
 pub struct Cast<'a> {
     out: &'a mut dyn Write,
@@ -24,6 +30,8 @@ pub struct Cast<'a> {
     last: Option<Buffer>,
     /// Frames written so far.
     frames: u64,
+    /// Cells of the frames looked at so far.
+    cells: u64,
 }
 
 /// Seconds after the start at `ticks`, to the microsecond (rounding keeps the order).
@@ -46,6 +54,7 @@ impl<'a> Cast<'a> {
             out,
             last: None,
             frames: 0,
+            cells: 0,
         })
     }
 
@@ -58,6 +67,14 @@ impl<'a> Cast<'a> {
     /// (the first frame and the first after a resize clear the screen, hide the cursor and
     /// write every cell).
     pub fn frame(&mut self, ticks: u64, buf: &Buffer) -> io::Result<()> {
+        self.cells += u64::from(buf.area.area());
+        if self.cells > MAX_CELLS {
+            return Err(io::Error::other(crate::files::BoundReached {
+                message: format!(
+                    "--asciicast reached its bound of {MAX_CELLS} cells looked at (an hour of an 80x24 screen at {TICKS_PER_SECOND} a second)"
+                ),
+            }));
+        }
         let changes = ansi_changes(self.last.as_ref(), buf);
         if changes.is_empty() {
             return Ok(());
