@@ -338,7 +338,7 @@ impl App {
 /// A release in words, for a scene's description before its run has decided.
 fn release_words(i: &Initial) -> String {
     // Shortest digits of the values rounded as the panel's precision goes (0.5, not 0.5000).
-    let r = |x: f64| (x * 1e4).round() / 1e4 + 0.0;
+    let r = |x: f64| crate::present::short(x, 4);
     format!(
         "released at ξ0 = {}, φ = {}π, v0 = {}",
         r(i.xi0),

@@ -9,6 +9,7 @@ use crate::engine::{Initial, Release, State, Status};
 use crate::error::Error;
 use crate::files::Output;
 use crate::plot::{Figure, build};
+use crate::present::num;
 use std::io::Write as _;
 
 pub fn plot(a: PlotArgs) -> CmdResult {
@@ -178,9 +179,9 @@ fn play(i: Initial, settings: crate::engine::Settings, tau_max: f64) -> Result<P
     let (stop, end) = match (sim.run.status(), sim.run.escape()) {
         (Status::Stuck { tau, q }, _) => (
             Some(tau),
-            format!("stuck at ξ = {:.5}, τ = {tau:.3}", q.length()),
+            format!("stuck at ξ = {}, τ = {}", num(q.length(), 5), num(tau, 3)),
         ),
-        (_, Some(e)) => (None, format!("escaped (certified τ = {:.3})", e.tau)),
+        (_, Some(e)) => (None, format!("escaped (certified τ = {})", num(e.tau, 3))),
         _ => (None, format!("τ = {}", sim.now().tau)),
     };
     let until = stop.unwrap_or(f64::INFINITY).min(tau_max);

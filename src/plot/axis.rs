@@ -1,14 +1,15 @@
 //! Axes for both backends: round tick values, their labels, and ranges that can always be
 //! drawn. The terminal's charts and the SVG writer place the same ticks.
 
-use crate::engine::units::{Quantity, Units};
+use crate::engine::units::Units;
 pub use crate::present::tick_label;
+use crate::present::{Quantity, unit_of};
 
 /// An axis name with the SI value of its unit beside it when the table is real:
 /// `τ (1 = 303 ms)`.
 pub fn axis(name: &str, q: Quantity, units: Option<Units>) -> String {
     match units {
-        Some(u) => format!("{name} (1 = {})", u.unit_of(q)),
+        Some(u) => format!("{name} (1 = {})", unit_of(&u, q)),
         None => name.to_string(),
     }
 }

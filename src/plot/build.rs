@@ -4,6 +4,7 @@
 
 use super::{Figure, Ink, Mark, Panel, Series, Style, extent};
 use crate::engine::{Frame, Initial, State};
+use crate::present::num;
 use std::f64::consts::TAU;
 
 const TAU_AXIS: &str = "τ (1/Ω)";
@@ -140,7 +141,7 @@ pub fn time(
     let mut marks: Vec<Mark> = stop
         .map(|t| Mark::VLine {
             x: t,
-            label: format!("stuck τ={t:.3}"),
+            label: format!("stuck τ={}", num(t, 3)),
             ink: Ink::Stuck,
         })
         .into_iter()
@@ -272,7 +273,7 @@ pub fn rest_radius(title: &str, points: &[(f64, Option<f64>)], xi0c: Option<f64>
             marks: xi0c
                 .map(|c| Mark::VLine {
                     x: c,
-                    label: format!("ξ0c = {c:.6}"),
+                    label: format!("ξ0c = {}", num(c, 6)),
                     ink: Ink::Escaped,
                 })
                 .into_iter()

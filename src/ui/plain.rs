@@ -267,7 +267,7 @@ fn release(app: &App) -> String {
         format!(
             "method {} {}{hold}",
             app.settings().method(),
-            app.settings().accuracy_label()
+            crate::present::accuracy(&app.settings())
         )
     };
     format!(

@@ -950,12 +950,12 @@ fn unit_keys_give_si_readouts_and_axes() {
     let screen = render(&mut a, 100, 30);
     // R_max = μg/Ω² for this table, as the notice says.
     let r_max = 0.16 * 9.8 / (u.omega() * u.omega());
-    let shown = turntable::engine::units::show_length(r_max);
+    let shown = turntable::present::si_length(r_max);
     assert!(screen.contains(&shown), "{shown}\n{screen}");
     // The time plots' axes carry the unit's SI value.
     a.view.page = Page::TimePlots;
     let screen = render(&mut a, 100, 30);
-    let tau = turntable::engine::units::show_time(1.0 / u.omega());
+    let tau = turntable::present::si_time(1.0 / u.omega());
     assert!(screen.contains(&format!("τ (1 = {tau})")), "{screen}");
     assert!(screen.contains(&format!("ξ (1 = {shown})")), "{screen}");
     press(&mut a, 'u', KeyModifiers::ALT);

@@ -100,8 +100,10 @@ fn typed(app: &mut App, edit: Edit) -> Effects {
                         i.xi0,
                         i.phi / std::f64::consts::PI,
                         i.v0,
-                        app.units
-                            .map_or_else(String::new, |u| format!("; {}", u.describe()))
+                        app.units.map_or_else(String::new, |u| format!(
+                            "; {}",
+                            crate::present::table(&u)
+                        ))
                     ));
                 }
                 Err(why) => {

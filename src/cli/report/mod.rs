@@ -7,8 +7,9 @@ use crate::engine::doubt::Doubt;
 use crate::engine::model::turn_angle;
 use crate::engine::rod::RodRun;
 use crate::engine::solve::Threshold;
-use crate::engine::units::{Units, show_length, show_time};
+use crate::engine::units::Units;
 use crate::engine::{Certificate, CouplingName, Frame, Method, Outcome, Run, Settings, State};
+use crate::present::{si_length, si_time};
 use serde::Serialize;
 use std::fmt::Write as _;
 
@@ -295,14 +296,14 @@ impl Report for RunReport {
             let _ = writeln!(
                 text,
                 "SI       tau = {}, xi = {}, |u| = {:.3e} m/s (mu {}, {} rpm, g {}: R_max = {}, 1/Omega = {})",
-                show_time(u.tau_s),
-                show_length(u.xi_m),
+                si_time(u.tau_s),
+                si_length(u.xi_m),
                 u.speed_m_s,
                 u.mu,
                 u.rpm,
                 u.g,
-                show_length(u.R_max_m),
-                show_time(u.T_s)
+                si_length(u.R_max_m),
+                si_time(u.T_s)
             );
         }
         text
@@ -399,7 +400,7 @@ impl BodyReport {
             "not both << 1 (<= 0.1): the point model is out of its depth"
         };
         let si = |x: f64, m: Option<f64>| match m {
-            Some(m) => format!("{x} ({})", show_length(m)),
+            Some(m) => format!("{x} ({})", si_length(m)),
             None => format!("{x}"),
         };
         let size = match b.height {

@@ -7,9 +7,8 @@ use crate::analysis::verdict::{Verdict, judge, widest_window};
 use crate::app::App;
 use crate::app::pages::Curve;
 use crate::engine::model::turn_angle;
-use crate::engine::units::Quantity;
 use crate::engine::{Outcome, Release, Settings};
-use crate::present::{num, speed};
+use crate::present::{Quantity, num, speed};
 use std::f64::consts::{PI, TAU};
 
 /// v_e(φ) for the current ξ0 beside the paper's four, the release as a point, min and max.

@@ -8,8 +8,7 @@ use crate::app::App;
 use crate::app::pages::{Charts, Map, map_filled};
 use crate::engine::Release;
 use crate::engine::model::turn_angle;
-use crate::engine::units::Quantity;
-use crate::present::num;
+use crate::present::{Quantity, num};
 use std::f64::consts::TAU;
 
 /// The map computed for the release and settings on screen, if any.

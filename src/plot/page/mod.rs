@@ -14,6 +14,7 @@ use crate::analysis::{PAPER_XI0, settings_for};
 use crate::app::App;
 use crate::app::pages::Page;
 use crate::engine::Release;
+use crate::present::num;
 
 /// The page on screen as a figure, and whether it is whole (false while it still computes).
 pub fn figure(app: &App) -> (Figure, bool) {
@@ -66,7 +67,7 @@ fn title(app: &App) -> String {
         Release::TableRest => format!("ξ0 = {}, at rest on the table", i.xi0),
         Release::LabRest => format!("ξ0 = {}, at rest in the lab", i.xi0),
     };
-    format!("Released at {release}, τ = {:.3}", app.sim().now().tau)
+    format!("Released at {release}, τ = {}", num(app.sim().now().tau, 3))
 }
 
 /// The page's name in a file name: `time-plots`.

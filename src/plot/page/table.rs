@@ -188,9 +188,9 @@ fn particle_marks(app: &App, at: DVec2, half_width: f64, speed_scale: f64, marks
         });
     }
     let end = match app.sim().outcome_now() {
-        Outcome::Stuck => format!("stuck at ξ = {:.5}", now.xi()),
+        Outcome::Stuck => format!("stuck at ξ = {}", num(now.xi(), 5)),
         Outcome::Escaped => "escaped".into(),
-        Outcome::Running => format!("τ = {:.3}", now.tau),
+        Outcome::Running => format!("τ = {}", num(now.tau, 3)),
     };
     marks.push(Mark::Point {
         x: at.x,

@@ -6,9 +6,8 @@
 use super::super::{Ink, Mark, Panel, Series, Style, extent};
 use crate::app::App;
 use crate::engine::approx::table_rest;
-use crate::engine::units::Quantity;
 use crate::engine::{Frame, Release, State, Status};
-use crate::present::num;
+use crate::present::{Quantity, num};
 
 /// Markers along a pin's line: at its thirds (and its end, with the label).
 const PIN_MARKS: usize = 3;

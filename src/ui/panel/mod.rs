@@ -19,17 +19,8 @@ mod body;
 use body::body_lines;
 pub use body::{BodyNow, body_end, body_now, phase_word};
 
+use crate::present::{Quantity, rate, sci, si_length, si_rate, si_speed, si_time, unit_of};
 pub use crate::present::{fmt_speed, num, speed};
-
-/// A rate that may be below what `prec` places show (|u| near a stop): in scientific
-/// notation then, so that "slipping" never stands beside a row of zeros.
-pub fn small(x: f64, prec: usize) -> String {
-    if x != 0.0 && x.abs() < 0.5 * 10f64.powi(-(prec as i32)) {
-        format!("{x:.1e}")
-    } else {
-        num(x, prec)
-    }
-}
 
 /// Status of a run at the sample on screen, and its colour.
 pub fn status_text(sim: &Sim, th: &Theme) -> (String, ratatui::style::Color) {
@@ -210,14 +201,13 @@ fn motion_lines(app: &App, th: &Theme, s: &crate::engine::State, out: &mut Vec<L
         app.units
             .map_or(String::new(), |_| format!(" = {}", show(x)))
     };
-    use crate::engine::units::{show_length, show_rate, show_speed, show_time};
     let (tau_si, xi_si, rate_si, xi_dot_si, u_si) = match app.units {
         Some(u) => (
-            si(s.tau * u.t_s(), show_time),
-            si(s.xi() * u.r_max_m(), show_length),
+            si(s.tau * u.t_s(), si_time),
+            si(s.xi() * u.r_max_m(), si_length),
             u.omega(),
-            si(s.xi_dot() * u.speed_m_s(), show_speed),
-            si(s.u().length() * u.speed_m_s(), show_speed),
+            si(s.xi_dot() * u.speed_m_s(), si_speed),
+            si(s.u().length() * u.speed_m_s(), si_speed),
         ),
         None => (
             String::new(),
@@ -230,7 +220,7 @@ fn motion_lines(app: &App, th: &Theme, s: &crate::engine::State, out: &mut Vec<L
     // θ′ in rad/s: the table's own Ω times the dimensionless rate.
     let lab_rate = |t: f64| {
         if rate_si.is_finite() {
-            format!("{} = {}", num(t, 4), show_rate(t * rate_si))
+            format!("{} = {}", num(t, 4), si_rate(t * rate_si))
         } else {
             num(t, 4)
         }
@@ -262,8 +252,8 @@ fn motion_lines(app: &App, th: &Theme, s: &crate::engine::State, out: &mut Vec<L
             out.push(kv("θ′ lab", theta_dot.map_or("—".into(), lab_rate), th));
         }
     }
-    out.push(kv("ξ′", format!("{}{xi_dot_si}", small(s.xi_dot(), 4)), th));
-    out.push(kv("|u|", format!("{}{u_si}", small(s.u().length(), 4)), th));
+    out.push(kv("ξ′", format!("{}{xi_dot_si}", rate(s.xi_dot(), 4)), th));
+    out.push(kv("|u|", format!("{}{u_si}", rate(s.u().length(), 4)), th));
 }
 
 /// The table and the release in SI, while units are on: what μ, rpm and g change.
@@ -273,18 +263,17 @@ fn table_lines(
     u: crate::engine::units::Units,
     out: &mut Vec<Line<'static>>,
 ) {
-    use crate::engine::units::{show_length as len, show_rate, show_speed};
     let i = &app.initial();
     let deg = turn_angle(i.phi).to_degrees();
     let r0 = match i.release {
         crate::engine::Release::Velocity => {
-            format!("{} φ {}°", len(i.xi0 * u.r_max_m()), num(deg, 0))
+            format!("{} φ {}°", si_length(i.xi0 * u.r_max_m()), num(deg, 0))
         }
-        _ => format!("{} at rest", len(i.xi0 * u.r_max_m())),
+        _ => format!("{} at rest", si_length(i.xi0 * u.r_max_m())),
     };
     out.push(kv("r0", r0, th));
     if i.release == crate::engine::Release::Velocity {
-        out.push(kv("v0", show_speed(i.v0 * u.speed_m_s()), th));
+        out.push(kv("v0", si_speed(i.v0 * u.speed_m_s()), th));
     }
     out.push(kv(
         "μ g",
@@ -295,16 +284,12 @@ fn table_lines(
         "Ω",
         format!(
             "{} {} rpm",
-            show_rate(u.omega()),
+            si_rate(u.omega()),
             num(u.rpm, if u.rpm < 100.0 { 1 } else { 0 })
         ),
         th,
     ));
-    out.push(kv(
-        "R_max",
-        u.unit_of(crate::engine::units::Quantity::Length),
-        th,
-    ));
+    out.push(kv("R_max", unit_of(&u, Quantity::Length), th));
 }
 
 /// The model run: μ = 0's closed form, Stokes drag, or the friction's integrator.
@@ -324,7 +309,7 @@ fn model_lines(app: &App, th: &Theme, out: &mut Vec<Line<'static>>) {
         }
         out.push(kv(
             app.settings().method().into(),
-            app.settings().accuracy_label(),
+            crate::present::accuracy(&app.settings()),
             th,
         ));
     }
@@ -338,14 +323,18 @@ fn cost_lines(app: &App, th: &Theme, out: &mut Vec<Line<'static>>) {
     if app.view.step_mode
         && let Some(st) = app.sim().run.last_step()
     {
-        out.push(kv("h", format!("{:.1e} {}", st.h, st.limit.describe()), th));
+        out.push(kv(
+            "h",
+            format!("{} {}", sci(st.h, 1), st.limit.describe()),
+            th,
+        ));
         if let Some(e) = st.err_ratio {
             let rej = if st.rejected > 0 {
                 format!(" ({} rejected)", st.rejected)
             } else {
                 String::new()
             };
-            out.push(kv("err/tol", format!("{e:.2}{rej}"), th));
+            out.push(kv("err/tol", format!("{}{rej}", num(e, 2)), th));
         }
     }
     out.push(kv("RHS", format!("{}", c.rhs_evals), th));
@@ -402,20 +391,4 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App, th: &Theme) {
             .style(Style::default().bg(th.background)),
         area,
     );
-}
-
-#[cfg(test)]
-mod tests {
-    use super::small;
-
-    #[test]
-    fn rates_below_the_places_shown_keep_their_size() {
-        assert_eq!(small(0.61234, 4), "0.6123");
-        assert_eq!(small(0.0, 4), "0.0000");
-        // Below half the last place shown: scientific, never a row of zeros beside "slipping".
-        assert_eq!(small(4.9e-5, 4), "4.9e-5");
-        assert_eq!(small(-3.2e-12, 4), "-3.2e-12");
-        assert_eq!(small(5e-5, 4), "0.0001");
-        assert_eq!(small(f64::NAN, 4), "—");
-    }
 }
