@@ -6,6 +6,7 @@
 
 use crate::engine::Settings;
 use crate::engine::units::Units;
+use std::f64::consts::PI;
 
 /// A number for a readout: never NaN or inf on screen.
 pub fn num(x: f64, prec: usize) -> String {
@@ -21,6 +22,49 @@ pub fn num(x: f64, prec: usize) -> String {
         }
     } else {
         "—".into()
+    }
+}
+
+/// The decimals of π an angle is said to: 0.0001π (3e-4 rad, 0.018°) keeps θ, Θ and ψ about
+/// as fine as the panel read them in radians (to 1e-4), and is finer than a key's step
+/// (0.01π) or the escape page's least v_e (found to 3e-4π, said to 0.001π).
+pub const ANGLE_DECIMALS: usize = 4;
+
+/// An angle for people, the one convention wherever one is read (φ, θ, Θ, ψ): the direction
+/// `rad` (radians) in [0, 2π), as a multiple of π to [`ANGLE_DECIMALS`] with its trailing
+/// zeros dropped: `0`, `0.2571π`, `π`, `1.2π` (as the paper writes case D's). Machine output
+/// (JSON, CSV, scene files) keeps radians.
+pub fn angle(rad: f64) -> String {
+    angle_to(rad, ANGLE_DECIMALS)
+}
+
+/// [`angle`] to `decimals` of π: fewer where fewer are known (an angle off a grid of
+/// angles), more where a researcher's report keeps its digits.
+pub fn angle_to(rad: f64, decimals: usize) -> String {
+    if !rad.is_finite() {
+        return "—".into();
+    }
+    let text = short((rad / PI).rem_euclid(2.0), decimals);
+    // Rounded up to 2π, it is the direction 0.
+    if text == "2" {
+        return "0".into();
+    }
+    times_pi(&text)
+}
+
+/// A tick on an axis of angles: `rad` as a multiple of π (`0`, `0.5π`, `π`, `2π`), as short
+/// as [`tick_label`] and not wrapped (the φ axis runs to 2π, an unwrapped θ beyond).
+pub fn angle_tick(rad: f64) -> String {
+    times_pi(&tick_label(rad / PI))
+}
+
+/// The number written `x`, times π: `0`, `π`, `-π`, `0.5π`.
+fn times_pi(x: &str) -> String {
+    match x {
+        "0" => "0".into(),
+        "1" => "π".into(),
+        "-1" => "-π".into(),
+        _ => format!("{x}π"),
     }
 }
 
@@ -202,6 +246,42 @@ fn sig(x: f64) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn angles_read_in_pi_in_one_turn() {
+        assert_eq!(angle(0.0), "0");
+        assert_eq!(angle(PI), "π");
+        assert_eq!(angle(0.5 * PI), "0.5π");
+        // Case D as the scene holds it (3.7699…) and as the app does (−0.8π).
+        assert_eq!(angle(3.7699111843077517), "1.2π");
+        assert_eq!(angle(-0.8 * PI), "1.2π");
+        assert_eq!(angle(0.257 * PI), "0.257π");
+        // A whole turn, either way, and what rounds up to it: the direction 0.
+        assert_eq!(angle(2.0 * PI), "0");
+        assert_eq!(angle(-2.0 * PI), "0");
+        assert_eq!(angle(-1e-12), "0");
+        assert_eq!(angle(1.99996 * PI), "0");
+        assert_eq!(angle(1.99994 * PI), "1.9999π");
+        assert_eq!(angle(0.001), "0.0003π");
+        assert_eq!(angle(-PI), "π");
+        for x in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+            assert_eq!(angle(x), "—");
+        }
+        // Fewer digits where fewer are known, more where a report keeps them.
+        assert_eq!(angle_to(0.5567, 3), "0.177π");
+        assert_eq!(angle_to(1.2 * PI, 2), "1.2π");
+        assert_eq!(angle_to(0.59, 12), "0.187802832848π");
+        assert_eq!(angle_to(0.0, 12), "0");
+    }
+
+    #[test]
+    fn angle_ticks_are_not_wrapped() {
+        assert_eq!(angle_tick(0.0), "0");
+        assert_eq!(angle_tick(2.0 * PI), "2π");
+        assert_eq!(angle_tick(-PI), "-π");
+        assert_eq!(angle_tick(1.5 * PI), "1.5π");
+        assert_eq!(angle_tick(-20.0 * PI), "-20π");
+    }
 
     #[test]
     fn rates_below_the_places_shown_keep_their_size() {

@@ -340,9 +340,9 @@ fn release_words(i: &Initial) -> String {
     // Shortest digits of the values rounded as the panel's precision goes (0.5, not 0.5000).
     let r = |x: f64| crate::present::short(x, 4);
     format!(
-        "released at ξ0 = {}, φ = {}π, v0 = {}",
+        "released at ξ0 = {}, φ = {}, v0 = {}",
         r(i.xi0),
-        r(i.phi / std::f64::consts::PI),
+        crate::present::angle(i.phi),
         r(i.v0)
     )
 }

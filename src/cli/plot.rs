@@ -9,7 +9,7 @@ use crate::engine::{Initial, Release, State, Status};
 use crate::error::Error;
 use crate::files::Output;
 use crate::plot::{Figure, build};
-use crate::present::num;
+use crate::present::{angle, num};
 use std::io::Write as _;
 
 pub fn plot(a: PlotArgs) -> CmdResult {
@@ -193,7 +193,7 @@ fn play(i: Initial, settings: crate::engine::Settings, tau_max: f64) -> Result<P
         .map(|(s, w)| (*s, *w))
         .unzip();
     let release = match i.release {
-        Release::Velocity => format!("ξ0 = {}, φ = {}, v0 = {}", i.xi0, i.phi, i.v0),
+        Release::Velocity => format!("ξ0 = {}, φ = {}, v0 = {}", i.xi0, angle(i.phi), i.v0),
         Release::TableRest => format!("ξ0 = {}, at rest on the table", i.xi0),
         Release::LabRest => format!("ξ0 = {}, at rest in the lab", i.xi0),
     };

@@ -92,7 +92,7 @@ fn the_table_stays_in_the_panel_and_the_mu_probe_reads_its_omega() {
         a.check_invariants().unwrap();
         if h >= 24 {
             let r_max = format!("R_max  {}", si_length(u.r_max_m()));
-            let r0 = format!("r0     {} φ 0°", si_length(a.initial().xi0 * u.r_max_m()));
+            let r0 = format!("r0     {} φ 0", si_length(a.initial().xi0 * u.r_max_m()));
             let omega = format!("Ω      {} 34.3 rpm", si_rate(u.omega()));
             for want in [&r_max, &r0, "μ g    0.15, 9.81 m/s²", &omega] {
                 assert!(screen.contains(want), "{w}×{h}: {want}\n{screen}");

@@ -5,11 +5,10 @@ use super::super::action::Action;
 use super::super::pages::Page;
 use super::super::state::App;
 use super::next_of;
-use crate::engine::model::{turn_angle, wrap_angle, zcross};
+use crate::engine::model::{wrap_angle, zcross};
 use crate::engine::{Frame, Release};
-use crate::present::num;
+use crate::present::{angle, num};
 use crate::scene::{PRESETS, Scene};
-use std::f64::consts::PI;
 use strum::VariantArray;
 
 pub(super) fn apply(app: &mut App, action: Action) {
@@ -83,9 +82,9 @@ pub(super) fn apply(app: &mut App, action: Action) {
                 };
             });
             app.notice = Some(format!(
-                "v0 = {}, φ = {:.3}π",
+                "v0 = {}, φ = {}",
                 num(app.initial().v0, 3),
-                turn_angle(app.initial().phi) / PI
+                angle(app.initial().phi)
             ));
         }
         Action::PickRelease(p) => {
@@ -97,9 +96,9 @@ pub(super) fn apply(app: &mut App, action: Action) {
                 crate::analysis::map_release(app.initial().xi0, release, p.x, p.y.max(0.0));
             app.exploration.set_initial(chosen);
             app.notice = Some(format!(
-                "release v0 = {} at φ = {:.3}π: Enter runs it on the turntable",
+                "release v0 = {} at φ = {}: Enter runs it on the turntable",
                 num(app.initial().v0, 4),
-                turn_angle(app.initial().phi) / PI
+                angle(app.initial().phi)
             ));
         }
         // `EndDrag` is handled before dispatch; other groups' actions never come here.

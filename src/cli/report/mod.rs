@@ -9,7 +9,7 @@ use crate::engine::rod::RodRun;
 use crate::engine::solve::Threshold;
 use crate::engine::units::Units;
 use crate::engine::{Certificate, CouplingName, Frame, Method, Outcome, Run, Settings, State};
-use crate::present::{si_length, si_time};
+use crate::present::{angle_to, si_length, si_time};
 use serde::Serialize;
 use std::fmt::Write as _;
 
@@ -280,8 +280,11 @@ impl Report for RunReport {
     fn text(&self) -> String {
         let (how, cost, check) = (self.how(), self.cost(), self.check());
         let mut text = format!(
-            "outcome  {how}\n{check}tau      {:.9}\nxi       {:.12}\nangle    {:.12} rad in [0, 2pi) (table frame, ccw from the release direction)\n|u|      {:.3e}\ncost     {cost}\n",
-            self.tau, self.xi, self.angle, self.speed,
+            "outcome  {how}\n{check}tau      {:.9}\nxi       {:.12}\nangle    {} in [0, 2π) (table frame, ccw from the release direction)\n|u|      {:.3e}\ncost     {cost}\n",
+            self.tau,
+            self.xi,
+            angle_to(self.angle, 12),
+            self.speed,
         );
         if let Some(r) = self.mu_static_ratio.filter(|&r| r != 1.0) {
             let _ = writeln!(
@@ -418,11 +421,11 @@ impl BodyReport {
         if let Some(m) = &b.motion {
             let _ = writeln!(
                 text,
-                "rod      the two-mass body: {} at tau {:.9}, xi {:.12}, rod at psi {:.6} ({} steps)",
+                "rod      the two-mass body: {} at tau {:.9}, xi {:.12}, rod at psi {} ({} steps)",
                 m.outcome.name(),
                 m.tau,
                 m.xi,
-                m.psi,
+                angle_to(m.psi, 6),
                 m.steps
             );
             if let Some(c) = &m.check {

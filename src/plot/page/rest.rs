@@ -76,6 +76,6 @@ pub fn chart(app: &App) -> Chart {
             },
         ],
         marks,
-        equal_aspect: false,
+        ..Chart::default()
     }
 }

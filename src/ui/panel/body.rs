@@ -4,8 +4,7 @@
 use super::{kv, num};
 use crate::app::App;
 use crate::engine::Outcome;
-use crate::engine::model::wrap_angle;
-use crate::present::{ratio, si_length};
+use crate::present::{angle, ratio, si_length};
 use crate::theme::Theme;
 use ratatui::style::{Modifier, Style};
 use ratatui::text::{Line, Span};
@@ -134,7 +133,7 @@ pub(super) fn body_lines(
     {
         out.push(kv(
             "rod ξ",
-            format!("{} ψ {}", num(st.q.length(), 5), num(wrap_angle(st.psi), 4)),
+            format!("{} ψ {}", num(st.q.length(), 5), angle(st.psi)),
             th,
         ));
     }

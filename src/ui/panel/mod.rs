@@ -2,7 +2,6 @@
 //! how the paper's scheme fares from the same start.
 
 use crate::app::App;
-use crate::engine::model::{turn_angle, wrap_angle};
 use crate::engine::run::raw_at_rest;
 use crate::engine::{Certificate, Method, Outcome, Status};
 use crate::sim::Sim;
@@ -12,14 +11,14 @@ use ratatui::layout::Rect;
 use ratatui::style::{Modifier, Style};
 use ratatui::text::{Line, Span};
 use ratatui::widgets::Paragraph;
-use std::f64::consts::PI;
+use unicode_width::UnicodeWidthStr;
 
 mod body;
 
 use body::body_lines;
 pub use body::{BodyNow, body_end, body_now, phase_word};
 
-use crate::present::{Quantity, rate, sci, si_length, si_rate, si_speed, si_time, unit_of};
+use crate::present::{Quantity, angle, rate, sci, si_length, si_rate, si_speed, si_time, unit_of};
 pub use crate::present::{fmt_speed, num, speed};
 
 /// Status of a run at the sample on screen, and its colour.
@@ -90,24 +89,31 @@ fn kv<'a>(k: &'a str, v: String, th: &Theme) -> Line<'a> {
 
 /// The readout lines in reading order.
 pub fn lines(app: &App, th: &Theme) -> Vec<Line<'static>> {
-    readouts(app, th).0
+    readouts(app, th).lines
 }
 
 /// The readout lines that fit in `rows`, most important first when not all do: the status
 /// (stuck / slipping / escape certified), then ξ, τ, the body's phase (first of all when the
 /// point model is hidden, `C`) and the release, then the rest.
 pub fn lines_in(app: &App, th: &Theme, rows: usize) -> Vec<Line<'static>> {
-    let (all, status, rod) = readouts(app, th);
+    let Readouts {
+        lines: all,
+        release,
+        status,
+        rod,
+    } = readouts(app, th);
     if all.len() <= rows {
         return all;
     }
+    // τ and ξ come first after the release (`motion_lines`).
+    let (tau_line, xi_line) = (release.end, release.end + 1);
     let body_first = rod.filter(|_| !app.point_shown());
     let first: Vec<usize> = body_first
         .into_iter()
-        .chain([status.start, XI_LINE, TAU_LINE])
+        .chain([status.start, xi_line, tau_line])
         .chain(status.skip(1))
         .chain(rod.filter(|_| body_first.is_none()))
-        .chain([0])
+        .chain(release)
         .collect();
     let mut order = first.clone();
     order.extend((0..all.len()).filter(|i| !first.contains(i)));
@@ -118,18 +124,21 @@ pub fn lines_in(app: &App, th: &Theme, rows: usize) -> Vec<Line<'static>> {
         .collect()
 }
 
-/// Where τ and ξ stand in [`lines`].
-const TAU_LINE: usize = 1;
-const XI_LINE: usize = 2;
+/// The readout lines, and which of them hold the release, the status and the body's phase.
+struct Readouts {
+    lines: Vec<Line<'static>>,
+    release: std::ops::Range<usize>,
+    status: std::ops::Range<usize>,
+    rod: Option<usize>,
+}
 
-/// The readout lines, which of them hold the status, and which the body's phase.
-fn readouts(app: &App, th: &Theme) -> (Vec<Line<'static>>, std::ops::Range<usize>, Option<usize>) {
+fn readouts(app: &App, th: &Theme) -> Readouts {
     let s = app.sim().now();
-    let mut out: Vec<Line<'static>> = Vec::new();
-    out.push(Line::from(Span::styled(
-        release(&app.initial()),
-        Style::default().fg(th.accent),
-    )));
+    let mut out: Vec<Line<'static>> = release(&app.initial())
+        .into_iter()
+        .map(|l| Line::from(Span::styled(l, Style::default().fg(th.accent))))
+        .collect();
+    let release = 0..out.len();
     motion_lines(app, th, &s, &mut out);
     // A lesson's open prediction: the status says nothing the run has not shown yet.
     let (st, col) = if app.outcome_open() && app.sim().outcome_now() != Outcome::Running {
@@ -177,20 +186,30 @@ fn readouts(app: &App, th: &Theme) -> (Vec<Line<'static>>, std::ops::Range<usize
         out.push(kv("pins", names.join(" "), th));
     }
     arrow_legend(app, th, &mut out);
-    (out, status, rod)
+    Readouts {
+        lines: out,
+        release,
+        status,
+        rod,
+    }
 }
 
-/// The release, in the panel's first line.
-fn release(i: &crate::engine::Initial) -> String {
+/// The release, in the panel's first line; v0 on a second where the line would not fit the
+/// panel (a φ and a v0 of many digits, as the mouse sets them), rather than cut a number.
+fn release(i: &crate::engine::Initial) -> Vec<String> {
+    let xi0 = num(i.xi0, 3);
     match i.release {
-        crate::engine::Release::Velocity => format!(
-            "ξ0 {} φ {}π v0 {}",
-            num(i.xi0, 3),
-            num(turn_angle(i.phi) / PI, 2),
-            speed(i.v0)
-        ),
-        crate::engine::Release::TableRest => format!("ξ0 {} rest on table", num(i.xi0, 3)),
-        crate::engine::Release::LabRest => format!("ξ0 {} rest in lab", num(i.xi0, 3)),
+        crate::engine::Release::Velocity => {
+            let (at, v0) = (format!("ξ0 {xi0} φ {}", angle(i.phi)), speed(i.v0));
+            let line = format!("{at} v0 {v0}");
+            if line.width() <= usize::from(super::PANEL_W - 2) {
+                vec![line]
+            } else {
+                vec![at, format!("v0 {v0}")]
+            }
+        }
+        crate::engine::Release::TableRest => vec![format!("ξ0 {xi0} rest on table")],
+        crate::engine::Release::LabRest => vec![format!("ξ0 {xi0} rest in lab")],
     }
 }
 
@@ -229,9 +248,9 @@ fn motion_lines(app: &App, th: &Theme, s: &crate::engine::State, out: &mut Vec<L
     out.push(kv("ξ", format!("{}{xi_si}", num(s.xi(), 5)), th));
     // Angles in the frame shown: θ in the lab; in the rotating view the table-frame angle Θ
     // and Θ′ = θ′ − 1 (a particle at rest on the table has Θ′ = 0), with the paper's θ′ kept.
-    let angle = |p: glam::DVec2| {
+    let direction = |p: glam::DVec2| {
         if p.length_squared() > 0.0 {
-            num(wrap_angle(p.y.atan2(p.x)), 4)
+            angle(p.y.atan2(p.x))
         } else {
             "—".into()
         }
@@ -239,11 +258,11 @@ fn motion_lines(app: &App, th: &Theme, s: &crate::engine::State, out: &mut Vec<L
     let theta_dot = s.theta_dot();
     match app.view.frame {
         crate::engine::Frame::Lab => {
-            out.push(kv("θ", angle(s.r), th));
+            out.push(kv("θ", direction(s.r), th));
             out.push(kv("θ′", theta_dot.map_or("—".into(), lab_rate), th));
         }
         crate::engine::Frame::Table => {
-            out.push(kv("Θ", angle(s.q()), th));
+            out.push(kv("Θ", direction(s.q()), th));
             out.push(kv(
                 "Θ′",
                 theta_dot.map_or("—".into(), |t| num(t - 1.0, 4)),
@@ -264,10 +283,9 @@ fn table_lines(
     out: &mut Vec<Line<'static>>,
 ) {
     let i = &app.initial();
-    let deg = turn_angle(i.phi).to_degrees();
     let r0 = match i.release {
         crate::engine::Release::Velocity => {
-            format!("{} φ {}°", si_length(i.xi0 * u.r_max_m()), num(deg, 0))
+            format!("{} φ {}", si_length(i.xi0 * u.r_max_m()), angle(i.phi))
         }
         _ => format!("{} at rest", si_length(i.xi0 * u.r_max_m())),
     };
