@@ -1,8 +1,9 @@
 //! Numbers for people: the formatters the readouts, notices, captions, charts' ticks, figures
 //! and the CLI's words share, so a value reads the same wherever a person meets it. Of the crate
-//! it needs only the engine's `Units` (to say a table's scales in SI), so the model's notices
-//! (`app`), the charts' descriptions (`plot`), the view (`ui`) and the CLI all use it. Files
-//! and machine output (JSON, CSV, scene files) are not its business: they keep full digits.
+//! it needs only the engine's `Units` and `Settings` (to say a table's scales in SI, a method's
+//! accuracy), so the model's notices (`app`), the charts' descriptions (`plot`), the view (`ui`)
+//! and the CLI all use it. Files and machine output (JSON, CSV, scene files) are not its
+//! business: they keep full digits (angles in radians).
 
 use crate::engine::Settings;
 use crate::engine::units::Units;
