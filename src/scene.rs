@@ -486,7 +486,7 @@ mod tests {
         )
         .unwrap();
         assert_eq!(bare.settings.scheme, Scheme::Dop853 { tol: 1e-10 });
-        assert_eq!(bare.settings.accuracy_label(), "tol=1e-10");
+        assert_eq!(crate::present::accuracy(&bare.settings), "tol=1e-10");
         assert!(
             toml::from_str::<Scene>(
                 "name = \"x\"\n[initial]\nxi0 = 0.5\nphi = 0.0\nv0 = 0.6\n[settings]\nmethod = \"rk2\"\ntoll = 1\n"

@@ -338,11 +338,11 @@ impl App {
 /// A release in words, for a scene's description before its run has decided.
 fn release_words(i: &Initial) -> String {
     // Shortest digits of the values rounded as the panel's precision goes (0.5, not 0.5000).
-    let r = |x: f64| (x * 1e4).round() / 1e4 + 0.0;
+    let r = |x: f64| crate::present::short(x, 4);
     format!(
-        "released at ξ0 = {}, φ = {}π, v0 = {}",
+        "released at ξ0 = {}, φ = {}, v0 = {}",
         r(i.xi0),
-        r(i.phi / std::f64::consts::PI),
+        crate::present::angle(i.phi),
         r(i.v0)
     )
 }

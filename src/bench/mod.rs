@@ -328,7 +328,7 @@ fn row(task: Task, s: Settings, vtol: f64, refs: &[Measure], out: &[Measure], wa
     Row {
         task,
         method: s.method(),
-        setting: format!("{}{rule}", s.accuracy_label()),
+        setting: format!("{}{rule}", crate::present::accuracy(&s)),
         knob: s.scheme.knob(),
         cases: out.len(),
         err_median: median(&mut errs.clone()),

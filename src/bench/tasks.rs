@@ -88,7 +88,7 @@ pub(super) fn label(s: Settings) -> String {
     } else {
         ""
     };
-    format!("{} {}{frame}", s.method(), s.accuracy_label())
+    format!("{} {}{frame}", s.method(), crate::present::accuracy(&s))
 }
 
 impl Task {

@@ -9,6 +9,7 @@ use crate::engine::{Initial, Release, State, Status};
 use crate::error::Error;
 use crate::files::Output;
 use crate::plot::{Figure, build};
+use crate::present::{angle, num};
 use std::io::Write as _;
 
 pub fn plot(a: PlotArgs) -> CmdResult {
@@ -178,9 +179,9 @@ fn play(i: Initial, settings: crate::engine::Settings, tau_max: f64) -> Result<P
     let (stop, end) = match (sim.run.status(), sim.run.escape()) {
         (Status::Stuck { tau, q }, _) => (
             Some(tau),
-            format!("stuck at ξ = {:.5}, τ = {tau:.3}", q.length()),
+            format!("stuck at ξ = {}, τ = {}", num(q.length(), 5), num(tau, 3)),
         ),
-        (_, Some(e)) => (None, format!("escaped (certified τ = {:.3})", e.tau)),
+        (_, Some(e)) => (None, format!("escaped (certified τ = {})", num(e.tau, 3))),
         _ => (None, format!("τ = {}", sim.now().tau)),
     };
     let until = stop.unwrap_or(f64::INFINITY).min(tau_max);
@@ -192,7 +193,7 @@ fn play(i: Initial, settings: crate::engine::Settings, tau_max: f64) -> Result<P
         .map(|(s, w)| (*s, *w))
         .unzip();
     let release = match i.release {
-        Release::Velocity => format!("ξ0 = {}, φ = {}, v0 = {}", i.xi0, i.phi, i.v0),
+        Release::Velocity => format!("ξ0 = {}, φ = {}, v0 = {}", i.xi0, angle(i.phi), i.v0),
         Release::TableRest => format!("ξ0 = {}, at rest on the table", i.xi0),
         Release::LabRest => format!("ξ0 = {}, at rest in the lab", i.xi0),
     };

@@ -360,11 +360,4 @@ impl Settings {
             Coupling::Coulomb { .. } => None,
         }
     }
-    /// "dt=1e-3" or "tol=1e-10": the knob that sets this method's accuracy.
-    pub fn accuracy_label(&self) -> String {
-        match self.scheme.tol() {
-            Some(tol) => format!("tol={tol:.0e}"),
-            None => format!("dt={:.0e}", self.scheme.knob()),
-        }
-    }
 }

@@ -1,6 +1,7 @@
 //! Physical units (Sec. II): the equations are dimensionless with lengths in
 //! R_max = μg/Ω² and time in 1/Ω; a table turning at `rpm` with friction μ under gravity g
-//! gives every length, time and speed its SI value.
+//! gives every length, time and speed its SI value (said for people by `present`; here only
+//! what files and flags need: a length as typed, and metres written to read back exactly).
 
 use crate::engine::error::Error;
 use crate::engine::model::Initial;
@@ -79,29 +80,6 @@ impl Units {
             mu: 0.15,
             rpm: 3.3 * 60.0 / std::f64::consts::TAU,
             g: 9.81,
-        }
-    }
-
-    /// The table and its scales, one line: `μ 0.15, 31.5 rpm, g 9.81 m/s²: R_max 13.5 cm,
-    /// 1/Ω 303 ms`.
-    pub fn describe(&self) -> String {
-        format!(
-            "μ {}, {} rpm, g {} m/s²: R_max {}, 1/Ω {}",
-            sig(self.mu),
-            sig(self.rpm),
-            sig(self.g),
-            self.unit_of(Quantity::Length),
-            self.unit_of(Quantity::Time)
-        )
-    }
-
-    /// The SI value of one dimensionless unit of `q`: `13.5 cm`, `303 ms`, `0.446 m/s`.
-    pub fn unit_of(&self, q: Quantity) -> String {
-        match q {
-            Quantity::Length => show_length(self.r_max_m()),
-            Quantity::Time => show_time(self.t_s()),
-            Quantity::Speed => show_speed(self.speed_m_s()),
-            Quantity::Rate => show_rate(self.omega()),
         }
     }
 }
@@ -227,62 +205,6 @@ fn show_metres_where(m: f64, same: impl Fn(f64) -> bool) -> String {
     format!("{m} m")
 }
 
-/// What an axis or a readout measures, for its SI unit: lengths in R_max, times in 1/Ω,
-/// speeds in μg/Ω, angular velocities in Ω (Sec. II).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Quantity {
-    Length,
-    Time,
-    Speed,
-    Rate,
-}
-
-/// `x` in the largest of `ladder` (factor, name) it reaches, three digits: `7.12 cm`.
-fn scaled(x: f64, ladder: &[(f64, &str)]) -> String {
-    let a = x.abs();
-    let (f, name) = ladder
-        .iter()
-        .copied()
-        .find(|(f, _)| a >= *f || a == 0.0 || !a.is_finite())
-        .unwrap_or(ladder[ladder.len() - 1]);
-    format!("{} {name}", sig(x / f))
-}
-
-/// A length in metres, short: `7.12 cm`, `1.5 m`, `820 µm`.
-pub fn show_length(m: f64) -> String {
-    scaled(m, &[(1.0, "m"), (1e-2, "cm"), (1e-3, "mm"), (1e-6, "µm")])
-}
-
-/// A speed, short: `1.20 m/s`, `45.0 cm/s`, `8.72 mm/s`.
-pub fn show_speed(v: f64) -> String {
-    scaled(v, &[(1.0, "m/s"), (1e-2, "cm/s"), (1e-3, "mm/s")])
-}
-
-/// An angular velocity, short: `3.30 rad/s`.
-pub fn show_rate(w: f64) -> String {
-    format!("{} rad/s", sig(w))
-}
-
-/// A time in seconds, short.
-pub fn show_time(t: f64) -> String {
-    scaled(t, &[(1.0, "s"), (1e-3, "ms")])
-}
-
-/// Three significant digits, no exponent below 10⁶.
-fn sig(x: f64) -> String {
-    if !x.is_finite() || x.abs() >= 1e6 || (x != 0.0 && x.abs() < 0.01) {
-        return format!("{x:.2e}");
-    }
-    let d = if x.abs() >= 100.0 {
-        0
-    } else if x.abs() >= 10.0 {
-        1
-    } else {
-        2
-    };
-    format!("{x:.d$}")
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -295,20 +217,7 @@ mod tests {
         assert!((u.r_max_m() - 0.15 * 9.81 / (3.3 * 3.3)).abs() < 1e-15);
         assert!((u.t_s() - 1.0 / 3.3).abs() < 1e-15);
         assert!((u.speed_m_s() - 0.15 * 9.81 / 3.3).abs() < 1e-14);
-        assert_eq!(show_length(u.r_max_m()), "13.5 cm");
-        assert_eq!(show_time(u.t_s()), "303 ms");
-        assert_eq!(show_length(2.5), "2.50 m");
         assert_eq!(u, Units::paper());
-        assert_eq!(u.unit_of(Quantity::Length), "13.5 cm");
-        assert_eq!(u.unit_of(Quantity::Time), "303 ms");
-        assert_eq!(u.unit_of(Quantity::Speed), "44.6 cm/s");
-        assert_eq!(show_speed(0.00872), "8.72 mm/s");
-        assert_eq!(show_speed(1.2), "1.20 m/s");
-        assert_eq!(u.unit_of(Quantity::Rate), "3.30 rad/s");
-        assert_eq!(
-            u.describe(),
-            "μ 0.15, 31.5 rpm, g 9.81 m/s²: R_max 13.5 cm, 1/Ω 303 ms"
-        );
         for bad in [(0.0, 33.0, 9.81), (0.2, f64::NAN, 9.81), (0.2, 33.0, -1.0)] {
             assert!(Units::new(bad.0, bad.1, bad.2).is_err(), "{bad:?}");
         }

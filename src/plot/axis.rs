@@ -1,14 +1,48 @@
 //! Axes for both backends: round tick values, their labels, and ranges that can always be
 //! drawn. The terminal's charts and the SVG writer place the same ticks.
 
-use crate::engine::units::{Quantity, Units};
+use crate::engine::units::Units;
 pub use crate::present::tick_label;
+use crate::present::{Quantity, angle_tick, unit_of};
+use std::f64::consts::PI;
+
+/// How an axis reads its values.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Scale {
+    /// Numbers: 1-2-5 ticks, [`tick_label`]s.
+    #[default]
+    Plain,
+    /// Angles in radians, ticked at round multiples of π and read in π (`0`, `0.5π`, `π`),
+    /// as an angle reads everywhere else (`present::angle`).
+    Angle,
+}
+
+impl Scale {
+    /// About `n` tick values over `[a, b]`, round in this scale.
+    pub fn ticks(self, a: f64, b: f64, n: usize) -> Vec<f64> {
+        match self {
+            Scale::Plain => ticks(a, b, n),
+            Scale::Angle => ticks(a / PI, b / PI, n)
+                .into_iter()
+                .map(|t| t * PI)
+                .collect(),
+        }
+    }
+
+    /// A tick value's label.
+    pub fn label(self, v: f64) -> String {
+        match self {
+            Scale::Plain => tick_label(v),
+            Scale::Angle => angle_tick(v),
+        }
+    }
+}
 
 /// An axis name with the SI value of its unit beside it when the table is real:
 /// `τ (1 = 303 ms)`.
 pub fn axis(name: &str, q: Quantity, units: Option<Units>) -> String {
     match units {
-        Some(u) => format!("{name} (1 = {})", u.unit_of(q)),
+        Some(u) => format!("{name} (1 = {})", unit_of(&u, q)),
         None => name.to_string(),
     }
 }
@@ -86,6 +120,23 @@ mod tests {
         assert_eq!(tick_label(-0.25), "-0.25");
         assert_eq!(tick_label(1e-4), "1e-4");
         assert_eq!(tick_label(0.0), "0");
+    }
+
+    #[test]
+    fn angle_axes_tick_in_pi() {
+        let s = Scale::Angle;
+        let labels: Vec<String> = s
+            .ticks(0.0, std::f64::consts::TAU, 4)
+            .into_iter()
+            .map(|v| s.label(v))
+            .collect();
+        assert_eq!(labels, ["0", "0.5π", "π", "1.5π", "2π"]);
+        let labels: Vec<String> = s
+            .ticks(-20.0, 1.0, 2)
+            .into_iter()
+            .map(|v| s.label(v))
+            .collect();
+        assert_eq!(labels, ["-5π", "0"]);
     }
 
     #[test]

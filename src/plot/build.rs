@@ -2,8 +2,9 @@
 //! engine and the analysis) and the explorer's `E` (which takes what it already holds). Axis
 //! names carry the paper's units: lengths in R_max = μg/Ω², time in 1/Ω, speeds in μg/Ω.
 
-use super::{Figure, Ink, Mark, Panel, Series, Style, extent};
+use super::{Figure, Ink, Mark, Panel, Scale, Series, Style, extent};
 use crate::engine::{Frame, Initial, State};
+use crate::present::num;
 use std::f64::consts::TAU;
 
 const TAU_AXIS: &str = "τ (1/Ω)";
@@ -140,7 +141,7 @@ pub fn time(
     let mut marks: Vec<Mark> = stop
         .map(|t| Mark::VLine {
             x: t,
-            label: format!("stuck τ={t:.3}"),
+            label: format!("stuck τ={}", num(t, 3)),
             ink: Ink::Stuck,
         })
         .into_iter()
@@ -228,6 +229,7 @@ pub fn escape_speed(
         panels: vec![Panel {
             title: "escape speed against the direction of the throw (Fig. 5)".into(),
             x_label: PHI_AXIS.into(),
+            x_scale: Scale::Angle,
             y_label: VE_AXIS.into(),
             x: [0.0, TAU],
             y: [0.0, (1.1 * top).max(0.1)],
@@ -272,7 +274,7 @@ pub fn rest_radius(title: &str, points: &[(f64, Option<f64>)], xi0c: Option<f64>
             marks: xi0c
                 .map(|c| Mark::VLine {
                     x: c,
-                    label: format!("ξ0c = {c:.6}"),
+                    label: format!("ξ0c = {}", num(c, 6)),
                     ink: Ink::Escaped,
                 })
                 .into_iter()
@@ -301,6 +303,7 @@ pub fn outcome_map(
         panels: vec![Panel {
             title: "how a throw ends: shaded, it stops (by where); blank, it escapes".into(),
             x_label: PHI_AXIS.into(),
+            x_scale: Scale::Angle,
             y_label: v_axis.into(),
             x: [0.0, TAU],
             y: [0.0, v0_max],

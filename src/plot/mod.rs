@@ -15,7 +15,7 @@ pub mod build;
 pub mod page;
 mod svg;
 
-pub use axis::{axis, extent, sane, tick_label, ticks};
+pub use axis::{Scale, axis, extent, sane, tick_label, ticks};
 pub use svg::to_svg;
 
 /// A figure: a title over panels stacked top to bottom.
@@ -35,6 +35,9 @@ pub struct Panel {
     pub y_label: String,
     pub x: [f64; 2],
     pub y: [f64; 2],
+    /// How each axis is ticked and read (angles in π).
+    pub x_scale: Scale,
+    pub y_scale: Scale,
     /// One data unit is as long on both axes (a trajectory's plane).
     pub equal_aspect: bool,
     pub series: Vec<Series>,

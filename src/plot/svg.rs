@@ -2,8 +2,8 @@
 //! safe palette (Okabe & Ito) and a dash pattern per curve, so it prints in grey too.
 //! Coordinates carry four decimals of a pixel: the data can be read back from them.
 
+use super::sane;
 use super::{Figure, Ink, Mark, Panel, Style};
-use super::{sane, tick_label, ticks};
 use std::fmt::Write as _;
 
 const WIDTH: f64 = 800.0;
@@ -161,7 +161,7 @@ fn axes(s: &mut String, p: &Panel, ax: &Axes, top: f64) {
         })
     );
     // Grid and ticks.
-    for v in ticks(xr[0], xr[1], 8) {
+    for v in p.x_scale.ticks(xr[0], xr[1], 8) {
         let x = c(ax.px(v));
         let _ = writeln!(
             s,
@@ -170,10 +170,10 @@ fn axes(s: &mut String, p: &Panel, ax: &Axes, top: f64) {
             c(y0),
             c(y0 + h),
             c(y0 + h + 17.0),
-            esc(&tick_label(v))
+            esc(&p.x_scale.label(v))
         );
     }
-    for v in ticks(yr[0], yr[1], 6) {
+    for v in p.y_scale.ticks(yr[0], yr[1], 6) {
         let y = c(ax.py(v));
         let _ = writeln!(
             s,
@@ -182,7 +182,7 @@ fn axes(s: &mut String, p: &Panel, ax: &Axes, top: f64) {
             c(x0),
             c(x0 + w),
             c(x0 - 6.0),
-            esc(&tick_label(v))
+            esc(&p.y_scale.label(v))
         );
     }
     let _ = writeln!(

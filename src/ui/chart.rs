@@ -4,7 +4,7 @@
 //! (see `CanvasGeom`).
 
 use super::fit::{fit, fit_label};
-use crate::plot::{Ink, Mark, Panel as Chart, Series, sane, tick_label, ticks};
+use crate::plot::{Ink, Mark, Panel as Chart, Series, sane};
 use crate::theme::Theme;
 use ratatui::Frame as TuiFrame;
 use ratatui::layout::Rect;
@@ -58,25 +58,24 @@ pub fn gutter(inner: Rect, chart: &Chart, x_axis: bool) -> u16 {
     layout(inner, chart, x_axis, 0).map_or(0, |l| l.1)
 }
 
+/// Tick values with their labels.
+type Ticks = Vec<(f64, String)>;
+
 /// The plot rectangle, the y-tick gutter's width (at least `min_gutter`), and the y ticks.
-fn layout(
-    inner: Rect,
-    chart: &Chart,
-    x_axis: bool,
-    min_gutter: u16,
-) -> Option<(Rect, u16, Vec<f64>)> {
+fn layout(inner: Rect, chart: &Chart, x_axis: bool, min_gutter: u16) -> Option<(Rect, u16, Ticks)> {
     let y = sane(chart.y);
     let below = if x_axis { 2 } else { 0 };
     let rows = inner.height.checked_sub(1 + below).filter(|r| *r >= 2)?;
-    let yt = ticks(y[0], y[1], (rows as usize / 3).clamp(2, 5));
+    let yt = chart
+        .y_scale
+        .ticks(y[0], y[1], (rows as usize / 3).clamp(2, 5));
     // Too short for round ticks: label the ends.
     let yt = if yt.len() < 2 { vec![y[0], y[1]] } else { yt };
-    let gutter = yt
-        .iter()
-        .map(|v| tick_label(*v).chars().count())
-        .max()
-        .unwrap_or(1) as u16
-        + 1;
+    let yt: Ticks = yt
+        .into_iter()
+        .map(|v| (v, chart.y_scale.label(v)))
+        .collect();
+    let gutter = yt.iter().map(|(_, l)| l.chars().count()).max().unwrap_or(1) as u16 + 1;
     let gutter = gutter.max(min_gutter);
     if inner.width < gutter + 8 {
         return None;
@@ -201,14 +200,14 @@ fn y_ticks(
     plot: Rect,
     gutter: u16,
     th: &Theme,
-    yt: &[f64],
+    yt: &[(f64, String)],
     rows: Rows,
 ) {
     let muted = Style::default().fg(th.muted);
-    for v in yt {
+    for (v, l) in yt {
         let r = Rect::new(inner.x, plot.y + rows.dot_row(*v), gutter - 1, 1);
         f.render_widget(
-            Paragraph::new(Span::styled(tick_label(*v), muted)).right_aligned(),
+            Paragraph::new(Span::styled(l.clone(), muted)).right_aligned(),
             r,
         );
     }
@@ -218,13 +217,15 @@ fn y_ticks(
 /// name.
 fn x_ticks(f: &mut TuiFrame, inner: Rect, plot: Rect, th: &Theme, chart: &Chart, x: [f64; 2]) {
     let muted = Style::default().fg(th.muted);
-    let xt = ticks(x[0], x[1], (plot.width as usize / 10).clamp(1, 8));
+    let xt = chart
+        .x_scale
+        .ticks(x[0], x[1], (plot.width as usize / 10).clamp(1, 8));
     let axis_row = plot.y + plot.height;
     let mut taken = 0u16;
     for v in xt {
         let fx = (v - x[0]) / (x[1] - x[0]);
         let col = plot.x + ((fx * f64::from(plot.width - 1)).round() as u16).min(plot.width - 1);
-        let l = tick_label(v);
+        let l = chart.x_scale.label(v);
         let w = l.chars().count() as u16;
         let start = col
             .saturating_sub(w / 2)

@@ -97,13 +97,11 @@ pub fn lesson_line(app: &App) -> String {
         ]);
     }
     if let Some(gamma) = app.settings().stokes() {
-        let rate = crate::engine::stokes::growth_rate(gamma);
+        let rate = crate::present::num(crate::engine::stokes::growth_rate(gamma), 4);
         return fit::alternatives(&[
-            format!(
-                " Stokes drag γ = {gamma}: linear, in closed form; it leaves as e^({rate:.4}τ)"
-            ),
-            format!(" Stokes drag γ = {gamma}: it leaves as e^({rate:.4}τ)"),
-            format!(" Stokes: leaves as e^({rate:.4}τ)"),
+            format!(" Stokes drag γ = {gamma}: linear, in closed form; it leaves as e^({rate}τ)"),
+            format!(" Stokes drag γ = {gamma}: it leaves as e^({rate}τ)"),
+            format!(" Stokes: leaves as e^({rate}τ)"),
         ]);
     }
     let Some(p) = app.paper().filter(|_| !app.outcome_open()) else {

@@ -7,12 +7,10 @@
 use crate::app::App;
 use crate::app::lesson::Prompt;
 use crate::app::pages::Page;
-use crate::engine::model::turn_angle;
 use crate::engine::{Frame, Outcome, Release, Status};
 use crate::sim::Sim;
 use crate::theme::Theme;
 use crate::ui::panel::{num, speed};
-use std::f64::consts::PI;
 
 /// What plain mode says about an [`App`], compared from one moment to the next.
 #[derive(Clone, Debug, PartialEq)]
@@ -245,9 +243,9 @@ fn release(app: &App) -> String {
     let edited = if app.edited() { " (edited)" } else { "" };
     let start = match i.release {
         Release::Velocity => format!(
-            "ξ0 = {}, φ = {}π, v0 = {} relative to the table",
+            "ξ0 = {}, φ = {}, v0 = {} relative to the table",
             num(i.xi0, 3),
-            num(turn_angle(i.phi) / PI, 2),
+            crate::present::angle(i.phi),
             speed(i.v0)
         ),
         Release::TableRest => format!("ξ0 = {}, at rest on the table", num(i.xi0, 3)),
@@ -267,7 +265,7 @@ fn release(app: &App) -> String {
         format!(
             "method {} {}{hold}",
             app.settings().method(),
-            app.settings().accuracy_label()
+            crate::present::accuracy(&app.settings())
         )
     };
     format!(

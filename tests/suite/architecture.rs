@@ -312,8 +312,8 @@ const LAYERS: &[&[&str]] = &[
     &["scene"],
     &["analysis"],
     &["sim", "pin"],
-    // Numbers for people (`present`) need nothing of the crate: the model's notices and the
-    // view share the one formatter.
+    // Numbers for people (`present`) need only the engine's types they say (a table's units, a
+    // method's accuracy): the model's notices, the figures, the view and the CLI share them.
     &["check", "error", "files", "text", "rng", "present"],
     &["engine"],
 ];

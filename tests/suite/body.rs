@@ -332,11 +332,7 @@ fn the_panel_judges_at_the_bodys_state() {
     );
     assert_eq!(
         value(&lines, "rod ξ"),
-        format!(
-            "{:.5} ψ {:.4}",
-            body_xi,
-            turntable::engine::model::wrap_angle(st.psi)
-        )
+        format!("{:.5} ψ {}", body_xi, turntable::present::angle(st.psi))
     );
     // The end is not told before τ reaches it.
     assert!(!lines.iter().any(|l| l.starts_with("ends")), "{lines:?}");

@@ -343,8 +343,8 @@ fn the_panel_shows_the_body_in_si_without_cutting_it() {
     let r = r_max(0.2, 33.333);
     let want = format!(
         "= {} h {}",
-        turntable::engine::units::show_length(0.1 * r),
-        turntable::engine::units::show_length(0.01 * r)
+        turntable::present::si_length(0.1 * r),
+        turntable::present::si_length(0.01 * r)
     );
     let lines: Vec<String> =
         turntable::ui::panel::lines(&a, &turntable::theme::Theme::builtin("dark").unwrap())

@@ -950,12 +950,12 @@ fn unit_keys_give_si_readouts_and_axes() {
     let screen = render(&mut a, 100, 30);
     // R_max = μg/Ω² for this table, as the notice says.
     let r_max = 0.16 * 9.8 / (u.omega() * u.omega());
-    let shown = turntable::engine::units::show_length(r_max);
+    let shown = turntable::present::si_length(r_max);
     assert!(screen.contains(&shown), "{shown}\n{screen}");
     // The time plots' axes carry the unit's SI value.
     a.view.page = Page::TimePlots;
     let screen = render(&mut a, 100, 30);
-    let tau = turntable::engine::units::show_time(1.0 / u.omega());
+    let tau = turntable::present::si_time(1.0 / u.omega());
     assert!(screen.contains(&format!("τ (1 = {tau})")), "{screen}");
     assert!(screen.contains(&format!("ξ (1 = {shown})")), "{screen}");
     press(&mut a, 'u', KeyModifiers::ALT);
@@ -1081,7 +1081,7 @@ fn the_title_and_a_saved_scene_tell_what_is_on_screen() {
     let saved = Scene::load(dir.join("undecided.toml").to_str().unwrap()).unwrap();
     assert_eq!(
         (saved.name.as_str(), saved.about.as_str()),
-        ("C (edited)", "released at ξ0 = 0.5, φ = 0π, v0 = 0.6068")
+        ("C (edited)", "released at ξ0 = 0.5, φ = 0, v0 = 0.6068")
     );
     // An unedited preset saved under a name of one's own keeps its words (the title too).
     let mut b = app("B");
@@ -1401,7 +1401,7 @@ fn values_typed_at_the_prompt() {
     assert_eq!(s.app.sim().now().tau, 0.0, "the run restarts");
     assert_eq!(
         s.app.notice.as_deref(),
-        Some("set: ξ0 = 0.5, φ = 0.0000π, v0 = 0.6078")
+        Some("set: ξ0 = 0.5, φ = 0, v0 = 0.6078")
     );
     // Refused: the reason beside the line, which stays to mend; nothing changes.
     s.press(":".parse().unwrap());

@@ -212,7 +212,7 @@ fn the_explorer_shows_phi_as_the_paper_does() {
         false,
     );
     let screen = plain_text(s.screen());
-    assert!(screen.contains("φ 1.20π"), "{screen}");
+    assert!(screen.contains("φ 1.2π"), "{screen}");
 }
 
 /// The second opinion is another formulation, even at the tightest tolerance (where a tighter

@@ -102,9 +102,9 @@ fn the_escape_speed_page_holds_the_solver_s_curves() {
     let screen = render(&mut a, 100, 30);
     let label = |v: f64, p: f64, digits| {
         format!(
-            "{} at {}π",
+            "{} at {}",
             turntable::ui::panel::speed(v),
-            turntable::ui::panel::num(p / std::f64::consts::PI, digits)
+            turntable::present::angle_to(p, digits)
         )
     };
     let note = format!(
@@ -629,7 +629,10 @@ fn the_time_plots_share_one_tau_axis_and_a_fixed_window() {
         .collect();
     assert_eq!(cols.len(), 5, "{screen}");
     assert!(cols.iter().all(|c| *c == cols[0]), "{cols:?}\n{screen}");
-    assert!(screen.contains("θ ━ θ  ·· Sec. III approx."), "{screen}");
+    assert!(
+        screen.contains("θ (rad) ━ θ  ·· Sec. III approx."),
+        "{screen}"
+    );
     let ticks = |s: &str| s.lines().rev().nth(4).unwrap_or("").to_string();
     assert!(ticks(&screen).contains("2.5"), "{screen}");
     press(&mut a, KeyCode::Char('t'));

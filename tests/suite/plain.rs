@@ -78,7 +78,7 @@ fn opening_names_the_scene_its_release_and_its_state() {
         [
             "turntable, plain mode: ? lists the keys, I reads the readouts, Space plays and pauses, q quits",
             "scene C: Fig. 3 C: escapes in the paper; a converged run stops inside ξ = 1",
-            "release: scene C, ξ0 = 0.500, φ = 0.00π, v0 = 0.6078 relative to the table; method dp54 tol=1e-10",
+            "release: scene C, ξ0 = 0.500, φ = 0, v0 = 0.6078 relative to the table; method dp54 tol=1e-10",
             "slipping",
         ]
     );
@@ -90,7 +90,7 @@ fn preset_c_played_says_where_it_sticks_when_it_does() {
     assert_eq!(
         p.key('3'),
         [
-            "release: scene C, ξ0 = 0.500, φ = 0.00π, v0 = 0.6078 relative to the table; method dp54 tol=1e-10",
+            "release: scene C, ξ0 = 0.500, φ = 0, v0 = 0.6078 relative to the table; method dp54 tol=1e-10",
             "slipping",
             "preset C: Fig. 3 C: escapes in the paper; a converged run stops inside ξ = 1",
         ]
@@ -209,7 +209,7 @@ fn edits_say_the_new_release() {
     assert_eq!(
         p.key('x'),
         [
-            "release: scene C (edited), ξ0 = 0.510, φ = 0.00π, v0 = 0.6078 relative to the table; method dp54 tol=1e-10",
+            "release: scene C (edited), ξ0 = 0.510, φ = 0, v0 = 0.6078 relative to the table; method dp54 tol=1e-10",
             "slipping"
         ]
     );
@@ -231,7 +231,7 @@ fn i_reads_every_readout_as_the_panel_shows_it() {
     let s = p.app.now();
     assert_eq!(said[0], "readouts at τ = 7.500:");
     for want in [
-        "ξ0 0.500 φ 0.00π v0 0.6078".to_string(),
+        "ξ0 0.500 φ 0 v0 0.6078".to_string(),
         format!("τ {}", num(s.tau, 3)),
         format!("ξ {}", num(s.xi(), 5)),
         "stuck at ξ = 0.99717 since τ = 5.602".into(),

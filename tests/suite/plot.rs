@@ -137,13 +137,24 @@ fn points(t: &Tag) -> Vec<(f64, f64)> {
         .collect()
 }
 
+/// A tick label's value: a number, or a multiple of π on an axis of angles (`0.5π`, `π`,
+/// `-π`, `2π`), in radians.
+fn tick_value(text: &str) -> f64 {
+    match text.strip_suffix('π') {
+        Some("") => std::f64::consts::PI,
+        Some("-") => -std::f64::consts::PI,
+        Some(k) => k.parse::<f64>().unwrap() * std::f64::consts::PI,
+        None => text.parse().unwrap(),
+    }
+}
+
 /// The affine map from an SVG coordinate to data, read off two tick labels of `class`
 /// (`x-tick` by their x, `y-tick` by their y), within the panel starting at tag `from`.
 fn axis(tags: &[Tag], class: &str) -> impl Fn(f64) -> f64 {
     let coord = if class == "x-tick" { "x" } else { "y" };
     let ticks: Vec<(f64, f64)> = with_class(tags, class)
         .iter()
-        .map(|t| (t.num(coord), t.text.parse::<f64>().unwrap()))
+        .map(|t| (t.num(coord), tick_value(&t.text)))
         .collect();
     assert!(ticks.len() >= 2, "{class}: {ticks:?}");
     let (a, b) = (ticks[0], ticks[ticks.len() - 1]);

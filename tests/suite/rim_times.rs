@@ -53,7 +53,10 @@ fn check(xi0: f64, phi: f64, v0: f64, s: Settings) -> Result<(), String> {
     if !c.certain {
         return Ok(());
     }
-    let at = format!("ξ0 {xi0} φ {phi} v0 {v0:e} {}", s.accuracy_label());
+    let at = format!(
+        "ξ0 {xi0} φ {phi} v0 {v0:e} {}",
+        turntable::present::accuracy(&s)
+    );
     match fate {
         Fate::Stuck { tau, .. } => {
             if c.outcome != Outcome::Stuck {
@@ -140,7 +143,7 @@ fn the_reported_rim_cases_are_right_and_say_so() {
         };
         eprintln!(
             "ξ0 {xi0} φ {phi} v0 {v0:e} {}: τ {:.10} stated {:.1e} actual {:.1e} (reference {tau:.10} ± {own:.0e})",
-            s.accuracy_label(),
+            turntable::present::accuracy(&s),
             c.tau,
             c.stated,
             (c.tau - tau).abs()

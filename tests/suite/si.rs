@@ -7,8 +7,9 @@ use common::render;
 use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
 use turntable::app::App;
 use turntable::app::pages::Page;
-use turntable::engine::units::{Units, show_length, show_rate};
+use turntable::engine::units::Units;
 use turntable::engine::{Initial, Outcome, Run};
+use turntable::present::{si_length, si_rate};
 use turntable::scene::Scene;
 
 fn key(app: &mut App, c: char) {
@@ -90,9 +91,9 @@ fn the_table_stays_in_the_panel_and_the_mu_probe_reads_its_omega() {
         let screen = render(&mut a, w, h);
         a.check_invariants().unwrap();
         if h >= 24 {
-            let r_max = format!("R_max  {}", show_length(u.r_max_m()));
-            let r0 = format!("r0     {} φ 0°", show_length(a.initial().xi0 * u.r_max_m()));
-            let omega = format!("Ω      {} 34.3 rpm", show_rate(u.omega()));
+            let r_max = format!("R_max  {}", si_length(u.r_max_m()));
+            let r0 = format!("r0     {} φ 0", si_length(a.initial().xi0 * u.r_max_m()));
+            let omega = format!("Ω      {} 34.3 rpm", si_rate(u.omega()));
             for want in [&r_max, &r0, "μ g    0.15, 9.81 m/s²", &omega] {
                 assert!(screen.contains(want), "{w}×{h}: {want}\n{screen}");
             }

@@ -93,15 +93,17 @@ fn typed(app: &mut App, edit: Edit) -> Effects {
                         super::view::set_units(app, u);
                     }
                     app.explore().set_initial(i);
-                    // As the app holds it (φ wrapped into (−π, π]).
+                    // As the app holds it: ξ0 and v0 as set, φ read as every angle is.
                     let i = app.initial();
                     app.notice = Some(format!(
-                        "set: ξ0 = {}, φ = {:.4}π, v0 = {}{}",
+                        "set: ξ0 = {}, φ = {}, v0 = {}{}",
                         i.xi0,
-                        i.phi / std::f64::consts::PI,
+                        crate::present::angle(i.phi),
                         i.v0,
-                        app.units
-                            .map_or_else(String::new, |u| format!("; {}", u.describe()))
+                        app.units.map_or_else(String::new, |u| format!(
+                            "; {}",
+                            crate::present::table(&u)
+                        ))
                     ));
                 }
                 Err(why) => {

@@ -5,10 +5,10 @@ use super::super::action::Action;
 use super::super::pages::Page;
 use super::super::state::App;
 use super::next_of;
-use crate::engine::model::{turn_angle, wrap_angle, zcross};
+use crate::engine::model::{wrap_angle, zcross};
 use crate::engine::{Frame, Release};
+use crate::present::{angle, num};
 use crate::scene::{PRESETS, Scene};
-use std::f64::consts::PI;
 use strum::VariantArray;
 
 pub(super) fn apply(app: &mut App, action: Action) {
@@ -59,8 +59,8 @@ pub(super) fn apply(app: &mut App, action: Action) {
             app.exploration.edit_initial(|i| i.xi0 = p.length());
             app.dragging = true;
             app.notice = Some(format!(
-                "release point ξ0 = {:.3}; drag to set the velocity",
-                app.initial().xi0
+                "release point ξ0 = {}; drag to set the velocity",
+                num(app.initial().xi0, 3)
             ));
         }
         Action::AimVelocity(p) => {
@@ -82,9 +82,9 @@ pub(super) fn apply(app: &mut App, action: Action) {
                 };
             });
             app.notice = Some(format!(
-                "v0 = {:.3}, φ = {:.3}π",
-                app.initial().v0,
-                turn_angle(app.initial().phi) / PI
+                "v0 = {}, φ = {}",
+                num(app.initial().v0, 3),
+                angle(app.initial().phi)
             ));
         }
         Action::PickRelease(p) => {
@@ -96,9 +96,9 @@ pub(super) fn apply(app: &mut App, action: Action) {
                 crate::analysis::map_release(app.initial().xi0, release, p.x, p.y.max(0.0));
             app.exploration.set_initial(chosen);
             app.notice = Some(format!(
-                "release v0 = {:.4} at φ = {:.3}π: Enter runs it on the turntable",
-                app.initial().v0,
-                turn_angle(app.initial().phi) / PI
+                "release v0 = {} at φ = {}: Enter runs it on the turntable",
+                num(app.initial().v0, 4),
+                angle(app.initial().phi)
             ));
         }
         // `EndDrag` is handled before dispatch; other groups' actions never come here.

@@ -6,6 +6,7 @@ use super::super::state::App;
 use super::{next_of, round_sig};
 use crate::engine::method::{DT_RANGE, TOL_RANGE};
 use crate::engine::{Method, Settings};
+use crate::present::{num, sci};
 use strum::VariantArray;
 
 pub(super) fn apply(app: &mut App, action: Action) {
@@ -71,8 +72,11 @@ pub(super) fn apply(app: &mut App, action: Action) {
         Action::EstimateError => {
             app.notice = Some(match app.sim().error_estimate() {
                 Ok(e) => format!(
-                    "error at τ = {:.3}: |Δr| = {:.1e} against dp54 tol={:.0e} ({} RHS)",
-                    e.tau, e.error, e.tol, e.rhs_evals
+                    "error at τ = {}: |Δr| = {} against dp54 tol={} ({} RHS)",
+                    num(e.tau, 3),
+                    sci(e.error, 1),
+                    sci(e.tol, 0),
+                    e.rhs_evals
                 ),
                 Err(e) => format!("no estimate: {e}"),
             });

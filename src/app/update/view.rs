@@ -141,5 +141,5 @@ pub(super) fn set_units(app: &mut App, to: Units) {
         app.exploration.carry(&from, &to);
     }
     app.units = Some(to);
-    app.notice = Some(format!("SI units: {}", to.describe()));
+    app.notice = Some(format!("SI units: {}", crate::present::table(&to)));
 }

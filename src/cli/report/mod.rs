@@ -7,8 +7,9 @@ use crate::engine::doubt::Doubt;
 use crate::engine::model::turn_angle;
 use crate::engine::rod::RodRun;
 use crate::engine::solve::Threshold;
-use crate::engine::units::{Units, show_length, show_time};
+use crate::engine::units::Units;
 use crate::engine::{Certificate, CouplingName, Frame, Method, Outcome, Run, Settings, State};
+use crate::present::{angle_to, si_length, si_time};
 use serde::Serialize;
 use std::fmt::Write as _;
 
@@ -117,11 +118,11 @@ impl MotionReport {
     /// Its line of `run`'s text (the first, see [`RunReport`]'s).
     fn line(&self) -> String {
         format!(
-            "rod      the two-mass body: {} at tau {:.9}, xi {:.12}, rod at psi {:.6} ({} steps)\n",
+            "rod      the two-mass body: {} at tau {:.9}, xi {:.12}, rod at psi {} ({} steps)\n",
             self.outcome.name(),
             self.tau,
             self.xi,
-            self.psi,
+            angle_to(self.psi, 6),
             self.steps
         )
     }
@@ -306,8 +307,11 @@ impl Report for RunReport {
         };
         let _ = write!(
             text,
-            "outcome  {how}\n{check}tau      {:.9}\nxi       {:.12}\nangle    {:.12} rad in [0, 2pi) (table frame, ccw from the release direction)\n|u|      {:.3e}\ncost     {cost}\n",
-            self.tau, self.xi, self.angle, self.speed,
+            "outcome  {how}\n{check}tau      {:.9}\nxi       {:.12}\nangle    {} in [0, 2π) (table frame, ccw from the release direction)\n|u|      {:.3e}\ncost     {cost}\n",
+            self.tau,
+            self.xi,
+            angle_to(self.angle, 12),
+            self.speed,
         );
         if let Some(r) = self.mu_static_ratio.filter(|&r| r != 1.0) {
             let _ = writeln!(
@@ -322,14 +326,14 @@ impl Report for RunReport {
             let _ = writeln!(
                 text,
                 "SI       tau = {}, xi = {}, |u| = {:.3e} m/s (mu {}, {} rpm, g {}: R_max = {}, 1/Omega = {})",
-                show_time(u.tau_s),
-                show_length(u.xi_m),
+                si_time(u.tau_s),
+                si_length(u.xi_m),
                 u.speed_m_s,
                 u.mu,
                 u.rpm,
                 u.g,
-                show_length(u.R_max_m),
-                show_time(u.T_s)
+                si_length(u.R_max_m),
+                si_time(u.T_s)
             );
         }
         text
@@ -426,7 +430,7 @@ impl BodyReport {
             "not both << 1 (<= 0.1): the point model is out of its depth"
         };
         let si = |x: f64, m: Option<f64>| match m {
-            Some(m) => format!("{x} ({})", show_length(m)),
+            Some(m) => format!("{x} ({})", si_length(m)),
             None => format!("{x}"),
         };
         let size = match b.height {

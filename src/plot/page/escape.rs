@@ -1,16 +1,15 @@
 //! The escape speed page: v_e(φ) (Fig. 5) or, outside ξ = 1, the sticking window, and what
 //! the curve says of the release on screen.
 
-use super::super::{Ink, Mark, Panel as Chart, Series, Style};
+use super::super::{Ink, Mark, Panel as Chart, Scale, Series, Style};
 use crate::analysis::PAPER_XI0;
 use crate::analysis::verdict::{Verdict, judge, widest_window};
 use crate::app::App;
 use crate::app::pages::Curve;
 use crate::engine::model::turn_angle;
-use crate::engine::units::Quantity;
 use crate::engine::{Outcome, Release, Settings};
-use crate::present::{num, speed};
-use std::f64::consts::{PI, TAU};
+use crate::present::{Quantity, angle_to, num, speed};
+use std::f64::consts::TAU;
 
 /// v_e(φ) for the current ξ0 beside the paper's four, the release as a point, min and max.
 pub fn chart(app: &App) -> Chart {
@@ -56,7 +55,7 @@ pub fn chart(app: &App) -> Chart {
     Chart {
         title: format!("{title}, ξ0 = {}{progress}", num(i.xi0, 3)),
         note,
-        x_label: "φ".into(),
+        x_label: "φ (rad)".into(),
         y_label: crate::plot::axis(
             if window { "v0" } else { "v_e" },
             Quantity::Speed,
@@ -64,6 +63,7 @@ pub fn chart(app: &App) -> Chart {
         ),
         x: [0.0, TAU],
         y: [0.0, (1.1 * top).max(0.1)],
+        x_scale: Scale::Angle,
         series,
         marks,
         ..Chart::default()
@@ -176,11 +176,11 @@ pub fn curve_note(c: &Curve, window: bool) -> String {
         2
     };
     format!(
-        "min {} at {}π, max {} at {}π",
+        "min {} at {}, max {} at {}",
         speed(v0),
-        num(p0 / PI, digits),
+        angle_to(p0, digits),
         speed(v1),
-        num(p1 / PI, 2)
+        angle_to(p1, 2)
     )
 }
 
@@ -218,10 +218,11 @@ fn widest(c: &Curve) -> String {
     let best = widest_window(&c.ve);
     match best {
         Some((p, lo, hi)) => {
-            let (lo, hi, p) = (speed(lo), speed(hi), num(p / PI, 2));
+            // A grid angle: good to its spacing, so to two decimals of π.
+            let (lo, hi, p) = (speed(lo), speed(hi), angle_to(p, 2));
             crate::present::alternatives(&[
-                format!("widest window: sticks for v0 {lo}–{hi}, at φ = {p}π"),
-                format!("widest: v0 {lo}–{hi} at φ = {p}π"),
+                format!("widest window: sticks for v0 {lo}–{hi}, at φ = {p}"),
+                format!("widest: v0 {lo}–{hi} at φ = {p}"),
                 format!("widest: v0 {lo}–{hi}"),
                 format!("v0 {lo}–{hi}"),
             ])

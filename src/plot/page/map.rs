@@ -2,14 +2,13 @@
 //! cells shaded by their rest radius, the v_e curve (or the sticking window) over them.
 
 use super::super::build::cells_by_rest;
-use super::super::{Ink, Mark, Panel as Chart, Series, Style};
+use super::super::{Ink, Mark, Panel as Chart, Scale, Series, Style};
 use crate::analysis::map_cell;
 use crate::app::App;
 use crate::app::pages::{Charts, Map, map_filled};
 use crate::engine::Release;
 use crate::engine::model::turn_angle;
-use crate::engine::units::Quantity;
-use crate::present::num;
+use crate::present::{Quantity, num};
 use std::f64::consts::TAU;
 
 /// The map computed for the release and settings on screen, if any.
@@ -107,10 +106,11 @@ pub fn frame(app: &App, v0_max: f64, progress: String) -> Chart {
             i.release
         ),
         note: String::new(),
-        x_label: format!("φ ({frame_word} frame)  blank: escapes  ·:▒▓ stuck at ξ <¼ <½ <¾ ≤1"),
+        x_label: format!("φ (rad, {frame_word} frame)  blank: escapes  ·:▒▓ stuck, ξ <¼ <½ <¾ ≤1"),
         y_label: crate::plot::axis("v0", Quantity::Speed, app.units),
         x: [0.0, TAU],
         y: [0.0, v0_max],
+        x_scale: Scale::Angle,
         series,
         marks: vec![Mark::Point {
             x: phi,
@@ -118,6 +118,6 @@ pub fn frame(app: &App, v0_max: f64, progress: String) -> Chart {
             label: "release".into(),
             ink: Ink::Particle,
         }],
-        equal_aspect: false,
+        ..Chart::default()
     }
 }

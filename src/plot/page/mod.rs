@@ -14,6 +14,7 @@ use crate::analysis::{PAPER_XI0, settings_for};
 use crate::app::App;
 use crate::app::pages::Page;
 use crate::engine::Release;
+use crate::present::{angle, num};
 
 /// The page on screen as a figure, and whether it is whole (false while it still computes).
 pub fn figure(app: &App) -> (Figure, bool) {
@@ -62,11 +63,11 @@ fn curves_whole(app: &App) -> bool {
 fn title(app: &App) -> String {
     let i = app.initial();
     let release = match i.release {
-        Release::Velocity => format!("ξ0 = {}, φ = {:.4}, v0 = {}", i.xi0, i.phi, i.v0),
+        Release::Velocity => format!("ξ0 = {}, φ = {}, v0 = {}", i.xi0, angle(i.phi), i.v0),
         Release::TableRest => format!("ξ0 = {}, at rest on the table", i.xi0),
         Release::LabRest => format!("ξ0 = {}, at rest in the lab", i.xi0),
     };
-    format!("Released at {release}, τ = {:.3}", app.sim().now().tau)
+    format!("Released at {release}, τ = {}", num(app.sim().now().tau, 3))
 }
 
 /// The page's name in a file name: `time-plots`.

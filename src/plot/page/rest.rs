@@ -5,8 +5,7 @@ use super::super::{Ink, Mark, Panel as Chart, Series};
 use crate::analysis::{REST_POINTS, REST_XI0_MAX};
 use crate::app::App;
 use crate::app::pages::Rest;
-use crate::engine::units::Quantity;
-use crate::present::num;
+use crate::present::{Quantity, num};
 
 /// The radii computed for the settings on screen, if any.
 pub fn shown(app: &App) -> Option<&Rest> {
@@ -77,6 +76,6 @@ pub fn chart(app: &App) -> Chart {
             },
         ],
         marks,
-        equal_aspect: false,
+        ..Chart::default()
     }
 }

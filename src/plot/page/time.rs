@@ -3,12 +3,11 @@
 //! 19–20) over their window for releases at rest, the paper's RK2 run beside the converged
 //! one and the pins': what the page draws and `E` writes.
 
-use super::super::{Ink, Mark, Panel, Series, Style, extent};
+use super::super::{Ink, Mark, Panel, Scale, Series, Style, extent};
 use crate::app::App;
 use crate::engine::approx::table_rest;
-use crate::engine::units::Quantity;
 use crate::engine::{Frame, Release, State, Status};
-use crate::present::num;
+use crate::present::{Quantity, num};
 
 /// Markers along a pin's line: at its thirds (and its end, with the label).
 const PIN_MARKS: usize = 3;
@@ -51,15 +50,20 @@ pub fn panels(app: &App) -> Vec<Panel> {
     let marks = marks(app, now, window);
     let mut panels: Vec<Panel> = plots(app, now, window)
         .into_iter()
-        .map(|(name, quantity, s, pm)| Panel {
+        .map(|(name, measure, s, pm)| Panel {
             y: extent(
                 s.iter()
                     .flat_map(|s| s.points.iter().filter(|p| p.0 <= span).map(|p| p.1)),
             ),
             x_label: super::super::axis("τ", Quantity::Time, app.units),
-            y_label: match quantity {
-                Some(q) => super::super::axis(name, q, app.units),
-                None => name.into(),
+            y_label: match measure {
+                Measure::Si(q) => super::super::axis(name, q, app.units),
+                Measure::Angle => format!("{name} (rad)"),
+                Measure::Bare => name.into(),
+            },
+            y_scale: match measure {
+                Measure::Angle => Scale::Angle,
+                _ => Scale::Plain,
             },
             x: [0.0, span],
             series: s,
@@ -136,9 +140,17 @@ fn marks(app: &App, now: f64, window: Option<f64>) -> Vec<Mark> {
     marks
 }
 
-/// One plot: its y axis name, the quantity it shows (for SI units), its series and its
-/// own marks (the pins').
-type Plot<'a> = (&'a str, Option<Quantity>, Vec<Series>, Vec<Mark>);
+/// What a plot's y axis measures: a quantity with an SI unit, an angle (in radians, read in
+/// π), or a number alone (the energy's two sides).
+#[derive(Clone, Copy)]
+enum Measure {
+    Si(Quantity),
+    Angle,
+    Bare,
+}
+
+/// One plot: its y axis name, what it measures, its series and its own marks (the pins').
+type Plot<'a> = (&'a str, Measure, Vec<Series>, Vec<Mark>);
 
 /// What the plots draw from: the run's path, the paper's, the pins', the approximations.
 struct Sources<'a> {
@@ -325,17 +337,17 @@ fn plots(app: &App, now: f64, window: Option<f64>) -> [Plot<'static>; 5] {
     };
     let [xi_m, a_m, th_m, u_m] = std::mem::take(&mut src.pin_marks);
     [
-        ("ξ", Some(Quantity::Length), xi_s, xi_m),
-        (angle_name, None, a_s, a_m),
-        (theta_name, Some(Quantity::Rate), th_s, th_m),
-        ("|u|", Some(Quantity::Speed), u_s, u_m),
+        ("ξ", Measure::Si(Quantity::Length), xi_s, xi_m),
+        (angle_name, Measure::Angle, a_s, a_m),
+        (theta_name, Measure::Si(Quantity::Rate), th_s, th_m),
+        ("|u|", Measure::Si(Quantity::Speed), u_s, u_m),
         (
             if drag.is_some() {
                 "dE/dτ = −γ|u|²:"
             } else {
                 "dE/dτ = −|u|:"
             },
-            None,
+            Measure::Bare,
             energy_series(&src.p, app.sim(), drag),
             Vec::new(),
         ),

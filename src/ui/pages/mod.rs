@@ -57,10 +57,10 @@ fn no_threshold(f: &mut TuiFrame, area: Rect, th: &Theme, gamma: f64) {
     let block = super::titled(" Stokes drag: no threshold ".to_string(), th);
     let text = format!(
         "Under Stokes drag γ = {gamma} there is no escape speed, outcome map or rest radius: \
-         every release leaves, exponentially at the rate Re λ+ = {:.6}, except those with \
+         every release leaves, exponentially at the rate Re λ+ = {}, except those with \
          u0 = λ− q0 (the centre at rest, and one speed and direction at each radius), which \
          spiral into the centre.",
-        crate::engine::stokes::growth_rate(gamma)
+        num(crate::engine::stokes::growth_rate(gamma), 6)
     );
     f.render_widget(
         Paragraph::new(text)

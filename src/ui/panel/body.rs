@@ -4,7 +4,7 @@
 use super::{kv, num};
 use crate::app::App;
 use crate::engine::Outcome;
-use crate::engine::model::wrap_angle;
+use crate::present::{angle, ratio, si_length};
 use crate::theme::Theme;
 use ratatui::style::{Modifier, Style};
 use ratatui::text::{Line, Span};
@@ -95,14 +95,14 @@ pub(super) fn body_lines(
     let c = b.conditions(xi, f, app.units.map(|u| u.mu));
     // In exponent form when small: a body 1e-9 long is not "L 0.0000".
     let size = match b.height {
-        Some(h) => format!("L {} h {}", small(b.length), small(h)),
-        None => format!("L {}", small(b.length)),
+        Some(h) => format!("L {} h {}", ratio(b.length), ratio(h)),
+        None => format!("L {}", ratio(b.length)),
     };
     out.push(kv("body", size, th));
     if let Some(u) = app.units {
         // The same sizes in SI, on a line of their own under the value (the panel is 30
         // wide); one indented span, so plain mode reads it on the body's line.
-        let m = |x: f64| crate::engine::units::show_length(x * u.r_max_m());
+        let m = |x: f64| si_length(x * u.r_max_m());
         let si = match b.height {
             Some(h) => format!("       = {} h {}", m(b.length), m(h)),
             None => format!("       = {}", m(b.length)),
@@ -133,7 +133,7 @@ pub(super) fn body_lines(
     {
         out.push(kv(
             "rod ξ",
-            format!("{} ψ {}", num(st.q.length(), 5), num(wrap_angle(st.psi), 4)),
+            format!("{} ψ {}", num(st.q.length(), 5), angle(st.psi)),
             th,
         ));
     }
@@ -143,7 +143,7 @@ pub(super) fn body_lines(
         (Some(t), Some(v), _) => format!(
             "{}{} {}",
             if c.mu_assumed && t > 0.0 { "≤ " } else { "" },
-            small(t),
+            ratio(t),
             v.word()
         ),
         (_, _, None) => "no height given".into(),
@@ -151,7 +151,7 @@ pub(super) fn body_lines(
     };
     out.push(kv("μh/L", topple, th));
     let rotation = if c.rotation.is_finite() {
-        small(c.rotation)
+        ratio(c.rotation)
     } else {
         "∞ at ξ = 0".into()
     };
@@ -173,13 +173,4 @@ pub(super) fn body_lines(
         }
     }
     phase_line
-}
-
-/// A ratio for the body's readouts: four decimals, or exponent form when small or large.
-fn small(x: f64) -> String {
-    if (1e-3..1e4).contains(&x) || x == 0.0 {
-        num(x, 4)
-    } else {
-        format!("{x:.2e}")
-    }
 }

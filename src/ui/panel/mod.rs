@@ -2,7 +2,6 @@
 //! how the paper's scheme fares from the same start.
 
 use crate::app::App;
-use crate::engine::model::{turn_angle, wrap_angle};
 use crate::engine::run::raw_at_rest;
 use crate::engine::{Certificate, Method, Outcome, Status};
 use crate::sim::Sim;
@@ -12,24 +11,15 @@ use ratatui::layout::Rect;
 use ratatui::style::{Modifier, Style};
 use ratatui::text::{Line, Span};
 use ratatui::widgets::Paragraph;
-use std::f64::consts::PI;
+use unicode_width::UnicodeWidthStr;
 
 mod body;
 
 use body::body_lines;
 pub use body::{BodyNow, body_end, body_now, phase_word};
 
+use crate::present::{Quantity, angle, rate, sci, si_length, si_rate, si_speed, si_time, unit_of};
 pub use crate::present::{fmt_speed, num, speed};
-
-/// A rate that may be below what `prec` places show (|u| near a stop): in scientific
-/// notation then, so that "slipping" never stands beside a row of zeros.
-pub fn small(x: f64, prec: usize) -> String {
-    if x != 0.0 && x.abs() < 0.5 * 10f64.powi(-(prec as i32)) {
-        format!("{x:.1e}")
-    } else {
-        num(x, prec)
-    }
-}
 
 /// Status of a run at the sample on screen, and its colour.
 pub fn status_text(sim: &Sim, th: &Theme) -> (String, ratatui::style::Color) {
@@ -99,24 +89,31 @@ fn kv<'a>(k: &'a str, v: String, th: &Theme) -> Line<'a> {
 
 /// The readout lines in reading order.
 pub fn lines(app: &App, th: &Theme) -> Vec<Line<'static>> {
-    readouts(app, th).0
+    readouts(app, th).lines
 }
 
 /// The readout lines that fit in `rows`, most important first when not all do: the status
 /// (stuck / slipping / escape certified), then ξ, τ, the body's phase (first of all when the
 /// point model is hidden, `C`) and the release, then the rest.
 pub fn lines_in(app: &App, th: &Theme, rows: usize) -> Vec<Line<'static>> {
-    let (all, status, rod) = readouts(app, th);
+    let Readouts {
+        lines: all,
+        release,
+        status,
+        rod,
+    } = readouts(app, th);
     if all.len() <= rows {
         return all;
     }
+    // τ and ξ come first after the release (`motion_lines`).
+    let (tau_line, xi_line) = (release.end, release.end + 1);
     let body_first = rod.filter(|_| !app.point_shown());
     let first: Vec<usize> = body_first
         .into_iter()
-        .chain([status.start, XI_LINE, TAU_LINE])
+        .chain([status.start, xi_line, tau_line])
         .chain(status.skip(1))
         .chain(rod.filter(|_| body_first.is_none()))
-        .chain([0])
+        .chain(release)
         .collect();
     let mut order = first.clone();
     order.extend((0..all.len()).filter(|i| !first.contains(i)));
@@ -127,18 +124,21 @@ pub fn lines_in(app: &App, th: &Theme, rows: usize) -> Vec<Line<'static>> {
         .collect()
 }
 
-/// Where τ and ξ stand in [`lines`].
-const TAU_LINE: usize = 1;
-const XI_LINE: usize = 2;
+/// The readout lines, and which of them hold the release, the status and the body's phase.
+struct Readouts {
+    lines: Vec<Line<'static>>,
+    release: std::ops::Range<usize>,
+    status: std::ops::Range<usize>,
+    rod: Option<usize>,
+}
 
-/// The readout lines, which of them hold the status, and which the body's phase.
-fn readouts(app: &App, th: &Theme) -> (Vec<Line<'static>>, std::ops::Range<usize>, Option<usize>) {
+fn readouts(app: &App, th: &Theme) -> Readouts {
     let s = app.sim().now();
-    let mut out: Vec<Line<'static>> = Vec::new();
-    out.push(Line::from(Span::styled(
-        release(&app.initial()),
-        Style::default().fg(th.accent),
-    )));
+    let mut out: Vec<Line<'static>> = release(&app.initial())
+        .into_iter()
+        .map(|l| Line::from(Span::styled(l, Style::default().fg(th.accent))))
+        .collect();
+    let release = 0..out.len();
     motion_lines(app, th, &s, &mut out);
     // A lesson's open prediction: the status says nothing the run has not shown yet.
     let (st, col) = if app.outcome_open() && app.sim().outcome_now() != Outcome::Running {
@@ -186,20 +186,30 @@ fn readouts(app: &App, th: &Theme) -> (Vec<Line<'static>>, std::ops::Range<usize
         out.push(kv("pins", names.join(" "), th));
     }
     arrow_legend(app, th, &mut out);
-    (out, status, rod)
+    Readouts {
+        lines: out,
+        release,
+        status,
+        rod,
+    }
 }
 
-/// The release, in the panel's first line.
-fn release(i: &crate::engine::Initial) -> String {
+/// The release, in the panel's first line; v0 on a second where the line would not fit the
+/// panel (a φ and a v0 of many digits, as the mouse sets them), rather than cut a number.
+fn release(i: &crate::engine::Initial) -> Vec<String> {
+    let xi0 = num(i.xi0, 3);
     match i.release {
-        crate::engine::Release::Velocity => format!(
-            "ξ0 {} φ {}π v0 {}",
-            num(i.xi0, 3),
-            num(turn_angle(i.phi) / PI, 2),
-            speed(i.v0)
-        ),
-        crate::engine::Release::TableRest => format!("ξ0 {} rest on table", num(i.xi0, 3)),
-        crate::engine::Release::LabRest => format!("ξ0 {} rest in lab", num(i.xi0, 3)),
+        crate::engine::Release::Velocity => {
+            let (at, v0) = (format!("ξ0 {xi0} φ {}", angle(i.phi)), speed(i.v0));
+            let line = format!("{at} v0 {v0}");
+            if line.width() <= usize::from(super::PANEL_W - 2) {
+                vec![line]
+            } else {
+                vec![at, format!("v0 {v0}")]
+            }
+        }
+        crate::engine::Release::TableRest => vec![format!("ξ0 {xi0} rest on table")],
+        crate::engine::Release::LabRest => vec![format!("ξ0 {xi0} rest in lab")],
     }
 }
 
@@ -210,14 +220,13 @@ fn motion_lines(app: &App, th: &Theme, s: &crate::engine::State, out: &mut Vec<L
         app.units
             .map_or(String::new(), |_| format!(" = {}", show(x)))
     };
-    use crate::engine::units::{show_length, show_rate, show_speed, show_time};
     let (tau_si, xi_si, rate_si, xi_dot_si, u_si) = match app.units {
         Some(u) => (
-            si(s.tau * u.t_s(), show_time),
-            si(s.xi() * u.r_max_m(), show_length),
+            si(s.tau * u.t_s(), si_time),
+            si(s.xi() * u.r_max_m(), si_length),
             u.omega(),
-            si(s.xi_dot() * u.speed_m_s(), show_speed),
-            si(s.u().length() * u.speed_m_s(), show_speed),
+            si(s.xi_dot() * u.speed_m_s(), si_speed),
+            si(s.u().length() * u.speed_m_s(), si_speed),
         ),
         None => (
             String::new(),
@@ -230,7 +239,7 @@ fn motion_lines(app: &App, th: &Theme, s: &crate::engine::State, out: &mut Vec<L
     // θ′ in rad/s: the table's own Ω times the dimensionless rate.
     let lab_rate = |t: f64| {
         if rate_si.is_finite() {
-            format!("{} = {}", num(t, 4), show_rate(t * rate_si))
+            format!("{} = {}", num(t, 4), si_rate(t * rate_si))
         } else {
             num(t, 4)
         }
@@ -239,9 +248,9 @@ fn motion_lines(app: &App, th: &Theme, s: &crate::engine::State, out: &mut Vec<L
     out.push(kv("ξ", format!("{}{xi_si}", num(s.xi(), 5)), th));
     // Angles in the frame shown: θ in the lab; in the rotating view the table-frame angle Θ
     // and Θ′ = θ′ − 1 (a particle at rest on the table has Θ′ = 0), with the paper's θ′ kept.
-    let angle = |p: glam::DVec2| {
+    let direction = |p: glam::DVec2| {
         if p.length_squared() > 0.0 {
-            num(wrap_angle(p.y.atan2(p.x)), 4)
+            angle(p.y.atan2(p.x))
         } else {
             "—".into()
         }
@@ -249,11 +258,11 @@ fn motion_lines(app: &App, th: &Theme, s: &crate::engine::State, out: &mut Vec<L
     let theta_dot = s.theta_dot();
     match app.view.frame {
         crate::engine::Frame::Lab => {
-            out.push(kv("θ", angle(s.r), th));
+            out.push(kv("θ", direction(s.r), th));
             out.push(kv("θ′", theta_dot.map_or("—".into(), lab_rate), th));
         }
         crate::engine::Frame::Table => {
-            out.push(kv("Θ", angle(s.q()), th));
+            out.push(kv("Θ", direction(s.q()), th));
             out.push(kv(
                 "Θ′",
                 theta_dot.map_or("—".into(), |t| num(t - 1.0, 4)),
@@ -262,8 +271,8 @@ fn motion_lines(app: &App, th: &Theme, s: &crate::engine::State, out: &mut Vec<L
             out.push(kv("θ′ lab", theta_dot.map_or("—".into(), lab_rate), th));
         }
     }
-    out.push(kv("ξ′", format!("{}{xi_dot_si}", small(s.xi_dot(), 4)), th));
-    out.push(kv("|u|", format!("{}{u_si}", small(s.u().length(), 4)), th));
+    out.push(kv("ξ′", format!("{}{xi_dot_si}", rate(s.xi_dot(), 4)), th));
+    out.push(kv("|u|", format!("{}{u_si}", rate(s.u().length(), 4)), th));
 }
 
 /// The table and the release in SI, while units are on: what μ, rpm and g change.
@@ -273,18 +282,16 @@ fn table_lines(
     u: crate::engine::units::Units,
     out: &mut Vec<Line<'static>>,
 ) {
-    use crate::engine::units::{show_length as len, show_rate, show_speed};
     let i = &app.initial();
-    let deg = turn_angle(i.phi).to_degrees();
     let r0 = match i.release {
         crate::engine::Release::Velocity => {
-            format!("{} φ {}°", len(i.xi0 * u.r_max_m()), num(deg, 0))
+            format!("{} φ {}", si_length(i.xi0 * u.r_max_m()), angle(i.phi))
         }
-        _ => format!("{} at rest", len(i.xi0 * u.r_max_m())),
+        _ => format!("{} at rest", si_length(i.xi0 * u.r_max_m())),
     };
     out.push(kv("r0", r0, th));
     if i.release == crate::engine::Release::Velocity {
-        out.push(kv("v0", show_speed(i.v0 * u.speed_m_s()), th));
+        out.push(kv("v0", si_speed(i.v0 * u.speed_m_s()), th));
     }
     out.push(kv(
         "μ g",
@@ -295,16 +302,12 @@ fn table_lines(
         "Ω",
         format!(
             "{} {} rpm",
-            show_rate(u.omega()),
+            si_rate(u.omega()),
             num(u.rpm, if u.rpm < 100.0 { 1 } else { 0 })
         ),
         th,
     ));
-    out.push(kv(
-        "R_max",
-        u.unit_of(crate::engine::units::Quantity::Length),
-        th,
-    ));
+    out.push(kv("R_max", unit_of(&u, Quantity::Length), th));
 }
 
 /// The model run: μ = 0's closed form, Stokes drag, or the friction's integrator.
@@ -324,7 +327,7 @@ fn model_lines(app: &App, th: &Theme, out: &mut Vec<Line<'static>>) {
         }
         out.push(kv(
             app.settings().method().into(),
-            app.settings().accuracy_label(),
+            crate::present::accuracy(&app.settings()),
             th,
         ));
     }
@@ -338,14 +341,18 @@ fn cost_lines(app: &App, th: &Theme, out: &mut Vec<Line<'static>>) {
     if app.view.step_mode
         && let Some(st) = app.sim().run.last_step()
     {
-        out.push(kv("h", format!("{:.1e} {}", st.h, st.limit.describe()), th));
+        out.push(kv(
+            "h",
+            format!("{} {}", sci(st.h, 1), st.limit.describe()),
+            th,
+        ));
         if let Some(e) = st.err_ratio {
             let rej = if st.rejected > 0 {
                 format!(" ({} rejected)", st.rejected)
             } else {
                 String::new()
             };
-            out.push(kv("err/tol", format!("{e:.2}{rej}"), th));
+            out.push(kv("err/tol", format!("{}{rej}", num(e, 2)), th));
         }
     }
     out.push(kv("RHS", format!("{}", c.rhs_evals), th));
@@ -402,20 +409,4 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App, th: &Theme) {
             .style(Style::default().bg(th.background)),
         area,
     );
-}
-
-#[cfg(test)]
-mod tests {
-    use super::small;
-
-    #[test]
-    fn rates_below_the_places_shown_keep_their_size() {
-        assert_eq!(small(0.61234, 4), "0.6123");
-        assert_eq!(small(0.0, 4), "0.0000");
-        // Below half the last place shown: scientific, never a row of zeros beside "slipping".
-        assert_eq!(small(4.9e-5, 4), "4.9e-5");
-        assert_eq!(small(-3.2e-12, 4), "-3.2e-12");
-        assert_eq!(small(5e-5, 4), "0.0001");
-        assert_eq!(small(f64::NAN, 4), "—");
-    }
 }

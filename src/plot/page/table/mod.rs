@@ -277,9 +277,9 @@ impl Point {
             _ => None,
         };
         let status = match app.sim().outcome_now() {
-            Outcome::Stuck => format!("stuck at ξ = {:.5}", now.xi()),
+            Outcome::Stuck => format!("stuck at ξ = {}", num(now.xi(), 5)),
             Outcome::Escaped => "escaped".into(),
-            Outcome::Running => format!("τ = {:.3}", now.tau),
+            Outcome::Running => format!("τ = {}", num(now.tau, 3)),
         };
         let mut steps: Vec<DVec2> = Vec::new();
         if app.view.step_mode {
