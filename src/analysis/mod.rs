@@ -273,17 +273,18 @@ pub struct MapRow {
 }
 
 /// The outcome map as `sweep map` prints it (the page's own grid and classification): `n`
-/// angles φ_i = 2π i/n by `m` speeds v0_max (j + 1)/m, φ fastest, on all cores. Fails on the
-/// first run that cannot finish.
+/// angles φ_i = 2π i/n by `m` speeds v0_max (j + 1)/m, φ fastest, on all cores; `done`
+/// counts the cells classified. Fails on the first run that cannot finish.
 pub fn outcome_map(
     xi0: f64,
     release: Release,
     (n, m): (usize, usize),
     v0_max: f64,
     settings: Settings,
+    done: &std::sync::atomic::AtomicUsize,
 ) -> Result<Vec<MapRow>, Error> {
     let cells: Vec<(f64, f64)> = (0..n * m).map(|k| map_cell(k, (n, m), v0_max)).collect();
-    crate::engine::par::par_map(&cells, |&(phi, v0)| {
+    crate::engine::par::par_map_counted(&cells, done, |&(phi, v0)| {
         classify(map_release(xi0, release, phi, v0), settings).map(|cell| MapRow { phi, v0, cell })
     })
     .into_iter()

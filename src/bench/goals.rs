@@ -218,13 +218,15 @@ pub(super) fn speed(cfg: &Config, all: &[Initial], refs: &[Measure]) -> Result<S
     let n = if cfg.quick { 24 } else { 72 };
     let xi0s = [0.8, 0.5, 0.2, 0.001];
     let (r, fig5_ms) = timed(cfg.reps.min(2), || {
-        sweep_escape(&xi0s, n, Settings::default(), 1e-6)
+        sweep_escape(&xi0s, n, Settings::default(), 1e-6, &Default::default())
     });
     r?;
     let fig5_ms_vtol_1e8 = if cfg.quick {
         None
     } else {
-        let (r, ms) = timed(1, || sweep_escape(&xi0s, n, Settings::default(), 1e-8));
+        let (r, ms) = timed(1, || {
+            sweep_escape(&xi0s, n, Settings::default(), 1e-8, &Default::default())
+        });
         r?;
         Some(ms)
     };
@@ -249,6 +251,7 @@ pub(super) fn speed(cfg: &Config, all: &[Initial], refs: &[Measure]) -> Result<S
             (72, 60),
             1.3 * top,
             Settings::default(),
+            &Default::default(),
         )
     });
     r?;

@@ -8,6 +8,7 @@ pub(crate) mod config;
 pub mod lesson;
 mod numerics;
 mod plot;
+mod progress;
 pub mod replay;
 mod report;
 mod serve;

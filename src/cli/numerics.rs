@@ -5,7 +5,9 @@ use super::{
     CmdResult, CriticalArgs, Error, EscapeArgs, RunArgs, bracket_width, check_initial, num,
     solver_budget,
 };
-use crate::engine::solve::{check_escape_xi0, critical_radius, escape_speed, solve_certified};
+use crate::engine::solve::{
+    check_escape_xi0, critical_radius_until, escape_speed, solve_certified,
+};
 use crate::engine::{Initial, Outcome, Run, State, Status};
 use crate::files::{Output, emit};
 use std::io::{BufWriter, Write as _};
@@ -280,14 +282,23 @@ pub fn critical(a: CriticalArgs) -> CmdResult {
         }
     }
     let settings = solver_settings(&a.numerics)?;
-    let solve = |s| critical_radius(s, a.xtol).map_err(solver_budget("--xtol"));
-    let (t, certified) = if a.no_check {
-        (solve(settings)?, None)
-    } else {
-        let at = |xi0: f64| Initial::at_rest(xi0, crate::engine::Release::LabRest);
-        let (t, c) = solve_certified(settings, solve, at)?;
-        (t, Some(c))
-    };
+    // The runs it takes: a scan of 31 radii, then a bisection to --xtol (and the bracket's
+    // two ends in full with their second opinions).
+    let runs = 31 + (0.05 / a.xtol).log2().ceil().max(0.0) as usize + 2 * usize::from(!a.no_check);
+    let (t, certified) = super::progress::watch("critical radius: runs", runs, |done| {
+        let counted = || {
+            done.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+            true
+        };
+        let solve = |s| critical_radius_until(s, a.xtol, &counted).map_err(solver_budget("--xtol"));
+        if a.no_check {
+            Ok::<_, Error>((solve(settings)?, None))
+        } else {
+            let at = |xi0: f64| Initial::at_rest(xi0, crate::engine::Release::LabRest);
+            let (t, c) = solve_certified(settings, solve, at)?;
+            Ok((t, Some(c)))
+        }
+    })?;
     // The paper's Eq. 22: mu = Omega² r0c / (xi0c g), friction measured by the critical radius.
     let mu = a.omega.zip(a.r0c).map(|(w, r)| w * w * r / (t.value * a.g));
     print(&CriticalReport::new(&t, certified, mu, &settings), a.json)

@@ -168,7 +168,11 @@ pub(super) fn fig5_data(
     a: &Fig5Data,
     settings: crate::engine::Settings,
 ) -> Result<Vec<crate::engine::solve::EscapePoint>, Error> {
-    sweep_escape(&a.xi0, a.points, settings, a.vtol).map_err(solver_budget("--vtol"))
+    let total = a.xi0.len() * a.points;
+    super::progress::watch("Fig. 5: escape speeds", total, |done| {
+        sweep_escape(&a.xi0, a.points, settings, a.vtol, done)
+    })
+    .map_err(solver_budget("--vtol"))
 }
 
 /// `sweep fig6`: where a release at rest in the lab ends, over ξ0.
@@ -208,7 +212,10 @@ pub(super) fn fig6_data(
     let xi0s: Vec<f64> = (0..a.points)
         .map(|i| a.xi0_max * i as f64 / (a.points - 1).max(1) as f64)
         .collect();
-    Ok(sweep_rest(&xi0s, settings)?)
+    let rest = super::progress::watch("Fig. 6: rest radii", xi0s.len(), |done| {
+        sweep_rest(&xi0s, settings, done)
+    });
+    Ok(rest?)
 }
 
 /// `sweep map`: one row per (phi, v0) cell, as the explorer's outcome map classifies it.
@@ -287,19 +294,25 @@ pub(super) fn map_data(
             ((1.3 * (top + lab)).max(0.2), None)
         }
         None => {
-            let curve = sweep_escape(&[a.xi0], a.phi_points, settings, a.vtol)
-                .map_err(solver_budget("--vtol"))?;
+            let curve = super::progress::watch("escape speeds", a.phi_points, |done| {
+                sweep_escape(&[a.xi0], a.phi_points, settings, a.vtol, done)
+            })
+            .map_err(solver_budget("--vtol"))?;
             let top = curve.iter().map(|p| p.v_escape).fold(0.0, f64::max);
             ((1.3 * (top + lab)).max(0.2), Some(curve))
         }
     };
-    let rows = crate::analysis::outcome_map(
-        a.xi0,
-        a.release,
-        (a.phi_points, a.v0_points),
-        v0_max,
-        settings,
-    )?;
+    let cells = a.phi_points * a.v0_points;
+    let rows = super::progress::watch("outcome map", cells, |done| {
+        crate::analysis::outcome_map(
+            a.xi0,
+            a.release,
+            (a.phi_points, a.v0_points),
+            v0_max,
+            settings,
+            done,
+        )
+    })?;
     Ok(MapComputed {
         rows,
         v0_max,

@@ -12,9 +12,24 @@ pub fn cores() -> usize {
 /// time (an atomic counter), so a few slow items (escape speeds near a saddle) do not leave a
 /// core idle as a fixed split would.
 pub fn par_map<T: Sync, R: Send>(items: &[T], f: impl Fn(&T) -> R + Sync) -> Vec<R> {
+    par_map_counted(items, &AtomicUsize::new(0), f)
+}
+
+/// [`par_map`], counting the items done in `done` as they finish (for a progress bar read
+/// from another thread).
+pub fn par_map_counted<T: Sync, R: Send>(
+    items: &[T],
+    done: &AtomicUsize,
+    f: impl Fn(&T) -> R + Sync,
+) -> Vec<R> {
+    let f = |item: &T| {
+        let r = f(item);
+        done.fetch_add(1, Ordering::Relaxed);
+        r
+    };
     let threads = cores().min(items.len().max(1));
     if threads <= 1 {
-        return items.iter().map(&f).collect();
+        return items.iter().map(f).collect();
     }
     let next = AtomicUsize::new(0);
     let mut out: Vec<(usize, R)> = std::thread::scope(|scope| {

@@ -792,3 +792,22 @@ fn replay_help_carries_a_working_example() {
         "{out}"
     );
 }
+
+/// Issue 32 item 4: the long commands draw their progress bar only where stderr is a
+/// terminal; piped, stderr stays empty and the output is the same.
+#[test]
+fn progress_is_silent_in_a_pipe() {
+    for args in [
+        &[
+            "sweep", "fig5", "--xi0", "0.5", "--points", "12", "--vtol", "1e-6",
+        ][..],
+        &["sweep", "fig6", "--points", "12"],
+        &["sweep", "map", "--phi-points", "6", "--v0-points", "4"],
+        &["critical", "--xtol", "1e-4"],
+    ] {
+        let (code, out, err) = turntable(args);
+        assert_eq!(code, 0, "{args:?}: {err}");
+        assert!(err.is_empty(), "{args:?}: {err}");
+        assert!(!out.is_empty());
+    }
+}

@@ -333,7 +333,14 @@ fn claims(lesson: &str) -> Vec<Claim> {
                 c(
                     "1.28",
                     Box::new(|| {
-                        let pts = sweep_escape(&[0.5], 72, Settings::dp54(1e-8), 1e-6).unwrap();
+                        let pts = sweep_escape(
+                            &[0.5],
+                            72,
+                            Settings::dp54(1e-8),
+                            1e-6,
+                            &Default::default(),
+                        )
+                        .unwrap();
                         let max = pts
                             .iter()
                             .max_by(|a, b| a.v_escape.total_cmp(&b.v_escape))

@@ -154,7 +154,7 @@ fn critical_radius_is_0_87() {
 #[test]
 fn fig5_peaks_near_4_and_the_minimum_moves_with_xi0() {
     let s = Settings::dp54(1e-10);
-    let pts = sweep_escape(&[0.8, 0.5, 0.2, 0.001], 72, s, 1e-7).unwrap();
+    let pts = sweep_escape(&[0.8, 0.5, 0.2, 0.001], 72, s, 1e-7, &Default::default()).unwrap();
     for (k, (xi0, peak, argmin, least)) in [
         (0.8, 4.10, 0.3078, 0.2177058),
         (0.5, 4.01, 0.5567, 0.5700001),

@@ -4,11 +4,12 @@
 use super::doubt::doubt;
 use super::method::{Settings, TOL_RANGE};
 use super::model::{Initial, Release};
-use super::par::par_map;
+use super::par::{par_map, par_map_counted};
 use super::roots::{bisect, golden_min};
 use super::run::{Outcome, Run};
 use crate::engine::error::Error;
 use serde::Serialize;
+use std::sync::atomic::AtomicUsize;
 
 mod escape;
 
@@ -222,18 +223,19 @@ pub struct EscapePoint {
     pub v_escape: f64,
 }
 
-/// Fig. 5: v_e over `n` angles φ in [0, 2π) for each ξ0.
+/// Fig. 5: v_e over `n` angles φ in [0, 2π) for each ξ0; `done` counts the points found.
 pub fn sweep_escape(
     xi0s: &[f64],
     n: usize,
     settings: Settings,
     tol: f64,
+    done: &AtomicUsize,
 ) -> Result<Vec<EscapePoint>, Error> {
     let jobs: Vec<(f64, f64)> = xi0s
         .iter()
         .flat_map(|&xi0| (0..n).map(move |i| (xi0, std::f64::consts::TAU * i as f64 / n as f64)))
         .collect();
-    par_map(&jobs, |&(xi0, phi)| {
+    par_map_counted(&jobs, done, |&(xi0, phi)| {
         escape_speed(xi0, phi, settings, tol).map(|t| EscapePoint {
             xi0,
             phi,
@@ -254,9 +256,14 @@ pub struct RestPoint {
     pub angle: Option<f64>,
 }
 
-/// Fig. 6: the final rest position against ξ0 for release at rest in the lab.
-pub fn sweep_rest(xi0s: &[f64], settings: Settings) -> Result<Vec<RestPoint>, Error> {
-    par_map(xi0s, |&xi0| {
+/// Fig. 6: the final rest position against ξ0 for release at rest in the lab; `done` counts
+/// the points found.
+pub fn sweep_rest(
+    xi0s: &[f64],
+    settings: Settings,
+    done: &AtomicUsize,
+) -> Result<Vec<RestPoint>, Error> {
+    par_map_counted(xi0s, done, |&xi0| {
         let mut run = Run::new(Initial::at_rest(xi0, Release::LabRest), settings)?;
         let (outcome, s) = run.finish(CLASSIFY_TAU)?;
         let stuck = outcome == Outcome::Stuck;
