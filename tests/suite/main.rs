@@ -38,6 +38,7 @@ mod rim;
 mod rim_times;
 mod rod;
 mod serve;
+mod serve_class;
 mod si;
 mod spinup;
 mod terminal;
