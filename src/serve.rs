@@ -208,7 +208,15 @@ impl Shared {
         // The class's lock is taken before the sessions' everywhere: never inside it.
         drop(sessions);
         if presenter {
-            lock(&self.class).presenter = Some(id);
+            let mut class = lock(&self.class);
+            class.presenter = Some(id);
+            class.poll = Poll::default();
+            // A presenter who takes over (the teacher back after a dropped connection) is
+            // sent the followers: each is handed this class, not left applying its keys and
+            // lesson steps to the last one's.
+            for &f in &class.followers {
+                self.send(id, In::Join(f));
+            }
         }
         Some(id)
     }

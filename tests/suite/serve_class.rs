@@ -39,6 +39,10 @@ fn server(dir: &std::path::Path) -> Running {
     let path = dir.join("class.keys");
     std::fs::write(&path, LESSON).unwrap();
     let lesson = turntable::cli::lesson::for_class(path.to_str().unwrap()).unwrap();
+    serving(Some(lesson))
+}
+
+fn serving(lesson: Option<turntable::serve::Lesson>) -> Running {
     start(Options {
         listen: "127.0.0.1:0".parse().unwrap(),
         host_key: key(1),
@@ -47,7 +51,7 @@ fn server(dir: &std::path::Path) -> Running {
         presenter_keys: vec![key(3).public_key().clone()],
         presenter_passphrase: None,
         limits: Limits::default(),
-        lesson: Some(lesson),
+        lesson,
     })
     .unwrap()
 }
@@ -360,6 +364,52 @@ fn a_followers_answer_moves_neither_the_presenter_nor_the_others() {
             "the presenter's screen changed beyond its tally: {changed:?}"
         );
         assert!(tp.shows("y / n · Space plays"), "the question was closed");
+    });
+    s.stop("done");
+}
+
+/// A second presenter (the teacher back after a dropped connection) takes the class over:
+/// the followers are handed its class, lesson and all, not left applying its keys to the
+/// first one's.
+#[test]
+fn a_presenter_who_takes_over_hands_the_followers_its_class() {
+    let dir = tempfile::tempdir().unwrap();
+    let s = server(dir.path());
+    rt().block_on(async {
+        let (_h, tp, mut f1, _f2) = class(s.addr).await;
+        assert!(until(&mut [&mut f1], |s| all_show(s, &["First: at rest"])).await);
+        tp.send(b"\r").await;
+        assert!(until(&mut [&mut f1], |s| all_show(s, &["Second: at rest"])).await);
+        // The second presenter's lesson starts at its beginning: so does the class's.
+        let p2 = login(s.addr, "teacher", Login::Key(&key(3)))
+            .await
+            .unwrap()
+            .unwrap();
+        let mut tp2 = Tty::open(&p2, 80, 24).await;
+        assert!(
+            until(&mut [&mut tp2, &mut f1], |s| all_show(
+                s,
+                &["First: at rest"]
+            ))
+            .await
+        );
+        // The first presenter leads no more; the second's Enter moves the class one step.
+        tp.send(b"\r").await;
+        tp2.send(b"\r").await;
+        assert!(
+            until(&mut [&mut tp2, &mut f1], |s| all_show(
+                s,
+                &["Second: at rest"]
+            ))
+            .await
+        );
+        tokio::time::sleep(Duration::from_millis(500)).await;
+        until(&mut [&mut f1], |_| true).await;
+        assert!(
+            !f1.shows("Will it escape?"),
+            "the follower went past the class"
+        );
+        assert!(until(&mut [&mut tp2, &mut f1], |s| body(&s[0]) == body(&s[1])).await);
     });
     s.stop("done");
 }
