@@ -121,20 +121,25 @@ impl<B: Backend> Session<B> {
 
     /// Pasted text: typed, letter by letter, only at the prompt (a name, values);
     /// elsewhere ignored, since a `q` in it would quit. Line breaks and other control
-    /// characters are dropped: a name is one line.
-    pub fn paste(&mut self, text: &str) {
+    /// characters are dropped: a name is one line. Returns the keys pressed (a served class's
+    /// followers press them too).
+    pub fn paste(&mut self, text: &str) -> Vec<Chord> {
+        let mut pressed = vec![];
         if self.app.prompt.is_none() {
-            return;
+            return pressed;
         }
         // The prompt is one line: a pasted line break joins the lines. Then cleaned as any text
         // from outside is (`crate::text`); what cleaning removed is not typed.
         let text = crate::text::Clean::new(&text.replace(['\r', '\n'], ""));
         for c in text.chars().filter(|&c| c != crate::text::MARK).take(200) {
-            self.press(Chord::new(
+            let chord = Chord::new(
                 crossterm::event::KeyCode::Char(c),
                 crossterm::event::KeyModifiers::NONE,
-            ));
+            );
+            self.press(chord);
+            pressed.push(chord);
         }
+        pressed
     }
 
     /// A mouse event. The app maps cells through the canvas as last drawn, so anything

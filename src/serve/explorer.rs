@@ -355,9 +355,14 @@ impl Run<'_> {
                         }
                     }
                 }
-                Event::Mouse(_) if self.following => {}
+                Event::Mouse(_) | Event::Paste(_) if self.following => {}
                 Event::Mouse(m) => s.mouse(m)?,
-                Event::Paste(text) => s.paste(&text),
+                // What a paste typed at the prompt, the followers type too.
+                Event::Paste(text) => {
+                    for chord in s.paste(&text) {
+                        self.shared.lead(self.id, Lead::Key(chord));
+                    }
+                }
                 _ => {}
             }
         }

@@ -413,3 +413,34 @@ fn a_presenter_who_takes_over_hands_the_followers_its_class() {
     });
     s.stop("done");
 }
+
+/// What the presenter pastes at the values prompt, the followers type too.
+#[test]
+fn a_presenters_paste_reaches_the_followers() {
+    let s = serving(None);
+    rt().block_on(async {
+        let p = login(s.addr, "teacher", Login::Key(&key(3)))
+            .await
+            .unwrap()
+            .unwrap();
+        let mut tp = Tty::open(&p, 80, 24).await;
+        assert!(until(&mut [&mut tp], |s| all_show(s, &["lab frame"])).await);
+        let f = login(s.addr, "class", Login::Password("ba-ke-di-lo"))
+            .await
+            .unwrap()
+            .unwrap();
+        let mut tf = Tty::open(&f, 80, 24).await;
+        assert!(until(&mut [&mut tf], |s| all_show(s, &["following the class"])).await);
+        tp.send(b":").await;
+        assert!(until(&mut [&mut tf], |s| all_show(s, &["set:"])).await);
+        // A follower's own paste at the class's prompt waits, as its keys do.
+        tf.send(b"\x1b[200~phi 1\x1b[201~").await;
+        tp.send(b"\x1b[200~xi0 0.7\x1b[201~").await;
+        tp.send(b"\r").await;
+        assert!(until(&mut [&mut tp, &mut tf], |s| all_show(s, &["ξ0 0.700"])).await);
+        // Paused, the two show the same.
+        tp.send(b" ").await;
+        assert!(until(&mut [&mut tp, &mut tf], |s| body(&s[0]) == body(&s[1])).await);
+    });
+    s.stop("done");
+}
