@@ -45,10 +45,11 @@ pub fn names() -> String {
 
 /// An interactive lesson's place in its script: the session feeds it in as time passes (see
 /// `Session::pump_lesson`).
+/// Cloned cheaply (its steps are shared): a served class hands each follower the presenter's.
 #[derive(Clone, Debug)]
 pub struct Driver {
     name: String,
-    steps: Vec<Step>,
+    steps: std::sync::Arc<[Step]>,
     at: usize,
     /// Ticks still to pass for the current `tick N`.
     ticks: u64,
@@ -61,7 +62,7 @@ impl Driver {
     pub fn new(name: &str, steps: Vec<Step>) -> Driver {
         Driver {
             name: name.to_string(),
-            steps,
+            steps: steps.into(),
             at: 0,
             ticks: 0,
             plays: true,

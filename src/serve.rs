@@ -17,6 +17,7 @@ mod screen;
 
 pub use auth::{authorized_keys, fingerprint, host_key, host_key_path, passphrase};
 
+use crate::app::lesson::Tally;
 use crate::app::{App, Chord};
 use russh::keys::{PrivateKey, PublicKey};
 use std::collections::{HashMap, VecDeque};
@@ -72,6 +73,15 @@ pub struct Options {
     /// The presenter's passphrase.
     pub presenter_passphrase: Option<String>,
     pub limits: Limits,
+    /// A lesson each presenter's session runs from its start (`--lesson`), and so the class.
+    pub lesson: Option<Lesson>,
+}
+
+/// A lesson for the class: the scene it opens on and its script at the first step.
+#[derive(Clone, Debug)]
+pub struct Lesson {
+    pub scene: crate::scene::Scene,
+    pub driver: crate::lesson::Driver,
 }
 
 /// To a session's thread: from its connection, its writer, or the class.
@@ -86,17 +96,24 @@ pub enum In {
     Lead(Lead),
     /// (To the presenter.) This session asks to follow: send it the class.
     Join(u64),
-    /// (To a follower.) The class as it is now; what it is sent next applies to this.
-    Class(Box<App>),
+    /// (To a follower.) The class as it is now, its lesson's place included; what it is sent
+    /// next applies to this.
+    Class(Box<App>, Option<crate::lesson::Driver>),
     /// (To a follower.) The presenter left.
     Unled,
+    /// (To the presenter.) A follower answered its question: the tally changed.
+    Answered,
 }
 
-/// What the presenter's session did, for the followers to do alike.
+/// What the presenter's session did, for the followers to do alike: the same keys, ticks and
+/// lesson steps, in the same order, give the same state.
 #[derive(Clone, Copy, Debug)]
 pub enum Lead {
     Key(Chord),
     Tick,
+    /// Its lesson took the steps that were due (a follower's lesson, at the same place, takes
+    /// the same ones: it never moves on its own while following).
+    Lesson,
 }
 
 /// From a session's thread to its channel.
@@ -140,11 +157,24 @@ fn lock<T>(m: &Mutex<T>) -> MutexGuard<'_, T> {
     m.lock().unwrap_or_else(|e| e.into_inner())
 }
 
-/// The class: who presents, who follows.
+/// The class: who presents, who follows, and their answers to the presenter's question.
 #[derive(Default)]
 struct Class {
     presenter: Option<u64>,
     followers: Vec<u64>,
+    poll: Poll,
+}
+
+/// The followers' own answers to the question on the presenter's screen.
+#[derive(Default)]
+struct Poll {
+    /// Which question (the presenter's count of questions asked).
+    question: u32,
+    /// Whether it still takes answers: until the presenter answers it and goes on.
+    open: bool,
+    /// By session; the first answer stands. A follower who leaves or steps out is not
+    /// counted while out (its answer is kept, should it rejoin before the question closes).
+    answers: HashMap<u64, bool>,
 }
 
 /// What every connection and session shares.
@@ -178,7 +208,15 @@ impl Shared {
         // The class's lock is taken before the sessions' everywhere: never inside it.
         drop(sessions);
         if presenter {
-            lock(&self.class).presenter = Some(id);
+            let mut class = lock(&self.class);
+            class.presenter = Some(id);
+            class.poll = Poll::default();
+            // A presenter who takes over (the teacher back after a dropped connection) is
+            // sent the followers: each is handed this class, not left applying its keys and
+            // lesson steps to the last one's.
+            for &f in &class.followers {
+                self.send(id, In::Join(f));
+            }
         }
         Some(id)
     }
@@ -188,6 +226,7 @@ impl Shared {
         let mut class = lock(&self.class);
         if class.presenter == Some(id) {
             class.presenter = None;
+            class.poll = Poll::default();
             // Followers go on from where the class was, on their own clocks.
             for f in std::mem::take(&mut class.followers) {
                 self.send(f, In::Unled);
@@ -206,6 +245,11 @@ impl Shared {
         self.queued.fetch_sub(n, Ordering::Relaxed);
     }
 
+    /// Whether `id` presents.
+    fn presents(&self, id: u64) -> bool {
+        lock(&self.class).presenter == Some(id)
+    }
+
     /// Whether a presenter other than `id` leads a class.
     fn class_led(&self, id: u64) -> bool {
         lock(&self.class).presenter.is_some_and(|p| p != id)
@@ -221,12 +265,61 @@ impl Shared {
 
     /// (The presenter's thread.) `follower` gets the class as it is, and from now on what
     /// the presenter does: one lock, so nothing falls between.
-    fn welcome(&self, follower: u64, app: &App) {
+    fn welcome(&self, follower: u64, app: &App, lesson: Option<&crate::lesson::Driver>) {
         let mut class = lock(&self.class);
         if !class.followers.contains(&follower) {
             class.followers.push(follower);
         }
-        self.send(follower, In::Class(Box::new(app.clone())));
+        self.send(follower, In::Class(Box::new(app.clone()), lesson.cloned()));
+    }
+
+    /// (The presenter's thread.) Its question on screen now (the `asked`th, taking answers
+    /// while `open`): the followers' answers to it so far; None when `id` does not present.
+    /// A new question starts a new tally.
+    fn tally(&self, id: u64, asked: u32, open: bool) -> Option<Tally> {
+        let mut class = lock(&self.class);
+        if class.presenter != Some(id) {
+            return None;
+        }
+        let class = &mut *class;
+        if class.poll.question != asked {
+            class.poll = Poll {
+                question: asked,
+                ..Poll::default()
+            };
+        }
+        class.poll.open = open;
+        let mut t = Tally::default();
+        for f in &class.followers {
+            match class.poll.answers.get(f) {
+                Some(true) => t.yes += 1,
+                Some(false) => t.no += 1,
+                None => t.not_yet += 1,
+            }
+        }
+        Some(t)
+    }
+
+    /// (A follower's thread.) Its own answer to the `asked`th question: counted if that is
+    /// the presenter's question, still open, and `id` follows; whether it was.
+    fn answer(&self, id: u64, asked: u32, yes: bool) -> bool {
+        let mut class = lock(&self.class);
+        let p = &class.poll;
+        if !(p.open && p.question == asked && class.followers.contains(&id)) {
+            return false;
+        }
+        class.poll.answers.entry(id).or_insert(yes);
+        if let Some(presenter) = class.presenter {
+            self.send(presenter, In::Answered);
+        }
+        true
+    }
+
+    /// `id`'s answer to the `asked`th question, if it gave one in class.
+    fn answered(&self, id: u64, asked: u32) -> Option<bool> {
+        let class = lock(&self.class);
+        let p = &class.poll;
+        (p.question == asked).then(|| p.answers.get(&id).copied())?
     }
 
     fn unfollow(&self, id: u64) {

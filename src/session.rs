@@ -121,20 +121,25 @@ impl<B: Backend> Session<B> {
 
     /// Pasted text: typed, letter by letter, only at the prompt (a name, values);
     /// elsewhere ignored, since a `q` in it would quit. Line breaks and other control
-    /// characters are dropped: a name is one line.
-    pub fn paste(&mut self, text: &str) {
+    /// characters are dropped: a name is one line. Returns the keys pressed (a served class's
+    /// followers press them too).
+    pub fn paste(&mut self, text: &str) -> Vec<Chord> {
+        let mut pressed = vec![];
         if self.app.prompt.is_none() {
-            return;
+            return pressed;
         }
         // The prompt is one line: a pasted line break joins the lines. Then cleaned as any text
         // from outside is (`crate::text`); what cleaning removed is not typed.
         let text = crate::text::Clean::new(&text.replace(['\r', '\n'], ""));
         for c in text.chars().filter(|&c| c != crate::text::MARK).take(200) {
-            self.press(Chord::new(
+            let chord = Chord::new(
                 crossterm::event::KeyCode::Char(c),
                 crossterm::event::KeyModifiers::NONE,
-            ));
+            );
+            self.press(chord);
+            pressed.push(chord);
         }
+        pressed
     }
 
     /// A mouse event. The app maps cells through the canvas as last drawn, so anything
@@ -176,18 +181,27 @@ impl<B: Backend> Session<B> {
         self.lesson = Some(driver);
     }
 
+    /// The lesson at the place another session's is (a served class's follower is handed the
+    /// presenter's, with its state): None ends this one's. The app's caption is the app's.
+    pub fn set_lesson(&mut self, driver: Option<crate::lesson::Driver>) {
+        self.lesson = driver;
+    }
+
     /// Applies the lesson's steps that are due: all of them up to a `tick N` still counting
     /// (it counts the session's ticks of play: a pause from the keys holds it, and after the
     /// script's own `pause` it ends at once, as in a replay), a `wait` or an unanswered `ask`
     /// (until the keys answer; the loop and the clock go on meanwhile), or the end. `resize`
-    /// and `snapshot` mean nothing here.
-    pub fn pump_lesson(&mut self) -> Result<(), B::Error> {
+    /// and `snapshot` mean nothing here. Returns whether it moved (took a step, or ended):
+    /// a pump that did not changed nothing, so a follower need only do the ones that did.
+    pub fn pump_lesson(&mut self) -> Result<bool, B::Error> {
         let Some(mut d) = self.lesson.take() else {
-            return Ok(());
+            return Ok(false);
         };
+        let (at, done) = (d.taken(), self.app.lesson.done);
         let result = self.feed(&mut d);
+        let moved = d.taken() != at || self.app.lesson.done != done;
         self.lesson = Some(d);
-        result
+        result.map(|()| moved)
     }
 
     fn feed(&mut self, d: &mut crate::lesson::Driver) -> Result<(), B::Error> {

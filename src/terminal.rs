@@ -388,7 +388,9 @@ fn event_loop(
                     // Pasted text is not keys (a `q` in it would quit): ignored, and left out
                     // of the recording as it leaves the screen alone. At the save prompt it
                     // is the name: its letters are typed (and recorded as such).
-                    Event::Paste(text) => session.paste(&text),
+                    Event::Paste(text) => {
+                        session.paste(&text);
+                    }
                     _ => {}
                 }
             }

@@ -17,6 +17,33 @@ pub struct Lesson {
     pub waiting: bool,
     /// The lesson's script has run to its end.
     pub done: bool,
+    /// Questions asked so far: which one is on screen (others' answers are to that one).
+    pub asked: u32,
+    /// Set by the shell when the keys that move the lesson are not this screen's user's (a
+    /// served class's follower, led by the presenter): the user answers on their own, and
+    /// the caption speaks to that answer ([`Question::own`]).
+    pub apart: bool,
+    /// Set by the shell that gathers others' answers to the question on screen (a served
+    /// class's presenter): shown under the question.
+    pub tally: Option<Tally>,
+}
+
+/// Others' answers to a question so far.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Tally {
+    pub yes: usize,
+    pub no: usize,
+    pub not_yet: usize,
+}
+
+impl std::fmt::Display for Tally {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "y {} · n {} · {} not yet",
+            self.yes, self.no, self.not_yet
+        )
+    }
 }
 
 /// A prediction: yes means the run on screen escapes.
@@ -27,6 +54,9 @@ pub struct Question {
     /// The τ on screen when it was asked: unanswered, the run answers only once time has
     /// moved on from there (a run decided at once must not give the answer away).
     pub asked_at: f64,
+    /// The user's own answer when they answer apart ([`Lesson::apart`]); the keys' answer
+    /// still moves the lesson on.
+    pub own: Option<bool>,
 }
 
 /// What the lesson waits for from the keys now: their bindings in the lesson group take
@@ -79,6 +109,7 @@ impl App {
         }
         self.lesson.caption = text;
         self.lesson.question = None;
+        self.lesson.tally = None;
         self.dirty = true;
     }
 
@@ -91,8 +122,34 @@ impl App {
             text,
             answer: None,
             asked_at: self.now().tau,
+            own: None,
         });
+        self.lesson.asked = self.lesson.asked.wrapping_add(1);
+        // Nobody has answered this one yet: the shell says who has.
+        self.lesson.tally = None;
         self.dirty = true;
+    }
+
+    /// The user's own answer to the open question, when they answer apart (see
+    /// [`Lesson::apart`]); the first stands. Whether it was taken.
+    pub fn answer_apart(&mut self, yes: bool) -> bool {
+        let open = self.lesson.prompt() == Prompt::Answer;
+        match self.lesson.question.as_mut() {
+            Some(q) if open && q.own.is_none() => {
+                q.own = Some(yes);
+                self.dirty = true;
+                true
+            }
+            _ => false,
+        }
+    }
+
+    /// The shell's word on others' answers to the question on screen (None: it gathers none).
+    pub fn tell_tally(&mut self, tally: Option<Tally>) {
+        if self.lesson.tally != tally {
+            self.lesson.tally = tally;
+            self.dirty = true;
+        }
     }
 
     /// `wait` in an interactive lesson: hold until Enter.
@@ -119,17 +176,31 @@ impl App {
     pub fn caption(&self) -> Option<Caption> {
         let l = &self.lesson;
         let text = match (&l.caption, &l.question) {
-            (_, Some(q)) => match self.verdict(q) {
-                Some(v) => format!("{}\n{v}", q.text),
-                None => q.text.to_string(),
-            },
+            (_, Some(q)) => {
+                let mut text = q.text.to_string();
+                if let Some(v) = self.verdict(q) {
+                    text = format!("{text}\n{v}");
+                }
+                if let Some(t) = l.tally {
+                    text = format!("{text}\nanswers: {t}");
+                }
+                text
+            }
             (Some(c), None) => c.to_string(),
             (None, None) if l.done && l.name.is_some() => "End of the lesson.".into(),
             (None, None) if l.waiting => String::new(),
             (None, None) => return None,
         };
-        // Which key pauses is said wherever the lesson is (it never moves the lesson on).
+        // Which key pauses is said wherever the lesson is (it never moves the lesson on); to a
+        // user answering apart, only what is theirs to do.
+        let own = l.question.as_ref().and_then(|q| q.own);
         let prompt = match (l.prompt(), self.playing) {
+            (Prompt::Answer, _) if l.apart && own.is_some() => {
+                Some("answered · the presenter goes on")
+            }
+            (Prompt::Answer, _) if l.apart => Some("y / n"),
+            (Prompt::GoOn, _) if l.apart => Some("the presenter goes on"),
+            (Prompt::None, _) if l.apart && !l.done => None,
             (Prompt::Answer, true) => Some("y / n · Space pauses"),
             (Prompt::Answer, false) => Some("y / n · Space plays"),
             (Prompt::GoOn, true) => Some("Enter: go on · Space pauses"),
@@ -161,7 +232,8 @@ impl App {
     /// The line under a prediction: what was said while the run on screen is undecided, then
     /// whether it was right and how the run ended.
     fn verdict(&self, q: &Question) -> Option<String> {
-        let answer = q.answer;
+        // Answering apart, the user's own answer is the one spoken to (none: the run's word).
+        let answer = if self.lesson.apart { q.own } else { q.answer };
         if answer.is_none() && self.now().tau <= q.asked_at {
             return None;
         }
@@ -172,6 +244,11 @@ impl App {
                 "it does not escape"
             }
         };
+        // Answering apart, the run's word waits for the keys' (the others may not have
+        // answered yet: the outcome is not given away).
+        if self.lesson.apart && q.answer.is_none() && self.now().tau <= q.asked_at {
+            return answer.map(|a| format!("You said {}.", said(a)));
+        }
         let escaped = match self.sim().outcome_now() {
             Outcome::Running => {
                 return answer.map(|a| format!("You said {}. Watch the run.", said(a)));

@@ -73,6 +73,25 @@ pub fn run(a: &LessonArgs) -> Result<Option<(Look, Driver)>, Error> {
     Ok(None)
 }
 
+/// What `turntable serve --lesson NAME|PATH` gives each presenter's session: the lesson's
+/// scene (its own `# replay: --scene`, if it names one) and its script at the first step.
+pub fn for_class(name: &str) -> Result<crate::serve::Lesson, Error> {
+    let lesson = match find(name) {
+        Some(l) => Source::from(l),
+        None => own(name)?,
+    };
+    let own = crate::script::script_options(&lesson.script).map_err(|e| e.context(name))?;
+    let look = Look {
+        scene: own.scene,
+        theme: None,
+    };
+    let (app, _, steps) = prepared(&lesson, None, false, false, &look)?;
+    Ok(crate::serve::Lesson {
+        scene: app.scene().clone(),
+        driver: Driver::new(&lesson.name, steps),
+    })
+}
+
 /// A lesson to run: its name (for the caption) and its key script.
 struct Source {
     name: String,

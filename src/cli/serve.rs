@@ -45,6 +45,11 @@ pub struct ServeArgs {
     /// The largest terminal drawn, WxH (a larger window is drawn at this size).
     #[arg(long, value_name = "WxH", value_parser = parse_size, default_value = "400x150")]
     pub max_size: (u16, u16),
+    /// A lesson (see `turntable lesson --list`) or a lesson file of your own that the
+    /// presenter's session runs from its start: every follower takes it in step, and the
+    /// presenter sees the class's answers to its questions.
+    #[arg(long, value_name = "NAME|PATH")]
+    pub lesson: Option<String>,
 }
 
 impl ServeArgs {
@@ -92,7 +97,16 @@ impl ServeArgs {
             max_rows: self.max_size.1,
             ..Limits::default()
         };
+        let lesson = self
+            .lesson
+            .as_deref()
+            .map(super::lesson::for_class)
+            .transpose()?;
+        if let Some(l) = &lesson {
+            said.push(format!("lesson for the class: {}", l.driver.name()));
+        }
         let options = Options {
+            lesson,
             listen: self.listen,
             host_key,
             keys,

@@ -6,6 +6,7 @@
 use super::keys::Keys;
 use super::screen::Screen;
 use super::{In, Lead, Out, Shared};
+use crate::app::lesson::Prompt;
 use crate::app::{App, Chord, Effect, Effects};
 use crate::session::Session;
 use crate::terminal::pace::{Clock, coalesce_drags};
@@ -89,7 +90,14 @@ pub fn run(shared: Arc<Shared>, id: u64, client: Client, inbox: Receiver<In>, ou
         shared.leave(id);
         return;
     };
-    let mut app = App::new(crate::scene::Scene::default_scene());
+    // A presenter runs the class's lesson, if there is one, from its scene.
+    let lesson = shared
+        .options
+        .lesson
+        .as_ref()
+        .filter(|_| shared.presents(id));
+    let scene = lesson.map_or_else(crate::scene::Scene::default_scene, |l| l.scene.clone());
+    let mut app = App::new(scene);
     app.mouse = true;
     let mut s = match Session::new(app, theme, Screen::new(w, h), None) {
         Ok(s) => s,
@@ -99,6 +107,9 @@ pub fn run(shared: Arc<Shared>, id: u64, client: Client, inbox: Receiver<In>, ou
         }
     };
     s.carry = guest;
+    if let Some(l) = lesson {
+        s.start_lesson(l.driver.clone());
+    }
     let mut run = Run {
         shared: &shared,
         id,
@@ -185,10 +196,14 @@ impl Run<'_> {
                     }
                     s.tick();
                     self.shared.lead(self.id, Lead::Tick);
-                    s.pump_lesson()?;
+                    self.pump(s)?;
                 }
             }
-            s.pump_lesson()?;
+            // A follower's lesson moves only when the presenter's does (`Lead::Lesson`).
+            if !self.following {
+                self.pump(s)?;
+            }
+            self.tally(s);
             self.mouse(s)?;
             let frame_due = self.last_frame.map_or(now, |t| t + gap);
             if self.in_flight.is_none() {
@@ -265,19 +280,31 @@ impl Run<'_> {
             In::Lead(lead) if self.following => match lead {
                 Lead::Key(chord) => s.press(chord),
                 Lead::Tick => s.tick(),
+                Lead::Lesson => {
+                    s.pump_lesson()?;
+                }
             },
             In::Lead(_) => {}
             In::Unled if self.following => {
                 self.following = false;
+                s.app.lesson.apart = false;
                 s.app
                     .report("the presenter left: exploring on your own".into());
             }
-            In::Unled => {}
-            In::Join(follower) => self.shared.welcome(follower, &s.app),
-            In::Class(app) => {
+            In::Unled | In::Answered => {}
+            In::Join(follower) => self.shared.welcome(follower, &s.app, s.lesson()),
+            In::Class(app, lesson) => {
                 let (w, h) = (s.app.screen.0, s.app.screen.1);
                 // The class's state, drawn in this client's own theme and size.
                 s.app = *app;
+                s.set_lesson(lesson);
+                // The presenter's tally is the presenter's; a follower answers for itself
+                // (the answer it gave in class before stepping out, if this question is open).
+                s.app.tell_tally(None);
+                s.app.lesson.apart = true;
+                if let Some(yes) = self.shared.answered(self.id, s.app.lesson.asked) {
+                    s.app.answer_apart(yes);
+                }
                 crate::session::tell_size(&mut s.app, &s.theme, w, h);
                 s.app.notice = Some("following the class: F2 steps out".into());
                 s.app.invalidate();
@@ -288,11 +315,31 @@ impl Run<'_> {
         Ok(None)
     }
 
+    /// The lesson's steps that are due; if it moved, the followers' lessons move alike (a
+    /// question it asked takes answers before any follower can see it).
+    fn pump(&mut self, s: &mut Session<Screen>) -> io::Result<()> {
+        if s.pump_lesson()? {
+            self.tally(s);
+            self.shared.lead(self.id, Lead::Lesson);
+        }
+        Ok(())
+    }
+
     fn events(&mut self, s: &mut Session<Screen>, events: Vec<Event>) -> io::Result<()> {
         for ev in coalesce_drags(events) {
             match ev {
                 Event::Key(k) if k.code == FOLLOW_KEY && k.modifiers == KeyModifiers::NONE => {
                     self.follow_key(s)
+                }
+                // A follower answers the class's question for itself: counted on the
+                // presenter's screen, and never led (the class goes on when the presenter does).
+                Event::Key(k)
+                    if self.following
+                        && k.modifiers == KeyModifiers::NONE
+                        && matches!(k.code, KeyCode::Char('y' | 'n'))
+                        && s.app.lesson.prompt() == Prompt::Answer =>
+                {
+                    self.answer(s, k.code == KeyCode::Char('y'))
                 }
                 // A follower's own keys wait until it steps out (Ctrl-C and q still end it).
                 Event::Key(k)
@@ -308,13 +355,46 @@ impl Run<'_> {
                         }
                     }
                 }
-                Event::Mouse(_) if self.following => {}
+                Event::Mouse(_) | Event::Paste(_) if self.following => {}
                 Event::Mouse(m) => s.mouse(m)?,
-                Event::Paste(text) => s.paste(&text),
+                // What a paste typed at the prompt, the followers type too.
+                Event::Paste(text) => {
+                    for chord in s.paste(&text) {
+                        self.shared.lead(self.id, Lead::Key(chord));
+                    }
+                }
                 _ => {}
             }
         }
         Ok(())
+    }
+
+    /// A follower's own answer to the open question: told to the presenter's tally, and shown
+    /// on its own screen if counted (the presenter may have closed it meanwhile).
+    fn answer(&mut self, s: &mut Session<Screen>, yes: bool) {
+        let taken = s
+            .app
+            .lesson
+            .question
+            .as_ref()
+            .is_some_and(|q| q.own.is_none())
+            && self.shared.answer(self.id, s.app.lesson.asked, yes);
+        if taken {
+            s.app.answer_apart(yes);
+        }
+    }
+
+    /// (The presenter's thread, while a question is on screen.) The class's answers so far,
+    /// told to the model for the caption; reset by a new question.
+    fn tally(&mut self, s: &mut Session<Screen>) {
+        let l = &s.app.lesson;
+        if l.question.is_none() && l.tally.is_none() {
+            return;
+        }
+        let open = l.prompt() == Prompt::Answer;
+        let tally = self.shared.tally(self.id, l.asked, open);
+        let shown = tally.filter(|_| l.question.is_some());
+        s.app.tell_tally(shown);
     }
 
     /// F2: a follower steps out (and explores from where the class is); out, it rejoins.
@@ -322,6 +402,7 @@ impl Run<'_> {
         if self.following {
             self.following = false;
             self.shared.unfollow(self.id);
+            s.app.lesson.apart = false;
             s.app
                 .report("stepped out of the class: F2 rejoins it".into());
         } else if self.shared.class_led(self.id) {

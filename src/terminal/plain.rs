@@ -97,7 +97,7 @@ fn event_loop(session: &mut Session<TestBackend>, flags: &Flags) -> io::Result<(
             enter()?;
             clock.restart(Instant::now());
         }
-        let Ok(()) = session.pump_lesson();
+        let Ok(_) = session.pump_lesson();
         session.ask_analysis();
         say(&session.app, &mut seen, &mut out)?;
         if session.is_playing() {
@@ -106,7 +106,7 @@ fn event_loop(session: &mut Session<TestBackend>, flags: &Flags) -> io::Result<(
                     break;
                 }
                 session.tick();
-                let Ok(()) = session.pump_lesson();
+                let Ok(_) = session.pump_lesson();
                 say(&session.app, &mut seen, &mut out)?;
             }
         }

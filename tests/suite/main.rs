@@ -39,6 +39,7 @@ mod rim;
 mod rim_times;
 mod rod;
 mod serve;
+mod serve_class;
 mod si;
 mod spinup;
 mod terminal;

@@ -24,6 +24,7 @@ fn server(limits: Limits) -> Running {
         presenter_keys: vec![key(3).public_key().clone()],
         presenter_passphrase: Some("mu-ra-te-vo".into()),
         limits,
+        lesson: None,
     })
     .unwrap()
 }

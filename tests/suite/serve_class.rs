@@ -1,0 +1,446 @@
+//! A class's lesson over `turntable serve --lesson`, driven by in-process SSH clients: the
+//! presenter's lesson reaches every follower in step (captions, scenes, pauses, questions), the
+//! followers' own answers are tallied on the presenter's screen, and a follower's answer moves
+//! nobody else. Screens are read through a small terminal model of what the clients receive;
+//! every wait polls for a condition, with room to spare on a loaded machine.
+
+use russh::client::Handle;
+use russh::keys::PrivateKey;
+use russh::keys::ssh_key::private::Ed25519Keypair;
+use std::time::Duration;
+use turntable::serve::client::{Login, Term, Trust, login};
+use turntable::serve::{Limits, Options, Running, start};
+
+const WAIT: Duration = Duration::from_secs(30);
+
+/// The class's lesson: two scenes, each held for Enter, then a question.
+const LESSON: &str = "# a class's lesson, for the tests
+6
+pause
+X*20
+say First: at rest on the table at xi0 = 0.9.
+wait
+6
+pause
+say Second: at rest at xi0 = 1.1, outside R_max.
+wait
+ask Will it escape? (y/n)
+play
+tick 30
+wait
+say The end.
+";
+
+fn key(n: u8) -> PrivateKey {
+    PrivateKey::from(Ed25519Keypair::from_seed(&[n; 32]))
+}
+
+fn server(dir: &std::path::Path) -> Running {
+    let path = dir.join("class.keys");
+    std::fs::write(&path, LESSON).unwrap();
+    let lesson = turntable::cli::lesson::for_class(path.to_str().unwrap()).unwrap();
+    serving(Some(lesson))
+}
+
+fn serving(lesson: Option<turntable::serve::Lesson>) -> Running {
+    start(Options {
+        listen: "127.0.0.1:0".parse().unwrap(),
+        host_key: key(1),
+        keys: vec![],
+        passphrase: Some("ba-ke-di-lo".into()),
+        presenter_keys: vec![key(3).public_key().clone()],
+        presenter_passphrase: None,
+        limits: Limits::default(),
+        lesson,
+    })
+    .unwrap()
+}
+
+fn rt() -> tokio::runtime::Runtime {
+    tokio::runtime::Builder::new_current_thread()
+        .enable_all()
+        .build()
+        .unwrap()
+}
+
+/// What a terminal of `w` × `h` shows after `bytes`, as rows: the cursor moves, clears and
+/// text that ratatui's crossterm backend writes (styles and modes are passed over).
+fn screen(bytes: &[u8], w: usize, h: usize) -> Vec<String> {
+    let text = String::from_utf8_lossy(bytes);
+    let mut grid = vec![vec![' '; w]; h];
+    let (mut r, mut c) = (0usize, 0usize);
+    let mut it = text.chars();
+    while let Some(ch) = it.next() {
+        match ch {
+            '\x1b' => {
+                if it.next() != Some('[') {
+                    continue;
+                }
+                let mut params = String::new();
+                let mut last = None;
+                for x in it.by_ref() {
+                    if ('\x40'..='\x7e').contains(&x) {
+                        last = Some(x);
+                        break;
+                    }
+                    params.push(x);
+                }
+                match last {
+                    Some('H') => {
+                        let mut p = params.split(';').map(|n| n.parse::<usize>().unwrap_or(1));
+                        r = p.next().unwrap_or(1).saturating_sub(1);
+                        c = p.next().unwrap_or(1).saturating_sub(1);
+                    }
+                    Some('J') if params == "2" => grid = vec![vec![' '; w]; h],
+                    _ => {}
+                }
+            }
+            '\r' => c = 0,
+            '\n' => r += 1,
+            ch if ch < ' ' => {}
+            ch => {
+                if r < h && c < w {
+                    grid[r][c] = ch;
+                }
+                c += 1;
+            }
+        }
+    }
+    grid.into_iter()
+        .map(|row| row.into_iter().collect::<String>().trim_end().to_string())
+        .collect()
+}
+
+/// A client's terminal and its size.
+struct Tty {
+    t: Term,
+    w: usize,
+    h: usize,
+}
+
+impl Tty {
+    async fn open(handle: &Handle<Trust>, w: usize, h: usize) -> Tty {
+        let t = Term::open(handle, w as u32, h as u32).await.unwrap();
+        Tty { t, w, h }
+    }
+
+    fn rows(&self) -> Vec<String> {
+        screen(&self.t.seen, self.w, self.h)
+    }
+
+    fn shows(&self, text: &str) -> bool {
+        self.rows().join("\n").contains(text)
+    }
+
+    async fn send(&self, bytes: &[u8]) {
+        self.t.send(bytes).await.unwrap();
+    }
+}
+
+/// Reads every terminal until `done` holds of their screens (or `WAIT` passes); whether it
+/// did. On failure the screens are printed.
+async fn until(ttys: &mut [&mut Tty], done: impl Fn(&[Vec<String>]) -> bool) -> bool {
+    let end = std::time::Instant::now() + WAIT;
+    loop {
+        for tty in ttys.iter_mut() {
+            let at = tty.t.seen.len();
+            tty.t.until(at, b"\0never", Duration::from_millis(30)).await;
+        }
+        let screens: Vec<Vec<String>> = ttys.iter().map(|t| t.rows()).collect();
+        if done(&screens) {
+            return true;
+        }
+        if std::time::Instant::now() > end {
+            for s in &screens {
+                eprintln!("{}\n----", s.join("\n"));
+            }
+            return false;
+        }
+    }
+}
+
+/// Whether every screen shows each of `texts`.
+fn all_show(screens: &[Vec<String>], texts: &[&str]) -> bool {
+    screens.iter().all(|s| {
+        let s = s.join("\n");
+        texts.iter().all(|t| s.contains(t))
+    })
+}
+
+/// The rows between the title and the two lines at the foot (notices, keys), but the
+/// caption's lower edge (which says what this user's keys do): the picture, the panel and the
+/// caption's words.
+fn body(s: &[String]) -> Vec<&String> {
+    s[1..s.len() - 2]
+        .iter()
+        .filter(|r| !r.starts_with('└'))
+        .collect()
+}
+
+/// The presenter at 80×24 and two followers, at 80×24 and 60×20, the lesson at its first wait.
+async fn class(addr: std::net::SocketAddr) -> (Vec<Handle<Trust>>, Tty, Tty, Tty) {
+    let p = login(addr, "teacher", Login::Key(&key(3)))
+        .await
+        .unwrap()
+        .unwrap();
+    let mut tp = Tty::open(&p, 80, 24).await;
+    assert!(until(&mut [&mut tp], |s| all_show(s, &["First: at rest"])).await);
+    let mut handles = vec![p];
+    let mut followers = vec![];
+    for (w, h) in [(80, 24), (60, 20)] {
+        let f = login(addr, "class", Login::Password("ba-ke-di-lo"))
+            .await
+            .unwrap()
+            .unwrap();
+        followers.push(Tty::open(&f, w, h).await);
+        handles.push(f);
+    }
+    let (f2, f1) = (followers.pop().unwrap(), followers.pop().unwrap());
+    (handles, tp, f1, f2)
+}
+
+/// The presenter's Enter moves the lesson on for everyone: the same captions and the same
+/// scenes, held at the same waits; the question reaches the followers with their own prompt.
+#[test]
+fn a_presenters_lesson_runs_for_every_follower_in_step() {
+    let dir = tempfile::tempdir().unwrap();
+    let s = server(dir.path());
+    rt().block_on(async {
+        let (_h, mut tp, mut f1, mut f2) = class(s.addr).await;
+        // Joined at the first wait: the scene as the lesson left it (ξ0 0.9, paused).
+        let first = ["First: at rest", "ξ0 0.900", "following the class"];
+        assert!(until(&mut [&mut f1, &mut f2], |s| all_show(s, &first)).await);
+        // Paused, the presenter and the follower of its size show the same picture, panel and
+        // caption.
+        assert!(until(&mut [&mut tp, &mut f1], |s| body(&s[0]) == body(&s[1])).await);
+        tp.send(b"\r").await;
+        let second = ["Second: at rest", "ξ0 1.100"];
+        assert!(
+            until(&mut [&mut tp, &mut f1, &mut f2], |s| {
+                all_show(s, &second) && body(&s[0]) == body(&s[1])
+            })
+            .await
+        );
+        tp.send(b"\r").await;
+        // The question: the presenter answers for the class (y / n moves it on), a follower
+        // answers for itself.
+        assert!(
+            until(&mut [&mut tp, &mut f1, &mut f2], |s| {
+                all_show(&s[..1], &["Will it escape?", "y / n · Space plays"])
+                    && all_show(&s[1..], &["Will it escape?", " y / n ┘"])
+            })
+            .await
+        );
+        tp.send(b"y").await;
+        // The run answers; then the presenter's Enter ends the lesson for all.
+        let answered = ["Right: it escapes", "Enter: go on"];
+        assert!(until(&mut [&mut tp], |s| all_show(s, &answered)).await);
+        assert!(
+            until(&mut [&mut f1, &mut f2], |s| all_show(
+                s,
+                &["The run: it escapes"]
+            ))
+            .await
+        );
+        tp.send(b"\r").await;
+        assert!(
+            until(&mut [&mut tp, &mut f1, &mut f2], |s| all_show(
+                s,
+                &["The end."]
+            ))
+            .await
+        );
+    });
+    s.stop("done");
+}
+
+/// The followers' own y / n are counted on the presenter's screen as they come; the first
+/// answer stands; once the presenter answers, the question takes no more and its tally stays
+/// until the lesson says something else.
+#[test]
+fn the_followers_answers_are_tallied_on_the_presenters_screen() {
+    let dir = tempfile::tempdir().unwrap();
+    let s = server(dir.path());
+    rt().block_on(async {
+        let (_h, mut tp, mut f1, mut f2) = class(s.addr).await;
+        assert!(
+            until(&mut [&mut f1, &mut f2], |s| all_show(
+                s,
+                &["First: at rest"]
+            ))
+            .await
+        );
+        // Each Enter once the lesson holds again (an Enter while it moves is not a go-on).
+        tp.send(b"\r").await;
+        assert!(until(&mut [&mut tp], |s| all_show(s, &["Second", "Enter"])).await);
+        tp.send(b"\r").await;
+        assert!(until(&mut [&mut tp], |s| all_show(s, &["y 0 · n 0 · 2 not yet"])).await);
+        assert!(
+            until(&mut [&mut f1, &mut f2], |s| all_show(
+                s,
+                &["Will it escape?"]
+            ))
+            .await
+        );
+        f1.send(b"y").await;
+        assert!(until(&mut [&mut tp], |s| all_show(s, &["y 1 · n 0 · 1 not yet"])).await);
+        assert!(until(&mut [&mut f1], |s| all_show(s, &["answered"])).await);
+        f2.send(b"n").await;
+        assert!(until(&mut [&mut tp], |s| all_show(s, &["y 1 · n 1 · 0 not yet"])).await);
+        // A second answer changes nothing: the first stands.
+        f1.send(b"n").await;
+        tokio::time::sleep(Duration::from_millis(500)).await;
+        assert!(until(&mut [&mut tp], |s| all_show(s, &["y 1 · n 1 · 0 not yet"])).await);
+        // The presenter answers: the question closes, its tally stays while it is on screen.
+        tp.send(b"n").await;
+        assert!(
+            until(&mut [&mut tp], |s| all_show(
+                s,
+                &["Not so: you said it does not escape"]
+            ))
+            .await
+        );
+        assert!(tp.shows("y 1 · n 1 · 0 not yet"));
+        // Each follower is told about its own answer.
+        assert!(until(&mut [&mut f1], |s| all_show(s, &["Right: it escapes"])).await);
+        assert!(
+            until(&mut [&mut f2], |s| all_show(
+                s,
+                &["Not so: you said it does not"]
+            ))
+            .await
+        );
+        // The next words of the lesson (once it waits for them): no tally.
+        assert!(until(&mut [&mut tp], |s| all_show(s, &["Enter: go on"])).await);
+        tp.send(b"\r").await;
+        assert!(until(&mut [&mut tp], |s| all_show(s, &["The end."])).await);
+        assert!(!tp.shows("not yet"));
+    });
+    s.stop("done");
+}
+
+/// A follower's answer is its own: the presenter's screen changes only in its tally, the
+/// other follower's not at all, and the lesson holds until the presenter goes on.
+#[test]
+fn a_followers_answer_moves_neither_the_presenter_nor_the_others() {
+    let dir = tempfile::tempdir().unwrap();
+    let s = server(dir.path());
+    rt().block_on(async {
+        let (_h, mut tp, mut f1, mut f2) = class(s.addr).await;
+        assert!(
+            until(&mut [&mut f1, &mut f2], |s| all_show(
+                s,
+                &["First: at rest"]
+            ))
+            .await
+        );
+        tp.send(b"\r").await;
+        assert!(until(&mut [&mut tp], |s| all_show(s, &["Second", "Enter"])).await);
+        tp.send(b"\r").await;
+        let asked = ["Will it escape?"];
+        assert!(
+            until(&mut [&mut tp, &mut f1, &mut f2], |s| {
+                all_show(s, &asked) && all_show(&s[..1], &["2 not yet"])
+            })
+            .await
+        );
+        let (p_before, f2_before) = (tp.rows(), f2.rows());
+        f1.send(b"y").await;
+        assert!(until(&mut [&mut tp], |s| all_show(s, &["y 1 · n 0 · 1 not yet"])).await);
+        assert!(until(&mut [&mut f1], |s| all_show(s, &["You said it escapes."])).await);
+        assert!(
+            !f1.shows("Right"),
+            "the outcome given away before the class answered"
+        );
+        // Everything a while longer: nothing else moves.
+        tokio::time::sleep(Duration::from_millis(800)).await;
+        until(&mut [&mut tp, &mut f2], |_| true).await;
+        assert_eq!(f2.rows(), f2_before, "the other follower's screen moved");
+        let rows = tp.rows();
+        let changed: Vec<(&String, &String)> =
+            p_before.iter().zip(&rows).filter(|(a, b)| a != b).collect();
+        assert!(
+            changed.len() == 1 && changed[0].1.contains("y 1 · n 0 · 1 not yet"),
+            "the presenter's screen changed beyond its tally: {changed:?}"
+        );
+        assert!(tp.shows("y / n · Space plays"), "the question was closed");
+    });
+    s.stop("done");
+}
+
+/// A second presenter (the teacher back after a dropped connection) takes the class over:
+/// the followers are handed its class, lesson and all, not left applying its keys to the
+/// first one's.
+#[test]
+fn a_presenter_who_takes_over_hands_the_followers_its_class() {
+    let dir = tempfile::tempdir().unwrap();
+    let s = server(dir.path());
+    rt().block_on(async {
+        let (_h, tp, mut f1, _f2) = class(s.addr).await;
+        assert!(until(&mut [&mut f1], |s| all_show(s, &["First: at rest"])).await);
+        tp.send(b"\r").await;
+        assert!(until(&mut [&mut f1], |s| all_show(s, &["Second: at rest"])).await);
+        // The second presenter's lesson starts at its beginning: so does the class's.
+        let p2 = login(s.addr, "teacher", Login::Key(&key(3)))
+            .await
+            .unwrap()
+            .unwrap();
+        let mut tp2 = Tty::open(&p2, 80, 24).await;
+        assert!(
+            until(&mut [&mut tp2, &mut f1], |s| all_show(
+                s,
+                &["First: at rest"]
+            ))
+            .await
+        );
+        // The first presenter leads no more; the second's Enter moves the class one step.
+        tp.send(b"\r").await;
+        tp2.send(b"\r").await;
+        assert!(
+            until(&mut [&mut tp2, &mut f1], |s| all_show(
+                s,
+                &["Second: at rest"]
+            ))
+            .await
+        );
+        tokio::time::sleep(Duration::from_millis(500)).await;
+        until(&mut [&mut f1], |_| true).await;
+        assert!(
+            !f1.shows("Will it escape?"),
+            "the follower went past the class"
+        );
+        assert!(until(&mut [&mut tp2, &mut f1], |s| body(&s[0]) == body(&s[1])).await);
+    });
+    s.stop("done");
+}
+
+/// What the presenter pastes at the values prompt, the followers type too.
+#[test]
+fn a_presenters_paste_reaches_the_followers() {
+    let s = serving(None);
+    rt().block_on(async {
+        let p = login(s.addr, "teacher", Login::Key(&key(3)))
+            .await
+            .unwrap()
+            .unwrap();
+        let mut tp = Tty::open(&p, 80, 24).await;
+        assert!(until(&mut [&mut tp], |s| all_show(s, &["lab frame"])).await);
+        let f = login(s.addr, "class", Login::Password("ba-ke-di-lo"))
+            .await
+            .unwrap()
+            .unwrap();
+        let mut tf = Tty::open(&f, 80, 24).await;
+        assert!(until(&mut [&mut tf], |s| all_show(s, &["following the class"])).await);
+        tp.send(b":").await;
+        assert!(until(&mut [&mut tf], |s| all_show(s, &["set:"])).await);
+        // A follower's own paste at the class's prompt waits, as its keys do.
+        tf.send(b"\x1b[200~phi 1\x1b[201~").await;
+        tp.send(b"\x1b[200~xi0 0.7\x1b[201~").await;
+        tp.send(b"\r").await;
+        assert!(until(&mut [&mut tp, &mut tf], |s| all_show(s, &["ξ0 0.700"])).await);
+        // Paused, the two show the same.
+        tp.send(b" ").await;
+        assert!(until(&mut [&mut tp, &mut tf], |s| body(&s[0]) == body(&s[1])).await);
+    });
+    s.stop("done");
+}
