@@ -21,7 +21,7 @@ const TRAJECTORY_HEADER: &[u8] = b"tau,x,y,xq,yq,u,stuck,energy,work,approx_xi\n
 /// step's dense output, [`crate::engine::work::Tally`]; dE/dτ = −|u|, so the two differ by
 /// E(0) up to the run's own error), and the Sec. III
 /// approximation of ξ for a release at rest (Eq. 13 in the lab, Eq. 19 on the table for
-/// ξ0 > 1; valid only early, see README), empty otherwise. Under Stokes drag the work is
+/// ξ0 > 1; valid only early, see docs/command-line.md), empty otherwise. Under Stokes drag the work is
 /// −γ∫|u|²dτ, and no approximation applies.
 struct Rows {
     initial: Initial,

@@ -319,10 +319,11 @@ fn an_angle_a_hair_below_a_turn_is_zero() {
     assert!((w - (std::f64::consts::TAU - 1e-3)).abs() < 1e-15);
 }
 
-/// The fields README's table under `heading` lists.
+/// The fields docs/command-line.md's table under `heading` lists.
 fn readme_fields(heading: &str) -> Vec<String> {
     let readme =
-        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md")).unwrap();
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/command-line.md"))
+            .unwrap();
     let table = readme.split(heading).nth(1).unwrap();
     table
         .lines()
@@ -333,7 +334,7 @@ fn readme_fields(heading: &str) -> Vec<String> {
         .collect()
 }
 
-/// The JSON reports are documented once, in README: every field printed is listed there, and
+/// The JSON reports are documented once, in docs/command-line.md: every field printed is listed there, and
 /// nothing else is (units and check included when asked for).
 #[test]
 fn json_reports_are_the_fields_readme_lists() {

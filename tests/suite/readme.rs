@@ -1,5 +1,6 @@
 //! README's generated parts: the picture is what `replay` prints for `docs/snapshot.keys`, the
-//! key table is the keymap's, and the example key script replays as pasted.
+//! key table (docs/keys.md) is the keymap's, and the example key script (docs/key-scripts.md)
+//! replays as pasted; the README stays a front page.
 
 use std::path::Path;
 use turntable::app::KEYMAP;
@@ -58,15 +59,15 @@ fn the_picture_is_what_replay_prints() {
 fn readme_lists_every_key_of_the_keymap() {
     let table = key_table();
     assert!(
-        read("README.md").contains(&table),
-        "README's key table should be:\n{table}"
+        read("docs/keys.md").contains(&table),
+        "docs/keys.md's key table should be:\n{table}"
     );
 }
 
 /// The example under "Key scripts", as a reader would paste it (comments after `#`).
 #[test]
 fn readme_example_script_replays() {
-    let readme = read("README.md");
+    let readme = read("docs/key-scripts.md");
     let section = readme.split("## Key scripts").nth(1).unwrap();
     let script: String = section
         .lines()
@@ -124,5 +125,49 @@ fn the_docs_pictures_are_what_the_tool_makes() {
     let readme = read("README.md");
     for name in ["docs/demo.cast", "docs/fig5.svg"] {
         assert!(readme.contains(name), "README does not show {name}");
+    }
+}
+
+/// Issue 32 item 1: the README is a front page (at most 12 KB), every page it links to is
+/// there, and every key its short table names is bound to what it says.
+#[test]
+fn the_readme_is_a_front_page() {
+    let readme = read("README.md");
+    assert!(
+        readme.len() <= 12 * 1024,
+        "README is {} bytes",
+        readme.len()
+    );
+    for link in readme.split("](").skip(1) {
+        let target = link.split(')').next().unwrap();
+        let path = target.split('#').next().unwrap();
+        assert!(
+            Path::new(env!("CARGO_MANIFEST_DIR")).join(path).exists(),
+            "README links to {target}, which is not there"
+        );
+    }
+    let table = readme.split("## The keys that matter").nth(1).unwrap();
+    let keys = table.split("\n## ").next().unwrap();
+    for row in keys.lines().filter(|l| l.starts_with("| `")) {
+        for key in row.split('|').nth(1).unwrap().split('`').skip(1).step_by(2) {
+            let named = |k: &str| {
+                KEYMAP
+                    .iter()
+                    .any(|b| b.chord.to_string() == k || b.chord.key_label() == k)
+            };
+            let bound = match key {
+                "1`–`6" => true,
+                k => named(k) || named(&k.to_lowercase()),
+            };
+            assert!(bound, "README names key {key}, which is not bound");
+        }
+    }
+    for page in [
+        "docs/keys.md",
+        "docs/command-line.md",
+        "docs/key-scripts.md",
+        "docs/serve.md",
+    ] {
+        assert!(readme.contains(page), "README does not point to {page}");
     }
 }

@@ -1,5 +1,5 @@
 //! The numerical commands' reports: one typed struct per command, whose fields are its `--json`
-//! object (documented once, in README's *JSON reports*, and checked against it by
+//! object (documented once, in docs/command-line.md's *JSON reports*, and checked against it by
 //! `tests/suite/cli.rs`), and whose `text` is its plain output.
 
 use crate::engine::body::{Body, friction};
