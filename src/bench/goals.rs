@@ -209,6 +209,13 @@ fn finite_body(cs: &[Initial], out: &mut Vec<Saving>) -> Result<(), Error> {
 /// How long the Stokes saving runs: long enough for the growing mode to lead by far.
 const STOKES_TAU: f64 = 20.0;
 
+/// The `sweep map` of C's radius at 72×60 up to `v0_max`, on all cores.
+fn outcome_map(v0_max: f64) -> Result<Vec<crate::analysis::MapRow>, Error> {
+    let velocity = crate::engine::Release::Velocity;
+    let done = Default::default();
+    crate::analysis::outcome_map(0.5, velocity, (72, 60), v0_max, Settings::default(), &done)
+}
+
 /// The speed goals; `all` are the rest task's cases and `refs` their reference measures.
 pub(super) fn speed(cfg: &Config, all: &[Initial], refs: &[Measure]) -> Result<Speed, Error> {
     let (t, escape_ms) = timed(if cfg.reps == 0 { 0 } else { cfg.reps.max(3) }, || {
@@ -244,16 +251,7 @@ pub(super) fn speed(cfg: &Config, all: &[Initial], refs: &[Measure]) -> Result<S
             .collect::<Result<Vec<f64>, Error>>()
     });
     let top = r?.into_iter().fold(0.0, f64::max);
-    let (r, map_ms) = timed(cfg.reps.min(2), || {
-        crate::analysis::outcome_map(
-            0.5,
-            crate::engine::Release::Velocity,
-            (72, 60),
-            1.3 * top,
-            Settings::default(),
-            &Default::default(),
-        )
-    });
+    let (r, map_ms) = timed(cfg.reps.min(2), || outcome_map(1.3 * top));
     r?;
     let escape_angles = if cfg.quick { 3 } else { 12 };
     let escape_cli_ms = escape_cli(&xi0s, escape_angles, false);
