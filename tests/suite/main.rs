@@ -41,6 +41,7 @@ mod rod;
 mod serve;
 mod si;
 mod spinup;
+mod split;
 mod terminal;
 mod terminals;
 mod text;

@@ -69,8 +69,8 @@ fn on_cell(
 }
 
 /// The canvas's title: the frame shown and, zoomed, what the zoom follows.
-fn title(app: &App, point: bool) -> String {
-    let mut title = match app.view.frame {
+fn title(app: &App, frame: Frame, point: bool) -> String {
+    let mut title = match frame {
         Frame::Lab => " lab frame ".to_string(),
         Frame::Table => " rotating frame ".to_string(),
     };
@@ -84,10 +84,44 @@ fn title(app: &App, point: bool) -> String {
     title
 }
 
-/// Draws the canvas and returns its geometry (where it is and which world it shows).
-pub fn render(f: &mut TuiFrame, area: Rect, app: &App, th: &Theme) -> CanvasGeom {
-    let pic = crate::plot::page::table::Picture::of(app);
-    let block = super::titled(title(app, pic.point.is_some()), th);
+/// The two canvases of a split view (`%`): side by side, or one above the other where that
+/// shows the larger table. A table fills the smaller of a canvas's width and twice its
+/// height (cells are twice as tall as wide), so the arrangement whose smaller side is longer
+/// wins.
+pub fn split(area: Rect) -> [Rect; 2] {
+    use ratatui::layout::{Constraint, Layout};
+    let (w, h) = (area.width, area.height);
+    let beside = (w / 2).min(2 * h);
+    let stacked = w.min(h / 2 * 2);
+    let halves = [Constraint::Ratio(1, 2), Constraint::Ratio(1, 2)];
+    if beside >= stacked {
+        Layout::horizontal(halves).areas(area)
+    } else {
+        Layout::vertical(halves).areas(area)
+    }
+}
+
+/// Draws the canvas (both frames' in a split view, the frame chosen first) and returns the
+/// geometry of each (where it is and which world it shows).
+pub fn render(f: &mut TuiFrame, area: Rect, app: &App, th: &Theme) -> Vec<CanvasGeom> {
+    if !app.view.split {
+        return vec![render_in(f, area, app, app.view.frame, th)];
+    }
+    let other = match app.view.frame {
+        Frame::Lab => Frame::Table,
+        Frame::Table => Frame::Lab,
+    };
+    let [a, b] = split(area);
+    vec![
+        render_in(f, a, app, app.view.frame, th),
+        render_in(f, b, app, other, th),
+    ]
+}
+
+/// Draws one canvas of the turntable as `frame` sees it.
+fn render_in(f: &mut TuiFrame, area: Rect, app: &App, frame: Frame, th: &Theme) -> CanvasGeom {
+    let pic = crate::plot::page::table::Picture::in_frame(app, frame);
+    let block = super::titled(title(app, frame, pic.point.is_some()), th);
     let inner = block.inner(area);
     let (xb, yb) = bounds(inner.width, inner.height, pic.centre, pic.half_width);
     let geom = CanvasGeom {
