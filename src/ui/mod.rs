@@ -55,7 +55,8 @@ pub fn draw(frame: &mut Frame, app: &App, th: &Theme) -> Vec<CanvasGeom> {
         ])),
         r.title,
     );
-    let (canvas_area, panel_area, lesson, status) = (r.canvas, r.panel, r.lesson, r.status);
+    let (panel_area, lesson, status) = (r.panel, r.lesson, r.status);
+    let canvas_area = caption::picture(&r, app);
     let geom = match app.view.page {
         crate::app::pages::Page::Turntable => canvas::render(frame, canvas_area, app, th),
         _ => pages::render(frame, canvas_area, app, th)

@@ -809,7 +809,8 @@ fn forces_marks_and_glyphs_follow_the_frame() {
     let screen = render(&mut a, 80, 24);
     assert!(screen.contains('■') && !screen.contains('●'), "{screen}");
     // In the lab the mark rides the table with the particle: where it rests on the table now.
-    assert!(screen.contains("■ stuck τ=5.60"), "{screen}");
+    // C stops within 1 % of the rim: the label says where, inside ξ = 1.
+    assert!(screen.contains("■ stuck ξ=0.99717<1 τ=5.60"), "{screen}");
 }
 
 /// Layout by priority: at every size down to 40×12 the status and ξ stay on screen, sliding

@@ -128,7 +128,13 @@ pub struct Point {
 pub struct Stuck {
     pub at: DVec2,
     pub tau: f64,
+    /// Its radius (ξ), said on the canvas when it is within [`NEAR_RIM`] of ξ = 1.
+    pub xi: f64,
 }
+
+/// How near the ξ = 1 circle a stop is said in numbers on the canvas: at a canvas's
+/// resolution a stop at ξ = 0.99717 (case C) sits on the circle, read as the rim.
+pub const NEAR_RIM: f64 = 0.01;
 
 /// The finite body: its centre's path so far and, while it is shown, its bar (the two
 /// masses) and centre.
@@ -152,8 +158,17 @@ impl Table {
 }
 
 impl Stuck {
-    /// Its words: the glyph and when.
+    /// Its words: the glyph and when, and where when that is within [`NEAR_RIM`] of ξ = 1,
+    /// so that a stop just inside reads apart from the circle it seems to sit on.
     pub fn label(&self) -> String {
+        if (1.0 - self.xi).abs() < NEAR_RIM {
+            let side = if self.xi < 1.0 { "<" } else { ">" };
+            return format!(
+                "{STUCK_GLYPH} stuck ξ={}{side}1 τ={}",
+                num(self.xi, 5),
+                num(self.tau, 2)
+            );
+        }
         format!("{STUCK_GLYPH} stuck τ={}", num(self.tau, 2))
     }
 }
@@ -277,6 +292,7 @@ impl Point {
                 Some(Stuck {
                     at: rotate(at, turn),
                     tau,
+                    xi: q.length(),
                 })
             }
             _ => None,
