@@ -209,6 +209,9 @@ pub struct View {
     pub net_force: bool,
     #[serde(default, skip_serializing_if = "std::ops::Not::not")]
     pub velocity: bool,
+    /// Both frames side by side (`%`); saved only when on.
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub split: bool,
     /// In a body scene, the point model's path and marker beside the body (`C`); saved only
     /// when hidden.
     #[serde(default = "shown", skip_serializing_if = "is_shown")]

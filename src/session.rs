@@ -243,7 +243,7 @@ impl<B: Backend> Session<B> {
     /// Draws the app, its analysis pages brought up to date first (headless, computed now).
     pub fn draw(&mut self) -> Result<(), B::Error> {
         self.sync_analysis();
-        let mut geom = None;
+        let mut geom = Vec::new();
         let ascii = self.theme.marker == Marker::Dot;
         self.term.draw(|f| {
             geom = crate::ui::draw(f, &self.app, &self.theme);

@@ -22,6 +22,8 @@ pub enum Action {
     Slower,
     Restart,
     ToggleFrame,
+    /// Both frames at once, side by side (or stacked where the canvas is narrow).
+    ToggleSplit,
     CycleMethod,
     /// dt or tol × √10.
     Loosen,
@@ -68,8 +70,9 @@ pub enum Action {
     Readouts,
     /// Mouse: the release point here (model coordinates, as the canvas maps the click).
     PlaceRelease(glam::DVec2),
-    /// Mouse drag: the initial velocity points from the release point to here.
-    AimVelocity(glam::DVec2),
+    /// Mouse drag: the initial velocity points from the release point to here, in the frame of
+    /// the canvas the drag began in (in a split view, either).
+    AimVelocity(glam::DVec2, crate::engine::Frame),
     EndDrag,
     /// The next / previous page (turntable, time plots, escape speed, outcome map, rest radius).
     NextPage,
@@ -138,13 +141,14 @@ impl Action {
             }
             // The mouse sets the release too.
             Xi0(_) | Phi(_) | V0(_) | CycleRelease | ToggleFriction | ResetScene | Preset(_)
-            | PlaceRelease(_) | AimVelocity(_) | EndDrag | PickRelease(_) => {
+            | PlaceRelease(_) | AimVelocity(..) | EndDrag | PickRelease(_) => {
                 Group::InitialConditions
             }
             CycleMethod | Loosen | Tighten | ToggleCompare | EstimateError => Group::Integrator,
-            ToggleFrame | ToggleForces | ToggleNetForce | ToggleVelocity | TogglePointModel
-            | ZoomIn | ZoomOut | Pan(..) | ResetView | TauWindow(_) | NextPage | PrevPage
-            | Choose | Omega(_) | R0c(_) | Unit(..) | UnitsOff | PinRun | ClearPins => Group::View,
+            ToggleFrame | ToggleSplit | ToggleForces | ToggleNetForce | ToggleVelocity
+            | TogglePointModel | ZoomIn | ZoomOut | Pan(..) | ResetView | TauWindow(_)
+            | NextPage | PrevPage | Choose | Omega(_) | R0c(_) | Unit(..) | UnitsOff | PinRun
+            | ClearPins => Group::View,
             Quit | Dismiss | ToggleHelp | HelpScroll(_) | HelpPage(_) | Save | SaveAs | Type(_)
             | SetValues | ExportSvg | ToggleMouse | Readouts => Group::App,
             Answer(_) | GoOn => Group::Lesson,

@@ -97,6 +97,7 @@ pub const KEYMAP: &[Binding] = &[
     b(ch('>'), N, Action::Tighten, "dt/tol ×√10 / ÷√10", "integrator"),
     b(ch('c'), N, Action::ToggleCompare, "compare: paper's RK2", "integrator"),
     b(ch('f'), N, Action::ToggleFrame, "frame lab ↔ rotating", "view"),
+    b(ch('%'), N, Action::ToggleSplit, "both frames at once", "view"),
     b(ch('a'), N, Action::ToggleForces, "force arrows", "view"),
     b(ch('A'), N, Action::ToggleNetForce, "net force arrow", "view"),
     b(ch('i'), N, Action::ToggleVelocity, "velocity arrow", "view"),

@@ -78,7 +78,13 @@ impl App {
                 _ => Effects::new(),
             };
         }
-        let Some(g) = self.geom else {
+        // A drag goes on through the canvas it began in; a click picks the canvas it is in.
+        let in_canvas = |g: &&CanvasGeom| g.to_world(ev.column, ev.row).is_some();
+        let k = match ev.kind {
+            MouseEventKind::Drag(_) | MouseEventKind::Up(_) => self.drag_canvas,
+            _ => self.geom.iter().position(|g| in_canvas(&g)).unwrap_or(0),
+        };
+        let Some(&g) = self.geom.get(k) else {
             return Effects::new();
         };
         let at = g.to_world(ev.column, ev.row);
@@ -91,9 +97,12 @@ impl App {
         }
         let action = match (ev.kind, at) {
             (MouseEventKind::Up(_), _) => Action::EndDrag,
-            (MouseEventKind::Down(MouseButton::Left), Some(p)) => Action::PlaceRelease(p),
+            (MouseEventKind::Down(MouseButton::Left), Some(p)) => {
+                self.drag_canvas = k;
+                Action::PlaceRelease(p)
+            }
             (MouseEventKind::Drag(MouseButton::Left), Some(p)) if self.dragging => {
-                Action::AimVelocity(p)
+                Action::AimVelocity(p, g.frame)
             }
             (MouseEventKind::ScrollUp, Some(_)) => Action::ZoomIn,
             (MouseEventKind::ScrollDown, Some(_)) => Action::ZoomOut,
@@ -122,7 +131,7 @@ impl App {
 
     /// Records a finished draw: the canvas geometry it returned (mouse cells map through it)
     /// and that the screen is up to date.
-    pub fn drawn(&mut self, geom: Option<CanvasGeom>) {
+    pub fn drawn(&mut self, geom: Vec<CanvasGeom>) {
         self.geom = geom;
         self.dirty = false;
     }
@@ -144,9 +153,15 @@ impl App {
         self.measured = m;
     }
 
-    /// The canvas geometry of the last draw (where mouse cells land in world coordinates).
+    /// The canvas geometry of the last draw (where mouse cells land in world coordinates):
+    /// the first canvas.
     pub fn geom_for_tests(&self) -> Option<CanvasGeom> {
-        self.geom
+        self.geom.first().copied()
+    }
+
+    /// Every canvas of the last draw (two in a split view).
+    pub fn geoms_for_tests(&self) -> &[CanvasGeom] {
+        &self.geom
     }
 
     /// Whether time should tick for the model: playing, or the paper's run still catching

@@ -108,13 +108,17 @@ pub struct App {
     /// A narrated lesson's caption, question and wait.
     pub lesson: super::lesson::Lesson,
     pub(crate) dirty: bool,
-    pub(crate) geom: Option<CanvasGeom>,
+    /// The canvases as last drawn (two in a split view), clicks mapped through the one they
+    /// land in.
+    pub(crate) geom: Vec<CanvasGeom>,
     /// The terminal's size, as its session last said (the outcome map's grid follows it).
     pub(crate) screen: (u16, u16),
     /// What the view measured at that size.
     pub(crate) measured: Measured,
     /// Mouse drag in progress: setting the initial velocity.
     pub(crate) dragging: bool,
+    /// The canvas the drag began in: it goes on mapping through that one.
+    pub(crate) drag_canvas: usize,
 }
 
 impl App {
@@ -146,10 +150,11 @@ impl App {
             pins,
             lesson: Default::default(),
             dirty: true,
-            geom: None,
+            geom: Vec::new(),
             screen: (80, 24),
             measured: Measured::default(),
             dragging: false,
+            drag_canvas: 0,
         }
     }
 

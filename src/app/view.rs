@@ -13,6 +13,8 @@ pub struct View {
     pub page: Page,
     /// The frame the picture is drawn in (lab or rotating).
     pub frame: Frame,
+    /// Both frames at once (`%`): the frame above beside the other, the same run at the same τ.
+    pub split: bool,
     pub zoom: f64,
     /// The picture's turn (rad): the model releases on +x, the picture shows the release
     /// where it was clicked.
@@ -41,6 +43,7 @@ impl View {
         View {
             page: v.map_or(Page::Turntable, |v| v.page),
             frame: v.map_or(Frame::Lab, |v| v.frame),
+            split: v.is_some_and(|v| v.split),
             zoom: v.map_or(1.0, |v| v.zoom.clamp(ZOOM_RANGE.0, ZOOM_RANGE.1)),
             turn: 0.0,
             pan: glam::DVec2::ZERO,
@@ -65,6 +68,7 @@ impl View {
             zoom: self.zoom,
             net_force: self.net_force,
             velocity: self.velocity,
+            split: self.split,
             point: self.point_model,
             speed,
         }

@@ -38,7 +38,7 @@ pub(super) fn counted(size: (u16, u16)) -> Result<(Counted, Rc<Cell<usize>>), Er
 /// Draws `app` as the explorer does.
 pub(super) fn draw(term: &mut Counted, app: &mut App, th: &Theme) -> Result<(), Error> {
     crate::session::sync(app, &mut crate::analysis::Analysis::inline(), true);
-    let mut geom = None;
+    let mut geom = Vec::new();
     term.draw(|f| geom = crate::ui::draw(f, app, th))?;
     app.drawn(geom);
     Ok(())

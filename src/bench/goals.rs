@@ -376,7 +376,7 @@ fn frame_time(reps: usize) -> Result<(f64, usize), Error> {
     let mut term = Terminal::new(TestBackend::new(160, 48))?;
     let (r, ms) = timed(reps.max(5), || {
         app.tick();
-        let mut geom = None;
+        let mut geom = Vec::new();
         term.draw(|f| geom = crate::ui::draw(f, &app, &theme))?;
         app.drawn(geom);
         Ok::<(), std::convert::Infallible>(())

@@ -136,7 +136,7 @@ fn frame(kind: &Kind, reps: usize) -> Result<f64, Error> {
     let mut term = Terminal::new(TestBackend::new(120, 40))?;
     let (r, ms) = timed(reps.max(5), || {
         app.tick();
-        let mut geom = None;
+        let mut geom = Vec::new();
         term.draw(|f| geom = crate::ui::draw(f, &app, &theme))?;
         app.drawn(geom);
         Ok::<(), std::convert::Infallible>(())

@@ -22,11 +22,12 @@ pub fn area(r: &Regions) -> Rect {
     }
 }
 
-pub fn render(frame: &mut Frame, r: &Regions, app: &App, th: &Theme) {
-    let Some(c) = app.caption() else { return };
+/// The caption's text rows, wrapped to its box, and the box; None without a caption or room.
+fn placed(r: &Regions, app: &App) -> Option<(Vec<String>, Rect)> {
+    let c = app.caption()?;
     let room = area(r);
     if room.width < 3 || room.height < 3 {
-        return;
+        return None;
     }
     let lines = wrap(
         &c.text,
@@ -42,6 +43,33 @@ pub fn render(frame: &mut Frame, r: &Regions, app: &App, th: &Theme) {
         height,
         ..room
     };
+    Some((lines, at))
+}
+
+/// The picture's area with a caption shown: above the caption, so that the caption never
+/// covers a chart's axes, its ticks or its lines (nor the table's lower part). Where less
+/// than [`MIN_ROWS`] would be left, the caption goes over the picture as before.
+pub fn picture(r: &Regions, app: &App) -> Rect {
+    const MIN_ROWS: u16 = 6;
+    let Some((_, at)) = placed(r, app) else {
+        return r.canvas;
+    };
+    let rows = at.y.saturating_sub(r.canvas.y).min(r.canvas.height);
+    if rows < MIN_ROWS {
+        return r.canvas;
+    }
+    Rect {
+        height: rows,
+        ..r.canvas
+    }
+}
+
+pub fn render(frame: &mut Frame, r: &Regions, app: &App, th: &Theme) {
+    let Some(c) = app.caption() else { return };
+    let Some((lines, at)) = placed(r, app) else {
+        return;
+    };
+    let room = area(r);
     let inner = usize::from(room.width).saturating_sub(4);
     let mut block = super::titled(format!(" {} ", fit(&c.title, "\0", inner)), th)
         .border_style(Style::default().fg(th.accent));

@@ -24,10 +24,10 @@ use unicode_width::UnicodeWidthStr;
 
 pub use layout::{MIN_SIZE, PANEL_W};
 
-/// Draws the whole screen and returns where the canvas went (None when there is none), for
-/// the caller to hand to [`App::drawn`] so mouse cells map to the table. Pure: it reads the
-/// state only. Never panics, whatever the size.
-pub fn draw(frame: &mut Frame, app: &App, th: &Theme) -> Option<CanvasGeom> {
+/// Draws the whole screen and returns where the canvases went (none, one, or two in a split
+/// view), for the caller to hand to [`App::drawn`] so mouse cells map to the table. Pure: it
+/// reads the state only. Never panics, whatever the size.
+pub fn draw(frame: &mut Frame, app: &App, th: &Theme) -> Vec<CanvasGeom> {
     let area = frame.area();
     let base = Style::default().bg(th.background).fg(th.foreground);
     let Some(r) = layout::regions(area.width, area.height) else {
@@ -42,7 +42,7 @@ pub fn draw(frame: &mut Frame, app: &App, th: &Theme) -> Option<CanvasGeom> {
                 .wrap(Wrap { trim: true }),
             area,
         );
-        return None;
+        return Vec::new();
     };
     frame.render_widget(Paragraph::new("").style(base), area);
     frame.render_widget(
@@ -55,10 +55,13 @@ pub fn draw(frame: &mut Frame, app: &App, th: &Theme) -> Option<CanvasGeom> {
         ])),
         r.title,
     );
-    let (canvas_area, panel_area, lesson, status) = (r.canvas, r.panel, r.lesson, r.status);
+    let (panel_area, lesson, status) = (r.panel, r.lesson, r.status);
+    let canvas_area = caption::picture(&r, app);
     let geom = match app.view.page {
-        crate::app::pages::Page::Turntable => Some(canvas::render(frame, canvas_area, app, th)),
-        _ => pages::render(frame, canvas_area, app, th),
+        crate::app::pages::Page::Turntable => canvas::render(frame, canvas_area, app, th),
+        _ => pages::render(frame, canvas_area, app, th)
+            .into_iter()
+            .collect(),
     };
     panel::render(frame, panel_area, app, th);
     frame.render_widget(

@@ -27,6 +27,8 @@ pub struct Seen {
     playing: bool,
     speed: f64,
     frame: Frame,
+    /// Both frames drawn (`%`): plain mode says so, its readouts stay in `frame`.
+    split: bool,
     forces: bool,
     page: Page,
     /// The analysis page's data in words once computed, and its verdict on the release
@@ -54,6 +56,7 @@ impl Seen {
             playing: app.playing,
             speed: app.speed,
             frame: app.view.frame,
+            split: app.view.split,
             forces: app.view.forces,
             page: app.view.page,
             summary: super::pages::summary(app),
@@ -155,6 +158,16 @@ fn view_changes(was: &Seen, now: &Seen, out: &mut Vec<String>) {
             Frame::Lab => "frame: lab".into(),
             Frame::Table => "frame: rotating (readouts in the table frame)".into(),
         });
+    }
+    if now.split != was.split {
+        out.push(
+            if now.split {
+                "both frames drawn side by side, lab and rotating; the readouts stay in this frame"
+            } else {
+                "one frame drawn"
+            }
+            .into(),
+        );
     }
     if now.forces != was.forces {
         out.push(if now.forces {

@@ -204,7 +204,7 @@ fn every_key_in_the_keymap_does_what_its_help_says() {
             Action::PlayPause => !a.is_playing() && after.contains("❚❚"),
             Action::StepForward => now > tau && !a.is_playing(),
             Action::StepBack => now < tau,
-            Action::PlaceRelease(_) | Action::AimVelocity(_) | Action::EndDrag => {
+            Action::PlaceRelease(_) | Action::AimVelocity(..) | Action::EndDrag => {
                 unreachable!("mouse actions have no key")
             }
             Action::IntegratorStep => {
@@ -214,6 +214,9 @@ fn every_key_in_the_keymap_does_what_its_help_says() {
             Action::Slower => a.speed == speed / 2.0 && after.contains("×1/2"),
             Action::Restart => now == 0.0 && a.initial() == init,
             Action::ToggleFrame => a.view.frame == Frame::Table,
+            Action::ToggleSplit => {
+                a.view.split && after.contains("lab frame") && after.contains("rotating frame")
+            }
             Action::CycleMethod => a.settings().method() != set.method() && now == 0.0,
             Action::Loosen => a.settings().scheme.knob() > set.scheme.knob() && now == 0.0,
             Action::Tighten => a.settings().scheme.knob() < set.scheme.knob() && now == 0.0,
@@ -390,7 +393,7 @@ fn help_overlay_lists_every_binding() {
             b.chord.label()
         );
     }
-    // 80×24 shows it in two pages.
+    // 80×24 shows it in three pages (the last a row).
     let small = render(&mut a, 80, 24);
     // As many rows as the keymap makes: 21 on screen, the rest a page down.
     let all = 21
@@ -414,6 +417,7 @@ fn help_overlay_lists_every_binding() {
         !small.contains("/ onM") && !small.contains("fig2q"),
         "{small}"
     );
+    a.handle_key(KeyEvent::new(KeyCode::PageDown, KeyModifiers::NONE));
     a.handle_key(KeyEvent::new(KeyCode::PageDown, KeyModifiers::NONE));
     let small = render(&mut a, 80, 24);
     assert!(
@@ -805,7 +809,8 @@ fn forces_marks_and_glyphs_follow_the_frame() {
     let screen = render(&mut a, 80, 24);
     assert!(screen.contains('■') && !screen.contains('●'), "{screen}");
     // In the lab the mark rides the table with the particle: where it rests on the table now.
-    assert!(screen.contains("■ stuck τ=5.60"), "{screen}");
+    // C stops within 1 % of the rim: the label says where, inside ξ = 1.
+    assert!(screen.contains("■ stuck ξ=0.99717<1 τ=5.60"), "{screen}");
 }
 
 /// Layout by priority: at every size down to 40×12 the status and ξ stay on screen, sliding
@@ -1183,7 +1188,7 @@ fn every_binding_is_listed_under_its_actions_group() {
     let p = glam::DVec2::new(0.5, 0.1);
     for a in [
         Action::PlaceRelease(p),
-        Action::AimVelocity(p),
+        Action::AimVelocity(p, Frame::Lab),
         Action::PickRelease(p),
     ] {
         assert_eq!(a.group(), Group::InitialConditions);

@@ -42,6 +42,7 @@ mod serve;
 mod serve_class;
 mod si;
 mod spinup;
+mod split;
 mod terminal;
 mod terminals;
 mod text;

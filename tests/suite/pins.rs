@@ -210,3 +210,21 @@ fn pins_are_saved_with_the_scene_and_load_back() {
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// Figs. 3–4 at 80×24: the four presets pinned read apart on the canvas, each by its marker
+/// and name at its end (◆A ▲B ▼C ◇D), without colour.
+#[test]
+fn four_pinned_presets_read_apart_at_80x24() {
+    let mut a = App::new(Scene::preset("A").unwrap());
+    for k in ['1', 'b', '2', 'b', '3', 'b', '4', 'b'] {
+        a.handle_key(KeyEvent::new(KeyCode::Char(k), KeyModifiers::NONE));
+    }
+    let screen = render(&mut a, 80, 24);
+    let canvas: String = screen
+        .lines()
+        .map(|l| l.chars().take(50).collect::<String>())
+        .collect();
+    for name in ["◆A", "▲B", "▼C", "◇D"] {
+        assert!(canvas.contains(name), "{name}\n{screen}");
+    }
+}

@@ -85,7 +85,10 @@ fn readme_example_script_replays() {
 
 /// Runs the binary with `args` (an output path among them) and returns what it wrote there.
 fn written_by(args: &[&str], out: &Path) -> Vec<u8> {
+    // From the repository's root, so that a path in an argument (the cast's title names its
+    // script) reads the same in every clone.
     let status = std::process::Command::new(env!("CARGO_BIN_EXE_turntable"))
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
         .args(args)
         .arg(out)
         .arg("--force")
@@ -103,12 +106,8 @@ fn written_by(args: &[&str], out: &Path) -> Vec<u8> {
 fn the_docs_pictures_are_what_the_tool_makes() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let tmp = tempfile::tempdir().unwrap();
-    let demo = root.join("docs/demo.keys");
     let pictures: [(&str, Vec<&str>); 2] = [
-        (
-            "demo.cast",
-            vec!["replay", demo.to_str().unwrap(), "--asciicast"],
-        ),
+        ("demo.cast", vec!["replay", "docs/demo.keys", "--asciicast"]),
         ("fig5.svg", vec!["plot", "fig5", "--out"]),
     ];
     for (name, args) in pictures {

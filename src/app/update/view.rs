@@ -17,6 +17,7 @@ pub(super) fn apply(app: &mut App, action: Action) {
                 Frame::Table => Frame::Lab,
             }
         }
+        Action::ToggleSplit => app.view.split = !app.view.split,
         Action::ToggleForces => app.view.forces = !app.view.forces,
         Action::ToggleNetForce => app.view.net_force = !app.view.net_force,
         Action::ToggleVelocity => app.view.velocity = !app.view.velocity,

@@ -25,12 +25,12 @@ pub const FORCE_SHARE: f64 = 0.2;
 /// does). In the rotating frame the fictitious Coriolis and centrifugal forces act too. All
 /// are scaled together so the longest is [`FORCE_SHARE`] of `half_width`.
 pub fn force_arrows(app: &App, half_width: f64) -> Vec<ForceArrow> {
-    forces(app, half_width).0
+    forces(app, app.view.frame, half_width).0
 }
 
 /// [`force_arrows`], and the net force at their scale (their sum: du/dτ in the rotating
 /// frame, dv/dτ in the lab).
-fn forces(app: &App, half_width: f64) -> (Vec<ForceArrow>, DVec2) {
+fn forces(app: &App, frame: Frame, half_width: f64) -> (Vec<ForceArrow>, DVec2) {
     let now = app.sim().now();
     let [fr, co, ce] = coupled_forces(&now, app.initial().frictionless, app.settings().coupling);
     let mut out = Vec::new();
@@ -44,7 +44,7 @@ fn forces(app: &App, half_width: f64) -> (Vec<ForceArrow>, DVec2) {
             });
         }
     };
-    match app.view.frame {
+    match frame {
         Frame::Lab => push("fr", "friction", rotate(fr, now.tau), Ink::Friction),
         Frame::Table => {
             push("fr", "friction", fr, Ink::Friction);
@@ -69,7 +69,12 @@ fn forces(app: &App, half_width: f64) -> (Vec<ForceArrow>, DVec2) {
 /// the rotating frame, the lab velocity in the lab; `speed_scale` world units per unit speed,
 /// as the initial velocity's arrow). A zero vector is not drawn.
 pub fn arrows(app: &App, half_width: f64, speed_scale: f64) -> Vec<ForceArrow> {
-    let (mut out, net) = forces(app, half_width);
+    arrows_in(app, app.view.frame, half_width, speed_scale)
+}
+
+/// [`arrows`] as `frame` sees them (a split view draws both frames).
+pub fn arrows_in(app: &App, frame: Frame, half_width: f64, speed_scale: f64) -> Vec<ForceArrow> {
+    let (mut out, net) = forces(app, frame, half_width);
     if !app.view.forces {
         out.clear();
     }
@@ -84,7 +89,7 @@ pub fn arrows(app: &App, half_width: f64, speed_scale: f64) -> Vec<ForceArrow> {
         });
     }
     if app.view.velocity {
-        let (label, word, v) = velocity(app);
+        let (label, word, v) = velocity_in(app, frame);
         if v.length() > 0.0 {
             out.push(ForceArrow {
                 label,
@@ -99,8 +104,12 @@ pub fn arrows(app: &App, half_width: f64, speed_scale: f64) -> Vec<ForceArrow> {
 
 /// The velocity the frame shown sees: `u` relative to the table (rotating), `v` (lab).
 pub fn velocity(app: &App) -> (&'static str, &'static str, DVec2) {
+    velocity_in(app, app.view.frame)
+}
+
+fn velocity_in(app: &App, frame: Frame) -> (&'static str, &'static str, DVec2) {
     let now = app.sim().now();
-    match app.view.frame {
+    match frame {
         Frame::Lab => ("v", "velocity (lab)", now.v),
         Frame::Table => ("u", "velocity rel. table", now.u()),
     }

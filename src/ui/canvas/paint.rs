@@ -77,17 +77,18 @@ pub(super) struct Painter {
 }
 
 /// The cells labels cover (row, first column, past the last): labels never cover the
-/// particle or one another (in the lab `net` is `fr`, at one head).
-struct Cells {
+/// particle or one another, and keep a blank cell between them (`co` and `cf` glued read
+/// `cocf`; in the lab `net` is `fr`, at one head).
+pub(super) struct Cells {
     inner: Rect,
     xb: [f64; 2],
     yb: [f64; 2],
-    taken: Vec<(i64, i64, i64)>,
+    pub(super) taken: Vec<(i64, i64, i64)>,
 }
 
 impl Cells {
     /// (As ratatui's canvas places text: (x − left)·(width − 1)/(right − left).)
-    fn of(&self, p: DVec2, n: usize) -> (i64, i64, i64) {
+    pub(super) fn of(&self, p: DVec2, n: usize) -> (i64, i64, i64) {
         let (xb, yb) = (self.xb, self.yb);
         let (w, h) = (
             f64::from(self.inner.width.max(1) - 1),
@@ -98,18 +99,37 @@ impl Cells {
         (row, col, col + n as i64)
     }
 
+    /// A glyph's cell (the particle): a label may touch it.
     fn take(&mut self, p: DVec2, n: usize) {
         let c = self.of(p, n);
         self.taken.push(c);
     }
 
+    /// Words: kept a cell clear of the next words on their row.
+    fn take_words(&mut self, p: DVec2, n: usize) {
+        let (r, a, b) = self.of(p, n);
+        self.taken.push((r, a - 1, b + 1));
+    }
+
+    /// Whether `n` cells from `h` are on the canvas and clear of everything taken.
     fn free(&self, h: DVec2, n: usize) -> bool {
         let (r, a, b) = self.of(h, n);
-        !self
-            .taken
-            .iter()
-            .any(|&(tr, ta, tb)| tr == r && a < tb && ta < b)
+        let (w, rows) = (i64::from(self.inner.width), i64::from(self.inner.height));
+        (0..rows).contains(&r)
+            && a >= 0
+            && b <= w
+            && !self
+                .taken
+                .iter()
+                .any(|&(tr, ta, tb)| tr == r && a < tb && ta < b)
     }
+}
+
+/// A label placed on the canvas.
+pub(super) struct Label {
+    pub at: DVec2,
+    pub text: String,
+    pub color: Color,
 }
 
 impl Painter {
@@ -187,14 +207,7 @@ impl Painter {
     fn labelled(&self, ctx: &mut Context) {
         let th = &self.th;
         let point = self.pic.point.as_ref();
-        let stuck_label = point.and_then(|p| p.stuck).map(|s| {
-            let text = if self.words {
-                s.label()
-            } else {
-                STUCK_GLYPH.into()
-            };
-            (s.at, text)
-        });
+        let stuck_label = self.stuck_label();
         if let Some((at, text)) = &stuck_label {
             ctx.print(
                 at.x,
@@ -205,64 +218,94 @@ impl Painter {
         for m in point.iter().flat_map(|p| p.steps.iter().rev()) {
             ctx.print(m.x, m.y, Span::styled("·", Style::default().fg(th.notice)));
         }
+        if let Some(p) = point {
+            for fa in &p.arrows {
+                arrow(ctx, p.at, fa.vec, crate::ui::chart::ink(th, fa.ink));
+            }
+        }
+        for l in self.labels(stuck_label.as_ref()).0 {
+            ctx.print(
+                l.at.x,
+                l.at.y,
+                Span::styled(l.text, Style::default().fg(l.color)),
+            );
+        }
+        self.body_and_particle(ctx);
+    }
+
+    /// Where it stuck, in words where there is room for them, else its glyph.
+    pub(super) fn stuck_label(&self) -> Option<(DVec2, String)> {
+        let stuck = self.pic.point.as_ref().and_then(|p| p.stuck)?;
+        let text = if self.words {
+            stuck.label()
+        } else {
+            STUCK_GLYPH.into()
+        };
+        Some((stuck.at, text))
+    }
+
+    /// The arrows' labels and the pins' ends, each placed clear of the particle, of the fixed
+    /// words (where it stuck, the ξ = 1 circle, the sense) and of one another; a label with no
+    /// free place is left out (the panel's legend names the arrows, the pins' markers mark
+    /// their paths). Also the cells taken, for the tests.
+    pub(super) fn labels(&self, stuck: Option<&(DVec2, String)>) -> (Vec<Label>, Cells) {
         let mut cells = Cells {
             inner: self.inner,
             xb: self.xb,
             yb: self.yb,
             taken: Vec::new(),
         };
+        let point = self.pic.point.as_ref();
         if let Some(p) = point {
             cells.take(p.at, 1);
         }
-        if let Some((p, text)) = stuck_label {
-            cells.take(p, text.chars().count());
+        if let Some((p, text)) = stuck {
+            cells.take_words(*p, text.chars().count());
         }
         if self.words {
-            cells.take(self.pic.table.ring_label, RING_LABEL.chars().count());
-            cells.take(self.pic.table.sense, SENSE_LABEL.chars().count());
+            cells.take_words(self.pic.table.ring_label, RING_LABEL.chars().count());
+            cells.take_words(self.pic.table.sense, SENSE_LABEL.chars().count());
         }
+        let mut out = Vec::new();
         if let Some(p) = point {
-            self.arrows(ctx, p, &mut cells);
+            self.arrow_labels(p, &mut cells, &mut out);
         }
-        self.pin_ends(ctx, &mut cells);
-        self.body_and_particle(ctx);
+        self.pin_ends(&mut cells, &mut out);
+        (out, cells)
     }
 
-    /// The arrows at the particle, each labelled at its head where the label is free.
-    fn arrows(&self, ctx: &mut Context, point: &Point, cells: &mut Cells) {
+    /// Each arrow's label at its head, or the nearest free place beside it.
+    fn arrow_labels(&self, point: &Point, cells: &mut Cells, out: &mut Vec<Label>) {
         let (at, cell) = (point.at, self.cell);
         for fa in &point.arrows {
-            let vec = fa.vec;
-            let color = crate::ui::chart::ink(&self.th, fa.ink);
-            arrow(ctx, at, vec, color);
-            let mut head = at + vec * 1.15;
+            let mut head = at + fa.vec * 1.15;
             // Never under the particle's glyph (`co` read `●o`): right of it instead.
             let n = fa.label.chars().count();
             let len = n as f64 * cell.x;
             if (head.y - at.y).abs() < cell.y && head.x - cell.x < at.x && at.x < head.x + len {
                 head.x = at.x + cell.x;
             }
-            // Else a row off, above or below.
-            if let Some(h) = [0.0, 1.0, -1.0, 2.0, -2.0]
+            // Else a row off, above or below, or ending at the head.
+            let rows = [0.0, 1.0, -1.0, 2.0, -2.0];
+            let spot = [0.0, -(n as f64)]
                 .into_iter()
-                .map(|k| head + DVec2::Y * (k * cell.y))
-                .find(|h| cells.free(*h, n))
-            {
-                head = h;
+                .flat_map(|dx| rows.map(|k| head + DVec2::new(dx * cell.x, k * cell.y)))
+                .find(|h| cells.free(*h, n));
+            if let Some(h) = spot {
+                cells.take_words(h, n);
+                out.push(Label {
+                    at: h,
+                    text: fa.label.into(),
+                    color: crate::ui::chart::ink(&self.th, fa.ink),
+                });
             }
-            cells.take(head, n);
-            ctx.print(
-                head.x,
-                head.y,
-                Span::styled(fa.label, Style::default().fg(color)),
-            );
         }
     }
 
     /// Each pin's end: its marker and label, beside the end where the run's own words leave
     /// room (else the marker along the path and the panel name it). An escape ends out of
     /// view: labelled where it leaves.
-    fn pin_ends(&self, ctx: &mut Context, cells: &mut Cells) {
+    fn pin_ends(&self, cells: &mut Cells, out: &mut Vec<Label>) {
         let cell = self.cell;
         for p in &self.pic.pins {
             let Some(e) = p.end_in(self.xb, self.yb) else {
@@ -276,8 +319,12 @@ impl Painter {
                 .map(|(dx, dy)| e + DVec2::new(dx * cell.x, dy * cell.y))
                 .find(|h| cells.free(*h, n));
             if let Some(h) = spot {
-                cells.take(h, n);
-                ctx.print(h.x, h.y, Span::styled(p.name.clone(), self.pin_style));
+                cells.take_words(h, n);
+                out.push(Label {
+                    at: h,
+                    text: p.name.clone(),
+                    color: self.pin_style.fg.unwrap_or(self.th.muted),
+                });
             }
         }
     }

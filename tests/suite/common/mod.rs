@@ -44,7 +44,7 @@ pub fn render_with(
     let mut t = ratatui::Terminal::new(ratatui::backend::TestBackend::new(w, h)).unwrap();
     turntable::session::tell_size(app, theme, w, h);
     sync(app);
-    let mut geom = None;
+    let mut geom = Vec::new();
     t.draw(|f| geom = turntable::ui::draw(f, app, theme))
         .unwrap();
     app.drawn(geom);

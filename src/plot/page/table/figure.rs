@@ -50,9 +50,25 @@ fn arrow(from: DVec2, vec: DVec2, label: impl Into<String>, ink: Ink) -> Mark {
     }
 }
 
-/// The turntable page of `app` as a figure titled `title`.
+/// The turntable page of `app` as a figure titled `title`: one panel, or in a split view
+/// (`%`) one for each frame, the frame chosen first, as the canvas shows them.
 pub fn figure(app: &App, title: String) -> Figure {
-    let pic = Picture::of(app);
+    let mut frames = vec![app.view.frame];
+    if app.view.split {
+        frames.push(match app.view.frame {
+            Frame::Lab => Frame::Table,
+            Frame::Table => Frame::Lab,
+        });
+    }
+    Figure {
+        title,
+        panels: frames.into_iter().map(|f| panel(app, f)).collect(),
+    }
+}
+
+/// The turntable as `frame` sees it, one panel.
+fn panel(app: &App, frame: Frame) -> Panel {
+    let pic = Picture::in_frame(app, frame);
     let (c, r) = (pic.centre, pic.half_width);
     let (x, y) = ([c.x - r, c.x + r], [c.y - r, c.y + r]);
     let (mut series, mut marks) = table(&pic);
@@ -106,19 +122,16 @@ pub fn figure(app: &App, title: String) -> Figure {
         Frame::Lab => "the lab frame",
         Frame::Table => "the rotating frame (the table's)",
     };
-    Figure {
-        title,
-        panels: vec![Panel {
-            title: format!("the turntable in {name}"),
-            x_label: "x (R_max)".into(),
-            y_label: "y (R_max)".into(),
-            x,
-            y,
-            equal_aspect: true,
-            series,
-            marks,
-            ..Panel::default()
-        }],
+    Panel {
+        title: format!("the turntable in {name}"),
+        x_label: "x (R_max)".into(),
+        y_label: "y (R_max)".into(),
+        x,
+        y,
+        equal_aspect: true,
+        series,
+        marks,
+        ..Panel::default()
     }
 }
 

@@ -6,7 +6,7 @@ mod figure;
 
 pub use figure::figure;
 
-use super::arrows::{ForceArrow, arrows};
+use super::arrows::{ForceArrow, arrows_in};
 use crate::app::App;
 use crate::engine::model::rotate;
 use crate::engine::rod::{RodState, RodTrack};
@@ -128,7 +128,13 @@ pub struct Point {
 pub struct Stuck {
     pub at: DVec2,
     pub tau: f64,
+    /// Its radius (ξ), said on the canvas when it is within [`NEAR_RIM`] of ξ = 1.
+    pub xi: f64,
 }
+
+/// How near the ξ = 1 circle a stop is said in numbers on the canvas: at a canvas's
+/// resolution a stop at ξ = 0.99717 (case C) sits on the circle, read as the rim.
+pub const NEAR_RIM: f64 = 0.01;
 
 /// The finite body: its centre's path so far and, while it is shown, its bar (the two
 /// masses) and centre.
@@ -152,8 +158,17 @@ impl Table {
 }
 
 impl Stuck {
-    /// Its words: the glyph and when.
+    /// Its words: the glyph and when, and where when that is within [`NEAR_RIM`] of ξ = 1,
+    /// so that a stop just inside reads apart from the circle it seems to sit on.
     pub fn label(&self) -> String {
+        if (1.0 - self.xi).abs() < NEAR_RIM {
+            let side = if self.xi < 1.0 { "<" } else { ">" };
+            return format!(
+                "{STUCK_GLYPH} stuck ξ={}{side}1 τ={}",
+                num(self.xi, 5),
+                num(self.tau, 2)
+            );
+        }
         format!("{STUCK_GLYPH} stuck τ={}", num(self.tau, 2))
     }
 }
@@ -161,7 +176,12 @@ impl Stuck {
 impl Picture {
     /// The turntable page of `app` as it stands.
     pub fn of(app: &App) -> Picture {
-        let (frame, turn) = (app.view.frame, app.view.turn);
+        Picture::in_frame(app, app.view.frame)
+    }
+
+    /// The turntable page of `app` as `frame` sees it (a split view draws both).
+    pub fn in_frame(app: &App, frame: Frame) -> Picture {
+        let turn = app.view.turn;
         let now = app.sim().now();
         let i = app.initial();
         let extent = auto_extent(app);
@@ -170,7 +190,7 @@ impl Picture {
         let body = app.rod().map(|rod| Body::of(rod, now.tau, frame, turn));
         let point = app
             .point_shown()
-            .then(|| Point::of(app, half_width, speed_scale));
+            .then(|| Point::of(app, frame, half_width, speed_scale));
         // Zoomed in, the view follows the particle, or the body's centre with the point hidden.
         let followed = match (&point, body.as_ref().and_then(|b| b.bar)) {
             _ if app.view.zoom <= 1.0 => DVec2::ZERO,
@@ -258,10 +278,10 @@ impl PinPath {
 }
 
 impl Point {
-    /// The point model of `app`, its force arrows scaled to `half_width`, its velocity by
+    /// The point model of `app` in `frame`, its force arrows scaled to `half_width`, its velocity by
     /// `speed_scale`.
-    fn of(app: &App, half_width: f64, speed_scale: f64) -> Point {
-        let (frame, turn) = (app.view.frame, app.view.turn);
+    fn of(app: &App, frame: Frame, half_width: f64, speed_scale: f64) -> Point {
+        let turn = app.view.turn;
         let now = app.sim().now();
         let stuck = match app.sim().run.status() {
             Status::Stuck { tau, q } if now.tau >= tau => {
@@ -272,6 +292,7 @@ impl Point {
                 Some(Stuck {
                     at: rotate(at, turn),
                     tau,
+                    xi: q.length(),
                 })
             }
             _ => None,
@@ -297,7 +318,7 @@ impl Point {
             at: rotate(in_frame(&now, frame), turn),
             status,
             stuck,
-            arrows: arrows(app, half_width, speed_scale)
+            arrows: arrows_in(app, frame, half_width, speed_scale)
                 .into_iter()
                 .map(|a| ForceArrow {
                     vec: rotate(a.vec, turn),
