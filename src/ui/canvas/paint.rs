@@ -233,15 +233,37 @@ impl Painter {
         self.body_and_particle(ctx);
     }
 
-    /// Where it stuck, in words where there is room for them, else its glyph.
+    /// Where it stuck, in words where there is room for them, else its glyph. Words that
+    /// would run past the canvas's right edge read leftwards, ending in the glyph at the point
+    /// (a number cut at the edge, `ξ=0.997`, would say another radius); where neither fits,
+    /// the glyph alone.
     pub(super) fn stuck_label(&self) -> Option<(DVec2, String)> {
         let stuck = self.pic.point.as_ref().and_then(|p| p.stuck)?;
-        let text = if self.words {
-            stuck.label()
-        } else {
-            STUCK_GLYPH.into()
+        let glyph = Some((stuck.at, STUCK_GLYPH.to_string()));
+        if !self.words {
+            return glyph;
+        }
+        let text = stuck.label();
+        let n = text.chars().count() as i64;
+        let cells = Cells {
+            inner: self.inner,
+            xb: self.xb,
+            yb: self.yb,
+            taken: Vec::new(),
         };
-        Some((stuck.at, text))
+        let (_, col, _) = cells.of(stuck.at, 0);
+        let w = i64::from(self.inner.width);
+        if col + n <= w {
+            return Some((stuck.at, text));
+        }
+        let start = col - (n - 1);
+        let words = text.trim_start_matches(STUCK_GLYPH).trim_start();
+        if start < 0 || w < 2 {
+            return glyph;
+        }
+        // The x ratatui prints column `start` at (see `Cells::of`).
+        let x = self.xb[0] + (start as f64 + 0.25) * (self.xb[1] - self.xb[0]) / (w - 1) as f64;
+        Some((DVec2::new(x, stuck.at.y), format!("{words} {STUCK_GLYPH}")))
     }
 
     /// The arrows' labels and the pins' ends, each placed clear of the particle, of the fixed
