@@ -24,7 +24,10 @@ pub fn bench(a: BenchArgs) -> CmdResult {
     if let Some(s) = a.seed {
         cfg.seed = s;
     }
-    let report = bench::run(&cfg, |task| eprintln!("bench: {task}…"))?;
+    let bar = super::progress::tasks();
+    let report = bench::run(&cfg, |task| bar.set_message(format!("bench: {task}")));
+    bar.finish_and_clear();
+    let report = report?;
     let mut out = if a.json {
         serde_json::to_string_pretty(&report).map_err(|e| Error::Failed(e.to_string()))? + "\n"
     } else {
@@ -48,8 +51,11 @@ fn serve(a: &BenchArgs) -> CmdResult {
         ));
     }
     for &n in &a.serve {
-        eprintln!("bench: serve with {n} clients for {} s…", a.seconds);
-        let row = bench::serve::run(n, a.seconds)?;
+        let bar = super::progress::tasks();
+        bar.set_message(format!("bench: serve with {n} clients for {} s", a.seconds));
+        let row = bench::serve::run(n, a.seconds);
+        bar.finish_and_clear();
+        let row = row?;
         let line = if a.json {
             serde_json::to_string(&row).map_err(|e| Error::Failed(e.to_string()))?
         } else {

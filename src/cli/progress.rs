@@ -1,4 +1,4 @@
-//! Progress on stderr for the long commands (`sweep`, `plot`, `critical`): a bar while the
+//! Progress on stderr for the long commands (`sweep`, `plot`, `critical`, `bench`): a bar while the
 //! work runs, drawn only where stderr is a terminal (nothing in a pipe or a log), cleared
 //! when it ends.
 
@@ -13,6 +13,17 @@ const EVERY: Duration = Duration::from_millis(100);
 /// bar saying `what` on stderr meanwhile; returns what `work` returns.
 pub fn watch<R>(what: &str, total: usize, work: impl FnOnce(&AtomicUsize) -> R) -> R {
     watch_on(ProgressDrawTarget::stderr(), what, total, work)
+}
+
+/// A spinner saying which task runs (`set_message`), for work of unknown length (`bench`),
+/// drawn only where stderr is a terminal; `finish_and_clear` when done.
+pub fn tasks() -> ProgressBar {
+    let bar = ProgressBar::with_draw_target(None, ProgressDrawTarget::stderr());
+    if let Ok(style) = ProgressStyle::with_template("{spinner} {msg} {elapsed}") {
+        bar.set_style(style);
+    }
+    bar.enable_steady_tick(EVERY);
+    bar
 }
 
 /// [`watch`], drawn on `target` (hidden: a test's, or stderr that is not a terminal).
