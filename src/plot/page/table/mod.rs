@@ -118,7 +118,7 @@ pub struct Point {
     pub stuck: Option<Stuck>,
     /// The arrows at the particle, turned as the picture is.
     pub arrows: Vec<ForceArrow>,
-    /// Integrator step mode: each step's end so far (the latest [`STEP_MARKS`]), oldest first.
+    /// Integrator step mode: each step's end so far (the latest `STEP_MARKS`), oldest first.
     pub steps: Vec<DVec2>,
 }
 
