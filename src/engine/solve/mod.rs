@@ -82,7 +82,7 @@ pub fn floor_tol(settings: Settings, width: f64) -> Settings {
 }
 
 /// Whether both ends of `t`'s bracket end as it says when run in full (no shortcut) at the
-/// tolerance that placed them, each [`confirmed`] by its second opinion (the judge: 1000×
+/// tolerance that placed them, each [`confirmed`] by its second opinion (the judge: dop853,
 /// tighter, in the other frame). `at` makes the
 /// release from the bracket's variable. A bracket with no stuck end has only its escaping end.
 /// The runs and their cost are added to `t`'s.
@@ -138,7 +138,7 @@ pub fn solve_certified<E: From<Error>>(
 
 /// Whether the release `initial` ends as `want` (stuck, or escaped with its certificate) when
 /// run in full at `settings` with no shortcut, and its second opinion ([`doubt`]: another frame,
-/// 1000× tighter) agrees with a margin: what certifies one end of a bracket. Also the
+/// dop853, tighter) agrees with a margin: what certifies one end of a bracket. Also the
 /// right-hand-side evaluations both took.
 pub fn confirmed(
     initial: Initial,
