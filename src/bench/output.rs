@@ -287,8 +287,8 @@ fn page_goals(o: &mut String, p: &super::pages::PageTimes) {
     }
     let _ = writeln!(
         o,
-        "    `x` held (30 presses a second): {} of {} presses saw their map complete and drawn before the next",
-        p.held_complete, p.held
+        "    `x` held (30 presses a second): {} of {} presses saw their map complete and drawn before the next; the last's complete {:.1} ms after it",
+        p.held_complete, p.held, p.held_last_ms
     );
 }
 
