@@ -21,9 +21,8 @@
 //! releases at the rim, at tol 1e-10, its worst error in H is under a quarter of the run's
 //! worst, its error in τ a median 1/180 and at most 0.3 of the run's, and the τ error it states
 //! covered the converged stop time every time, for dp54 and dop853 runs at tol 1e-7, 1e-10 and
-//! 1e-12),
-//! and explicit steps under the stop-ahead cap take the stretch before a stop that implicit ones
-//! took ([`Run::checking`]).
+//! 1e-12), and explicit steps under the stop-ahead cap take the stretch before a stop that
+//! implicit ones took ([`Run::checking`]).
 
 use super::State;
 use super::method::{Scheme, Settings, TOL_RANGE};
@@ -67,9 +66,8 @@ pub struct Doubt {
 /// 0.994 (1 − ξ0): the differences from any second opinion are that scatter.
 const CHECK_SHARE: f64 = 0.3;
 
-/// The second opinion on `run`: dop853 at 0.3× its tolerance (dp54's or
-/// dop853's; fixed-step runs: tol 1e-12), at least 1e-14, in the other frame, with the same
-/// coupling.
+/// The second opinion on `run`: dop853 at 0.3× its tolerance (dp54's or dop853's; fixed-step
+/// runs: tol 1e-12), at least 1e-14, in the other frame, with the same coupling.
 pub fn second_opinion(run: &Run) -> Settings {
     let tol = if run.settings().method().adaptive() {
         (run.settings().scheme.knob() * CHECK_SHARE).max(TOL_RANGE.0)
