@@ -4,6 +4,7 @@
 //! the explorer's frame and its terminal output.
 
 pub mod bytes;
+pub mod check;
 mod crossover;
 mod goals;
 pub mod link;
@@ -181,6 +182,8 @@ pub struct Report {
     pub pages: pages::PageTimes,
     /// Issue 34: the price of each model, one run and one frame.
     pub models: Vec<models::ModelCost>,
+    /// Issue 34: the second opinion's price against the runs it checks.
+    pub checks: Vec<check::CheckCost>,
 }
 
 fn median(v: &mut [f64]) -> f64 {
@@ -269,6 +272,8 @@ pub fn run(cfg: &Config, mut progress: impl FnMut(&str)) -> Result<Report, Error
     let models = models::model_costs(&all, cfg.reps)?;
     progress("speed goals");
     let speed = speed(cfg, &all, &rest)?;
+    progress("the second opinion's price");
+    let checks = check::check_costs(&all, if cfg.quick { 3 } else { 12 }, cfg.reps)?;
     progress("the pages on all cores");
     let pages = pages::page_times(cfg.reps, if cfg.quick { 4 } else { 8 })?;
     let load = std::fs::read_to_string("/proc/loadavg")
@@ -285,6 +290,7 @@ pub fn run(cfg: &Config, mut progress: impl FnMut(&str)) -> Result<Report, Error
         speed,
         pages,
         models,
+        checks,
     })
 }
 

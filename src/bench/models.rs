@@ -2,7 +2,9 @@
 //! bench's releases to τ = 50 costs, one frame of the explorer playing it at 120×40 (a tick
 //! and a whole draw), and its outcome-map page (the escape-speed curve, then the map's cells,
 //! one thread), so that "model only what a scene requires" is a table to read. The pages
-//! follow the point with its coupling: a μ = 0 or a body scene's pages are the point's.
+//! follow the point with its coupling: a μ = 0 or a body scene's pages are the point's. The
+//! spin-up (`engine::spinup`) is not yet a scene the explorer plays: it has no frame, and its
+//! page is the work one would hold, its runs over a grid of ξ0 and ramp rates.
 
 use super::runs::state_at;
 use super::timed;
@@ -24,8 +26,8 @@ pub struct ModelCost {
     pub run_rhs: f64,
     pub run_us: f64,
     /// One frame of the explorer playing the scene: a tick and a whole draw (ms, the least of
-    /// the frames timed).
-    pub frame_ms: f64,
+    /// the frames timed); none where the explorer does not play it.
+    pub frame_ms: Option<f64>,
     /// The outcome-map page at 120×40 (ξ0 = 0.5): its curve and its cells, one thread (ms);
     /// none where the pages are the point's.
     pub page_ms: Option<f64>,
@@ -113,11 +115,52 @@ pub fn model_costs(cases: &[Initial], reps: usize) -> Result<Vec<ModelCost>, Err
                 model: k.model.into(),
                 run_rhs: super::median(&mut evals),
                 run_us: 1e3 * ms / cases.len().max(1) as f64,
-                frame_ms: frame(k, reps)?,
+                frame_ms: Some(frame(k, reps)?),
                 page_ms: (k.body.is_none() && !k.frictionless).then(|| map_page(k.settings, reps)),
             })
         })
+        .chain([spin_cost(cases, reps)])
         .collect()
+}
+
+/// The spin-up's ramp: Ω̇ = 0.05 Ω_ref² from rest, so a coin at ξ0 = 0.5 slips at τ ≈ 28.
+const SPIN_RATE: f64 = 0.05;
+
+/// The spin-up: a coin at rest at each release's ξ0 on a table ramping at [`SPIN_RATE`], run
+/// to τ = 50 or its escape; its page, a coin at each of the map's cells over ξ0 in (0, 1.5) and
+/// ramp rates in (0, 0.5] (what a spin-up page of the explorer would hold).
+fn spin_cost(cases: &[Initial], reps: usize) -> Result<ModelCost, Error> {
+    use crate::engine::spinup::{Ramp, SpinRun};
+    let run = |xi0: f64, rate: f64| -> Result<u64, Error> {
+        let ramp = Ramp { rate, omega0: 0.0 };
+        let mut r = SpinRun::new(ramp, xi0, Settings::default())?;
+        r.run(TAU, true)?;
+        Ok(r.cost().rhs_evals)
+    };
+    let (evals, ms) = timed(reps.max(1), || {
+        cases
+            .iter()
+            .map(|i| run(i.xi0, SPIN_RATE))
+            .collect::<Result<Vec<_>, _>>()
+    });
+    let mut evals: Vec<f64> = evals?.into_iter().map(|e| e as f64).collect();
+    let (page, page_ms) = timed(reps, || {
+        (0..GRID.0 * GRID.1)
+            .map(|k| {
+                let (i, j) = (k % GRID.0, k / GRID.0);
+                let xi0 = 1.5 * (i as f64 + 0.5) / GRID.0 as f64;
+                run(xi0, 0.5 * (j as f64 + 1.0) / GRID.1 as f64)
+            })
+            .collect::<Result<Vec<_>, _>>()
+    });
+    page?;
+    Ok(ModelCost {
+        model: "spin-up, dΩ/dτ = 0.05".into(),
+        run_rhs: super::median(&mut evals),
+        run_us: 1e3 * ms / cases.len().max(1) as f64,
+        frame_ms: None,
+        page_ms: Some(page_ms),
+    })
 }
 
 /// One frame of the explorer playing `kind` from the default scene's release at 120×40,

@@ -31,6 +31,7 @@ pub fn table(r: &Report) -> String {
     models(&mut o, r);
     let _ = writeln!(o, "\nspeed goals (release build, this machine):");
     speed_goals(&mut o, &r.speed);
+    super::check::lines(&mut o, &r.checks, r.speed.escape_checked_ms);
     page_goals(&mut o, &r.pages);
     comparisons(&mut o, r);
     output_goals(&mut o, &r.speed);
@@ -134,17 +135,18 @@ fn savings(o: &mut String, r: &Report) {
 fn models(o: &mut String, r: &Report) {
     let _ = writeln!(
         o,
-        "\nthe price of each model ({} releases to τ = 50: median RHS and mean wall of one run; one frame of the explorer playing it at 120×40, tick + draw; its outcome-map page at 120×40, curve and cells, one thread):",
+        "\nthe price of each model ({} releases to τ = 50: median RHS and mean wall of one run; one frame of the explorer playing it at 120×40, tick + draw; its outcome-map page at 120×40, curve and cells, one thread; the spin-up, which the explorer does not play yet, a coin at rest at each release's ξ0 and its page the runs over ξ0 × ramp rate at the map's grid):",
         r.config.cases + 3
     );
     for m in &r.models {
         let _ = writeln!(
             o,
-            "  {:<36} run {:>7.0} RHS {:>8.1} µs   frame {:>5.2} ms   page {}",
+            "  {:<36} run {:>7.0} RHS {:>8.1} µs   frame {}   page {}",
             m.model,
             m.run_rhs,
             m.run_us,
-            m.frame_ms,
+            m.frame_ms
+                .map_or("   none ".into(), |ms| format!("{ms:>5.2} ms")),
             m.page_ms
                 .map_or("the point's".into(), |ms| format!("{ms:>5.1} ms"))
         );
@@ -285,8 +287,8 @@ fn page_goals(o: &mut String, p: &super::pages::PageTimes) {
     }
     let _ = writeln!(
         o,
-        "    `x` held (30 presses a second): {} of {} presses saw their map complete and drawn before the next",
-        p.held_complete, p.held
+        "    `x` held (30 presses a second): {} of {} presses saw their map complete and drawn before the next; the last's complete {:.1} ms after it",
+        p.held_complete, p.held, p.held_last_ms
     );
 }
 
@@ -457,13 +459,13 @@ pub fn plot(r: &Report, task: Task, width: u16, height: u16) -> Result<String, E
 }
 
 /// A goal on a value that must be at least `limit`.
-fn goal_at_least(value: f64, limit: f64, unit: &str) -> String {
+pub(super) fn goal_at_least(value: f64, limit: f64, unit: &str) -> String {
     let met = if value >= limit { "met" } else { "MISSED" };
     format!("(goal ≥ {limit}{unit}: {met})")
 }
 
 /// A speed goal and whether this run met it: a missed goal says so.
-fn goal(value: f64, limit: f64, unit: &str) -> String {
+pub(super) fn goal(value: f64, limit: f64, unit: &str) -> String {
     if value <= limit {
         format!("(goal ≤ {limit} {unit}: met)")
     } else {

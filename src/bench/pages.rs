@@ -68,9 +68,11 @@ pub struct PageTimes {
     pub key_frame_ms: (f64, f64),
     pub key_map_ms: (f64, f64),
     /// `x` held (pressed 30 times a second, as a key repeats): of `held` presses, how many
-    /// saw their map complete and drawn before the next.
+    /// saw their map complete and drawn before the next, and how long after the last press its
+    /// map was complete and drawn (ms): a page that waited behind superseded ones would show.
     pub held: usize,
     pub held_complete: usize,
+    pub held_last_ms: f64,
     pub key_curve_ms: (f64, f64),
     pub key_escape_ms: (f64, f64),
 }
@@ -81,14 +83,17 @@ fn thread_cpu() -> f64 {
     t.tv_sec as f64 + 1e-9 * t.tv_nsec as f64
 }
 
-/// `f` over `items` on one thread and on all cores (`par_map`), each thread's CPU time counted.
+/// `f` over `items` on one thread and on all cores (`par_map`), then each piece's CPU time
+/// counted in a run of its own: two clock readings a piece would be a third of a map cell's
+/// seven microseconds, and its wall time with them a third of the speedup.
 fn split<T: Sync, R: Send>(
     reps: usize,
     items: &[T],
     f: impl Fn(&T) -> R + Sync,
 ) -> (Vec<R>, Split) {
     let (out, one_ms) = timed(reps, || items.iter().map(&f).collect::<Vec<_>>());
-    let ((cpu_ms, longest_ms), all_ms) = timed(reps, || {
+    let (_, all_ms) = timed(reps, || par_map(items, &f));
+    let ((cpu_ms, longest_ms), _) = timed(0, || {
         let spent = par_map(items, |x| {
             let t = thread_cpu();
             let _ = f(x);
@@ -147,7 +152,7 @@ pub fn page_times(reps: usize, presses: usize) -> Result<PageTimes, Error> {
     let [_, key_curve_ms, key_escape_ms] = key_to_page(Page::EscapeSpeed, presses)?;
     let [key_frame_ms, _, key_map_ms] = key_to_page(Page::OutcomeMap, presses)?;
     let held = 30;
-    let held_complete = held_key(held)?;
+    let (held_complete, held_last_ms) = held_key(held)?;
     Ok(PageTimes {
         cores: cores(),
         curve,
@@ -161,6 +166,7 @@ pub fn page_times(reps: usize, presses: usize) -> Result<PageTimes, Error> {
         key_map_ms,
         held,
         held_complete,
+        held_last_ms,
         key_curve_ms,
         key_escape_ms,
     })
@@ -193,34 +199,48 @@ fn complete(session: &Session<ratatui::backend::TestBackend>) -> bool {
 
 /// `x` held on the outcome map: `presses` presses 1/30 s apart (after a warm-up), the loop
 /// taking pieces and drawing between them as the explorer's does; how many presses saw their
-/// map complete and drawn before the next.
-fn held_key(presses: usize) -> Result<usize, Error> {
+/// map complete and drawn before the next, and how long after the last press (ms) its map was
+/// (the last press waits as long as it takes).
+fn held_key(presses: usize) -> Result<(usize, f64), Error> {
     let (mut session, x) = session_on(Page::OutcomeMap)?;
     session.press(x);
     wait_for_page(&mut session)?;
     let period = Duration::from_secs(1) / 30;
     let mut next = Instant::now();
-    let mut completed = 0;
-    for _ in 0..presses {
+    let (mut completed, mut last_ms) = (0, f64::NAN);
+    for k in 0..presses {
+        let pressed = Instant::now();
         session.press(x);
         next += period;
+        let last = k + 1 == presses;
         let mut drawn = Instant::now() - period;
-        let mut counted = false;
-        while Instant::now() < next {
+        loop {
             session.ask_analysis();
             let done = complete(&session);
-            if (done && !counted) || (session.app.needs_redraw() && drawn.elapsed() >= period / 2) {
+            if done || (session.app.needs_redraw() && drawn.elapsed() >= period / 2) {
                 session.screen();
                 drawn = Instant::now();
             }
-            if done && !counted {
-                completed += 1;
-                counted = true;
+            if done {
+                completed += usize::from(pressed.elapsed() <= period);
+                last_ms = 1e3 * pressed.elapsed().as_secs_f64();
+                if !last {
+                    std::thread::sleep(next.saturating_duration_since(Instant::now()));
+                }
+                break;
+            }
+            if !last && Instant::now() >= next {
+                break;
+            }
+            if last && pressed.elapsed() > Duration::from_secs(10) {
+                return Err(Error::Failed(
+                    "the held key's last page did not complete in 10 s".into(),
+                ));
             }
             std::thread::sleep(crate::terminal::PIECES_POLL);
         }
     }
-    Ok(completed)
+    Ok((completed, last_ms))
 }
 
 /// `x` pressed `presses` times on `page` in a threaded session at [`SIZE`], each time waiting

@@ -128,14 +128,27 @@ fn quick_bench_rows_are_finite_and_converge() {
             .find(|r| r.model.starts_with(m))
             .unwrap()
     };
-    assert_eq!(report.models.len(), 5);
+    assert_eq!(report.models.len(), 6);
+    assert!(rhs("spin-up").frame_ms.is_none() && rhs("spin-up").run_rhs > 0.0);
     assert_eq!(rhs("μ = 0").run_rhs, 0.0);
     assert_eq!(rhs("Stokes").run_rhs, 0.0);
     assert!(rhs("the appendix's body").run_rhs > rhs("point").run_rhs);
     assert!(rhs("μ = 0").page_ms.is_none() && rhs("point").page_ms.is_some());
     let p = &report.pages;
     assert!(p.refined * 5 < p.grid.0 * p.grid.1, "{p:?}");
-    for want in ["the price of each model", "`x` → outcome map complete"] {
+    // The second opinion's price, on the bracket ends and the rest cases.
+    assert_eq!(report.checks.len(), 2);
+    assert!(
+        report
+            .checks
+            .iter()
+            .all(|c| c.runs > 0 && c.evals_ratio() > 0.0)
+    );
+    for want in [
+        "the price of each model",
+        "`x` → outcome map complete",
+        "the second opinion behind `certain`",
+    ] {
         assert!(bench::table(&report).contains(want), "{want}");
     }
     let json = serde_json::to_string(&report).unwrap();

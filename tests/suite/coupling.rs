@@ -663,7 +663,7 @@ fn a_stop_outside_the_rim_sticks_when_static_friction_can_hold_it() {
                 end.q()
             );
             assert!((end.tau - 0.3).abs() < 1e-6, "R {r}: τ {}", end.tau);
-            // The second opinion (1000× tighter, other frame) stops there too; the margin is
+            // The second opinion (dop853, tighter, other frame) stops there too; the margin is
             // the room left to the static cone, R − ξ.
             let d = doubt(&run, 200.0);
             assert_eq!(d.shadow, Some(Outcome::Stuck), "R {r}");

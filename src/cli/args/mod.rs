@@ -305,7 +305,7 @@ pub struct RunArgs {
     /// Keep integrating after escape is certified, up to tau-max.
     #[arg(long)]
     pub follow: bool,
-    /// Skip the second opinion (a run 1000x tighter in the other frame, dearer than this
+    /// Skip the second opinion (dop853, tighter, in the other frame: about as dear as this
     /// run): no `certain` then, nor measured errors.
     #[arg(long)]
     pub no_check: bool,

@@ -190,7 +190,7 @@ impl BodyReport {
     }
 }
 
-/// The second opinion on a run ([`crate::engine::doubt`]): dp54 1000× tighter in the other
+/// The second opinion on a run ([`crate::engine::doubt`]): dop853, tighter, in the other
 /// frame, and the differences it measured (null where the two end differently).
 #[derive(Debug, Serialize)]
 pub struct CheckReport {

@@ -69,7 +69,7 @@ impl SolveReport {
         let checked = match self.certified {
             None => "",
             Some(true) => {
-                "checked  certified: each end run in full ends as it says, and so does a run 1000x tighter in the other frame\n"
+                "checked  certified: each end run in full ends as it says, and so does a second opinion (dop853, tighter, in the other frame)\n"
             }
             Some(false) => &format!(
                 "checked  NOT certified: an end of the bracket, run in full or by its second opinion, did not end as it says with a margin{}\n",

@@ -3,12 +3,17 @@
 //! certificate first holds (property 2).
 
 use super::outcome::{Certificate, Escape, Status, certificate, certificate_margin};
-use super::{Ahead, Limit, Run, RunError, SNAP_T, STOP_CAP, StepInfo};
+use super::{Ahead, Limit, Run, RunError, SNAP_T, STIFF, STOP_CAP, StepInfo};
 use crate::engine::model::{Frame, State, Y, rotate, zcross};
 use crate::engine::radau;
 use crate::engine::roots::illinois;
-use crate::engine::stepper::Segment;
+use crate::engine::stepper::{Segment, too_short};
 use glam::DVec2;
+
+/// The share of the time to the stop ahead that a second opinion's explicit step, held to its
+/// stability limit, must still cover (else it goes implicit): from 0.1 to 0.3 cost the same
+/// near the rim, 0.05 twice as much.
+const CLOSE_IN: f64 = 0.2;
 
 impl Run {
     /// Looks ahead for a stop. d|u|/dτ = q·û − 1 (Coriolis does no work), so a stop is
@@ -34,6 +39,34 @@ impl Run {
             };
         }
         Ahead::Cap(STOP_CAP * t, Limit::StopAhead)
+    }
+
+    /// The longest explicit step to take next, at most `cap` (bounded by `limit`), at |u| =
+    /// `speed` (at rest, `cap`); `None` where the stretch is stiff and implicit steps take it
+    /// ([`Run::implicit_step`]). Explicit steps are stable up to [`STIFF`] |u|/min(|q|, 1). The
+    /// run goes implicit once its free step would pass that; a second opinion, which integrates
+    /// the stretch before a stop that the run takes in closed form, only once the step it takes
+    /// (capped by the stop ahead) would, and before that holds its steps to the limit while each
+    /// still closes [`CLOSE_IN`] of the time to the stop: that is all of it for a stop inside
+    /// ξ ≈ 0.9, where implicit steps, each three Newton solves of 12 unknowns, cost it several
+    /// times the run it checks.
+    pub(super) fn explicit_cap(&self, q: DVec2, speed: f64, cap: f64, limit: Limit) -> Option<f64> {
+        let step = self.natural_step();
+        if speed == 0.0 {
+            return Some(cap);
+        }
+        if !self.checking {
+            return (step * q.length().min(1.0) < STIFF * speed).then_some(cap);
+        }
+        let stable = STIFF * speed / q.length().min(1.0);
+        // Not down to steps τ cannot resolve: the implicit step takes the stop there.
+        if too_short(1e-3 * cap.min(stable), self.stepper.t) {
+            return None;
+        }
+        if step.min(cap) < stable {
+            return Some(cap);
+        }
+        (limit == Limit::StopAhead && stable >= CLOSE_IN * cap / STOP_CAP).then_some(stable)
     }
 
     /// One implicit step of at most `cap` ([`radau`]), in the table frame, at the run's
@@ -133,24 +166,30 @@ impl Run {
     /// deceleration falls to 1 − ξ, which a snap would not see. (With μ_s > μ_k the stop
     /// outside may hold, at ξ ≤ μ_s/μ_k: its place is the snap's, within s·t.)
     /// A stop closer than 1e-12 τ is one τ cannot resolve much better (a few thousand ulps):
-    /// taken then too, within that.
+    /// taken then too, within that. A second opinion takes a stop that close at constant
+    /// deceleration whatever its bound, and states the bound: on the saddle, where û may yet
+    /// swing out and the particle crawl on at a deceleration of 1 − ξ, its explicit steps would
+    /// otherwise follow one way down to what τ resolves and hide the other.
     /// (Either way within [`super::worst_stop`], which [`Run::snap_bound`] keeps.)
     fn snaps(&self, q: DVec2, u: DVec2, t: f64) -> bool {
-        let within = self.snap_time().max(1e-12 * self.stepper.t.abs());
+        let tau = self.stepper.t.abs();
+        let within = self.snap_time().max(1e-12 * tau);
         let rho = q.length();
-        (rho < 1.0 || u.length() < rho - 1.0) && super::worst_stop(q, u, t) <= within
+        (rho < 1.0 || u.length() < rho - 1.0)
+            && (super::worst_stop(q, u, t) <= within || self.checking && t <= 1e-12 * tau)
     }
 
-    /// The error in a stop's time that a closed-form stop may make: dp54's tolerance, a fixed
-    /// step's dt² (its own error per unit time), at most [`SNAP_T`]; a second opinion's a
-    /// thousandth of that, so that the run's own snap shows in their difference.
+    /// The error in a stop's time that a closed-form stop may make: the adaptive method's
+    /// tolerance, a fixed step's dt² (its own error per unit time), at most [`SNAP_T`]. A second
+    /// opinion's is its own tolerance, below the run's: the bound it snaps within is a bound
+    /// whichever way û turns ([`Run::snaps`]), not the run's frozen stop, and what either
+    /// dropped is stated with the difference ([`Run::snap_bound`]).
     pub(super) fn snap_time(&self) -> f64 {
         let scheme = self.settings.scheme;
-        let t = scheme
+        scheme
             .tol()
             .unwrap_or_else(|| scheme.knob() * scheme.knob())
-            .min(SNAP_T);
-        if self.checking { 1e-3 * t } else { t }
+            .min(SNAP_T)
     }
 
     /// The step the integrator would take with no stop ahead.

@@ -79,8 +79,9 @@ pub struct Run {
     /// [`Run::snap_bound`]).
     snap_bound: f64,
     /// A second opinion ([`Run::checking`]): it must not share the run's closed forms, so it
-    /// takes no [`frozen_stop`] and stops in closed form only a thousandth as far from the stop;
-    /// and it holds |u| to its relative accuracy near the rim.
+    /// takes no [`frozen_stop`] and stops in closed form only within a bound that holds
+    /// whichever way û turns; it holds |u| to its relative accuracy near the rim, and takes the
+    /// stretch before a stop in explicit steps where they are stable ([`Run::explicit_cap`]).
     checking: bool,
     stepper: Stepper,
     /// Stokes drag (with friction on): the run in closed form. Boxed: a point-model run
@@ -156,8 +157,9 @@ impl Run {
         Ok(run)
     }
 
-    /// A run for a second opinion: no closed-form stop but those within a thousandth of its
-    /// time tolerance (`Run::snap_time`); the stretch before a stop is integrated.
+    /// A run for a second opinion: no closed-form stop but those it can bound within its time
+    /// tolerance (`Run::snap_time`) or that τ cannot resolve; the stretch before a stop is
+    /// integrated.
     pub fn checking(initial: Initial, settings: Settings) -> Result<Run, Error> {
         Ok(Run {
             checking: true,
@@ -372,8 +374,9 @@ impl Run {
                 }
                 Ahead::Clear | Ahead::Jump { .. } => {}
             }
-            if speed > 0.0 && self.natural_step() * q.length().min(1.0) >= STIFF * speed {
-                return self.implicit_step(cap);
+            match self.explicit_cap(q, speed, cap, limit) {
+                Some(c) => cap = c,
+                None => return self.implicit_step(cap),
             }
         }
         let rejected_before = self.cost.rejected;

@@ -2,7 +2,7 @@
 //! full settings, a secant on the smooth measure H through the threshold, and the last runs
 //! that pass close to the saddle.
 
-use super::{CLASSIFY_TAU, GoOn, Threshold, always, check, floor_tol, scan};
+use super::{CLASSIFY_TAU, GoOn, Kept, Threshold, always, check, floor_tol, scan};
 use crate::engine::error::{Error, Field, Invalid, Range};
 use crate::engine::method::{Scheme, Settings};
 use crate::engine::model::Initial;
@@ -19,14 +19,14 @@ struct Probe {
 
 /// Classifies the release at `initial` with `settings`. With `early`, a run stops as soon as it
 /// is certified to stick (H < 0 inside ξ < 1) and reports no H; otherwise a stuck run goes on
-/// to its stop, and H there is reported.
+/// to its stop, and H there is reported. Also the run, where it stopped.
 fn probe(
     initial: Initial,
     settings: Settings,
     early: bool,
     evals: &mut u64,
     go_on: GoOn,
-) -> Result<Probe, Error> {
+) -> Result<(Probe, Run), Error> {
     use crate::engine::run::Status;
     check(go_on)?;
     let mut run = Run::new(initial, settings)?;
@@ -77,7 +77,7 @@ fn probe(
         }
     };
     *evals += run.cost().rhs_evals;
-    Ok(result)
+    Ok((result, run))
 }
 
 /// Escape needs at most enough speed to reach ξ = 1 against full friction: the ceiling of
@@ -155,13 +155,18 @@ pub fn escape_speed_until(
     let top = escape_scan_top(xi0);
     let grid: Vec<f64> = (0..=40).map(|i| top * i as f64 / 40.0).collect();
     let (first, interval, scanned) = scan(&grid, |v0| {
-        probe(at(v0), scan_settings, true, &mut evals, go_on).map(|p| p.escapes)
+        probe(at(v0), scan_settings, true, &mut evals, go_on).map(|(p, _)| p.escapes)
     })?;
     let mut runs = scanned.len() as u32;
+    let mut kept = Kept::default();
     let (stuck_at, escapes_at) = if first == 0 {
         (None, 0.0)
     } else {
-        let mut run = |v0: f64, early: bool| probe(at(v0), settings, early, &mut evals, go_on);
+        let mut run = |v0: f64, early: bool| {
+            let (p, run) = probe(at(v0), settings, early, &mut evals, go_on)?;
+            kept.keep(v0, p.escapes, run);
+            Ok(p)
+        };
         let ends = bracket(&grid, first, &mut runs, |v0| run(v0, false))?;
         let (lo, hi) = narrow(ends, tol, &mut runs, run)?;
         (Some(lo), hi)
@@ -176,6 +181,7 @@ pub fn escape_speed_until(
         rhs_evals: evals,
         run_tol: settings.scheme.tol(),
         tightened: 0,
+        kept,
     })
 }
 

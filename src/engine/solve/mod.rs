@@ -12,8 +12,10 @@ use serde::Serialize;
 use std::sync::atomic::AtomicUsize;
 
 mod escape;
+mod kept;
 
 pub use escape::{MAX_ESCAPE_XI0, check_escape_xi0, escape_speed, escape_speed_until};
+pub use kept::Kept;
 
 /// Asked by a solver before each of its runs: `false` ends the solver with
 /// [`Error::Cancelled`]. A caller whose answer became moot (the explorer's page asked for
@@ -38,7 +40,7 @@ fn check(go_on: GoOn) -> Result<(), Error> {
 pub const CLASSIFY_TAU: f64 = 1e4;
 
 /// A threshold located by bisection on the outcome, with its certificate: a run on each side.
-#[derive(Clone, Debug, Serialize, PartialEq)]
+#[derive(Clone, Debug, Serialize)]
 pub struct Threshold {
     /// Midpoint of the final bracket.
     pub value: f64,
@@ -58,6 +60,9 @@ pub struct Threshold {
     pub run_tol: Option<f64>,
     /// How many times [`solve_certified`] solved again 100× tighter.
     pub tightened: u32,
+    /// The runs at the bracket's ends where they stopped, for [`certify`] to continue.
+    #[serde(skip)]
+    pub kept: Kept,
 }
 
 /// `settings` with its adaptive method at `tol` (not below 1e-14); fixed-step settings as
@@ -83,7 +88,7 @@ pub fn floor_tol(settings: Settings, width: f64) -> Settings {
 }
 
 /// Whether both ends of `t`'s bracket end as it says when run in full (no shortcut) at the
-/// tolerance that placed them, each [`confirmed`] by its second opinion (the judge: 1000×
+/// tolerance that placed them, each [`confirmed`] by its second opinion (the judge: dop853,
 /// tighter, in the other frame). `at` makes the
 /// release from the bracket's variable. A bracket with no stuck end has only its escaping end.
 /// The runs and their cost are added to `t`'s.
@@ -100,8 +105,12 @@ pub fn certify(
     ends.extend(t.stuck_at.map(|lo| (lo, Outcome::Stuck)));
     let mut ok = true;
     for (x, want) in ends {
-        let (yes, evals) = confirmed(at(x), settings, want)?;
-        (t.runs, t.rhs_evals) = (t.runs + 2, t.rhs_evals + evals);
+        let (run, made) = match t.kept.take(x, want, at(x), settings) {
+            Some(run) => (run, 1),
+            None => (Run::new(at(x), settings)?, 2),
+        };
+        let (yes, evals) = confirmed(run, want)?;
+        (t.runs, t.rhs_evals) = (t.runs + made, t.rhs_evals + evals);
         ok &= yes;
         if !ok {
             break;
@@ -137,21 +146,17 @@ pub fn solve_certified<E: From<Error>>(
     Ok((t, ok))
 }
 
-/// Whether the release `initial` ends as `want` (stuck, or escaped with its certificate) when
-/// run in full at `settings` with no shortcut, and its second opinion ([`doubt`]: another frame,
-/// 1000× tighter) agrees with a margin: what certifies one end of a bracket. Also the
-/// right-hand-side evaluations both took.
-pub fn confirmed(
-    initial: Initial,
-    settings: Settings,
-    want: Outcome,
-) -> Result<(bool, u64), Error> {
-    let mut run = Run::new(initial, settings)?;
+/// Whether `run`, run on in full with no shortcut (from its start, or from where a solver
+/// stopped it: [`Kept`]), ends as `want` (stuck, or escaped with its certificate), and its
+/// second opinion ([`doubt`]: another frame, dop853, tighter) agrees with a margin: what
+/// certifies one end of a bracket. Also the right-hand-side evaluations both took from here.
+pub fn confirmed(mut run: Run, want: Outcome) -> Result<(bool, u64), Error> {
+    let before = run.cost().rhs_evals;
     let own = run.run(CLASSIFY_TAU, true)?;
     let d = doubt(&run, CLASSIFY_TAU);
     Ok((
         own == want && d.certain,
-        run.cost().rhs_evals + d.check_evals,
+        run.cost().rhs_evals - before + d.check_evals,
     ))
 }
 
@@ -186,13 +191,14 @@ pub fn critical_radius_until(
     go_on: GoOn,
 ) -> Result<Threshold, Error> {
     let settings = floor_tol(settings, tol);
-    let mut evals = 0;
+    let (mut evals, mut kept) = (0, Kept::default());
     let mut classify = |xi0: f64| -> Result<bool, Error> {
         check(go_on)?;
         let mut run = Run::new(Initial::at_rest(xi0, Release::LabRest), settings)?;
-        let outcome = run.run(CLASSIFY_TAU, true)?;
+        let escapes = run.run(CLASSIFY_TAU, true)? != Outcome::Stuck;
         evals += run.cost().rhs_evals;
-        Ok(outcome != Outcome::Stuck)
+        kept.keep(xi0, escapes, run);
+        Ok(escapes)
     };
     let grid: Vec<f64> = (0..=30).map(|i| 1.5 * i as f64 / 30.0).collect();
     let (first, interval, scanned) = scan(&grid, &mut classify)?;
@@ -212,6 +218,7 @@ pub fn critical_radius_until(
         rhs_evals: evals,
         run_tol: settings.scheme.tol(),
         tightened: 0,
+        kept,
     })
 }
 

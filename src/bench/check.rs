@@ -1,0 +1,121 @@
+//! The second opinion's price (issue 34 item 3): `doubt` against the run it checks, on the
+//! bracket ends a certified `escape` checks (Fig. 5's four ξ0) and on the rest cases, in
+//! right-hand-side evaluations and in time (one thread, the minimum of runs); and a certified
+//! `escape` as a process beside SciPy's DOP853 doing the same.
+
+use super::timed;
+use crate::engine::doubt::doubt;
+use crate::engine::solve::{CLASSIFY_TAU, escape_speed};
+use crate::engine::{Initial, Run, Settings};
+use crate::error::Error;
+use serde::Serialize;
+use std::fmt::Write as _;
+
+/// The goal: a check costs at most this many times the run it checks.
+const GOAL: f64 = 1.3;
+
+/// SciPy 1.17's DOP853 (`solve_ivp`, rtol = atol) finding v_e to 1e-8 and certifying it as
+/// `turntable escape --vtol 1e-8` does, as a process (`docs/scipy-escape.py`: the same scan,
+/// bisection at tol 1e-10 to the stick or escape certificate, both ends again at 1e-13 in the
+/// other frame), median CPU time (ms) over Fig. 5's four ξ0 × 3 angles (1.8 to 8.3 s) on the
+/// machine the bench was written on (2 cores, Python 3.11, load 2.5): the figure [`lines`]
+/// compares against. (`turntable escape` there: 4.1 ms median CPU, 4.25 ms wall.)
+pub const SCIPY_ESCAPE_MS: f64 = 2600.0;
+
+/// What the second opinion costs against the runs it checks.
+#[derive(Clone, Debug, Serialize)]
+pub struct CheckCost {
+    pub what: String,
+    pub runs: usize,
+    pub run_evals: u64,
+    pub check_evals: u64,
+    pub run_ms: f64,
+    pub check_ms: f64,
+}
+
+impl CheckCost {
+    pub fn evals_ratio(&self) -> f64 {
+        self.check_evals as f64 / self.run_evals as f64
+    }
+    pub fn time_ratio(&self) -> f64 {
+        self.check_ms / self.run_ms
+    }
+}
+
+/// The check's price on the escape speed's bracket ends (the four ξ0 of Fig. 5 × `angles`,
+/// vtol 1e-8) and on `rest` (the rest task's cases).
+pub fn check_costs(rest: &[Initial], angles: usize, reps: usize) -> Result<Vec<CheckCost>, Error> {
+    let mut ends = Vec::new();
+    for xi0 in [0.8, 0.5, 0.2, 0.001] {
+        for k in 0..angles {
+            let phi = crate::analysis::angle(k, angles);
+            let t = escape_speed(xi0, phi, Settings::default(), 1e-8)?;
+            let at = |v0| Initial::velocity(xi0, phi, v0);
+            ends.extend(t.stuck_at.map(at));
+            ends.push(at(t.escapes_at));
+        }
+    }
+    Ok(vec![
+        cost("the escape speed's bracket ends, vtol 1e-8", &ends, reps)?,
+        cost("the rest cases", rest, reps)?,
+    ])
+}
+
+/// The runs of `releases` at the default settings, then their second opinions, each timed.
+fn cost(what: &str, releases: &[Initial], reps: usize) -> Result<CheckCost, Error> {
+    let run = || {
+        releases
+            .iter()
+            .map(|&i| {
+                let mut r = Run::new(i, Settings::default())?;
+                r.run(CLASSIFY_TAU, true)?;
+                Ok(r)
+            })
+            .collect::<Result<Vec<Run>, Error>>()
+    };
+    let (runs, run_ms) = timed(reps, run);
+    let runs = runs?;
+    let (doubts, check_ms) = timed(reps, || {
+        runs.iter()
+            .map(|r| doubt(r, CLASSIFY_TAU))
+            .collect::<Vec<_>>()
+    });
+    Ok(CheckCost {
+        what: what.into(),
+        runs: runs.len(),
+        run_evals: runs.iter().map(|r| r.cost().rhs_evals).sum(),
+        check_evals: doubts.iter().map(|d| d.check_evals).sum(),
+        run_ms,
+        check_ms,
+    })
+}
+
+/// The rows: each check's price against its goal, and the certified `escape` (process start
+/// included, `escape_ms`) against SciPy's.
+pub fn lines(o: &mut String, costs: &[CheckCost], escape_ms: Option<f64>) {
+    let _ = writeln!(
+        o,
+        "  the second opinion behind `certain` (dop853, other frame) ÷ the run it checks (dp54 tol 1e-10), one thread:"
+    );
+    for c in costs {
+        let _ = writeln!(
+            o,
+            "    {:<44} {:>4} runs: RHS {:>4.2}×, time {:>4.2}× ({:.1} → {:.1} ms)   {}",
+            c.what,
+            c.runs,
+            c.evals_ratio(),
+            c.time_ratio(),
+            c.run_ms,
+            c.check_ms,
+            super::output::goal(c.time_ratio(), GOAL, "×")
+        );
+    }
+    if let Some(ms) = escape_ms {
+        let _ = writeln!(
+            o,
+            "    a certified `escape --vtol 1e-8` ({ms:.2} ms, above) against SciPy's DOP853 doing the same ({SCIPY_ESCAPE_MS:.0} ms, docs/scipy-escape.py): {:.0}×   {}",
+            SCIPY_ESCAPE_MS / ms,
+            super::output::goal_at_least(SCIPY_ESCAPE_MS / ms, 100.0, "×")
+        );
+    }
+}
