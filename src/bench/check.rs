@@ -61,8 +61,10 @@ pub fn check_costs(rest: &[Initial], angles: usize, reps: usize) -> Result<Vec<C
     ])
 }
 
-/// The runs of `releases` at the default settings, then their second opinions, each timed.
+/// The runs of `releases` at the default settings, then their second opinions, each timed (at
+/// least five times: the rest cases take a millisecond, and one timing of that is noise).
 fn cost(what: &str, releases: &[Initial], reps: usize) -> Result<CheckCost, Error> {
+    let reps = reps.max(5);
     let run = || {
         releases
             .iter()

@@ -59,7 +59,7 @@ pub struct Doubt {
 }
 
 /// The second opinion's tolerance as a share of the run's: on the escape speed's bracket ends
-/// 0.1 cost 1.25× the run's instructions, 0.2 1.12×, 0.3 1.06×. Tighter does not state stop
+/// 0.1 cost 1.25× the run's instructions, 0.2 1.12×, 0.3 1.06× (when it was chosen). Tighter does not state stop
 /// times near the rim better: there a stop is ill-conditioned (τ moves by 1/(2|H|) per unit
 /// of H) and the runs at tol 1e-13 and 1e-14 of either method in either frame scatter by
 /// ±2.5e-8 at ξ0 = 0.9999 thrown within 1e-11 of escaping, by ±1e-10 at ξ0 = 0.99942, v0 =
