@@ -366,22 +366,12 @@ fn escape_cli(xi0s: &[f64], n: usize, check: bool) -> Option<f64> {
 /// scene at 160×48, with the paper's run beside it, once the trail holds 20 000 samples.
 fn frame_time(reps: usize) -> Result<(f64, usize), Error> {
     use crate::app::{Action, App, update};
-    use ratatui::{Terminal, backend::TestBackend};
-    let theme = crate::theme::Theme::builtin("dark").ok_or(Error::invalid("no dark theme"))?;
     let mut app = App::new(crate::scene::Scene::default_scene());
     update(&mut app, Action::ToggleCompare);
     while app.sim().samples.len() < 20_000 {
         app.tick();
     }
-    let mut term = Terminal::new(TestBackend::new(160, 48))?;
-    let (r, ms) = timed(reps.max(5), || {
-        app.tick();
-        let mut geom = Vec::new();
-        term.draw(|f| geom = crate::ui::draw(f, &app, &theme))?;
-        app.drawn(geom);
-        Ok::<(), std::convert::Infallible>(())
-    });
-    r?;
+    let ms = super::tick_and_draw_ms(&mut app, (160, 48), reps)?;
     Ok((ms, app.sim().trail().len()))
 }
 

@@ -203,6 +203,27 @@ fn worst(v: &[f64]) -> f64 {
     v.iter().copied().fold(0.0, f64::max)
 }
 
+/// One frame of `app` playing on a `size` terminal, the least over at least five: a tick and
+/// a whole draw, the mouse's geometry handed back as the shell does.
+fn tick_and_draw_ms(
+    app: &mut crate::app::App,
+    size: (u16, u16),
+    reps: usize,
+) -> Result<f64, Error> {
+    use ratatui::{Terminal, backend::TestBackend};
+    let theme = crate::theme::Theme::builtin("dark").ok_or(Error::invalid("no dark theme"))?;
+    let mut term = Terminal::new(TestBackend::new(size.0, size.1))?;
+    let (r, ms) = timed(reps.max(5), || {
+        app.tick();
+        let mut geom = Vec::new();
+        term.draw(|f| geom = crate::ui::draw(f, app, &theme))?;
+        app.drawn(geom);
+        Ok::<(), std::convert::Infallible>(())
+    });
+    r?;
+    Ok(ms)
+}
+
 /// Times `f`: one warm-up, then up to `reps` runs (fewer if one is slow); the minimum.
 fn timed<T>(reps: usize, mut f: impl FnMut() -> T) -> (T, f64) {
     let t0 = Instant::now();

@@ -166,26 +166,15 @@ fn spin_cost(cases: &[Initial], reps: usize) -> Result<ModelCost, Error> {
 /// One frame of the explorer playing `kind` from the default scene's release at 120×40,
 /// after a second of play: a tick and a whole draw, the least of a few.
 fn frame(kind: &Kind, reps: usize) -> Result<f64, Error> {
-    use ratatui::{Terminal, backend::TestBackend};
     let mut scene = Scene::default_scene();
     scene.settings = kind.settings;
     scene.initial.frictionless = kind.frictionless;
     scene.body = kind.body;
-    let theme = crate::theme::Theme::builtin("dark").ok_or(Error::invalid("no dark theme"))?;
     let mut app = App::new(scene);
     for _ in 0..crate::app::TICKS_PER_SECOND {
         app.tick();
     }
-    let mut term = Terminal::new(TestBackend::new(120, 40))?;
-    let (r, ms) = timed(reps.max(5), || {
-        app.tick();
-        let mut geom = Vec::new();
-        term.draw(|f| geom = crate::ui::draw(f, &app, &theme))?;
-        app.drawn(geom);
-        Ok::<(), std::convert::Infallible>(())
-    });
-    r?;
-    Ok(ms)
+    super::tick_and_draw_ms(&mut app, (120, 40), reps)
 }
 
 /// The map's grid at 120×40 (`bench::pages` measures it).
