@@ -547,14 +547,8 @@ fn mouse_click_places_the_release_point_and_drag_sets_the_velocity() {
     render(&mut a, 80, 24);
     let g = a.geom_for_tests().unwrap();
     // The cell under world point (0.8, 0).
-    let col = g.area.x + ((0.8 - g.x[0]) / (g.x[1] - g.x[0]) * f64::from(g.area.width)) as u16;
-    let row = g.area.y + ((g.y[1] - 0.0) / (g.y[1] - g.y[0]) * f64::from(g.area.height)) as u16;
-    let ev = |kind, column, row| MouseEvent {
-        kind,
-        column,
-        row,
-        modifiers: KeyModifiers::NONE,
-    };
+    let (col, row) = crate::common::cell_under(&g, 0.8, 0.0);
+    let ev = crate::common::mouse;
     a.handle_mouse(ev(MouseEventKind::Down(MouseButton::Left), col, row));
     assert!((a.initial().xi0 - 0.8).abs() < 0.1, "{}", a.initial().xi0);
     a.handle_mouse(ev(

@@ -3,7 +3,7 @@
 //! through the canvas it lands in.
 
 use crate::common::render;
-use crossterm::event::{KeyCode, KeyEvent, KeyModifiers, MouseButton, MouseEvent, MouseEventKind};
+use crossterm::event::{KeyCode, KeyEvent, KeyModifiers, MouseButton, MouseEventKind};
 use turntable::app::App;
 use turntable::engine::Frame;
 use turntable::scene::Scene;
@@ -69,14 +69,8 @@ fn a_click_in_the_second_canvas_places_the_release_there() {
     let g = a.geoms_for_tests()[1];
     assert_eq!(g.frame, Frame::Table);
     // The cell under world point (0.8, 0) of the rotating canvas.
-    let col = g.area.x + ((0.8 - g.x[0]) / (g.x[1] - g.x[0]) * f64::from(g.area.width)) as u16;
-    let row = g.area.y + ((g.y[1] - 0.0) / (g.y[1] - g.y[0]) * f64::from(g.area.height)) as u16;
-    let ev = |kind, column, row| MouseEvent {
-        kind,
-        column,
-        row,
-        modifiers: KeyModifiers::NONE,
-    };
+    let (col, row) = crate::common::cell_under(&g, 0.8, 0.0);
+    let ev = crate::common::mouse;
     a.handle_mouse(ev(MouseEventKind::Down(MouseButton::Left), col, row));
     assert!((a.initial().xi0 - 0.8).abs() < 0.1, "{}", a.initial().xi0);
     // A drag straight up in the rotating canvas: u0 along +y, whatever the lab makes of it.

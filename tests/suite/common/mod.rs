@@ -192,3 +192,24 @@ pub fn budget(var: &str, default: u64) -> u64 {
         Err(_) => default,
     }
 }
+
+/// The terminal cell whose centre lies over world point (`x`, `y`) of the canvas `g`.
+pub fn cell_under(g: &turntable::app::CanvasGeom, x: f64, y: f64) -> (u16, u16) {
+    let col = g.area.x + ((x - g.x[0]) / (g.x[1] - g.x[0]) * f64::from(g.area.width)) as u16;
+    let row = g.area.y + ((g.y[1] - y) / (g.y[1] - g.y[0]) * f64::from(g.area.height)) as u16;
+    (col, row)
+}
+
+/// A mouse event of `kind` at (`column`, `row`), no modifier.
+pub fn mouse(
+    kind: crossterm::event::MouseEventKind,
+    column: u16,
+    row: u16,
+) -> crossterm::event::MouseEvent {
+    crossterm::event::MouseEvent {
+        kind,
+        column,
+        row,
+        modifiers: crossterm::event::KeyModifiers::NONE,
+    }
+}
