@@ -1,10 +1,17 @@
 //! One run in time, as the explorer shows it: the run advanced tick by tick, a history of
 //! samples to step back through, and only the work the scene needs (stuck: closed-form
-//! rotation; escaped and out of view: no more steps).
+//! rotation; escaped and out of view: no more steps). The run is the paper's table at
+//! constant Ω, or a table spun up where the scene asks ([`Motion`]).
+
+mod motion;
+
+pub use motion::Motion;
 
 use crate::engine::doubt::{Doubt, doubt};
 use crate::engine::method::TOL_RANGE;
-use crate::engine::run::{Outcome, Run, RunError, Status};
+use crate::engine::run::{Escape, Outcome, Run, RunError, Status, StepInfo};
+use crate::engine::spinup::{Ramp, SpinRun};
+use crate::engine::stepper::Cost;
 use crate::engine::track::Track;
 use crate::engine::work::Tally;
 use crate::engine::{Initial, Settings, State};
@@ -33,7 +40,8 @@ pub struct Work {
 
 #[derive(Clone, Debug)]
 pub struct Sim {
-    pub run: Run,
+    /// The run, advanced only here; read through the accessors below.
+    run: Motion,
     /// One sample per tick, oldest first: the history stepped through.
     pub samples: Vec<State>,
     /// The path on a τ grid ([`TRAIL_DT`], doubled as often as [`TRAIL_MAX`] needs), from the
@@ -42,8 +50,9 @@ pub struct Sim {
     pub path: Track<State>,
     /// The work friction did up to each point of `path` (−∫|u|dτ, [`Tally`]): the energy
     /// plot's second side, thinned in lockstep with the path (the same offers and events).
+    /// NaN on a spun-up table, whose scene shows no energy plot (no tally is kept).
     path_work: Track<f64>,
-    tally: Tally,
+    tally: Option<Tally>,
     /// End points of the integrator steps taken one at a time ([`Sim::step_once`]).
     pub step_marks: Vec<State>,
     /// Whether the stop is in the path.
@@ -63,9 +72,19 @@ pub struct Sim {
 impl Sim {
     pub fn new(initial: Initial, settings: Settings, view_radius: f64) -> Result<Sim, Error> {
         let run = Run::new(initial, settings)?;
+        Ok(Sim::of(Some(Tally::new(&run)), Motion::Steady(run), view_radius))
+    }
+
+    /// A coin at rest on the table at ξ0, the table spun up as `ramp` says.
+    pub fn spin(ramp: Ramp, xi0: f64, settings: Settings, view_radius: f64) -> Result<Sim, Error> {
+        let run = SpinRun::new(ramp, xi0, settings)?;
+        Ok(Sim::of(None, Motion::Spin(run), view_radius))
+    }
+
+    fn of(tally: Option<Tally>, run: Motion, view_radius: f64) -> Sim {
         let s0 = run.state();
-        Ok(Sim {
-            tally: Tally::new(&run),
+        Sim {
+            tally,
             run,
             samples: vec![s0],
             path: Track::new(s0, TRAIL_MAX),
@@ -77,7 +96,45 @@ impl Sim {
             error: None,
             work: Work::default(),
             doubt: None,
-        })
+        }
+    }
+
+    /// The run this sim drives.
+    pub fn motion(&self) -> &Motion {
+        &self.run
+    }
+    /// The paper's table's run; None on a spun-up table.
+    pub fn steady(&self) -> Option<&Run> {
+        match &self.run {
+            Motion::Steady(r) => Some(r),
+            Motion::Spin(_) => None,
+        }
+    }
+    pub fn status(&self) -> Status {
+        self.run.status()
+    }
+    pub fn escape(&self) -> Option<Escape> {
+        self.run.escape()
+    }
+    pub fn settings(&self) -> Settings {
+        self.run.settings()
+    }
+    pub fn initial(&self) -> Initial {
+        self.run.initial()
+    }
+    pub fn cost(&self) -> Cost {
+        self.run.cost()
+    }
+    pub fn last_step(&self) -> Option<StepInfo> {
+        self.run.last_step()
+    }
+    /// How the run ends, as far as it has been integrated (not the sample on screen).
+    pub fn outcome(&self) -> Outcome {
+        self.run.outcome()
+    }
+    /// How far the run has been integrated (the screen may be behind).
+    pub fn run_tau(&self) -> f64 {
+        self.run.tau()
     }
 
     /// The state on screen.
@@ -119,9 +176,10 @@ impl Sim {
                 && ts <= end
                 && ts <= t
             {
+                // (A spun-up coin is stuck for good only at the centre, where this is exact too.)
                 self.path.insert(State::riding(q, ts));
                 // Nothing slides after the stop: the tally holds there.
-                let w = self.tally.to(&self.run, ts).unwrap_or(f64::NAN);
+                let w = self.work_to(ts).unwrap_or(f64::NAN);
                 self.path_work.insert(w);
                 self.stop_in_path = true;
             }
@@ -131,7 +189,7 @@ impl Sim {
             match self
                 .run
                 .state_at(t)
-                .and_then(|s| Ok((s, self.tally.to(&self.run, t)?)))
+                .and_then(|s| Ok((s, self.work_to(t)?)))
             {
                 Ok((s, w)) => {
                     self.path.push_at(k, s);
@@ -147,9 +205,17 @@ impl Sim {
         // Through the latest step's end, before the next replaces its dense output (a
         // closed form has one at every τ: its grid points carry the tally).
         if !self.run.closed_form()
-            && let Err(e) = self.tally.to(&self.run, self.run.tau())
+            && let Err(e) = self.work_to(self.run.tau())
         {
             self.error = Some(e);
+        }
+    }
+
+    /// The work friction did up to τ (NaN where no tally is kept: a spun-up table).
+    fn work_to(&mut self, tau: f64) -> Result<f64, RunError> {
+        match (&mut self.tally, &self.run) {
+            (Some(t), Motion::Steady(run)) => t.to(run, tau),
+            _ => Ok(f64::NAN),
         }
     }
 
@@ -184,12 +250,12 @@ impl Sim {
         }
         let target = self.now().tau + dtau;
         let budget = self.run.cost().steps + self.run.cost().rejected + STEPS_PER_TICK;
-        while self.run.goes_on(target, false) {
+        while self.run.goes_on(target) {
             if self.run.cost().steps + self.run.cost().rejected >= budget {
                 break;
             }
             self.work.steps += 1;
-            if let Err(e) = self.run.step(f64::INFINITY) {
+            if let Err(e) = self.run.step(target) {
                 self.error = Some(e);
                 break;
             }
@@ -232,7 +298,7 @@ impl Sim {
             // Ticks integrate past the screen, but stop at the first step that reaches their
             // target: the run's latest step holds the τ on screen. Show its end, stepping
             // nothing (re-integrating from τ = 0 took seconds on a long run).
-        } else if !self.live() || !self.run.goes_on(f64::INFINITY, false) {
+        } else if !self.live() || !self.run.goes_on(f64::INFINITY) {
             return false;
         } else {
             self.work.steps += 1;
@@ -263,8 +329,11 @@ impl Sim {
     /// right after the step that decided it, while its dense output still covers the
     /// certificate; within one tick's budget, the shadow's).
     fn note_outcome(&mut self) {
-        if self.doubt.is_none() && self.run.outcome() != Outcome::Running {
-            self.doubt = Some(doubt(&self.run, f64::INFINITY));
+        if let Motion::Steady(run) = &self.run
+            && self.doubt.is_none()
+            && run.outcome() != Outcome::Running
+        {
+            self.doubt = Some(doubt(run, f64::INFINITY));
         }
     }
 
@@ -298,21 +367,28 @@ impl Sim {
         let tol = (own * 1e-3).clamp(TOL_RANGE.0, 1e-13);
         let now = self.now();
         // Within one tick's budget, so the key never waits long.
-        let mut shadow = Run::new(
-            self.run.initial(),
-            Settings {
-                max_steps: STEPS_PER_TICK,
-                coupling: self.run.settings().coupling,
-                ..Settings::dp54(tol)
-            },
-        )?;
-        shadow.run(now.tau, false)?;
-        let error = (shadow.state_at(now.tau)?.r - now.r).length();
+        let settings = Settings {
+            max_steps: STEPS_PER_TICK,
+            coupling: self.run.settings().coupling,
+            ..Settings::dp54(tol)
+        };
+        let (at, rhs_evals) = match &self.run {
+            Motion::Steady(run) => {
+                let mut shadow = Run::new(run.initial(), settings)?;
+                shadow.run(now.tau, false)?;
+                (shadow.state_at(now.tau)?, shadow.cost().rhs_evals)
+            }
+            Motion::Spin(run) => {
+                let mut shadow = SpinRun::new(run.ramp(), run.xi0(), settings)?;
+                shadow.run(now.tau, false)?;
+                (shadow.state_at(now.tau)?, shadow.cost().rhs_evals)
+            }
+        };
         Ok(ErrorEstimate {
             tau: now.tau,
-            error,
+            error: (at.r - now.r).length(),
             tol,
-            rhs_evals: shadow.cost().rhs_evals,
+            rhs_evals,
         })
     }
 }

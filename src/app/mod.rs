@@ -207,7 +207,7 @@ impl App {
         check_sim("run", self.sim())?;
         if let Some(p) = self.paper() {
             check_sim("paper", p)?;
-            if p.run.settings() != Settings::paper() {
+            if p.settings() != Settings::paper() {
                 return Err("paper run does not use the paper's settings".into());
             }
         }

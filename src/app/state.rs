@@ -289,7 +289,7 @@ impl App {
 
     /// How the run ends, once it is decided (whatever τ is on screen): empty before.
     pub(crate) fn ending(&self) -> String {
-        let run = &self.sim().run;
+        let run = self.sim();
         match (run.status(), run.escape()) {
             (crate::engine::Status::Stuck { tau, q }, _) => {
                 format!("sticks at ξ = {} (τ = {})", num(q.length(), 4), num(tau, 3))

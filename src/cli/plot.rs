@@ -169,14 +169,14 @@ fn play(i: Initial, settings: crate::engine::Settings, tau_max: f64) -> Result<P
     // Until the τ on screen passes the stop, so that the path holds the stop itself.
     while sim.live()
         && sim.now().tau < tau_max
-        && !matches!(sim.run.status(), Status::Stuck { tau, .. } if sim.now().tau >= tau)
+        && !matches!(sim.status(), Status::Stuck { tau, .. } if sim.now().tau >= tau)
     {
         sim.advance(crate::app::TICK_DT);
     }
     if let Some(e) = sim.error {
         return Err(Error::Run(e));
     }
-    let (stop, end) = match (sim.run.status(), sim.run.escape()) {
+    let (stop, end) = match (sim.status(), sim.escape()) {
         (Status::Stuck { tau, q }, _) => (
             Some(tau),
             format!("stuck at ξ = {}, τ = {}", num(q.length(), 5), num(tau, 3)),

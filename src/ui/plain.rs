@@ -294,13 +294,13 @@ fn status(sim: &Sim) -> String {
     }
     let text = match sim.outcome_now() {
         Outcome::Running => return "slipping".into(),
-        Outcome::Stuck => match sim.run.status() {
+        Outcome::Stuck => match sim.status() {
             Status::Stuck { tau, q } => {
                 format!("stuck at ξ = {} (τ = {})", num(q.length(), 4), num(tau, 3))
             }
             Status::Slipping => "stuck".into(),
         },
-        Outcome::Escaped => match sim.run.escape() {
+        Outcome::Escaped => match sim.escape() {
             Some(e) => format!("escaped (certified at τ = {})", num(e.tau, 3)),
             None => "escaped".into(),
         },

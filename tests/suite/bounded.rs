@@ -61,10 +61,10 @@ fn compare_after_a_long_session_catches_up_over_ticks() {
         assert_eq!(s.app.is_playing(), friction);
         let mut ticks = 0;
         while s.app.paper_lags() {
-            let before = s.app.paper().unwrap().run.cost().steps;
+            let before = s.app.paper().unwrap().cost().steps;
             s.tick();
             let p = s.app.paper().unwrap();
-            assert!(p.run.cost().steps - before <= STEPS_PER_TICK);
+            assert!(p.cost().steps - before <= STEPS_PER_TICK);
             ticks += 1;
             assert!(ticks < 1000, "never caught up");
         }
@@ -90,7 +90,7 @@ fn restart_work_is_bounded_per_tick() {
     for _ in 0..200 {
         s.key(key('r'));
         s.tick();
-        let c = s.app.sim().run.cost();
+        let c = s.app.sim().cost();
         assert!(c.steps + c.rejected <= STEPS_PER_TICK + 1, "{c:?}");
     }
 }
@@ -184,7 +184,7 @@ fn integrator_step_steps_from_the_current_state() {
     s.key(key('m'));
     s.key(key('m'));
     assert_eq!(
-        s.app.sim().run.settings().method(),
+        s.app.sim().settings().method(),
         turntable::engine::Method::Rk2Raw
     );
     for _ in 0..8 {
@@ -199,7 +199,7 @@ fn integrator_step_steps_from_the_current_state() {
     s.key(key(' '));
     let tau = s.app.now().tau;
     let steps = s.app.sim().work.steps;
-    assert!(tau >= 150.0 && s.app.sim().run.tau() > tau, "{tau}");
+    assert!(tau >= 150.0 && s.app.sim().run_tau() > tau, "{tau}");
     s.key(key('n'));
     // The step holding the screen's τ is the run's latest: nothing to integrate.
     assert_eq!(s.app.sim().work.steps, steps);
@@ -207,7 +207,7 @@ fn integrator_step_steps_from_the_current_state() {
     let sim = s.app.sim();
     assert_eq!(sim.work.steps - steps, 1, "{:?}", sim.work);
     assert!(sim.now().tau > tau, "{} {tau}", sim.now().tau);
-    assert_eq!(sim.now(), sim.run.state());
+    assert_eq!(sim.now(), sim.motion().state());
 }
 
 /// Issue 18 item 18: the pages' runs are held to PIECE_STEPS steps each, whatever the

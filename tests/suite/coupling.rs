@@ -595,7 +595,7 @@ fn the_explorer_shows_the_coupling() {
     let screen = render(&mut app, 100, 32);
     assert!(screen.contains("Stokes γ"), "{screen}");
     assert!(screen.contains("e^0.2822τ"), "{screen}");
-    assert_eq!(app.sim().run.cost().rhs_evals, 0);
+    assert_eq!(app.sim().cost().rhs_evals, 0);
     assert!(app.sim().now().tau > 1.0);
     let tab = crossterm::event::KeyEvent::new(
         crossterm::event::KeyCode::Tab,
@@ -628,7 +628,7 @@ fn the_explorer_shows_the_coupling() {
     for _ in 0..5 {
         app.handle_key(m);
         seen.push(app.settings().method());
-        assert_eq!(app.sim().run.settings(), app.settings());
+        assert_eq!(app.sim().settings(), app.settings());
         assert_eq!(app.settings().hold(), 1.2);
     }
     assert!(

@@ -79,8 +79,8 @@ fn preset_b_run_to_the_end_says_stuck_at_the_engines_xi() {
     let Status::Stuck { tau, q } = run.status() else {
         panic!()
     };
-    let Status::Stuck { tau: t2, q: q2 } = a.sim().run.status() else {
-        panic!("app run not stuck: {:?}", a.sim().run.status())
+    let Status::Stuck { tau: t2, q: q2 } = a.sim().status() else {
+        panic!("app run not stuck: {:?}", a.sim().status())
     };
     assert!((q.length() - q2.length()).abs() < 1e-12 && (tau - t2).abs() < 1e-12);
     let xi = num(q.length(), 5);
@@ -114,10 +114,10 @@ fn readouts_equal_the_engine_state() {
         num(s.theta_dot().unwrap(), 4),
         format!(
             "steps  {} rej {}",
-            a.sim().run.cost().steps,
-            a.sim().run.cost().rejected
+            a.sim().cost().steps,
+            a.sim().cost().rejected
         ),
-        format!("RHS    {}", a.sim().run.cost().rhs_evals),
+        format!("RHS    {}", a.sim().cost().rhs_evals),
         "dp54   tol=1e-10".to_string(),
     ] {
         assert!(screen.contains(&v), "missing {v} in\n{screen}");
@@ -230,7 +230,7 @@ fn every_key_in_the_keymap_does_what_its_help_says() {
             Action::ToggleFriction => {
                 a.initial().frictionless
                     && now == 0.0
-                    && a.sim().run.cost().rhs_evals == 0
+                    && a.sim().cost().rhs_evals == 0
                     && after.contains("μ = 0  closed form")
             }
             Action::ResetScene => a.initial() == a.scene().initial && now == 0.0,
@@ -492,11 +492,11 @@ fn scene_c_shows_the_paper_escaping_where_the_converged_run_sticks() {
             break;
         }
     }
-    let Status::Stuck { q, .. } = a.sim().run.status() else {
+    let Status::Stuck { q, .. } = a.sim().status() else {
         panic!("converged run not stuck")
     };
     assert!((q.length() - 0.99717).abs() < 1e-4, "{}", q.length());
-    let esc = a.paper().unwrap().run.escape().unwrap().tau;
+    let esc = a.paper().unwrap().escape().unwrap().tau;
     assert!((esc - 17.3).abs() < 0.1, "{esc}");
     let screen = render(&mut a, 80, 24);
     assert!(screen.contains(&format!("stuck at ξ = {}", num(q.length(), 5))));
@@ -885,12 +885,12 @@ fn integrator_steps_one_at_a_time() {
     let mut hs = Vec::new();
     let mut limits = Vec::new();
     for _ in 0..200 {
-        let before = a.sim().run.cost();
+        let before = a.sim().cost();
         key(&mut a, 'n');
         assert!(a.view.step_mode && !a.playing);
-        let st = a.sim().run.last_step().unwrap();
+        let st = a.sim().last_step().unwrap();
         if hs.len() > 1 {
-            let c = a.sim().run.cost();
+            let c = a.sim().cost();
             let taken = (c.steps - before.steps) + (c.rejected - before.rejected);
             assert!(
                 taken <= 1 + u64::from(st.rejected),
@@ -899,11 +899,11 @@ fn integrator_steps_one_at_a_time() {
         }
         hs.push(st.h);
         limits.push(st.limit);
-        if a.sim().run.outcome() != Outcome::Running {
+        if a.sim().outcome() != Outcome::Running {
             break;
         }
     }
-    assert_eq!(a.sim().run.outcome(), Outcome::Stuck);
+    assert_eq!(a.sim().outcome(), Outcome::Stuck);
     assert_eq!(*limits.last().unwrap(), Limit::ClosedForm, "{limits:?}");
     assert!(limits.contains(&Limit::Implicit), "{limits:?}");
     assert!(hs[hs.len() - 2] < 0.5 * hs[1], "{hs:?}");
@@ -922,10 +922,10 @@ fn integrator_steps_one_at_a_time() {
     }
     for _ in 0..50 {
         key(&mut a, 'n');
-        let st = a.sim().run.last_step().unwrap();
+        let st = a.sim().last_step().unwrap();
         assert_eq!((st.h, st.limit), (1e-3, Limit::FixedStep));
     }
-    assert_eq!(a.sim().run.outcome(), Outcome::Running);
+    assert_eq!(a.sim().outcome(), Outcome::Running);
 }
 
 /// SI units from the keys: the first press turns them on at a record player's (33⅓ rpm), the next change
@@ -1027,7 +1027,7 @@ fn steps_through_fast_history_are_one_tick_at_the_speed_now() {
     assert!((t0 - t1 - 0.05).abs() < 1e-9, "{t0} → {t1}");
     assert!((a.paper().unwrap().now().tau - t1).abs() < 1e-9);
     // The state there is the run's own (at rest, riding the table), not a copy of another.
-    let Status::Stuck { q, .. } = a.sim().run.status() else {
+    let Status::Stuck { q, .. } = a.sim().status() else {
         panic!("A sticks")
     };
     assert_eq!(a.sim().now(), turntable::engine::State::riding(q, t1));
@@ -1050,7 +1050,7 @@ fn steps_through_fast_history_are_one_tick_at_the_speed_now() {
     key(&mut c, '[');
     key(&mut c, ',');
     let now = c.sim().now();
-    assert!((now.tau - 0.55).abs() < 1e-9 && c.sim().run.status() == Status::Slipping);
+    assert!((now.tau - 0.55).abs() < 1e-9 && c.sim().status() == Status::Slipping);
     assert!(c.sim().path.contains(&now));
 }
 
@@ -1066,7 +1066,7 @@ fn the_title_and_a_saved_scene_tell_what_is_on_screen() {
     a.tick();
     // The integrator looks ahead of the screen; the title reads the screen's τ.
     let shown = a.sim().now().tau;
-    assert!(a.sim().run.tau() > shown, "{} {shown}", a.sim().run.tau());
+    assert!(a.sim().run_tau() > shown, "{} {shown}", a.sim().run_tau());
     let screen = render(&mut a, 100, 30);
     let title = screen.lines().next().unwrap().to_string();
     assert!(
@@ -1106,7 +1106,7 @@ fn the_title_and_a_saved_scene_tell_what_is_on_screen() {
     for _ in 0..200 {
         a.tick();
     }
-    let Status::Stuck { tau, q } = a.sim().run.status() else {
+    let Status::Stuck { tau, q } = a.sim().status() else {
         panic!("C with v0 − 0.001 sticks")
     };
     key(&mut a, 'f');
@@ -1155,7 +1155,7 @@ fn method_key_reaches_dop853_with_the_same_tol() {
     for _ in 0..400 {
         a.tick();
     }
-    assert_eq!(a.sim().run.outcome(), Outcome::Stuck);
+    assert_eq!(a.sim().outcome(), Outcome::Stuck);
     key(&mut a, 'm');
     assert_eq!(a.settings().scheme, Scheme::Rk2Raw { dt: 1e-3 });
 }

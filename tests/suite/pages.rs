@@ -260,7 +260,7 @@ fn the_screens_work_is_the_clis() {
     for _ in 0..400 {
         a.tick();
     }
-    let turntable::engine::Status::Stuck { tau, .. } = a.sim().run.status() else {
+    let turntable::engine::Status::Stuck { tau, .. } = a.sim().status() else {
         panic!("C stops inside ξ = 1");
     };
     let (path, work) = (a.sim().trail(), a.sim().trail_work());

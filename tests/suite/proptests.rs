@@ -280,12 +280,12 @@ fn the_explorations_runs_always_match_its_initial_conditions() {
             let (i, s) = (e.initial(), e.settings());
             prop_assert_eq!(i, sanitize(i));
             prop_assert!(s.validate().is_ok());
-            prop_assert_eq!(e.sim().run.initial(), i);
-            prop_assert_eq!(e.sim().run.settings(), s);
+            prop_assert_eq!(e.sim().initial(), i);
+            prop_assert_eq!(e.sim().settings(), s);
             prop_assert_eq!(e.sim().now().tau, 0.0);
             if let Some(p) = e.paper() {
-                prop_assert_eq!(p.run.initial(), i);
-                prop_assert_eq!(p.run.settings(), Settings::paper());
+                prop_assert_eq!(p.initial(), i);
+                prop_assert_eq!(p.settings(), Settings::paper());
             }
         }
     });

@@ -63,7 +63,7 @@ fn step_through_history(sim: &mut crate::sim::Sim, dtau: f64) -> bool {
     let neighbour = sim.samples[n].tau;
     // Further than a tick: the path's state nearest the target, if strictly between.
     let between = if (neighbour - now).abs() > dtau.abs() + 1e-9 {
-        match sim.run.status() {
+        match sim.status() {
             // At rest it rides the table: the path keeps one turn of it, the closed form all.
             crate::engine::Status::Stuck { tau, q } if target >= tau => {
                 Some(State::riding(q, target))

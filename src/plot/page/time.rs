@@ -94,7 +94,7 @@ fn near_the_rim(app: &App, xi: &mut Panel, span: f64) {
         style: Style::Line { dash: 1 },
     });
     xi.y = [xi.y[0].min(1.0), xi.y[1].max(1.0)];
-    if let (Some(_), Status::Stuck { tau, q }) = (app.paper(), app.sim().run.status())
+    if let (Some(_), Status::Stuck { tau, q }) = (app.paper(), app.sim().status())
         && tau <= app.sim().now().tau
         && (0.95..1.0).contains(&q.length())
     {
@@ -112,7 +112,7 @@ fn marks(app: &App, now: f64, window: Option<f64>) -> Vec<Mark> {
         label: format!("τ={}", num(now, 2)),
         ink: Ink::Accent,
     }];
-    if let Status::Stuck { tau, .. } = app.sim().run.status()
+    if let Status::Stuck { tau, .. } = app.sim().status()
         && tau <= now
     {
         marks.push(Mark::VLine {
@@ -121,7 +121,7 @@ fn marks(app: &App, now: f64, window: Option<f64>) -> Vec<Mark> {
             ink: Ink::Stuck,
         });
     }
-    if let Some(e) = app.sim().run.escape()
+    if let Some(e) = app.sim().escape()
         && e.tau <= now
     {
         marks.push(Mark::VLine {

@@ -28,7 +28,7 @@ pub fn status_text(sim: &Sim, th: &Theme) -> (String, ratatui::style::Color) {
         return ("stopped: step budget / underflow".into(), th.escaped);
     }
     let (text, colour) = match sim.outcome_now() {
-        Outcome::Stuck => match sim.run.status() {
+        Outcome::Stuck => match sim.status() {
             Status::Stuck { tau, q } => (
                 format!(
                     "stuck at ξ = {}\n  since τ = {}",
@@ -39,14 +39,14 @@ pub fn status_text(sim: &Sim, th: &Theme) -> (String, ratatui::style::Color) {
             ),
             Status::Slipping => ("stuck".into(), th.stuck),
         },
-        Outcome::Escaped => match sim.run.escape() {
+        Outcome::Escaped => match sim.escape() {
             // What is certified, true from that instant on, before the particle leaves.
             Some(e) => (
                 format!(
                     "escape certified\n  {}\n  at τ = {}",
                     match e.by {
                         Certificate::Radial => "ξ > 1, moving out",
-                        Certificate::Energy if sim.run.settings().hold() == 1.0 => {
+                        Certificate::Energy if sim.settings().hold() == 1.0 => {
                             "E < −½: cannot rest"
                         }
                         Certificate::Energy => "E < −½R²: cannot rest",
@@ -59,8 +59,8 @@ pub fn status_text(sim: &Sim, th: &Theme) -> (String, ratatui::style::Color) {
         },
         Outcome::Running => {
             let s = sim.now();
-            let raw = sim.run.settings().method() == Method::Rk2Raw;
-            if raw && raw_at_rest(&s, sim.run.settings().scheme.knob()) {
+            let raw = sim.settings().method() == Method::Rk2Raw;
+            if raw && raw_at_rest(&s, sim.settings().scheme.knob()) {
                 ("≈ at rest (raw RK2 chatters)".into(), th.slipping)
             } else {
                 ("slipping".into(), th.slipping)
@@ -336,10 +336,10 @@ fn model_lines(app: &App, th: &Theme, out: &mut Vec<Line<'static>>) {
 /// What the run costs (steps, the last step in step mode, right-hand sides) and how fast it
 /// plays.
 fn cost_lines(app: &App, th: &Theme, out: &mut Vec<Line<'static>>) {
-    let c = app.sim().run.cost();
+    let c = app.sim().cost();
     out.push(kv("steps", format!("{} rej {}", c.steps, c.rejected), th));
     if app.view.step_mode
-        && let Some(st) = app.sim().run.last_step()
+        && let Some(st) = app.sim().last_step()
     {
         out.push(kv(
             "h",

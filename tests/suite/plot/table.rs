@@ -108,7 +108,7 @@ fn a_body_scene_exports_its_bar_its_path_and_the_tables_turn() {
 fn a_stuck_run_in_the_lab_marks_where_the_particle_rides() {
     let mut app = App::new(Scene::preset("B").unwrap());
     ticks(&mut app, 200);
-    let Status::Stuck { tau, q } = app.sim().run.status() else {
+    let Status::Stuck { tau, q } = app.sim().status() else {
         panic!("B sticks")
     };
     let now = app.sim().now();

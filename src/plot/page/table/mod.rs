@@ -283,7 +283,7 @@ impl Point {
     fn of(app: &App, frame: Frame, half_width: f64, speed_scale: f64) -> Point {
         let turn = app.view.turn;
         let now = app.sim().now();
-        let stuck = match app.sim().run.status() {
+        let stuck = match app.sim().status() {
             Status::Stuck { tau, q } if now.tau >= tau => {
                 let at = match frame {
                     Frame::Lab => rotate(q, now.tau),
