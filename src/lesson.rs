@@ -13,7 +13,7 @@ pub struct Lesson {
 }
 
 /// The lessons, in the order they are best taken.
-pub const LESSONS: [Lesson; 3] = [
+pub const LESSONS: [Lesson; 4] = [
     Lesson {
         name: "stick",
         about: "the stick condition and R_max (Sec. II)",
@@ -28,6 +28,11 @@ pub const LESSONS: [Lesson; 3] = [
         name: "escape",
         about: "the escape speed, its window beyond R_max, and xi0c (Figs. 5-6)",
         script: include_str!("lessons/escape.keys"),
+    },
+    Lesson {
+        name: "spin",
+        about: "the table spun up until the coin slides: mu read from the slip (Sec. IV)",
+        script: include_str!("lessons/spin.keys"),
     },
 ];
 

@@ -31,8 +31,8 @@ pub struct Scene {
     /// conditions on the panel.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub body: Option<crate::engine::body::Body>,
-    /// The table spun up under a coin at rest (`engine::spinup`): only `turntable spinup`
-    /// runs such a scene (see [`Scene::load_spin`]).
+    /// The table spun up under a coin at rest (`engine::spinup`): the explorer shows it on
+    /// the turntable page, `turntable spinup` reports it; the constant-Ω commands refuse it.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub spin: Option<crate::engine::spinup::Ramp>,
     /// How the explorer showed it when saved.
@@ -290,8 +290,16 @@ pub fn speed_power(x: f64) -> Option<i8> {
     ((SPEED_RANGE.0..=SPEED_RANGE.1).contains(&x) && x == n.exp2()).then_some(n as i8)
 }
 
-/// The paper's reference cases (CONVENTIONS.md), in the order of their keys.
-pub const PRESETS: [&str; 6] = ["A", "B", "C", "D", "fig1", "fig2"];
+/// The paper's reference cases (CONVENTIONS.md), in the order of their keys, and the table
+/// spun up under a coin (Sec. IV's familiar measure of μ, set against its Eq. 22).
+pub const PRESETS: [&str; 7] = ["A", "B", "C", "D", "fig1", "fig2", "spin"];
+
+/// The `spin` preset's ramp: from rest at a = 0.2, so a coin at ξ0 = 0.5 slips at τ ≈ 7
+/// (some 5 s at ×1), and the μ read from its slip is low by ½ % (the Euler force's share).
+const SPIN_RAMP: crate::engine::spinup::Ramp = crate::engine::spinup::Ramp {
+    rate: 0.2,
+    omega0: 0.0,
+};
 
 impl Scene {
     pub fn preset(name: &str) -> Option<Scene> {
@@ -320,12 +328,17 @@ impl Scene {
                 Initial::at_rest(1.1, Release::TableRest),
                 "Fig. 2: at rest on the table at ξ0 = 1.1",
             ),
+            "spin" => (
+                Initial::at_rest(0.5, Release::TableRest),
+                "a coin at rest at ξ0 = 0.5, the table spun up from rest until it slides",
+            ),
             _ => return None,
         };
         let name = PRESETS
             .iter()
             .find(|p| p.eq_ignore_ascii_case(name))?
             .to_string();
+        let spin = (name == "spin").then_some(SPIN_RAMP);
         Some(Scene {
             name: name.into(),
             about: about.into(),
@@ -333,7 +346,7 @@ impl Scene {
             settings: Settings::default(),
             units: None,
             body: None,
-            spin: None,
+            spin,
             view: None,
             pins: Vec::new(),
         })
@@ -346,21 +359,9 @@ impl Scene {
     }
 
     /// A preset name, or a path to a TOML scene file. Errors name the file and the problem.
-    /// A spin-up scene is refused: the explorer, replays and plots run the constant-Ω model,
-    /// and would show something else than the scene asks for.
+    /// A spin-up scene's `[spin]` is checked: at rest on the table (the model's release), a
+    /// ramp and settings the spin-up takes, shown on the turntable page.
     pub fn load(name_or_path: &str) -> Result<Scene, Error> {
-        let scene = Scene::load_spin(name_or_path)?;
-        if scene.spin.is_some() {
-            return Err(Error::Invalid(format!(
-                "scene file {name_or_path}: [spin] is run by `turntable spinup --scene {name_or_path}`; the explorer, replay and plot do not run the spin-up yet"
-            )));
-        }
-        Ok(scene)
-    }
-
-    /// [`Scene::load`], a spin-up scene's `[spin]` checked and kept: at rest on the table
-    /// (the model's release), with a ramp and settings the spin-up takes.
-    pub fn load_spin(name_or_path: &str) -> Result<Scene, Error> {
         if let Some(s) = Scene::preset(name_or_path) {
             return Ok(s);
         }
@@ -421,9 +422,10 @@ impl Scene {
             if scene.initial.release != Release::TableRest
                 || scene.body.is_some()
                 || !scene.pins.is_empty()
+                || scene.view.is_some_and(|v| v.page != Page::Turntable)
             {
                 return Err(Error::Invalid(format!(
-                    "{file}: [spin] spins the table up under a coin at rest on it: it needs [initial] release = \"table-rest\", and no [body] or pins"
+                    "{file}: [spin] spins the table up under a coin at rest on it: it needs [initial] release = \"table-rest\", no [body] or pins, and the turntable page"
                 )));
             }
             crate::check::spin(&r, scene.initial.xi0, &scene.settings, scene_file)

@@ -72,7 +72,11 @@ pub struct Sim {
 impl Sim {
     pub fn new(initial: Initial, settings: Settings, view_radius: f64) -> Result<Sim, Error> {
         let run = Run::new(initial, settings)?;
-        Ok(Sim::of(Some(Tally::new(&run)), Motion::Steady(run), view_radius))
+        Ok(Sim::of(
+            Some(Tally::new(&run)),
+            Motion::Steady(run),
+            view_radius,
+        ))
     }
 
     /// A coin at rest on the table at ξ0, the table spun up as `ramp` says.
@@ -186,11 +190,7 @@ impl Sim {
             if t > end {
                 break;
             }
-            match self
-                .run
-                .state_at(t)
-                .and_then(|s| Ok((s, self.work_to(t)?)))
-            {
+            match self.run.state_at(t).and_then(|s| Ok((s, self.work_to(t)?))) {
                 Ok((s, w)) => {
                     self.path.push_at(k, s);
                     self.path_work.push_at(k, w);

@@ -5,7 +5,7 @@
 //! nothing checks at run time what the type holds.
 
 use crate::engine::rod::{RodTrack, TRACK_STEPS};
-use crate::engine::{Initial, Settings};
+use crate::engine::{Initial, Release, Settings};
 use crate::present::num;
 use crate::scene::Scene;
 use crate::sim::Sim;
@@ -33,7 +33,7 @@ impl Exploration {
         let initial = sanitize(scene.initial);
         let settings = valid(scene.settings);
         let mut e = Exploration {
-            sim: make_sim(initial, settings),
+            sim: make_sim(initial, settings, scene.spin),
             scene,
             initial,
             settings,
@@ -129,14 +129,23 @@ impl Exploration {
     /// The paper's run beside the one on screen, or not. It starts at τ = 0 and catches up
     /// over the next ticks ([`Exploration::catch_up`]): the key itself integrates nothing.
     pub fn compare(&mut self, on: bool) {
-        self.paper = on.then(|| make_sim(self.initial, Settings::paper()));
+        self.paper = on.then(|| make_sim(self.initial, Settings::paper(), None));
     }
 
     /// Restarts the runs at τ = 0 from the current initial conditions and settings.
     pub fn restart(&mut self) {
         self.initial = sanitize(self.initial);
-        self.sim = make_sim(self.initial, self.settings);
-        self.rod = make_rod(self.scene.body, &self.initial, self.settings, TRACK_STEPS);
+        if self.scene.spin.is_some() {
+            // The spin-up starts its coin at rest on the table, with friction: nothing else
+            // would be run, so nothing else is shown.
+            self.initial = Initial::at_rest(self.initial.xi0, Release::TableRest);
+        }
+        self.sim = make_sim(self.initial, self.settings, self.scene.spin);
+        // The settings shown are those run (the spin-up refuses the paper's raw scheme).
+        self.settings = self.sim.settings();
+        // A spin-up spins a point coin: no body beside it.
+        let body = self.scene.body.filter(|_| self.scene.spin.is_none());
+        self.rod = make_rod(body, &self.initial, self.settings, TRACK_STEPS);
         self.rod_notice = self.rod.as_ref().and_then(rod_cut_notice);
         if self.paper.is_some() {
             self.compare(true);
@@ -228,8 +237,21 @@ pub fn rod_cut_notice(rod: &crate::engine::rod::RodTrack) -> Option<String> {
     })
 }
 
-pub(super) fn make_sim(initial: Initial, settings: Settings) -> Sim {
-    Sim::new(initial, settings, view_radius(&initial))
-        .or_else(|_| Sim::new(sanitize(initial), Settings::default(), 4.5))
-        .expect("sanitized initial conditions and default settings are valid")
+/// The point's run: on the scene's spun-up table if it has one (a coin at rest on it, as the
+/// spin-up takes: `update` keeps a spin-up scene's release and method to those), else the
+/// paper's table.
+pub(super) fn make_sim(
+    initial: Initial,
+    settings: Settings,
+    spin: Option<crate::engine::spinup::Ramp>,
+) -> Sim {
+    let radius = view_radius(&initial);
+    spin.and_then(|r| {
+        Sim::spin(r, initial.xi0, settings, radius)
+            .or_else(|_| Sim::spin(r, initial.xi0, Settings::default(), radius))
+            .ok()
+    })
+    .map_or_else(|| Sim::new(initial, settings, radius), Ok)
+    .or_else(|_| Sim::new(sanitize(initial), Settings::default(), 4.5))
+    .expect("sanitized initial conditions and default settings are valid")
 }

@@ -211,6 +211,19 @@ fn scene_for(
         }
         scene.body = Some(b);
     }
+    if let Some(r) = scene.spin {
+        if scene.body.is_some() {
+            return Err(Error::invalid(
+                "--body-length/--body-height/--body-angle: a spin-up scene ([spin]) spins the table under a point coin, not a body",
+            ));
+        }
+        crate::check::spin(
+            &r,
+            scene.initial.xi0,
+            &scene.settings,
+            crate::check::Via::Flags,
+        )?;
+    }
     Ok((scene, units))
 }
 

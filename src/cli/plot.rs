@@ -126,6 +126,11 @@ fn pick(r: &PlotRun) -> Result<Vec<(String, Initial, crate::engine::Settings)>, 
     let mut out = Vec::new();
     for name in &r.scene {
         let scene = crate::scene::Scene::load(name)?;
+        if scene.spin.is_some() {
+            return Err(Error::Invalid(format!(
+                "scene {name}: [spin] spins the table up; `plot` draws the constant-Ω table: open it in the explorer (`turntable --scene {name}`) or report it with `turntable spinup --scene {name}`"
+            )));
+        }
         let mut i = scene.initial;
         i.xi0 = r.xi0.unwrap_or(i.xi0);
         i.phi = r.phi.unwrap_or(i.phi);

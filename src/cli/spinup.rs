@@ -76,7 +76,7 @@ pub struct SpinupUnits {
 /// The coin, ramp, settings and units asked for: a scene's, or the flags'.
 fn inputs(a: &SpinupArgs) -> Result<(f64, Ramp, Settings, Option<Units>), Error> {
     if let Some(path) = &a.scene {
-        let scene = crate::scene::Scene::load_spin(path)?;
+        let scene = crate::scene::Scene::load(path)?;
         let Some(ramp) = scene.spin else {
             return Err(Error::Invalid(format!(
                 "scene {path} has no [spin] (rate, omega0): add one, or give --rate"

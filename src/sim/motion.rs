@@ -6,7 +6,7 @@
 use crate::engine::model::{rotate, zcross};
 use crate::engine::run::{Escape, RunError, Status, StepInfo};
 use crate::engine::spinup::{Phase, SpinRun};
-use crate::engine::{Certificate, Cost, Initial, Outcome, Release, Run, Settings, State};
+use crate::engine::{Certificate, Cost, Frame, Initial, Outcome, Release, Run, Settings, State};
 use glam::DVec2;
 
 #[derive(Clone, Debug)]
@@ -120,7 +120,9 @@ impl Motion {
     pub fn state(&self) -> State {
         match self {
             Motion::Steady(r) => r.state(),
-            Motion::Spin(s) => s.state_at(s.tau()).unwrap_or_else(|_| self.initial().state()),
+            Motion::Spin(s) => s
+                .state_at(s.tau())
+                .unwrap_or_else(|_| self.initial().state()),
         }
     }
 
@@ -147,13 +149,36 @@ impl Motion {
         }
     }
 
-    /// `s`'s position in the table's frame: R(−angle) r.
-    pub fn on_table(&self, s: &State) -> DVec2 {
-        rotate(s.r, -self.table_angle(s.tau))
+    /// The release at τ = 0 (a coin at rest on a table turning at Ω0 moves with it).
+    pub fn start(&self) -> State {
+        let s = self.initial().state();
+        State {
+            v: s.v + (self.omega(0.0) - 1.0) * zcross(s.r),
+            ..s
+        }
+    }
+
+    /// `s`'s position in `frame`: lab r, or on the table R(−angle) r.
+    pub fn in_frame(&self, s: &State, frame: Frame) -> DVec2 {
+        match frame {
+            Frame::Lab => s.r,
+            Frame::Table => rotate(s.r, -self.table_angle(s.tau)),
+        }
     }
 
     /// `s`'s velocity relative to the table, lab components: v − Ω ẑ × r.
     pub fn u_lab(&self, s: &State) -> DVec2 {
         s.v - self.omega(s.tau) * zcross(s.r)
+    }
+
+    /// Whether `s` rides a spun-up table: its velocity is the table's, exactly (the ride's
+    /// closed form sets it so). On the paper's table the run's status says when it sticks.
+    pub fn riding(&self, s: &State) -> bool {
+        matches!(self, Motion::Spin(_)) && self.u_lab(s) == DVec2::ZERO
+    }
+
+    /// `s`'s velocity relative to the table, in the table's frame.
+    pub fn u(&self, s: &State) -> DVec2 {
+        rotate(self.u_lab(s), -self.table_angle(s.tau))
     }
 }

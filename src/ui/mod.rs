@@ -99,6 +99,13 @@ pub fn lesson_line(app: &App) -> String {
             " μ = 0: a straight line in the lab",
         ]);
     }
+    if app.scene().spin.is_some() {
+        return fit::alternatives(&[
+            " the table spins up: the coin rides it until friction cannot hold it, then slides",
+            " the table spins up until the coin slides",
+            " the table spins up",
+        ]);
+    }
     if let Some(gamma) = app.settings().stokes() {
         let rate = crate::present::num(crate::engine::stokes::growth_rate(gamma), 4);
         return fit::alternatives(&[
@@ -195,14 +202,14 @@ fn status_line(app: &App, th: &Theme, width: u16) -> Line<'static> {
     // Space's hint says what it does now (while a lesson waits, it goes on).
     let space = if app.playing { "pause" } else { "play" };
     let long = format!(
-        " ? help  Space {space}  .,  step  [] speed  f frame  m method  c compare  a forces  1-6 presets  x/p/v edit  q quit"
+        " ? help  Space {space}  .,  step  [] speed  f frame  m method  c compare  a forces  1-7 presets  x/p/v edit  q quit"
     );
     let keys = if long.width() <= room {
         long
     } else {
         fit::fit(
             &format!(
-                " ? help  q quit  Space {space}  ., step  f frame  m method  c compare  1-6 presets"
+                " ? help  q quit  Space {space}  ., step  f frame  m method  c compare  1-7 presets"
             ),
             "  ",
             room,

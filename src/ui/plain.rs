@@ -293,6 +293,8 @@ fn status(sim: &Sim) -> String {
         return "stopped: step budget or underflow".into();
     }
     let text = match sim.outcome_now() {
+        Outcome::Running if sim.motion().riding(&sim.now()) => return "riding the table".into(),
+        Outcome::Running if sim.steady().is_none() => return "sliding".into(),
         Outcome::Running => return "slipping".into(),
         Outcome::Stuck => match sim.status() {
             Status::Stuck { tau, q } => {
@@ -408,7 +410,7 @@ pub fn summary(app: &App) -> String {
         "τ = {}, ξ = {}, |u| = {}: {}",
         num(s.tau, 3),
         num(s.xi(), 5),
-        num(s.u().length(), 4),
+        num(app.sim().motion().u_lab(&s).length(), 4),
         status(app.sim())
     );
     if let Some(b) = body(app) {

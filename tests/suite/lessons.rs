@@ -67,7 +67,7 @@ fn numbers_are_read_as_written() {
 }
 
 /// Phrases that name a figure, section, equation, key or property: references, not claims.
-const REFERENCES: [&str; 13] = [
+const REFERENCES: [&str; 14] = [
     "Figs. 3 and 4",
     "Fig. 2",
     "Fig. 5",
@@ -79,6 +79,7 @@ const REFERENCES: [&str; 13] = [
     "key 2",
     "key 4",
     "key 6",
+    "key 7",
     "keys 1 to 4",
     "Ω²",
 ];
@@ -386,6 +387,54 @@ fn claims(lesson: &str) -> Vec<Claim> {
                 ),
             ]
         }
+        "spin" => {
+            use turntable::engine::spinup::{Onset, Ramp, Slip, SpinRun};
+            let scene = || Scene::preset("spin").unwrap();
+            // The slip as a converged run finds it, an event located inside its step.
+            let slip = move || -> Slip {
+                let s = scene();
+                let mut run =
+                    SpinRun::new(s.spin.unwrap(), s.initial.xi0, Settings::dp54(1e-12)).unwrap();
+                run.run(50.0, true).unwrap();
+                run.slip().unwrap()
+            };
+            vec![
+                c(
+                    "0.5",
+                    Box::new(move || assert_eq!(scene().initial.xi0, 0.5)),
+                ),
+                c(
+                    "0.2",
+                    Box::new(move || {
+                        let ramp = Ramp {
+                            rate: 0.2,
+                            omega0: 0.0,
+                        };
+                        assert_eq!(scene().spin, Some(ramp));
+                    }),
+                ),
+                c(
+                    "1.4107",
+                    Box::new(move || assert!(shows(slip().omega, "1.4107"), "{:?}", slip())),
+                ),
+                c(
+                    "1.410665",
+                    Box::new(move || {
+                        let s = scene();
+                        let Onset::At { omega, .. } = s.spin.unwrap().onset(s.initial.xi0, 1.0)
+                        else {
+                            panic!("the preset's coin slips on the way")
+                        };
+                        assert!(shows(omega, "1.410665"), "{omega}");
+                        assert!((slip().omega - omega).abs() < 1e-9);
+                    }),
+                ),
+                c(
+                    "0.995",
+                    Box::new(move || assert!(shows(slip().inferred_mu, "0.995"), "{:?}", slip())),
+                ),
+            ]
+        }
         other => panic!("no claims listed for lesson {other}"),
     }
 }
@@ -434,8 +483,13 @@ fn every_number_in_lesson_escape_is_checked() {
 }
 
 #[test]
+fn every_number_in_lesson_spin_is_checked() {
+    check_lesson("spin");
+}
+
+#[test]
 fn every_lesson_has_claims_and_snapshots() {
-    assert_eq!(LESSONS.len(), 3);
+    assert_eq!(LESSONS.len(), 4);
     for l in LESSONS {
         assert!(find(&l.name.to_uppercase()).is_some());
         let steps = parse(l.script).unwrap();
@@ -681,7 +735,7 @@ fn the_lesson_command() {
     let out = turntable(&["lesson", "--list"]);
     assert!(out.status.success());
     let list = String::from_utf8(out.stdout).unwrap();
-    assert_eq!(list.lines().count(), 3, "{list}");
+    assert_eq!(list.lines().count(), LESSONS.len(), "{list}");
     for l in LESSONS {
         assert!(list.contains(l.name) && list.contains(l.about), "{list}");
     }

@@ -41,6 +41,7 @@ mod rod;
 mod serve;
 mod serve_class;
 mod si;
+mod spin_explorer;
 mod spinup;
 mod split;
 mod terminal;

@@ -564,8 +564,8 @@ fn no_number_is_cut_at_any_width() {
         turntable::ui::panel::speed(vmin),
         turntable::ui::panel::speed(vmax),
     );
-    let long = " ? help  Space pause  .,  step  [] speed  f frame  m method  c compare  a forces  1-6 presets  x/p/v edit  q quit";
-    let short = " ? help  q quit  Space pause  ., step  f frame  m method  c compare  1-6 presets";
+    let long = " ? help  Space pause  .,  step  [] speed  f frame  m method  c compare  a forces  1-7 presets  x/p/v edit  q quit";
+    let short = " ? help  q quit  Space pause  ., step  f frame  m method  c compare  1-7 presets";
     for w in 40..=130u16 {
         let screen = render(&mut a, w, 20);
         let lines: Vec<&str> = screen.lines().collect();

@@ -128,10 +128,10 @@ fn a_slow_ramp_is_the_constant_tables_stick_condition() {
 }
 
 /// A scene with `[spin]` is run by `spinup --scene`, its values checked as typed there (exit
-/// 2); the explorer, replay and plot run the constant-Ω model, so they refuse it (exit 2)
-/// rather than show another run.
+/// 2); the explorer and replay show it (the table spun up); plot draws the constant-Ω table,
+/// so it refuses it (exit 2) rather than draw another run.
 #[test]
-fn a_spin_scene_is_run_by_spinup_and_refused_elsewhere() {
+fn a_spin_scene_is_run_by_spinup_shown_by_the_explorer_and_refused_by_plot() {
     let dir = std::env::temp_dir().join(format!("turntable-spin-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let scene = |name: &str, spin: &str, release: &str| {
@@ -176,20 +176,25 @@ fn a_spin_scene_is_run_by_spinup_and_refused_elsewhere() {
     }
     let (code, _, err) = turntable(&["spinup", "--scene", &good, "--rate", "1"]);
     assert_eq!(code, 2, "{err}");
-    for args in [
-        vec!["--scene", good.as_str()],
-        vec![
-            "plot",
-            "trajectory",
-            "--scene",
-            good.as_str(),
-            "--out",
-            "x.svg",
-        ],
-    ] {
-        let (code, _, err) = turntable(&args);
-        assert_eq!(code, 2, "{err}");
-        assert!(err.contains("is run by `turntable spinup --scene"), "{err}");
-    }
+    // The explorer opens it: a real table's rpm (the reference rate) and μ in the readouts.
+    let script = dir.join("s.keys");
+    std::fs::write(&script, "resize 100x30\ntick 100\n").unwrap();
+    let (code, out, err) = turntable(&["replay", script.to_str().unwrap(), "--scene", &good]);
+    assert_eq!(code, 0, "{err}");
+    assert!(out.contains("scene spin") && out.contains("rpm"), "{out}");
+    assert!(out.contains("μ read 0.2598 (μs 0.3000)"), "{out}");
+    let (code, _, err) = turntable(&[
+        "plot",
+        "trajectory",
+        "--scene",
+        good.as_str(),
+        "--out",
+        "x.svg",
+    ]);
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("[spin] spins the table up; `plot` draws the constant-Ω table"),
+        "{err}"
+    );
     std::fs::remove_dir_all(&dir).unwrap();
 }

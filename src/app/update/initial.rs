@@ -37,8 +37,9 @@ pub(super) fn apply(app: &mut App, action: Action) {
         Action::ResetScene => app.exploration.reset(),
         Action::Preset(i) => {
             if let Some(mut scene) = PRESETS.get(i).and_then(|n| Scene::preset(n)) {
-                // The body is the object, the preset its release: it stays.
-                scene.body = app.scene().body;
+                // The body is the object, the preset its release: it stays (but the spin-up
+                // spins a point coin).
+                scene.body = app.scene().body.filter(|_| scene.spin.is_none());
                 let body = match scene.body {
                     Some(b) => format!(" (the body stays: L = {})", b.length),
                     None => String::new(),

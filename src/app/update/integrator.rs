@@ -24,6 +24,12 @@ pub(super) fn apply(app: &mut App, action: Action) {
                     app.settings().hold()
                 ));
                 next = next_of(Method::VARIANTS, next);
+            } else if !next.stick_events() && app.scene().spin.is_some() {
+                // The slip and the stops are the spin-up's events (SpinRun::new refuses it).
+                app.notice = Some(format!(
+                    "{next} skipped: the spin-up locates its slip and stops as events"
+                ));
+                next = next_of(Method::VARIANTS, next);
             }
             // A fixed step carries over between the fixed-step methods, a tolerance between
             // the adaptive ones; else the default.

@@ -24,6 +24,12 @@ pub fn update(app: &mut App, action: Action) -> Effects {
     app.dirty = true;
     app.notice = None;
     let mut effects = Effects::new();
+    if app.scene().spin.is_some()
+        && let Some(why) = spin_refuses(action)
+    {
+        app.notice = Some(why.into());
+        return effects;
+    }
     match action.group() {
         Group::Time => time::apply(app, action),
         Group::InitialConditions => initial::apply(app, action),
@@ -40,6 +46,28 @@ pub fn update(app: &mut App, action: Action) -> Effects {
         });
     }
     effects
+}
+
+/// What a spin-up scene does not take, and why: its coin starts at rest on the table, and it
+/// is shown on the turntable page without arrows (the other pages, the arrows, pins and the
+/// paper's run are the constant-Ω table's).
+fn spin_refuses(action: Action) -> Option<&'static str> {
+    use Action::*;
+    Some(match action {
+        Phi(_) | V0(_) | CycleRelease | AimVelocity(..) => {
+            "the spin-up starts the coin at rest on the table: only ξ0 changes (x/X, or a click)"
+        }
+        ToggleFriction => "the spin-up needs friction: the slip is how it measures μ",
+        ToggleCompare => "the paper's RK2 runs a table at constant Ω: it has no spin-up to compare",
+        PinRun => "pins run the table at constant Ω, not the spin-up",
+        NextPage | PrevPage | Choose | PickRelease(_) | Omega(_) | R0c(_) => {
+            "a spin-up scene has the turntable page only: the other pages are the constant-Ω table's"
+        }
+        ToggleForces | ToggleNetForce | ToggleVelocity => {
+            "arrows are drawn on the constant-Ω table only, not (yet) with the Euler force"
+        }
+        _ => return None,
+    })
 }
 
 /// One tick of sim time (× speed) for both runs. Marks the screen dirty only if time moved.

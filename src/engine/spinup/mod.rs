@@ -65,6 +65,9 @@ pub struct SpinRun {
     sticks: u32,
     stepper: Stepper<Z>,
     last: Option<Segment<Z>>,
+    /// The latest ride that ended in a slip (from, to, table-frame q): its closed form still
+    /// answers [`SpinRun::state_at`] there once the slide has begun in the same step.
+    ride: Option<(f64, f64, DVec2)>,
     cost: Cost,
 }
 
@@ -96,6 +99,7 @@ impl SpinRun {
             sticks: 0,
             stepper,
             last: None,
+            ride: None,
             cost,
         })
     }
@@ -139,6 +143,11 @@ impl SpinRun {
         let now = self.stepper.t;
         match (self.phase, self.last) {
             (Phase::Stuck { tau: ts, q }, _) if tau >= ts => Ok(self.riding(q, tau)),
+            _ if let Some((from, to, q)) = self.ride
+                && (from..=to).contains(&tau) =>
+            {
+                Ok(self.riding(q, tau))
+            }
             (_, Some(seg)) if tau >= seg.t0 && tau <= seg.t1() => Ok(lab(seg.at(tau), tau)),
             _ if tau == now => Ok(lab(self.stepper.y, now)),
             (_, seg) => Err(RunError::OutOfRange {
@@ -211,6 +220,9 @@ impl SpinRun {
             return;
         }
         let tau = illinois(excess, t0, end, 1e-15);
+        if let Phase::Stuck { tau: since, .. } = self.phase {
+            self.ride = Some((since, tau, q));
+        }
         self.start_slide(tau, q, tau_max);
     }
 

@@ -74,6 +74,10 @@ pub fn arrows(app: &App, half_width: f64, speed_scale: f64) -> Vec<ForceArrow> {
 
 /// [`arrows`] as `frame` sees them (a split view draws both frames).
 pub fn arrows_in(app: &App, frame: Frame, half_width: f64, speed_scale: f64) -> Vec<ForceArrow> {
+    if app.sim().steady().is_none() {
+        // The forces here are the constant-Ω table's: a spun-up one adds the Euler force.
+        return Vec::new();
+    }
     let (mut out, net) = forces(app, frame, half_width);
     if !app.view.forces {
         out.clear();

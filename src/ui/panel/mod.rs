@@ -14,6 +14,7 @@ use ratatui::widgets::Paragraph;
 use unicode_width::UnicodeWidthStr;
 
 mod body;
+mod spin;
 
 use body::body_lines;
 pub use body::{BodyNow, body_end, body_now, phase_word};
@@ -23,9 +24,11 @@ pub use crate::present::{fmt_speed, num, speed};
 
 /// Status of a run at the sample on screen, and its colour.
 pub fn status_text(sim: &Sim, th: &Theme) -> (String, ratatui::style::Color) {
-    if let Some(e) = &sim.error {
-        let _ = e;
+    if sim.error.is_some() {
         return ("stopped: step budget / underflow".into(), th.escaped);
+    }
+    if sim.steady().is_none() {
+        return spin::status(sim, th);
     }
     let (text, colour) = match sim.outcome_now() {
         Outcome::Stuck => match sim.status() {
@@ -154,6 +157,7 @@ fn readouts(app: &App, th: &Theme) -> Readouts {
         )));
     }
     let status = status_start..out.len();
+    spin::lines(app, th, &mut out);
     if let Some(u) = app.units {
         table_lines(app, th, u, &mut out);
     }
@@ -216,6 +220,7 @@ fn release(i: &crate::engine::Initial) -> Vec<String> {
 /// Where the particle is and how it moves at `s`: τ, ξ, the angles in the frame shown, ξ′
 /// and |u|, each with its SI value beside it with a real table (--mu, --rpm).
 fn motion_lines(app: &App, th: &Theme, s: &crate::engine::State, out: &mut Vec<Line<'static>>) {
+    let motion = app.sim().motion();
     let si = |x: f64, show: fn(f64) -> String| {
         app.units
             .map_or(String::new(), |_| format!(" = {}", show(x)))
@@ -226,7 +231,7 @@ fn motion_lines(app: &App, th: &Theme, s: &crate::engine::State, out: &mut Vec<L
             si(s.xi() * u.r_max_m(), si_length),
             u.omega(),
             si(s.xi_dot() * u.speed_m_s(), si_speed),
-            si(s.u().length() * u.speed_m_s(), si_speed),
+            si(motion.u_lab(s).length() * u.speed_m_s(), si_speed),
         ),
         None => (
             String::new(),
@@ -262,17 +267,21 @@ fn motion_lines(app: &App, th: &Theme, s: &crate::engine::State, out: &mut Vec<L
             out.push(kv("θ′", theta_dot.map_or("—".into(), lab_rate), th));
         }
         crate::engine::Frame::Table => {
-            out.push(kv("Θ", direction(s.q()), th));
+            out.push(kv("Θ", direction(motion.in_frame(s, app.view.frame)), th));
             out.push(kv(
                 "Θ′",
-                theta_dot.map_or("—".into(), |t| num(t - 1.0, 4)),
+                theta_dot.map_or("—".into(), |t| num(t - motion.omega(s.tau), 4)),
                 th,
             ));
             out.push(kv("θ′ lab", theta_dot.map_or("—".into(), lab_rate), th));
         }
     }
     out.push(kv("ξ′", format!("{}{xi_dot_si}", rate(s.xi_dot(), 4)), th));
-    out.push(kv("|u|", format!("{}{u_si}", rate(s.u().length(), 4)), th));
+    out.push(kv(
+        "|u|",
+        format!("{}{u_si}", rate(motion.u_lab(s).length(), 4)),
+        th,
+    ));
 }
 
 /// The table and the release in SI, while units are on: what μ, rpm and g change.
@@ -298,8 +307,13 @@ fn table_lines(
         format!("{}, {} m/s²", num(u.mu, 2), num(u.g, 2)),
         th,
     ));
+    // A spun-up table's Ω moves: its [units] rpm is the reference rate of its units.
     out.push(kv(
-        "Ω",
+        if app.scene().spin.is_some() {
+            "Ω ref"
+        } else {
+            "Ω"
+        },
         format!(
             "{} {} rpm",
             si_rate(u.omega()),

@@ -183,6 +183,7 @@ impl Picture {
     pub fn in_frame(app: &App, frame: Frame) -> Picture {
         let turn = app.view.turn;
         let now = app.sim().now();
+        let motion = app.sim().motion();
         let i = app.initial();
         let extent = auto_extent(app);
         let half_width = extent / app.view.zoom;
@@ -195,13 +196,13 @@ impl Picture {
         let followed = match (&point, body.as_ref().and_then(|b| b.bar)) {
             _ if app.view.zoom <= 1.0 => DVec2::ZERO,
             (None, Some((_, centre))) => centre,
-            _ => rotate(in_frame(&now, frame), turn),
+            _ => rotate(motion.in_frame(&now, frame), turn),
         };
         let r = 1.5f64.max(i.xi0 * 1.2);
-        let s0 = i.state();
+        let s0 = motion.start();
         let v0 = match frame {
             Frame::Lab => s0.v,
-            Frame::Table => s0.u(),
+            Frame::Table => motion.u(&s0),
         };
         Picture {
             frame,
@@ -211,7 +212,11 @@ impl Picture {
             speed_scale,
             table: Table {
                 r,
-                spin: turn + if frame == Frame::Lab { now.tau } else { 0.0 },
+                spin: turn
+                    + match frame {
+                        Frame::Lab => motion.table_angle(now.tau),
+                        Frame::Table => 0.0,
+                    },
                 ring_label: rotate(DVec2::new(-0.95, -0.72), turn),
                 sense: DVec2::new(-0.8, 0.62) * r,
             },
@@ -226,7 +231,7 @@ impl Picture {
                 .collect(),
             paper: app.paper().map(|p| Trace {
                 path: shown(p, frame, turn),
-                head: rotate(in_frame(&p.now(), frame), turn),
+                head: rotate(p.motion().in_frame(&p.now(), frame), turn),
             }),
             point,
             body,
@@ -245,7 +250,7 @@ fn shown(sim: &Sim, frame: Frame, turn: f64) -> Vec<DVec2> {
         .map(|_| now);
     path.iter()
         .chain(tail.as_ref())
-        .map(|s| rotate(in_frame(s, frame), turn))
+        .map(|s| rotate(sim.motion().in_frame(s, frame), turn))
         .collect()
 }
 
@@ -283,10 +288,11 @@ impl Point {
     fn of(app: &App, frame: Frame, half_width: f64, speed_scale: f64) -> Point {
         let turn = app.view.turn;
         let now = app.sim().now();
+        let motion = app.sim().motion();
         let stuck = match app.sim().status() {
             Status::Stuck { tau, q } if now.tau >= tau => {
                 let at = match frame {
-                    Frame::Lab => rotate(q, now.tau),
+                    Frame::Lab => rotate(q, motion.table_angle(now.tau)),
                     Frame::Table => q,
                 };
                 Some(Stuck {
@@ -309,13 +315,13 @@ impl Point {
                 .step_marks
                 .iter()
                 .filter(|m| m.tau <= now.tau)
-                .map(|m| rotate(in_frame(m, frame), turn))
+                .map(|m| rotate(motion.in_frame(m, frame), turn))
                 .collect();
             steps.drain(..steps.len().saturating_sub(STEP_MARKS));
         }
         Point {
             trail: shown(app.sim(), frame, turn),
-            at: rotate(in_frame(&now, frame), turn),
+            at: rotate(motion.in_frame(&now, frame), turn),
             status,
             stuck,
             arrows: arrows_in(app, frame, half_width, speed_scale)
