@@ -3,9 +3,9 @@
 //! asks for it (`[spin]`). Both answer in lab-frame [`State`]s; the table's angle and rate
 //! are the run's to say, so the frame shown turns with the table each has.
 
-use crate::engine::model::{rotate, zcross};
+use crate::engine::model::{coupled_forces, rotate, zcross};
 use crate::engine::run::{Escape, RunError, Status, StepInfo};
-use crate::engine::spinup::{Phase, SpinRun};
+use crate::engine::spinup::{Phase, SpinRun, Z};
 use crate::engine::{Certificate, Cost, Frame, Initial, Outcome, Release, Run, Settings, State};
 use glam::DVec2;
 
@@ -169,6 +169,26 @@ impl Motion {
     /// `s`'s velocity relative to the table, lab components: v − Ω ẑ × r.
     pub fn u_lab(&self, s: &State) -> DVec2 {
         s.v - self.omega(s.tau) * zcross(s.r)
+    }
+
+    /// The forces per unit mass on `s` in the table's frame (Sec. II): friction, Coriolis,
+    /// centrifugal and, on a table speeding up, the Euler force (zero at constant Ω).
+    pub fn forces(&self, s: &State, frictionless: bool) -> [DVec2; 4] {
+        match self {
+            Motion::Steady(r) => {
+                let [fr, co, cf] = coupled_forces(s, frictionless, r.settings().coupling);
+                [fr, co, cf, DVec2::ZERO]
+            }
+            Motion::Spin(run) => {
+                let ramp = run.ramp();
+                let z = Z {
+                    p: s.r,
+                    w: s.v,
+                    omega: ramp.omega(s.tau),
+                };
+                z.table_forces(ramp.rate, ramp.angle(s.tau), run.settings().hold())
+            }
+        }
     }
 
     /// Whether `s` rides a spun-up table: its velocity is the table's, exactly (the ride's

@@ -201,15 +201,20 @@ fn status_line(app: &App, th: &Theme, width: u16) -> Line<'static> {
     let room = usize::from(width).saturating_sub(mouse.width());
     // Space's hint says what it does now (while a lesson waits, it goes on).
     let space = if app.playing { "pause" } else { "play" };
+    // A spun-up table has no paper's run and takes only ξ0.
+    let (compare, edit) = match app.scene().spin {
+        Some(_) => ("", "x"),
+        None => ("  c compare", "x/p/v"),
+    };
     let long = format!(
-        " ? help  Space {space}  .,  step  [] speed  f frame  m method  c compare  a forces  1-7 presets  x/p/v edit  q quit"
+        " ? help  Space {space}  .,  step  [] speed  f frame  m method{compare}  a forces  1-7 presets  {edit} edit  q quit"
     );
     let keys = if long.width() <= room {
         long
     } else {
         fit::fit(
             &format!(
-                " ? help  q quit  Space {space}  ., step  f frame  m method  c compare  1-7 presets"
+                " ? help  q quit  Space {space}  ., step  f frame  m method{compare}  1-7 presets"
             ),
             "  ",
             room,

@@ -106,9 +106,6 @@ fn what_the_spin_up_does_not_model_is_refused_with_a_notice() {
         KeyCode::Char('F'),
         KeyCode::Char('c'),
         KeyCode::Char('b'),
-        KeyCode::Char('a'),
-        KeyCode::Char('A'),
-        KeyCode::Char('i'),
         KeyCode::Tab,
     ] {
         key(&mut a, k);
@@ -179,4 +176,41 @@ fn a_saved_spin_scene_loads_as_it_was_saved() {
     let err = Scene::load(path.to_str().unwrap()).unwrap_err().to_string();
     assert!(err.contains("and the turntable page"), "{err}");
     std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// The arrows' forces are the motion's: on the table, friction, Coriolis, centrifugal and the
+/// Euler force sum to the relative acceleration du/dτ (a central difference of the run's own
+/// dense output); riding, they balance.
+#[test]
+fn the_forces_on_a_table_speeding_up_are_those_that_move_the_coin() {
+    use turntable::engine::Settings;
+    use turntable::engine::spinup::{Ramp, SpinRun};
+    let ramp = Ramp {
+        rate: 0.2,
+        omega0: 0.0,
+    };
+    let mut run = SpinRun::new(ramp, 0.5, Settings::dp54(1e-12)).unwrap();
+    run.run(3.0, false).unwrap();
+    let m = Motion::Spin(run.clone());
+    let s = m.state_at(3.0).unwrap();
+    let [fr, co, cf, eu] = m.forces(&s, false);
+    assert!((fr + co + cf + eu).length() < 1e-15, "riding: balanced");
+    assert_eq!(co, DVec2::ZERO);
+    assert!((cf - 0.36 * DVec2::new(0.5, 0.0)).length() < 1e-15, "{cf}");
+    assert!((eu - DVec2::new(0.0, -0.1)).length() < 1e-15, "{eu}");
+    // Sliding: friction at full strength against u, and the sum is du/dτ on the table.
+    run.run(7.3, false).unwrap();
+    let m = Motion::Spin(run.clone());
+    let (t, h) = (run.tau(), 1e-4);
+    let at = |tau: f64| m.state_at(tau).unwrap();
+    let u = |tau: f64| m.u(&at(tau));
+    let dudt = (u(t) - u(t - 2.0 * h)) / (2.0 * h);
+    let [fr, co, cf, eu] = m.forces(&at(t - h), false);
+    assert!((fr.length() - 1.0).abs() < 1e-12, "{fr}");
+    assert!(fr.dot(u(t - h)) < 0.0);
+    assert!(
+        (dudt - (fr + co + cf + eu)).length() < 1e-6,
+        "{dudt} against {}",
+        fr + co + cf + eu
+    );
 }

@@ -49,8 +49,8 @@ pub fn update(app: &mut App, action: Action) -> Effects {
 }
 
 /// What a spin-up scene does not take, and why: its coin starts at rest on the table, and it
-/// is shown on the turntable page without arrows (the other pages, the arrows, pins and the
-/// paper's run are the constant-Ω table's).
+/// is shown on the turntable page (the other pages, pins and the paper's run are the
+/// constant-Ω table's).
 fn spin_refuses(action: Action) -> Option<&'static str> {
     use Action::*;
     Some(match action {
@@ -62,9 +62,6 @@ fn spin_refuses(action: Action) -> Option<&'static str> {
         PinRun => "pins run the table at constant Ω, not the spin-up",
         NextPage | PrevPage | Choose | PickRelease(_) | Omega(_) | R0c(_) => {
             "a spin-up scene has the turntable page only: the other pages are the constant-Ω table's"
-        }
-        ToggleForces | ToggleNetForce | ToggleVelocity => {
-            "arrows are drawn on the constant-Ω table only, not (yet) with the Euler force"
         }
         _ => return None,
     })

@@ -2,7 +2,7 @@
 //! (position, velocity and the table's rate, so that the autonomous stepper sees Ω(τ)), the
 //! equations of motion, and the escape certificate.
 
-use crate::engine::model::{Y, zcross};
+use crate::engine::model::{Y, rotate, zcross};
 use crate::engine::stepper::Vector;
 use glam::DVec2;
 use std::ops::{Add, Mul, Sub};
@@ -97,6 +97,28 @@ impl Z {
             w: f,
             omega: rate,
         }
+    }
+
+    /// The forces per unit mass on the coin as the table's frame sees them, turned by the
+    /// table's `angle` (units μ_k g; Sec. II's, extended to a table speeding up): friction,
+    /// Coriolis −2Ω ẑ×u, centrifugal Ω²q and Euler −Ω̇ ẑ×q. Friction is −û while it slides;
+    /// at rest it gives what the surface's acceleration asks while static friction `hold` can
+    /// (then the four sum to zero), else its kinetic strength along it (as [`Z::rhs`]).
+    pub fn table_forces(&self, rate: f64, angle: f64, hold: f64) -> [DVec2; 4] {
+        let need = self.need(rate);
+        let lab = if self.u() == DVec2::ZERO && need.length() <= hold {
+            need
+        } else {
+            self.rhs(rate).w
+        };
+        let (q, u) = (rotate(self.p, -angle), rotate(self.u(), -angle));
+        let w = self.omega;
+        [
+            rotate(lab, -angle),
+            -2.0 * w * zcross(u),
+            w * w * q,
+            -rate * zcross(q),
+        ]
     }
 
     /// Rate of change of |u|: d|u|/dτ = −1 − û·need (Coriolis turns u, does no work on it).

@@ -4,7 +4,7 @@
 use super::super::Ink;
 use crate::app::App;
 use crate::engine::Frame;
-use crate::engine::model::{coupled_forces, rotate};
+use crate::engine::model::rotate;
 use glam::DVec2;
 
 /// A force arrow as drawn: its label at the head (so it reads without colour), the word the
@@ -22,8 +22,9 @@ pub const FORCE_SHARE: f64 = 0.2;
 
 /// The forces on the particle in the frame shown (Sec. II). In the lab, an inertial frame,
 /// only friction acts in the plane (gravity and the normal force cancel; at μ = 0 nothing
-/// does). In the rotating frame the fictitious Coriolis and centrifugal forces act too. All
-/// are scaled together so the longest is [`FORCE_SHARE`] of `half_width`.
+/// does). In the rotating frame the fictitious Coriolis and centrifugal forces act too, and
+/// on a table speeding up the Euler force. All are scaled together so the longest is
+/// [`FORCE_SHARE`] of `half_width`.
 pub fn force_arrows(app: &App, half_width: f64) -> Vec<ForceArrow> {
     forces(app, app.view.frame, half_width).0
 }
@@ -32,7 +33,8 @@ pub fn force_arrows(app: &App, half_width: f64) -> Vec<ForceArrow> {
 /// frame, dv/dτ in the lab).
 fn forces(app: &App, frame: Frame, half_width: f64) -> (Vec<ForceArrow>, DVec2) {
     let now = app.sim().now();
-    let [fr, co, ce] = coupled_forces(&now, app.initial().frictionless, app.settings().coupling);
+    let motion = app.sim().motion();
+    let [fr, co, ce, eu] = motion.forces(&now, app.initial().frictionless);
     let mut out = Vec::new();
     let mut push = |label, word, vec: DVec2, ink| {
         if vec.length() > 0.0 {
@@ -45,11 +47,17 @@ fn forces(app: &App, frame: Frame, half_width: f64) -> (Vec<ForceArrow>, DVec2) 
         }
     };
     match frame {
-        Frame::Lab => push("fr", "friction", rotate(fr, now.tau), Ink::Friction),
+        Frame::Lab => push(
+            "fr",
+            "friction",
+            rotate(fr, motion.table_angle(now.tau)),
+            Ink::Friction,
+        ),
         Frame::Table => {
             push("fr", "friction", fr, Ink::Friction);
             push("co", "Coriolis", co, Ink::Coriolis);
             push("cf", "centrifugal", ce, Ink::Centrifugal);
+            push("eu", "Euler", eu, Ink::Accent);
         }
     }
     let mut net: DVec2 = out.iter().map(|f| f.vec).sum();
@@ -74,10 +82,6 @@ pub fn arrows(app: &App, half_width: f64, speed_scale: f64) -> Vec<ForceArrow> {
 
 /// [`arrows`] as `frame` sees them (a split view draws both frames).
 pub fn arrows_in(app: &App, frame: Frame, half_width: f64, speed_scale: f64) -> Vec<ForceArrow> {
-    if app.sim().steady().is_none() {
-        // The forces here are the constant-Ω table's: a spun-up one adds the Euler force.
-        return Vec::new();
-    }
     let (mut out, net) = forces(app, frame, half_width);
     if !app.view.forces {
         out.clear();
@@ -115,6 +119,6 @@ fn velocity_in(app: &App, frame: Frame) -> (&'static str, &'static str, DVec2) {
     let now = app.sim().now();
     match frame {
         Frame::Lab => ("v", "velocity (lab)", now.v),
-        Frame::Table => ("u", "velocity rel. table", now.u()),
+        Frame::Table => ("u", "velocity rel. table", app.sim().motion().u(&now)),
     }
 }

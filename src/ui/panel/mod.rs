@@ -385,7 +385,11 @@ fn arrow_legend(app: &App, th: &Theme, out: &mut Vec<Line<'static>>) {
     } else if app.view.forces || app.view.net_force || app.view.velocity {
         let drawn = crate::ui::canvas::arrows(app, 1.0, 1.0);
         let has = |l: &str| drawn.iter().any(|a| a.label == l);
-        if app.view.forces && !drawn.iter().any(|a| ["fr", "co", "cf"].contains(&a.label)) {
+        if app.view.forces
+            && !drawn
+                .iter()
+                .any(|a| ["fr", "co", "cf", "eu"].contains(&a.label))
+        {
             out.push(Line::from(Span::styled(
                 "forces: none in the plane",
                 Style::default().fg(th.muted),
