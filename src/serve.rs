@@ -88,8 +88,11 @@ pub struct Lesson {
 pub enum In {
     Data(Vec<u8>),
     Resize(u16, u16),
-    /// The channel took the last frame.
-    Sent,
+    /// The channel took the last frame (a copy): its buffer comes back, to be drawn into
+    /// again and freed on the session's own thread. glibc gives a thread's arena back to the
+    /// system only above its last chunk in use, and a buffer another thread frees waits in
+    /// that thread's cache, in use: 30 sessions left 16 MB behind them so, 9 MB without.
+    Sent(Vec<u8>),
     /// End, saying why.
     Close(String),
     /// The presenter's key or tick (applied while following).

@@ -121,12 +121,17 @@ pub fn run(shared: Arc<Shared>, id: u64, client: Client, inbox: Receiver<In>, ou
         last_input: Instant::now(),
         mouse_on: s.app.mouse_capture(),
         following: false,
+        spare: Vec::new(),
     };
     let said = run
         .start(&mut s)
         .and_then(|()| run.event_loop(&mut s, &inbox));
     let why = said.unwrap_or_else(|e| format!("error: {e}"));
-    let mut bytes = s.term.backend_mut().take();
+    let mut bytes = s
+        .term
+        .backend_mut()
+        .take(&mut run.spare)
+        .unwrap_or_default();
     let _ = queue!(
         bytes,
         DisableMouseCapture,
@@ -137,6 +142,13 @@ pub fn run(shared: Arc<Shared>, id: u64, client: Client, inbox: Receiver<In>, ou
     bytes.extend(format!("turntable: {why}\r\n").as_bytes());
     out.end(bytes);
     shared.leave(id);
+    // Its last buffer comes back once taken, to be freed here (see `In::Sent`).
+    let until = Instant::now() + Duration::from_secs(1);
+    while let Ok(msg) = inbox.recv_timeout(until.saturating_duration_since(Instant::now())) {
+        if matches!(msg, In::Sent(_)) {
+            break;
+        }
+    }
 }
 
 /// Where a session's bytes go: the channel's writer task.
@@ -165,6 +177,8 @@ struct Run<'a> {
     mouse_on: bool,
     /// Applying the presenter's keys and ticks.
     following: bool,
+    /// The last frame's buffer, handed back by the channel: the next is drawn into it.
+    spare: Vec<u8>,
 }
 
 impl Run<'_> {
@@ -216,8 +230,9 @@ impl Run<'_> {
                     queue!(s.term.backend_mut(), EndSynchronizedUpdate)?;
                     self.last_frame = Some(now);
                 }
-                let bytes = s.term.backend_mut().take();
-                if !bytes.is_empty() && self.out.frame(bytes) {
+                if let Some(bytes) = s.term.backend_mut().take(&mut self.spare)
+                    && self.out.frame(bytes)
+                {
                     self.in_flight = Some(now);
                 }
             }
@@ -275,7 +290,10 @@ impl Run<'_> {
                 s.term.backend_mut().resize(w, h);
                 s.resized(w, h);
             }
-            In::Sent => self.in_flight = None,
+            In::Sent(buffer) => {
+                self.in_flight = None;
+                self.spare = buffer;
+            }
             In::Close(why) => return Ok(Some(why)),
             In::Lead(lead) if self.following => match lead {
                 Lead::Key(chord) => s.press(chord),

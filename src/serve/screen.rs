@@ -45,9 +45,15 @@ impl Screen {
         self.size = Size::new(width, height);
     }
 
-    /// The bytes written since the last call.
-    pub fn take(&mut self) -> Vec<u8> {
-        std::mem::take(&mut *self.sink.0.borrow_mut())
+    /// The bytes written since the last call, if any; `spare` (emptied) is written into
+    /// next, so a session draws into the buffers its channel hands back.
+    pub fn take(&mut self, spare: &mut Vec<u8>) -> Option<Vec<u8>> {
+        let mut sink = self.sink.0.borrow_mut();
+        if sink.is_empty() {
+            return None;
+        }
+        spare.clear();
+        Some(std::mem::replace(&mut *sink, std::mem::take(spare)))
     }
 }
 
