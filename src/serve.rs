@@ -2,8 +2,8 @@
 //! authorized key, or the passphrase) and asks for a shell gets its own explorer
 //! ([`explorer`]), on the same [`Session`](crate::session::Session) the terminal and replay
 //! use, drawn at the client's size into the channel; nothing else is served (no command, no
-//! SFTP, no forwarding: `conn`). A presenter leads: followers apply the presenter's keys
-//! and ticks, not its frames. Guests write no file on the server. Limits bound what any
+//! SFTP, no forwarding: `conn`). A presenter leads: followers apply the presenter's keys,
+//! mouse actions and ticks, not its frames. Guests write no file on the server. Limits bound what any
 //! client can cost: sessions, connections per address per minute, idle time, terminal size,
 //! a stalled reader, the handshake's time, and the analysis work (on as many threads at once
 //! as there are cores).
@@ -18,7 +18,7 @@ mod screen;
 pub use auth::{authorized_keys, fingerprint, host_key, host_key_path, passphrase};
 
 use crate::app::lesson::Tally;
-use crate::app::{App, Chord};
+use crate::app::{Action, App, Chord};
 use russh::keys::{PrivateKey, PublicKey};
 use std::collections::{HashMap, VecDeque};
 use std::net::{IpAddr, SocketAddr};
@@ -108,11 +108,13 @@ pub enum In {
     Answered,
 }
 
-/// What the presenter's session did, for the followers to do alike: the same keys, ticks and
-/// lesson steps, in the same order, give the same state.
+/// What the presenter's session did, for the followers to do alike: the same keys, mouse
+/// actions, ticks and lesson steps, in the same order, give the same state.
 #[derive(Clone, Copy, Debug)]
 pub enum Lead {
     Key(Chord),
+    /// What its mouse did, in the model's terms (a cell means another place on another size).
+    Act(Action),
     Tick,
     /// Its lesson took the steps that were due (a follower's lesson, at the same place, takes
     /// the same ones: it never moves on its own while following).

@@ -1,7 +1,8 @@
 //! One client's explorer: a [`Session`] on a `Screen`, on its own thread, with its own tick
 //! clock. A frame is drawn only once the last one has been taken by the channel (its flow
 //! control: a client that reads slowly gets fewer frames, never older ones), while τ keeps
-//! wall-clock time. A follower applies the presenter's keys and ticks instead of its clock.
+//! wall-clock time. A follower applies the presenter's keys, mouse actions and ticks instead of
+//! its clock.
 
 use super::keys::Keys;
 use super::screen::Screen;
@@ -297,6 +298,7 @@ impl Run<'_> {
             In::Close(why) => return Ok(Some(why)),
             In::Lead(lead) if self.following => match lead {
                 Lead::Key(chord) => s.press(chord),
+                Lead::Act(action) => s.act(action),
                 Lead::Tick => s.tick(),
                 Lead::Lesson => {
                     s.pump_lesson()?;
@@ -374,7 +376,13 @@ impl Run<'_> {
                     }
                 }
                 Event::Mouse(_) | Event::Paste(_) if self.following => {}
-                Event::Mouse(m) => s.mouse(m)?,
+                // What the mouse did, the followers do (in the model's terms: the same
+                // change whatever their screens' sizes).
+                Event::Mouse(m) => {
+                    if let Some(action) = s.mouse(m)? {
+                        self.shared.lead(self.id, Lead::Act(action));
+                    }
+                }
                 // What a paste typed at the prompt, the followers type too.
                 Event::Paste(text) => {
                     for chord in s.paste(&text) {
