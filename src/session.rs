@@ -4,7 +4,7 @@
 //! replay applies.
 
 use crate::analysis::Analysis;
-use crate::app::{App, Chord, Effect, Effects};
+use crate::app::{Action, App, Chord, Effect, Effects};
 use crate::script::{Recorder, Step};
 use crate::theme::Theme;
 use crossterm::event::{KeyEvent, MouseEvent};
@@ -144,16 +144,26 @@ impl<B: Backend> Session<B> {
 
     /// A mouse event. The app maps cells through the canvas as last drawn, so anything
     /// changed since the last frame is drawn first: a recording and its replay then see the
-    /// same canvas whatever else happened in between.
-    pub fn mouse(&mut self, ev: MouseEvent) -> Result<(), B::Error> {
+    /// same canvas whatever else happened in between. Returns the action it made, if any
+    /// (a served class's followers apply it: [`Session::act`]).
+    pub fn mouse(&mut self, ev: MouseEvent) -> Result<Option<Action>, B::Error> {
         self.draw_if_needed()?;
         if let Some(r) = &self.recorder {
             lock(r).mouse(&ev);
         }
-        let effects = self.app.handle_mouse(ev);
+        let action = self.app.mouse_action(ev);
+        if let Some(a) = action {
+            self.act(a);
+        }
+        Ok(action)
+    }
+
+    /// An action in the model's terms, as another session's mouse made it (a script names
+    /// keys and cells, not actions: it is not recorded).
+    pub fn act(&mut self, action: Action) {
+        let effects = crate::app::update(&mut self.app, action);
         (self.carry)(&mut self.app, effects);
         self.ask_analysis();
-        Ok(())
     }
 
     /// One tick of the app's clock (as the interactive loop calls it while playing).
@@ -219,7 +229,9 @@ impl<B: Backend> Session<B> {
             match step {
                 Step::Tick(n) => d.count(n),
                 Step::Wait => self.app.wait(),
-                Step::Mouse(m) => self.mouse(m)?,
+                Step::Mouse(m) => {
+                    self.mouse(m)?;
+                }
                 Step::Resize(..) | Step::Snapshot(_) => {}
                 Step::Key(k) => self.press(k),
                 Step::Say(t) => self.app.say(t),
@@ -472,7 +484,9 @@ impl Session<TestBackend> {
             Step::Snapshot(_) => {
                 self.screen();
             }
-            Step::Mouse(m) => ok(self.mouse(*m)),
+            Step::Mouse(m) => {
+                ok(self.mouse(*m));
+            }
             Step::Say(t) => self.app.say(t.clone()),
             Step::Ask(t) => self.app.ask(t.clone()),
             // Headless, a lesson goes on.

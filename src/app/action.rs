@@ -70,8 +70,9 @@ pub enum Action {
     Readouts,
     /// Mouse: the release point here (model coordinates, as the canvas maps the click).
     PlaceRelease(glam::DVec2),
-    /// Mouse drag: the initial velocity points from the release point to here, in the frame of
-    /// the canvas the drag began in (in a split view, either).
+    /// Mouse drag: the initial velocity as the arrow drawn from the release point shows it
+    /// (the lab velocity in the lab frame, u0 in the rotating one), in the frame of the canvas
+    /// the drag began in (in a split view, either).
     AimVelocity(glam::DVec2, crate::engine::Frame),
     EndDrag,
     /// The next / previous page (turntable, time plots, escape speed, outcome map, rest radius).

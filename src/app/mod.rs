@@ -68,14 +68,24 @@ impl App {
     /// point, a drag sets the initial velocity, the wheel zooms. Returns what the shell must
     /// carry out (see [`update()`]).
     pub fn handle_mouse(&mut self, ev: MouseEvent) -> Effects {
+        match self.mouse_action(ev) {
+            Some(a) => update(self, a),
+            None => Effects::new(),
+        }
+    }
+
+    /// What a mouse event asks for, through the canvas as last drawn, in the model's terms
+    /// (a point, a velocity, a release), whatever the screen's size: applied to another app
+    /// in the same state, it makes the same change (a served class's followers do).
+    pub fn mouse_action(&mut self, ev: MouseEvent) -> Option<Action> {
         if !self.mouse {
-            return Effects::new();
+            return None;
         }
         if self.view.help {
             return match ev.kind {
-                MouseEventKind::ScrollUp => update(self, Action::HelpScroll(-3)),
-                MouseEventKind::ScrollDown => update(self, Action::HelpScroll(3)),
-                _ => Effects::new(),
+                MouseEventKind::ScrollUp => Some(Action::HelpScroll(-3)),
+                MouseEventKind::ScrollDown => Some(Action::HelpScroll(3)),
+                _ => None,
             };
         }
         // A drag goes on through the canvas it began in; a click picks the canvas it is in.
@@ -84,31 +94,30 @@ impl App {
             MouseEventKind::Drag(_) | MouseEventKind::Up(_) => self.drag_canvas,
             _ => self.geom.iter().position(|g| in_canvas(&g)).unwrap_or(0),
         };
-        let Some(&g) = self.geom.get(k) else {
-            return Effects::new();
-        };
+        let g = *self.geom.get(k)?;
         let at = g.to_world(ev.column, ev.row);
         if g.page != pages::Page::Turntable {
             // The plot is the (φ, v0) plane: a click picks that release.
-            if let (MouseEventKind::Down(MouseButton::Left), Some(p)) = (ev.kind, at) {
-                return update(self, Action::PickRelease(p));
-            }
-            return Effects::new();
+            return match (ev.kind, at) {
+                (MouseEventKind::Down(MouseButton::Left), Some(p)) => Some(Action::PickRelease(p)),
+                _ => None,
+            };
         }
-        let action = match (ev.kind, at) {
+        Some(match (ev.kind, at) {
             (MouseEventKind::Up(_), _) => Action::EndDrag,
             (MouseEventKind::Down(MouseButton::Left), Some(p)) => {
                 self.drag_canvas = k;
                 Action::PlaceRelease(p)
             }
+            // The arrow from the release point (on +x in the model) to here, in speed units.
             (MouseEventKind::Drag(MouseButton::Left), Some(p)) if self.dragging => {
-                Action::AimVelocity(p, g.frame)
+                let r0 = glam::DVec2::new(self.initial().xi0, 0.0);
+                Action::AimVelocity((p - r0) / g.arrow_scale, g.frame)
             }
             (MouseEventKind::ScrollUp, Some(_)) => Action::ZoomIn,
             (MouseEventKind::ScrollDown, Some(_)) => Action::ZoomOut,
-            _ => return Effects::new(),
-        };
-        update(self, action)
+            _ => return None,
+        })
     }
 
     /// One tick: advances the run(s) by `TICK_DT × speed` of sim time if playing.

@@ -339,7 +339,8 @@ impl Handler for Conn {
 }
 
 /// Hands a session's frames to its channel, which takes them as the client's window allows
-/// (SSH flow control); each taken frame is reported back, so the next one may be drawn.
+/// (SSH flow control); each taken frame's buffer is handed back, so the next one may be drawn
+/// (into it: see [`In::Sent`]).
 async fn write_out(
     write: ChannelWriteHalf<Msg>,
     mut frames: tokio::sync::mpsc::Receiver<Out>,
@@ -348,13 +349,14 @@ async fn write_out(
     while let Some(out) = frames.recv().await {
         match out {
             Out::Frame(bytes) => {
-                if write.data_bytes(bytes).await.is_err() {
+                if write.data_bytes(bytes.clone()).await.is_err() {
                     break;
                 }
-                let _ = inbox.send(In::Sent);
+                let _ = inbox.send(In::Sent(bytes));
             }
             Out::End(bytes) => {
-                let _ = write.data_bytes(bytes).await;
+                let _ = write.data_bytes(bytes.clone()).await;
+                let _ = inbox.send(In::Sent(bytes));
                 let _ = write.exit_status(0).await;
                 let _ = write.eof().await;
                 let _ = write.close().await;

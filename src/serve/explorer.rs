@@ -1,7 +1,8 @@
 //! One client's explorer: a [`Session`] on a `Screen`, on its own thread, with its own tick
 //! clock. A frame is drawn only once the last one has been taken by the channel (its flow
 //! control: a client that reads slowly gets fewer frames, never older ones), while τ keeps
-//! wall-clock time. A follower applies the presenter's keys and ticks instead of its clock.
+//! wall-clock time. A follower applies the presenter's keys, mouse actions and ticks instead of
+//! its clock.
 
 use super::keys::Keys;
 use super::screen::Screen;
@@ -121,12 +122,17 @@ pub fn run(shared: Arc<Shared>, id: u64, client: Client, inbox: Receiver<In>, ou
         last_input: Instant::now(),
         mouse_on: s.app.mouse_capture(),
         following: false,
+        spare: Vec::new(),
     };
     let said = run
         .start(&mut s)
         .and_then(|()| run.event_loop(&mut s, &inbox));
     let why = said.unwrap_or_else(|e| format!("error: {e}"));
-    let mut bytes = s.term.backend_mut().take();
+    let mut bytes = s
+        .term
+        .backend_mut()
+        .take(&mut run.spare)
+        .unwrap_or_default();
     let _ = queue!(
         bytes,
         DisableMouseCapture,
@@ -137,6 +143,13 @@ pub fn run(shared: Arc<Shared>, id: u64, client: Client, inbox: Receiver<In>, ou
     bytes.extend(format!("turntable: {why}\r\n").as_bytes());
     out.end(bytes);
     shared.leave(id);
+    // Its last buffer comes back once taken, to be freed here (see `In::Sent`).
+    let until = Instant::now() + Duration::from_secs(1);
+    while let Ok(msg) = inbox.recv_timeout(until.saturating_duration_since(Instant::now())) {
+        if matches!(msg, In::Sent(_)) {
+            break;
+        }
+    }
 }
 
 /// Where a session's bytes go: the channel's writer task.
@@ -165,6 +178,8 @@ struct Run<'a> {
     mouse_on: bool,
     /// Applying the presenter's keys and ticks.
     following: bool,
+    /// The last frame's buffer, handed back by the channel: the next is drawn into it.
+    spare: Vec<u8>,
 }
 
 impl Run<'_> {
@@ -216,8 +231,9 @@ impl Run<'_> {
                     queue!(s.term.backend_mut(), EndSynchronizedUpdate)?;
                     self.last_frame = Some(now);
                 }
-                let bytes = s.term.backend_mut().take();
-                if !bytes.is_empty() && self.out.frame(bytes) {
+                if let Some(bytes) = s.term.backend_mut().take(&mut self.spare)
+                    && self.out.frame(bytes)
+                {
                     self.in_flight = Some(now);
                 }
             }
@@ -275,10 +291,14 @@ impl Run<'_> {
                 s.term.backend_mut().resize(w, h);
                 s.resized(w, h);
             }
-            In::Sent => self.in_flight = None,
+            In::Sent(buffer) => {
+                self.in_flight = None;
+                self.spare = buffer;
+            }
             In::Close(why) => return Ok(Some(why)),
             In::Lead(lead) if self.following => match lead {
                 Lead::Key(chord) => s.press(chord),
+                Lead::Act(action) => s.act(action),
                 Lead::Tick => s.tick(),
                 Lead::Lesson => {
                     s.pump_lesson()?;
@@ -356,7 +376,13 @@ impl Run<'_> {
                     }
                 }
                 Event::Mouse(_) | Event::Paste(_) if self.following => {}
-                Event::Mouse(m) => s.mouse(m)?,
+                // What the mouse did, the followers do (in the model's terms: the same
+                // change whatever their screens' sizes).
+                Event::Mouse(m) => {
+                    if let Some(action) = s.mouse(m)? {
+                        self.shared.lead(self.id, Lead::Act(action));
+                    }
+                }
                 // What a paste typed at the prompt, the followers type too.
                 Event::Paste(text) => {
                     for chord in s.paste(&text) {

@@ -45,9 +45,15 @@ impl Screen {
         self.size = Size::new(width, height);
     }
 
-    /// The bytes written since the last call.
-    pub fn take(&mut self) -> Vec<u8> {
-        std::mem::take(&mut *self.sink.0.borrow_mut())
+    /// The bytes written since the last call, if any; `spare` (emptied) is written into
+    /// next, so a session draws into the buffers its channel hands back.
+    pub fn take(&mut self, spare: &mut Vec<u8>) -> Option<Vec<u8>> {
+        let mut sink = self.sink.0.borrow_mut();
+        if sink.is_empty() {
+            return None;
+        }
+        spare.clear();
+        Some(std::mem::replace(&mut *sink, std::mem::take(spare)))
     }
 }
 
@@ -109,5 +115,35 @@ impl Backend for Screen {
 
     fn flush(&mut self) -> io::Result<()> {
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Screen;
+    use std::io::Write;
+
+    /// A frame's bytes go out, and the spare handed in is written into next: once the
+    /// channel hands buffers back, no frame makes one.
+    #[test]
+    fn take_hands_out_the_bytes_and_writes_into_the_spare() {
+        let mut screen = Screen::new(80, 24);
+        let mut spare = Vec::new();
+        assert_eq!(
+            screen.take(&mut spare),
+            None,
+            "nothing drawn, nothing to send"
+        );
+        screen.write_all(b"first").unwrap();
+        let mut back = screen.take(&mut spare).unwrap();
+        assert_eq!(back, b"first");
+        // The channel hands the first frame's buffer back: the frame after next is drawn in it.
+        let reused = back.as_ptr();
+        screen.write_all(b"second").unwrap();
+        assert_eq!(screen.take(&mut back).unwrap(), b"second");
+        assert!(back.is_empty());
+        screen.write_all(b"third").unwrap();
+        let third = screen.take(&mut Vec::new()).unwrap();
+        assert_eq!((third.as_slice(), third.as_ptr()), (&b"third"[..], reused));
     }
 }

@@ -444,3 +444,96 @@ fn a_presenters_paste_reaches_the_followers() {
     });
     s.stop("done");
 }
+
+/// A local session of `w` × `h` on the default scene, paused: what a client of that size
+/// shows when it does the same.
+fn local(w: u16, h: u16) -> turntable::session::Session<ratatui::backend::TestBackend> {
+    let app = turntable::app::App::new(turntable::scene::Scene::default_scene());
+    let theme = turntable::theme::Theme::builtin("dark").unwrap();
+    let mut s = turntable::session::Session::headless(app, theme, w, h, false);
+    s.press(turntable::app::Chord::new(
+        crossterm::event::KeyCode::Char(' '),
+        crossterm::event::KeyModifiers::NONE,
+    ));
+    s
+}
+
+/// A local session's screen as rows, as `screen` reads a client's.
+fn rows(s: &mut turntable::session::Session<ratatui::backend::TestBackend>) -> Vec<String> {
+    let buf = s.screen();
+    let (w, h) = (buf.area.width, buf.area.height);
+    (0..h)
+        .map(|y| {
+            let row: String = (0..w).map(|x| buf[(x, y)].symbol()).collect();
+            row.trim_end().to_string()
+        })
+        .collect()
+}
+
+/// What the presenter's mouse does reaches the followers in the model's terms: a click on the
+/// table and a drag from it, at 100×30, give a follower at 70×22 the release and velocity a
+/// session of its own size given the same actions shows (a cell would be elsewhere there).
+#[test]
+fn a_presenters_click_and_drag_reach_a_follower_of_another_size() {
+    use crossterm::event::{MouseButton, MouseEventKind};
+    let s = serving(None);
+    // The presenter's gestures, and the actions its canvas makes of them, found locally.
+    let mut presenter = local(100, 30);
+    rows(&mut presenter);
+    let g = presenter.app.geom_for_tests().unwrap();
+    let (col, row) = crate::common::cell_under(&g, 0.6, 0.3);
+    let gestures = [
+        (MouseEventKind::Down(MouseButton::Left), col, row, 'M', 0),
+        (
+            MouseEventKind::Drag(MouseButton::Left),
+            col + 8,
+            row - 4,
+            'M',
+            32,
+        ),
+        (
+            MouseEventKind::Up(MouseButton::Left),
+            col + 8,
+            row - 4,
+            'm',
+            0,
+        ),
+    ];
+    let actions: Vec<_> = gestures
+        .iter()
+        .filter_map(|&(kind, c, r, ..)| presenter.mouse(crate::common::mouse(kind, c, r)).unwrap())
+        .collect();
+    assert_eq!(actions.len(), 3, "{actions:?}");
+    let mut follower = local(70, 22);
+    for a in actions {
+        follower.act(a);
+    }
+    let (p_rows, f_rows) = (rows(&mut presenter), rows(&mut follower));
+    assert!(f_rows.join("\n").contains("v0 = "), "{}", f_rows.join("\n"));
+    rt().block_on(async {
+        let p = login(s.addr, "teacher", Login::Key(&key(3)))
+            .await
+            .unwrap()
+            .unwrap();
+        let mut tp = Tty::open(&p, 100, 30).await;
+        assert!(until(&mut [&mut tp], |s| all_show(s, &["lab frame"])).await);
+        let f = login(s.addr, "class", Login::Password("ba-ke-di-lo"))
+            .await
+            .unwrap()
+            .unwrap();
+        let mut tf = Tty::open(&f, 70, 22).await;
+        assert!(until(&mut [&mut tf], |s| all_show(s, &["following the class"])).await);
+        tp.send(b" ").await;
+        for (_, c, r, end, button) in gestures {
+            let sgr = format!("\x1b[<{button};{};{}{end}", c + 1, r + 1);
+            tp.send(sgr.as_bytes()).await;
+        }
+        assert!(
+            until(&mut [&mut tp, &mut tf], |s| {
+                body(&s[0]) == body(&p_rows) && body(&s[1]) == body(&f_rows)
+            })
+            .await
+        );
+    });
+    s.stop("done");
+}

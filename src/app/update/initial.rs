@@ -64,11 +64,8 @@ pub(super) fn apply(app: &mut App, action: Action) {
                 num(app.initial().xi0, 3)
             ));
         }
-        Action::AimVelocity(p, frame) => {
-            let scale = app.geom.first().map_or(1.0, |g| g.arrow_scale);
+        Action::AimVelocity(drawn, frame) => {
             let r0 = glam::DVec2::new(app.initial().xi0, 0.0);
-            // The arrow shows the lab velocity in the lab view and u0 in the rotating view.
-            let drawn = (p - r0) / scale;
             let u0 = match frame {
                 Frame::Lab => drawn - zcross(r0),
                 Frame::Table => drawn,
