@@ -7,7 +7,7 @@ use super::{Ahead, Limit, Run, RunError, SNAP_T, STIFF, STOP_CAP, StepInfo};
 use crate::engine::model::{Frame, State, Y, rotate, zcross};
 use crate::engine::radau;
 use crate::engine::roots::illinois;
-use crate::engine::stepper::{Segment, too_short};
+use crate::engine::stepper::{Segment, Stepper, too_short};
 use glam::DVec2;
 
 /// The share of the time to the stop ahead that a second opinion's explicit step, held to its
@@ -262,6 +262,28 @@ impl Run {
         } else {
             self.slip_restarts += 1;
         }
+    }
+
+    /// Locates the escape certificate if it first holds at the end of `seg`, the step just
+    /// taken from `start`; the step kept. A second opinion's steps carry no dense output: the
+    /// one its escape is located in is taken again with it (the same step).
+    pub(super) fn escape_in(&mut self, mut seg: Segment, start: &Stepper) -> Segment {
+        let frame = self.settings.frame;
+        if self.escape.is_none()
+            && certificate(&frame.to_state(seg.y1, seg.t1()), self.settings.hold()).is_some()
+        {
+            if self.checking {
+                seg = self.stepper.retake(
+                    |y| frame.rhs(y),
+                    self.settings.scheme,
+                    start,
+                    seg.h,
+                    &mut self.cost,
+                );
+            }
+            self.escape = Some(self.locate_escape(&seg));
+        }
+        seg
     }
 
     /// The first time in `seg` at which escape is certified (Illinois on the margin).

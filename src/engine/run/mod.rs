@@ -386,7 +386,7 @@ impl Run {
         }
         let rejected_before = self.cost.rejected;
         let (tau, start) = (self.stepper.t, self.stepper);
-        let (mut seg, err_ratio) = self
+        let (seg, err_ratio) = self
             .stepper
             .step(
                 |y| frame.rhs(y),
@@ -413,22 +413,7 @@ impl Run {
                     tau,
                 },
             })?;
-        if self.escape.is_none()
-            && certificate(&frame.to_state(seg.y1, seg.t1()), self.settings.hold()).is_some()
-        {
-            if self.checking {
-                // A second opinion's steps carry no dense output: the one the certificate is
-                // located in is taken again with it (the same step).
-                seg = self.stepper.retake(
-                    |y| frame.rhs(y),
-                    self.settings.scheme,
-                    &start,
-                    seg.h,
-                    &mut self.cost,
-                );
-            }
-            self.escape = Some(self.locate_escape(&seg));
-        }
+        let seg = self.escape_in(seg, &start);
         self.last = Some(seg);
         self.last_step = Some(StepInfo {
             t0: seg.t0,
