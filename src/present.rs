@@ -130,6 +130,12 @@ pub fn alternatives<S: AsRef<str>>(wordings: &[S]) -> String {
     all.join(&OR.to_string())
 }
 
+/// A speed read off an escape-speed curve, bracketed to 1e-4 (`analysis::CURVE_VTOL`, what
+/// its line needs): four decimals, no more than it knows.
+pub fn curve_speed(v: f64) -> String {
+    num(v, 4)
+}
+
 /// A release speed: four decimals, up to six where they are not zeros (C's v0 = 0.6078 and
 /// its escape speed 0.607797… differ in the sixth).
 pub fn speed(v: f64) -> String {

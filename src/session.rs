@@ -320,13 +320,14 @@ pub fn sync(app: &mut App, analysis: &mut Analysis, compute: bool) -> bool {
             break;
         }
         let todo = app.charts.missing(&job, settings);
-        // A map's cells lean on the escape speeds at its ξ0, which the page computed first.
+        // A map's cells lean on the escape speeds at its ξ0, which the page computed first; a
+        // curve's start from a nearby ξ0's.
         let curve = match job {
-            crate::analysis::Job::Map { xi0, .. } => {
-                app.charts.curve(xi0, settings).map(|c| c.ve.clone())
-            }
+            crate::analysis::Job::Map { xi0, .. } => app.charts.curve(xi0, settings),
+            crate::analysis::Job::Curve { xi0 } => app.charts.near_curve(xi0, settings),
             _ => None,
-        };
+        }
+        .map(|c| c.ve.clone());
         analysis.request(job, settings, todo, curve);
         moved = true;
     }

@@ -7,7 +7,9 @@
 
 use crate::engine::model::turn_angle;
 use crate::engine::roots::bisect;
-use crate::engine::solve::{CLASSIFY_TAU, GoOn, always, critical_radius_until, escape_speed_until};
+use crate::engine::solve::{
+    CLASSIFY_TAU, GoOn, always, critical_radius_until, escape_bracket_near, escape_speed_until,
+};
 use crate::engine::{Initial, Outcome, Release, Run, Settings};
 use crate::error::Error;
 use std::sync::Arc;
@@ -23,8 +25,18 @@ pub use worker::{Analysis, Progress};
 
 /// Angles of an escape-speed curve (every 5°, as `sweep fig5`'s default).
 pub const CURVE_POINTS: usize = 72;
-/// Width of the final bracket on each escape speed of a curve.
-pub const CURVE_VTOL: f64 = 1e-6;
+/// Width of the final bracket on each escape speed of a curve: what the line drawn needs. A
+/// braille dot of the page's chart is its speed range over four dots a row: 0.009 to 0.018 at
+/// 120×40 (1.1 × v_e's greatest, 1.2 to 2.6, over 36 rows), 7e-4 on a 1000-row terminal; each
+/// point, within 5e-5 of v_e, is within a thirteenth of a dot even there
+/// (`tests/suite/curve_cells.rs` draws it against a tight curve, cell by cell). It was 1e-6. Its runs are at 1e-7 ([`curve_settings`]). The printed speeds that need more
+/// are sought to their own width: the least v_e ([`LEAST_VTOL`]); the greatest is printed to
+/// what it is known to.
+pub const CURVE_VTOL: f64 = 1e-4;
+/// A curve at a ξ0 this close to another's is where the other's escape speeds start
+/// (`engine::solve::escape_bracket_near`; v_e moves about as much as ξ0 there): a held key
+/// moves ξ0 by 0.01.
+pub const NEAR_XI0: f64 = 0.05;
 /// The paper's Fig. 5 radii.
 pub const PAPER_XI0: [f64; 4] = [0.8, 0.5, 0.2, 0.001];
 /// The most cells an outcome map has, whatever the terminal: up to this the grid is the plot's
@@ -112,19 +124,29 @@ const WINDOW_SCAN: usize = 200;
 /// engine's certified solver). Outside: a scan of `WINDOW_SCAN` speeds up to the solver's
 /// ceiling 2(1 + ξ0) + 2 finds the window, bisection on the outcome sets each edge.
 pub fn sticking_speeds(xi0: f64, phi: f64, settings: Settings, tol: f64) -> Speeds {
-    sticking_speeds_until(xi0, phi, settings, tol, &always)
+    sticking_speeds_until(xi0, phi, settings, tol, None, &always)
 }
 
 /// [`sticking_speeds`], asking `go_on` before each run (once it says stop, what is left is
-/// `Unknown`).
-fn sticking_speeds_until(xi0: f64, phi: f64, settings: Settings, tol: f64, go_on: GoOn) -> Speeds {
+/// `Unknown`), inside ξ = 1 from a `guess` of v_e when given ([`escape_bracket_near`]: no
+/// scan; the solver's own search where the guess brackets nothing).
+fn sticking_speeds_until(
+    xi0: f64,
+    phi: f64,
+    settings: Settings,
+    tol: f64,
+    guess: Option<f64>,
+    go_on: GoOn,
+) -> Speeds {
     if xi0 <= 1.0 {
-        return escape_speed_until(xi0, phi, settings, tol, go_on).map_or(Speeds::Unknown, |t| {
-            Speeds::Stick {
-                lo: 0.0,
-                hi: t.value,
-            }
-        });
+        let stick = |hi: f64| Speeds::Stick { lo: 0.0, hi };
+        let near = guess.map(|g| escape_bracket_near(xi0, phi, settings, tol, g, go_on));
+        return match near {
+            Some(Ok((lo, hi, _))) => stick(0.5 * (lo + hi)),
+            Some(Err(crate::engine::error::Error::Cancelled)) => Speeds::Unknown,
+            _ => escape_speed_until(xi0, phi, settings, tol, go_on)
+                .map_or(Speeds::Unknown, |t| stick(t.value)),
+        };
     }
     let sticks = |v0: f64| {
         if !go_on() {
@@ -196,14 +218,15 @@ pub fn settings_for(s: Settings) -> Settings {
 }
 
 /// The integration behind a curve's escape speeds: an adaptive method no tighter than
-/// [`CURVE_VTOL`]/100.
-/// Its own error in v_e is about its tol (the v_e rows of `turntable bench`), so a tighter
-/// explorer tol would cost time and change no digit the chart can show.
+/// [`CURVE_VTOL`]/1000. Runs at its /100 (1e-6) misplaced the threshold near the rim by up to
+/// 3.1e-4 beyond the bracket (ξ0 = 0.999; 1.8e-4 at 0.9), and a map's cells, whose first runs
+/// are at 1e-6 too, lean on the curve; at 1e-7 every point of 72 on eight ξ0 from 0.5 to 0.999
+/// was within its bracket's half-width of a tight v_e, for 1.3× the evaluations.
 pub fn curve_settings(s: Settings) -> Settings {
     let s = settings_for(s);
     match s.scheme.tol() {
         Some(tol) => Settings {
-            scheme: s.scheme.with_knob(tol.max(1e-2 * CURVE_VTOL)),
+            scheme: s.scheme.with_knob(tol.max(1e-3 * CURVE_VTOL)),
             ..s
         },
         None => s,
@@ -313,7 +336,8 @@ pub fn piece_until(job: &Job, k: usize, settings: Settings, go_on: GoOn) -> Opti
 }
 
 /// [`piece_until`], a map's cells leaning on `curve`, the escape speeds at the map's ξ0 when
-/// the page has them (see [`map_cell_answer`]).
+/// the page has them (see [`map_cell_answer`]); a curve's escape speeds starting from
+/// `curve`'s, a nearby ξ0's (within [`NEAR_XI0`]).
 pub fn piece_with(
     job: &Job,
     k: usize,
@@ -324,7 +348,9 @@ pub fn piece_with(
     let p = match *job {
         Job::Curve { xi0 } => {
             let phi = angle(k, CURVE_POINTS);
-            let v = sticking_speeds_until(xi0, phi, curve_settings(settings), CURVE_VTOL, go_on);
+            let guess = curve.and_then(|c| c.get(k).copied().flatten()?.hi());
+            let s = curve_settings(settings);
+            let v = sticking_speeds_until(xi0, phi, s, CURVE_VTOL, guess, go_on);
             Piece::Escape { i: k, v }
         }
         Job::Least { xi0, near } => Piece::Least(least(xi0, near, curve_settings(settings), go_on)),
@@ -352,7 +378,8 @@ pub fn piece_with(
 }
 
 /// A job: its generation (for the worker), the job, the pieces still to compute, and for a
-/// map the escape-speed curve at its ξ0 when known (see [`piece_with`]).
+/// map the escape-speed curve at its ξ0 when known, for a curve a nearby ξ0's (see
+/// [`piece_with`]).
 #[derive(Clone, Debug)]
 struct Request {
     generation: u64,

@@ -90,6 +90,16 @@ impl Charts {
             .find(|c| c.xi0 == xi0 && c.settings == settings)
     }
 
+    /// The curve at the ξ0 nearest `xi0` (other than `xi0`, within `analysis::NEAR_XI0`, both
+    /// inside ξ = 1, at `settings`): where the escape speeds of `xi0`'s start.
+    pub fn near_curve(&self, xi0: f64, settings: Settings) -> Option<&Curve> {
+        self.curves
+            .iter()
+            .filter(|c| c.settings == settings && c.xi0 != xi0 && c.xi0 <= 1.0 && xi0 <= 1.0)
+            .filter(|c| (c.xi0 - xi0).abs() <= crate::analysis::NEAR_XI0)
+            .min_by(|a, b| (a.xi0 - xi0).abs().total_cmp(&(b.xi0 - xi0).abs()))
+    }
+
     /// Files one piece of `job` where it belongs.
     pub fn apply(&mut self, job: &Job, settings: Settings, piece: Piece) {
         match (job, piece) {

@@ -43,7 +43,7 @@ impl CheckCost {
 }
 
 /// The check's price on the escape speed's bracket ends (the four ξ0 of Fig. 5 × `angles`,
-/// vtol 1e-8) and on `rest` (the rest task's cases).
+/// vtol 1e-8), on `rest` (the rest task's cases) and on stops at the rim.
 pub fn check_costs(rest: &[Initial], angles: usize, reps: usize) -> Result<Vec<CheckCost>, Error> {
     let mut ends = Vec::new();
     for xi0 in [0.8, 0.5, 0.2, 0.001] {
@@ -58,7 +58,21 @@ pub fn check_costs(rest: &[Initial], angles: usize, reps: usize) -> Result<Vec<C
     Ok(vec![
         cost("the escape speed's bracket ends, vtol 1e-8", &ends, reps)?,
         cost("the rest cases", rest, reps)?,
+        cost("stops at the rim, ξ0 0.9 … 0.998", &rim(), reps)?,
     ])
+}
+
+/// Forty releases that stop near the rim, where the stretch before a stop is stiff: ten ξ0
+/// from 0.9 to 0.998, each thrown at four angles at a share of 1 − ξ0 (the run takes implicit
+/// steps there, and the check integrates what the run's frozen stop takes inside ξ = 0.95).
+fn rim() -> Vec<Initial> {
+    (0..10)
+        .flat_map(|k| {
+            let xi0 = 0.9 + 0.098 * k as f64 / 9.0;
+            [(0.0, 0.5), (1.5, 0.9), (3.1, 0.3), (4.5, 0.7)]
+                .map(|(phi, share)| Initial::velocity(xi0, phi, share * (1.0 - xi0)))
+        })
+        .collect()
 }
 
 /// The runs of `releases` at the default settings, then their second opinions, each timed (at

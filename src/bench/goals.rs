@@ -251,6 +251,7 @@ pub(super) fn speed(cfg: &Config, all: &[Initial], refs: &[Measure]) -> Result<S
             .collect::<Result<Vec<f64>, Error>>()
     });
     let top = r?.into_iter().fold(0.0, f64::max);
+    let (curve_rhs, curve_near_rhs) = curve_evals()?;
     let (r, map_ms) = timed(cfg.reps.min(2), || outcome_map(1.3 * top));
     r?;
     let escape_angles = if cfg.quick { 3 } else { 12 };
@@ -316,6 +317,8 @@ pub(super) fn speed(cfg: &Config, all: &[Initial], refs: &[Measure]) -> Result<S
         fig5_ms,
         fig5_ms_vtol_1e8,
         curve_ms,
+        curve_rhs,
+        curve_near_rhs,
         map_ms,
         escape_cli_ms,
         escape_checked_ms,
@@ -401,4 +404,21 @@ pub(super) fn task_ratios(rows: &[Row]) -> Vec<TaskRatio> {
         }
     }
     out
+}
+
+/// The right-hand-side evaluations of the escape-speed page's curve at ξ0 = 0.5 (its angles, at
+/// its settings and bracket): from no curve (a scan of speeds each), and from the curve at 0.49
+/// as a held `x` leaves it (`analysis::NEAR_XI0`).
+fn curve_evals() -> Result<(u64, u64), Error> {
+    use crate::analysis::{CURVE_POINTS, CURVE_VTOL, angle, curve_settings, settings_for};
+    use crate::engine::solve::{always, escape_bracket_near, escape_speed};
+    let s = curve_settings(settings_for(Settings::default()));
+    let (mut cold, mut near) = (0, 0);
+    for k in 0..CURVE_POINTS {
+        let phi = angle(k, CURVE_POINTS);
+        let before = escape_speed(0.49, phi, s, CURVE_VTOL)?;
+        cold += escape_speed(0.5, phi, s, CURVE_VTOL)?.rhs_evals;
+        near += escape_bracket_near(0.5, phi, s, CURVE_VTOL, before.value, &always)?.2;
+    }
+    Ok((cold, near))
 }

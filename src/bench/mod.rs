@@ -122,9 +122,12 @@ pub struct Speed {
     pub fig5_vtol: f64,
     pub fig5_ms: f64,
     pub fig5_ms_vtol_1e8: Option<f64>,
-    /// Issue 10: the escape-speed page's curve for a new ξ0 (0.5; 72 angles, vtol 1e-6) on one
+    /// Issue 10: the escape-speed page's curve for a new ξ0 (0.5; 72 angles, vtol `analysis::CURVE_VTOL`, no nearby curve to start from) on one
     /// thread, and the outcome map's 72 × 60 cells (`sweep map`) on all cores.
     pub curve_ms: f64,
+    /// Its right-hand-side evaluations, and those from the curve at ξ0 = 0.49 (a held `x`'s).
+    pub curve_rhs: u64,
+    pub curve_near_rhs: u64,
     pub map_ms: f64,
     /// `turntable escape --vtol 1e-8` as a user runs it, process start included: the median
     /// wall time over Fig. 5 points (the paper's four ξ0 × `escape_angles` angles).

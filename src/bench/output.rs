@@ -175,8 +175,11 @@ fn speed_goals(o: &mut String, sp: &Speed) {
     );
     let _ = writeln!(
         o,
-        "  escape-speed page, one curve (ξ0 = 0.5, 72 angles, vtol 1e-6, one thread): {:.0} ms   {}",
+        "  escape-speed page, one curve (ξ0 = 0.5, 72 angles, vtol {}, one thread, from no nearby curve): {:.0} ms, {} RHS; from ξ0 = 0.49's: {} RHS   {}",
+        crate::present::sci(crate::analysis::CURVE_VTOL, 0),
         sp.curve_ms,
+        sp.curve_rhs,
+        sp.curve_near_rhs,
         goal(sp.curve_ms, 50.0, "ms")
     );
     if let Some(ms) = sp.escape_cli_ms {

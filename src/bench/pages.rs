@@ -48,7 +48,8 @@ impl Split {
 #[derive(Clone, Debug, Serialize)]
 pub struct PageTimes {
     pub cores: usize,
-    /// The escape-speed curve at ξ0 = 0.5 (72 angles, vtol 1e-6).
+    /// The escape-speed curve at ξ0 = 0.5 (72 angles, vtol `analysis::CURVE_VTOL`), from no
+    /// nearby curve.
     pub curve: Split,
     /// The outcome map's grid at [`SIZE`] (ξ0 = 0.5, velocity release).
     pub grid: (usize, usize),

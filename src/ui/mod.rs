@@ -2,7 +2,7 @@
 
 pub mod canvas;
 pub(crate) mod caption;
-pub(crate) mod chart;
+pub mod chart;
 pub mod export;
 pub mod fit;
 pub mod help;

@@ -136,8 +136,8 @@ fn quick_bench_rows_are_finite_and_converge() {
     assert!(rhs("μ = 0").page_ms.is_none() && rhs("point").page_ms.is_some());
     let p = &report.pages;
     assert!(p.refined * 5 < p.grid.0 * p.grid.1, "{p:?}");
-    // The second opinion's price, on the bracket ends and the rest cases.
-    assert_eq!(report.checks.len(), 2);
+    // The second opinion's price, on the bracket ends, the rest cases and stops at the rim.
+    assert_eq!(report.checks.len(), 3);
     assert!(
         report
             .checks

@@ -14,6 +14,7 @@ mod cli;
 mod common;
 mod config;
 mod coupling;
+mod curve_cells;
 mod dop853;
 mod explorer;
 mod extremes;

@@ -74,7 +74,7 @@ fn the_escape_speed_page_holds_the_solver_s_curves() {
     }
     let c = a.charts.curve(0.5, s).unwrap().clone();
     // Each value is the middle of a certified bracket of width ≤ vtol around v_e (its runs at
-    // dp54 tol vtol/100, see `curve_settings`): within vtol/2 of a converged v_e.
+    // dp54 tol vtol/1000, see `curve_settings`): within vtol/2 of a converged v_e.
     for i in [0, 5, 23, 40, 71] {
         let phi = analysis::angle(i, c.ve.len());
         let v = escape_speed(0.5, phi, Settings::dp54(1e-12), 1e-10)
@@ -100,17 +100,13 @@ fn the_escape_speed_page_holds_the_solver_s_curves() {
         "{vleast} vs {v}, grid {vmin}"
     );
     let screen = render(&mut a, 100, 30);
-    let label = |v: f64, p: f64, digits| {
-        format!(
-            "{} at {}",
-            turntable::ui::panel::speed(v),
-            turntable::present::angle_to(p, digits)
-        )
-    };
+    let label =
+        |v: String, p: f64, digits| format!("{v} at {}", turntable::present::angle_to(p, digits));
+    // The least refined to 1e-8, the greatest a grid point's, known to the curve's 1e-4.
     let note = format!(
         "min {}, max {}",
-        label(vleast, pmin, 3),
-        label(vmax, pmax, 2)
+        label(turntable::ui::panel::speed(vleast), pmin, 3),
+        label(turntable::present::curve_speed(vmax), pmax, 2)
     );
     assert!(screen.contains(&note), "{note}\n{screen}");
     // C's v0 = 0.6078 at φ = 0 is below v_e(0) there: the page says it sticks.
@@ -560,9 +556,10 @@ fn no_number_is_cut_at_any_width() {
     let c = a.charts.curve(0.5, s).unwrap();
     let ((_, _), (_, vmax)) = c.extremes().unwrap();
     let (_, vmin) = c.least.unwrap().unwrap();
+    // The greatest is a grid point's, known to the curve's bracket: four decimals.
     let (min, max) = (
         turntable::ui::panel::speed(vmin),
-        turntable::ui::panel::speed(vmax),
+        turntable::present::curve_speed(vmax),
     );
     let long = " ? help  Space pause  .,  step  [] speed  f frame  m method  c compare  a forces  1-7 presets  x/p/v edit  q quit";
     let short = " ? help  q quit  Space pause  ., step  f frame  m method  c compare  1-7 presets";

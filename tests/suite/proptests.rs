@@ -9,7 +9,9 @@ use std::f64::consts::TAU;
 use turntable::engine::doubt::doubt;
 use turntable::engine::model::rotate;
 use turntable::engine::saddle::saddle_h;
-use turntable::engine::solve::{CLASSIFY_TAU, escape_speed, solve_certified};
+use turntable::engine::solve::{
+    CLASSIFY_TAU, always, escape_bracket_near, escape_speed, solve_certified,
+};
 use turntable::engine::{Frame, Initial, Method, Outcome, Run, Settings, State, Status};
 
 const SEED: u64 = 17;
@@ -156,6 +158,31 @@ proptest! {
             prop_assert_eq!(run.outcome() == Outcome::Stuck, reference(i) == Outcome::Stuck,
                 "certain and wrong at v_e {:+e}", dv);
         }
+    }
+}
+
+proptest! {
+    #![proptest_config(config(24))]
+
+    /// The escape-speed page's bracket from a nearby curve's speed (`escape_bracket_near`, no
+    /// scan, as a held key computes it) holds v_e, rim included, from a guess up to 0.3 off
+    /// either way: its width is at most the curve's, and a tight v_e lies in it (to the 1e-6
+    /// its runs at 1e-7 may place the threshold off).
+    #[test]
+    fn a_bracket_from_a_nearby_speed_holds_v_e(
+        xi0 in 0.0..0.999f64,
+        phi in 0.0..TAU,
+        off in -0.3..0.3f64,
+    ) {
+        use turntable::analysis::{CURVE_VTOL, curve_settings, settings_for};
+        let ve = escape_speed(xi0, phi, Settings::dp54(1e-12), 1e-9).unwrap();
+        prop_assume!(ve.interval);
+        let s = curve_settings(settings_for(Settings::default()));
+        let (lo, hi, _) = escape_bracket_near(xi0, phi, s, CURVE_VTOL, ve.value + off, &always)
+            .unwrap();
+        prop_assert!(hi - lo <= CURVE_VTOL);
+        prop_assert!(lo - 1e-6 <= ve.value && ve.value <= hi + 1e-6,
+            "v_e {} outside [{}, {}] from {:+}", ve.value, lo, hi, off);
     }
 }
 

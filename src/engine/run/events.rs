@@ -7,13 +7,21 @@ use super::{Ahead, Limit, Run, RunError, SNAP_T, STIFF, STOP_CAP, StepInfo};
 use crate::engine::model::{Frame, State, Y, rotate, zcross};
 use crate::engine::radau;
 use crate::engine::roots::illinois;
-use crate::engine::stepper::{Segment, too_short};
+use crate::engine::stepper::{Segment, Stepper, too_short};
 use glam::DVec2;
 
 /// The share of the time to the stop ahead that a second opinion's explicit step, held to its
-/// stability limit, must still cover (else it goes implicit): on forty stops at ξ0 = 0.9 …
-/// 0.998 the check took 1.32× the run's time at 0.1, 1.40× at 0.2, 1.57× at 0.05.
-const CLOSE_IN: f64 = 0.1;
+/// stability limit, must still cover (else it goes implicit). With implicit steps that reach
+/// [`REACH`] of the way, on the bench's forty stops at the rim and its 100 rest cases the
+/// check took 1.48× and 1.08× the runs' RHS evaluations at 0.1, 1.01× and 1.04× at 0.2,
+/// 0.99× and 1.01× at 0.35, and 0.99× and 0.98× with none held; but implicit evaluations cost
+/// several explicit ones, and at 0.35 the time was 0.96× and 0.89× (1.12× on the quick
+/// bench's 15 cases).
+const CLOSE_IN: f64 = 0.35;
+/// The share of the time to the stop ahead that a second opinion's implicit step may cover
+/// ([`Run::implicit_cap`]): on the forty stops at the rim 0.7 (the run's) took 890 implicit
+/// steps, 0.9 614, 0.97 509, 0.99 469.
+const REACH: f64 = 0.97;
 
 impl Run {
     /// Looks ahead for a stop. d|u|/dτ = q·û − 1 (Coriolis does no work), so a stop is
@@ -48,7 +56,7 @@ impl Run {
     /// the stretch before a stop that the run takes in closed form, only once the step it takes
     /// (capped by the stop ahead) would, and before that holds its steps to the limit while each
     /// still closes [`CLOSE_IN`] of the time to the stop: that is all of it for a stop inside
-    /// ξ ≈ 0.9, where implicit steps, each three Newton solves of 12 unknowns, cost it several
+    /// ξ ≈ 0.85, where implicit steps, each three Newton solves of 12 unknowns, cost it several
     /// times the run it checks.
     pub(super) fn explicit_cap(&self, q: DVec2, speed: f64, cap: f64, limit: Limit) -> Option<f64> {
         let step = self.natural_step();
@@ -67,6 +75,20 @@ impl Run {
             return Some(cap);
         }
         (limit == Limit::StopAhead && stable >= CLOSE_IN * cap / STOP_CAP).then_some(stable)
+    }
+
+    /// The longest implicit step to take next, given the explicit `cap` (bounded by `limit`).
+    /// A second opinion's implicit steps reach [`REACH`] of the way to a stop ahead, where the
+    /// run's reach 0.7: there û has settled and u falls nearly linearly, which Radau IIA
+    /// integrates nearly exactly, so its error control does not hold the step, and a step that
+    /// would pass the stop is refused and retried shorter ([`radau::step`]). The check so also
+    /// steps differently from the run where both take implicit steps.
+    pub(super) fn implicit_cap(&self, cap: f64, limit: Limit) -> f64 {
+        if self.checking && limit == Limit::StopAhead {
+            cap * REACH / STOP_CAP
+        } else {
+            cap
+        }
     }
 
     /// One implicit step of at most `cap` ([`radau`]), in the table frame, at the run's
@@ -240,6 +262,28 @@ impl Run {
         } else {
             self.slip_restarts += 1;
         }
+    }
+
+    /// Locates the escape certificate if it first holds at the end of `seg`, the step just
+    /// taken from `start`; the step kept. A second opinion's steps carry no dense output: the
+    /// one its escape is located in is taken again with it (the same step).
+    pub(super) fn escape_in(&mut self, mut seg: Segment, start: &Stepper) -> Segment {
+        let frame = self.settings.frame;
+        if self.escape.is_none()
+            && certificate(&frame.to_state(seg.y1, seg.t1()), self.settings.hold()).is_some()
+        {
+            if self.checking {
+                seg = self.stepper.retake(
+                    |y| frame.rhs(y),
+                    self.settings.scheme,
+                    start,
+                    seg.h,
+                    &mut self.cost,
+                );
+            }
+            self.escape = Some(self.locate_escape(&seg));
+        }
+        seg
     }
 
     /// The first time in `seg` at which escape is certified (Illinois on the margin).

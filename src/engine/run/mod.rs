@@ -80,8 +80,10 @@ pub struct Run {
     snap_bound: f64,
     /// A second opinion ([`Run::checking`]): it must not share the run's closed forms, so it
     /// takes no [`frozen_stop`] and stops in closed form only within a bound that holds
-    /// whichever way û turns; it holds |u| to its relative accuracy near the rim, and takes the
-    /// stretch before a stop in explicit steps where they are stable ([`Run::explicit_cap`]).
+    /// whichever way û turns; it holds |u| to its relative accuracy near the rim, takes the
+    /// stretch before a stop in explicit steps where they are stable ([`Run::explicit_cap`])
+    /// and in implicit ones that reach farther than the run's ([`Run::implicit_cap`]), and
+    /// pays for no dense output but in the step its escape is located in.
     checking: bool,
     stepper: Stepper,
     /// Stokes drag (with friction on): the run in closed form. Boxed: a point-model run
@@ -159,11 +161,14 @@ impl Run {
 
     /// A run for a second opinion: no closed-form stop but those it can bound within its time
     /// tolerance (`Run::snap_time`) or that τ cannot resolve; the stretch before a stop is
-    /// integrated.
+    /// integrated. Only its ends and its escape are read, so its steps carry no dense output
+    /// ([`Stepper::ends_only`]) but the one its escape is located in.
     pub fn checking(initial: Initial, settings: Settings) -> Result<Run, Error> {
+        let run = Run::new(initial, settings)?;
         Ok(Run {
             checking: true,
-            ..Run::new(initial, settings)?
+            stepper: run.stepper.ends_only(),
+            ..run
         })
     }
 
@@ -376,11 +381,11 @@ impl Run {
             }
             match self.explicit_cap(q, speed, cap, limit) {
                 Some(c) => cap = c,
-                None => return self.implicit_step(cap),
+                None => return self.implicit_step(self.implicit_cap(cap, limit)),
             }
         }
         let rejected_before = self.cost.rejected;
-        let tau = self.stepper.t;
+        let (tau, start) = (self.stepper.t, self.stepper);
         let (seg, err_ratio) = self
             .stepper
             .step(
@@ -408,6 +413,7 @@ impl Run {
                     tau,
                 },
             })?;
+        let seg = self.escape_in(seg, &start);
         self.last = Some(seg);
         self.last_step = Some(StepInfo {
             t0: seg.t0,
@@ -422,11 +428,6 @@ impl Run {
             err_ratio,
             rejected: (self.cost.rejected - rejected_before) as u32,
         });
-        if self.escape.is_none()
-            && certificate(&frame.to_state(seg.y1, seg.t1()), self.settings.hold()).is_some()
-        {
-            self.escape = Some(self.locate_escape(&seg));
-        }
         Ok(())
     }
 }

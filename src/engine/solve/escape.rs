@@ -131,17 +131,7 @@ pub fn escape_speed_until(
     tol: f64,
     go_on: GoOn,
 ) -> Result<Threshold, Error> {
-    if !(tol.is_finite() && tol > 0.0) {
-        return Err(Error::invalid(Field::Bracket, tol, Range::Above(0.0)));
-    }
-    Initial::velocity(xi0, phi, 0.0).validate()?;
-    if !settings.method().stick_events() {
-        return Err(Error::refused(format!(
-            "the escape speed needs stick events: {} never comes to rest",
-            settings.method()
-        )));
-    }
-    let settings = floor_tol(settings, tol);
+    let settings = prepared(xi0, phi, settings, tol)?;
     let mut evals = 0;
     let at = |v0: f64| Initial::velocity(xi0, phi, v0);
     let scan_settings = match settings.scheme {
@@ -151,7 +141,6 @@ pub fn escape_speed_until(
         },
         _ => settings,
     };
-    check_escape_xi0(xi0)?;
     let top = escape_scan_top(xi0);
     let grid: Vec<f64> = (0..=40).map(|i| top * i as f64 / 40.0).collect();
     let (first, interval, scanned) = scan(&grid, |v0| {
@@ -183,6 +172,96 @@ pub fn escape_speed_until(
         tightened: 0,
         kept,
     })
+}
+
+/// `settings` for an escape speed to `tol` at (ξ0, φ), floored at `tol`/100 ([`floor_tol`]),
+/// or why none can be sought.
+fn prepared(xi0: f64, phi: f64, settings: Settings, tol: f64) -> Result<Settings, Error> {
+    if !(tol.is_finite() && tol > 0.0) {
+        return Err(Error::invalid(Field::Bracket, tol, Range::Above(0.0)));
+    }
+    Initial::velocity(xi0, phi, 0.0).validate()?;
+    if !settings.method().stick_events() {
+        return Err(Error::refused(format!(
+            "the escape speed needs stick events: {} never comes to rest",
+            settings.method()
+        )));
+    }
+    check_escape_xi0(xi0)?;
+    Ok(floor_tol(settings, tol))
+}
+
+/// The first step from a guess in [`escape_bracket_near`], quadrupled until the outcome flips:
+/// v_e moved by 0.011 to 0.013 from ξ0 = 0.49 to 0.5 (a held key's step), and a first step of
+/// 0.01 took 1950 evaluations an angle to that ξ0's bracket, 0.02 1730.
+const NEAR_STEP: f64 = 0.02;
+
+/// A bracket (stuck, escapes) of width ≤ `tol` around v_e(ξ0, φ) (Sec. IV, Fig. 5) found from
+/// a `guess` (v_e at a nearby ξ0), for a drawn curve: runs stepping away from the guess until
+/// the outcome flips, then [`escape_speed`]'s secant on H, with no scan. So, unlike
+/// [`escape_speed`], it neither checks that the escaping speeds are one interval above v_e nor
+/// certifies its ends; a guess it cannot bracket below the scan's ceiling is refused. Also the
+/// right-hand-side evaluations it spent.
+pub fn escape_bracket_near(
+    xi0: f64,
+    phi: f64,
+    settings: Settings,
+    tol: f64,
+    guess: f64,
+    go_on: GoOn,
+) -> Result<(f64, f64, u64), Error> {
+    let settings = prepared(xi0, phi, settings, tol)?;
+    let top = escape_scan_top(xi0);
+    let mut evals = 0;
+    let mut run = |v0: f64, early: bool| {
+        probe(
+            Initial::velocity(xi0, phi, v0),
+            settings,
+            early,
+            &mut evals,
+            go_on,
+        )
+        .map(|(p, _)| p)
+    };
+    let start = guess.clamp(0.0, top);
+    let first = run(start, false)?;
+    let (mut near, mut g_near) = (start, first.h);
+    let mut step = NEAR_STEP;
+    let ends = loop {
+        // Down from an escaping guess, up from a stuck one.
+        let v = if first.escapes {
+            (near - step).max(0.0)
+        } else {
+            near + step
+        };
+        if v > top || (first.escapes && near == 0.0) {
+            return Err(Error::NoAnswer(
+                "the escape speed could not be bracketed from the guess".into(),
+            ));
+        }
+        let p = run(v, false)?;
+        if p.escapes != first.escapes {
+            break if first.escapes {
+                Ends {
+                    lo: v,
+                    glo: p.h,
+                    hi: near,
+                    ghi: g_near,
+                }
+            } else {
+                Ends {
+                    lo: near,
+                    glo: g_near,
+                    hi: v,
+                    ghi: p.h,
+                }
+            };
+        }
+        (near, g_near, step) = (v, p.h, 4.0 * step);
+    };
+    let mut runs = 0;
+    let (lo, hi) = narrow(ends, tol, &mut runs, run)?;
+    Ok((lo, hi, evals))
 }
 
 /// A bracket of the threshold, the smooth measure H at each end where its run gave one.

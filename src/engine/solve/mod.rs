@@ -14,7 +14,9 @@ use std::sync::atomic::AtomicUsize;
 mod escape;
 mod kept;
 
-pub use escape::{MAX_ESCAPE_XI0, check_escape_xi0, escape_speed, escape_speed_until};
+pub use escape::{
+    MAX_ESCAPE_XI0, check_escape_xi0, escape_bracket_near, escape_speed, escape_speed_until,
+};
 pub use kept::Kept;
 
 /// Asked by a solver before each of its runs: `false` ends the solver with

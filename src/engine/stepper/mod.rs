@@ -40,7 +40,8 @@ pub enum Dense<V = Y> {
     Dp5([V; 5]),
     /// DOP853's seventh-order interpolant (Hairer's `contd8` coefficients).
     Dop853([V; 8]),
-    /// Cubic Hermite from the end values and slopes (fixed-step methods).
+    /// Cubic Hermite from the end values and slopes (fixed-step methods, closed-form stretches,
+    /// and the steps of a stepper that keeps only their ends, [`Stepper::ends_only`]).
     Hermite { f0: V, f1: V },
 }
 
@@ -148,6 +149,9 @@ pub struct Stepper<V = Y> {
     /// The adaptive method's next step size (unused by the fixed-step methods).
     h: f64,
     ctrl: Controller,
+    /// Whether an accepted step pays for DOP853's dense output (three more evaluations): not
+    /// where only the step's ends are read ([`Stepper::ends_only`]).
+    dense: bool,
 }
 
 impl<V: Vector> Stepper<V> {
@@ -172,6 +176,17 @@ impl<V: Vector> Stepper<V> {
             f,
             h,
             ctrl,
+            dense: true,
+        }
+    }
+
+    /// This stepper with its accepted steps carrying only a cubic Hermite interpolant of their
+    /// ends, for a run that reads no state inside a step but where it retakes one
+    /// ([`Stepper::retake`]): DOP853's dense output is three of its fifteen evaluations a step.
+    pub fn ends_only(self) -> Stepper<V> {
+        Stepper {
+            dense: false,
+            ..self
         }
     }
 
@@ -233,13 +248,13 @@ impl<V: Vector> Stepper<V> {
         trial: Trial<V>,
         cost: &mut Cost,
     ) -> Segment<V> {
-        let (y1, f1, dense) = trial.finish(rhs, cost);
+        let (y1, f1, dense) = trial.finish(rhs, cost, self.dense);
         let seg = Segment {
             t0: self.t,
             h,
             y0: self.y,
             y1,
-            dense,
+            dense: dense.unwrap_or(Dense::Hermite { f0: self.f, f1 }),
         };
         (self.t, self.y, self.f) = (seg.t1(), y1, f1);
         seg
@@ -275,7 +290,10 @@ impl<V: Vector> Stepper<V> {
         (self.t, self.y, self.f) = (start.t, start.y, start.f);
         let tol = scheme.tol().unwrap_or(1.0);
         let trial = Trial::try_step(&rhs, scheme, self.y, self.f, h, (tol, f64::INFINITY), cost);
-        self.accept(&rhs, h, trial, cost)
+        let dense = std::mem::replace(&mut self.dense, true);
+        let seg = self.accept(&rhs, h, trial, cost);
+        self.dense = dense;
+        seg
     }
 
     /// Moves to `y1` after `h`, with a cubic Hermite segment between (fixed steps, and the
@@ -340,14 +358,23 @@ impl<V: Vector> Trial<V> {
             Trial::Dop853 { err, .. } => *err,
         }
     }
-    /// The end point, its slope and the dense output.
-    fn finish(self, rhs: impl Fn(V) -> V, cost: &mut Cost) -> (V, V, Dense<V>) {
+    /// The end point, its slope and the dense output (DOP853's only if `dense`).
+    fn finish(
+        self,
+        rhs: impl Fn(V) -> V,
+        cost: &mut Cost,
+        dense: bool,
+    ) -> (V, V, Option<Dense<V>>) {
         match self {
-            Trial::Dp5(t) => (t.y1, t.f1, t.dense),
-            Trial::Dop853 { t, .. } => {
+            Trial::Dp5(t) => (t.y1, t.f1, Some(t.dense)),
+            Trial::Dop853 { t, .. } if dense => {
                 cost.rhs_evals += 4;
                 let (f1, r) = t.dense(rhs);
-                (t.y1, f1, Dense::Dop853(r))
+                (t.y1, f1, Some(Dense::Dop853(r)))
+            }
+            Trial::Dop853 { t, .. } => {
+                cost.rhs_evals += 1;
+                (t.y1, rhs(t.y1), None)
             }
         }
     }

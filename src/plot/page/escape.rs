@@ -8,7 +8,7 @@ use crate::app::App;
 use crate::app::pages::Curve;
 use crate::engine::model::turn_angle;
 use crate::engine::{Outcome, Release, Settings};
-use crate::present::{Quantity, angle_to, num, speed};
+use crate::present::{Quantity, angle_to, curve_speed, num, speed};
 use std::f64::consts::TAU;
 
 /// v_e(φ) for the current ξ0 beside the paper's four, the release as a point, min and max.
@@ -162,7 +162,8 @@ fn extremes(c: &Curve) -> Option<((f64, f64), (f64, f64))> {
 }
 
 /// The curve's note: the widest sticking window outside ξ = 1; inside, v_e's least (π to three
-/// decimals once refined, to two from the grid, only good to its 0.03π) and greatest.
+/// decimals once refined, to two from the grid, only good to its 0.03π) and greatest, each
+/// speed to the digits it is known to.
 pub fn curve_note(c: &Curve, window: bool) -> String {
     if window {
         return widest(c);
@@ -170,16 +171,16 @@ pub fn curve_note(c: &Curve, window: bool) -> String {
     let Some(((p0, v0), (p1, v1))) = extremes(c) else {
         return String::new();
     };
-    let digits = if matches!(c.least, Some(Some(_))) {
-        3
+    // The refined least is sought to 1e-8; the grid's points are known to the curve's 1e-4.
+    let (least, digits) = if matches!(c.least, Some(Some(_))) {
+        (speed(v0), 3)
     } else {
-        2
+        (curve_speed(v0), 2)
     };
     format!(
-        "min {} at {}, max {} at {}",
-        speed(v0),
+        "min {least} at {}, max {} at {}",
         angle_to(p0, digits),
-        speed(v1),
+        curve_speed(v1),
         angle_to(p1, 2)
     )
 }
@@ -219,7 +220,7 @@ fn widest(c: &Curve) -> String {
     match best {
         Some((p, lo, hi)) => {
             // A grid angle: good to its spacing, so to two decimals of π.
-            let (lo, hi, p) = (speed(lo), speed(hi), angle_to(p, 2));
+            let (lo, hi, p) = (curve_speed(lo), curve_speed(hi), angle_to(p, 2));
             crate::present::alternatives(&[
                 format!("widest window: sticks for v0 {lo}–{hi}, at φ = {p}"),
                 format!("widest: v0 {lo}–{hi} at φ = {p}"),
