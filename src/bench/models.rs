@@ -3,8 +3,9 @@
 //! and a whole draw), and its outcome-map page (the escape-speed curve, then the map's cells,
 //! one thread), so that "model only what a scene requires" is a table to read. The pages
 //! follow the point with its coupling: a μ = 0 or a body scene's pages are the point's. The
-//! spin-up (`engine::spinup`) is not yet a scene the explorer plays: it has no frame, and its
-//! page is the work one would hold, its runs over a grid of ξ0 and ramp rates.
+//! spin-up (`engine::spinup`, preset `spin`) is played on the turntable page only: its frame
+//! is timed past the slip, and its page is the work one would hold, its runs over a grid of ξ0
+//! and ramp rates.
 
 use super::runs::state_at;
 use super::timed;
@@ -26,8 +27,8 @@ pub struct ModelCost {
     pub run_rhs: f64,
     pub run_us: f64,
     /// One frame of the explorer playing the scene: a tick and a whole draw (ms, the least of
-    /// the frames timed); none where the explorer does not play it.
-    pub frame_ms: Option<f64>,
+    /// the frames timed).
+    pub frame_ms: f64,
     /// The outcome-map page at 120×40 (ξ0 = 0.5): its curve and its cells, one thread (ms);
     /// none where the pages are the point's.
     pub page_ms: Option<f64>,
@@ -115,7 +116,7 @@ pub fn model_costs(cases: &[Initial], reps: usize) -> Result<Vec<ModelCost>, Err
                 model: k.model.into(),
                 run_rhs: super::median(&mut evals),
                 run_us: 1e3 * ms / cases.len().max(1) as f64,
-                frame_ms: Some(frame(k, reps)?),
+                frame_ms: frame(k, reps)?,
                 page_ms: (k.body.is_none() && !k.frictionless).then(|| map_page(k.settings, reps)),
             })
         })
@@ -158,9 +159,20 @@ fn spin_cost(cases: &[Initial], reps: usize) -> Result<ModelCost, Error> {
         model: "spin-up, dΩ/dτ = 0.05".into(),
         run_rhs: super::median(&mut evals),
         run_us: 1e3 * ms / cases.len().max(1) as f64,
-        frame_ms: None,
+        frame_ms: spin_frame(reps)?,
         page_ms: Some(page_ms),
     })
+}
+
+/// One frame of the explorer playing the `spin` preset at 120×40, past the slip (τ ≈ 9): a
+/// tick and a whole draw, the least of a few.
+fn spin_frame(reps: usize) -> Result<f64, Error> {
+    let scene = Scene::preset("spin").ok_or_else(|| Error::invalid("no spin preset"))?;
+    let mut app = App::new(scene);
+    for _ in 0..6 * crate::app::TICKS_PER_SECOND {
+        app.tick();
+    }
+    super::tick_and_draw_ms(&mut app, (120, 40), reps)
 }
 
 /// One frame of the explorer playing `kind` from the default scene's release at 120×40,

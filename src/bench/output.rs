@@ -135,18 +135,17 @@ fn savings(o: &mut String, r: &Report) {
 fn models(o: &mut String, r: &Report) {
     let _ = writeln!(
         o,
-        "\nthe price of each model ({} releases to τ = 50: median RHS and mean wall of one run; one frame of the explorer playing it at 120×40, tick + draw; its outcome-map page at 120×40, curve and cells, one thread; the spin-up, which the explorer does not play yet, a coin at rest at each release's ξ0 and its page the runs over ξ0 × ramp rate at the map's grid):",
+        "\nthe price of each model ({} releases to τ = 50: median RHS and mean wall of one run; one frame of the explorer playing it at 120×40, tick + draw; its outcome-map page at 120×40, curve and cells, one thread; the spin-up, a coin at rest at each release's ξ0, its frame past the slip (preset spin) and its page the runs over ξ0 × ramp rate at the map's grid):",
         r.config.cases + 3
     );
     for m in &r.models {
         let _ = writeln!(
             o,
-            "  {:<36} run {:>7.0} RHS {:>8.1} µs   frame {}   page {}",
+            "  {:<36} run {:>7.0} RHS {:>8.1} µs   frame {:>5.2} ms   page {}",
             m.model,
             m.run_rhs,
             m.run_us,
-            m.frame_ms
-                .map_or("   none ".into(), |ms| format!("{ms:>5.2} ms")),
+            m.frame_ms,
             m.page_ms
                 .map_or("the point's".into(), |ms| format!("{ms:>5.1} ms"))
         );
