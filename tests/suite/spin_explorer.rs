@@ -214,3 +214,34 @@ fn the_forces_on_a_table_speeding_up_are_those_that_move_the_coin() {
         fr + co + cf + eu
     );
 }
+
+/// `E` writes what the screen shows of a spun-up table: the Euler force's arrow in the
+/// rotating frame, and the slip's readouts' run (the particle's mark, its status).
+#[test]
+fn the_exported_page_is_the_spun_up_table_on_screen() {
+    let mut a = spin();
+    for k in ['f', 'a'] {
+        key(&mut a, KeyCode::Char(k));
+    }
+    for _ in 0..60 {
+        a.tick();
+    }
+    let fig = turntable::plot::page::table::figure(&a, "spin".into());
+    let svg = turntable::plot::to_svg(&fig);
+    assert!(
+        svg.contains("eu (Euler)"),
+        "the Euler force's arrow is exported"
+    );
+    assert!(svg.contains("cf (centrifugal)") && svg.contains("fr (friction)"));
+    let on_screen = Picture::in_frame(&a, Frame::Table);
+    let p = on_screen.point.unwrap();
+    assert!(
+        (p.at - DVec2::new(0.5, 0.0)).length() < 1e-14,
+        "held still on the table"
+    );
+    assert_eq!(
+        p.arrows.len(),
+        3,
+        "fr, cf, eu while riding (no Coriolis at u = 0)"
+    );
+}
