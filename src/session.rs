@@ -15,6 +15,10 @@ use ratatui::symbols::Marker;
 use std::convert::Infallible;
 use std::sync::{Arc, Mutex, MutexGuard};
 
+mod lesson;
+
+pub use lesson::Pumped;
+
 /// A recorder the terminal loop shares with its signal watcher, which saves what was recorded
 /// if the terminal dies under the explorer.
 pub type SharedRecorder = Arc<Mutex<Recorder>>;
@@ -195,52 +199,6 @@ impl<B: Backend> Session<B> {
     /// presenter's, with its state): None ends this one's. The app's caption is the app's.
     pub fn set_lesson(&mut self, driver: Option<crate::lesson::Driver>) {
         self.lesson = driver;
-    }
-
-    /// Applies the lesson's steps that are due: all of them up to a `tick N` still counting
-    /// (it counts the session's ticks of play: a pause from the keys holds it, and after the
-    /// script's own `pause` it ends at once, as in a replay), a `wait` or an unanswered `ask`
-    /// (until the keys answer; the loop and the clock go on meanwhile), or the end. `resize`
-    /// and `snapshot` mean nothing here. Returns whether it moved (took a step, or ended):
-    /// a pump that did not changed nothing, so a follower need only do the ones that did.
-    pub fn pump_lesson(&mut self) -> Result<bool, B::Error> {
-        let Some(mut d) = self.lesson.take() else {
-            return Ok(false);
-        };
-        let (at, done) = (d.taken(), self.app.lesson.done);
-        let result = self.feed(&mut d);
-        let moved = d.taken() != at || self.app.lesson.done != done;
-        self.lesson = Some(d);
-        result.map(|()| moved)
-    }
-
-    fn feed(&mut self, d: &mut crate::lesson::Driver) -> Result<(), B::Error> {
-        while !(self.app.lesson.holds() || self.app.should_quit()) {
-            if d.counting() && (d.plays() || self.app.playing) {
-                return Ok(());
-            }
-            let Some(step) = d.next_step() else {
-                if !self.app.lesson.done {
-                    self.app.lesson.done = true;
-                    self.app.invalidate();
-                }
-                return Ok(());
-            };
-            match step {
-                Step::Tick(n) => d.count(n),
-                Step::Wait => self.app.wait(),
-                Step::Mouse(m) => {
-                    self.mouse(m)?;
-                }
-                Step::Resize(..) | Step::Snapshot(_) => {}
-                Step::Key(k) => self.press(k),
-                Step::Say(t) => self.app.say(t),
-                Step::Ask(t) => self.app.ask(t),
-                Step::Play(p) => self.app.play(p),
-                Step::Pause => self.app.pause(),
-            }
-        }
-        Ok(())
     }
 
     /// The terminal is now `width` × `height`: recorded, and the next frame is redrawn.

@@ -301,7 +301,7 @@ impl Run<'_> {
                 Lead::Act(action) => s.act(action),
                 Lead::Tick => s.tick(),
                 Lead::Lesson => {
-                    s.pump_lesson()?;
+                    s.follow_lesson()?;
                 }
             },
             In::Lead(_) => {}
@@ -338,9 +338,14 @@ impl Run<'_> {
     /// The lesson's steps that are due; if it moved, the followers' lessons move alike (a
     /// question it asked takes answers before any follower can see it).
     fn pump(&mut self, s: &mut Session<Screen>) -> io::Result<()> {
-        if s.pump_lesson()? {
+        let pumped = s.pump_lesson()?;
+        if pumped.moved {
             self.tally(s);
             self.shared.lead(self.id, Lead::Lesson);
+        }
+        // A click the lesson made, in the model's terms: in the same place for every follower.
+        if let Some(action) = pumped.act {
+            self.shared.lead(self.id, Lead::Act(action));
         }
         Ok(())
     }

@@ -537,3 +537,50 @@ fn a_presenters_click_and_drag_reach_a_follower_of_another_size() {
     });
     s.stop("done");
 }
+
+/// The ξ0 a screen's panel shows (`ξ0 0.500 …`).
+fn xi0_shown(rows: &[String]) -> Option<String> {
+    rows.iter().find_map(|r| {
+        let at = r.find("ξ0 ")?;
+        r[at..].split_whitespace().nth(1).map(str::to_string)
+    })
+}
+
+/// A click in the presenter's lesson reaches a follower of another size as the action it
+/// made: both show the release it placed (the follower's own layout would put the cell in
+/// its panel, placing nothing).
+#[test]
+fn a_click_in_the_presenters_lesson_reaches_a_follower_of_another_size() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("click.keys");
+    let script = "pause\nsay Ready.\nwait\nmouse click 60 12\nmouse up 60 12\nsay Clicked.\nwait\n";
+    std::fs::write(&path, script).unwrap();
+    let lesson = turntable::cli::lesson::for_class(path.to_str().unwrap()).unwrap();
+    let s = serving(Some(lesson));
+    rt().block_on(async {
+        let p = login(s.addr, "teacher", Login::Key(&key(3)))
+            .await
+            .unwrap()
+            .unwrap();
+        let mut tp = Tty::open(&p, 100, 30).await;
+        assert!(until(&mut [&mut tp], |s| all_show(s, &["Ready."])).await);
+        let f = login(s.addr, "class", Login::Password("ba-ke-di-lo"))
+            .await
+            .unwrap()
+            .unwrap();
+        let mut tf = Tty::open(&f, 70, 22).await;
+        assert!(until(&mut [&mut tf], |s| all_show(s, &["Ready.", "following"])).await);
+        tp.send(b"\r").await;
+        assert!(
+            until(&mut [&mut tp, &mut tf], |s| {
+                let (a, b) = (xi0_shown(&s[0]), xi0_shown(&s[1]));
+                all_show(s, &["Clicked."]) && a.is_some() && a == b && a.as_deref() != Some("0.500")
+            })
+            .await,
+            "{}\n{}",
+            tp.rows().join("\n"),
+            tf.rows().join("\n")
+        );
+    });
+    s.stop("done");
+}
