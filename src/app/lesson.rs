@@ -192,17 +192,18 @@ impl App {
             (None, None) => return None,
         };
         // Which key pauses is said wherever the lesson is (it never moves the lesson on); to a
-        // user answering apart, only what is theirs to do.
+        // user answering apart, only what is theirs to do. What y and n mean is said with
+        // them, however the question is worded ("will it stay?" reads the other way).
         let own = l.question.as_ref().and_then(|q| q.own);
         let prompt = match (l.prompt(), self.playing) {
             (Prompt::Answer, _) if l.apart && own.is_some() => {
                 Some("answered · the presenter goes on")
             }
-            (Prompt::Answer, _) if l.apart => Some("y / n"),
+            (Prompt::Answer, _) if l.apart => Some("y escapes · n stays"),
             (Prompt::GoOn, _) if l.apart => Some("the presenter goes on"),
             (Prompt::None, _) if l.apart && !l.done => None,
-            (Prompt::Answer, true) => Some("y / n · Space pauses"),
-            (Prompt::Answer, false) => Some("y / n · Space plays"),
+            (Prompt::Answer, true) => Some("y escapes · n stays · Space pauses"),
+            (Prompt::Answer, false) => Some("y escapes · n stays · Space plays"),
             (Prompt::GoOn, true) => Some("Enter: go on · Space pauses"),
             (Prompt::GoOn, false) => Some("Enter: go on · Space plays"),
             (Prompt::None, _) if l.done => Some("end · q quits"),

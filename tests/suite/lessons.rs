@@ -672,7 +672,10 @@ fn the_run_answers_the_prediction() {
     let (t, prompt) = text(&mut s, "ask Will it escape?");
     assert_eq!(
         (t.as_str(), prompt),
-        ("Will it escape?", Some("y / n · Space pauses"))
+        (
+            "Will it escape?",
+            Some("y escapes · n stays · Space pauses")
+        )
     );
     let (t, prompt) = text(&mut s, "y");
     assert_eq!(t, "Will it escape?\nYou said it escapes. Watch the run.");

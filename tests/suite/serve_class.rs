@@ -226,8 +226,10 @@ fn a_presenters_lesson_runs_for_every_follower_in_step() {
         // answers for itself.
         assert!(
             until(&mut [&mut tp, &mut f1, &mut f2], |s| {
-                all_show(&s[..1], &["Will it escape?", "y / n · Space plays"])
-                    && all_show(&s[1..], &["Will it escape?", " y / n ┘"])
+                all_show(
+                    &s[..1],
+                    &["Will it escape?", "y escapes · n stays · Space plays"],
+                ) && all_show(&s[1..], &["Will it escape?", " y escapes · n stays ┘"])
             })
             .await
         );
@@ -363,7 +365,10 @@ fn a_followers_answer_moves_neither_the_presenter_nor_the_others() {
             changed.len() == 1 && changed[0].1.contains("y 1 · n 0 · 1 not yet"),
             "the presenter's screen changed beyond its tally: {changed:?}"
         );
-        assert!(tp.shows("y / n · Space plays"), "the question was closed");
+        assert!(
+            tp.shows("y escapes · n stays · Space plays"),
+            "the question was closed"
+        );
     });
     s.stop("done");
 }
