@@ -246,12 +246,11 @@ pub(super) fn make_sim(
     spin: Option<crate::engine::spinup::Ramp>,
 ) -> Sim {
     let radius = view_radius(&initial);
-    spin.and_then(|r| {
-        Sim::spin(r, initial.xi0, settings, radius)
-            .or_else(|_| Sim::spin(r, initial.xi0, Settings::default(), radius))
-            .ok()
-    })
-    .map_or_else(|| Sim::new(initial, settings, radius), Ok)
-    .or_else(|_| Sim::new(sanitize(initial), Settings::default(), 4.5))
-    .expect("sanitized initial conditions and default settings are valid")
+    let sim = match spin {
+        Some(r) => Sim::spin(r, initial.xi0, settings, radius)
+            .or_else(|_| Sim::spin(r, initial.xi0, Settings::default(), radius)),
+        None => Sim::new(initial, settings, radius),
+    };
+    sim.or_else(|_| Sim::new(sanitize(initial), Settings::default(), 4.5))
+        .expect("sanitized initial conditions and default settings are valid")
 }

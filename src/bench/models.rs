@@ -164,15 +164,10 @@ fn spin_cost(cases: &[Initial], reps: usize) -> Result<ModelCost, Error> {
     })
 }
 
-/// One frame of the explorer playing the `spin` preset at 120×40, past the slip (τ ≈ 9): a
-/// tick and a whole draw, the least of a few.
+/// One frame of the explorer playing the `spin` preset at 120×40, past the slip (τ ≈ 9).
 fn spin_frame(reps: usize) -> Result<f64, Error> {
     let scene = Scene::preset("spin").ok_or_else(|| Error::invalid("no spin preset"))?;
-    let mut app = App::new(scene);
-    for _ in 0..6 * crate::app::TICKS_PER_SECOND {
-        app.tick();
-    }
-    super::tick_and_draw_ms(&mut app, (120, 40), reps)
+    frame_after(scene, 6, reps)
 }
 
 /// One frame of the explorer playing `kind` from the default scene's release at 120×40,
@@ -182,8 +177,14 @@ fn frame(kind: &Kind, reps: usize) -> Result<f64, Error> {
     scene.settings = kind.settings;
     scene.initial.frictionless = kind.frictionless;
     scene.body = kind.body;
+    frame_after(scene, 1, reps)
+}
+
+/// One frame of the explorer playing `scene` at 120×40 after `seconds` of play: a tick and a
+/// whole draw, the least of a few.
+fn frame_after(scene: Scene, seconds: usize, reps: usize) -> Result<f64, Error> {
     let mut app = App::new(scene);
-    for _ in 0..crate::app::TICKS_PER_SECOND {
+    for _ in 0..seconds * crate::app::TICKS_PER_SECOND as usize {
         app.tick();
     }
     super::tick_and_draw_ms(&mut app, (120, 40), reps)

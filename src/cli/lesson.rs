@@ -54,10 +54,7 @@ pub fn run(a: &LessonArgs) -> Result<Option<(Look, Driver)>, Error> {
             names()
         )));
     };
-    let lesson = match find(name) {
-        Some(l) => Source::from(l),
-        None => own(name)?,
-    };
+    let lesson = source(name)?;
     // A lesson of one's own may name its scene and theme (`# replay:`); the flag wins.
     let own = crate::script::script_options(&lesson.script).map_err(|e| e.context(name))?;
     let look = Look {
@@ -73,13 +70,18 @@ pub fn run(a: &LessonArgs) -> Result<Option<(Look, Driver)>, Error> {
     Ok(None)
 }
 
+/// A shipped lesson by its name, else a lesson of one's own by its path.
+fn source(name: &str) -> Result<Source, Error> {
+    match find(name) {
+        Some(l) => Ok(Source::from(l)),
+        None => own(name),
+    }
+}
+
 /// What `turntable serve --lesson NAME|PATH` gives each presenter's session: the lesson's
 /// scene (its own `# replay: --scene`, if it names one) and its script at the first step.
 pub fn for_class(name: &str) -> Result<crate::serve::Lesson, Error> {
-    let lesson = match find(name) {
-        Some(l) => Source::from(l),
-        None => own(name)?,
-    };
+    let lesson = source(name)?;
     let own = crate::script::script_options(&lesson.script).map_err(|e| e.context(name))?;
     let look = Look {
         scene: own.scene,

@@ -256,6 +256,15 @@ fn a_presenters_lesson_runs_for_every_follower_in_step() {
     s.stop("done");
 }
 
+/// The class from its first scene on to its question: the presenter's two Enters, each once
+/// the lesson holds again (an Enter while it moves is not a go-on).
+async fn on_to_the_question(tp: &mut Tty, f1: &mut Tty, f2: &mut Tty) {
+    assert!(until(&mut [f1, f2], |s| all_show(s, &["First: at rest"])).await);
+    tp.send(b"\r").await;
+    assert!(until(&mut [&mut *tp], |s| all_show(s, &["Second", "Enter"])).await);
+    tp.send(b"\r").await;
+}
+
 /// The followers' own y / n are counted on the presenter's screen as they come; the first
 /// answer stands; once the presenter answers, the question takes no more and its tally stays
 /// until the lesson says something else.
@@ -265,17 +274,7 @@ fn the_followers_answers_are_tallied_on_the_presenters_screen() {
     let s = server(dir.path());
     rt().block_on(async {
         let (_h, mut tp, mut f1, mut f2) = class(s.addr).await;
-        assert!(
-            until(&mut [&mut f1, &mut f2], |s| all_show(
-                s,
-                &["First: at rest"]
-            ))
-            .await
-        );
-        // Each Enter once the lesson holds again (an Enter while it moves is not a go-on).
-        tp.send(b"\r").await;
-        assert!(until(&mut [&mut tp], |s| all_show(s, &["Second", "Enter"])).await);
-        tp.send(b"\r").await;
+        on_to_the_question(&mut tp, &mut f1, &mut f2).await;
         assert!(until(&mut [&mut tp], |s| all_show(s, &["y 0 · n 0 · 2 not yet"])).await);
         assert!(
             until(&mut [&mut f1, &mut f2], |s| all_show(
@@ -329,16 +328,7 @@ fn a_followers_answer_moves_neither_the_presenter_nor_the_others() {
     let s = server(dir.path());
     rt().block_on(async {
         let (_h, mut tp, mut f1, mut f2) = class(s.addr).await;
-        assert!(
-            until(&mut [&mut f1, &mut f2], |s| all_show(
-                s,
-                &["First: at rest"]
-            ))
-            .await
-        );
-        tp.send(b"\r").await;
-        assert!(until(&mut [&mut tp], |s| all_show(s, &["Second", "Enter"])).await);
-        tp.send(b"\r").await;
+        on_to_the_question(&mut tp, &mut f1, &mut f2).await;
         let asked = ["Will it escape?"];
         assert!(
             until(&mut [&mut tp, &mut f1, &mut f2], |s| {
