@@ -197,6 +197,16 @@ impl Motion {
         matches!(self, Motion::Spin(_)) && self.u_lab(s) == DVec2::ZERO
     }
 
+    /// ξ′ at `s`. On a spun-up table it is r·u/|r| (the table's own velocity is across r), so
+    /// a riding coin, whose u is exactly zero, reads exactly 0 and not the rounding of r·v.
+    pub fn xi_dot(&self, s: &State) -> f64 {
+        let xi = s.xi();
+        match self {
+            Motion::Spin(_) if xi > 0.0 => s.r.dot(self.u_lab(s)) / xi,
+            _ => s.xi_dot(),
+        }
+    }
+
     /// `s`'s velocity relative to the table, in the table's frame.
     pub fn u(&self, s: &State) -> DVec2 {
         rotate(self.u_lab(s), -self.table_angle(s.tau))

@@ -76,7 +76,8 @@ pub fn render(frame: &mut Frame, r: &Regions, app: &App, th: &Theme) {
     if let Some(p) = c.prompt {
         block = block.title_bottom(
             Line::from(Span::styled(
-                format!(" {} ", fit(p, "\0", inner)),
+                // Whole clauses drop from the end ("y escapes · n stays"), never half a word.
+                format!(" {} ", fit(p, " · ", inner)),
                 Style::default().fg(th.notice),
             ))
             .right_aligned(),

@@ -48,6 +48,8 @@ fn the_coin_rides_still_on_the_table_then_slips_where_the_closed_form_says() {
         if now.tau < tau_slip {
             // Held: still on the table, its lab velocity the table's there.
             assert!(m.riding(&now), "τ = {}", now.tau);
+            // Riding, ξ′ is exactly 0 (not the rounding of r·v, 1e-17 on screen).
+            assert_eq!(m.xi_dot(&now), 0.0, "τ = {}", now.tau);
             assert!((on_table - DVec2::new(0.5, 0.0)).length() < 1e-14);
             let pic = Picture::in_frame(&a, Frame::Lab);
             assert_eq!(pic.table.spin, 0.1 * now.tau * now.tau);

@@ -230,7 +230,7 @@ fn motion_lines(app: &App, th: &Theme, s: &crate::engine::State, out: &mut Vec<L
             si(s.tau * u.t_s(), si_time),
             si(s.xi() * u.r_max_m(), si_length),
             u.omega(),
-            si(s.xi_dot() * u.speed_m_s(), si_speed),
+            si(motion.xi_dot(s) * u.speed_m_s(), si_speed),
             si(motion.u_lab(s).length() * u.speed_m_s(), si_speed),
         ),
         None => (
@@ -276,7 +276,11 @@ fn motion_lines(app: &App, th: &Theme, s: &crate::engine::State, out: &mut Vec<L
             out.push(kv("θ′ lab", theta_dot.map_or("—".into(), lab_rate), th));
         }
     }
-    out.push(kv("ξ′", format!("{}{xi_dot_si}", rate(s.xi_dot(), 4)), th));
+    out.push(kv(
+        "ξ′",
+        format!("{}{xi_dot_si}", rate(motion.xi_dot(s), 4)),
+        th,
+    ));
     out.push(kv(
         "|u|",
         format!("{}{u_si}", rate(motion.u_lab(s).length(), 4)),
