@@ -10,7 +10,7 @@
 
 mod auth;
 pub mod client;
-mod conn;
+pub mod conn;
 pub mod explorer;
 pub mod keys;
 mod screen;
@@ -86,7 +86,7 @@ pub struct Lesson {
 
 /// To a session's thread: from its connection, its writer, or the class.
 pub enum In {
-    Data(Vec<u8>),
+    Data(conn::Queued),
     Resize(u16, u16),
     /// The channel took the last frame (a copy): its buffer comes back, to be drawn into
     /// again and freed on the session's own thread. glibc gives a thread's arena back to the
@@ -197,10 +197,6 @@ pub struct Shared {
     stopping: AtomicBool,
 }
 
-/// Input queued beyond this waits (the connection stops reading): a flood of keys costs
-/// memory up to this bound only.
-const QUEUED_MAX: usize = 1 << 20;
-
 impl Shared {
     /// A new session's number and inbox, or None when the server is full.
     fn enter(&self, tx: Sender<In>, presenter: bool) -> Option<u64> {
@@ -244,10 +240,6 @@ impl Shared {
         if let Some(tx) = lock(&self.sessions).get(&id) {
             let _ = tx.send(msg);
         }
-    }
-
-    fn took(&self, n: usize) {
-        self.queued.fetch_sub(n, Ordering::Relaxed);
     }
 
     /// Whether `id` presents.
@@ -349,6 +341,11 @@ impl Shared {
     pub fn sessions(&self) -> usize {
         lock(&self.sessions).len()
     }
+
+    /// Connections open now, in or not.
+    pub fn connections(&self) -> usize {
+        self.connections.load(Ordering::Relaxed)
+    }
 }
 
 /// A server running on its own threads.
@@ -396,6 +393,13 @@ pub fn start(options: Options) -> std::io::Result<Running> {
 }
 
 impl Running {
+    /// Tasks alive on the server's runtime: the accept loop's, and each connection's.
+    pub fn tasks(&self) -> usize {
+        self.runtime
+            .as_ref()
+            .map_or(0, |r| r.metrics().num_alive_tasks())
+    }
+
     /// Closes every session, saying `why` to each, waits (a few seconds at most) for them to
     /// go, and stops.
     pub fn stop(mut self, why: &str) {

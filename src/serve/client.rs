@@ -5,8 +5,13 @@ use russh::ChannelMsg;
 use russh::client::{Handle, Msg};
 use russh::keys::{PrivateKey, PrivateKeyWithHashAlg};
 use std::net::SocketAddr;
+use std::pin::Pin;
 use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::task::{Context, Poll};
 use std::time::Duration;
+use tokio::io::{AsyncRead, AsyncWrite, ReadBuf};
+use tokio::net::TcpStream;
 use tokio::time::Instant;
 
 /// Trusts the server's key: the tests make it, and check its fingerprint elsewhere.
@@ -45,6 +50,66 @@ pub async fn login(
         Login::Password(p) => handle.authenticate_password(user, p).await?,
     };
     Ok(ok.success().then_some(handle))
+}
+
+/// Logs in by `key` on a connection that stops reading its screen once the flag it returns
+/// is set: a client that never reads, with a channel window of `window` bytes.
+pub async fn frozen_login(
+    addr: SocketAddr,
+    user: &str,
+    key: &PrivateKey,
+    window: u32,
+) -> Result<Option<(Handle<Trust>, Arc<AtomicBool>)>, russh::Error> {
+    let frozen = Arc::new(AtomicBool::new(false));
+    let stream = Frozen {
+        tcp: TcpStream::connect(addr).await?,
+        frozen: Arc::clone(&frozen),
+    };
+    let config = Arc::new(russh::client::Config {
+        window_size: window,
+        ..Default::default()
+    });
+    let mut handle = russh::client::connect_stream(config, stream, Trust).await?;
+    let key = PrivateKeyWithHashAlg::new(Arc::new(key.clone()), None);
+    let ok = handle.authenticate_publickey(user, key).await?;
+    Ok(ok.success().then_some((handle, frozen)))
+}
+
+/// A connection whose reads stop when its flag is set.
+struct Frozen {
+    tcp: TcpStream,
+    frozen: Arc<AtomicBool>,
+}
+
+impl AsyncRead for Frozen {
+    fn poll_read(
+        mut self: Pin<&mut Self>,
+        cx: &mut Context<'_>,
+        buf: &mut ReadBuf<'_>,
+    ) -> Poll<std::io::Result<()>> {
+        if self.frozen.load(Ordering::Relaxed) {
+            return Poll::Pending;
+        }
+        Pin::new(&mut self.tcp).poll_read(cx, buf)
+    }
+}
+
+impl AsyncWrite for Frozen {
+    fn poll_write(
+        mut self: Pin<&mut Self>,
+        cx: &mut Context<'_>,
+        buf: &[u8],
+    ) -> Poll<std::io::Result<usize>> {
+        Pin::new(&mut self.tcp).poll_write(cx, buf)
+    }
+
+    fn poll_flush(mut self: Pin<&mut Self>, cx: &mut Context<'_>) -> Poll<std::io::Result<()>> {
+        Pin::new(&mut self.tcp).poll_flush(cx)
+    }
+
+    fn poll_shutdown(mut self: Pin<&mut Self>, cx: &mut Context<'_>) -> Poll<std::io::Result<()>> {
+        Pin::new(&mut self.tcp).poll_shutdown(cx)
+    }
 }
 
 /// A terminal on one session channel: what it has received so far.

@@ -4,7 +4,7 @@
 //! handlers refuse the other channel kinds.
 
 use super::explorer::{self, Client, Outbox};
-use super::{In, Out, QUEUED_MAX, Shared, auth};
+use super::{In, Out, Shared, auth};
 use russh::keys::PublicKey;
 use russh::server::{Auth, Handler, Msg, Session};
 use russh::{Channel, ChannelId, ChannelWriteHalf, MethodKind, MethodSet, Pty};
@@ -47,6 +47,7 @@ pub async fn serve(tcp: tokio::net::TcpStream, shared: Arc<Shared>) {
         channel: None,
         client: Client::default(),
         session: None,
+        ended: tokio::sync::watch::channel(()).0,
     };
     let stream = Guarded::new(tcp, shared.limits.stall);
     let limit = shared.limits.handshake;
@@ -77,6 +78,43 @@ pub async fn serve(tcp: tokio::net::TcpStream, shared: Arc<Shared>) {
     let _ = running.await;
 }
 
+/// Input bytes on their way to a session, counted in [`Shared`]'s queue until dropped: taken,
+/// or left unread by a session that ended (which, uncounted, held everyone's input up for
+/// good once a flood's remains passed the bound).
+pub struct Queued {
+    bytes: Vec<u8>,
+    shared: Arc<Shared>,
+}
+
+impl Queued {
+    fn new(bytes: Vec<u8>, shared: &Arc<Shared>) -> Queued {
+        shared.queued.fetch_add(bytes.len(), Ordering::Relaxed);
+        Queued {
+            bytes,
+            shared: Arc::clone(shared),
+        }
+    }
+}
+
+impl std::ops::Deref for Queued {
+    type Target = [u8];
+    fn deref(&self) -> &[u8] {
+        &self.bytes
+    }
+}
+
+impl Drop for Queued {
+    fn drop(&mut self) {
+        self.shared
+            .queued
+            .fetch_sub(self.bytes.len(), Ordering::Relaxed);
+    }
+}
+
+/// Input queued beyond this waits (the connection stops reading): a flood of keys costs
+/// memory up to this bound only.
+const QUEUED_MAX: usize = 1 << 20;
+
 /// One connection's state.
 struct Conn {
     shared: Arc<Shared>,
@@ -87,6 +125,8 @@ struct Conn {
     client: Client,
     /// The explorer's inbox, once started.
     session: Option<(ChannelId, std::sync::mpsc::Sender<In>)>,
+    /// Dropped with the connection: its writer stops then (see [`write_out`]).
+    ended: tokio::sync::watch::Sender<()>,
 }
 
 const REFUSED: &str = "turntable serves the explorer only: `ssh -t` to this address opens it\r\n";
@@ -110,18 +150,19 @@ impl Conn {
         }
     }
 
+    /// The message reaches the explorer.
+    fn forward(&self, msg: In) {
+        if let Some((_, tx)) = &self.session {
+            let _ = tx.send(msg);
+        }
+    }
+
     /// The input reaches the explorer; a flood waits here, so the connection stops reading.
-    async fn forward(&self, msg: In, len: usize) {
-        let Some((_, tx)) = &self.session else {
-            return;
-        };
+    async fn input(&self, data: &[u8]) {
         while self.shared.queued.load(Ordering::Relaxed) > QUEUED_MAX {
             tokio::time::sleep(Duration::from_millis(5)).await;
         }
-        self.shared.queued.fetch_add(len, Ordering::Relaxed);
-        if tx.send(msg).is_err() {
-            self.shared.took(len);
-        }
+        self.forward(In::Data(Queued::new(data.to_vec(), &self.shared)));
     }
 
     fn refuse(&mut self, channel: ChannelId, session: &mut Session) -> Result<(), russh::Error> {
@@ -248,7 +289,7 @@ impl Handler for Conn {
             (self.client.width, self.client.height) = (80, 24);
         }
         let (out_tx, out_rx) = tokio::sync::mpsc::channel(2);
-        tokio::spawn(write_out(write, out_rx, tx.clone()));
+        tokio::spawn(write_out(write, out_rx, tx.clone(), self.ended.subscribe()));
         let shared = Arc::clone(&self.shared);
         let client = self.client.clone();
         let started = std::thread::Builder::new()
@@ -305,7 +346,7 @@ impl Handler for Conn {
         let h = u16::try_from(row_height).unwrap_or(u16::MAX);
         self.client.width = w;
         self.client.height = h;
-        self.forward(In::Resize(w, h), 0).await;
+        self.forward(In::Resize(w, h));
         Ok(())
     }
 
@@ -315,7 +356,7 @@ impl Handler for Conn {
         data: &[u8],
         _session: &mut Session,
     ) -> Result<(), Self::Error> {
-        self.forward(In::Data(data.to_vec()), data.len()).await;
+        self.input(data).await;
         Ok(())
     }
 
@@ -324,7 +365,7 @@ impl Handler for Conn {
         _channel: ChannelId,
         _session: &mut Session,
     ) -> Result<(), Self::Error> {
-        self.forward(In::Close(String::new()), 0).await;
+        self.forward(In::Close(String::new()));
         Ok(())
     }
 
@@ -333,36 +374,45 @@ impl Handler for Conn {
         _channel: ChannelId,
         _session: &mut Session,
     ) -> Result<(), Self::Error> {
-        self.forward(In::Close(String::new()), 0).await;
+        self.forward(In::Close(String::new()));
         Ok(())
     }
 }
 
 /// Hands a session's frames to its channel, which takes them as the client's window allows
 /// (SSH flow control); each taken frame's buffer is handed back, so the next one may be drawn
-/// (into it: see [`In::Sent`]).
+/// (into it: see [`In::Sent`]). It ends with the connection (`ended`): a write waiting for
+/// window space from a client killed or stalled waits for good in russh, holding this task and
+/// its buffers (a class's worth of such left 40 KB behind, round after round).
 async fn write_out(
     write: ChannelWriteHalf<Msg>,
     mut frames: tokio::sync::mpsc::Receiver<Out>,
     inbox: std::sync::mpsc::Sender<In>,
+    mut ended: tokio::sync::watch::Receiver<()>,
 ) {
-    while let Some(out) = frames.recv().await {
-        match out {
-            Out::Frame(bytes) => {
-                if write.data_bytes(bytes.clone()).await.is_err() {
+    let writes = async {
+        while let Some(out) = frames.recv().await {
+            match out {
+                Out::Frame(bytes) => {
+                    if write.data_bytes(bytes.clone()).await.is_err() {
+                        break;
+                    }
+                    let _ = inbox.send(In::Sent(bytes));
+                }
+                Out::End(bytes) => {
+                    let _ = write.data_bytes(bytes.clone()).await;
+                    let _ = inbox.send(In::Sent(bytes));
+                    let _ = write.exit_status(0).await;
+                    let _ = write.eof().await;
+                    let _ = write.close().await;
                     break;
                 }
-                let _ = inbox.send(In::Sent(bytes));
-            }
-            Out::End(bytes) => {
-                let _ = write.data_bytes(bytes.clone()).await;
-                let _ = inbox.send(In::Sent(bytes));
-                let _ = write.exit_status(0).await;
-                let _ = write.eof().await;
-                let _ = write.close().await;
-                break;
             }
         }
+    };
+    tokio::select! {
+        () = writes => {}
+        _ = ended.changed() => {}
     }
 }
 

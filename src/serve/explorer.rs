@@ -280,7 +280,6 @@ impl Run<'_> {
     fn receive(&mut self, s: &mut Session<Screen>, msg: In) -> io::Result<Option<String>> {
         match msg {
             In::Data(bytes) => {
-                self.shared.took(bytes.len());
                 let now = Instant::now();
                 self.last_input = now;
                 let events = self.keys.feed(&bytes, now);

@@ -6,7 +6,7 @@
 use russh::keys::PrivateKey;
 use russh::keys::ssh_key::private::Ed25519Keypair;
 use std::time::Duration;
-use turntable::serve::client::{Login, Term, eventually, login};
+use turntable::serve::client::{Login, Term, eventually, frozen_login, login};
 use turntable::serve::{Limits, Options, Running, start};
 
 const SECS: Duration = Duration::from_secs(10);
@@ -376,73 +376,19 @@ fn openssh_ssh_tt_gets_the_explorer() {
     s.stop("done");
 }
 
-/// A client's connection whose reads stop when told: a client that never reads its screen.
-struct Frozen {
-    tcp: tokio::net::TcpStream,
-    frozen: std::sync::Arc<std::sync::atomic::AtomicBool>,
-}
-
-impl tokio::io::AsyncRead for Frozen {
-    fn poll_read(
-        mut self: std::pin::Pin<&mut Self>,
-        cx: &mut std::task::Context<'_>,
-        buf: &mut tokio::io::ReadBuf<'_>,
-    ) -> std::task::Poll<std::io::Result<()>> {
-        if self.frozen.load(std::sync::atomic::Ordering::Relaxed) {
-            return std::task::Poll::Pending;
-        }
-        std::pin::Pin::new(&mut self.tcp).poll_read(cx, buf)
-    }
-}
-
-impl tokio::io::AsyncWrite for Frozen {
-    fn poll_write(
-        mut self: std::pin::Pin<&mut Self>,
-        cx: &mut std::task::Context<'_>,
-        buf: &[u8],
-    ) -> std::task::Poll<std::io::Result<usize>> {
-        std::pin::Pin::new(&mut self.tcp).poll_write(cx, buf)
-    }
-
-    fn poll_flush(
-        mut self: std::pin::Pin<&mut Self>,
-        cx: &mut std::task::Context<'_>,
-    ) -> std::task::Poll<std::io::Result<()>> {
-        std::pin::Pin::new(&mut self.tcp).poll_flush(cx)
-    }
-
-    fn poll_shutdown(
-        mut self: std::pin::Pin<&mut Self>,
-        cx: &mut std::task::Context<'_>,
-    ) -> std::task::Poll<std::io::Result<()>> {
-        std::pin::Pin::new(&mut self.tcp).poll_shutdown(cx)
-    }
-}
-
 #[test]
 fn a_client_that_never_reads_is_closed_and_the_others_go_on() {
-    use std::sync::atomic::{AtomicBool, Ordering};
+    use std::sync::atomic::Ordering;
     let s = server(Limits {
         stall: Duration::from_secs(2),
         ..Limits::default()
     });
     rt().block_on(async {
-        let frozen = std::sync::Arc::new(AtomicBool::new(false));
-        let tcp = tokio::net::TcpStream::connect(s.addr).await.unwrap();
-        let stream = Frozen {
-            tcp,
-            frozen: std::sync::Arc::clone(&frozen),
-        };
         // A small window (as a slow link's client may keep), so it fills in seconds.
-        let config = std::sync::Arc::new(russh::client::Config {
-            window_size: 16 * 1024,
-            ..Default::default()
-        });
-        let mut a = russh::client::connect_stream(config, stream, turntable::serve::client::Trust)
+        let (a, frozen) = frozen_login(s.addr, "a", &key(2), 16 * 1024)
             .await
+            .unwrap()
             .unwrap();
-        let k = russh::keys::PrivateKeyWithHashAlg::new(std::sync::Arc::new(key(2)), None);
-        assert!(a.authenticate_publickey("a", k).await.unwrap().success());
         let mut ta = Term::open(&a, 200, 60).await.unwrap();
         assert!(ta.until(0, b"lab frame", SECS).await);
         // From now on its screen is never read: its window fills, and its frames stop.
@@ -483,6 +429,45 @@ fn a_flood_of_keys_is_bounded_and_the_session_still_answers() {
         let at = t.seen.len();
         t.send(b"\x1b[201~?").await.unwrap();
         assert!(t.until(at, b"help", Duration::from_secs(30)).await);
+    });
+    s.stop("done");
+}
+
+#[test]
+fn input_left_unread_by_a_session_that_quit_holds_up_no_one() {
+    let s = server(Limits::default());
+    rt().block_on(async {
+        // Twice, a client floods, quits within the flood and floods on: what its session
+        // never read (up to the whole bound of queued input, 1 MB) must not stay counted
+        // against everyone.
+        for _ in 0..2 {
+            let a = login(s.addr, "a", Login::Key(&key(2)))
+                .await
+                .unwrap()
+                .unwrap();
+            let mut t = Term::open(&a, 80, 24).await.unwrap();
+            assert!(t.until(0, b"lab frame", SECS).await);
+            let chunk = "ä".repeat(16 * 1024 + 1);
+            for i in 0..48 {
+                let bytes = if i == 8 { b"q" } else { chunk.as_bytes() };
+                if t.send(bytes).await.is_err() {
+                    break;
+                }
+            }
+            assert!(t.until_closed(SECS).await);
+        }
+        let b = login(s.addr, "b", Login::Key(&key(2)))
+            .await
+            .unwrap()
+            .unwrap();
+        let mut t = Term::open(&b, 80, 24).await.unwrap();
+        assert!(t.until(0, b"lab frame", SECS).await);
+        let at = t.seen.len();
+        t.send(b"?").await.unwrap();
+        assert!(
+            t.until(at, b"help", SECS).await,
+            "the next client's keys wait"
+        );
     });
     s.stop("done");
 }

@@ -1,0 +1,206 @@
+//! `turntable serve`'s memory when a class leaves: every byte its sessions and connections
+//! held is given back, round after round, faulty clients included (one killed mid-frame, one
+//! that never reads, a flood of keys, a hostile and a silent handshake). Counted by the
+//! allocator itself, so this binary is a process of its own: no other test allocates here.
+
+use russh::keys::PrivateKey;
+use russh::keys::ssh_key::private::Ed25519Keypair;
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::cell::Cell;
+use std::sync::atomic::{AtomicIsize, Ordering};
+use std::time::Duration;
+use turntable::serve::client::{Login, Term, eventually, frozen_login, login};
+use turntable::serve::{Limits, Options, Running, start};
+
+/// The system's allocator, counting the bytes held: the server's, and the clients' apart.
+struct Counting;
+
+static HELD: AtomicIsize = AtomicIsize::new(0);
+static CLIENTS_HELD: AtomicIsize = AtomicIsize::new(0);
+
+thread_local! {
+    /// The clients' thread: what it holds is counted apart (the server's is what is tested).
+    static CLIENTS: Cell<bool> = const { Cell::new(false) };
+}
+
+fn count() -> &'static AtomicIsize {
+    if CLIENTS.try_with(Cell::get).unwrap_or(false) {
+        &CLIENTS_HELD
+    } else {
+        &HELD
+    }
+}
+
+// SAFETY: each call is the system allocator's own, with the same arguments.
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        let p = unsafe { System.alloc(layout) };
+        if !p.is_null() {
+            count().fetch_add(layout.size() as isize, Ordering::Relaxed);
+        }
+        p
+    }
+
+    unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
+        let p = unsafe { System.alloc_zeroed(layout) };
+        if !p.is_null() {
+            count().fetch_add(layout.size() as isize, Ordering::Relaxed);
+        }
+        p
+    }
+
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        unsafe { System.dealloc(ptr, layout) };
+        count().fetch_sub(layout.size() as isize, Ordering::Relaxed);
+    }
+
+    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, size: usize) -> *mut u8 {
+        let p = unsafe { System.realloc(ptr, layout, size) };
+        if !p.is_null() {
+            count().fetch_add(size as isize - layout.size() as isize, Ordering::Relaxed);
+        }
+        p
+    }
+}
+
+#[global_allocator]
+static COUNTING: Counting = Counting;
+
+fn held() -> isize {
+    HELD.load(Ordering::Relaxed)
+}
+
+const SECS: Duration = Duration::from_secs(20);
+/// Students in a class, besides the presenter and the faulty clients.
+const STUDENTS: usize = 24;
+/// What may stay after a class: a few maps' and queues' capacity grown to a class's size.
+const SLACK: isize = 16 * 1024 * 1024;
+
+fn key(n: u8) -> PrivateKey {
+    PrivateKey::from(Ed25519Keypair::from_seed(&[n; 32]))
+}
+
+fn server() -> Running {
+    start(Options {
+        listen: "127.0.0.1:0".parse().unwrap(),
+        host_key: key(1),
+        keys: vec![key(2).public_key().clone()],
+        passphrase: None,
+        presenter_keys: vec![key(3).public_key().clone()],
+        presenter_passphrase: None,
+        limits: Limits {
+            stall: Duration::from_secs(2),
+            handshake: Duration::from_secs(1),
+            per_minute: 1000,
+            ..Limits::default()
+        },
+        lesson: None,
+    })
+    .unwrap()
+}
+
+/// One class: a presenter who plays and turns the pages, students who follow, some who step
+/// out and explore, and the faulty clients; then everyone leaves.
+async fn class(s: &Running) -> isize {
+    use std::io::Write;
+    let p = login(s.addr, "teacher", Login::Key(&key(3)))
+        .await
+        .unwrap()
+        .unwrap();
+    let mut tp = Term::open(&p, 100, 30).await.unwrap();
+    assert!(tp.until(0, b"lab frame", SECS).await);
+    let mut students = vec![];
+    for i in 0..STUDENTS {
+        let h = login(s.addr, "student", Login::Key(&key(2)))
+            .await
+            .unwrap()
+            .unwrap();
+        let mut t = Term::open(&h, 80, 24).await.unwrap();
+        assert!(t.until(0, b"lab frame", SECS).await, "student {i}");
+        students.push((h, t));
+    }
+    // The faulty: a connection that stops reading, one that floods, garbage and silence.
+    let (frozen, stop) = frozen_login(s.addr, "student", &key(2), 16 * 1024)
+        .await
+        .unwrap()
+        .unwrap();
+    let mut tf = Term::open(&frozen, 200, 60).await.unwrap();
+    assert!(tf.until(0, b"lab frame", SECS).await);
+    stop.store(true, Ordering::Relaxed);
+    let mut garbage = std::net::TcpStream::connect(s.addr).unwrap();
+    garbage.write_all(&[0xff; 4096]).unwrap();
+    let silent = std::net::TcpStream::connect(s.addr).unwrap();
+    let (flood_h, flood) = students.pop().unwrap();
+    for _ in 0..16 {
+        flood.send("ä".repeat(16 * 1024).as_bytes()).await.unwrap();
+    }
+    // The presenter plays, compares with the paper's RK2, pins, and turns the pages.
+    for k in [" ", "c", "e", "b", "%", "\t", "\t", " "] {
+        tp.send(k.as_bytes()).await.unwrap();
+        tokio::time::sleep(Duration::from_millis(150)).await;
+    }
+    // A third step out and explore on their own (the spin-up, a map).
+    for (_, t) in students.iter().step_by(3) {
+        for k in ["\x1bOQ", "7", " ", "x", "\t"] {
+            t.send(k.as_bytes()).await.unwrap();
+        }
+    }
+    tokio::time::sleep(Duration::from_millis(500)).await;
+    let in_class = held();
+    // One is killed mid-frame; the rest quit; the frozen one is closed for stalling.
+    let (killed_h, killed) = students.pop().unwrap();
+    drop((killed, killed_h, flood, flood_h, garbage, silent));
+    for (_, t) in &mut students {
+        t.send(b"q").await.unwrap();
+        assert!(t.until_closed(SECS).await);
+    }
+    tp.send(b"q").await.unwrap();
+    assert!(tp.until_closed(SECS).await);
+    drop((students, tp, p));
+    assert!(
+        eventually(SECS, || s.shared.sessions() == 0).await,
+        "{} sessions still open",
+        s.shared.sessions()
+    );
+    drop((tf, frozen));
+    in_class
+}
+
+#[test]
+fn a_class_that_leaves_gives_back_every_byte_it_held() {
+    let s = server();
+    CLIENTS.with(|c| c.set(true));
+    let rt = tokio::runtime::Builder::new_current_thread()
+        .enable_all()
+        .build()
+        .unwrap();
+    rt.block_on(async {
+        // The first class makes what lives as long as the server (lazy statics, the
+        // runtime's wheels and queues): the baseline is after it.
+        class(&s).await;
+        tokio::time::sleep(Duration::from_secs(3)).await;
+        let (base, tasks) = (held(), s.tasks());
+        for round in 1..=3 {
+            let in_class = class(&s).await;
+            // The last connections close, and each session's thread gives back its last
+            // frame's buffer, within a second or so.
+            let gone = || s.shared.connections() == 0 && s.tasks() == tasks;
+            eventually(Duration::from_secs(10), || gone() && held() - base <= SLACK).await;
+            let after = held();
+            eprintln!("round {round}: {base} B before, {in_class} B in class, {after} B after");
+            assert!(
+                in_class > base + 4_000_000,
+                "a class held only {} B",
+                in_class - base
+            );
+            assert_eq!(s.shared.connections(), 0, "round {round}: connections open");
+            assert_eq!(s.tasks(), tasks, "round {round}: tasks left running");
+            assert!(
+                after - base <= SLACK,
+                "round {round} left {} B behind (baseline {base} B)",
+                after - base
+            );
+        }
+    });
+    s.stop("done");
+}
