@@ -160,11 +160,13 @@ pub fn lookup(chord: Chord) -> Option<Action> {
 }
 
 /// The action bound to `chord` while a lesson awaits `prompt`: y/n answer its question, Enter
-/// lets it go on; otherwise the lesson's bindings are passed over.
+/// lets it go on (at a question, says it waits for y or n); otherwise the lesson's bindings
+/// are passed over.
 pub fn lookup_when(chord: Chord, prompt: Prompt) -> Option<Action> {
     let live = |a: Action| match a {
         Action::Answer(_) => prompt == Prompt::Answer,
-        Action::GoOn => prompt == Prompt::GoOn,
+        // Enter at a question says what it waits for (not the page's own Enter).
+        Action::GoOn => prompt != Prompt::None,
         _ => true,
     };
     let bound = |lesson: bool| {

@@ -623,9 +623,18 @@ fn an_interactive_lesson_holds_as_state_and_time_goes_on() {
     assert_eq!(s.app.lesson.caption, None);
     let q = s.app.lesson.question.clone().unwrap();
     assert_eq!((q.text.as_str(), q.answer), ("Will it escape? (y/n)", None));
-    // Held at the question: n answers and does not step.
+    // Held at the question: Enter says what it waits for and changes nothing (on a spin-up
+    // it said the page was refused); n answers and does not step.
     s.pump_lesson().unwrap();
     assert!(s.app.lesson.question.is_some());
+    let (init, page) = (s.app.initial(), s.app.view.page);
+    press(&mut s, "enter");
+    assert_eq!((s.app.initial(), s.app.view.page), (init, page));
+    assert_eq!(s.app.lesson.question.as_ref().unwrap().answer, None);
+    assert_eq!(
+        s.app.notice.as_deref(),
+        Some("the question first: y if it escapes, n if it stays")
+    );
     press(&mut s, "n");
     assert!(!s.app.view.step_mode);
     assert_eq!(s.app.lesson.question.as_ref().unwrap().answer, Some(false));

@@ -1,6 +1,7 @@
 //! The "lesson" group: a prediction answered, a wait ended.
 
 use super::super::action::Action;
+use super::super::lesson::Prompt;
 use super::super::state::App;
 
 pub(super) fn apply(app: &mut App, action: Action) {
@@ -9,6 +10,9 @@ pub(super) fn apply(app: &mut App, action: Action) {
             if let Some(q) = app.lesson.question.as_mut().filter(|q| q.answer.is_none()) {
                 q.answer = Some(yes);
             }
+        }
+        Action::GoOn if app.lesson.prompt() == Prompt::Answer => {
+            app.report("the question first: y if it escapes, n if it stays".into());
         }
         Action::GoOn => app.lesson.waiting = false,
         // Other groups' actions: `update` never sends them here.
