@@ -28,6 +28,8 @@ use std::time::{Duration, Instant};
 const FPS: u32 = 30;
 /// The key that steps out of the class, and back into it (not bound in the explorer).
 pub const FOLLOW_KEY: KeyCode = KeyCode::F(2);
+/// What a follower is told on joining, and at each key of its own while it follows.
+const FOLLOWING: &str = "following the class: F2 steps out to explore";
 
 /// What the client said about its terminal.
 #[derive(Clone, Debug, Default)]
@@ -325,7 +327,7 @@ impl Run<'_> {
                     s.app.answer_apart(yes);
                 }
                 crate::session::tell_size(&mut s.app, &s.theme, w, h);
-                s.app.notice = Some("following the class: F2 steps out".into());
+                s.app.notice = Some(FOLLOWING.into());
                 s.app.invalidate();
                 s.ask_analysis();
                 self.following = true;
@@ -365,11 +367,15 @@ impl Run<'_> {
                 {
                     self.answer(s, k.code == KeyCode::Char('y'))
                 }
-                // A follower's own keys wait until it steps out (Ctrl-C and q still end it).
+                // A follower's own keys are not applied while it follows (Ctrl-C and q still
+                // end it): each says so, and how to step out.
                 Event::Key(k)
                     if self.following
                         && !matches!(k.code, KeyCode::Char('q'))
-                        && !k.modifiers.contains(KeyModifiers::CONTROL) => {}
+                        && !k.modifiers.contains(KeyModifiers::CONTROL) =>
+                {
+                    s.app.report(FOLLOWING.into());
+                }
                 Event::Key(k) => {
                     if let Some(chord) = Chord::from_event(&k) {
                         s.press(chord);

@@ -210,9 +210,10 @@ fn followers_get_the_presenters_keys_and_can_step_out() {
         let at = tf.seen.len();
         tp.send(b"f").await.unwrap();
         assert!(tf.until(at, b"rotating", SECS).await);
-        // The follower's own keys wait while it follows.
+        // The follower's own keys are not applied while it follows: each says so.
         let at = tf.seen.len();
         tf.send(b"?").await.unwrap();
+        assert!(tf.until(at, b"F2 steps out", SECS).await);
         assert!(!tf.until(at, b"help", Duration::from_millis(500)).await);
         // F2 steps out: now its keys are its own, and the presenter's are not applied.
         tf.send(b"\x1bOQ").await.unwrap();
