@@ -75,6 +75,82 @@ pub async fn frozen_login(
     Ok(ok.success().then_some((handle, frozen)))
 }
 
+/// Logs in by `key` over a link that carries at most `rate` bytes a second to the client, with
+/// a small socket buffer: a student on a slow link.
+pub async fn slow_login(
+    addr: SocketAddr,
+    user: &str,
+    key: &PrivateKey,
+    rate: usize,
+) -> Result<Option<Handle<Trust>>, russh::Error> {
+    let socket = tokio::net::TcpSocket::new_v4()?;
+    socket.set_recv_buffer_size(4096)?;
+    let stream = Slow {
+        tcp: socket.connect(addr).await?,
+        rate,
+        budget: rate / 10,
+        refill: Box::pin(tokio::time::sleep(Duration::from_millis(100))),
+    };
+    let mut handle =
+        russh::client::connect_stream(Arc::new(russh::client::Config::default()), stream, Trust)
+            .await?;
+    let key = PrivateKeyWithHashAlg::new(Arc::new(key.clone()), None);
+    let ok = handle.authenticate_publickey(user, key).await?;
+    Ok(ok.success().then_some(handle))
+}
+
+/// A connection that reads `rate` bytes a second at most, a tenth of a second at a time.
+struct Slow {
+    tcp: TcpStream,
+    rate: usize,
+    budget: usize,
+    refill: Pin<Box<tokio::time::Sleep>>,
+}
+
+impl AsyncRead for Slow {
+    fn poll_read(
+        mut self: Pin<&mut Self>,
+        cx: &mut Context<'_>,
+        buf: &mut ReadBuf<'_>,
+    ) -> Poll<std::io::Result<()>> {
+        if self.budget == 0 {
+            if self.refill.as_mut().poll(cx).is_pending() {
+                return Poll::Pending;
+            }
+            let next = tokio::time::Instant::now() + Duration::from_millis(100);
+            self.refill.as_mut().reset(next);
+            self.budget = self.rate / 10;
+        }
+        let n = self.budget.min(buf.remaining());
+        let mut part = ReadBuf::new(buf.initialize_unfilled_to(n));
+        let r = Pin::new(&mut self.tcp).poll_read(cx, &mut part);
+        let got = part.filled().len();
+        if r.is_ready() {
+            buf.advance(got);
+            self.budget -= got;
+        }
+        r
+    }
+}
+
+impl AsyncWrite for Slow {
+    fn poll_write(
+        mut self: Pin<&mut Self>,
+        cx: &mut Context<'_>,
+        buf: &[u8],
+    ) -> Poll<std::io::Result<usize>> {
+        Pin::new(&mut self.tcp).poll_write(cx, buf)
+    }
+
+    fn poll_flush(mut self: Pin<&mut Self>, cx: &mut Context<'_>) -> Poll<std::io::Result<()>> {
+        Pin::new(&mut self.tcp).poll_flush(cx)
+    }
+
+    fn poll_shutdown(mut self: Pin<&mut Self>, cx: &mut Context<'_>) -> Poll<std::io::Result<()>> {
+        Pin::new(&mut self.tcp).poll_shutdown(cx)
+    }
+}
+
 /// A connection whose reads stop when its flag is set.
 struct Frozen {
     tcp: TcpStream,

@@ -10,7 +10,7 @@ use russh::server::{Auth, Handler, Msg, Session};
 use russh::{Channel, ChannelId, ChannelWriteHalf, MethodKind, MethodSet, Pty};
 use std::pin::Pin;
 use std::sync::Arc;
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::task::{Context, Poll};
 use std::time::Duration;
 use tokio::io::{AsyncRead, AsyncWrite, ReadBuf};
@@ -39,6 +39,10 @@ pub fn config(options: &super::Options) -> russh::server::Config {
 /// time.
 pub async fn serve(tcp: tokio::net::TcpStream, shared: Arc<Shared>) {
     let _ = tcp.set_nodelay(true);
+    // The kernel holds at most this much unsent: on a slow link the socket, not a deep buffer
+    // behind it, says when a frame has left (see `Flushed`).
+    let _ = socket2::SockRef::from(&tcp).set_tcp_notsent_lowat(UNSENT_MAX);
+    let flushed = Arc::new(Flushed::default());
     let authed = Arc::new(AtomicBool::new(false));
     let handler = Conn {
         shared: Arc::clone(&shared),
@@ -48,8 +52,9 @@ pub async fn serve(tcp: tokio::net::TcpStream, shared: Arc<Shared>) {
         client: Client::default(),
         session: None,
         ended: tokio::sync::watch::channel(()).0,
+        flushed: Arc::clone(&flushed),
     };
-    let stream = Guarded::new(tcp, shared.limits.stall);
+    let stream = Guarded::new(tcp, shared.limits.stall, flushed);
     let limit = shared.limits.handshake;
     let Ok(Ok(running)) = tokio::time::timeout(
         limit,
@@ -127,6 +132,8 @@ struct Conn {
     session: Option<(ChannelId, std::sync::mpsc::Sender<In>)>,
     /// Dropped with the connection: its writer stops then (see [`write_out`]).
     ended: tokio::sync::watch::Sender<()>,
+    /// The bytes written to the socket so far.
+    flushed: Arc<Flushed>,
 }
 
 const REFUSED: &str = "turntable serves the explorer only: `ssh -t` to this address opens it\r\n";
@@ -289,7 +296,13 @@ impl Handler for Conn {
             (self.client.width, self.client.height) = (80, 24);
         }
         let (out_tx, out_rx) = tokio::sync::mpsc::channel(2);
-        tokio::spawn(write_out(write, out_rx, tx.clone(), self.ended.subscribe()));
+        tokio::spawn(write_out(
+            write,
+            out_rx,
+            tx.clone(),
+            self.ended.subscribe(),
+            Arc::clone(&self.flushed),
+        ));
         let shared = Arc::clone(&self.shared);
         let client = self.client.clone();
         let started = std::thread::Builder::new()
@@ -379,24 +392,57 @@ impl Handler for Conn {
     }
 }
 
+/// Unsent bytes the kernel may hold for a connection.
+const UNSENT_MAX: u32 = 4 * 1024;
+
+/// The bytes written to a connection's socket so far, and a wake-up at each write.
+#[derive(Default)]
+struct Flushed {
+    bytes: AtomicU64,
+    wrote: tokio::sync::Notify,
+}
+
+impl Flushed {
+    /// Waits until `mark` bytes have been written to the socket.
+    async fn reach(&self, mark: u64) {
+        loop {
+            let wrote = self.wrote.notified();
+            tokio::pin!(wrote);
+            wrote.as_mut().enable();
+            if self.bytes.load(Ordering::Relaxed) >= mark {
+                return;
+            }
+            wrote.await;
+        }
+    }
+}
+
 /// Hands a session's frames to its channel, which takes them as the client's window allows
-/// (SSH flow control); each taken frame's buffer is handed back, so the next one may be drawn
-/// (into it: see [`In::Sent`]). It ends with the connection (`ended`): a write waiting for
-/// window space from a client killed or stalled waits for good in russh, holding this task and
-/// its buffers (a class's worth of such left 40 KB behind, round after round).
+/// (SSH flow control); a frame counts as taken once as many bytes have gone to the socket, whose
+/// unsent bytes are bounded ([`UNSENT_MAX`]): the channel's window (2 MB from OpenSSH) and
+/// russh's own queue take frames far faster than a slow link carries them, and its screen fell
+/// further and further behind. Each taken frame's buffer is handed back, so the next one may be
+/// drawn (into it: see [`In::Sent`]). It ends with the connection (`ended`): a write waiting
+/// for window space from a client killed or stalled waits for good in russh, holding this task
+/// and its buffers (a class's worth of such left 40 KB behind, round after round).
 async fn write_out(
     write: ChannelWriteHalf<Msg>,
     mut frames: tokio::sync::mpsc::Receiver<Out>,
     inbox: std::sync::mpsc::Sender<In>,
     mut ended: tokio::sync::watch::Receiver<()>,
+    flushed: Arc<Flushed>,
 ) {
     let writes = async {
         while let Some(out) = frames.recv().await {
             match out {
                 Out::Frame(bytes) => {
+                    // The socket's bytes are the frame's and more (russh is built without
+                    // compression: what is written is never smaller than what was handed).
+                    let mark = flushed.bytes.load(Ordering::Relaxed) + bytes.len() as u64;
                     if write.data_bytes(bytes.clone()).await.is_err() {
                         break;
                     }
+                    flushed.reach(mark).await;
                     let _ = inbox.send(In::Sent(bytes));
                 }
                 Out::End(bytes) => {
@@ -423,14 +469,16 @@ struct Guarded {
     tcp: tokio::net::TcpStream,
     stall: Duration,
     waiting: Option<Pin<Box<tokio::time::Sleep>>>,
+    flushed: Arc<Flushed>,
 }
 
 impl Guarded {
-    fn new(tcp: tokio::net::TcpStream, stall: Duration) -> Guarded {
+    fn new(tcp: tokio::net::TcpStream, stall: Duration, flushed: Arc<Flushed>) -> Guarded {
         Guarded {
             tcp,
             stall,
             waiting: None,
+            flushed,
         }
     }
 }
@@ -454,6 +502,10 @@ impl AsyncWrite for Guarded {
         match Pin::new(&mut self.tcp).poll_write(cx, buf) {
             Poll::Ready(r) => {
                 self.waiting = None;
+                if let Ok(n) = r {
+                    self.flushed.bytes.fetch_add(n as u64, Ordering::Relaxed);
+                    self.flushed.wrote.notify_waiters();
+                }
                 Poll::Ready(r)
             }
             Poll::Pending => {
