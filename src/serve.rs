@@ -13,6 +13,7 @@ pub mod client;
 pub mod conn;
 pub mod explorer;
 pub mod keys;
+mod out;
 mod screen;
 
 pub use auth::{authorized_keys, fingerprint, host_key, host_key_path, passphrase};
