@@ -60,19 +60,14 @@ pub async fn frozen_login(
     key: &PrivateKey,
     window: u32,
 ) -> Result<Option<(Handle<Trust>, Arc<AtomicBool>)>, russh::Error> {
-    let frozen = Arc::new(AtomicBool::new(false));
-    let stream = Frozen {
-        tcp: TcpStream::connect(addr).await?,
-        frozen: Arc::clone(&frozen),
-    };
-    let config = Arc::new(russh::client::Config {
+    let link = Link::new(TcpStream::connect(addr).await?, None);
+    let frozen = Arc::clone(&link.frozen);
+    let config = russh::client::Config {
         window_size: window,
         ..Default::default()
-    });
-    let mut handle = russh::client::connect_stream(config, stream, Trust).await?;
-    let key = PrivateKeyWithHashAlg::new(Arc::new(key.clone()), None);
-    let ok = handle.authenticate_publickey(user, key).await?;
-    Ok(ok.success().then_some((handle, frozen)))
+    };
+    let handle = login_over(link, config, user, key).await?;
+    Ok(handle.map(|h| (h, frozen)))
 }
 
 /// Logs in by `key` over a link that carries at most `rate` bytes a second to the client, with
@@ -85,41 +80,63 @@ pub async fn slow_login(
 ) -> Result<Option<Handle<Trust>>, russh::Error> {
     let socket = tokio::net::TcpSocket::new_v4()?;
     socket.set_recv_buffer_size(4096)?;
-    let stream = Slow {
-        tcp: socket.connect(addr).await?,
-        rate,
-        budget: rate / 10,
-        refill: Box::pin(tokio::time::sleep(Duration::from_millis(100))),
-    };
-    let mut handle =
-        russh::client::connect_stream(Arc::new(russh::client::Config::default()), stream, Trust)
-            .await?;
+    let link = Link::new(socket.connect(addr).await?, Some(rate));
+    login_over(link, russh::client::Config::default(), user, key).await
+}
+
+async fn login_over(
+    link: Link,
+    config: russh::client::Config,
+    user: &str,
+    key: &PrivateKey,
+) -> Result<Option<Handle<Trust>>, russh::Error> {
+    let mut handle = russh::client::connect_stream(Arc::new(config), link, Trust).await?;
     let key = PrivateKeyWithHashAlg::new(Arc::new(key.clone()), None);
     let ok = handle.authenticate_publickey(user, key).await?;
     Ok(ok.success().then_some(handle))
 }
 
-/// A connection that reads `rate` bytes a second at most, a tenth of a second at a time.
-struct Slow {
+/// A client's end of a connection whose reads stop while `frozen` is set, and take at most
+/// `rate` bytes a second (a tenth of a second's worth at a time) when it has one.
+struct Link {
     tcp: TcpStream,
-    rate: usize,
+    frozen: Arc<AtomicBool>,
+    rate: Option<usize>,
     budget: usize,
     refill: Pin<Box<tokio::time::Sleep>>,
 }
 
-impl AsyncRead for Slow {
+impl Link {
+    fn new(tcp: TcpStream, rate: Option<usize>) -> Link {
+        Link {
+            tcp,
+            frozen: Arc::new(AtomicBool::new(false)),
+            rate,
+            budget: rate.map_or(0, |r| r / 10),
+            refill: Box::pin(tokio::time::sleep(Duration::from_millis(100))),
+        }
+    }
+}
+
+impl AsyncRead for Link {
     fn poll_read(
         mut self: Pin<&mut Self>,
         cx: &mut Context<'_>,
         buf: &mut ReadBuf<'_>,
     ) -> Poll<std::io::Result<()>> {
+        if self.frozen.load(Ordering::Relaxed) {
+            return Poll::Pending;
+        }
+        let Some(rate) = self.rate else {
+            return Pin::new(&mut self.tcp).poll_read(cx, buf);
+        };
         if self.budget == 0 {
             if self.refill.as_mut().poll(cx).is_pending() {
                 return Poll::Pending;
             }
             let next = tokio::time::Instant::now() + Duration::from_millis(100);
             self.refill.as_mut().reset(next);
-            self.budget = self.rate / 10;
+            self.budget = rate / 10;
         }
         let n = self.budget.min(buf.remaining());
         let mut part = ReadBuf::new(buf.initialize_unfilled_to(n));
@@ -133,44 +150,7 @@ impl AsyncRead for Slow {
     }
 }
 
-impl AsyncWrite for Slow {
-    fn poll_write(
-        mut self: Pin<&mut Self>,
-        cx: &mut Context<'_>,
-        buf: &[u8],
-    ) -> Poll<std::io::Result<usize>> {
-        Pin::new(&mut self.tcp).poll_write(cx, buf)
-    }
-
-    fn poll_flush(mut self: Pin<&mut Self>, cx: &mut Context<'_>) -> Poll<std::io::Result<()>> {
-        Pin::new(&mut self.tcp).poll_flush(cx)
-    }
-
-    fn poll_shutdown(mut self: Pin<&mut Self>, cx: &mut Context<'_>) -> Poll<std::io::Result<()>> {
-        Pin::new(&mut self.tcp).poll_shutdown(cx)
-    }
-}
-
-/// A connection whose reads stop when its flag is set.
-struct Frozen {
-    tcp: TcpStream,
-    frozen: Arc<AtomicBool>,
-}
-
-impl AsyncRead for Frozen {
-    fn poll_read(
-        mut self: Pin<&mut Self>,
-        cx: &mut Context<'_>,
-        buf: &mut ReadBuf<'_>,
-    ) -> Poll<std::io::Result<()>> {
-        if self.frozen.load(Ordering::Relaxed) {
-            return Poll::Pending;
-        }
-        Pin::new(&mut self.tcp).poll_read(cx, buf)
-    }
-}
-
-impl AsyncWrite for Frozen {
+impl AsyncWrite for Link {
     fn poll_write(
         mut self: Pin<&mut Self>,
         cx: &mut Context<'_>,
