@@ -1,7 +1,6 @@
 //! The second opinion's price (issue 34 item 3): `doubt` against the run it checks, on the
 //! bracket ends a certified `escape` checks (Fig. 5's four ξ0) and on the rest cases, in
-//! right-hand-side evaluations and in time (one thread, the minimum of runs); and a certified
-//! `escape` as a process beside SciPy's DOP853 doing the same.
+//! right-hand-side evaluations and in time (one thread, the minimum of runs).
 
 use super::timed;
 use crate::engine::doubt::doubt;
@@ -13,14 +12,6 @@ use std::fmt::Write as _;
 
 /// The goal: a check costs at most this many times the run it checks.
 const GOAL: f64 = 1.3;
-
-/// SciPy 1.17's DOP853 (`solve_ivp`, rtol = atol) finding v_e to 1e-8 and certifying it as
-/// `turntable escape --vtol 1e-8` does, as a process (`docs/scipy-escape.py`: the same scan,
-/// bisection at tol 1e-10 to the stick or escape certificate, both ends again at 1e-13 in the
-/// other frame), median CPU time (ms) over Fig. 5's four ξ0 × 3 angles (1.8 to 8.3 s) on the
-/// machine the bench was written on (2 cores, Python 3.11, load 2.5): the figure [`lines`]
-/// compares against. (`turntable escape` there: 4.1 ms median CPU, 4.25 ms wall.)
-pub const SCIPY_ESCAPE_MS: f64 = 2600.0;
 
 /// What the second opinion costs against the runs it checks.
 #[derive(Clone, Debug, Serialize)]
@@ -106,9 +97,14 @@ fn cost(what: &str, releases: &[Initial], reps: usize) -> Result<CheckCost, Erro
     })
 }
 
-/// The rows: each check's price against its goal, and the certified `escape` (process start
-/// included, `escape_ms`) against SciPy's.
-pub fn lines(o: &mut String, costs: &[CheckCost], escape_ms: Option<f64>) {
+/// The rows: each check's price against its goal, the certified `escape` as a process
+/// (`escape_ms`), and SciPy's doing the same.
+pub fn lines(
+    o: &mut String,
+    costs: &[CheckCost],
+    escape_ms: Option<f64>,
+    scipy: &super::scipy::Versus,
+) {
     let _ = writeln!(
         o,
         "  the second opinion behind `certain` (dop853, other frame) ÷ the run it checks (dp54 tol 1e-10), one thread:"
@@ -129,9 +125,8 @@ pub fn lines(o: &mut String, costs: &[CheckCost], escape_ms: Option<f64>) {
     if let Some(ms) = escape_ms {
         let _ = writeln!(
             o,
-            "    a certified `escape --vtol 1e-8` ({ms:.2} ms, above) against SciPy's DOP853 doing the same ({SCIPY_ESCAPE_MS:.0} ms, docs/scipy-escape.py): {:.0}×   {}",
-            SCIPY_ESCAPE_MS / ms,
-            super::output::goal_at_least(SCIPY_ESCAPE_MS / ms, 100.0, "×")
+            "    a certified `escape --vtol 1e-8` as a process: {ms:.2} ms median (above)"
         );
     }
+    super::scipy::lines(o, scipy);
 }

@@ -12,7 +12,9 @@ pub mod models;
 mod output;
 pub mod pages;
 mod runs;
+pub mod scipy;
 pub mod serve;
+pub mod stated;
 mod tasks;
 
 use crate::engine::{Method, Settings};
@@ -88,6 +90,13 @@ pub struct Row {
     /// Median over the cases of the RHS evaluations of one case.
     pub evals_median: f64,
     pub wall_ms: f64,
+    /// The reference's resolution on this task (its agreement with its cross-check): errors
+    /// below it are printed as below it, never as a number.
+    pub resolution: f64,
+    /// Tasks that time stops, methods with stick events: the stated errors against the actual,
+    /// and what the end game did.
+    pub stated: Option<stated::Stated>,
+    pub end_game: Option<stated::EndGame>,
 }
 
 /// The reference's own agreement with a second method, per task.
@@ -187,6 +196,8 @@ pub struct Report {
     pub models: Vec<models::ModelCost>,
     /// Issue 34: the second opinion's price against the runs it checks.
     pub checks: Vec<check::CheckCost>,
+    /// Issue 42: a certified escape speed against SciPy's DOP853 doing the same, measured here.
+    pub scipy: scipy::Versus,
 }
 
 fn median(v: &mut [f64]) -> f64 {
@@ -281,10 +292,18 @@ pub fn run(cfg: &Config, mut progress: impl FnMut(&str)) -> Result<Report, Error
                 .map(|(a, b)| apart(a, b))
                 .fold(0.0, f64::max),
         });
+        let resolution = agreement.last().map_or(0.0, |c: &RefCheck| c.agreement);
         for s in task.settings(cfg) {
             let vtol = row_vtol(task, s);
             let (out, ms) = timed(cfg.reps, || measure(s, vtol));
-            rows.push(row(task, s, vtol, &refs, &out?, ms));
+            let mut r = row(task, s, vtol, &refs, &out?, ms);
+            r.resolution = resolution;
+            if task.times_stops()
+                && let Some((st, end)) = stated::lines(s, &cs, &refs, resolution)?
+            {
+                (r.stated, r.end_game) = (Some(st), Some(end));
+            }
+            rows.push(r);
         }
         if task == Task::Rest {
             rest = refs;
@@ -300,6 +319,8 @@ pub fn run(cfg: &Config, mut progress: impl FnMut(&str)) -> Result<Report, Error
     let checks = check::check_costs(&all, if cfg.quick { 3 } else { 12 }, cfg.reps)?;
     progress("the pages on all cores");
     let pages = pages::page_times(cfg.reps, if cfg.quick { 4 } else { 8 })?;
+    progress("SciPy's DOP853 on the same escape speeds");
+    let scipy = scipy::compare(if cfg.quick { 1 } else { 3 }, cfg.reps)?;
     let load = std::fs::read_to_string("/proc/loadavg")
         .ok()
         .map(|l| l.split_whitespace().take(3).collect::<Vec<_>>().join(" "));
@@ -315,6 +336,7 @@ pub fn run(cfg: &Config, mut progress: impl FnMut(&str)) -> Result<Report, Error
         pages,
         models,
         checks,
+        scipy,
     })
 }
 
@@ -369,5 +391,8 @@ fn row(task: Task, s: Settings, vtol: f64, refs: &[Measure], out: &[Measure], wa
         rhs_evals: out.iter().map(|m| m.evals).sum(),
         evals_median: median(&mut evals),
         wall_ms,
+        resolution: 0.0,
+        stated: None,
+        end_game: None,
     }
 }

@@ -12,7 +12,7 @@ use ratatui::Terminal;
 use ratatui::backend::TestBackend;
 use std::fmt::Write as _;
 
-fn sci(x: f64) -> String {
+pub(super) fn sci(x: f64) -> String {
     if x.is_nan() {
         "—".into()
     } else if x == 0.0 {
@@ -31,7 +31,7 @@ pub fn table(r: &Report) -> String {
     models(&mut o, r);
     let _ = writeln!(o, "\nspeed goals (release build, this machine):");
     speed_goals(&mut o, &r.speed);
-    super::check::lines(&mut o, &r.checks, r.speed.escape_checked_ms);
+    super::check::lines(&mut o, &r.checks, r.speed.escape_checked_ms, &r.scipy);
     page_goals(&mut o, &r.pages);
     comparisons(&mut o, r);
     output_goals(&mut o, &r.speed);
@@ -72,7 +72,7 @@ fn rows(o: &mut String, r: &Report) {
     }
     let _ = writeln!(
         o,
-        "\n{:<20} {:<8} {:<17} {:>8} {:>8} {:>8} {:>8} {:>5} {:>10} {:>10} {:>9}",
+        "\n{:<20} {:<8} {:<17} {:>9} {:>9} {:>9} {:>9} {:>5} {:>10} {:>10} {:>9}",
         "task",
         "method",
         "setting",
@@ -88,24 +88,37 @@ fn rows(o: &mut String, r: &Report) {
     let mut last = None;
     for row in &r.rows {
         if last != Some(row.task) {
-            let _ = writeln!(o, "{}", "-".repeat(115));
+            let _ = writeln!(o, "{}", "-".repeat(119));
             last = Some(row.task);
         }
+        let res = |x: f64| resolved(x, row.resolution);
         let _ = writeln!(
             o,
-            "{:<20} {:<8} {:<17} {:>8} {:>8} {:>8} {:>8} {:>5} {:>10.0} {:>10} {:>9.2}",
+            "{:<20} {:<8} {:<17} {:>9} {:>9} {:>9} {:>9} {:>5} {:>10.0} {:>10} {:>9.2}",
             row.task.to_string(),
             row.method.to_string(),
             row.setting,
-            sci(row.err_median),
-            sci(row.err_worst),
-            row.time_median.map_or("".into(), sci),
-            row.time_worst.map_or("".into(), sci),
+            res(row.err_median),
+            res(row.err_worst),
+            row.time_median.map_or("".into(), res),
+            row.time_worst.map_or("".into(), res),
             row.wrong,
             row.evals_median,
             row.rhs_evals,
             row.wall_ms
         );
+        if let (Some(st), Some(end)) = (&row.stated, &row.end_game) {
+            super::stated::print(o, st, end);
+        }
+    }
+}
+
+/// An error as far as the reference can tell it: below its resolution, "<" the resolution.
+fn resolved(x: f64, resolution: f64) -> String {
+    if x < resolution {
+        format!("<{}", sci(resolution))
+    } else {
+        sci(x)
     }
 }
 

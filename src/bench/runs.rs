@@ -76,3 +76,58 @@ pub fn state_at(initial: Initial, settings: Settings, tau: f64) -> Result<(State
     };
     Ok((s, run.cost().rhs_evals))
 }
+
+/// What one run to its stop (or escape) states about itself, and what its end game did: the
+/// input of a row's stated-against-actual and end-game lines (not timed).
+#[derive(Clone, Copy, Debug)]
+pub struct Audit {
+    /// How and where it ended: the stop (or the certificate, or τ-max) and the rest place.
+    pub outcome: Outcome,
+    pub tau: f64,
+    pub q: DVec2,
+    /// The second opinion's stated errors of the stop time and the rest place
+    /// ([`crate::engine::doubt::Doubt`]'s `tau_error`, `q_error`).
+    pub stated_tau: f64,
+    pub stated_q: f64,
+    /// RHS evaluations in the end game (implicit steps and closed-form stops), and in all.
+    pub end_evals: u64,
+    pub evals: u64,
+    /// Whether the end game took the stop (the run's last step was one of its).
+    pub end_took_stop: bool,
+    /// The state where the end game first took a step: up to there the method integrated the
+    /// run itself.
+    pub handover: Option<State>,
+}
+
+/// Runs `initial` with `settings` (a method with stick events) step by step to its stop, its
+/// escape certificate or `tau_max`, tallying the end game's steps, then asks its second opinion.
+pub fn audit(initial: Initial, settings: Settings, tau_max: f64) -> Result<Audit, Error> {
+    use crate::engine::Limit;
+    let mut run = Run::new(initial, settings)?;
+    let (mut end_evals, mut handover, mut last_end) = (0, None, false);
+    while run.goes_on(tau_max, true) {
+        let (before, at) = (run.cost().rhs_evals, run.state());
+        run.step(tau_max)?;
+        last_end = matches!(
+            run.last_step().map(|s| s.limit),
+            Some(Limit::Implicit | Limit::ClosedForm)
+        );
+        if last_end {
+            end_evals += run.cost().rhs_evals - before;
+            handover.get_or_insert(at);
+        }
+    }
+    let d = crate::engine::doubt::doubt(&run, tau_max);
+    let end = crate::engine::doubt::decided_state(&run);
+    Ok(Audit {
+        outcome: run.outcome(),
+        tau: end.tau,
+        q: end.q(),
+        stated_tau: d.tau_error,
+        stated_q: d.q_error,
+        end_evals,
+        evals: run.cost().rhs_evals,
+        end_took_stop: last_end && run.outcome() == Outcome::Stuck,
+        handover,
+    })
+}

@@ -156,6 +156,50 @@ fn quick_bench_rows_are_finite_and_converge() {
         json.contains("\"task\":\"drift τ=20\",\"method\":\"rk2-raw\""),
         "{json}"
     );
+    honest_rows(&report);
+}
+
+/// Issue 42: errors only down to the reference's resolution; a row per setting of what its runs
+/// stated against what they were off by; a fixed-step row that the end game decides says so.
+fn honest_rows(report: &bench::Report) {
+    let table = bench::table(report);
+    for r in &report.rows {
+        assert!(r.resolution > 0.0, "{} {}", r.task, r.setting);
+        let line = table
+            .lines()
+            .find(|l| {
+                l.starts_with(&r.task.to_string())
+                    && l.contains(&format!(" {} ", r.method))
+                    && l.contains(&format!(" {} ", r.setting))
+            })
+            .unwrap_or_else(|| panic!("{} {} {}", r.task, r.method, r.setting));
+        let below = format!("<{:.1e}", r.resolution);
+        assert_eq!(
+            line.contains(&below),
+            r.err_median < r.resolution || r.time_median.is_some_and(|t| t < r.resolution),
+            "{line}"
+        );
+        // Stops are stated on by every method with stick events, and by no other.
+        let stops = r.task == Task::Rest || r.task == Task::Rim;
+        assert_eq!(
+            r.stated.is_some(),
+            stops && r.method.stick_events(),
+            "{line}"
+        );
+    }
+    // At the rim rk2 at dt = 0.1 takes no step of its own: the implicit end game starts at the
+    // release and takes every stop, and the row says so instead of crediting rk2.
+    let rim = report
+        .rows
+        .iter()
+        .find(|r| r.task == Task::Rim && r.method == M::Rk2 && r.setting == "dt=1e-1")
+        .unwrap();
+    let end = rim.end_game.as_ref().unwrap();
+    assert_eq!(end.took_stop, end.cases);
+    assert!(end.evals_share > 0.99, "{end:?}");
+    assert!(rim.err_median < rim.resolution);
+    assert!(table.contains("the row measures the end game, not the method"));
+    assert!(table.contains("stated vs actual: τ "));
 }
 
 #[test]
