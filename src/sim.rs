@@ -3,6 +3,7 @@
 //! rotation; escaped and out of view: no more steps). The run is the paper's table at
 //! constant Ω, or a table spun up where the scene asks ([`Motion`]).
 
+pub mod accuracy;
 mod motion;
 
 pub use motion::Motion;

@@ -48,7 +48,7 @@ impl Prompt {
         match self.asks {
             Asks::Name => "save as: type a name, Enter saves, Esc cancels",
             Asks::Values => {
-                "set: type values (xi0, phi, v0; mu, rpm, omega, g), e.g. v0 0.6078; Enter sets, Esc cancels"
+                "set: type values (xi0, phi, v0; mu, rpm, omega, g), e.g. v0 0.6078, or an accuracy, e.g. error 1e-8; Enter sets, Esc cancels"
             }
         }
     }
@@ -65,7 +65,7 @@ impl Prompt {
     pub fn hint(&self) -> &'static str {
         match self.asks {
             Asks::Name => "Enter saves · Esc cancels",
-            Asks::Values => "xi0 phi v0 mu rpm omega g, e.g. v0 0.6078 · Esc",
+            Asks::Values => "xi0 phi v0 mu rpm omega g, e.g. v0 0.6078; error 1e-8 · Esc",
         }
     }
 }
@@ -143,6 +143,28 @@ pub fn values(
     Ok((i, u))
 }
 
+/// An accuracy asked for (`error 1e-8`: the cheapest setting whose stated error is at most
+/// that, [`crate::sim::accuracy`]): None when the line sets values instead; the number, or why
+/// it cannot be asked for.
+pub fn asked_error(typed: &str) -> Option<Result<f64, String>> {
+    let mut words = typed
+        .split(|c: char| c.is_whitespace() || c == '=')
+        .filter(|w| !w.is_empty());
+    if !words.next()?.eq_ignore_ascii_case("error") {
+        return None;
+    }
+    let (Some(text), None) = (words.next(), words.next()) else {
+        return Some(Err("error takes one number, e.g. error 1e-8".into()));
+    };
+    let Some(e) = text.parse::<f64>().ok() else {
+        return Some(Err(format!("error: '{text}' is not a number")));
+    };
+    Some(match crate::sim::accuracy::refused(e) {
+        Some(why) => Err(format!("error {why}")),
+        None => Ok(e),
+    })
+}
+
 /// A finite number; for an angle also `0.5pi`, `π`, `90deg`, `90°`.
 fn number(text: &str, angle: bool) -> Option<f64> {
     let scaled = |suffixes: &[&str], scale: f64| {
@@ -191,6 +213,24 @@ mod tests {
         assert_eq!((j.xi0, u.unwrap().mu), (0.5, 0.2));
         let (_, u) = values("omega 6.283185307179586", i, None, start()).unwrap();
         assert!((u.unwrap().rpm - 60.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn an_accuracy_is_asked_for_by_one_number() {
+        assert_eq!(asked_error("v0 0.3"), None);
+        assert_eq!(asked_error("error 1e-8"), Some(Ok(1e-8)));
+        assert_eq!(asked_error("Error=1e-6"), Some(Ok(1e-6)));
+        for bad in [
+            "error",
+            "error 0",
+            "error -1",
+            "error nan",
+            "error 1e300",
+            "error x",
+            "error 1e-8 v0 1",
+        ] {
+            assert!(matches!(asked_error(bad), Some(Err(_))), "{bad}");
+        }
     }
 
     #[test]

@@ -238,6 +238,13 @@ fn tick_and_draw_ms(
     Ok(ms)
 }
 
+/// Times `f` once (the wall clock is the bench's): what `run --error` says its choice cost.
+pub fn time_ms<T>(f: impl FnOnce() -> T) -> (T, f64) {
+    let t = Instant::now();
+    let out = f();
+    (out, t.elapsed().as_secs_f64() * 1e3)
+}
+
 /// Times `f`: one warm-up, then up to `reps` runs (fewer if one is slow); the minimum.
 fn timed<T>(reps: usize, mut f: impl FnMut() -> T) -> (T, f64) {
     let t0 = Instant::now();

@@ -72,6 +72,13 @@ const FREE_SAMPLE: f64 = crate::engine::work::CLOSED_PIECE;
 
 pub fn run(a: RunArgs) -> CmdResult {
     let (initial, settings) = run_inputs(&a)?;
+    let (settings, choice) = match a.error {
+        Some(e) => {
+            let c = choose(initial, settings, &a, e)?;
+            (c.chosen.map_or(settings, |t| t.settings), Some(c))
+        }
+        None => (settings, None),
+    };
     let units = a.units.units()?;
     let body = a
         .body
@@ -86,9 +93,11 @@ pub fn run(a: RunArgs) -> CmdResult {
         None => None,
     };
     let mut run = Run::new(initial, settings)?;
-    let end = integrate(&mut run, a.tau_max, !a.follow, csv)?;
+    let (end, ms) = crate::bench::time_ms(|| integrate(&mut run, a.tau_max, !a.follow, csv));
+    let end = end?;
     let doubt = (!a.no_check).then(|| crate::engine::doubt::doubt(&run, a.tau_max));
     let mut report = RunReport::new(&run, &end, doubt, units);
+    report.chosen = choice.map(|c| super::report::ChosenReport::new(&c, ms));
     report.body = match body {
         Some(b) => {
             let mut r = BodyReport::new(b, &run, &end, units);
@@ -103,6 +112,31 @@ pub fn run(a: RunArgs) -> CmdResult {
         .and_then(|b| b.motion.as_ref())
         .map(|m| m.outcome);
     print(&report, a.json)
+}
+
+/// `run --error E`: the cheapest setting whose stated error is at most `error`
+/// ([`crate::sim::accuracy`]), the rest of the settings from the flags; E refused as typed, and
+/// a release no setting can state so well said as such (exit 1).
+fn choose(
+    initial: Initial,
+    settings: crate::engine::Settings,
+    a: &RunArgs,
+    error: f64,
+) -> Result<crate::sim::accuracy::Choice, Error> {
+    use crate::sim::accuracy::{cheapest, refused};
+    if let Some(why) = refused(error) {
+        return Err(Error::Invalid(format!("--error {why}")));
+    }
+    if initial.frictionless || settings.stokes().is_some() {
+        return Err(Error::Invalid(
+            "--error chooses a method and tolerance: a frictionless or Stokes-drag run is in closed form, exact".into(),
+        ));
+    }
+    let c = cheapest(initial, settings, a.tau_max, !a.follow, error)?;
+    if c.chosen.is_none() {
+        return Err(Error::Failed(c.said()));
+    }
+    Ok(c)
 }
 
 /// The two-mass body run from the same release, under Coulomb friction (μ = 0 and Stokes drag

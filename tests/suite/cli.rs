@@ -352,6 +352,8 @@ fn json_reports_are_the_fields_readme_lists() {
                 "30",
                 "--body-length",
                 "0.01",
+                "--error",
+                "1e-6",
             ][..],
         ),
         ("`escape --json`:", &["escape", "--xi0", "0.5", "--json"]),

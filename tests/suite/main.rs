@@ -2,6 +2,7 @@
 //! checks). One binary links the crate once: 37 binaries spent most of a cold `cargo test`
 //! linking on 2 cores. Run one area with `cargo test --release --test suite AREA::`.
 
+mod accuracy;
 mod angles;
 mod approx;
 mod architecture;

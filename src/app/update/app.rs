@@ -84,6 +84,10 @@ fn typed(app: &mut App, edit: Edit) -> Effects {
         }
         Edit::Done => {
             let line = p.typed.clone();
+            if let Some(asked) = super::super::prompt::asked_error(&line) {
+                accuracy(app, asked);
+                return Effects::new();
+            }
             match super::super::prompt::values(&line, app.initial(), app.units, record_player()) {
                 Ok((i, u)) => {
                     app.prompt = None;
@@ -115,6 +119,41 @@ fn typed(app: &mut App, edit: Edit) -> Effects {
         }
     }
     Effects::new()
+}
+
+/// `error E` at the prompt: the run switched to the cheapest setting whose stated error is at
+/// most E ([`crate::sim::accuracy`]; a bounded search, at most 22 runs to [`EXPLORER_TAU`] and
+/// their second opinions), said in a notice with its cost in RHS evaluations (the model reads no
+/// clock); a bad E, a closed-form scene or a release nothing states so well stays at the prompt
+/// with the reason.
+fn accuracy(app: &mut App, asked: Result<f64, String>) {
+    use crate::sim::accuracy::{EXPLORER_TAU, cheapest};
+    let settings = app.settings();
+    let chosen = asked.and_then(|e| {
+        if app.initial().frictionless || settings.stokes().is_some() {
+            return Err(
+                "closed form here (μ = 0 or Stokes drag): exact, no tolerance to choose".into(),
+            );
+        }
+        let c =
+            cheapest(app.initial(), settings, EXPLORER_TAU, true, e).map_err(|e| e.to_string())?;
+        match c.chosen {
+            Some(t) => Ok((t.settings, c.said())),
+            None => Err(c.said()),
+        }
+    });
+    match chosen {
+        Ok((s, said)) => {
+            app.prompt = None;
+            app.explore().set_settings(s);
+            app.notice = Some(said);
+        }
+        Err(why) => {
+            if let Some(p) = app.prompt.as_mut() {
+                p.refused = Some(why);
+            }
+        }
+    }
 }
 
 /// Asks to save the scene on screen (under `name`, in a file named after it) to a new file.

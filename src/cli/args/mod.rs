@@ -302,6 +302,11 @@ pub struct RunArgs {
     /// Stop at this time if the particle has neither stuck nor escaped.
     #[arg(long, default_value_t = 100.0, allow_hyphen_values = true)]
     pub tau_max: f64,
+    /// Ask for an accuracy instead of a method and tolerance: run the cheapest of dp54 and
+    /// dop853 (tol 1e-3 … 1e-13) whose stated error of the end's time and place is at most
+    /// this, and say which it chose and what it cost.
+    #[arg(long, allow_hyphen_values = true, conflicts_with_all = ["method", "tol", "dt", "no_check"])]
+    pub error: Option<f64>,
     /// Keep integrating after escape is certified, up to tau-max.
     #[arg(long)]
     pub follow: bool,

@@ -13,8 +13,10 @@ use crate::present::{angle_to, si_length, si_time};
 use serde::Serialize;
 use std::fmt::Write as _;
 
+mod chosen;
 mod threshold;
 
+pub use chosen::ChosenReport;
 pub use threshold::*;
 
 /// A command's report: its fields are its JSON; this is its plain output.
@@ -57,6 +59,9 @@ pub struct RunReport {
     pub units: Option<UnitsReport>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub body: Option<BodyReport>,
+    /// With `--error`: what was asked, what was chosen, and what it cost.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub chosen: Option<ChosenReport>,
 }
 
 /// `run --json`'s `body`: the body's size and the appendix's two conditions at the end.
@@ -290,6 +295,7 @@ impl RunReport {
                 }
             }),
             body: None,
+            chosen: None,
         }
     }
 }
@@ -305,6 +311,9 @@ impl Report for RunReport {
             ),
             None => String::new(),
         };
+        if let Some(c) = &self.chosen {
+            let _ = writeln!(text, "chosen   {}", c.said);
+        }
         let _ = write!(
             text,
             "outcome  {how}\n{check}tau      {:.9}\nxi       {:.12}\nangle    {} in [0, 2π) (table frame, ccw from the release direction)\n|u|      {:.3e}\ncost     {cost}\n",
