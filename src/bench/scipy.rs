@@ -165,7 +165,7 @@ pub fn lines(o: &mut String, v: &Versus) {
         Versus::NotFound => {
             let _ = writeln!(
                 o,
-                "    SciPy not found (python3 -c 'import scipy.integrate'): not measured"
+                "    SciPy not found: not measured (python3 could not import scipy.integrate)"
             );
         }
         Versus::NotRun => {}
