@@ -134,7 +134,7 @@ fn choose(
     }
     let c = cheapest(initial, settings, a.tau_max, !a.follow, error)?;
     if c.chosen.is_none() {
-        return Err(Error::Failed(c.said()));
+        return Err(Error::Failed(c.said(None)));
     }
     Ok(c)
 }

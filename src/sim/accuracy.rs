@@ -59,23 +59,27 @@ impl Choice {
         self.tried.iter().map(|t| t.rhs + t.check_rhs).sum()
     }
 
-    /// What was chosen and what it cost, or that nothing met the bound and the least stated,
-    /// for people (the CLI's words, the explorer's notice).
-    pub fn said(&self) -> String {
+    /// What was chosen and what it cost (its run's wall time `ms` where the caller timed it),
+    /// or that nothing met the bound and the least stated, for people (the CLI's words, the
+    /// explorer's notice).
+    pub fn said(&self, ms: Option<f64>) -> String {
         use crate::present::{accuracy, sci};
         let name = |s: &Settings| format!("{} {}", s.method(), accuracy(s));
+        // Clauses (", ") in the order a narrow screen keeps them (`ui::fit` drops them whole
+        // from the end).
         let search = format!(
-            "the search ran {} settings, {} RHS evaluations with their second opinions",
+            "the search {} settings and {} RHS evaluations with their second opinions",
             self.tried.len(),
             self.rhs()
         );
         match self.chosen {
             Some(t) => format!(
-                "error ≤ {}: chose {} (stated {}), its run {} RHS evaluations; {search}",
+                "error ≤ {}: chose {}, stated {}, its run {} RHS evaluations{}, {search}",
                 sci(self.error, 0),
                 name(&t.settings),
                 sci(t.stated, 1),
-                t.rhs
+                t.rhs,
+                ms.map_or(String::new(), |ms| format!(" and {ms:.2} ms"))
             ),
             None => {
                 let best = self
@@ -84,7 +88,7 @@ impl Choice {
                     .filter(|t| t.stated.is_finite())
                     .min_by(|a, b| a.stated.total_cmp(&b.stated));
                 format!(
-                    "no setting on offer states an error ≤ {} for this release: {}; {search}",
+                    "no setting on offer states an error ≤ {} for this release: {}, {search}",
                     sci(self.error, 0),
                     best.map_or("none was certain".into(), |b| format!(
                         "the least stated was {} ({})",

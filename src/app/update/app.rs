@@ -138,8 +138,8 @@ fn accuracy(app: &mut App, asked: Result<f64, String>) {
         let c =
             cheapest(app.initial(), settings, EXPLORER_TAU, true, e).map_err(|e| e.to_string())?;
         match c.chosen {
-            Some(t) => Ok((t.settings, c.said())),
-            None => Err(c.said()),
+            Some(t) => Ok((t.settings, c.said(None))),
+            None => Err(c.said(None)),
         }
     });
     match chosen {

@@ -28,7 +28,7 @@ impl ChosenReport {
             ms,
             tried: c.tried.len(),
             search_rhs_evals: c.rhs(),
-            said: format!("{}; its run took {ms:.2} ms", c.said()),
+            said: c.said(Some(ms)),
         }
     }
 }
