@@ -125,7 +125,9 @@ fn choose(
 ) -> Result<crate::sim::accuracy::Choice, Error> {
     use crate::sim::accuracy::{cheapest, refused};
     if let Some(why) = refused(error) {
-        return Err(Error::Invalid(format!("--error {why}")));
+        return Err(Error::Invalid(format!(
+            "--error {why} (the stated error of the end's time and place)"
+        )));
     }
     if initial.frictionless || settings.stokes().is_some() {
         return Err(Error::Invalid(

@@ -25,12 +25,8 @@ const TOLS: std::ops::RangeInclusive<i32> = 3..=13;
 /// Why `error` cannot be asked for (the caller names it as typed), or None.
 pub fn refused(error: f64) -> Option<String> {
     let (lo, hi) = ERROR_RANGE;
-    (!(error.is_finite() && (lo..=hi).contains(&error))).then(|| {
-        format!(
-            "must lie in [{lo:e}, {hi}] (the error of the stop's or the certificate's time and place that the run states), got {}",
-            Initial::show(error)
-        )
-    })
+    (!(error.is_finite() && (lo..=hi).contains(&error)))
+        .then(|| format!("must lie in [{lo:e}, {hi}], got {}", Initial::show(error)))
 }
 
 /// One setting tried.

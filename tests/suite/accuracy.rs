@@ -133,6 +133,12 @@ fn error_at_the_prompt_switches_the_run() {
         .and_then(|p| p.refused.clone())
         .unwrap();
     assert!(refused.starts_with("error must lie in"), "{refused}");
+    // Short enough to stand beside the line at 80×24.
+    let screen = turntable::ui::export::plain_text(s.screen());
+    assert!(
+        screen.contains(" set: error 0▏  error must lie in [1e-13, 0.1], got 0"),
+        "{screen}"
+    );
     assert_eq!(s.app.settings(), now);
 }
 
