@@ -68,7 +68,7 @@ impl Seen {
                 Prompt::Answer => Some("answer y or n"),
                 Prompt::GoOn => Some("Enter goes on (Space plays and pauses)"),
                 Prompt::None if app.lesson.done && app.lesson.name.is_some() => {
-                    Some("end of the lesson; q quits")
+                    Some("end of the lesson; Esc closes it, q quits")
                 }
                 Prompt::None => None,
             },

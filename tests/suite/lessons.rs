@@ -655,6 +655,20 @@ fn an_interactive_lesson_holds_as_state_and_time_goes_on() {
     // Unheld, n is the integrator step again.
     press(&mut s, "n");
     assert!(s.app.view.step_mode);
+    // The last words stay until Esc says they were read, then the screen is the scene's.
+    let screen = turntable::ui::export::plain_text(s.screen());
+    assert!(screen.contains("three") && screen.contains("end · Esc closes · q quits"));
+    press(&mut s, "esc");
+    for _ in 0..3 {
+        s.tick();
+        s.pump_lesson().unwrap();
+    }
+    assert!(s.app.lesson.done && s.app.caption().is_none());
+    let screen = turntable::ui::export::plain_text(s.screen());
+    assert!(
+        !screen.contains("three") && !screen.contains("lesson"),
+        "{screen}"
+    );
 }
 
 /// The run answers the prediction: right or not by the engine's outcome, and only once time
