@@ -603,10 +603,9 @@ fn no_number_is_cut_at_any_width() {
         .unwrap()
         .trim_end()
         .to_string();
-    assert_eq!(
-        notice,
-        " preset C: Fig. 3 C: escapes in the paper; a converged run"
-    );
+    // Whole clauses go, and what is left reads true (it read "escapes in the paper; a
+    // converged run", the opposite of the whole).
+    assert_eq!(notice, " preset C: Fig. 3 C: stops inside ξ = 1");
 }
 
 /// The time plots share one τ axis (τ = 0 in one column in every plot, whatever its tick
