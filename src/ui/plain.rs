@@ -307,9 +307,9 @@ fn status(sim: &Sim) -> String {
             None => "escaped".into(),
         },
     };
-    match sim.doubt {
-        Some(d) if !d.certain => format!("{text}, in doubt: the run's error could flip it"),
-        _ => text,
+    match super::panel::doubt_words(sim) {
+        Some([a, b]) => format!("{text}, {a} {b}"),
+        None => text,
     }
 }
 
