@@ -4,8 +4,9 @@
 //! for a marker (each snapshot). A frame is written when the screen differs from the last
 //! one: the first whole, then only the cells that changed, each run after a cursor move (a
 //! few hundred bytes a tick instead of the whole screen's twelve thousand); its time is the ticks passed so far at the explorer's own rate
-//! (`TICKS_PER_SECOND`), so the recording plays at the pace of the session and is the same
-//! bytes on every run.
+//! (`TICKS_PER_SECOND`), plus the holds the replay asks for after a key or a caption
+//! ([`Cast::hold`]: a cast shown to a class gives each key and caption time to be seen), so
+//! the recording plays at the pace of the session and is the same bytes on every run.
 
 use crate::app::TICKS_PER_SECOND;
 use crate::ui::export::ansi_changes;
@@ -32,11 +33,14 @@ pub struct Cast<'a> {
     frames: u64,
     /// Cells of the frames looked at so far.
     cells: u64,
+    /// Seconds of holds so far, added to the ticks' time.
+    held: f64,
 }
 
-/// Seconds after the start at `ticks`, to the microsecond (rounding keeps the order).
-fn time(ticks: u64) -> String {
-    format!("{:.6}", ticks as f64 / f64::from(TICKS_PER_SECOND))
+/// Seconds after the start at `ticks` with `held` seconds of holds, to the microsecond
+/// (rounding keeps the order).
+fn time(ticks: u64, held: f64) -> String {
+    format!("{:.6}", ticks as f64 / f64::from(TICKS_PER_SECOND) + held)
 }
 
 impl<'a> Cast<'a> {
@@ -55,12 +59,13 @@ impl<'a> Cast<'a> {
             last: None,
             frames: 0,
             cells: 0,
+            held: 0.0,
         })
     }
 
     fn event(&mut self, ticks: u64, kind: &str, data: &str) -> io::Result<()> {
         let data = serde_json::Value::from(data);
-        writeln!(self.out, "[{}, \"{kind}\", {data}]", time(ticks))
+        writeln!(self.out, "[{}, \"{kind}\", {data}]", time(ticks, self.held))
     }
 
     /// The screen at `ticks`, if it changed: the cells that differ from the last frame's
@@ -103,6 +108,11 @@ impl<'a> Cast<'a> {
         self.event(ticks, "r", &format!("{width}x{height}"))
     }
 
+    /// What is on screen stays `seconds` longer before the next event.
+    pub fn hold(&mut self, seconds: f64) {
+        self.held += seconds;
+    }
+
     /// A marker (a snapshot's label): the player can jump to it.
     pub fn marker(&mut self, ticks: u64, label: &str) -> io::Result<()> {
         self.event(ticks, "m", label)
@@ -115,9 +125,9 @@ mod tests {
 
     #[test]
     fn times_are_ticks_at_the_explorers_rate() {
-        assert_eq!(time(0), "0.000000");
-        assert_eq!(time(30), "1.000000");
-        assert_eq!(time(1), "0.033333");
-        assert_eq!(time(2), "0.066667");
+        assert_eq!(time(0, 0.0), "0.000000");
+        assert_eq!(time(30, 0.0), "1.000000");
+        assert_eq!(time(1, 0.0), "0.033333");
+        assert_eq!(time(2, 0.5), "0.566667");
     }
 }

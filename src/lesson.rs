@@ -116,3 +116,107 @@ impl Driver {
         self.ticks = self.ticks.saturating_sub(1);
     }
 }
+
+/// What a teacher should know of a lesson before class (`turntable lesson --check`): the
+/// authoring traps a run in front of a class finds too late, each with its line.
+#[derive(Debug, Default, PartialEq)]
+pub struct Check {
+    pub captions: usize,
+    pub questions: usize,
+    pub waits: usize,
+    /// Seconds of `tick N` at the explorer's rate, holds not counted.
+    pub seconds: f64,
+    /// `line N: …`, in script order.
+    pub findings: Vec<String>,
+}
+
+/// Ticks a verdict stays on screen before a caption may replace it (3 s).
+const READ_TICKS: u64 = 3 * crate::app::TICKS_PER_SECOND as u64;
+
+/// Reads `script` as an interactive lesson runs it: where it holds, where time plays through
+/// a hold, and where a caption replaces a verdict before it can be read.
+pub fn check(script: &str) -> Result<Check, crate::script::ParseError> {
+    // Parsed whole first: a script that does not parse is refused as `replay` refuses it.
+    crate::script::parse(script)?;
+    let mut c = Check::default();
+    // The explorer opens playing; the last question not yet followed by a `wait`.
+    let (mut playing, mut open_question) = (true, None);
+    let mut playing_waits = Vec::new();
+    for (index, line) in script.lines().enumerate() {
+        let n = index + 1;
+        for step in crate::script::parse(line)? {
+            match step {
+                Step::Play(_) => playing = true,
+                Step::Pause => playing = false,
+                Step::Key(k) if k.code == crossterm::event::KeyCode::Char(' ') => {
+                    playing = !playing
+                }
+                Step::Tick(t) => {
+                    c.seconds += t as f64 / f64::from(crate::app::TICKS_PER_SECOND);
+                    if let Some((_, since)) = open_question.as_mut() {
+                        *since += t;
+                    }
+                }
+                Step::Wait => {
+                    c.waits += 1;
+                    open_question = None;
+                    if playing {
+                        playing_waits.push(n.to_string());
+                    }
+                }
+                Step::Say(text) => {
+                    c.captions += usize::from(text.is_some());
+                    if let Some((q, _)) = open_question.take().filter(|(_, t)| *t < READ_TICKS) {
+                        c.findings.push(format!(
+                            "line {n}: this say replaces the question of line {q} as soon as it is answered: its verdict is not read (a `wait` between holds it)"
+                        ));
+                    }
+                }
+                Step::Ask(_) => {
+                    c.questions += 1;
+                    if let Some((q, _)) = open_question
+                        .replace((n, 0))
+                        .filter(|(_, t)| *t < READ_TICKS)
+                    {
+                        c.findings.push(format!(
+                            "line {n}: this question replaces the one of line {q} as soon as it is answered: its verdict is not read (a `wait` between holds it)"
+                        ));
+                    }
+                }
+                _ => {}
+            }
+        }
+    }
+    if !playing_waits.is_empty() {
+        c.findings.push(format!(
+            "time plays through {} of the waits ({} {}): the run goes on while the class reads; `pause` before a wait holds the scene",
+            playing_waits.len(),
+            if playing_waits.len() == 1 { "line" } else { "lines" },
+            playing_waits.join(", ")
+        ));
+    }
+    if c.waits + c.questions == 0 {
+        c.findings.push(format!(
+            "the lesson never holds (no wait, no ask): in the explorer it runs to its end in {:.0} s",
+            c.seconds
+        ));
+    }
+    Ok(c)
+}
+
+impl std::fmt::Display for Check {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        writeln!(
+            f,
+            "{}, {}, {}; {:.0} s of play between the holds",
+            crate::present::count(self.captions, "caption"),
+            crate::present::count(self.questions, "question"),
+            crate::present::count(self.waits, "wait"),
+            self.seconds
+        )?;
+        if self.findings.is_empty() {
+            return writeln!(f, "nothing to warn of");
+        }
+        self.findings.iter().try_for_each(|l| writeln!(f, "{l}"))
+    }
+}

@@ -26,6 +26,11 @@ pub fn num(x: f64, prec: usize) -> String {
     }
 }
 
+/// `n` of a `thing`, plural when it is not one: "1 question", "3 waits".
+pub fn count(n: usize, thing: &str) -> String {
+    format!("{n} {thing}{}", if n == 1 { "" } else { "s" })
+}
+
 /// The decimals of π an angle is said to: 0.0001π (3e-4 rad, 0.018°) keeps θ, Θ and ψ about
 /// as fine as the panel read them in radians (to 1e-4), and is finer than a key's step
 /// (0.01π) or the escape page's least v_e (found to 3e-4π, said to 0.001π).

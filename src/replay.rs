@@ -131,6 +131,7 @@ fn run(
                         c.resize(ticks, *w, *h)?;
                     }
                     c.frame(ticks, s.screen())?;
+                    c.hold(hold_after(step));
                 }
             }
         }
@@ -142,6 +143,19 @@ fn run(
         c.frame(ticks, s.screen())?;
     }
     out.flush()
+}
+
+/// Seconds a recording holds the screen after `step`, so that a class sees what a key did
+/// and reads a caption: half a second a key or click, a second at a `wait`, and a caption's
+/// words at 200 a minute (3 s at least).
+fn hold_after(step: &Step) -> f64 {
+    let reading = |text: &str| (text.split_whitespace().count() as f64 * 0.3).max(3.0);
+    match step {
+        Step::Key(_) | Step::Mouse(_) => 0.5,
+        Step::Wait => 1.0,
+        Step::Say(Some(t)) | Step::Ask(t) => reading(t),
+        _ => 0.0,
+    }
 }
 
 /// Runs `steps` in plain mode: the lines `turntable --plain` would print, tick by tick, and at

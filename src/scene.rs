@@ -304,21 +304,23 @@ const SPIN_RAMP: crate::engine::spinup::Ramp = crate::engine::spinup::Ramp {
 impl Scene {
     pub fn preset(name: &str) -> Option<Scene> {
         let (initial, about) = match name.to_ascii_lowercase().as_str() {
+            // Clauses drop whole from the end where the line is short (the title, a notice):
+            // the outcome comes first, and each prefix reads true.
             "a" => (
                 Initial::velocity(0.5, PI, 1.0),
-                "Fig. 3 A: thrown inward, comes to rest",
+                "Fig. 3 A: comes to rest on the table, thrown inward",
             ),
             "b" => (
                 Initial::velocity(0.5, 0.0, 0.6),
-                "Fig. 3 B: thrown outward, comes to rest",
+                "Fig. 3 B: comes to rest on the table, thrown outward",
             ),
             "c" => (
                 Initial::velocity(0.5, 0.0, 0.6078),
-                "Fig. 3 C: escapes in the paper; a converged run stops inside ξ = 1",
+                "Fig. 3 C: stops inside ξ = 1, escapes in the paper",
             ),
             "d" => (
                 Initial::velocity(1.1, 1.2 * PI, 1.3),
-                "Fig. 3 D: thrown from outside ξ = 1, comes to rest inside",
+                "Fig. 3 D: comes to rest on the table inside ξ = 1, thrown from outside",
             ),
             "fig1" => (
                 Initial::at_rest(500.0, Release::LabRest),

@@ -206,7 +206,7 @@ impl App {
             (Prompt::Answer, false) => Some("y escapes · n stays · Space plays"),
             (Prompt::GoOn, true) => Some("Enter: go on · Space pauses"),
             (Prompt::GoOn, false) => Some("Enter: go on · Space plays"),
-            (Prompt::None, _) if l.done => Some("end · q quits"),
+            (Prompt::None, _) if l.done => Some("end · Esc closes · q quits"),
             (Prompt::None, true) => Some("Space pauses"),
             (Prompt::None, false) => Some("Space plays"),
         };

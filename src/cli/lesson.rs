@@ -14,9 +14,13 @@ pub struct LessonArgs {
     /// with say, ask, wait, play and pause).
     #[arg(value_name = "NAME|PATH")]
     pub name: Option<String>,
-    /// List the lessons.
+    /// List the lessons (also what `turntable lesson` alone does).
     #[arg(long, conflicts_with_all = ["name", "headless"])]
     pub list: bool,
+    /// Say what a teacher should know of the lesson before class: where it holds, where
+    /// time plays through a wait, where a caption replaces a question's verdict unread.
+    #[arg(long, requires = "name", conflicts_with_all = ["headless", "plain"])]
+    pub check: bool,
     /// No terminal: run the lesson as `replay` runs a script and print its snapshots (a `wait`
     /// goes on, a question stays unanswered and the run answers it).
     #[arg(long)]
@@ -39,7 +43,8 @@ pub struct LessonArgs {
 /// `lesson --list`, `lesson NAME --headless`, or what the explorer needs for `lesson NAME`:
 /// the look and the lesson's driver.
 pub fn run(a: &LessonArgs) -> Result<Option<(Look, Driver)>, Error> {
-    if a.list {
+    // `lesson` alone lists them too: a teacher trying the command sees what there is.
+    let Some(name) = a.name.as_deref().filter(|_| !a.list) else {
         let width = LESSONS.iter().map(|l| l.name.len()).max().unwrap_or(0);
         let list: String = LESSONS
             .iter()
@@ -47,14 +52,14 @@ pub fn run(a: &LessonArgs) -> Result<Option<(Look, Driver)>, Error> {
             .collect();
         crate::files::emit(None, &list)?;
         return Ok(None);
-    }
-    let Some(name) = a.name.as_deref() else {
-        return Err(Error::Invalid(format!(
-            "name a lesson: {} (`turntable lesson --list` says what each covers)",
-            names()
-        )));
     };
     let lesson = source(name)?;
+    if a.check {
+        let check = crate::lesson::check(&lesson.script)
+            .map_err(|e| Error::Invalid(format!("{}: {e}", crate::files::escape_controls(name))))?;
+        crate::files::emit(None, &format!("lesson {}: {check}", lesson.name))?;
+        return Ok(None);
+    }
     // A lesson of one's own may name its scene and theme (`# replay:`); the flag wins.
     let own = crate::script::script_options(&lesson.script).map_err(|e| e.context(name))?;
     let look = Look {

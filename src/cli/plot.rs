@@ -26,7 +26,8 @@ pub fn plot(a: PlotArgs) -> CmdResult {
                     (xi0, pts.map(|p| (p.phi, p.v_escape)).collect())
                 })
                 .collect();
-            let title = "Escape speed v_e(φ): thrown slower than v_e at φ, the particle stops";
+            // True on both sides of ξ = 1 (beyond it slow throws escape too, and a window sticks).
+            let title = "Escape speed v_e(φ): thrown faster than v_e at φ, the particle escapes";
             write(out, &svg, &build::escape_speed(title, &curves, None))
         }
         PlotFigure::Fig6 { data, svg } => {

@@ -138,7 +138,7 @@ pub fn time(
         path.first().map_or(x[0], |s| s.tau),
         window.map_or(x[1], |w| x[1].min(2.0 * w)),
     ];
-    let mut marks: Vec<Mark> = stop
+    let marks: Vec<Mark> = stop
         .map(|t| Mark::VLine {
             x: t,
             label: format!("stuck τ={}", num(t, 3)),
@@ -147,12 +147,12 @@ pub fn time(
         .into_iter()
         .collect();
     let mut xi = vec![Series::line("ξ", 0, over(&State::xi))];
-    if let Some(w) = window {
-        marks.push(Mark::VLine {
-            x: w,
-            label: "approx. valid ←".into(),
-            ink: Ink::Muted,
-        });
+    let window_mark = window.map(|w| Mark::VLine {
+        x: w,
+        label: "approx. valid ←".into(),
+        ink: Ink::Muted,
+    });
+    if window.is_some() {
         let pts = (0..=200)
             .map(|k| x[1] * f64::from(k) / 200.0)
             .map(|t| (t, crate::engine::approx::xi(initial, t)))
@@ -175,11 +175,14 @@ pub fn time(
         marks: marks.clone(),
         ..Panel::default()
     };
+    // The window's end is marked where the approximation is drawn: the ξ plot.
+    let mut xi_panel = panel("distance from the centre", "ξ (R_max)", xi);
+    xi_panel.marks.extend(window_mark);
     let [e, w] = energy_pair(path, path, work);
     Figure {
         title: title.into(),
         panels: vec![
-            panel("distance from the centre", "ξ (R_max)", xi),
+            xi_panel,
             panel(
                 "angular speed in the lab",
                 "θ′ (Ω)",

@@ -115,6 +115,17 @@ pub fn lesson_line(app: &App) -> String {
         ]);
     }
     let Some(p) = app.paper().filter(|_| !app.outcome_open()) else {
+        // A newcomer, in no lesson and none taken, is told where the lessons are.
+        if app.lesson.name.is_none() && !app.lesson.done {
+            return fit::alternatives(&[
+                " c: compare with the paper's scheme (raw RK2, fixed dt = 1e-3, no stick event) · new here? `turntable lesson` lists the lessons",
+                " c: compare with the paper's RK2 · new here? `turntable lesson` lists the lessons",
+                " c: compare with the paper's RK2 · new here? `turntable lesson`",
+                " c: the paper's RK2 · new here? `turntable lesson`",
+                " c: compare with the paper's RK2",
+                " c: the paper's RK2",
+            ]);
+        }
         return fit::alternatives(&[
             " c: compare with the paper's scheme (raw RK2, fixed dt = 1e-3, no stick event)",
             " c: compare with the paper's scheme (RK2, dt = 1e-3)",

@@ -68,7 +68,7 @@ impl Seen {
                 Prompt::Answer => Some("answer y or n"),
                 Prompt::GoOn => Some("Enter goes on (Space plays and pauses)"),
                 Prompt::None if app.lesson.done && app.lesson.name.is_some() => {
-                    Some("end of the lesson; q quits")
+                    Some("end of the lesson; Esc closes it, q quits")
                 }
                 Prompt::None => None,
             },
@@ -307,9 +307,9 @@ fn status(sim: &Sim) -> String {
             None => "escaped".into(),
         },
     };
-    match sim.doubt {
-        Some(d) if !d.certain => format!("{text}, in doubt: the run's error could flip it"),
-        _ => text,
+    match super::panel::doubt_words(sim) {
+        Some([a, b]) => format!("{text}, {a} {b}"),
+        None => text,
     }
 }
 

@@ -975,7 +975,7 @@ fn every_preset_loads_unedited() {
         assert_eq!(scene.about, Scene::preset(name).unwrap().about);
     }
     let mut d = app("D");
-    assert!(render(&mut d, 100, 30).contains("Fig. 3 D: thrown from outside"));
+    assert!(render(&mut d, 100, 30).contains("Fig. 3 D: comes to rest on the table inside ξ = 1"));
     key(&mut d, 'p');
     assert!(d.edited() && d.current_scene().name == "D (edited)");
 }
@@ -1101,7 +1101,10 @@ fn the_title_and_a_saved_scene_tell_what_is_on_screen() {
         .next()
         .unwrap()
         .to_string();
-    assert!(title.contains("thrown outward, comes to rest"), "{title}");
+    assert!(
+        title.contains("comes to rest on the table, thrown outward"),
+        "{title}"
+    );
     // Decided: how it ends, and the view it was shown in.
     for _ in 0..200 {
         a.tick();

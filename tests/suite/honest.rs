@@ -193,6 +193,30 @@ fn the_explorer_says_when_an_outcome_is_in_doubt() {
         assert!(screen.contains("stuck at ξ"), "{screen}");
         assert_eq!(screen.contains("in doubt"), doubtful, "{screen}");
     }
+    // The paper's RK2 beside C: its escape is certified for its own path, and the panel says
+    // in the same breath which outcome holds (it read "escape certified … in doubt").
+    let mut s = Session::headless(
+        App::new(Scene::default_scene()),
+        turntable::theme::Theme::builtin("dark").unwrap(),
+        100,
+        40,
+        false,
+    );
+    s.press("c".parse().unwrap());
+    s.press("]".parse().unwrap());
+    s.press("]".parse().unwrap());
+    s.press("]".parse().unwrap());
+    for _ in 0..200 {
+        s.tick();
+    }
+    let screen = plain_text(s.screen());
+    assert!(
+        screen.contains("escape certified")
+            && screen.contains("but its error flips it:")
+            && screen.contains("a converged run sticks")
+            && !screen.contains("in doubt"),
+        "{screen}"
+    );
 }
 
 /// The paper writes case D's angle as 1.2π: so does the explorer ([0, 2π), not −0.8π).

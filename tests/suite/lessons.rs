@@ -655,6 +655,20 @@ fn an_interactive_lesson_holds_as_state_and_time_goes_on() {
     // Unheld, n is the integrator step again.
     press(&mut s, "n");
     assert!(s.app.view.step_mode);
+    // The last words stay until Esc says they were read, then the screen is the scene's.
+    let screen = turntable::ui::export::plain_text(s.screen());
+    assert!(screen.contains("three") && screen.contains("end · Esc closes · q quits"));
+    press(&mut s, "esc");
+    for _ in 0..3 {
+        s.tick();
+        s.pump_lesson().unwrap();
+    }
+    assert!(s.app.lesson.done && s.app.caption().is_none());
+    let screen = turntable::ui::export::plain_text(s.screen());
+    assert!(
+        !screen.contains("three") && !screen.contains("lesson"),
+        "{screen}"
+    );
 }
 
 /// The run answers the prediction: right or not by the engine's outcome, and only once time
@@ -744,27 +758,24 @@ fn turntable(args: &[&str]) -> std::process::Output {
 
 #[test]
 fn the_lesson_command() {
-    let out = turntable(&["lesson", "--list"]);
-    assert!(out.status.success());
-    let list = String::from_utf8(out.stdout).unwrap();
-    assert_eq!(list.lines().count(), LESSONS.len(), "{list}");
-    for l in LESSONS {
-        assert!(list.contains(l.name) && list.contains(l.about), "{list}");
+    // `lesson` alone lists them, as --list does.
+    for args in [&["lesson", "--list"][..], &["lesson"]] {
+        let out = turntable(args);
+        assert!(out.status.success());
+        let list = String::from_utf8(out.stdout).unwrap();
+        assert_eq!(list.lines().count(), LESSONS.len(), "{list}");
+        for l in LESSONS {
+            assert!(list.contains(l.name) && list.contains(l.about), "{list}");
+        }
     }
-    for bad in [
-        &["lesson", "nope"][..],
-        &["lesson", "nope", "--headless"],
-        &["lesson"],
-    ] {
+    for bad in [&["lesson", "nope"][..], &["lesson", "nope", "--headless"]] {
         let out = turntable(bad);
         assert_eq!(out.status.code(), Some(2), "{bad:?}");
         let err = String::from_utf8(out.stderr).unwrap();
         assert!(out.stdout.is_empty(), "{bad:?}");
         assert_eq!(err.lines().count(), 1, "{err}");
         assert!(err.contains("stick, cases, escape"), "{err}");
-        if bad.len() > 1 {
-            assert!(err.contains("unknown lesson 'nope'"), "{err}");
-        }
+        assert!(err.contains("unknown lesson 'nope'"), "{err}");
     }
     // A lesson of one's own, from its file, runs as a built-in one does (named by its stem).
     let dir = std::env::temp_dir().join(format!("turntable-own-lesson-{}", std::process::id()));
@@ -969,5 +980,54 @@ proptest::proptest! {
         let reference = take_lesson(name, &[]);
         let taken = take_lesson(name, &keys);
         proptest::prop_assert_eq!(reference, taken);
+    }
+}
+
+/// `lesson --check` says what a teacher should know before class: a lesson that never holds,
+/// time playing through its waits, a caption that replaces a verdict before it is read.
+#[test]
+fn the_lesson_check_finds_the_authoring_traps() {
+    let dir = std::env::temp_dir().join(format!("turntable-check-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let check = |script: &str| {
+        let f = dir.join("l.keys");
+        std::fs::write(&f, script).unwrap();
+        let out = turntable(&["lesson", f.to_str().unwrap(), "--check"]);
+        let err = String::from_utf8(out.stderr).unwrap();
+        (
+            out.status.code(),
+            String::from_utf8(out.stdout).unwrap() + &err,
+        )
+    };
+    let (code, text) = check("say one\nplay\ntick 60\nsay two\n");
+    assert_eq!(code, Some(0));
+    assert_eq!(
+        text,
+        "lesson l: 2 captions, 0 questions, 0 waits; 2 s of play between the holds\n\
+         the lesson never holds (no wait, no ask): in the explorer it runs to its end in 2 s\n"
+    );
+    let (_, text) = check("say one\nwait\nask Out? (y/n)\nsay two\npause\nwait\n");
+    assert!(text.contains("1 question, 2 waits"), "{text}");
+    assert!(
+        text.contains("time plays through 1 of the waits (line 2)"),
+        "{text}"
+    );
+    assert!(
+        text.contains("line 4: this say replaces the question of line 3"),
+        "{text}"
+    );
+    // Three seconds of play after the answer leave its verdict time to be read.
+    let (_, text) = check("pause\nask Out? (y/n)\nplay\ntick 90\nsay two\npause\nwait\n");
+    assert!(text.ends_with("nothing to warn of\n"), "{text}");
+    // A script that does not parse is refused as replay refuses it.
+    let (code, text) = check("say one\nbogus\n");
+    assert_eq!(code, Some(2));
+    assert!(text.contains("line 2, column 1"), "{text}");
+    std::fs::remove_dir_all(&dir).unwrap();
+    // The shipped lessons hold and no caption hides a verdict.
+    for l in LESSONS {
+        let out = turntable(&["lesson", l.name, "--check"]);
+        let text = String::from_utf8(out.stdout).unwrap();
+        assert!(out.status.success() && !text.contains("replaces"), "{text}");
     }
 }

@@ -603,10 +603,9 @@ fn no_number_is_cut_at_any_width() {
         .unwrap()
         .trim_end()
         .to_string();
-    assert_eq!(
-        notice,
-        " preset C: Fig. 3 C: escapes in the paper; a converged run"
-    );
+    // Whole clauses go, and what is left reads true (it read "escapes in the paper; a
+    // converged run", the opposite of the whole).
+    assert_eq!(notice, " preset C: Fig. 3 C: stops inside ξ = 1");
 }
 
 /// The time plots share one τ axis (τ = 0 in one column in every plot, whatever its tick
@@ -627,9 +626,12 @@ fn the_time_plots_share_one_tau_axis_and_a_fixed_window() {
     assert_eq!(cols.len(), 5, "{screen}");
     assert!(cols.iter().all(|c| *c == cols[0]), "{cols:?}\n{screen}");
     assert!(
-        screen.contains("θ (rad) ━ θ  ·· Sec. III approx."),
+        screen.contains("θ (rad) ━ θ  ·· Eq. 20, friction dropped"),
         "{screen}"
     );
+    // The approximation's window is marked on ξ alone: on the table Eq. 20's Θ′ drops the
+    // friction term (6× the run's at ξ0 = 1.1), and |u| and E have none.
+    assert_eq!(screen.matches("approx. valid").count(), 1, "{screen}");
     let ticks = |s: &str| s.lines().rev().nth(4).unwrap_or("").to_string();
     assert!(ticks(&screen).contains("2.5"), "{screen}");
     press(&mut a, KeyCode::Char('t'));

@@ -77,7 +77,7 @@ fn opening_names_the_scene_its_release_and_its_state() {
         p.lines,
         [
             "turntable, plain mode: ? lists the keys, I reads the readouts, Space plays and pauses, q quits",
-            "scene C: Fig. 3 C: escapes in the paper; a converged run stops inside ξ = 1",
+            "scene C: Fig. 3 C: stops inside ξ = 1, escapes in the paper",
             "release: scene C, ξ0 = 0.500, φ = 0, v0 = 0.6078 relative to the table; method dp54 tol=1e-10",
             "slipping",
         ]
@@ -92,7 +92,7 @@ fn preset_c_played_says_where_it_sticks_when_it_does() {
         [
             "release: scene C, ξ0 = 0.500, φ = 0, v0 = 0.6078 relative to the table; method dp54 tol=1e-10",
             "slipping",
-            "preset C: Fig. 3 C: escapes in the paper; a converged run stops inside ξ = 1",
+            "preset C: Fig. 3 C: stops inside ξ = 1, escapes in the paper",
         ]
     );
     let (out, tau, xi) = engine_end(&p.app);

@@ -704,22 +704,20 @@ fn an_export_carries_what_the_screen_shows() {
     let tags = parse(&svg);
     let panels = panels(&tags);
     let names: Vec<Vec<String>> = panels.iter().map(|p| drawn(p)).collect();
-    let with_pin = |a: &str, b: &str| {
-        [a, b, pin.as_str(), "Sec. III approx."]
-            .map(String::from)
-            .to_vec()
-    };
+    let with_pin =
+        |a: &str, b: &str, approx: &str| [a, b, pin.as_str(), approx].map(String::from).to_vec();
     assert_eq!(
         names,
         [
             // ξ = 1 where the ξ plot reaches it (fig2 starts at 1.1).
             [
-                with_pin("ξ", "ξ paper RK2"),
+                with_pin("ξ", "ξ paper RK2", "Sec. III approx."),
                 vec!["ξ = 1 (R_max)".to_string()]
             ]
             .concat(),
-            with_pin("θ", "θ paper RK2"),
-            with_pin("θ′", "θ′ paper RK2"),
+            // On the table Eq. 20 drops the friction term: its legend says so.
+            with_pin("θ", "θ paper RK2", "Eq. 20, friction dropped"),
+            with_pin("θ′", "θ′ paper RK2", "Eq. 20, friction dropped"),
             ["|u|", "|u| paper RK2", pin.as_str()]
                 .map(String::from)
                 .to_vec(),

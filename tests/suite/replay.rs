@@ -446,8 +446,9 @@ fn asciicast_records_the_replay_at_the_pace_of_its_ticks() {
             k => panic!("event kind {k}"),
         }
     }
-    // 60 ticks at 30 a second: 2 s, and a frame for (nearly) every tick while it plays.
-    assert!((last_time - 2.0).abs() < 1e-6, "{last_time}");
+    // 60 ticks at 30 a second: 2 s, and half a second after each of the two keys for the
+    // class to see what it did; a frame for (nearly) every tick while it plays.
+    assert!((last_time - 3.0).abs() < 1e-6, "{last_time}");
     assert!(frames.len() > 50, "{} frames", frames.len());
     // Every frame played on a screen as a terminal plays it, the last is the snapshot's: the
     // frames after the first carry only the cells that changed.
@@ -491,5 +492,41 @@ fn asciicast_records_the_replay_at_the_pace_of_its_ticks() {
         .unwrap();
     assert_eq!(out.status.code(), Some(2));
     assert!(out.stdout.is_empty());
+    std::fs::remove_dir_all(&tmp).unwrap();
+}
+
+/// A cast a teacher shows gives a caption time to be read: 0.3 s a word, 3 s at least.
+#[test]
+fn asciicast_holds_a_caption_for_its_words() {
+    let tmp = std::env::temp_dir().join(format!("turntable-cast-say-{}", std::process::id()));
+    std::fs::create_dir_all(&tmp).unwrap();
+    let script = tmp.join("s.keys");
+    let words = vec!["word"; 20].join(" ");
+    std::fs::write(&script, format!("pause\nsay short\nsay {words}\nsay\n")).unwrap();
+    let cast = tmp.join("s.cast");
+    let out = binary()
+        .args(["replay", "--asciicast"])
+        .arg(&cast)
+        .arg(&script)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let times: Vec<f64> = std::fs::read_to_string(&cast)
+        .unwrap()
+        .lines()
+        .skip(1)
+        .map(|l| {
+            serde_json::from_str::<serde_json::Value>(l).unwrap()[0]
+                .as_f64()
+                .unwrap()
+        })
+        .collect();
+    // The opening frame and the pause's at 0; "short" held 3 s; twenty words 6 s.
+    assert_eq!(times.first(), Some(&0.0));
+    assert!((times.last().unwrap() - 9.0).abs() < 1e-6, "{times:?}");
     std::fs::remove_dir_all(&tmp).unwrap();
 }

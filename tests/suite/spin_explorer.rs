@@ -247,3 +247,40 @@ fn the_exported_page_is_the_spun_up_table_on_screen() {
         "fr, cf, eu while riding (no Coriolis at u = 0)"
     );
 }
+
+/// Whatever a constant-Ω scene left behind (the paper's RK2 beside it, pins, another page,
+/// another release), `7` opens the spin-up as a fresh one opens: every piece of per-scene state
+/// is reset or refused, as the scene file's check demands of a `[spin]` scene.
+#[test]
+fn the_spin_preset_opens_the_same_whatever_came_before() {
+    use proptest::prelude::*;
+    let keys = prop::collection::vec(
+        prop::sample::select(vec!['c', 'b', '\t', 'x', 'X', '1', '2', '3', '4', '5', '6']),
+        0..12,
+    );
+    let mut fresh = spin();
+    let expected = without_last_line(&common_render(&mut fresh));
+    let config = ProptestConfig {
+        cases: 48,
+        rng_seed: proptest::test_runner::RngSeed::Fixed(7),
+        failure_persistence: None,
+        ..ProptestConfig::default()
+    };
+    proptest!(config, |(keys in keys)| {
+        let mut a = App::new(Scene::preset("C").unwrap());
+        for k in keys {
+            key(&mut a, if k == '\t' { KeyCode::Tab } else { KeyCode::Char(k) });
+            a.tick();
+        }
+        key(&mut a, KeyCode::Char('7'));
+        prop_assert!(a.paper().is_none() && a.pins.is_empty());
+        prop_assert_eq!(a.view.page, Page::Turntable);
+        prop_assert_eq!(without_last_line(&common_render(&mut a)), expected.clone());
+    });
+}
+
+/// A screen without its notice line (what the key said differs, what it shows must not).
+fn without_last_line(screen: &str) -> String {
+    let lines: Vec<&str> = screen.lines().collect();
+    lines[..lines.len() - 1].join("\n")
+}

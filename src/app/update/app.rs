@@ -2,6 +2,7 @@
 
 use super::super::action::{Action, Edit};
 use super::super::effect::{Effect, Effects};
+use super::super::lesson::Lesson;
 use super::super::prompt::TYPED_MAX;
 use super::super::prompt::{Asks, Prompt};
 use super::super::state::{App, record_player};
@@ -10,8 +11,16 @@ pub(super) fn apply(app: &mut App, action: Action) -> Effects {
     match action {
         // `q` and Ctrl-C quit whatever is open (the help included); Esc closes it.
         Action::Quit => app.quit = true,
-        // The notice is already cleared by `update`.
-        Action::Dismiss => app.view.help = false,
+        // The notice is already cleared by `update`; with the help closed, a finished
+        // lesson's last words go too (they would stay on screen for the rest of the hour).
+        Action::Dismiss if app.view.help => app.view.help = false,
+        Action::Dismiss if app.lesson.done => {
+            app.lesson = Lesson {
+                done: true,
+                ..Lesson::default()
+            }
+        }
+        Action::Dismiss => {}
         Action::ToggleHelp => {
             app.view.help = !app.view.help;
             app.view.help_scroll = 0;

@@ -40,11 +40,23 @@ pub(super) fn apply(app: &mut App, action: Action) {
                 // The body is the object, the preset its release: it stays (but the spin-up
                 // spins a point coin).
                 scene.body = app.scene().body.filter(|_| scene.spin.is_none());
-                let body = match scene.body {
+                let mut kept = match scene.body {
                     Some(b) => format!(" (the body stays: L = {})", b.length),
                     None => String::new(),
                 };
-                app.notice = Some(format!("preset {}: {}{body}", scene.name, scene.about));
+                if scene.spin.is_some() {
+                    // What a spin-up scene file may not hold, the preset sets aside (Scene's
+                    // check): pins and the other pages are the constant-Ω table's.
+                    app.view.page = Page::Turntable;
+                    if !app.pins.is_empty() {
+                        kept = format!(
+                            " ({} pins cleared: they run the constant-Ω table)",
+                            app.pins.len()
+                        );
+                        app.pins.clear();
+                    }
+                }
+                app.notice = Some(format!("preset {}: {}{kept}", scene.name, scene.about));
                 app.exploration.load(scene);
                 app.view.zoom = 1.0;
                 app.view.turn = 0.0;

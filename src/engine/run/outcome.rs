@@ -23,7 +23,7 @@ impl Certificate {
         match self {
             Certificate::Radial => "radial: xi = 1 crossed moving out, never to turn back",
             Certificate::Energy => {
-                "energy: E < -R^2/2 (R = mu_s/mu_k), so it can never rest inside xi = R again (it may not have crossed xi = 1 yet)"
+                "energy: E < -R^2/2 (R = mu_s/mu_k), which holds only beyond xi = R: it can never rest inside xi = R again (it may still be moving inward)"
             }
         }
     }

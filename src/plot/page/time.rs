@@ -47,10 +47,20 @@ pub fn panels(app: &App) -> Vec<Panel> {
     let now = app.sim().now().tau;
     let span = app.view.tau_window.unwrap_or(app.plot_span()).max(1e-3);
     let window = crate::engine::approx::window(&app.initial());
-    let marks = marks(app, now, window);
+    let marks = marks(app, now);
+    // The window's end is marked only where Sec. III's approximation holds within it: ξ, and
+    // in the lab θ and θ′ (on the table Eq. 20 drops the friction term: at ξ0 = 1.1 its Θ′ is
+    // 1 + 1/(2(ξ0 − 1)) = 6 times the run's).
+    let lab = app.initial().release == Release::LabRest;
+    let window_mark = window.filter(|w| *w <= now).map(|w| Mark::VLine {
+        x: w,
+        label: "approx. valid ←".into(),
+        ink: Ink::Muted,
+    });
     let mut panels: Vec<Panel> = plots(app, now, window)
         .into_iter()
-        .map(|(name, measure, s, pm)| Panel {
+        .enumerate()
+        .map(|(k, (name, measure, s, pm))| Panel {
             y: extent(
                 s.iter()
                     .flat_map(|s| s.points.iter().filter(|p| p.0 <= span).map(|p| p.1)),
@@ -69,7 +79,12 @@ pub fn panels(app: &App) -> Vec<Panel> {
             series: s,
             // The pins' labels last: placed first, so where a short plot has no room for
             // all, the run's own (τ, stop, escape) are drawn over them.
-            marks: marks.iter().cloned().chain(pm).collect(),
+            marks: marks
+                .iter()
+                .cloned()
+                .chain(window_mark.clone().filter(|_| k == 0 || (lab && k <= 2)))
+                .chain(pm)
+                .collect(),
             ..Panel::default()
         })
         .collect();
@@ -104,9 +119,9 @@ fn near_the_rim(app: &App, xi: &mut Panel, span: f64) {
     }
 }
 
-/// The lines every plot marks: the cursor at the τ on screen, the stop, the escape
-/// certificate and the end of the approximations' window, once reached.
-fn marks(app: &App, now: f64, window: Option<f64>) -> Vec<Mark> {
+/// The lines every plot marks: the cursor at the τ on screen, the stop and the escape
+/// certificate, once reached.
+fn marks(app: &App, now: f64) -> Vec<Mark> {
     let mut marks = vec![Mark::VLine {
         x: now,
         label: format!("τ={}", num(now, 2)),
@@ -128,13 +143,6 @@ fn marks(app: &App, now: f64, window: Option<f64>) -> Vec<Mark> {
             x: e.tau,
             label: "escape cert.".into(),
             ink: Ink::Escaped,
-        });
-    }
-    if let Some(w) = window.filter(|w| *w <= now) {
-        marks.push(Mark::VLine {
-            x: w,
-            label: "approx. valid ←".into(),
-            ink: Ink::Muted,
         });
     }
     marks
@@ -167,7 +175,7 @@ struct Sources<'a> {
 impl Sources<'_> {
     /// The approximation `y` over its window, as dots: told from the run's line without
     /// colour.
-    fn approx(&self, y: &dyn Fn(f64) -> Option<f64>) -> Option<Series> {
+    fn approx(&self, name: &str, y: &dyn Fn(f64) -> Option<f64>) -> Option<Series> {
         self.window?;
         let n = 200;
         let now = self.now;
@@ -176,7 +184,7 @@ impl Sources<'_> {
             .filter_map(|t| y(t).map(|v| (t, v)))
             .collect();
         Some(Series {
-            name: "Sec. III approx.".into(),
+            name: name.into(),
             ink: Ink::Muted,
             points: pts,
             style: Style::Dots,
@@ -269,7 +277,7 @@ fn integrated(rate: &Series, ink: Ink) -> Series {
         })
         .collect();
     Series {
-        name: "Sec. III approx.".into(),
+        name: rate.name.clone(),
         ink,
         points: pts,
         style: Style::Dots,
@@ -277,6 +285,9 @@ fn integrated(rate: &Series, ink: Ink) -> Series {
 }
 
 /// The five plots in order: ξ, θ (Θ), θ′ (Θ′), |u| and the energy identity.
+/// The legend's name for Sec. III's approximations where they hold.
+const APPROX: &str = "Sec. III approx.";
+
 fn plots(app: &App, now: f64, window: Option<f64>) -> [Plot<'static>; 5] {
     let rotating = app.view.frame == Frame::Table;
     let (theta_name, shift) = if rotating {
@@ -300,11 +311,17 @@ fn plots(app: &App, now: f64, window: Option<f64>) -> [Plot<'static>; 5] {
     let mut xi_s = vec![series("ξ", Ink::Trail, &src.p, xi_of)];
     xi_s.extend(src.paper_series("ξ", &xi_of));
     xi_s.extend(src.pin_series(0, (1, 0), &|p| along(p, &xi_of)));
-    xi_s.extend(src.approx(&|t| Some(crate::engine::approx::xi(&i, t))));
+    xi_s.extend(src.approx(APPROX, &|t| Some(crate::engine::approx::xi(&i, t))));
     let mut th_s = vec![series(theta_name, Ink::Trail, &src.p, th_of)];
     th_s.extend(src.paper_series(theta_name, &th_of));
     th_s.extend(src.pin_series(2, (0, -1), &|p| along(p, &th_of)));
-    th_s.extend(src.approx(&|t| match i.release {
+    // On the table Eq. 20 drops the friction term, which near the release is the larger:
+    // the legend says so.
+    let th_approx = match i.release {
+        Release::LabRest => APPROX,
+        _ => "Eq. 20, friction dropped",
+    };
+    th_s.extend(src.approx(th_approx, &|t| match i.release {
         // θ = τ²/(2ξ0) (Eq. 12): θ′ = τ/ξ0 in the lab.
         Release::LabRest => Some(t / i.xi0 - shift),
         // Θ′ = 2 ln(ξ0/ξ) (Eq. 20), table frame.
@@ -324,7 +341,7 @@ fn plots(app: &App, now: f64, window: Option<f64>) -> [Plot<'static>; 5] {
         style: Style::Line { dash: 0 },
     }));
     a_s.extend(src.pin_series(1, (0, 0), &angle));
-    if let Some(rate) = th_s.iter().find(|s| s.name == "Sec. III approx.") {
+    if let Some(rate) = th_s.iter().find(|s| s.name == th_approx) {
         a_s.push(integrated(rate, Ink::Muted));
     }
     let mut u_s = vec![series("|u|", Ink::Trail, &src.p, u_of)];

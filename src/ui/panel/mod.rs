@@ -70,13 +70,29 @@ pub fn status_text(sim: &Sim, th: &Theme) -> (String, ratatui::style::Color) {
             }
         }
     };
-    match sim.doubt {
-        Some(d) if !d.certain && sim.outcome_now() != Outcome::Running => (
-            format!("{text}\n  in doubt: the run's\n  error could flip it"),
-            colour,
-        ),
-        _ => (text, colour),
+    match doubt_words(sim) {
+        Some([a, b]) => (format!("{text}\n  {a}\n  {b}"), colour),
+        None => (text, colour),
     }
+}
+
+/// What a decided run's doubt means, in two short halves (the panel's lines; plain mode
+/// joins them): which outcome holds and why, so a certificate beside it is not read as the
+/// last word. None when the run is certain or undecided.
+pub(crate) fn doubt_words(sim: &Sim) -> Option<[&'static str; 2]> {
+    let d = sim.doubt.filter(|d| !d.certain)?;
+    let own = sim.outcome_now();
+    Some(match d.shadow {
+        _ if own == Outcome::Running => return None,
+        Some(Outcome::Stuck) if own != Outcome::Stuck => {
+            ["but its error flips it:", "a converged run sticks"]
+        }
+        Some(Outcome::Escaped) if own != Outcome::Escaped => {
+            ["but its error flips it:", "a converged run escapes"]
+        }
+        Some(_) => ["in doubt: the run's", "error could flip it"],
+        None => ["in doubt: no second", "opinion finished"],
+    })
 }
 
 fn kv<'a>(k: &'a str, v: String, th: &Theme) -> Line<'a> {
