@@ -45,6 +45,7 @@ mod si;
 mod spin_explorer;
 mod spinup;
 mod split;
+mod stop_readouts;
 mod terminal;
 mod terminals;
 mod text;

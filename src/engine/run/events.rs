@@ -229,6 +229,10 @@ impl Run {
     /// it slips on at μ_k (Filippov).
     pub(super) fn jump(&mut self, t: f64, q: DVec2, u: DVec2, limit: Limit) {
         let frame = self.settings.frame;
+        // A stop's last stretch is read off its closed form ([`Run::state_at`]).
+        let from = self.table_y();
+        self.stop_from = (u == DVec2::ZERO && from.w != DVec2::ZERO && from.p.length() < 1.0)
+            .then_some((self.stepper.t, from));
         let tau = self.stepper.t + t;
         let r = rotate(q, tau);
         let to = State {

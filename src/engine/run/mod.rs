@@ -7,7 +7,8 @@ use super::method::Settings;
 use super::model::{Initial, State, Y};
 use super::stepper::{Cost, Segment, StepError, Stepper, too_short};
 use super::stokes::Stokes;
-use super::stop::{frozen_stop, frozen_stop_error, radial_launch};
+use super::model::{rotate, zcross};
+use super::stop::{frozen_at, frozen_stop, frozen_stop_error, radial_launch};
 use crate::engine::error::Error;
 use glam::DVec2;
 
@@ -78,6 +79,9 @@ pub struct Run {
     /// The largest error a closed-form stop of this run may have made in its time (see
     /// [`Run::snap_bound`]).
     snap_bound: f64,
+    /// The start (τ, table-frame point) of the latest step when it was a closed-form stop
+    /// inside ξ = 1: the state inside it is the closed form's ([`super::stop::frozen_at`]).
+    stop_from: Option<(f64, Y)>,
     /// A second opinion ([`Run::checking`]): it must not share the run's closed forms, so it
     /// takes no [`frozen_stop`] and stops in closed form only within a bound that holds
     /// whichever way û turns; it holds |u| to its relative accuracy near the rim, takes the
@@ -117,6 +121,7 @@ impl Run {
             table: None,
             checking: false,
             snap_bound: 0.0,
+            stop_from: None,
             stepper,
             stokes: settings
                 .stokes()
@@ -251,6 +256,15 @@ impl Run {
         match (self.status, self.last) {
             (Status::Stuck { tau: ts, q }, _) if tau >= ts => Ok(State::riding(q, tau)),
             (_, Some(seg)) if tau >= seg.t0 && tau <= seg.t1() => {
+                if let Some((_, y)) = self.stop_from.filter(|s| s.0 == seg.t0 && seg.h > 0.0) {
+                    let (q, u) = frozen_at(y.p, y.w, (seg.t1() - tau) / seg.h);
+                    let r = rotate(q, tau);
+                    return Ok(State {
+                        tau,
+                        r,
+                        v: rotate(u, tau) + zcross(r),
+                    });
+                }
                 Ok(self.settings.frame.to_state(seg.at(tau), tau))
             }
             _ if tau == now => Ok(self.state()),
