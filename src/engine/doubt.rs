@@ -4,28 +4,18 @@
 //! Near the saddle H = ½(|u|² − (1 − ξ)²) is nearly conserved and its final value is a smooth
 //! function of the release ([`saddle_h`]): −½(1 − ξ_rest)² for a stuck run, ½|u|² where an
 //! escaping one crosses ξ = 1. Its size is the outcome's margin. The run's error in it is
-//! measured against a second opinion ([`second_opinion`]): the higher-order method, dop853
-//! (its own tableau, error estimates and controller), at 0.3× the run's tolerance (at least
-//! 1e-14), in the *other* frame, so that even at the tightest tolerance it is an independent
-//! formulation and not the run again, and with none of the run's closed forms
-//! ([`Run::checking`]): what the run took in closed form, it integrates, down to a stop it can
-//! bound within its own tolerance. The outcome is certain when the second opinion agrees and
-//! the difference is well inside the margin. `certain` covers the outcome only: where and when
-//! it ended are given with their measured differences from the second opinion
-//! ([`Doubt::tau_error`], [`Doubt::q_error`]), which near a threshold can be large while the
-//! outcome is sure.
-//!
-//! It costs about what the run does (the bench's `check ÷ run` rows: at most 1.3×, on the
-//! escape speed's bracket ends, the rest cases and forty stops at the rim). It used to be dp54
-//! at 1000× the run's tolerance, nine to seventeen times the run: an eighth-order method a few
-//! times tighter is far enough below the run's error (on the bench's 100 rest cases and forty
-//! stops at the rim, for dp54 and dop853 runs at tol 1e-7, 1e-10 and 1e-12, its worst error in
-//! H is a fourteenth of the run's worst, its error in τ a median 1/50 of the run's, and twice
-//! the τ error it states covered the converged stop time on 797 of 798: on case B checking a
-//! dop853 run at 1e-10, dop853 in the table frame is as far off as the run, the same way,
-//! 1.7e-11 and 1.5e-11); explicit steps under the stop-ahead cap take the stretch before a
-//! stop where they are stable, implicit ones reaching farther than the run's elsewhere, and it
-//! pays for no dense output it does not read ([`Run::checking`]).
+//! measured against a second opinion that shares nothing with the run: its own formulation,
+//! Sundman time in rim distance ([`sundman`]: no Cartesian state, no frame, no explicit tableau,
+//! no closed-form stop but its bounded tail), at 1e-3 of the run's tolerance and again 10×
+//! looser to measure its own error. Where that form does not hold (at rest on the table, the
+//! paper's raw scheme) the Cartesian check runs ([`second_opinion`]): dop853 at 0.3× the run's
+//! tolerance in the *other* frame, with none of the run's closed forms ([`Run::checking`]).
+//! The outcome is certain when the second opinion agrees and the difference is well inside the
+//! margin. `certain` covers the outcome only: when and where it ended are given with their
+//! errors ([`Doubt::tau_error`], [`Doubt::q_error`]), which near a threshold can be large while
+//! the outcome is sure. With the Sundman form the τ error is a bound (the difference plus the
+//! second opinion's own error): it covers the run's end game and its floating-point floor near
+//! the saddle, which the second opinion does not share (docs/numerics.md, *Honest outcomes*).
 
 use super::State;
 use super::method::{Scheme, Settings, TOL_RANGE};
@@ -51,10 +41,11 @@ pub struct Doubt {
     /// The second opinion's outcome (`None`: it could not finish within [`SHADOW_BUDGET`]).
     pub shadow: Option<Outcome>,
     /// |Δτ| and |Δq| (table frame) between the run's deciding state (the stop, the escape
-    /// certificate, or τ-max) and the second opinion's: the measured error of the run's time and
-    /// place, to within the second opinion's own (a few times smaller); |Δτ| at least what a
-    /// closed-form stop of either may have dropped ([`Run::snap_bound`]). Infinite when the two
-    /// end differently.
+    /// certificate, or τ-max) and the second opinion's. With the Sundman form each is a bound,
+    /// the difference plus the second opinion's own error (its difference from itself 10×
+    /// looser, and its tail's bound); with the Cartesian check the measured difference, |Δτ| at
+    /// least what a closed-form stop of either may have dropped ([`Run::snap_bound`]).
+    /// Infinite when the two end differently.
     pub tau_error: f64,
     pub q_error: f64,
     /// How the second opinion ran, and its right-hand-side evaluations.

@@ -283,7 +283,7 @@ pub fn fate(
 ) -> Option<Ending> {
     let u0 = initial.u0();
     let s0 = u0.length();
-    if initial.frictionless || !(s0 > 0.0) || initial.xi0 < RHO_MIN {
+    if initial.frictionless || s0 == 0.0 || !s0.is_finite() || initial.xi0 < RHO_MIN {
         return None;
     }
     let mut p = Point {

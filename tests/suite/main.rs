@@ -49,4 +49,5 @@ mod stop_readouts;
 mod terminal;
 mod terminals;
 mod text;
+mod tolerance;
 mod validation;

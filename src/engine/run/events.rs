@@ -135,6 +135,7 @@ impl Run {
         if let Some(info) = &mut self.last_step {
             info.err_ratio = Some(step.err);
         }
+        self.end_game.implicit_error += step.err * tol;
         self.table = Some((self.stepper.t, y1, c1));
         Ok(())
     }
@@ -248,6 +249,16 @@ impl Run {
             &mut self.cost,
         );
         self.last = Some(seg);
+        match limit {
+            Limit::Implicit => {
+                self.end_game.implicit_steps += 1;
+                self.end_game.implicit_tau += t;
+            }
+            _ => {
+                self.end_game.closed_steps += 1;
+                self.end_game.closed_tau += t;
+            }
+        }
         self.last_step = Some(StepInfo {
             t0: seg.t0,
             h: t,
