@@ -243,3 +243,27 @@ fn on_the_saddle_the_stop_time_states_what_it_cannot_resolve() {
     }
     assert!(lo <= hi, "the stated bars share no point: {lo:e} > {hi:e}");
 }
+
+/// A run says what its end game contributed (`Run::end_game`): near the rim rk4 at dt 1e-3
+/// reaches the stop in implicit steps and a closed-form stop, bounded by dt²; far from any stop
+/// dp54 takes neither.
+#[test]
+fn a_run_says_what_its_end_game_set() {
+    let rk4 = Settings {
+        scheme: Scheme::Rk4 { dt: 1e-3 },
+        ..Settings::default()
+    };
+    let mut run = Run::new(Initial::velocity(0.9999, 0.0, 9.9e-5), rk4).unwrap();
+    assert_eq!(run.run(TAU_MAX, true).unwrap(), Outcome::Stuck);
+    let e = run.end_game();
+    assert!(
+        e.used() && e.implicit_steps > 0 && e.closed_steps == 1,
+        "{e:?}"
+    );
+    assert!(e.implicit_tau > 1.0 && e.implicit_tau < run.tau(), "{e:?}");
+    assert!(e.closed_bound > 0.0 && e.closed_bound <= 1e-6, "{e:?}");
+    assert!(e.implicit_error > 0.0 && e.implicit_error < 1e-4, "{e:?}");
+    let mut far = Run::new(Initial::velocity(0.5, 0.0, 0.6), Settings::dp54(1e-10)).unwrap();
+    far.run(1.0, false).unwrap();
+    assert!(!far.end_game().used(), "{:?}", far.end_game());
+}
