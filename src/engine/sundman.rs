@@ -362,3 +362,49 @@ pub fn fate(
     }
     None
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::engine::{Release, Run, Settings};
+
+    /// A converged Cartesian run (the engine's own equations, dp54 at 1e-13, no closed-form
+    /// stop): its end and its time.
+    fn converged(i: Initial) -> (Outcome, State) {
+        let mut run = Run::checking(i, Settings::dp54(1e-13)).unwrap();
+        run.finish(200.0).unwrap()
+    }
+
+    #[test]
+    fn it_ends_where_a_converged_run_does() {
+        // Cases A and B stop; v0 0.7 from ξ0 0.5 escapes.
+        for (xi0, phi, v0) in [
+            (0.5, std::f64::consts::PI, 1.0),
+            (0.5, 0.0, 0.6),
+            (0.5, 0.0, 0.7),
+        ] {
+            let i = Initial::velocity(xi0, phi, v0);
+            let e = fate(&i, 1.0, 1e-13, 200.0, 200_000).unwrap();
+            let (o, s) = converged(i);
+            assert_eq!(e.outcome, o, "{i:?}");
+            assert!(
+                (e.state.tau - s.tau).abs() < 1e-10,
+                "{i:?}: {} {}",
+                e.state.tau,
+                s.tau
+            );
+            assert!((e.state.r - s.r).length() < 1e-10, "{i:?}");
+        }
+    }
+
+    #[test]
+    fn it_answers_only_where_it_holds() {
+        let rest = Initial::at_rest(1.2, Release::TableRest);
+        assert!(fate(&rest, 1.0, 1e-10, 10.0, 1000).is_none());
+        let centre = Initial::velocity(0.01, 0.0, 0.1);
+        assert!(fate(&centre, 1.0, 1e-10, 10.0, 1000).is_none());
+        // Out of steps: no answer rather than a guess.
+        let b = Initial::velocity(0.5, 0.0, 0.6);
+        assert!(fate(&b, 1.0, 1e-10, 200.0, 3).is_none());
+    }
+}
