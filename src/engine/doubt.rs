@@ -4,34 +4,25 @@
 //! Near the saddle H = ½(|u|² − (1 − ξ)²) is nearly conserved and its final value is a smooth
 //! function of the release ([`saddle_h`]): −½(1 − ξ_rest)² for a stuck run, ½|u|² where an
 //! escaping one crosses ξ = 1. Its size is the outcome's margin. The run's error in it is
-//! measured against a second opinion ([`second_opinion`]): the higher-order method, dop853
-//! (its own tableau, error estimates and controller), at 0.3× the run's tolerance (at least
-//! 1e-14), in the *other* frame, so that even at the tightest tolerance it is an independent
-//! formulation and not the run again, and with none of the run's closed forms
-//! ([`Run::checking`]): what the run took in closed form, it integrates, down to a stop it can
-//! bound within its own tolerance. The outcome is certain when the second opinion agrees and
-//! the difference is well inside the margin. `certain` covers the outcome only: where and when
-//! it ended are given with their measured differences from the second opinion
-//! ([`Doubt::tau_error`], [`Doubt::q_error`]), which near a threshold can be large while the
-//! outcome is sure.
-//!
-//! It costs about what the run does (the bench's `check ÷ run` rows: at most 1.3×, on the
-//! escape speed's bracket ends, the rest cases and forty stops at the rim). It used to be dp54
-//! at 1000× the run's tolerance, nine to seventeen times the run: an eighth-order method a few
-//! times tighter is far enough below the run's error (on the bench's 100 rest cases and forty
-//! stops at the rim, for dp54 and dop853 runs at tol 1e-7, 1e-10 and 1e-12, its worst error in
-//! H is a fourteenth of the run's worst, its error in τ a median 1/50 of the run's, and twice
-//! the τ error it states covered the converged stop time on 797 of 798: on case B checking a
-//! dop853 run at 1e-10, dop853 in the table frame is as far off as the run, the same way,
-//! 1.7e-11 and 1.5e-11); explicit steps under the stop-ahead cap take the stretch before a
-//! stop where they are stable, implicit ones reaching farther than the run's elsewhere, and it
-//! pays for no dense output it does not read ([`Run::checking`]).
+//! measured against a second opinion that shares nothing with the run: its own formulation,
+//! Sundman time in rim distance ([`sundman`]: no Cartesian state, no frame, no explicit tableau,
+//! no closed-form stop but its bounded tail), at 1e-3 of the run's tolerance and again 10×
+//! looser to measure its own error. Where that form does not hold (at rest on the table, the
+//! paper's raw scheme) the Cartesian check runs ([`second_opinion`]): dop853 at 0.3× the run's
+//! tolerance in the *other* frame, with none of the run's closed forms ([`Run::checking`]).
+//! The outcome is certain when the second opinion agrees and the difference is well inside the
+//! margin. `certain` covers the outcome only: when and where it ended are given with their
+//! errors ([`Doubt::tau_error`], [`Doubt::q_error`]), which near a threshold can be large while
+//! the outcome is sure. With the Sundman form the τ error is a bound (the difference plus the
+//! second opinion's own error): it covers the run's end game and its floating-point floor near
+//! the saddle, which the second opinion does not share (docs/numerics.md, *Honest outcomes*).
 
 use super::State;
 use super::method::{Scheme, Settings, TOL_RANGE};
 use super::model::Frame;
 use super::run::{Outcome, Run};
 use super::saddle::saddle_h;
+use super::sundman;
 
 /// Second-opinion steps allowed: one that cannot finish within them leaves the outcome in
 /// doubt.
@@ -50,15 +41,19 @@ pub struct Doubt {
     /// The second opinion's outcome (`None`: it could not finish within [`SHADOW_BUDGET`]).
     pub shadow: Option<Outcome>,
     /// |Δτ| and |Δq| (table frame) between the run's deciding state (the stop, the escape
-    /// certificate, or τ-max) and the second opinion's: the measured error of the run's time and
-    /// place, to within the second opinion's own (a few times smaller); |Δτ| at least what a
-    /// closed-form stop of either may have dropped ([`Run::snap_bound`]). Infinite when the two
-    /// end differently.
+    /// certificate, or τ-max) and the second opinion's. With the Sundman form each is a bound,
+    /// the difference plus the second opinion's own error (its difference from itself 10×
+    /// looser, and its tail's bound); with the Cartesian check the measured difference, |Δτ| at
+    /// least what a closed-form stop of either may have dropped ([`Run::snap_bound`]).
+    /// Infinite when the two end differently.
     pub tau_error: f64,
     pub q_error: f64,
     /// How the second opinion ran, and its right-hand-side evaluations.
     pub check: Settings,
     pub check_evals: u64,
+    /// The tolerance of the Sundman-time form ([`sundman`]) when that was the second opinion;
+    /// `None` where it does not hold and `check` ran instead.
+    pub sundman: Option<f64>,
 }
 
 /// The second opinion's tolerance as a share of the run's: on the escape speed's bracket ends
@@ -87,6 +82,30 @@ pub fn second_opinion(run: &Run) -> Settings {
         frame,
         coupling: run.settings().coupling,
     }
+}
+
+/// The Sundman form's tolerance for `run`: 1e-3 of an adaptive run's (fixed-step runs:
+/// 1e-13), within [1e-14, 1e-10]. It costs a few milliseconds at most.
+pub fn sundman_tol(run: &Run) -> f64 {
+    let s = run.settings();
+    if s.method().adaptive() {
+        (1e-3 * s.scheme.knob()).clamp(TOL_RANGE.0, 1e-10)
+    } else {
+        1e-13
+    }
+}
+
+/// The second opinion in Sundman time ([`sundman::fate`]) at [`sundman_tol`] and 10× looser,
+/// when the form holds for both and they end alike; `None` otherwise (the Cartesian check runs).
+fn sundman_pair(run: &Run, limit: f64) -> Option<(sundman::Ending, sundman::Ending)> {
+    if run.settings().stokes().is_some() || !run.settings().method().stick_events() {
+        return None;
+    }
+    let tol = sundman_tol(run);
+    let hold = run.settings().hold();
+    let a = sundman::fate(&run.initial(), hold, tol, limit, SHADOW_BUDGET)?;
+    let b = sundman::fate(&run.initial(), hold, 10.0 * tol, limit, SHADOW_BUDGET)?;
+    (a.outcome == b.outcome).then_some((a, b))
 }
 
 /// The state at which a run's outcome was decided: the stop, the escape certificate, or its
@@ -130,6 +149,7 @@ pub fn doubt(run: &Run, tau_max: f64) -> Doubt {
             q_error: 0.0,
             check,
             check_evals: 0,
+            sundman: None,
         };
     }
     // A stuck or escaping run near the saddle may take the second opinion longer to decide.
@@ -137,6 +157,31 @@ pub fn doubt(run: &Run, tau_max: f64) -> Doubt {
         Outcome::Running => tau_max,
         _ => (2.0 * end.tau + 10.0).min(tau_max.max(end.tau)),
     };
+    let judge = |shadow: &State| measure(shadow, outside, hold) - measure(&end, outside, hold);
+    if let Some((a, b)) = sundman_pair(run, limit) {
+        // Its own error: the same formulation 10× looser differs from it by more than it errs.
+        let own_tau = (a.state.tau - b.state.tau).abs() + a.tail.max(b.tail);
+        let error = judge(&a.state).abs() + (judge(&a.state) - judge(&b.state)).abs();
+        let (tau_error, q_error) = if a.outcome == own {
+            (
+                (a.state.tau - end.tau).abs() + own_tau,
+                (a.state.q() - end.q()).length() + (a.state.q() - b.state.q()).length(),
+            )
+        } else {
+            (f64::INFINITY, f64::INFINITY)
+        };
+        return Doubt {
+            certain: a.outcome == own && (own == Outcome::Running || error < SHARE * margin),
+            margin,
+            error,
+            shadow: Some(a.outcome),
+            tau_error,
+            q_error,
+            check,
+            check_evals: a.evals + b.evals,
+            sundman: Some(sundman_tol(run)),
+        };
+    }
     let mut check_evals = 0;
     let shadow = Run::checking(run.initial(), check).ok().and_then(|mut s| {
         let o = s.run(limit, true);
@@ -165,6 +210,7 @@ pub fn doubt(run: &Run, tau_max: f64) -> Doubt {
                 q_error,
                 check,
                 check_evals,
+                sundman: None,
             }
         }
         None => Doubt {
@@ -176,6 +222,7 @@ pub fn doubt(run: &Run, tau_max: f64) -> Doubt {
             q_error: f64::INFINITY,
             check,
             check_evals,
+            sundman: None,
         },
     }
 }

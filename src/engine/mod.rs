@@ -19,6 +19,7 @@ pub mod spinup;
 pub mod stepper;
 pub mod stokes;
 pub mod stop;
+pub mod sundman;
 pub mod track;
 pub mod units;
 pub mod work;

@@ -44,6 +44,59 @@ pub fn frozen_stop(q: DVec2, u: DVec2) -> (f64, DVec2) {
     (t + coriolis, f * along + zcross(f) * across)
 }
 
+/// The particle inside a closed-form stop from table-frame `q` at `u` (|q| = k < 1), the
+/// share `left` ∈ [0, 1] of its time still to go: the table-frame position and velocity, on
+/// the frozen solution of [`frozen_stop`] (Coriolis, which turns û by 2 per unit time and does
+/// no work, set aside). In Sundman time σ, x = tan(α/2) = x0 e^{−kσ} and
+/// |u| = s e^{−(1−k)σ}(1 + x²)/(1 + x0²), so the time still to go,
+/// |u|[a/(1−k) + b/(1+k)], falls monotonically in σ: σ is found by bisection. The position is the
+/// stop's less the displacement still to come. What the readouts inside a stop's last stretch
+/// show: a cubic through its ends, the stop's slope there 0, put |u| 30 % low (issue 42).
+pub fn frozen_at(q: DVec2, u: DVec2, left: f64) -> (DVec2, DVec2) {
+    let s = u.length();
+    let k = q.length();
+    let e = u / s;
+    let f = if k > 0.0 { q / k } else { e };
+    let alpha0 = f.perp_dot(e).atan2(f.dot(e));
+    let (_, to_stop) = frozen_stop(q, u);
+    let rest = q + to_stop;
+    let at = |sigma: f64| {
+        if alpha0.abs() > std::f64::consts::PI - 1e-9 {
+            // Straight in: û stays put (a turn off it grows only at second order here).
+            return (alpha0, s * (-(1.0 + k) * sigma).exp());
+        }
+        let x0 = (0.5 * alpha0).tan();
+        let x = x0 * (-k * sigma).exp();
+        let speed = s * (-(1.0 - k) * sigma).exp() * (1.0 + x * x) / (1.0 + x0 * x0);
+        (2.0 * x.atan(), speed)
+    };
+    let to_go = |sigma: f64| {
+        let (a, speed) = at(sigma);
+        let c = a.cos();
+        speed * (0.5 * (1.0 + c) / (1.0 - k) + 0.5 * (1.0 - c) / (1.0 + k))
+    };
+    let target = left.clamp(0.0, 1.0) * to_go(0.0);
+    if target <= 0.0 {
+        return (rest, DVec2::ZERO);
+    }
+    let mut hi = 1.0;
+    while to_go(hi) > target && hi < 1e6 {
+        hi *= 2.0;
+    }
+    let mut lo = 0.0;
+    for _ in 0..100 {
+        let mid = 0.5 * (lo + hi);
+        if to_go(mid) > target {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    let (a, speed) = at(0.5 * (lo + hi));
+    let v = DVec2::from_angle(a).rotate(f) * speed;
+    (rest - frozen_stop(q, v).1, v)
+}
+
 /// A bound on the error of [`frozen_stop`] in both the stop time and the rest position,
 /// measured against converged runs over k ∈ [0, 0.95] and every α (tests below): the
 /// neglected terms are the second-order Coriolis turn and the drift of q on the way.

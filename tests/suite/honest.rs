@@ -240,16 +240,22 @@ fn the_explorer_shows_phi_as_the_paper_does() {
 }
 
 /// The second opinion is another formulation, even at the tightest tolerance (where a tighter
-/// run in the same frame would be the run itself); `--no-check` skips it and then claims
-/// nothing.
+/// run in the same form would be the run itself): Sundman time in rim distance wherever that
+/// holds, else dop853 in the other frame; `--no-check` skips it and then claims nothing.
 #[test]
 fn the_second_opinion_is_independent_and_can_be_skipped() {
-    let v = json(&["run", "--v0", "0.6", "--tol", "1e-14", "--json"]);
-    assert_eq!(v["certain"], true);
+    for frame in ["lab", "table"] {
+        let v = json(&[
+            "run", "--v0", "0.6", "--tol", "1e-14", "--frame", frame, "--json",
+        ]);
+        assert_eq!(v["certain"], true);
+        assert_eq!(v["check"]["method"], "sundman-radau", "{v}");
+        assert_eq!(v["check"]["tol"], 1e-14);
+    }
+    // At rest on the table outside ξ = 1 (|u| = 0: no Sundman time): the Cartesian check.
+    let v = json(&["run", "--xi0", "1.2", "--release", "table-rest", "--json"]);
+    assert_eq!(v["check"]["method"], "dop853", "{v}");
     assert_eq!(v["check"]["frame"], "table");
-    assert_eq!(v["check"]["tol"], 1e-14);
-    let v = json(&["run", "--v0", "0.6", "--frame", "table", "--json"]);
-    assert_eq!(v["check"]["frame"], "lab");
     let v = json(&["run", "--v0", "0.6", "--json", "--no-check"]);
     assert!(
         v.get("certain").is_none() && v.get("check").is_none(),

@@ -199,7 +199,9 @@ impl BodyReport {
 /// frame, and the differences it measured (null where the two end differently).
 #[derive(Debug, Serialize)]
 pub struct CheckReport {
-    pub method: Method,
+    /// The second opinion's method: `sundman-radau` (its own form, `engine::sundman`) or the
+    /// Cartesian run's.
+    pub method: String,
     pub tol: Option<f64>,
     pub frame: Frame,
     pub outcome: Option<Outcome>,
@@ -232,9 +234,16 @@ fn finite(x: f64) -> Option<f64> {
 impl CheckReport {
     fn new(d: &Doubt) -> CheckReport {
         CheckReport {
-            method: d.check.method(),
-            tol: d.check.scheme.tol(),
-            frame: d.check.frame,
+            method: match d.sundman {
+                Some(_) => "sundman-radau".to_string(),
+                None => d.check.method().to_string(),
+            },
+            tol: d.sundman.or(d.check.scheme.tol()),
+            frame: if d.sundman.is_some() {
+                Frame::Table
+            } else {
+                d.check.frame
+            },
             outcome: d.shadow,
             margin: d.margin,
             h_error: finite(d.error),
@@ -245,6 +254,9 @@ impl CheckReport {
 
     fn who(&self) -> String {
         let tol = self.tol.map_or(String::new(), |t| format!(" tol={t:.0e}"));
+        if self.method == "sundman-radau" {
+            return format!("Radau IIA{tol} in Sundman time and rim distance");
+        }
         format!("{}{tol} in the {} frame", self.method, self.frame)
     }
 }

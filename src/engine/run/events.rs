@@ -135,6 +135,7 @@ impl Run {
         if let Some(info) = &mut self.last_step {
             info.err_ratio = Some(step.err);
         }
+        self.end_game.implicit_error += step.err * tol;
         self.table = Some((self.stepper.t, y1, c1));
         Ok(())
     }
@@ -229,6 +230,10 @@ impl Run {
     /// it slips on at μ_k (Filippov).
     pub(super) fn jump(&mut self, t: f64, q: DVec2, u: DVec2, limit: Limit) {
         let frame = self.settings.frame;
+        // A stop's last stretch is read off its closed form ([`Run::state_at`]).
+        let from = self.table_y();
+        self.stop_from = (u == DVec2::ZERO && from.w != DVec2::ZERO && from.p.length() < 1.0)
+            .then_some((self.stepper.t, from));
         let tau = self.stepper.t + t;
         let r = rotate(q, tau);
         let to = State {
@@ -244,6 +249,16 @@ impl Run {
             &mut self.cost,
         );
         self.last = Some(seg);
+        match limit {
+            Limit::Implicit => {
+                self.end_game.implicit_steps += 1;
+                self.end_game.implicit_tau += t;
+            }
+            _ => {
+                self.end_game.closed_steps += 1;
+                self.end_game.closed_tau += t;
+            }
+        }
         self.last_step = Some(StepInfo {
             t0: seg.t0,
             h: t,

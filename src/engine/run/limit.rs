@@ -1,5 +1,7 @@
 //! What a step did, for the explorer's integrator step mode: where it left the run, what
-//! bounded it, its length and error.
+//! bounded it, its length and error; what the end game near a stop contributed.
+
+use serde::Serialize;
 
 /// Where a step left the run (as diffsol's `step() -> StopReason`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -63,4 +65,29 @@ pub struct StepInfo {
     pub limit: Limit,
     pub err_ratio: Option<f64>,
     pub rejected: u32,
+}
+
+/// What set a run's result besides its method: the implicit steps (Radau IIA) it took before a
+/// stop and the closed forms it took (stops, launches from rest). A fixed-step method's result
+/// near a stop is the end game's where these are used; the bench labels its rows by them.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
+pub struct EndGame {
+    /// Implicit steps, the τ they covered, and the sum of their local error estimates (each its
+    /// error ratio times the tolerance it was held to): what they may have dropped, before any
+    /// growth along the run.
+    pub implicit_steps: u64,
+    pub implicit_tau: f64,
+    pub implicit_error: f64,
+    /// Closed-form stretches, the τ they covered, and the bound on a closed-form stop's time
+    /// error (`Run::snap_bound`).
+    pub closed_steps: u64,
+    pub closed_tau: f64,
+    pub closed_bound: f64,
+}
+
+impl EndGame {
+    /// Whether any of the run's result is the end game's rather than its method's.
+    pub fn used(&self) -> bool {
+        self.implicit_steps > 0 || self.closed_steps > 0
+    }
 }

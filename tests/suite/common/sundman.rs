@@ -101,3 +101,58 @@ pub fn fate(xi0: f64, phi: f64, v0: f64, tol: f64, max_steps: u64) -> Fate {
     }
     Fate::Unknown
 }
+
+/// The speed |u| and radius ξ at time `tau` (before any stop) at local tolerance `tol`: the
+/// step that passes `tau` is taken again shorter, by bisection on its length, to land on it.
+pub fn at(xi0: f64, phi: f64, v0: f64, tol: f64, tau: f64) -> Option<(f64, f64)> {
+    let mut x: V = [xi0, 0.0, v0 * phi.cos(), v0 * phi.sin(), 0.0];
+    let mut c: V = [0.0; 5];
+    let mut h: f64 = 1e-3;
+    let add = |x: &V, c: &V, d: &V| {
+        let (mut x, mut c) = (*x, *c);
+        kahan(&mut x, &mut c, d);
+        (x, c)
+    };
+    for _ in 0..20_000_000u64 {
+        let s = x[2].hypot(x[3]);
+        let full = rk4(&x, h);
+        let d1 = rk4(&x, 0.5 * h);
+        let (mid, cm) = add(&x, &c, &d1);
+        let d2 = rk4(&mid, 0.5 * h);
+        let half: V = std::array::from_fn(|i| d1[i] + d2[i]);
+        let scale = |i: usize| match i {
+            0 | 1 => 1.0 + x[i].abs(),
+            2 | 3 => s,
+            _ => 1.0 + x[4],
+        };
+        let err = (0..5)
+            .map(|i| (half[i] - full[i]).abs() / 15.0 / (tol * scale(i)))
+            .fold(0.0, f64::max);
+        if err <= 1.0 {
+            let (end, ce) = add(&mid, &cm, &d2);
+            if end[4] >= tau {
+                // Land on τ: steps of h/n from x, n doubling, bisected on the length.
+                let (mut lo, mut hi) = (0.0, h);
+                let mut land = end;
+                for _ in 0..60 {
+                    let m = 0.5 * (lo + hi);
+                    let (mut y, mut cy) = (x, c);
+                    let n = 64;
+                    for _ in 0..n {
+                        let d = rk4(&y, m / n as f64);
+                        kahan(&mut y, &mut cy, &d);
+                    }
+                    if y[4] >= tau {
+                        (hi, land) = (m, y);
+                    } else {
+                        lo = m;
+                    }
+                }
+                return Some((land[2].hypot(land[3]), land[0].hypot(land[1])));
+            }
+            (x, c) = (end, ce);
+        }
+        h = (h * (0.9 * err.max(1e-12).powf(-0.2)).clamp(0.2, 4.0)).min(2.0);
+    }
+    None
+}
