@@ -101,7 +101,10 @@ pub async fn serve(tcp: tokio::net::TcpStream, shared: Arc<Shared>, pass: Pass) 
                     return;
                 }
             },
-            () = go.notified() => "too many connections waiting: try again",
+            () = go.notified() => match now {
+                Stage::Knocking => "too many connections waiting to log in: try again",
+                _ => "too many connections logged in without an explorer: closed",
+            },
             () = tokio::time::sleep_until(until.into()) => why,
         };
         let _ = handle
