@@ -420,6 +420,21 @@ fn clap_exit(e: &clap::Error) -> ExitCode {
     }
 }
 
+/// An error's lines cut at a screen's worth: a message may quote what it refuses (a key
+/// script's line of a megabyte was echoed whole).
+fn cut_long_lines(message: &str) -> String {
+    const KEEP: usize = 300;
+    let cut = |line: &str| {
+        let n = line.chars().count();
+        if n <= KEEP {
+            return line.to_string();
+        }
+        let kept: String = line.chars().take(KEEP).collect();
+        format!("{kept}… ({n} characters in all)")
+    };
+    message.split('\n').map(cut).collect::<Vec<_>>().join("\n")
+}
+
 /// Entry point of the binary.
 pub fn main() -> ExitCode {
     let cli = match Cli::try_parse() {
@@ -455,7 +470,7 @@ pub fn main() -> ExitCode {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
             let code = e.exit_code();
-            let m = crate::files::escape_controls(&as_typed(e));
+            let m = cut_long_lines(&crate::files::escape_controls(&as_typed(e)));
             let _ = writeln!(std::io::stderr(), "error: {m}");
             ExitCode::from(code)
         }
