@@ -47,9 +47,12 @@ pub struct Limits {
     /// A connection in without an explorer this long (it asked for no shell, or its explorer
     /// ended) is closed.
     pub shell_grace: Duration,
-    /// Connections not in at once, in all and from one address (apart from the class's).
-    pub waiting: usize,
-    pub waiting_per_address: usize,
+    /// Connections not in at once, in all (None: 100, or the class's size and 16 more if
+    /// larger) and from one address (None: the class's size and 16 more), apart from the
+    /// class's: a class behind one address (a school's NAT), all typing the passphrase at
+    /// once, is never turned away.
+    pub waiting: Option<usize>,
+    pub waiting_per_address: Option<usize>,
     /// A client that takes no bytes this long (its window and the socket full) is closed.
     pub stall: Duration,
 }
@@ -64,8 +67,8 @@ impl Default for Limits {
             max_rows: 150,
             handshake: Duration::from_secs(30),
             shell_grace: Duration::from_secs(20),
-            waiting: 100,
-            waiting_per_address: 10,
+            waiting: None,
+            waiting_per_address: None,
             stall: Duration::from_secs(60),
         }
     }
@@ -294,8 +297,8 @@ pub fn start(options: Options) -> std::io::Result<Running> {
     let config = Arc::new(conn::config(&options));
     let l = options.limits;
     let door = Arc::new(door::Door::new(door::Bounds {
-        waiting: l.waiting,
-        per_address: l.waiting_per_address,
+        waiting: l.waiting.unwrap_or((l.sessions + 16).max(100)),
+        per_address: l.waiting_per_address.unwrap_or(l.sessions + 16),
         idle: l.sessions + 16,
     }));
     let shared = Arc::new(Shared {

@@ -40,12 +40,13 @@ pub struct ServeArgs {
     #[arg(long, default_value_t = Limits::default().per_minute, value_name = "N", value_parser = at_least_1())]
     pub per_minute: usize,
     /// Connections not yet logged in, in all (past it, the oldest of the address holding the
-    /// most makes room for a newcomer).
-    #[arg(long, default_value_t = Limits::default().waiting, value_name = "N", value_parser = at_least_1())]
-    pub max_waiting: usize,
-    /// Connections not yet logged in from one address.
-    #[arg(long, default_value_t = Limits::default().waiting_per_address, value_name = "N", value_parser = at_least_1())]
-    pub max_waiting_per_address: usize,
+    /// most makes room for a newcomer). Default: 100, or --max-sessions + 16 if larger.
+    #[arg(long, value_name = "N", value_parser = at_least_1())]
+    pub max_waiting: Option<usize>,
+    /// Connections not yet logged in from one address. Default: --max-sessions + 16 (a class
+    /// behind one address connects at once); lower it when students have addresses of their own.
+    #[arg(long, value_name = "N", value_parser = at_least_1())]
+    pub max_waiting_per_address: Option<usize>,
     /// Seconds a connection has to log in.
     #[arg(long, default_value_t = Limits::default().handshake.as_secs(), value_name = "SECONDS", value_parser = clap::value_parser!(u64).range(1..))]
     pub login_grace: u64,
