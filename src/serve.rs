@@ -4,13 +4,16 @@
 //! use, drawn at the client's size into the channel; nothing else is served (no command, no
 //! SFTP, no forwarding: `conn`). A presenter leads: followers apply the presenter's keys,
 //! mouse actions and ticks, not its frames. Guests write no file on the server. Limits bound what any
-//! client can cost: sessions, connections per address per minute, idle time, terminal size,
-//! a stalled reader, the handshake's time, and the analysis work (on as many threads at once
-//! as there are cores).
+//! client can cost: sessions, connections per address per minute, connections not logged in
+//! (per address and in all, apart from the class: `door`), the time to log in and then to ask
+//! for a shell, idle time, terminal size, a stalled reader, and the analysis work (on as many
+//! threads at once as there are cores).
 
 mod auth;
+mod class;
 pub mod client;
 pub mod conn;
+mod door;
 pub mod explorer;
 pub mod keys;
 mod out;
@@ -18,8 +21,7 @@ mod screen;
 
 pub use auth::{authorized_keys, fingerprint, host_key, host_key_path, passphrase};
 
-use crate::app::lesson::Tally;
-use crate::app::{Action, App, Chord};
+use crate::app::{Action, Chord};
 use russh::keys::{PrivateKey, PublicKey};
 use std::collections::{HashMap, VecDeque};
 use std::net::{IpAddr, SocketAddr};
@@ -42,6 +44,15 @@ pub struct Limits {
     pub max_rows: u16,
     /// A connection not in (authenticated) by then is closed.
     pub handshake: Duration,
+    /// A connection in without an explorer this long (it asked for no shell, or its explorer
+    /// ended) is closed.
+    pub shell_grace: Duration,
+    /// Connections not in at once, in all (None: 100, or the class's size and 16 more if
+    /// larger) and from one address (None: the class's size and 16 more), apart from the
+    /// class's: a class behind one address (a school's NAT), all typing the passphrase at
+    /// once, is never turned away.
+    pub waiting: Option<usize>,
+    pub waiting_per_address: Option<usize>,
     /// A client that takes no bytes this long (its window and the socket full) is closed.
     pub stall: Duration,
 }
@@ -55,6 +66,9 @@ impl Default for Limits {
             max_cols: 400,
             max_rows: 150,
             handshake: Duration::from_secs(30),
+            shell_grace: Duration::from_secs(20),
+            waiting: None,
+            waiting_per_address: None,
             stall: Duration::from_secs(60),
         }
     }
@@ -88,7 +102,8 @@ pub struct Lesson {
 /// To a session's thread: from its connection, its writer, or the class.
 pub enum In {
     Data(conn::Queued),
-    Resize(u16, u16),
+    /// The client's window changed (its latest size waits in [`screen::Window`]).
+    Resize,
     /// The channel took the last frame (a copy): its buffer comes back, to be drawn into
     /// again and freed on the session's own thread. glibc gives a thread's arena back to the
     /// system only above its last chunk in use, and a buffer another thread frees waits in
@@ -100,9 +115,9 @@ pub enum In {
     Lead(Lead),
     /// (To the presenter.) This session asks to follow: send it the class.
     Join(u64),
-    /// (To a follower.) The class as it is now, its lesson's place included; what it is sent
-    /// next applies to this.
-    Class(Box<App>, Option<crate::lesson::Driver>),
+    /// (To a follower.) The class as it is now, its lesson's place included, is waiting to be
+    /// taken ([`Shared::take_class`]); what it is sent next applies to that.
+    Class,
     /// (To a follower.) The presenter left.
     Unled,
     /// (To the presenter.) A follower answered its question: the tally changed.
@@ -163,24 +178,13 @@ fn lock<T>(m: &Mutex<T>) -> MutexGuard<'_, T> {
     m.lock().unwrap_or_else(|e| e.into_inner())
 }
 
-/// The class: who presents, who follows, and their answers to the presenter's question.
+/// Work done by all sessions, counted: what a client made the server do.
 #[derive(Default)]
-struct Class {
-    presenter: Option<u64>,
-    followers: Vec<u64>,
-    poll: Poll,
-}
-
-/// The followers' own answers to the question on the presenter's screen.
-#[derive(Default)]
-struct Poll {
-    /// Which question (the presenter's count of questions asked).
-    question: u32,
-    /// Whether it still takes answers: until the presenter answers it and goes on.
-    open: bool,
-    /// By session; the first answer stands. A follower who leaves or steps out is not
-    /// counted while out (its answer is kept, should it rejoin before the question closes).
-    answers: HashMap<u64, bool>,
+pub struct Counts {
+    /// Frames drawn.
+    pub frames: AtomicU64,
+    /// Sizes applied to a session (each lays its screen out again).
+    pub layouts: AtomicU64,
 }
 
 /// What every connection and session shares.
@@ -189,20 +193,25 @@ pub struct Shared {
     options: Options,
     config: Arc<russh::server::Config>,
     sessions: Mutex<HashMap<u64, Sender<In>>>,
-    class: Mutex<Class>,
+    class: Mutex<class::Class>,
     next: AtomicU64,
     connections: AtomicUsize,
     /// Input bytes received and not yet taken by their session (all sessions).
     queued: AtomicUsize,
+    door: Arc<door::Door>,
+    pub counts: Counts,
     pub gate: Gate,
     stopping: AtomicBool,
 }
 
 impl Shared {
-    /// A new session's number and inbox, or None when the server is full.
+    /// A new session's number and inbox, or None when the server is full: the class at
+    /// `sessions`, with two places beyond it for the presenter (two: the teacher back while
+    /// the dropped connection lingers).
     fn enter(&self, tx: Sender<In>, presenter: bool) -> Option<u64> {
         let mut sessions = lock(&self.sessions);
-        if sessions.len() >= self.limits.sessions || self.stopping.load(Ordering::Relaxed) {
+        let room = self.limits.sessions + if presenter { 2 } else { 0 };
+        if sessions.len() >= room || self.stopping.load(Ordering::Relaxed) {
             return None;
         }
         let id = self.next.fetch_add(1, Ordering::Relaxed);
@@ -212,11 +221,11 @@ impl Shared {
         if presenter {
             let mut class = lock(&self.class);
             class.presenter = Some(id);
-            class.poll = Poll::default();
+            class.poll = class::Poll::default();
             // A presenter who takes over (the teacher back after a dropped connection) is
-            // sent the followers: each is handed this class, not left applying its keys and
-            // lesson steps to the last one's.
-            for &f in &class.followers {
+            // sent the followers, and those asking to follow: each is handed this class, not
+            // left applying its keys and lesson steps to the last one's.
+            for &f in class.followers.iter().chain(&class.joining) {
                 self.send(id, In::Join(f));
             }
         }
@@ -228,113 +237,25 @@ impl Shared {
         let mut class = lock(&self.class);
         if class.presenter == Some(id) {
             class.presenter = None;
-            class.poll = Poll::default();
-            // Followers go on from where the class was, on their own clocks.
-            for f in std::mem::take(&mut class.followers) {
+            class.poll = class::Poll::default();
+            // Followers go on from where the class was, on their own clocks; those asking to
+            // follow are told there is none.
+            let joining = std::mem::take(&mut class.joining);
+            for f in std::mem::take(&mut class.followers)
+                .into_iter()
+                .chain(joining)
+            {
                 self.send(f, In::Unled);
             }
         }
         class.followers.retain(|&f| f != id);
+        class.joining.retain(|&f| f != id);
+        class.handed.remove(&id);
     }
 
     fn send(&self, id: u64, msg: In) {
         if let Some(tx) = lock(&self.sessions).get(&id) {
             let _ = tx.send(msg);
-        }
-    }
-
-    /// Whether `id` presents.
-    fn presents(&self, id: u64) -> bool {
-        lock(&self.class).presenter == Some(id)
-    }
-
-    /// Whether a presenter other than `id` leads a class.
-    fn class_led(&self, id: u64) -> bool {
-        lock(&self.class).presenter.is_some_and(|p| p != id)
-    }
-
-    /// `id` asks to follow: the presenter sends it the class (see [`Shared::welcome`]).
-    fn join(&self, id: u64) {
-        let presenter = lock(&self.class).presenter;
-        if let Some(p) = presenter {
-            self.send(p, In::Join(id));
-        }
-    }
-
-    /// (The presenter's thread.) `follower` gets the class as it is, and from now on what
-    /// the presenter does: one lock, so nothing falls between.
-    fn welcome(&self, follower: u64, app: &App, lesson: Option<&crate::lesson::Driver>) {
-        let mut class = lock(&self.class);
-        if !class.followers.contains(&follower) {
-            class.followers.push(follower);
-        }
-        self.send(follower, In::Class(Box::new(app.clone()), lesson.cloned()));
-    }
-
-    /// (The presenter's thread.) Its question on screen now (the `asked`th, taking answers
-    /// while `open`): the followers' answers to it so far; None when `id` does not present.
-    /// A new question starts a new tally.
-    fn tally(&self, id: u64, asked: u32, open: bool) -> Option<Tally> {
-        let mut class = lock(&self.class);
-        if class.presenter != Some(id) {
-            return None;
-        }
-        let class = &mut *class;
-        if class.poll.question != asked {
-            class.poll = Poll {
-                question: asked,
-                ..Poll::default()
-            };
-        }
-        class.poll.open = open;
-        let mut t = Tally::default();
-        for f in &class.followers {
-            match class.poll.answers.get(f) {
-                Some(true) => t.yes += 1,
-                Some(false) => t.no += 1,
-                None => t.not_yet += 1,
-            }
-        }
-        Some(t)
-    }
-
-    /// (A follower's thread.) Its own answer to the `asked`th question: counted if that is
-    /// the presenter's question, still open, and `id` follows; whether it was.
-    fn answer(&self, id: u64, asked: u32, yes: bool) -> bool {
-        let mut class = lock(&self.class);
-        let p = &class.poll;
-        if !(p.open && p.question == asked && class.followers.contains(&id)) {
-            return false;
-        }
-        class.poll.answers.entry(id).or_insert(yes);
-        if let Some(presenter) = class.presenter {
-            self.send(presenter, In::Answered);
-        }
-        true
-    }
-
-    /// `id`'s answer to the `asked`th question, if it gave one in class.
-    fn answered(&self, id: u64, asked: u32) -> Option<bool> {
-        let class = lock(&self.class);
-        let p = &class.poll;
-        (p.question == asked).then(|| p.answers.get(&id).copied())?
-    }
-
-    fn unfollow(&self, id: u64) {
-        lock(&self.class).followers.retain(|&f| f != id);
-    }
-
-    /// (A session's thread.) If `id` presents, its followers do `lead` too.
-    fn lead(&self, id: u64, lead: Lead) {
-        let class = lock(&self.class);
-        if class.presenter != Some(id) {
-            return;
-        }
-        let sessions = lock(&self.sessions);
-        for f in &class.followers {
-            if let Some(tx) = sessions.get(f) {
-                let _ = tx.send(In::Lead(lead));
-            }
         }
     }
 
@@ -346,6 +267,11 @@ impl Shared {
     /// Connections open now, in or not.
     pub fn connections(&self) -> usize {
         self.connections.load(Ordering::Relaxed)
+    }
+
+    /// Connections at the door now: not in, and in without an explorer.
+    pub fn at_the_door(&self) -> (usize, usize) {
+        self.door.count()
     }
 }
 
@@ -369,6 +295,12 @@ pub fn start(options: Options) -> std::io::Result<Running> {
     listener.set_nonblocking(true)?;
     let addr = listener.local_addr()?;
     let config = Arc::new(conn::config(&options));
+    let l = options.limits;
+    let door = Arc::new(door::Door::new(door::Bounds {
+        waiting: l.waiting.unwrap_or((l.sessions + 16).max(100)),
+        per_address: l.waiting_per_address.unwrap_or(l.sessions + 16),
+        idle: l.sessions + 16,
+    }));
     let shared = Arc::new(Shared {
         limits: options.limits,
         options,
@@ -378,6 +310,8 @@ pub fn start(options: Options) -> std::io::Result<Running> {
         next: AtomicU64::new(1),
         connections: AtomicUsize::new(0),
         queued: AtomicUsize::new(0),
+        door,
+        counts: Counts::default(),
         gate: Gate::new(cores),
         stopping: AtomicBool::new(false),
     });
@@ -453,18 +387,17 @@ async fn accept(listener: tokio::net::TcpListener, shared: Arc<Shared>) {
                 continue;
             }
         };
-        let l = shared.limits;
-        // Handshakes cost too: a few more connections than sessions, no more.
-        if !recent.admit(peer.ip(), l.per_minute, Instant::now())
-            || shared.connections.load(Ordering::Relaxed) >= l.sessions + 16
-        {
-            drop(tcp);
+        // Handshakes cost too: bounded at the door, apart from the class's sessions.
+        if !recent.admit(peer.ip(), shared.limits.per_minute, Instant::now()) {
             continue;
         }
+        let Some(pass) = shared.door.arrive(peer.ip()) else {
+            continue;
+        };
         shared.connections.fetch_add(1, Ordering::Relaxed);
         let shared = Arc::clone(&shared);
         tokio::spawn(async move {
-            conn::serve(tcp, Arc::clone(&shared)).await;
+            conn::serve(tcp, Arc::clone(&shared), pass).await;
             shared.connections.fetch_sub(1, Ordering::Relaxed);
         });
     }

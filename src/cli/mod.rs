@@ -397,13 +397,15 @@ fn signalled(n: i32) -> ExitCode {
 /// on /dev/full, a closed descriptor) fails (exit 1) instead of exiting 0 with nothing said.
 /// A reader that stopped reading (`| head`) took what it wanted.
 fn clap_exit(e: &clap::Error) -> ExitCode {
-    let printed = e.print().and_then(|()| {
-        if e.use_stderr() {
-            std::io::stderr().flush()
-        } else {
-            std::io::stdout().flush()
-        }
-    });
+    // An error echoes what was typed: its control characters are escaped, as in every other
+    // message (clap's own colours go with them).
+    let printed = if e.use_stderr() {
+        let said = crate::files::escape_controls(&e.render().to_string());
+        let mut err = std::io::stderr();
+        err.write_all(said.as_bytes()).and_then(|()| err.flush())
+    } else {
+        e.print().and_then(|()| std::io::stdout().flush())
+    };
     match printed {
         Ok(()) => ExitCode::from(u8::try_from(e.exit_code()).unwrap_or(2)),
         Err(err) if err.kind() == std::io::ErrorKind::BrokenPipe => {
@@ -416,6 +418,21 @@ fn clap_exit(e: &clap::Error) -> ExitCode {
             ExitCode::from(e.exit_code())
         }
     }
+}
+
+/// An error's lines cut at a screen's worth: a message may quote what it refuses (a key
+/// script's line of a megabyte was echoed whole).
+fn cut_long_lines(message: &str) -> String {
+    const KEEP: usize = 300;
+    let cut = |line: &str| {
+        let n = line.chars().count();
+        if n <= KEEP {
+            return line.to_string();
+        }
+        let kept: String = line.chars().take(KEEP).collect();
+        format!("{kept}… ({n} characters in all)")
+    };
+    message.split('\n').map(cut).collect::<Vec<_>>().join("\n")
 }
 
 /// Entry point of the binary.
@@ -453,7 +470,7 @@ pub fn main() -> ExitCode {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
             let code = e.exit_code();
-            let m = crate::files::escape_controls(&as_typed(e));
+            let m = cut_long_lines(&crate::files::escape_controls(&as_typed(e)));
             let _ = writeln!(std::io::stderr(), "error: {m}");
             ExitCode::from(code)
         }

@@ -93,7 +93,9 @@ pub fn run(a: RunArgs) -> CmdResult {
         None => None,
     };
     let mut run = Run::new(initial, settings)?;
-    let (end, ms) = crate::bench::time_ms(|| integrate(&mut run, a.tau_max, !a.follow, csv));
+    let (end, ms) = crate::bench::time_ms(|| {
+        integrate(&mut run, a.tau_max, !a.follow, csv, a.trajectory.as_deref())
+    });
     let end = end?;
     let doubt = (!a.no_check).then(|| crate::engine::doubt::doubt(&run, a.tau_max));
     let mut report = RunReport::new(&run, &end, doubt, units);
@@ -189,15 +191,22 @@ fn run_inputs(a: &RunArgs) -> Result<(Initial, crate::engine::Settings), Error> 
 }
 
 /// Runs to its outcome (past the escape certificate unless `stop_on_escape`) or `tau_max`,
-/// writing a trajectory row per step to `csv`; returns the state that decided it.
+/// writing a trajectory row per step to `csv` (the file at `path`); returns the state that
+/// decided it.
 fn integrate(
     run: &mut Run,
     tau_max: f64,
     stop_on_escape: bool,
     mut csv: Option<BufWriter<Output>>,
+    path: Option<&std::path::Path>,
 ) -> Result<State, Error> {
     let initial = run.initial();
-    let write_err = |e: std::io::Error| Error::io("--trajectory", e);
+    // Named with its path: a full disk or a device that takes nothing says which file.
+    let what = path.map_or_else(String::new, |p| {
+        let shown = crate::files::escape_controls(&p.display().to_string());
+        format!("writing --trajectory {shown}")
+    });
+    let write_err = |e: std::io::Error| Error::io(what.clone(), e);
     let mut rows = Rows {
         initial,
         work: 0.0,

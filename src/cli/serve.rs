@@ -33,14 +33,28 @@ pub struct ServeArgs {
     /// $XDG_DATA_HOME/turntable/ssh_host_ed25519_key.
     #[arg(long, value_name = "FILE")]
     pub host_key: Option<PathBuf>,
-    /// Explorers open at once.
-    #[arg(long, default_value_t = Limits::default().sessions, value_name = "N")]
+    /// Explorers open at once (the presenter has places beyond them).
+    #[arg(long, default_value_t = Limits::default().sessions, value_name = "N", value_parser = at_least_1())]
     pub max_sessions: usize,
     /// New connections from one address in a minute.
-    #[arg(long, default_value_t = Limits::default().per_minute, value_name = "N")]
+    #[arg(long, default_value_t = Limits::default().per_minute, value_name = "N", value_parser = at_least_1())]
     pub per_minute: usize,
+    /// Connections not yet logged in, in all (past it, the oldest of the address holding the
+    /// most makes room for a newcomer). Default: 100, or --max-sessions + 16 if larger.
+    #[arg(long, value_name = "N", value_parser = at_least_1())]
+    pub max_waiting: Option<usize>,
+    /// Connections not yet logged in from one address. Default: --max-sessions + 16 (a class
+    /// behind one address connects at once); lower it when students have addresses of their own.
+    #[arg(long, value_name = "N", value_parser = at_least_1())]
+    pub max_waiting_per_address: Option<usize>,
+    /// Seconds a connection has to log in.
+    #[arg(long, default_value_t = Limits::default().handshake.as_secs(), value_name = "SECONDS", value_parser = clap::value_parser!(u64).range(1..))]
+    pub login_grace: u64,
+    /// Seconds a connection logged in has to open the explorer (and stays after it ended).
+    #[arg(long, default_value_t = Limits::default().shell_grace.as_secs(), value_name = "SECONDS", value_parser = clap::value_parser!(u64).range(1..))]
+    pub shell_grace: u64,
     /// Seconds without a key before a session is closed.
-    #[arg(long, default_value_t = Limits::default().idle.as_secs(), value_name = "SECONDS")]
+    #[arg(long, default_value_t = Limits::default().idle.as_secs(), value_name = "SECONDS", value_parser = clap::value_parser!(u64).range(1..))]
     pub idle: u64,
     /// The largest terminal drawn, WxH (a larger window is drawn at this size).
     #[arg(long, value_name = "WxH", value_parser = parse_size, default_value = "400x150")]
@@ -52,9 +66,43 @@ pub struct ServeArgs {
     pub lesson: Option<String>,
 }
 
+/// A count of 1 or more (0 would serve nobody).
+fn at_least_1() -> clap::builder::RangedU64ValueParser<usize> {
+    clap::builder::RangedU64ValueParser::new().range(1..)
+}
+
 impl ServeArgs {
+    /// What no class can run on, refused before anything is read or made.
+    fn check(&self) -> Result<(), Error> {
+        let (w, h) = self.max_size;
+        if w == 0 || h == 0 {
+            return Err(Error::Invalid(format!(
+                "--max-size {w}x{h}: a side of 0 draws nothing (1x1 at least)"
+            )));
+        }
+        for (flag, p) in [
+            ("--passphrase", &self.passphrase),
+            ("--presenter-passphrase", &self.presenter_passphrase),
+        ] {
+            if p.as_deref().is_some_and(|p| p.trim().is_empty()) {
+                return Err(Error::Invalid(format!(
+                    "{flag} is empty: nobody could get in with it"
+                )));
+            }
+        }
+        if self.passphrase.is_some() && self.passphrase == self.presenter_passphrase {
+            return Err(Error::Invalid(
+                "--passphrase and --presenter-passphrase are the same: every student would \
+                 present"
+                    .into(),
+            ));
+        }
+        Ok(())
+    }
+
     /// The options, with the keys and passphrases read or made; and what to print.
     fn options(&self) -> Result<(Options, Vec<String>), Error> {
+        self.check()?;
         let path = match &self.host_key {
             Some(p) => p.clone(),
             None => crate::serve::host_key_path(|v| std::env::var_os(v)).ok_or_else(|| {
@@ -90,9 +138,13 @@ impl ServeArgs {
             said.push(format!("presenter passphrase (yours alone): {p}"));
         }
         let limits = Limits {
-            sessions: self.max_sessions.max(1),
-            per_minute: self.per_minute.max(1),
-            idle: Duration::from_secs(self.idle.max(1)),
+            sessions: self.max_sessions,
+            per_minute: self.per_minute,
+            waiting: self.max_waiting,
+            waiting_per_address: self.max_waiting_per_address,
+            handshake: Duration::from_secs(self.login_grace),
+            shell_grace: Duration::from_secs(self.shell_grace),
+            idle: Duration::from_secs(self.idle),
             max_cols: self.max_size.0,
             max_rows: self.max_size.1,
             ..Limits::default()

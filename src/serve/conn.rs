@@ -3,15 +3,17 @@
 //! (exec), a subsystem (SFTP), X11, agent and port forwarding are refused; the default
 //! handlers refuse the other channel kinds.
 
+use super::door::Pass;
 use super::explorer::{self, Client, Outbox};
 use super::out::{Flushed, Guarded, UNSENT_MAX, write_out};
+use super::screen::Window;
 use super::{In, Shared, auth};
 use russh::keys::PublicKey;
 use russh::server::{Auth, Handler, Msg, Session};
 use russh::{Channel, ChannelId, ChannelWriteHalf, MethodKind, MethodSet, Pty};
 use std::sync::Arc;
-use std::sync::atomic::{AtomicBool, Ordering};
-use std::time::Duration;
+use std::sync::atomic::Ordering;
+use std::time::{Duration, Instant};
 
 /// The server's SSH configuration: the host key, public key and password methods only, a
 /// second's wait on a refusal, keepalives that find a half-open connection in a minute.
@@ -33,52 +35,83 @@ pub fn config(options: &super::Options) -> russh::server::Config {
     }
 }
 
+/// Where a connection is: each stage but the explorer's has its time (see [`serve`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Stage {
+    /// Not in yet.
+    Knocking,
+    /// In, and no explorer yet (since then).
+    In(Instant),
+    /// Its explorer runs.
+    Seated,
+    /// Its explorer has ended (since then).
+    Done(Instant),
+}
+
 /// Serves one TCP connection until it ends: closed if it is not in within the handshake's
-/// time.
-pub async fn serve(tcp: tokio::net::TcpStream, shared: Arc<Shared>) {
+/// time, if it has no explorer within the shell's grace after that or after its explorer
+/// ended, or when the door needs its place.
+pub async fn serve(tcp: tokio::net::TcpStream, shared: Arc<Shared>, pass: Pass) {
     let _ = tcp.set_nodelay(true);
     // The kernel holds at most this much unsent: on a slow link the socket, not a deep buffer
     // behind it, says when a frame has left (see `Flushed`).
     let _ = socket2::SockRef::from(&tcp).set_tcp_notsent_lowat(UNSENT_MAX);
     let flushed = Arc::new(Flushed::default());
-    let authed = Arc::new(AtomicBool::new(false));
+    let (stage, mut staged) = tokio::sync::watch::channel(Stage::Knocking);
+    let go = Arc::clone(&pass.go);
     let handler = Conn {
         shared: Arc::clone(&shared),
-        authed: Arc::clone(&authed),
+        pass,
+        stage: Arc::new(stage),
         presenter: false,
         channel: None,
         client: Client::default(),
         session: None,
         ended: tokio::sync::watch::channel(()).0,
         flushed: Arc::clone(&flushed),
+        password_tries: 0,
     };
     let stream = Guarded::new(tcp, shared.limits.stall, flushed);
-    let limit = shared.limits.handshake;
-    let Ok(Ok(running)) = tokio::time::timeout(
-        limit,
-        russh::server::run_stream(Arc::clone(&shared.config), stream, handler),
-    )
-    .await
-    else {
-        return;
+    let l = shared.limits;
+    let knocked = Instant::now();
+    let run = russh::server::run_stream(Arc::clone(&shared.config), stream, handler);
+    let running = tokio::select! {
+        r = tokio::time::timeout(l.handshake, run) => match r {
+            Ok(Ok(running)) => running,
+            _ => return,
+        },
+        () = go.notified() => return,
     };
     let handle = running.handle();
     tokio::pin!(running);
-    tokio::select! {
-        _ = &mut running => return,
-        () = tokio::time::sleep(limit) => {}
-    }
-    if !authed.load(Ordering::Relaxed) {
+    loop {
+        let now = *staged.borrow_and_update();
+        let (until, why) = match now {
+            Stage::Knocking => (knocked + l.handshake, "not authenticated in time"),
+            Stage::In(since) => (since + l.shell_grace, "no shell asked for in time"),
+            Stage::Done(since) => (since + l.shell_grace, "the explorer has ended"),
+            Stage::Seated => (knocked + Duration::from_secs(1 << 30), ""),
+        };
+        let why = tokio::select! {
+            _ = &mut running => return,
+            r = staged.changed() => match r {
+                Ok(()) => continue,
+                Err(_) => {
+                    let _ = running.await;
+                    return;
+                }
+            },
+            () = go.notified() => match now {
+                Stage::Knocking => "too many connections waiting to log in: try again",
+                _ => "too many connections logged in without an explorer: closed",
+            },
+            () = tokio::time::sleep_until(until.into()) => why,
+        };
         let _ = handle
-            .disconnect(
-                russh::Disconnect::ByApplication,
-                "not authenticated in time".into(),
-                String::new(),
-            )
+            .disconnect(russh::Disconnect::ByApplication, why.into(), String::new())
             .await;
         return;
     }
-    let _ = running.await;
 }
 
 /// Input bytes on their way to a session, counted in [`Shared`]'s queue until dropped: taken,
@@ -121,13 +154,17 @@ const QUEUED_MAX: usize = 1 << 20;
 /// One connection's state.
 struct Conn {
     shared: Arc<Shared>,
-    authed: Arc<AtomicBool>,
+    /// Its place at the door.
+    pass: Pass,
+    stage: Arc<tokio::sync::watch::Sender<Stage>>,
     presenter: bool,
+    /// Passphrases refused so far.
+    password_tries: u32,
     /// The session channel, until its shell starts.
     channel: Option<(ChannelId, ChannelWriteHalf<Msg>)>,
     client: Client,
-    /// The explorer's inbox, once started.
-    session: Option<(ChannelId, std::sync::mpsc::Sender<In>)>,
+    /// The explorer's inbox and the client's window size, once started.
+    session: Option<(std::sync::mpsc::Sender<In>, Arc<Window>)>,
     /// Dropped with the connection: its writer stops then (see [`write_out`]).
     ended: tokio::sync::watch::Sender<()>,
     /// The bytes written to the socket so far.
@@ -135,6 +172,9 @@ struct Conn {
 }
 
 const REFUSED: &str = "turntable serves the explorer only: `ssh -t` to this address opens it\r\n";
+
+/// Passphrases a connection may try (OpenSSH's client asks three times).
+const PASSWORD_TRIES: u32 = 3;
 
 impl Conn {
     fn who(&mut self, key: Option<&PublicKey>, password: Option<&str>) -> Auth {
@@ -157,7 +197,7 @@ impl Conn {
 
     /// The message reaches the explorer.
     fn forward(&self, msg: In) {
-        if let Some((_, tx)) = &self.session {
+        if let Some((tx, _)) = &self.session {
             let _ = tx.send(msg);
         }
     }
@@ -170,10 +210,19 @@ impl Conn {
         self.forward(In::Data(Queued::new(data.to_vec(), &self.shared)));
     }
 
-    fn refuse(&mut self, channel: ChannelId, session: &mut Session) -> Result<(), russh::Error> {
-        session.channel_failure(channel)?;
-        session.extended_data(channel, 1, REFUSED.as_bytes().to_vec())?;
+    /// Refuses the channel's request, saying why where OpenSSH shows it: the request is taken
+    /// and the channel ends at once with the message on its error stream and exit status 1 (a
+    /// refused shell or exec makes OpenSSH exit before it prints what came after).
+    fn refuse(
+        &mut self,
+        channel: ChannelId,
+        why: &str,
+        session: &mut Session,
+    ) -> Result<(), russh::Error> {
+        session.channel_success(channel)?;
+        session.extended_data(channel, 1, why.as_bytes().to_vec())?;
         session.exit_status_request(channel, 1)?;
+        session.eof(channel)?;
         session.close(channel)?;
         self.channel = None;
         Ok(())
@@ -182,7 +231,7 @@ impl Conn {
 
 impl Drop for Conn {
     fn drop(&mut self) {
-        if let Some((_, tx)) = &self.session {
+        if let Some((tx, _)) = &self.session {
             let _ = tx.send(In::Close(String::new()));
         }
     }
@@ -211,11 +260,32 @@ impl Handler for Conn {
     }
 
     async fn auth_password(&mut self, _user: &str, password: &str) -> Result<Auth, Self::Error> {
-        Ok(self.who(None, Some(password)))
+        // Past its tries nothing is compared (russh would still ask this handler).
+        if self.password_tries >= PASSWORD_TRIES {
+            return Ok(Auth::reject());
+        }
+        let auth = self.who(None, Some(password));
+        if matches!(auth, Auth::Accept) {
+            return Ok(auth);
+        }
+        // A typo is answered with another try, up to PASSWORD_TRIES (russh, told nothing,
+        // takes the password method away after the first).
+        self.password_tries += 1;
+        if self.password_tries >= PASSWORD_TRIES {
+            return Ok(auth);
+        }
+        let mut methods = MethodSet::empty();
+        methods.push(MethodKind::PublicKey);
+        methods.push(MethodKind::Password);
+        Ok(Auth::Reject {
+            proceed_with_methods: Some(methods),
+            partial_success: false,
+        })
     }
 
     async fn auth_succeeded(&mut self, _session: &mut Session) -> Result<(), Self::Error> {
-        self.authed.store(true, Ordering::Relaxed);
+        self.pass.logged_in();
+        self.stage.send_replace(Stage::In(Instant::now()));
         Ok(())
     }
 
@@ -275,42 +345,48 @@ impl Handler for Conn {
         channel: ChannelId,
         session: &mut Session,
     ) -> Result<(), Self::Error> {
-        let Some((id, write)) = self.channel.take().filter(|(id, _)| *id == channel) else {
+        let Some((_, write)) = self.channel.take().filter(|(id, _)| *id == channel) else {
             return session.channel_failure(channel);
         };
         let (tx, rx) = std::sync::mpsc::channel();
         let Some(number) = self.shared.enter(tx.clone(), self.presenter) else {
-            session.channel_failure(channel)?;
             let full = format!(
                 "turntable: the class is full ({} sessions); try again later\r\n",
                 self.shared.limits.sessions
             );
-            session.data(channel, full.into_bytes())?;
-            session.exit_status_request(channel, 1)?;
-            return session.close(channel);
+            return self.refuse(channel, &full, session);
         };
         session.channel_success(channel)?;
+        self.pass.seated();
+        self.stage.send_replace(Stage::Seated);
         if self.client.width == 0 || self.client.height == 0 {
             (self.client.width, self.client.height) = (80, 24);
         }
         let (out_tx, out_rx) = tokio::sync::mpsc::channel(2);
-        tokio::spawn(write_out(
+        let writer = write_out(
             write,
             out_rx,
             tx.clone(),
             self.ended.subscribe(),
             Arc::clone(&self.flushed),
-        ));
+        );
+        let stage = Arc::clone(&self.stage);
+        tokio::spawn(async move {
+            writer.await;
+            stage.send_replace(Stage::Done(Instant::now()));
+        });
         let shared = Arc::clone(&self.shared);
         let client = self.client.clone();
+        let size = Arc::new(Window::new(client.width, client.height));
+        let for_session = Arc::clone(&size);
         let started = std::thread::Builder::new()
             .name("turntable-session".into())
-            .spawn(move || explorer::run(shared, number, client, rx, Outbox(out_tx)));
+            .spawn(move || explorer::run(shared, number, client, for_session, rx, Outbox(out_tx)));
         if started.is_err() {
             self.shared.leave(number);
             return session.close(channel);
         }
-        self.session = Some((id, tx));
+        self.session = Some((tx, size));
         Ok(())
     }
 
@@ -320,16 +396,20 @@ impl Handler for Conn {
         _data: &[u8],
         session: &mut Session,
     ) -> Result<(), Self::Error> {
-        self.refuse(channel, session)
+        self.refuse(channel, REFUSED, session)
     }
 
+    /// Refused outright: a subsystem's client (sftp) would read the message as its protocol.
     async fn subsystem_request(
         &mut self,
         channel: ChannelId,
         _name: &str,
         session: &mut Session,
     ) -> Result<(), Self::Error> {
-        self.refuse(channel, session)
+        session.channel_failure(channel)?;
+        session.close(channel)?;
+        self.channel = None;
+        Ok(())
     }
 
     async fn x11_request(
@@ -357,7 +437,11 @@ impl Handler for Conn {
         let h = u16::try_from(row_height).unwrap_or(u16::MAX);
         self.client.width = w;
         self.client.height = h;
-        self.forward(In::Resize(w, h));
+        if let Some((_, size)) = &self.session
+            && size.set(w, h)
+        {
+            self.forward(In::Resize);
+        }
         Ok(())
     }
 

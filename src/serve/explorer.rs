@@ -5,7 +5,7 @@
 //! its clock.
 
 use super::keys::Keys;
-use super::screen::Screen;
+use super::screen::{Screen, Window};
 use super::{In, Lead, Out, Shared};
 use crate::app::lesson::Prompt;
 use crate::app::{App, Chord, Effect, Effects};
@@ -21,6 +21,7 @@ use crossterm::terminal::{
 use crossterm::{cursor, queue};
 use std::io;
 use std::sync::Arc;
+use std::sync::atomic::Ordering;
 use std::sync::mpsc::{Receiver, RecvTimeoutError};
 use std::time::{Duration, Instant};
 
@@ -61,7 +62,9 @@ fn guest(app: &mut App, effects: Effects) {
 /// The client's screen size within the server's bound.
 fn clamp(shared: &Shared, width: u16, height: u16) -> (u16, u16) {
     let l = &shared.limits;
-    (width.clamp(1, l.max_cols), height.clamp(1, l.max_rows))
+    // Never `clamp(1, max)`: a bound of 0 (refused at start, but a library caller may give
+    // it) would panic every session.
+    (width.min(l.max_cols).max(1), height.min(l.max_rows).max(1))
 }
 
 fn theme(client: &Client) -> Option<crate::theme::Theme> {
@@ -87,7 +90,14 @@ fn theme(client: &Client) -> Option<crate::theme::Theme> {
 
 /// The explorer for one client, until it quits, idles, stalls, leaves or the server stops;
 /// then its last bytes (the terminal put back, and why it ended) go out.
-pub fn run(shared: Arc<Shared>, id: u64, client: Client, inbox: Receiver<In>, out: Outbox) {
+pub fn run(
+    shared: Arc<Shared>,
+    id: u64,
+    client: Client,
+    size: Arc<Window>,
+    inbox: Receiver<In>,
+    out: Outbox,
+) {
     let (w, h) = clamp(&shared, client.width, client.height);
     let Some(theme) = theme(&client) else {
         shared.leave(id);
@@ -125,6 +135,8 @@ pub fn run(shared: Arc<Shared>, id: u64, client: Client, inbox: Receiver<In>, ou
         mouse_on: s.app.mouse_capture(),
         following: false,
         spare: Vec::new(),
+        size,
+        resized: false,
     };
     let said = run
         .start(&mut s)
@@ -182,6 +194,9 @@ struct Run<'a> {
     following: bool,
     /// The last frame's buffer, handed back by the channel: the next is drawn into it.
     spare: Vec<u8>,
+    /// The client's window size, applied when the next frame is drawn if `resized`.
+    size: Arc<Window>,
+    resized: bool,
 }
 
 impl Run<'_> {
@@ -224,6 +239,9 @@ impl Run<'_> {
             self.mouse(s)?;
             let frame_due = self.last_frame.map_or(now, |t| t + gap);
             if self.in_flight.is_none() {
+                if self.resized && now >= frame_due {
+                    self.resize(s);
+                }
                 if s.app.needs_redraw() && now >= frame_due {
                     // The analysis pages are computed through the gate (as many at once as
                     // cores); the frame itself is drawn outside it.
@@ -232,6 +250,7 @@ impl Run<'_> {
                     s.draw()?;
                     queue!(s.term.backend_mut(), EndSynchronizedUpdate)?;
                     self.last_frame = Some(now);
+                    self.shared.counts.frames.fetch_add(1, Ordering::Relaxed);
                 }
                 if let Some(bytes) = s.term.backend_mut().take(&mut self.spare)
                     && self.out.frame(bytes)
@@ -254,7 +273,7 @@ impl Run<'_> {
             if s.is_playing() && !self.following {
                 wake = wake.min(self.clock.next());
             }
-            if s.app.needs_redraw() && self.in_flight.is_none() {
+            if (s.app.needs_redraw() || self.resized) && self.in_flight.is_none() {
                 wake = wake.min(frame_due);
             }
             if let Some(d) = self.keys.deadline() {
@@ -287,11 +306,7 @@ impl Run<'_> {
                 let events = self.keys.feed(&bytes, now);
                 self.events(s, events)?;
             }
-            In::Resize(w, h) => {
-                let (w, h) = clamp(self.shared, w, h);
-                s.term.backend_mut().resize(w, h);
-                s.resized(w, h);
-            }
+            In::Resize => self.resized = true,
             In::Sent(buffer) => {
                 self.in_flight = None;
                 self.spare = buffer;
@@ -314,7 +329,10 @@ impl Run<'_> {
             }
             In::Unled | In::Answered => {}
             In::Join(follower) => self.shared.welcome(follower, &s.app, s.lesson()),
-            In::Class(app, lesson) => {
+            In::Class => {
+                let Some((app, lesson)) = self.shared.take_class(self.id) else {
+                    return Ok(None);
+                };
                 let (w, h) = (s.app.screen.0, s.app.screen.1);
                 // The class's state, drawn in this client's own theme and size.
                 s.app = *app;
@@ -334,6 +352,16 @@ impl Run<'_> {
             }
         }
         Ok(None)
+    }
+
+    /// The client's latest window size, laid out for the frame about to be drawn.
+    fn resize(&mut self, s: &mut Session<Screen>) {
+        self.resized = false;
+        let (w, h) = self.size.take();
+        let (w, h) = clamp(self.shared, w, h);
+        s.term.backend_mut().resize(w, h);
+        s.resized(w, h);
+        self.shared.counts.layouts.fetch_add(1, Ordering::Relaxed);
     }
 
     /// The lesson's steps that are due; if it moved, the followers' lessons move alike (a

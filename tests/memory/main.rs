@@ -1,7 +1,9 @@
 //! `turntable serve`'s memory when a class leaves: every byte its sessions and connections
 //! held is given back, round after round, faulty clients included (one killed mid-frame, one
 //! that never reads, a flood of keys, a hostile and a silent handshake). Counted by the
-//! allocator itself, so this binary is a process of its own: no other test allocates here.
+//! allocator itself, so this binary is a process of its own: no other test allocates here
+//! (its tests take turns). And one follower's flood of F2 (step out, rejoin) holds a bounded
+//! number of bytes.
 
 use russh::keys::PrivateKey;
 use russh::keys::ssh_key::private::Ed25519Keypair;
@@ -16,6 +18,8 @@ use turntable::serve::{Limits, Options, Running, start};
 struct Counting;
 
 static HELD: AtomicIsize = AtomicIsize::new(0);
+/// The most the server has held since it was last reset.
+static PEAK: AtomicIsize = AtomicIsize::new(0);
 static CLIENTS_HELD: AtomicIsize = AtomicIsize::new(0);
 
 thread_local! {
@@ -36,7 +40,7 @@ unsafe impl GlobalAlloc for Counting {
     unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
         let p = unsafe { System.alloc(layout) };
         if !p.is_null() {
-            count().fetch_add(layout.size() as isize, Ordering::Relaxed);
+            add(layout.size() as isize);
         }
         p
     }
@@ -44,7 +48,7 @@ unsafe impl GlobalAlloc for Counting {
     unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
         let p = unsafe { System.alloc_zeroed(layout) };
         if !p.is_null() {
-            count().fetch_add(layout.size() as isize, Ordering::Relaxed);
+            add(layout.size() as isize);
         }
         p
     }
@@ -57,11 +61,22 @@ unsafe impl GlobalAlloc for Counting {
     unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, size: usize) -> *mut u8 {
         let p = unsafe { System.realloc(ptr, layout, size) };
         if !p.is_null() {
-            count().fetch_add(size as isize - layout.size() as isize, Ordering::Relaxed);
+            add(size as isize - layout.size() as isize);
         }
         p
     }
 }
+
+fn add(n: isize) {
+    let counter = count();
+    let now = counter.fetch_add(n, Ordering::Relaxed) + n;
+    if std::ptr::eq(counter, &HELD) {
+        PEAK.fetch_max(now, Ordering::Relaxed);
+    }
+}
+
+/// The tests take turns: each counts the server's bytes alone.
+static ONE_AT_A_TIME: std::sync::Mutex<()> = std::sync::Mutex::new(());
 
 #[global_allocator]
 static COUNTING: Counting = Counting;
@@ -168,6 +183,7 @@ async fn class(s: &Running) -> isize {
 
 #[test]
 fn a_class_that_leaves_gives_back_every_byte_it_held() {
+    let _turn = ONE_AT_A_TIME.lock().unwrap_or_else(|e| e.into_inner());
     let s = server();
     CLIENTS.with(|c| c.set(true));
     let rt = tokio::runtime::Builder::new_current_thread()
@@ -201,6 +217,58 @@ fn a_class_that_leaves_gives_back_every_byte_it_held() {
                 after - base
             );
         }
+    });
+    s.stop("done");
+}
+
+/// A follower pressing F2 (step out, rejoin) ten thousand times (30 KB of input): the class's
+/// state handed to it waits in one place, the latest, never queued. Before, each rejoin queued a
+/// copy of the presenter's whole state: 10,000 presses held ~170 MB, a continuous flood GBs.
+#[test]
+fn a_followers_f2_flood_holds_a_bounded_number_of_bytes() {
+    let _turn = ONE_AT_A_TIME.lock().unwrap_or_else(|e| e.into_inner());
+    let s = server();
+    CLIENTS.with(|c| c.set(true));
+    let rt = tokio::runtime::Builder::new_current_thread()
+        .enable_all()
+        .build()
+        .unwrap();
+    rt.block_on(async {
+        let p = login(s.addr, "teacher", Login::Key(&key(3)))
+            .await
+            .unwrap()
+            .unwrap();
+        let mut tp = Term::open(&p, 100, 30).await.unwrap();
+        assert!(tp.until(0, b"lab frame", SECS).await);
+        // A presenter's state worth copying: a run played, compared and pinned.
+        for k in [" ", "c", "b", "b"] {
+            tp.send(k.as_bytes()).await.unwrap();
+            tokio::time::sleep(Duration::from_millis(200)).await;
+        }
+        let f = login(s.addr, "student", Login::Key(&key(2)))
+            .await
+            .unwrap()
+            .unwrap();
+        let mut tf = Term::open(&f, 80, 24).await.unwrap();
+        assert!(tf.until(0, b"following", SECS).await);
+        tokio::time::sleep(Duration::from_millis(500)).await;
+        let before = held();
+        PEAK.store(before, Ordering::Relaxed);
+        for _ in 0..100 {
+            tf.send("\x1bOQ".repeat(100).as_bytes()).await.unwrap();
+        }
+        // The presses taken and answered (each rejoin takes a follower a millisecond or so).
+        let mut tf = tf;
+        let at = tf.seen.len();
+        let _ = tf.until(at, b"\0", Duration::from_secs(5)).await;
+        let peak = PEAK.load(Ordering::Relaxed) - before;
+        eprintln!("10,000 F2s: the server held at most {peak} B more than before");
+        assert!(
+            peak < 16 * 1024 * 1024,
+            "10,000 F2s held {} MB",
+            peak / 1024 / 1024
+        );
+        assert!(s.shared.handed() <= 1);
     });
     s.stop("done");
 }

@@ -814,3 +814,21 @@ fn progress_is_silent_in_a_pipe() {
         assert!(!out.is_empty());
     }
 }
+
+/// An error quoting what it refuses is cut at a screen's worth (a key script's line of a
+/// megabyte was echoed whole), and an output that cannot be written names its path.
+#[test]
+fn errors_are_cut_and_name_the_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let script = dir.path().join("long.keys");
+    std::fs::write(&script, format!("{}\n", "x".repeat(1_000_000))).unwrap();
+    let (code, _, err) = turntable(&["replay", script.to_str().unwrap()]);
+    assert_eq!(code, 2, "{}", &err[..err.len().min(400)]);
+    assert!(err.len() < 2_000, "{} bytes of error", err.len());
+    assert!(err.contains("characters in all"), "{err}");
+    if std::path::Path::new("/dev/full").exists() {
+        let (code, _, err) = turntable(&["run", "--trajectory", "/dev/full", "--force"]);
+        assert_eq!(code, 1, "{err}");
+        assert!(err.contains("writing --trajectory /dev/full"), "{err}");
+    }
+}

@@ -1,0 +1,154 @@
+//! The class: who presents, who follows (and who asks to), the class's state handed to a
+//! follower, the presenter's keys and ticks to the followers, and their answers to its question.
+
+use super::{In, Lead, Shared, lock};
+use crate::app::App;
+use crate::app::lesson::Tally;
+use std::collections::HashMap;
+
+/// The class: who presents, who follows, and their answers to the presenter's question.
+#[derive(Default)]
+pub struct Class {
+    pub presenter: Option<u64>,
+    pub followers: Vec<u64>,
+    /// Asked to follow, the class not yet taken: asking again adds nothing (an F2 flood once
+    /// queued a copy of the whole state a press, without bound).
+    pub joining: Vec<u64>,
+    /// The class's state handed to each follower, until it takes it: one at most, the latest.
+    pub handed: HashMap<u64, Handed>,
+    pub poll: Poll,
+}
+
+/// The class's state as a follower takes it: the presenter's `App` and its lesson's place.
+pub type Handed = (Box<App>, Option<crate::lesson::Driver>);
+
+/// The followers' own answers to the question on the presenter's screen.
+#[derive(Default)]
+pub struct Poll {
+    /// Which question (the presenter's count of questions asked).
+    question: u32,
+    /// Whether it still takes answers: until the presenter answers it and goes on.
+    open: bool,
+    /// By session; the first answer stands. A follower who leaves or steps out is not
+    /// counted while out (its answer is kept, should it rejoin before the question closes).
+    answers: HashMap<u64, bool>,
+}
+
+impl Shared {
+    /// Whether `id` presents.
+    pub(super) fn presents(&self, id: u64) -> bool {
+        lock(&self.class).presenter == Some(id)
+    }
+
+    /// Whether a presenter other than `id` leads a class.
+    pub(super) fn class_led(&self, id: u64) -> bool {
+        lock(&self.class).presenter.is_some_and(|p| p != id)
+    }
+
+    /// `id` asks to follow: the presenter sends it the class (see [`Shared::welcome`]), once
+    /// until it is taken.
+    pub(super) fn join(&self, id: u64) {
+        let mut class = lock(&self.class);
+        if let Some(p) = class.presenter
+            && !class.joining.contains(&id)
+        {
+            class.joining.push(id);
+            self.send(p, In::Join(id));
+        }
+    }
+
+    /// (The presenter's thread.) `follower` gets the class as it is, and from now on what
+    /// the presenter does: one lock, so nothing falls between. The state waits in one place
+    /// a follower, the latest replacing any not yet taken.
+    pub(super) fn welcome(&self, follower: u64, app: &App, lesson: Option<&crate::lesson::Driver>) {
+        let mut class = lock(&self.class);
+        if !class.followers.contains(&follower) {
+            class.followers.push(follower);
+        }
+        let handed = (Box::new(app.clone()), lesson.cloned());
+        if class.handed.insert(follower, handed).is_none() {
+            self.send(follower, In::Class);
+        }
+    }
+
+    /// (A follower's thread, told [`In::Class`].) The class handed to it; it may ask again.
+    pub(super) fn take_class(&self, id: u64) -> Option<Handed> {
+        let mut class = lock(&self.class);
+        class.joining.retain(|&f| f != id);
+        class.handed.remove(&id)
+    }
+
+    /// Class states handed to followers and not yet taken (at most one a follower).
+    pub fn handed(&self) -> usize {
+        lock(&self.class).handed.len()
+    }
+
+    /// (The presenter's thread.) Its question on screen now (the `asked`th, taking answers
+    /// while `open`): the followers' answers to it so far; None when `id` does not present.
+    /// A new question starts a new tally.
+    pub(super) fn tally(&self, id: u64, asked: u32, open: bool) -> Option<Tally> {
+        let mut class = lock(&self.class);
+        if class.presenter != Some(id) {
+            return None;
+        }
+        let class = &mut *class;
+        if class.poll.question != asked {
+            class.poll = Poll {
+                question: asked,
+                ..Poll::default()
+            };
+        }
+        class.poll.open = open;
+        let mut t = Tally::default();
+        for f in &class.followers {
+            match class.poll.answers.get(f) {
+                Some(true) => t.yes += 1,
+                Some(false) => t.no += 1,
+                None => t.not_yet += 1,
+            }
+        }
+        Some(t)
+    }
+
+    /// (A follower's thread.) Its own answer to the `asked`th question: counted if that is
+    /// the presenter's question, still open, and `id` follows; whether it was.
+    pub(super) fn answer(&self, id: u64, asked: u32, yes: bool) -> bool {
+        let mut class = lock(&self.class);
+        let p = &class.poll;
+        if !(p.open && p.question == asked && class.followers.contains(&id)) {
+            return false;
+        }
+        class.poll.answers.entry(id).or_insert(yes);
+        if let Some(presenter) = class.presenter {
+            self.send(presenter, In::Answered);
+        }
+        true
+    }
+
+    /// `id`'s answer to the `asked`th question, if it gave one in class.
+    pub(super) fn answered(&self, id: u64, asked: u32) -> Option<bool> {
+        let class = lock(&self.class);
+        let p = &class.poll;
+        (p.question == asked).then(|| p.answers.get(&id).copied())?
+    }
+
+    pub(super) fn unfollow(&self, id: u64) {
+        let mut class = lock(&self.class);
+        class.followers.retain(|&f| f != id);
+        class.handed.remove(&id);
+    }
+
+    /// (A session's thread.) If `id` presents, its followers do `lead` too.
+    pub(super) fn lead(&self, id: u64, lead: Lead) {
+        let class = lock(&self.class);
+        if class.presenter != Some(id) {
+            return;
+        }
+        let sessions = lock(&self.sessions);
+        for f in &class.followers {
+            if let Some(tx) = sessions.get(f) {
+                let _ = tx.send(In::Lead(lead));
+            }
+        }
+    }
+}
