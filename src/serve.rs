@@ -233,8 +233,16 @@ impl Shared {
     }
 
     fn leave(&self, id: u64) {
-        lock(&self.sessions).remove(&id);
+        let empty = {
+            let mut sessions = lock(&self.sessions);
+            sessions.remove(&id);
+            sessions.is_empty()
+        };
         let mut class = lock(&self.class);
+        if empty {
+            // Nobody left to take the class up for: it gives back what it held.
+            class.left = None;
+        }
         if class.presenter == Some(id) {
             class.presenter = None;
             class.poll = class::Poll::default();
