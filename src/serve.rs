@@ -223,8 +223,11 @@ impl Shared {
             class.presenter = Some(id);
             class.poll = class::Poll::default();
             // A presenter who takes over (the teacher back after a dropped connection) is
-            // sent the followers, and those asking to follow: each is handed this class, not
-            // left applying its keys and lesson steps to the last one's.
+            // sent the followers, those asking to follow and those waiting for a class (who
+            // came first, or whose presenter left): each is handed this class, not left
+            // applying its keys and lesson steps to the last one's.
+            let waiting = std::mem::take(&mut class.waiting);
+            class.joining.extend(waiting);
             for &f in class.followers.iter().chain(&class.joining) {
                 self.send(id, In::Join(f));
             }
@@ -233,23 +236,33 @@ impl Shared {
     }
 
     fn leave(&self, id: u64) {
-        lock(&self.sessions).remove(&id);
+        let empty = {
+            let mut sessions = lock(&self.sessions);
+            sessions.remove(&id);
+            sessions.is_empty()
+        };
         let mut class = lock(&self.class);
+        if empty {
+            // Nobody left to take the class up for: it gives back what it held.
+            class.left = None;
+        }
         if class.presenter == Some(id) {
             class.presenter = None;
             class.poll = class::Poll::default();
-            // Followers go on from where the class was, on their own clocks; those asking to
-            // follow are told there is none.
+            // Followers go on from where the class was, on their own clocks, and follow
+            // again when a presenter comes back; those asking to follow wait alike.
             let joining = std::mem::take(&mut class.joining);
             for f in std::mem::take(&mut class.followers)
                 .into_iter()
                 .chain(joining)
             {
+                class.waiting.push(f);
                 self.send(f, In::Unled);
             }
         }
         class.followers.retain(|&f| f != id);
         class.joining.retain(|&f| f != id);
+        class.waiting.retain(|&f| f != id);
         class.handed.remove(&id);
     }
 

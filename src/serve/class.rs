@@ -14,8 +14,13 @@ pub struct Class {
     /// Asked to follow, the class not yet taken: asking again adds nothing (an F2 flood once
     /// queued a copy of the whole state a press, without bound).
     pub joining: Vec<u64>,
+    /// Follow as soon as a class is led: came before the presenter, or the presenter left.
+    pub waiting: Vec<u64>,
     /// The class's state handed to each follower, until it takes it: one at most, the latest.
     pub handed: HashMap<u64, Handed>,
+    /// The class as its last presenter left it (a dropped connection): the next presenter
+    /// takes it up there, the lesson at the same step. One at most.
+    pub left: Option<Handed>,
     pub poll: Poll,
 }
 
@@ -135,7 +140,39 @@ impl Shared {
     pub(super) fn unfollow(&self, id: u64) {
         let mut class = lock(&self.class);
         class.followers.retain(|&f| f != id);
+        class.waiting.retain(|&f| f != id);
         class.handed.remove(&id);
+    }
+
+    /// `id` follows when a presenter comes (it came first, or asked with none there); false
+    /// if it was already waiting, and now is not (F2 again: it explores on its own).
+    pub(super) fn wait_for_class(&self, id: u64) -> bool {
+        let mut class = lock(&self.class);
+        if class.waiting.contains(&id) {
+            class.waiting.retain(|&f| f != id);
+            false
+        } else {
+            class.waiting.push(id);
+            true
+        }
+    }
+
+    /// (The presenter's thread, as it ends.) The class as it leaves it, for the next
+    /// presenter to take up.
+    pub(super) fn leave_class(&self, id: u64, app: &App, lesson: Option<&crate::lesson::Driver>) {
+        let mut class = lock(&self.class);
+        if class.presenter == Some(id) {
+            class.left = Some((Box::new(app.clone()), lesson.cloned()));
+        }
+    }
+
+    /// (A new presenter's thread.) The class as the last presenter left it, if one did.
+    pub(super) fn take_up_class(&self, id: u64) -> Option<Handed> {
+        let mut class = lock(&self.class);
+        if class.presenter != Some(id) {
+            return None;
+        }
+        class.left.take()
     }
 
     /// (A session's thread.) If `id` presents, its followers do `lead` too.

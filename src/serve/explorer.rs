@@ -32,6 +32,9 @@ pub const FOLLOW_KEY: KeyCode = KeyCode::F(2);
 /// What a follower is told on joining, and at each key of its own while it follows.
 const FOLLOWING: &str = "following the class: F2 steps out to explore";
 
+/// What a student who came before the presenter is told (and told again by F2).
+const WAITING: &str = "no presenter yet: you follow the class when they come (F2: on your own)";
+
 /// What the client said about its terminal.
 #[derive(Clone, Debug, Default)]
 pub struct Client {
@@ -44,6 +47,19 @@ pub struct Client {
 }
 
 /// A guest writes nothing on the server: saving and exporting are refused with a notice.
+/// The class's state, handed over (to a follower, or to a presenter taking up the class its
+/// last presenter left), drawn in this client's own theme and size; the presenter's tally is
+/// the presenter's own.
+fn adopt(s: &mut Session<Screen>, (app, lesson): super::class::Handed) {
+    let (w, h) = (s.app.screen.0, s.app.screen.1);
+    s.app = *app;
+    s.set_lesson(lesson);
+    s.app.tell_tally(None);
+    crate::session::tell_size(&mut s.app, &s.theme, w, h);
+    s.app.invalidate();
+    s.ask_analysis();
+}
+
 fn guest(app: &mut App, effects: Effects) {
     for effect in effects {
         let notice = match effect {
@@ -123,6 +139,13 @@ pub fn run(
     if let Some(l) = lesson {
         s.start_lesson(l.driver.clone());
     }
+    // The teacher back after a dropped connection takes the class up where it was left, its
+    // lesson at the same step (the followers, waiting, are handed this).
+    if let Some(class) = shared.take_up_class(id) {
+        adopt(&mut s, class);
+        s.app.lesson.apart = false;
+        s.app.notice = Some("you present: the class as it was left, and its followers".into());
+    }
     let mut run = Run {
         shared: &shared,
         id,
@@ -156,6 +179,7 @@ pub fn run(
     );
     bytes.extend(format!("turntable: {why}\r\n").as_bytes());
     out.end(bytes);
+    shared.leave_class(id, &s.app, s.lesson());
     shared.leave(id);
     // Its last buffer comes back once taken, to be freed here (see `In::Sent`).
     let until = Instant::now() + Duration::from_secs(1);
@@ -208,6 +232,9 @@ impl Run<'_> {
         }
         if self.shared.class_led(self.id) {
             self.shared.join(self.id);
+        } else if !self.shared.presents(self.id) && self.shared.wait_for_class(self.id) {
+            // Students come before the teacher: they follow once the teacher is in.
+            s.app.report(WAITING.into());
         }
         Ok(())
     }
@@ -324,30 +351,25 @@ impl Run<'_> {
             In::Unled if self.following => {
                 self.following = false;
                 s.app.lesson.apart = false;
-                s.app
-                    .report("the presenter left: exploring on your own".into());
+                s.app.report(
+                    "the presenter left: on your own until they are back (F2: stay on your own)"
+                        .into(),
+                );
             }
             In::Unled | In::Answered => {}
             In::Join(follower) => self.shared.welcome(follower, &s.app, s.lesson()),
             In::Class => {
-                let Some((app, lesson)) = self.shared.take_class(self.id) else {
+                let Some(class) = self.shared.take_class(self.id) else {
                     return Ok(None);
                 };
-                let (w, h) = (s.app.screen.0, s.app.screen.1);
-                // The class's state, drawn in this client's own theme and size.
-                s.app = *app;
-                s.set_lesson(lesson);
-                // The presenter's tally is the presenter's; a follower answers for itself
-                // (the answer it gave in class before stepping out, if this question is open).
-                s.app.tell_tally(None);
+                adopt(s, class);
+                // A follower answers for itself (the answer it gave in class before stepping
+                // out, if this question is open).
                 s.app.lesson.apart = true;
                 if let Some(yes) = self.shared.answered(self.id, s.app.lesson.asked) {
                     s.app.answer_apart(yes);
                 }
-                crate::session::tell_size(&mut s.app, &s.theme, w, h);
                 s.app.notice = Some(FOLLOWING.into());
-                s.app.invalidate();
-                s.ask_analysis();
                 self.following = true;
             }
         }
@@ -471,9 +493,14 @@ impl Run<'_> {
                 .report("stepped out of the class: F2 rejoins it".into());
         } else if self.shared.class_led(self.id) {
             self.shared.join(self.id);
+        } else if self.shared.presents(self.id) {
+            s.app
+                .report("you present: there is no class to follow".into());
+        } else if self.shared.wait_for_class(self.id) {
+            s.app.report(WAITING.into());
         } else {
             s.app
-                .report("no class to follow (no presenter, or you are it)".into());
+                .report("on your own: F2 follows the class when the presenter comes".into());
         }
     }
 

@@ -579,3 +579,106 @@ fn a_click_in_the_presenters_lesson_reaches_a_follower_of_another_size() {
     });
     s.stop("done");
 }
+
+/// Students come before the teacher: one who logged in first is told it waits, and follows
+/// the class as soon as the presenter is in (it stayed on its own until it pressed F2).
+#[test]
+fn a_student_who_came_first_follows_the_presenter() {
+    let dir = tempfile::tempdir().unwrap();
+    let s = server(dir.path());
+    rt().block_on(async {
+        let f = login(s.addr, "class", Login::Password("ba-ke-di-lo"))
+            .await
+            .unwrap()
+            .unwrap();
+        let mut tf = Tty::open(&f, 60, 20).await;
+        assert!(until(&mut [&mut tf], |s| all_show(s, &["no presenter yet"])).await);
+        let p = login(s.addr, "teacher", Login::Key(&key(3)))
+            .await
+            .unwrap()
+            .unwrap();
+        let mut tp = Tty::open(&p, 80, 24).await;
+        assert!(
+            until(&mut [&mut tp, &mut tf], |s| all_show(
+                s,
+                &["First: at rest"]
+            ))
+            .await
+                && until(&mut [&mut tf], |s| all_show(s, &["following the class"])).await
+        );
+        tp.send(b"\r").await;
+        assert!(
+            until(&mut [&mut tp, &mut tf], |s| all_show(
+                s,
+                &["Second: at rest"]
+            ))
+            .await
+        );
+    });
+    s.stop("done");
+}
+
+/// The teacher's connection drops and they log in again: the class follows them again, the
+/// lesson at the step where it was left (it restarted at step 1, and nobody followed).
+#[test]
+fn a_presenter_back_after_a_drop_is_followed_where_the_class_was() {
+    let dir = tempfile::tempdir().unwrap();
+    let s = server(dir.path());
+    rt().block_on(async {
+        let (mut handles, tp, mut f1, mut f2) = class(s.addr).await;
+        assert!(
+            until(&mut [&mut f1, &mut f2], |s| all_show(
+                s,
+                &["First: at rest"]
+            ))
+            .await
+        );
+        tp.send(b"\r").await;
+        assert!(
+            until(&mut [&mut f1, &mut f2], |s| all_show(
+                s,
+                &["Second: at rest"]
+            ))
+            .await
+        );
+        // The presenter's connection goes.
+        drop(tp);
+        let p = handles.remove(0);
+        p.disconnect(russh::Disconnect::ByApplication, "", "")
+            .await
+            .unwrap();
+        drop(p);
+        assert!(
+            until(&mut [&mut f1, &mut f2], |s| all_show(
+                s,
+                &["presenter left"]
+            ))
+            .await
+        );
+        // Back: the class as it was, and everyone follows it again.
+        let p = login(s.addr, "teacher", Login::Key(&key(3)))
+            .await
+            .unwrap()
+            .unwrap();
+        let mut tp = Tty::open(&p, 80, 24).await;
+        assert!(until(&mut [&mut tp], |s| all_show(s, &["Second: at rest"])).await);
+        assert!(!tp.shows("First: at rest"), "the lesson restarted");
+        assert!(
+            until(&mut [&mut f1, &mut f2], |s| all_show(
+                s,
+                &["following the class"]
+            ))
+            .await
+        );
+        // The presenter's Enter moves them all on: the question.
+        tp.send(b"\r").await;
+        assert!(
+            until(&mut [&mut tp, &mut f1, &mut f2], |s| all_show(
+                s,
+                &["Will it escape?"]
+            ))
+            .await
+        );
+    });
+    s.stop("done");
+}
