@@ -6,6 +6,9 @@ pub enum Action {
     Quit,
     /// Close the help or a notice (never quits).
     Dismiss,
+    /// Over `turntable serve`, a student steps out of the class or back in (the server's
+    /// session takes the key first; alone, the explorer says so).
+    Follow,
     ToggleHelp,
     /// Scroll the help by this many rows, or pages (down positive).
     HelpScroll(i16),
@@ -150,8 +153,8 @@ impl Action {
             | TogglePointModel | ZoomIn | ZoomOut | Pan(..) | ResetView | TauWindow(_)
             | NextPage | PrevPage | Choose | Omega(_) | R0c(_) | Unit(..) | UnitsOff | PinRun
             | ClearPins => Group::View,
-            Quit | Dismiss | ToggleHelp | HelpScroll(_) | HelpPage(_) | Save | SaveAs | Type(_)
-            | SetValues | ExportSvg | ToggleMouse | Readouts => Group::App,
+            Quit | Dismiss | Follow | ToggleHelp | HelpScroll(_) | HelpPage(_) | Save | SaveAs
+            | Type(_) | SetValues | ExportSvg | ToggleMouse | Readouts => Group::App,
             Answer(_) | GoOn => Group::Lesson,
         }
     }

@@ -147,6 +147,7 @@ pub const KEYMAP: &[Binding] = &[
     b(ch('I'), N, Action::Readouts, "readouts in words", "app"),
     b(ch('q'), N, Action::Quit, "quit", "app"),
     b(KeyCode::Esc, N, Action::Dismiss, "close help / notice", "app"),
+    b(KeyCode::F(2), N, Action::Follow, "serve: follow / step out", "app"),
     b(ch('c'), C, Action::Quit, "quit", "app"),
     // Only while a lesson asks or waits (see `lookup_when`): then these keys are the lesson's.
     b(ch('y'), N, Action::Answer(true), "answer yes / no", "lesson"),

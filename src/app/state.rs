@@ -77,6 +77,18 @@ impl CanvasGeom {
     }
 }
 
+/// Where a screen's user stands in a served class: what its keys do there.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum InClass {
+    /// No class (the local explorer), or none to follow now.
+    #[default]
+    Alone,
+    /// Following: the presenter's keys move this screen, its own (but F2, y/n, q) do not.
+    Following,
+    /// Stepped out of a class that goes on: F2 rejoins it.
+    Out,
+}
+
 #[derive(Clone, Debug)]
 pub struct App {
     /// The scene, the initial conditions and settings being explored, and their runs: read
@@ -107,6 +119,8 @@ pub struct App {
     pub pins: Vec<crate::pin::Pin>,
     /// A narrated lesson's caption, question and wait.
     pub lesson: super::lesson::Lesson,
+    /// Where this screen's user stands in a served class (the shell says: `tell_class`).
+    pub(crate) class: InClass,
     pub(crate) dirty: bool,
     /// The canvases as last drawn (two in a split view), clicks mapped through the one they
     /// land in.
@@ -122,6 +136,14 @@ pub struct App {
 }
 
 impl App {
+    /// The shell's word on where this screen's user stands in a served class.
+    pub fn tell_class(&mut self, class: InClass) {
+        if self.class != class {
+            self.class = class;
+            self.dirty = true;
+        }
+    }
+
     pub(crate) fn build(scene: Scene) -> App {
         let units = scene.units;
         let mut pins = Vec::new();
@@ -149,6 +171,7 @@ impl App {
             units,
             pins,
             lesson: Default::default(),
+            class: InClass::Alone,
             dirty: true,
             geom: Vec::new(),
             screen: (80, 24),

@@ -8,6 +8,7 @@ use super::keys::Keys;
 use super::screen::{Screen, Window};
 use super::{In, Lead, Out, Shared};
 use crate::app::lesson::Prompt;
+use crate::app::state::InClass;
 use crate::app::{App, Chord, Effect, Effects};
 use crate::session::Session;
 use crate::terminal::pace::{Clock, coalesce_drags};
@@ -350,6 +351,7 @@ impl Run<'_> {
             In::Lead(_) => {}
             In::Unled if self.following => {
                 self.following = false;
+                s.app.tell_class(InClass::Alone);
                 s.app.lesson.apart = false;
                 s.app.report(
                     "the presenter left: on your own until they are back (F2: stay on your own)"
@@ -371,6 +373,7 @@ impl Run<'_> {
                 }
                 s.app.notice = Some(FOLLOWING.into());
                 self.following = true;
+                s.app.tell_class(InClass::Following);
             }
         }
         Ok(None)
@@ -487,6 +490,7 @@ impl Run<'_> {
     fn follow_key(&mut self, s: &mut Session<Screen>) {
         if self.following {
             self.following = false;
+            s.app.tell_class(InClass::Out);
             self.shared.unfollow(self.id);
             s.app.lesson.apart = false;
             s.app

@@ -207,6 +207,21 @@ fn status_line(app: &App, th: &Theme, width: u16) -> Line<'static> {
         ));
     }
     let mouse = if app.mouse { "" } else { "  [mouse off]" };
+    // A follower's own keys are not applied: the footer lists only what is theirs.
+    if app.class == crate::app::state::InClass::Following {
+        return Line::from(Span::styled(
+            fit::fit(
+                " following the class  F2 step out  y/n answer its question  q quit",
+                "  ",
+                usize::from(width),
+            ),
+            Style::default().fg(th.muted),
+        ));
+    }
+    let rejoin = match app.class {
+        crate::app::state::InClass::Out => "  F2 rejoin",
+        _ => "",
+    };
     // The long hint where it fits, measured; else the short one, whole hints dropped from
     // its end.
     let room = usize::from(width).saturating_sub(mouse.width());
@@ -218,14 +233,14 @@ fn status_line(app: &App, th: &Theme, width: u16) -> Line<'static> {
         None => ("  c compare", "x/p/v"),
     };
     let long = format!(
-        " ? help  Space {space}  .,  step  [] speed  f frame  m method{compare}  a forces  1-7 presets  {edit} edit  q quit"
+        " ? help{rejoin}  Space {space}  .,  step  [] speed  f frame  m method{compare}  a forces  1-7 presets  {edit} edit  q quit"
     );
     let keys = if long.width() <= room {
         long
     } else {
         fit::fit(
             &format!(
-                " ? help  q quit  Space {space}  ., step  f frame  m method{compare}  1-7 presets"
+                " ? help{rejoin}  q quit  Space {space}  ., step  f frame  m method{compare}  1-7 presets"
             ),
             "  ",
             room,

@@ -275,6 +275,8 @@ fn every_key_in_the_keymap_does_what_its_help_says() {
                         .is_ok_and(|s| s.starts_with("<?xml"))
             }
             Action::ToggleMouse => !a.mouse_capture() && after.contains("mouse off"),
+            // Alone, F2 says it is a served class's key (serve's session takes it first).
+            Action::Follow => after.contains("F2 steps in and out of a class"),
             // The readouts in words, on the status line: τ, ξ, |u| and how the run stands.
             Action::Readouts => {
                 a.readouts_asked == 1

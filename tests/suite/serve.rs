@@ -224,12 +224,16 @@ fn followers_get_the_presenters_keys_and_can_step_out() {
         tf.send(b"?").await.unwrap();
         assert!(tf.until(at, b"F2 steps out", SECS).await);
         assert!(!tf.until(at, b"help", Duration::from_millis(500)).await);
+        // Its footer lists only what its keys do while it follows.
+        assert!(tf.until(0, b"F2 step out", SECS).await);
         // F2 steps out: now its keys are its own, and the presenter's are not applied.
         tf.send(b"\x1bOQ").await.unwrap();
         assert!(tf.until(at, b"stepped", SECS).await);
         let at = tf.seen.len();
         tf.send(b"f").await.unwrap();
         assert!(tf.until(at, b"lab frame", SECS).await);
+        // The notice gone with that key, the footer still says how to get back.
+        assert!(tf.until(at, b"F2 rejoin", SECS).await);
         // F2 again: back to where the class is (the rotating frame).
         let at = tf.seen.len();
         tf.send(b"\x1bOQ").await.unwrap();

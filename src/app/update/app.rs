@@ -21,6 +21,11 @@ pub(super) fn apply(app: &mut App, action: Action) -> Effects {
             }
         }
         Action::Dismiss => {}
+        // Over serve the session takes F2 first: here there is no class.
+        Action::Follow => {
+            app.notice =
+                Some("F2 steps in and out of a class over `turntable serve`: none here".into())
+        }
         Action::ToggleHelp => {
             app.view.help = !app.view.help;
             app.view.help_scroll = 0;
