@@ -8,7 +8,7 @@ pub mod asciicast;
 pub mod bench;
 pub(crate) mod check;
 pub mod cli;
-pub mod engine;
+pub use turntable_engine as engine;
 pub mod error;
 pub mod files;
 pub mod lesson;
@@ -19,6 +19,7 @@ pub mod replay;
 pub mod rng;
 pub mod scene;
 pub mod script;
+#[cfg(feature = "serve")]
 pub mod serve;
 pub mod session;
 pub mod sim;

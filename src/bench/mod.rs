@@ -13,6 +13,7 @@ mod output;
 pub mod pages;
 mod runs;
 pub mod scipy;
+#[cfg(feature = "serve")]
 pub mod serve;
 pub mod stated;
 mod tasks;

@@ -5,6 +5,7 @@ use crate::bench::{self, Config, Task};
 use crate::files::emit;
 
 pub fn bench(a: BenchArgs) -> CmdResult {
+    #[cfg(feature = "serve")]
     if !a.serve.is_empty() {
         return serve(&a);
     }
@@ -44,6 +45,7 @@ pub fn bench(a: BenchArgs) -> CmdResult {
 }
 
 /// `--serve N,...`: one row per client count, printed as it is measured.
+#[cfg(feature = "serve")]
 fn serve(a: &BenchArgs) -> CmdResult {
     if !(1.0..=3600.0).contains(&a.seconds) || a.serve.iter().any(|&n| !(1..=1000).contains(&n)) {
         return Err(Error::Invalid(

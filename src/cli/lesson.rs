@@ -85,6 +85,7 @@ fn source(name: &str) -> Result<Source, Error> {
 
 /// What `turntable serve --lesson NAME|PATH` gives each presenter's session: the lesson's
 /// scene (its own `# replay: --scene`, if it names one) and its script at the first step.
+#[cfg(feature = "serve")]
 pub fn for_class(name: &str) -> Result<crate::serve::Lesson, Error> {
     let lesson = source(name)?;
     let own = crate::script::script_options(&lesson.script).map_err(|e| e.context(name))?;

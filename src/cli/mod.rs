@@ -11,6 +11,7 @@ mod plot;
 mod progress;
 pub mod replay;
 mod report;
+#[cfg(feature = "serve")]
 mod serve;
 mod spinup;
 mod sweep;
@@ -461,6 +462,7 @@ pub fn main() -> ExitCode {
         Some(Command::Plot(a)) => plot::plot(a),
         Some(Command::Bench(a)) => bench::bench(a),
         Some(Command::Replay(a)) => replay::run(a),
+        #[cfg(feature = "serve")]
         Some(Command::Serve(ref a)) => serve::run(a),
         Some(Command::Completions(a)) => about::completions(a.shell),
         Some(Command::Man) => about::man(),

@@ -303,9 +303,9 @@ mod tests {
     /// Each of the engine's checks refuses a value by its field and the range it missed.
     #[test]
     fn the_engines_checks_carry_field_value_and_range() {
-        use crate::engine::body::Body;
-        use crate::engine::units::Units;
-        use crate::engine::{Coupling, Settings};
+        use crate::body::Body;
+        use crate::units::Units;
+        use crate::{Coupling, Settings};
         let invalid = |r: Result<(), Error>| match r {
             Err(Error::Invalid(i)) => (i.field, i.value, i.range),
             other => panic!("{other:?}"),
@@ -352,17 +352,17 @@ mod tests {
             ..Settings::default()
         };
         assert_eq!(invalid(s.validate()).0, Field::MuStaticRatio);
-        let e = crate::engine::solve::check_escape_xi0(1e12).unwrap_err();
+        let e = crate::solve::check_escape_xi0(1e12).unwrap_err();
         assert_eq!(
             invalid(Err(e.clone())),
             (
                 Field::Xi0,
                 1e12,
-                Range::AtMost(crate::engine::solve::MAX_ESCAPE_XI0)
+                Range::AtMost(crate::solve::MAX_ESCAPE_XI0)
             )
         );
         assert!(e.to_string().contains("for an escape speed"), "{e}");
-        let e = crate::engine::solve::escape_speed(0.5, 0.0, Settings::default(), 0.0);
+        let e = crate::solve::escape_speed(0.5, 0.0, Settings::default(), 0.0);
         assert_eq!(
             invalid(e.map(|_| ())),
             (Field::Bracket, 0.0, Range::Above(0.0))
@@ -372,8 +372,8 @@ mod tests {
     /// A combination refused is input refused too; a run's failure and a solver's are not.
     #[test]
     fn refusals_are_told_from_failures() {
-        let mut s = crate::engine::Settings::paper();
-        s.coupling = crate::engine::Coupling::Coulomb { hold: 2.0 };
+        let mut s = crate::Settings::paper();
+        s.coupling = crate::Coupling::Coulomb { hold: 2.0 };
         let e = s.validate().unwrap_err();
         assert!(matches!(e, Error::Refused(_)) && e.is_refusal(), "{e:?}");
         let e = Error::from(RunError::StepUnderflow { tau: 1.0 });

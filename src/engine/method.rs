@@ -3,7 +3,7 @@
 //! Wanner, *Solving ODEs I*, II.5 and the DOPRI5 and DOP853 codes).
 
 use super::model::Frame;
-use crate::engine::error::Error;
+use crate::error::Error;
 use serde::{Deserialize, Serialize};
 use strum::{Display, EnumMessage, EnumString, IntoStaticStr, VariantArray};
 

@@ -2,7 +2,7 @@
 //! Sec. IV, with the conventions of `shared/CONVENTIONS.md` (Ω = 1, μg = 1, the table turns
 //! counterclockwise). Never polar inside: polar forms are singular at ξ = 0.
 
-use crate::engine::error::Error;
+use crate::error::Error;
 use glam::DVec2;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
@@ -339,17 +339,13 @@ impl Frame {
 /// The three forces per unit mass in the rotating frame (Sec. IV's explanation of Fig. 5):
 /// friction (none if `frictionless`), Coriolis and centrifugal, in table-frame components.
 pub fn table_forces(s: &State, frictionless: bool) -> [DVec2; 3] {
-    coupled_forces(s, frictionless, crate::engine::Coupling::PAPER)
+    coupled_forces(s, frictionless, crate::Coupling::PAPER)
 }
 
 /// [`table_forces`] with the table's coupling (extends the paper): Coulomb friction whose
 /// static part holds out to ξ = μ_s/μ_k, or Stokes drag −γu.
-pub fn coupled_forces(
-    s: &State,
-    frictionless: bool,
-    coupling: crate::engine::Coupling,
-) -> [DVec2; 3] {
-    use crate::engine::Coupling;
+pub fn coupled_forces(s: &State, frictionless: bool, coupling: crate::Coupling) -> [DVec2; 3] {
+    use crate::Coupling;
     let (q, u) = (s.q(), s.u());
     let fr = match coupling {
         _ if frictionless => DVec2::ZERO,

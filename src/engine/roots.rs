@@ -1,7 +1,7 @@
 //! Root finding and minimisation on a bracket, shared by event location and the solvers:
 //! Illinois on a continuous function, bisection on a yes/no outcome, golden-section search.
 
-use crate::engine::error::Error;
+use crate::error::Error;
 
 /// The first crossing of `g` from ≤ 0 to > 0 in [a, b], given g(b) > 0: the Illinois variant
 /// of regula falsi, which keeps a superlinear rate where plain regula falsi stalls.

@@ -119,8 +119,8 @@ pub fn fate(s: &State) -> Option<Fate> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::engine::solve::escape_speed;
-    use crate::engine::{Initial, Outcome, Run, Settings};
+    use crate::solve::escape_speed;
+    use crate::{Initial, Outcome, Run, Settings};
 
     /// Releases 1e-6 and 1e-8 either side of v_e(0.5, 0): where the slow manifold first gives
     /// a verdict it is the one the run reaches, well before the run does. The H it predicts at

@@ -107,7 +107,7 @@ pub fn frozen_stop_error(q: DVec2, u: DVec2) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::engine::{Initial, Outcome, Run, Settings};
+    use crate::{Initial, Outcome, Run, Settings};
 
     /// The stop from (k, 0) at speed s in direction α, by a converged run that does not take
     /// this closed form itself.

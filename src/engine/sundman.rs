@@ -366,7 +366,7 @@ pub fn fate(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::engine::{Release, Run, Settings};
+    use crate::{Release, Run, Settings};
 
     /// A converged Cartesian run (the engine's own equations, dp54 at 1e-13, no closed-form
     /// stop): its end and its time.

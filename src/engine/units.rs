@@ -3,8 +3,8 @@
 //! gives every length, time and speed its SI value (said for people by `present`; here only
 //! what files and flags need: a length as typed, and metres written to read back exactly).
 
-use crate::engine::error::Error;
-use crate::engine::model::Initial;
+use crate::error::Error;
+use crate::model::Initial;
 
 /// μ, Ω (rad/s) and g (m/s²) of a real table.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]

@@ -318,10 +318,6 @@ const LAYERS: &[&[&str]] = &[
     &["engine"],
 ];
 
-/// Uses that break the layering today, each to be removed as it is fixed (issue 30 item 2).
-/// A use not on this list fails the test; so does an entry that is no longer needed.
-const KNOWN: &[(&str, &str)] = &[];
-
 /// Which room `rel` (a path under src/) is in.
 fn room(rel: &str) -> String {
     rel.split('/')
@@ -331,29 +327,204 @@ fn room(rel: &str) -> String {
         .to_string()
 }
 
-/// Every room's uses of other rooms (`crate::X` anywhere in its non-test code).
+/// How deep a file's module is below the crate's root (`lib.rs` 0, `app/mod.rs` 1,
+/// `app/update/time.rs` 3): how many `super`s climb out of it.
+fn module_depth(rel: &str) -> usize {
+    let parts: Vec<&str> = rel.split('/').collect();
+    let last = parts.last().copied().unwrap_or("");
+    let own = usize::from(!matches!(last, "mod.rs" | "lib.rs" | "main.rs"));
+    parts.len() - 1 + own
+}
+
+/// The rooms a file's code names, read by parsing it (`syn`): `use` trees, grouped or not
+/// (`use crate::{ui, app::App}`), paths in code, `super::` chains that climb to the crate's
+/// root, and `crate::` paths in macros' tokens; items under `#[cfg(test)]` left out.
+struct Uses {
+    depth: usize,
+    rooms: std::collections::BTreeSet<String>,
+}
+
+impl Uses {
+    fn of(code: &str, depth: usize) -> std::collections::BTreeSet<String> {
+        let file = syn::parse_file(code).unwrap_or_else(|e| panic!("{e}"));
+        let mut uses = Uses {
+            depth,
+            rooms: Default::default(),
+        };
+        syn::visit::Visit::visit_file(&mut uses, &file);
+        uses.rooms
+    }
+
+    /// A path's room, if it leaves the module for the crate's root.
+    fn path(&mut self, segments: &[String]) {
+        let room = match segments.first().map(String::as_str) {
+            Some("crate") => segments.get(1),
+            Some("super") => {
+                let climbs = segments.iter().take_while(|s| *s == "super").count();
+                if climbs < self.depth {
+                    return;
+                }
+                segments.get(climbs)
+            }
+            _ => return,
+        };
+        if let Some(room) = room {
+            self.rooms.insert(room.clone());
+        }
+    }
+
+    fn tree(&mut self, prefix: &mut Vec<String>, tree: &syn::UseTree) {
+        match tree {
+            syn::UseTree::Path(p) => {
+                prefix.push(p.ident.to_string());
+                self.tree(prefix, &p.tree);
+                prefix.pop();
+            }
+            syn::UseTree::Name(n) => self.leaf(prefix, n.ident.to_string()),
+            syn::UseTree::Rename(r) => self.leaf(prefix, r.ident.to_string()),
+            syn::UseTree::Glob(_) => self.path(prefix),
+            syn::UseTree::Group(g) => {
+                for t in &g.items {
+                    self.tree(prefix, t);
+                }
+            }
+        }
+    }
+
+    fn leaf(&mut self, prefix: &[String], name: String) {
+        let mut whole = prefix.to_vec();
+        whole.push(name);
+        self.path(&whole);
+    }
+
+    fn tokens(&mut self, tokens: proc_macro2::TokenStream) {
+        let tokens: Vec<_> = tokens.into_iter().collect();
+        for (i, t) in tokens.iter().enumerate() {
+            match t {
+                proc_macro2::TokenTree::Group(g) => self.tokens(g.stream()),
+                proc_macro2::TokenTree::Ident(id) if id == "crate" => {
+                    let colons = tokens[i + 1..].iter().take(2).all(
+                        |t| matches!(t, proc_macro2::TokenTree::Punct(p) if p.as_char() == ':'),
+                    );
+                    if let (true, Some(proc_macro2::TokenTree::Ident(room))) =
+                        (colons, tokens.get(i + 3))
+                    {
+                        self.rooms.insert(room.to_string());
+                    }
+                }
+                _ => {}
+            }
+        }
+    }
+}
+
+fn cfg_test(attrs: &[syn::Attribute]) -> bool {
+    attrs.iter().any(|a| {
+        a.path().is_ident("cfg")
+            && a.meta.require_list().is_ok_and(|l| {
+                l.tokens
+                    .to_string()
+                    .split(|c: char| !c.is_alphanumeric())
+                    .any(|w| w == "test")
+            })
+    })
+}
+
+impl<'a> syn::visit::Visit<'a> for Uses {
+    fn visit_item(&mut self, item: &'a syn::Item) {
+        let attrs = match item {
+            syn::Item::Mod(i) => &i.attrs,
+            syn::Item::Fn(i) => &i.attrs,
+            syn::Item::Impl(i) => &i.attrs,
+            syn::Item::Use(i) => &i.attrs,
+            syn::Item::Const(i) => &i.attrs,
+            syn::Item::Static(i) => &i.attrs,
+            syn::Item::Struct(i) => &i.attrs,
+            syn::Item::Enum(i) => &i.attrs,
+            syn::Item::Macro(i) => &i.attrs,
+            _ => return syn::visit::visit_item(self, item),
+        };
+        if cfg_test(attrs) {
+            return;
+        }
+        if let syn::Item::Mod(m) = item {
+            self.depth += 1;
+            syn::visit::visit_item_mod(self, m);
+            self.depth -= 1;
+            return;
+        }
+        syn::visit::visit_item(self, item);
+    }
+
+    fn visit_item_use(&mut self, u: &'a syn::ItemUse) {
+        self.tree(&mut vec![], &u.tree);
+    }
+
+    fn visit_path(&mut self, p: &'a syn::Path) {
+        let segments: Vec<String> = p.segments.iter().map(|s| s.ident.to_string()).collect();
+        self.path(&segments);
+        syn::visit::visit_path(self, p);
+    }
+
+    fn visit_macro(&mut self, m: &'a syn::Macro) {
+        self.tokens(m.tokens.clone());
+        syn::visit::visit_macro(self, m);
+    }
+}
+
+/// The checker sees every form a use can take (a `crate::X` grep once missed
+/// `use crate::{ui};` in the engine).
+#[test]
+fn the_import_graph_sees_every_form_of_use() {
+    let rooms = |code: &str, depth| Uses::of(code, depth).into_iter().collect::<Vec<_>>();
+    assert_eq!(rooms("use crate::{ui};", 1), ["ui"]);
+    assert_eq!(
+        rooms("use crate::{app::{App, view}, plot::*, ui as u};", 1),
+        ["app", "plot", "ui"]
+    );
+    assert_eq!(rooms("fn f() { crate::sim::go(); }", 1), ["sim"]);
+    assert_eq!(
+        rooms(
+            "fn f() { let _ = format!(\"{}\", crate::present::num(1.0)); }",
+            1
+        ),
+        ["present"]
+    );
+    // Two `super`s from app/update/time.rs climb to app: inside the room.
+    assert_eq!(rooms("use super::super::view;", 3), Vec::<String>::new());
+    // Three climb to the root.
+    assert_eq!(rooms("use super::super::super::ui::draw;", 3), ["ui"]);
+    assert_eq!(rooms("use super::files;", 1), ["files"]);
+    assert_eq!(
+        rooms("#[cfg(test)]\nmod tests { use crate::ui; }", 1),
+        Vec::<String>::new()
+    );
+    assert_eq!(
+        rooms("#[cfg(all(test, unix))]\nfn t() { crate::ui::x(); }", 1),
+        Vec::<String>::new()
+    );
+}
+
+/// Every room's uses of other rooms in the main crate (the engine is a crate of its own: the
+/// compiler holds that it uses nothing of this one).
 fn import_graph() -> std::collections::BTreeMap<String, std::collections::BTreeSet<String>> {
     let root = src();
     let mut graph: std::collections::BTreeMap<String, std::collections::BTreeSet<String>> =
         Default::default();
-    for (path, code) in sources(&root) {
+    for (path, code) in all_sources(&root) {
         let rel = path
             .strip_prefix(&root)
             .unwrap()
             .to_string_lossy()
             .replace('\\', "/");
         let from = room(&rel);
+        if from == "engine" {
+            continue;
+        }
         let uses = graph.entry(from.clone()).or_default();
-        for line in code.lines() {
-            let line = line.split("//").next().unwrap_or("");
-            for (i, _) in line.match_indices("crate::") {
-                let to: String = line[i + 7..]
-                    .chars()
-                    .take_while(|c| c.is_alphanumeric() || *c == '_')
-                    .collect();
-                if !to.is_empty() && to != from {
-                    uses.insert(to);
-                }
+        for to in Uses::of(&code, module_depth(&rel)) {
+            if to != from {
+                uses.insert(to);
             }
         }
     }
@@ -385,7 +556,7 @@ fn layer(room: &str) -> Option<usize> {
 
 /// The import graph between rooms, printed (`cargo test --release --test suite
 /// architecture::the_rooms_depend_one_way -- --nocapture`), checked against `LAYERS`: every use
-/// goes down a layer or stays in one without a cycle, but for the `KNOWN` exceptions.
+/// goes down a layer or stays in one without a cycle.
 #[test]
 fn the_rooms_depend_one_way() {
     let graph = import_graph();
@@ -404,20 +575,9 @@ fn the_rooms_depend_one_way() {
                 bad.push(format!("{to}: in no layer of LAYERS"));
                 continue;
             };
-            let cycle = reaches(&graph, to, from);
-            let wrong = lt < lf || cycle;
-            let known = KNOWN.contains(&(from.as_str(), to.as_str()));
-            if wrong && !known {
+            if lt < lf || reaches(&graph, to, from) {
                 bad.push(format!("{from} (layer {lf}) uses {to} (layer {lt})"));
             }
-            if !wrong && known {
-                bad.push(format!("{from} -> {to} is fine now: drop it from KNOWN"));
-            }
-        }
-    }
-    for (from, to) in KNOWN {
-        if !graph.get(*from).is_some_and(|u| u.contains(*to)) {
-            bad.push(format!("{from} -> {to} is gone: drop it from KNOWN"));
         }
     }
     assert!(bad.is_empty(), "{}", bad.join("\n"));
@@ -580,4 +740,67 @@ fn the_length_measure_counts_what_it_says() {
         functions(&lines),
         vec![("a".into(), 3), ("b".into(), 5), ("d".into(), 1)]
     );
+}
+
+/// ARCHITECTURE.md's table of rooms is the import graph: each row's *uses* are what its code
+/// names, no more, no less (the engine's row: its crate's dependencies), and every room has a
+/// row (but the crate's roots, `lib.rs` and `main.rs`, which only name the rooms).
+#[test]
+fn the_architecture_table_is_the_import_graph() {
+    let doc =
+        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("ARCHITECTURE.md"))
+            .unwrap();
+    let names = |cell: &str| -> std::collections::BTreeSet<String> {
+        cell.split(',')
+            .map(|w| w.split_whitespace().next().unwrap_or("").trim_matches('`'))
+            .map(|w| w.trim_end_matches('/').trim_end_matches(".rs").to_string())
+            .filter(|w| !w.is_empty() && w != "—")
+            .collect()
+    };
+    let mut rows = std::collections::BTreeMap::new();
+    let table = doc
+        .split("| room | holds | uses |")
+        .nth(1)
+        .expect("the table of rooms");
+    for line in table.lines().skip(2).take_while(|l| l.starts_with('|')) {
+        let cells: Vec<&str> = line.trim_matches('|').split(" | ").map(str::trim).collect();
+        assert_eq!(cells.len(), 3, "{line}");
+        for room in names(cells[0]) {
+            rows.insert(room, names(cells[2]));
+        }
+    }
+    let mut graph = import_graph();
+    graph.remove("lib");
+    graph.remove("main");
+    let manifest = std::fs::read_to_string(src().join("engine/Cargo.toml")).unwrap();
+    let deps = manifest
+        .split("[dependencies]")
+        .nth(1)
+        .unwrap()
+        .split("\n[")
+        .next()
+        .unwrap();
+    graph.insert(
+        "engine".into(),
+        deps.lines()
+            .filter_map(|l| l.split_once(" = ").map(|(k, _)| k.trim().to_string()))
+            .collect(),
+    );
+    let mut bad = vec![];
+    for (room, uses) in &graph {
+        match rows.get(room) {
+            Some(row) if row == uses => {}
+            Some(row) => bad.push(format!(
+                "{room}: the table says {row:?}, the code uses {}",
+                uses.iter().cloned().collect::<Vec<_>>().join(", ")
+            )),
+            None => bad.push(format!("{room}: no row")),
+        }
+    }
+    bad.extend(
+        rows.keys()
+            .filter(|r| !graph.contains_key(*r))
+            .map(|r| format!("{r}: a row for no room")),
+    );
+    assert!(bad.is_empty(), "{}", bad.join("\n"));
 }

@@ -40,8 +40,11 @@ mod replay;
 mod rim;
 mod rim_times;
 mod rod;
+#[cfg(feature = "serve")]
 mod serve;
+#[cfg(feature = "serve")]
 mod serve_class;
+#[cfg(feature = "serve")]
 mod serve_settings;
 mod si;
 mod spin_explorer;

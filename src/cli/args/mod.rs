@@ -204,6 +204,7 @@ pub enum Command {
     Replay(super::replay::ReplayArgs),
     /// Serve the explorer over SSH to a class: each connection its own explorer, a presenter
     /// who leads (`ssh -p 2222 class@HOST`).
+    #[cfg(feature = "serve")]
     Serve(super::serve::ServeArgs),
     /// Narrated lessons through the paper: --list, NAME (in the explorer), NAME --headless.
     #[command(long_about = LESSON_ABOUT)]
@@ -235,9 +236,11 @@ pub struct BenchArgs {
     /// Measure `turntable serve` instead: the server on 127.0.0.1 and this many in-process
     /// SSH clients at 80x24, each playing and pressing a key every 200 ms (a list, e.g.
     /// 10,30,60: one row each).
+    #[cfg(feature = "serve")]
     #[arg(long, value_name = "N,...", value_delimiter = ',')]
     pub serve: Vec<usize>,
     /// Seconds each --serve row runs.
+    #[cfg(feature = "serve")]
     #[arg(long, default_value_t = 60.0, requires = "serve")]
     pub seconds: f64,
     /// A small bench that finishes in seconds (fewer settings, cases and angles).

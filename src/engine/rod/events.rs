@@ -5,9 +5,9 @@
 use super::contact::{breakaway, pivot_need, stop_contact};
 use super::state::{Phase, RodState, S, axis};
 use super::{RodRun, Translation};
-use crate::engine::method::{Coupling, Settings};
-use crate::engine::model::{Initial, Release};
-use crate::engine::run::{Outcome, Run, RunError, Stop};
+use crate::method::{Coupling, Settings};
+use crate::model::{Initial, Release};
+use crate::run::{Outcome, Run, RunError, Stop};
 use glam::DVec2;
 
 impl RodRun {

@@ -1,7 +1,7 @@
 //! The body's state: where it is (centre, velocity, angle, rate), which contacts hold, and the
 //! six components the shared stepper integrates.
 
-use crate::engine::stepper::Vector;
+use crate::stepper::Vector;
 use glam::DVec2;
 
 /// The body at time τ in the table frame: centre q, its velocity u, the rod's angle ψ and its

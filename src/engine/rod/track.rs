@@ -2,8 +2,8 @@
 
 use super::RodRun;
 use super::state::{Phase, RodState};
-use crate::engine::run::Outcome;
-use crate::engine::track::Track;
+use crate::run::Outcome;
+use crate::track::Track;
 
 /// Most steps (accepted and rejected) a [`RodTrack`] takes: the explorer computes a track
 /// inside a key press, so its cost is bounded whatever the release, to a frame: 50 000 steps

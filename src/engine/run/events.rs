@@ -4,10 +4,10 @@
 
 use super::outcome::{Certificate, Escape, Status, certificate, certificate_margin};
 use super::{Ahead, Limit, Run, RunError, SNAP_T, STIFF, STOP_CAP, StepInfo};
-use crate::engine::model::{Frame, State, Y, rotate, zcross};
-use crate::engine::radau;
-use crate::engine::roots::illinois;
-use crate::engine::stepper::{Segment, Stepper, too_short};
+use crate::model::{Frame, State, Y, rotate, zcross};
+use crate::radau;
+use crate::roots::illinois;
+use crate::stepper::{Segment, Stepper, too_short};
 use glam::DVec2;
 
 /// The share of the time to the stop ahead that a second opinion's explicit step, held to its

@@ -2,7 +2,7 @@
 //! solution), one stride at a time to τ-max, stopping at the escape certificate on the way.
 
 use super::{Certificate, Escape, Limit, Run, RunError, StepInfo};
-use crate::engine::model::State;
+use crate::model::State;
 
 /// How far one closed-form stride of a frictionless run reaches when no end is given: any
 /// length costs the same.

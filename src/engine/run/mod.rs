@@ -9,7 +9,7 @@ use super::model::{rotate, zcross};
 use super::stepper::{Cost, Segment, StepError, Stepper, too_short};
 use super::stokes::Stokes;
 use super::stop::{frozen_at, frozen_stop, frozen_stop_error, radial_launch};
-use crate::engine::error::Error;
+use crate::error::Error;
 use glam::DVec2;
 
 mod events;

@@ -1,7 +1,7 @@
 //! How a run ends and how we know: stuck, escaped (with the certificate that proves it), or
 //! still running; and the errors that stop a run early (Sec. II, properties 1 and 2).
 
-use crate::engine::model::State;
+use crate::model::State;
 use glam::DVec2;
 use serde::Serialize;
 

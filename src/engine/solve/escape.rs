@@ -3,12 +3,12 @@
 //! that pass close to the saddle.
 
 use super::{CLASSIFY_TAU, GoOn, Kept, Threshold, always, check, floor_tol, scan};
-use crate::engine::error::{Error, Field, Invalid, Range};
-use crate::engine::method::{Scheme, Settings};
-use crate::engine::model::Initial;
-use crate::engine::roots::bisect;
-use crate::engine::run::Run;
-use crate::engine::saddle::{Fate, fate, saddle_h};
+use crate::error::{Error, Field, Invalid, Range};
+use crate::method::{Scheme, Settings};
+use crate::model::Initial;
+use crate::roots::bisect;
+use crate::run::Run;
+use crate::saddle::{Fate, fate, saddle_h};
 
 /// Outcome of one classifying run at speed v0, and the smooth measure H at its end when the
 /// run went all the way (see [`saddle_h`]).
@@ -27,7 +27,7 @@ fn probe(
     evals: &mut u64,
     go_on: GoOn,
 ) -> Result<(Probe, Run), Error> {
-    use crate::engine::run::Status;
+    use crate::run::Status;
     check(go_on)?;
     let mut run = Run::new(initial, settings)?;
     let result = loop {

@@ -4,9 +4,9 @@
 //! run is stepped as [`Run::run`] steps it, so continued it is the run in full: at the escape
 //! speed's bracket ends that skips the two thirds of each run before its verdict.
 
-use crate::engine::method::Settings;
-use crate::engine::model::Initial;
-use crate::engine::run::{Outcome, Run};
+use crate::method::Settings;
+use crate::model::Initial;
+use crate::run::{Outcome, Run};
 
 /// The latest run on each side of a threshold, with the value it was made at: a bracket's end
 /// moves to each new run on its side, so these are its ends' when they match them.

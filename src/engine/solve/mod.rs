@@ -7,7 +7,7 @@ use super::model::{Initial, Release};
 use super::par::{par_map, par_map_counted};
 use super::roots::{bisect, golden_min};
 use super::run::{Outcome, Run};
-use crate::engine::error::Error;
+use crate::error::Error;
 use serde::Serialize;
 use std::sync::atomic::AtomicUsize;
 

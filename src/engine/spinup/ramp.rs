@@ -1,7 +1,7 @@
 //! The table's linear spin-up, Ω(τ) = Ω0 + a τ, and the closed forms of a coin at rest on it:
 //! the friction it needs, where it slips, and the μ a student infers from the slip.
 
-use crate::engine::error::{Error, Field, Range, check};
+use crate::error::{Error, Field, Range, check};
 
 /// The table's rate ramps linearly from `omega0` at `rate` (units of Ω_ref and Ω_ref²: see
 /// the module's units).

@@ -2,8 +2,8 @@
 //! (position, velocity and the table's rate, so that the autonomous stepper sees Ω(τ)), the
 //! equations of motion, and the escape certificate.
 
-use crate::engine::model::{Y, rotate, zcross};
-use crate::engine::stepper::Vector;
+use crate::model::{Y, rotate, zcross};
+use crate::stepper::Vector;
 use glam::DVec2;
 use std::ops::{Add, Mul, Sub};
 

@@ -1,5 +1,5 @@
 use super::*;
-use crate::engine::Coupling;
+use crate::Coupling;
 
 fn settings(hold: f64) -> Settings {
     Settings {
