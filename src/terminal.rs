@@ -85,7 +85,7 @@ fn watch_hangup(finished: Arc<AtomicBool>) {
     std::thread::spawn(move || {
         while !finished.load(Ordering::Relaxed) {
             if hung_up() {
-                let _ = signal_hook::low_level::raise(libc::SIGHUP);
+                let _ = signal_hook::low_level::raise(signal_hook::consts::SIGHUP);
                 return;
             }
             std::thread::sleep(Duration::from_millis(200));
@@ -112,7 +112,7 @@ fn hung_up() -> bool {
 /// the explorer's screen back when it continues.
 fn suspend(session: &mut Session<CrosstermBackend<Stdout>>) -> io::Result<()> {
     restore();
-    signal_hook::low_level::emulate_default_handler(libc::SIGTSTP)?;
+    signal_hook::low_level::emulate_default_handler(signal_hook::consts::SIGTSTP)?;
     resume(session)
 }
 
@@ -214,17 +214,17 @@ fn supervise<B: ratatui::backend::Backend>(
 /// Signals that end the process by default and can be caught: each ends the explorer with
 /// the terminal restored and the recording saved.
 const TERMINATING: [i32; 11] = [
-    libc::SIGTERM,
-    libc::SIGHUP,
-    libc::SIGINT,
-    libc::SIGQUIT,
-    libc::SIGUSR1,
-    libc::SIGUSR2,
-    libc::SIGALRM,
-    libc::SIGVTALRM,
-    libc::SIGPROF,
-    libc::SIGXCPU,
-    libc::SIGXFSZ,
+    signal_hook::consts::SIGTERM,
+    signal_hook::consts::SIGHUP,
+    signal_hook::consts::SIGINT,
+    signal_hook::consts::SIGQUIT,
+    signal_hook::consts::SIGUSR1,
+    signal_hook::consts::SIGUSR2,
+    signal_hook::consts::SIGALRM,
+    signal_hook::consts::SIGVTALRM,
+    signal_hook::consts::SIGPROF,
+    signal_hook::consts::SIGXCPU,
+    signal_hook::consts::SIGXFSZ,
 ];
 
 /// What the event loop learns from the signal watcher.
@@ -252,14 +252,16 @@ struct Lost {
 /// and ends the process.
 fn watch_signals(flags: Arc<Flags>, lost: Lost) -> io::Result<()> {
     let mut signals = signal_hook::iterator::Signals::new(
-        TERMINATING.iter().chain(&[libc::SIGTSTP, libc::SIGCONT]),
+        TERMINATING
+            .iter()
+            .chain(&[signal_hook::consts::SIGTSTP, signal_hook::consts::SIGCONT]),
     )?;
     std::thread::spawn(move || {
         let mut pending = signals.forever();
         let terminating = loop {
             match pending.next() {
-                Some(libc::SIGTSTP) => flags.suspend.store(true, Ordering::Relaxed),
-                Some(libc::SIGCONT) => flags.resume.store(true, Ordering::Relaxed),
+                Some(signal_hook::consts::SIGTSTP) => flags.suspend.store(true, Ordering::Relaxed),
+                Some(signal_hook::consts::SIGCONT) => flags.resume.store(true, Ordering::Relaxed),
                 other => break other,
             }
         };

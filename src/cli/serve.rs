@@ -173,7 +173,10 @@ impl ServeArgs {
 
 pub fn run(a: &ServeArgs) -> CmdResult {
     let (options, said) = a.options()?;
-    let mut signals = signal_hook::iterator::Signals::new([libc::SIGTERM, libc::SIGINT])?;
+    let mut signals = signal_hook::iterator::Signals::new([
+        signal_hook::consts::SIGTERM,
+        signal_hook::consts::SIGINT,
+    ])?;
     let running = crate::serve::start(options).map_err(|e| Error::Io {
         what: format!("listening on {}", a.listen),
         source: std::sync::Arc::new(e),

@@ -106,7 +106,7 @@ pub fn read_bounded(path: &Path, cap: u64) -> Result<String, Error> {
     let refuse = |e: String| Error::Invalid(format!("{name}: {e}"));
     let f = OpenOptions::new()
         .read(true)
-        .custom_flags(libc::O_NONBLOCK)
+        .custom_flags(open_flags(rustix::fs::OFlags::NONBLOCK))
         .open(path)
         .map_err(|e| refuse(e.to_string()))?;
     let m = f.metadata().map_err(|e| refuse(e.to_string()))?;
@@ -165,6 +165,11 @@ pub fn escape_controls(text: &str) -> String {
         }
     }
     out
+}
+
+/// rustix's open flags as `OpenOptionsExt::custom_flags` takes them (a C `int`).
+fn open_flags(flags: rustix::fs::OFlags) -> i32 {
+    flags.bits() as i32
 }
 
 #[cfg(test)]

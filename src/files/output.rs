@@ -3,6 +3,8 @@
 //! beside a taken name.
 
 use super::*;
+use rustix::fs::OFlags;
+use rustix::io::Errno;
 
 /// An output file being written: see [`Output::create`]. Dropped without [`Output::finish`],
 /// it leaves the destination as it was, and no temporary file.
@@ -168,10 +170,12 @@ impl Output {
                     // O_NONBLOCK: a FIFO with no reader fails (ENXIO) instead of hanging.
                     let f = OpenOptions::new()
                         .write(true)
-                        .custom_flags(libc::O_NONBLOCK)
+                        .custom_flags(super::open_flags(OFlags::NONBLOCK))
                         .open(dest)
                         .map_err(|e| match e.raw_os_error() {
-                            Some(libc::ENXIO) => err(dest, "a FIFO with no reader"),
+                            Some(e) if e == Errno::NXIO.raw_os_error() => {
+                                err(dest, "a FIFO with no reader")
+                            }
                             _ => at(dest, e),
                         })?;
                     clear_nonblock(&f);
@@ -373,7 +377,7 @@ fn open_named(dir: &Path, name: &str) -> io::Result<(File, PathBuf)> {
             .write(true)
             .create_new(true)
             .mode(0o600)
-            .custom_flags(libc::O_NOFOLLOW | libc::O_CLOEXEC)
+            .custom_flags(super::open_flags(OFlags::NOFOLLOW | OFlags::CLOEXEC))
             .open(&tmp)
         {
             Ok(f) => return Ok((f, tmp)),

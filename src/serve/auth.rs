@@ -82,7 +82,7 @@ pub fn fingerprint(key: &PrivateKey) -> String {
 }
 
 fn random(buf: &mut [u8]) -> Result<(), Error> {
-    getrandom::fill(buf).map_err(|e| Error::Failed(format!("the system's randomness: {e}")))
+    getrandom::getrandom(buf).map_err(|e| Error::Failed(format!("the system's randomness: {e}")))
 }
 
 /// Words a class can type, from the system's randomness: four of 256, 32 bits.

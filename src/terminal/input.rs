@@ -200,7 +200,7 @@ pub struct Reader {
 impl Reader {
     pub fn new() -> io::Result<Reader> {
         let resized = Arc::new(AtomicBool::new(false));
-        signal_hook::flag::register(libc::SIGWINCH, Arc::clone(&resized))?;
+        signal_hook::flag::register(signal_hook::consts::SIGWINCH, Arc::clone(&resized))?;
         Ok(Reader {
             decoder: Decoder::new(),
             resized,

@@ -88,7 +88,7 @@ fn event_loop(session: &mut Session<TestBackend>, flags: &Flags) -> io::Result<(
     while !session.app.should_quit() && !flags.stop.load(Ordering::Relaxed) {
         if flags.suspend.swap(false, Ordering::Relaxed) {
             restore();
-            signal_hook::low_level::emulate_default_handler(libc::SIGTSTP)?;
+            signal_hook::low_level::emulate_default_handler(signal_hook::consts::SIGTSTP)?;
             flags.resume.store(true, Ordering::Relaxed);
         }
         if flags.resume.swap(false, Ordering::Relaxed) {
