@@ -102,7 +102,7 @@ pub struct Lesson {
 /// To a session's thread: from its connection, its writer, or the class.
 pub enum In {
     Data(conn::Queued),
-    /// The client's window changed (its latest size waits in [`screen::Window`]).
+    /// The client's window changed (its latest size waits in `screen::Window`).
     Resize,
     /// The channel took the last frame (a copy): its buffer comes back, to be drawn into
     /// again and freed on the session's own thread. glibc gives a thread's arena back to the
@@ -116,7 +116,7 @@ pub enum In {
     /// (To the presenter.) This session asks to follow: send it the class.
     Join(u64),
     /// (To a follower.) The class as it is now, its lesson's place included, is waiting to be
-    /// taken ([`Shared::take_class`]); what it is sent next applies to that.
+    /// taken (`Shared::take_class`); what it is sent next applies to that.
     Class,
     /// (To a follower.) The presenter left.
     Unled,
