@@ -14,7 +14,7 @@ pub fn completions(shell: clap_complete::Shell) -> CmdResult {
 }
 
 /// Where the explorer's configuration is kept and, unless `path_only`, a commented template.
-pub fn config(path_only: bool) -> CmdResult {
+pub fn config(path_only: bool, init: bool) -> CmdResult {
     let Some(dir) = config::dir(|v| std::env::var_os(v)) else {
         return Err(Error::Failed(
             "no configuration folder: neither XDG_CONFIG_HOME nor HOME is an absolute path (use --config FILE)".into(),
@@ -22,6 +22,9 @@ pub fn config(path_only: bool) -> CmdResult {
     };
     let path = dir.join("config.toml");
     let shown = crate::files::escape_controls(&path.display().to_string());
+    if init {
+        return write_template(&dir, &path, &shown);
+    }
     let text = if path_only {
         format!("{shown}\n")
     } else {
@@ -37,6 +40,23 @@ pub fn config(path_only: bool) -> CmdResult {
         )
     };
     crate::files::emit(None, &text)?;
+    Ok(())
+}
+
+/// `config --init`: the template written to `path`, its folder made; an existing file kept.
+fn write_template(dir: &std::path::Path, path: &std::path::Path, shown: &str) -> CmdResult {
+    use std::io::Write;
+    let failed = |e: std::io::Error| Error::Failed(format!("{shown}: {e}"));
+    if path.symlink_metadata().is_ok() {
+        return Err(Error::Invalid(format!(
+            "{shown} is there already: kept as it is (`turntable config` prints the template)"
+        )));
+    }
+    std::fs::create_dir_all(dir).map_err(failed)?;
+    let mut out = crate::files::Output::create(path, false).map_err(failed)?;
+    out.write_all(config::TEMPLATE.as_bytes()).map_err(failed)?;
+    out.finish().map_err(failed)?;
+    crate::files::emit(None, &format!("wrote {shown}\n"))?;
     Ok(())
 }
 

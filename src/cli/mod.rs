@@ -123,7 +123,7 @@ fn explore(
     let scene_ref = look.scene.as_deref().map(scene_reference);
     if term.as_deref() == Some("dumb") && !plain {
         return Err(Error::Invalid(
-            "TERM=dumb cannot show the explorer (it needs cursor movement); set TERM to your terminal's type (e.g. xterm), or use `turntable replay SCRIPT` or a subcommand".into(),
+            "TERM=dumb cannot show the explorer (it needs cursor movement); set TERM to your terminal's type (e.g. xterm), or use `turntable --plain` (the explorer in lines of text), `turntable replay SCRIPT` or a subcommand".into(),
         ));
     }
     let recording = match &cli.record {
@@ -466,7 +466,7 @@ pub fn main() -> ExitCode {
         Some(Command::Serve(ref a)) => serve::run(a),
         Some(Command::Completions(a)) => about::completions(a.shell),
         Some(Command::Man) => about::man(),
-        Some(Command::Config(a)) => about::config(a.path),
+        Some(Command::Config(a)) => about::config(a.path, a.init),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

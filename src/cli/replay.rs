@@ -21,8 +21,6 @@ pub struct ReplayArgs {
     /// snapshot prints the readouts.
     #[arg(long, conflicts_with_all = ["ansi", "asciicast"])]
     pub plain: bool,
-    #[command(flatten)]
-    pub look: super::Look,
     /// Also record the replay as an asciicast v2 file (asciinema's player plays it at the
     /// pace of the ticks, 30 a second), written atomically; an existing file is kept unless
     /// --force, and the script, scene and theme never.
@@ -31,6 +29,8 @@ pub struct ReplayArgs {
     /// Replace the --asciicast file if it exists.
     #[arg(long, requires = "asciicast")]
     pub force: bool,
+    #[command(flatten)]
+    pub look: super::Look,
 }
 
 pub fn run(a: ReplayArgs) -> CmdResult {

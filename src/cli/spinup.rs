@@ -26,14 +26,14 @@ pub struct SpinupArgs {
     /// A scene file with [spin] (rate, omega0): its coin at rest, ramp, settings and units.
     #[arg(long, value_name = "PATH", conflicts_with_all = ["rate", "xi0", "omega0", "method", "tol", "dt", "frame", "max_steps", "coupling", "mu_static_ratio", "gamma", "mu", "rpm", "gravity"])]
     pub scene: Option<String>,
-    #[command(flatten)]
-    pub numerics: NumericsArgs,
     /// Stop at this time if escape is not certified by then.
     #[arg(long, default_value_t = 100.0, allow_hyphen_values = true)]
     pub tau_max: f64,
     /// Print one JSON object instead of text.
     #[arg(long)]
     pub json: bool,
+    #[command(flatten)]
+    pub numerics: NumericsArgs,
     #[command(flatten)]
     pub units: UnitsArgs,
 }

@@ -548,6 +548,21 @@ fn the_configuration_can_be_found_and_named() {
     ] {
         assert!(out.contains(&format!("# {key}")), "{key}: {out}");
     }
+    // --init writes the template there, its folder made (a fresh machine has none), the file
+    // the explorer then reads; a second --init keeps it.
+    let (code, said, err) = run(&["config", "--init"]);
+    assert_eq!(code, 0, "{err}");
+    assert_eq!(said.trim(), format!("wrote {}", want.display()));
+    let written = std::fs::read_to_string(&want).unwrap();
+    assert!(out.ends_with(&written) && written.len() > 200, "{written}");
+    std::fs::write(&want, "fps = 12\n").unwrap();
+    let (code, _, err) = run(&["config", "--init"]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("is there already: kept"), "{err}");
+    assert_eq!(std::fs::read_to_string(&want).unwrap(), "fps = 12\n");
+    let (code, out, _) = run(&["config"]);
+    assert!(code == 0 && out.contains("(there;"), "{out}");
+    std::fs::remove_file(&want).unwrap();
     // A named file is read, and refused as the usual one is; a missing one is said.
     let bad = dir.path().join("mine.toml");
     std::fs::write(&bad, "fps = 500\n").unwrap();
@@ -831,4 +846,67 @@ fn errors_are_cut_and_name_the_file() {
         assert_eq!(code, 1, "{err}");
         assert!(err.contains("writing --trajectory /dev/full"), "{err}");
     }
+}
+
+/// Each flag's help sits under its own group's heading: a flattened group's heading once
+/// carried over to the flags declared after it (`run -h` listed --json, --tau-max and
+/// --trajectory under "Friction:"). The groups' members are read from the groups themselves.
+#[test]
+fn every_flag_is_under_its_own_heading() {
+    use clap::{Args, CommandFactory};
+    use turntable::cli::{BodyArgs, Cli, CouplingArgs, UnitsArgs};
+    // A group's flag: its id and its help (`sweep body` has a --body-angle of its own).
+    let key = |a: &clap::Arg| (a.get_id().to_string(), a.get_help().map(|h| h.to_string()));
+    let groups: Vec<(Option<String>, Vec<_>)> = [
+        CouplingArgs::augment_args(clap::Command::new("g")),
+        UnitsArgs::augment_args(clap::Command::new("g")),
+        BodyArgs::augment_args(clap::Command::new("g")),
+    ]
+    .iter()
+    .map(|c| {
+        let ids: Vec<_> = c.get_arguments().map(key).collect();
+        let heading = c.get_arguments().next().and_then(|a| a.get_help_heading());
+        (heading.map(str::to_string), ids)
+    })
+    .collect();
+    assert!(
+        groups.iter().all(|(h, ids)| h.is_some() && ids.len() >= 3),
+        "{groups:?}"
+    );
+    let mut bad = vec![];
+    let mut seen = 0;
+    let mut stack = vec![(String::new(), Cli::command())];
+    while let Some((path, cmd)) = stack.pop() {
+        for a in cmd.get_arguments() {
+            let id = key(a);
+            let want = groups
+                .iter()
+                .find(|(_, ids)| ids.contains(&id))
+                .and_then(|(h, _)| h.clone());
+            let got = a.get_help_heading().map(str::to_string);
+            let a_groups = groups.iter().any(|(h, _)| *h == got);
+            seen += 1;
+            // A group's flag under its heading; any other under none of the groups' (the
+            // explorer's own flags are under "Explorer").
+            if (want.is_some() && got != want) || (want.is_none() && got.is_some() && a_groups) {
+                bad.push(format!("{path} --{}: under {got:?}, not {want:?}", id.0));
+            }
+        }
+        let help = cmd.clone().render_help().to_string();
+        if help.contains("0.0000") {
+            bad.push(format!("{path}: a default written long: {help}"));
+        }
+        for sub in cmd.get_subcommands() {
+            stack.push((format!("{path} {}", sub.get_name()), sub.clone()));
+        }
+    }
+    let help = Cli::command().render_help().to_string();
+    for preset in turntable::scene::PRESETS {
+        assert!(
+            help.contains(&format!("{preset}, ")) || help.contains(&format!("{preset})")),
+            "{preset}: {help}"
+        );
+    }
+    assert!(seen > 100, "{seen}");
+    assert!(bad.is_empty(), "{}", bad.join("\n"));
 }

@@ -21,6 +21,10 @@ fn term_dumb_is_refused_with_a_clear_message() {
     assert!(out.stdout.is_empty());
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("TERM=dumb cannot show the explorer"), "{err}");
+    assert!(
+        err.contains("`turntable --plain`"),
+        "the mode made for it: {err}"
+    );
 }
 
 #[test]

@@ -41,7 +41,7 @@ pub struct BodySweepArgs {
     #[arg(long, default_value = "velocity", value_parser = variant::<Release>())]
     pub release: Release,
     /// The body lengths L (units of R_max).
-    #[arg(long, value_delimiter = ',', allow_hyphen_values = true, default_values_t = [1e-6, 1e-4, 1e-3, 3e-3, 1e-2, 3e-2, 0.1, 0.3])]
+    #[arg(long, value_delimiter = ',', allow_hyphen_values = true, default_values = ["1e-6", "1e-4", "1e-3", "3e-3", "1e-2", "3e-2", "0.1", "0.3"])]
     pub lengths: Vec<f64>,
     /// The rod's angle at release (rad).
     #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
@@ -50,17 +50,17 @@ pub struct BodySweepArgs {
     #[arg(long, default_value_t = 100.0, allow_hyphen_values = true)]
     pub tau_max: f64,
     #[command(flatten)]
-    pub numerics: NumericsArgs,
-    #[command(flatten)]
     pub out: OutArg,
+    #[command(flatten)]
+    pub numerics: NumericsArgs,
 }
 
 #[derive(Args, Debug)]
 pub struct Fig5Args {
     #[command(flatten)]
-    pub data: Fig5Data,
-    #[command(flatten)]
     pub out: OutArg,
+    #[command(flatten)]
+    pub data: Fig5Data,
 }
 
 /// What Fig. 5 is computed from (`sweep fig5`, `plot fig5`).
@@ -73,7 +73,7 @@ pub struct Fig5Data {
     #[arg(long, default_value_t = 72)]
     pub points: usize,
     /// Width of the final bracket on each escape speed.
-    #[arg(long = "vtol", default_value_t = 1e-6, allow_hyphen_values = true)]
+    #[arg(long = "vtol", default_value = "1e-6", allow_hyphen_values = true)]
     pub vtol: f64,
     #[command(flatten)]
     pub numerics: NumericsArgs,
@@ -82,9 +82,9 @@ pub struct Fig5Data {
 #[derive(Args, Debug)]
 pub struct Fig6Args {
     #[command(flatten)]
-    pub data: Fig6Data,
-    #[command(flatten)]
     pub out: OutArg,
+    #[command(flatten)]
+    pub data: Fig6Data,
 }
 
 /// What Fig. 6 is computed from (`sweep fig6`, `plot fig6`).
@@ -103,9 +103,9 @@ pub struct Fig6Data {
 #[derive(Args, Debug)]
 pub struct MapArgs {
     #[command(flatten)]
-    pub data: MapData,
-    #[command(flatten)]
     pub out: OutArg,
+    #[command(flatten)]
+    pub data: MapData,
 }
 
 /// What the outcome map is computed from (`sweep map`, `plot map`).
@@ -128,7 +128,7 @@ pub struct MapData {
     #[arg(long, allow_hyphen_values = true)]
     pub v0_max: Option<f64>,
     /// Width of the bracket on the escape speeds that set the default --v0-max.
-    #[arg(long = "vtol", default_value_t = 1e-6, allow_hyphen_values = true)]
+    #[arg(long = "vtol", default_value = "1e-6", allow_hyphen_values = true)]
     pub vtol: f64,
     #[command(flatten)]
     pub numerics: NumericsArgs,
@@ -157,23 +157,23 @@ pub enum PlotFigure {
     /// Fig. 5: v_e over phi, one curve per --xi0.
     Fig5 {
         #[command(flatten)]
-        data: Fig5Data,
-        #[command(flatten)]
         svg: SvgOut,
+        #[command(flatten)]
+        data: Fig5Data,
     },
     /// Fig. 6: final rest xi over xi0 for release at rest in the lab, with xi0c marked.
     Fig6 {
         #[command(flatten)]
-        data: Fig6Data,
-        #[command(flatten)]
         svg: SvgOut,
+        #[command(flatten)]
+        data: Fig6Data,
     },
     /// The outcome map over (phi, v0) at one --xi0, v_e(phi) drawn over it.
     Map {
         #[command(flatten)]
-        data: MapData,
-        #[command(flatten)]
         svg: SvgOut,
+        #[command(flatten)]
+        data: MapData,
     },
     /// Runs' paths in the lab or the rotating frame (one per --scene and --method), each with
     /// its initial velocity, and the rim xi = 1.

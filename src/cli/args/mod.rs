@@ -28,8 +28,6 @@ pub use model::*;
 pub struct Cli {
     #[command(subcommand)]
     pub command: Option<Command>,
-    #[command(flatten)]
-    pub look: Look,
     /// Frame-rate cap while playing [default: 30].
     #[arg(long, help_heading = "Explorer", value_parser = clap::value_parser!(u32).range(1..=240))]
     pub fps: Option<u32>,
@@ -74,6 +72,8 @@ pub struct Cli {
     #[arg(long, value_name = "FILE", help_heading = "Explorer")]
     pub config: Option<PathBuf>,
     #[command(flatten)]
+    pub look: Look,
+    #[command(flatten)]
     pub units: UnitsArgs,
     #[command(flatten)]
     pub coupling: CouplingArgs,
@@ -116,10 +116,8 @@ impl MarkerArg {
 /// What the explorer shows, for the explorer and for `replay`.
 #[derive(Args, Debug, Default, Clone)]
 pub struct Look {
-    /// Scene to open: a preset (A, B, C, D, fig1, fig2) or a .toml file [default: C].
-    ///
-    /// For replay, the script's own `# replay: --scene` line comes first.
-    #[arg(long, value_name = "NAME|PATH")]
+    // Its help names every preset (`scene::PRESETS`).
+    #[arg(long, value_name = "NAME|PATH", help = scene_help(false), long_help = scene_help(true))]
     pub scene: Option<String>,
     /// Colour theme: dark, light, high-contrast, mono, yours, or a .toml file; alone, lists them.
     ///
@@ -128,6 +126,19 @@ pub struct Look {
     /// only --ansi shows colour.
     #[arg(long, value_name = "NAME|PATH", num_args = 0..=1, default_missing_value = "")]
     pub theme: Option<String>,
+}
+
+/// `--scene`'s help: what it opens, every preset by name.
+fn scene_help(long: bool) -> String {
+    let short = format!(
+        "Scene to open: a preset ({}) or a .toml file [default: C]",
+        crate::scene::PRESETS.join(", ")
+    );
+    if long {
+        short + ".\n\nFor replay, the script's own `# replay: --scene` line comes first."
+    } else {
+        short + "."
+    }
 }
 
 /// `turntable --help`, after the flags: the configuration file.
@@ -211,17 +222,22 @@ pub enum Command {
     Lesson(super::lesson::LessonArgs),
     /// Print a shell completion script: `turntable completions bash > ~/.local/share/bash-completion/completions/turntable`.
     Completions(CompletionsArgs),
-    /// Print the manual page (roff): `turntable man > ~/.local/share/man/man1/turntable.1`.
+    /// Print the manual page (roff): `mkdir -p ~/.local/share/man/man1 && turntable man >
+    /// ~/.local/share/man/man1/turntable.1`.
     Man,
-    /// Print where the explorer's configuration is kept, and a commented template.
+    /// Print where the explorer's configuration is kept, and a commented template (--init
+    /// writes it there).
     Config(ConfigArgs),
 }
 
 #[derive(Args, Debug)]
 pub struct ConfigArgs {
     /// Print only the path.
-    #[arg(long)]
+    #[arg(long, conflicts_with = "init")]
     pub path: bool,
+    /// Write the commented template there, making its folder; never over a file.
+    #[arg(long)]
+    pub init: bool,
 }
 
 #[derive(Args, Debug)]
@@ -300,8 +316,6 @@ pub struct RunArgs {
     /// mu = 0: no friction, a straight line in the lab, in closed form (no integration).
     #[arg(long)]
     pub frictionless: bool,
-    #[command(flatten)]
-    pub numerics: NumericsArgs,
     /// Stop at this time if the particle has neither stuck nor escaped.
     #[arg(long, default_value_t = 100.0, allow_hyphen_values = true)]
     pub tau_max: f64,
@@ -328,6 +342,8 @@ pub struct RunArgs {
     #[arg(long, requires = "trajectory")]
     pub force: bool,
     #[command(flatten)]
+    pub numerics: NumericsArgs,
+    #[command(flatten)]
     pub units: UnitsArgs,
     #[command(flatten)]
     pub body: BodyArgs,
@@ -342,23 +358,23 @@ pub struct EscapeArgs {
     #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
     pub phi: f64,
     /// Width of the final bracket on v0.
-    #[arg(long = "vtol", default_value_t = 1e-8, allow_hyphen_values = true)]
+    #[arg(long = "vtol", default_value = "1e-8", allow_hyphen_values = true)]
     pub vtol: f64,
     /// Skip running the bracket's two ends in full against their second opinions: the
     /// bracket is then not certified.
     #[arg(long)]
     pub no_check: bool,
-    #[command(flatten)]
-    pub numerics: NumericsArgs,
     /// Print one JSON object instead of text.
     #[arg(long)]
     pub json: bool,
+    #[command(flatten)]
+    pub numerics: NumericsArgs,
 }
 
 #[derive(Args, Debug)]
 pub struct CriticalArgs {
     /// Width of the final bracket on xi0.
-    #[arg(long = "xtol", default_value_t = 1e-8, allow_hyphen_values = true)]
+    #[arg(long = "xtol", default_value = "1e-8", allow_hyphen_values = true)]
     pub xtol: f64,
     /// Skip running the bracket's two ends in full against their second opinions: the
     /// bracket is then not certified.
@@ -374,11 +390,11 @@ pub struct CriticalArgs {
     /// Gravitational acceleration (m/s²).
     #[arg(long, default_value_t = 9.81, allow_hyphen_values = true)]
     pub g: f64,
-    #[command(flatten)]
-    pub numerics: NumericsArgs,
     /// Print one JSON object instead of text.
     #[arg(long)]
     pub json: bool,
+    #[command(flatten)]
+    pub numerics: NumericsArgs,
 }
 
 /// A clap parser for an engine enum: its names (from the strum derives) as the possible
