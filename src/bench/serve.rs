@@ -124,7 +124,7 @@ pub fn run(clients: usize, seconds: f64) -> std::io::Result<Row> {
     let server = crate::serve::start(Options {
         listen: std::net::SocketAddr::from(([127, 0, 0, 1], 0)),
         host_key: key(1),
-        keys: vec![key(2).public_key().clone()],
+        keys: vec![key(2).public_key().clone().into()],
         passphrase: None,
         presenter_keys: vec![],
         presenter_passphrase: None,

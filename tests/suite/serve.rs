@@ -19,9 +19,9 @@ fn server(limits: Limits) -> Running {
     start(Options {
         listen: "127.0.0.1:0".parse().unwrap(),
         host_key: key(1),
-        keys: vec![key(2).public_key().clone()],
+        keys: vec![key(2).public_key().clone().into()],
         passphrase: Some("ba-ke-di-lo".into()),
-        presenter_keys: vec![key(3).public_key().clone()],
+        presenter_keys: vec![key(3).public_key().clone().into()],
         presenter_passphrase: Some("mu-ra-te-vo".into()),
         limits,
         lesson: None,
@@ -781,6 +781,69 @@ fn a_passphrase_typo_gets_another_try() {
         }
         let fourth = h.authenticate_password("class", "ba-ke-di-lo").await;
         assert!(!fourth.is_ok_and(|r| r.success()), "a fourth try got in");
+    });
+    s.stop("done");
+}
+
+/// Whether `key` gets in from `ip` (on the loopback: 127.0.0.x).
+async fn gets_in_from(ip: [u8; 4], addr: std::net::SocketAddr, key: &PrivateKey) -> bool {
+    let socket = tokio::net::TcpSocket::new_v4().unwrap();
+    socket.bind((ip, 0).into()).unwrap();
+    let tcp = socket.connect(addr).await.unwrap();
+    let config = std::sync::Arc::new(russh::client::Config::default());
+    let mut h = russh::client::connect_stream(config, tcp, Trust)
+        .await
+        .unwrap();
+    let key = russh::keys::PrivateKeyWithHashAlg::new(std::sync::Arc::new(key.clone()), None);
+    h.authenticate_publickey("class", key)
+        .await
+        .unwrap()
+        .success()
+}
+
+/// An authorized_keys file's `from=` and `expiry-time=` hold as sshd holds them: a key kept
+/// to 10.9.9.9 is refused from 127.0.0.1, one kept to 127.0.0.0/8 but not 127.0.0.2 gets in
+/// from 127.0.0.1 and not from .2, an expired key is refused, one not yet expired gets in.
+/// (Before, every option was ignored, then every one refused at start.)
+#[test]
+fn a_keys_from_and_expiry_time_are_honoured() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("keys");
+    let line = |n: u8| key(n).public_key().to_openssh().unwrap();
+    let text = format!(
+        "from=\"10.9.9.9\" {}\nfrom=\"127.0.0.0/8,!127.0.0.2\" {}\n\
+         expiry-time=\"20200101Z\" {}\nexpiry-time=\"29991231Z\",restrict {}\n",
+        line(4),
+        line(5),
+        line(6),
+        line(7)
+    );
+    std::fs::write(&path, text).unwrap();
+    let s = start(Options {
+        listen: "127.0.0.1:0".parse().unwrap(),
+        host_key: key(1),
+        keys: turntable::serve::authorized_keys(&path).unwrap(),
+        passphrase: None,
+        presenter_keys: vec![key(3).public_key().clone().into()],
+        presenter_passphrase: None,
+        limits: Limits::default(),
+        lesson: None,
+    })
+    .unwrap();
+    rt().block_on(async {
+        for (n, ip, admitted) in [
+            (4, [127, 0, 0, 1], false),
+            (5, [127, 0, 0, 1], true),
+            (5, [127, 0, 0, 2], false),
+            (6, [127, 0, 0, 1], false),
+            (7, [127, 0, 0, 1], true),
+        ] {
+            assert_eq!(
+                gets_in_from(ip, s.addr, &key(n)).await,
+                admitted,
+                "key {n} from {ip:?}"
+            );
+        }
     });
     s.stop("done");
 }
