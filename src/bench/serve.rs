@@ -46,7 +46,7 @@ const PRESS_EVERY: Duration = Duration::from_millis(200);
 const ANSWER_WAIT: Duration = Duration::from_secs(2);
 
 /// Resident memory, in MB (Linux's /proc; 0 elsewhere).
-fn rss_mb() -> f64 {
+pub(super) fn rss_mb() -> f64 {
     let pages: f64 = std::fs::read_to_string("/proc/self/statm")
         .ok()
         .and_then(|s| s.split_whitespace().nth(1)?.parse().ok())
@@ -55,7 +55,7 @@ fn rss_mb() -> f64 {
 }
 
 /// CPU time used by the process (user and system), in seconds (USER_HZ is 100 on Linux).
-fn cpu_s() -> f64 {
+pub(super) fn cpu_s() -> f64 {
     let stat = std::fs::read_to_string("/proc/self/stat").unwrap_or_default();
     let after = stat.rsplit(')').next().unwrap_or("");
     let f: Vec<f64> = after
@@ -66,7 +66,7 @@ fn cpu_s() -> f64 {
     (f.get(10).copied().unwrap_or(0.0) + f.get(11).copied().unwrap_or(0.0)) / 100.0
 }
 
-fn key(seed: u8) -> PrivateKey {
+pub(super) fn key(seed: u8) -> PrivateKey {
     PrivateKey::from(Ed25519Keypair::from_seed(&[seed; 32]))
 }
 
@@ -82,6 +82,17 @@ async fn client(addr: std::net::SocketAddr, until: Instant) -> (Vec<Duration>, u
     if !t.until(0, b"lab frame", Duration::from_secs(30)).await {
         return (vec![], 0, 1);
     }
+    let (lat, bytes, lost) = press(&mut t, until).await;
+    (lat.into_iter().map(|(_, l)| l).collect(), bytes, lost)
+}
+
+/// Presses `?` on `t` every 200 ms until `until` (help on, help off): when each was sent and
+/// how long its screen took (2 s when it never came), the bytes received, and the keys never
+/// answered.
+pub(super) async fn press(
+    t: &mut Term,
+    until: Instant,
+) -> (Vec<(Instant, Duration)>, usize, usize) {
     let (mut lat, mut bytes, mut lost, mut help) = (vec![], 0, 0, false);
     let mut next = Instant::now();
     while Instant::now() < until {
@@ -94,9 +105,9 @@ async fn client(addr: std::net::SocketAddr, until: Instant) -> (Vec<Duration>, u
         help = !help;
         let needle: &[u8] = if help { b"help:" } else { b"lab frame" };
         if t.until(0, needle, ANSWER_WAIT).await {
-            lat.push(sent.elapsed());
+            lat.push((sent, sent.elapsed()));
         } else {
-            lat.push(ANSWER_WAIT);
+            lat.push((sent, ANSWER_WAIT));
             lost += 1;
         }
         next += PRESS_EVERY;
@@ -110,7 +121,7 @@ async fn client(addr: std::net::SocketAddr, until: Instant) -> (Vec<Duration>, u
     (lat, bytes, lost)
 }
 
-fn pct(sorted: &[Duration], p: f64) -> f64 {
+pub(super) fn pct(sorted: &[Duration], p: f64) -> f64 {
     if sorted.is_empty() {
         return f64::NAN;
     }
