@@ -243,7 +243,7 @@ pub struct BenchArgs {
     /// With --serve N: also a presenter and N students, and beside them, one at a time for
     /// --seconds each, one client's floods (F2, keys, window changes) and the door held (200
     /// silent connections, 50 logins without a shell): latencies, the CPU and memory each
-    /// costs, and a presenter's login meanwhile.
+    /// costs, and a login meanwhile.
     #[arg(long, requires = "serve")]
     pub attacks: bool,
     /// A small bench that finishes in seconds (fewer settings, cases and angles).
