@@ -11,6 +11,7 @@ use crate::serve::client::{Login, Term, login};
 use crate::serve::{Limits, Options};
 use russh::keys::PrivateKey;
 use russh::keys::ssh_key::private::Ed25519Keypair;
+use std::sync::atomic::Ordering;
 use std::time::{Duration, Instant};
 
 /// One measurement.
@@ -28,6 +29,11 @@ pub struct Row {
     pub keys: usize,
     /// CPU time of the process (server and clients) over wall time, in cores.
     pub cpu_cores: f64,
+    /// Frames the server drew a second, over the second half.
+    pub frames_per_s: f64,
+    /// CPU of the process (clients included) per frame drawn, in ms: the cost of a frame as
+    /// the load of the machine changes it least.
+    pub cpu_ms_per_frame: f64,
     /// Resident memory added per session while all are open (clients included), in MB.
     pub rss_per_session_mb: f64,
     pub bytes_per_s_per_client: f64,
@@ -159,9 +165,12 @@ pub fn run(clients: usize, seconds: f64) -> std::io::Result<Row> {
     // Midway, with every session open: memory and CPU so far.
     std::thread::sleep(Duration::from_secs_f64(seconds / 2.0));
     let rss_during = rss_mb();
-    let (cpu0, t0) = (cpu_s(), Instant::now());
+    let frames = || server.shared.counts.frames.load(Ordering::Relaxed) as f64;
+    let (cpu0, t0, f0) = (cpu_s(), Instant::now(), frames());
     std::thread::sleep(until.saturating_duration_since(Instant::now()));
-    let cpu_cores = (cpu_s() - cpu0) / t0.elapsed().as_secs_f64().max(1e-9);
+    let wall = t0.elapsed().as_secs_f64().max(1e-9);
+    let (cpu, drawn) = (cpu_s() - cpu0, frames() - f0);
+    let cpu_cores = cpu / wall;
     let results: Vec<_> = rt.block_on(async {
         let mut out = vec![];
         for t in tasks {
@@ -206,6 +215,8 @@ pub fn run(clients: usize, seconds: f64) -> std::io::Result<Row> {
         lost: results.iter().map(|r| r.2).sum(),
         keys: all.len(),
         cpu_cores,
+        frames_per_s: drawn / wall,
+        cpu_ms_per_frame: cpu * 1e3 / drawn.max(1.0),
         rss_per_session_mb: (rss_during - rss_before) / clients.max(1) as f64,
         bytes_per_s_per_client: bytes as f64 / seconds / clients.max(1) as f64,
         rss_before_mb: rss_before,
@@ -230,7 +241,7 @@ fn left(server: &crate::serve::Running) -> f64 {
 /// A row as the bench prints it: its speed, then its memory.
 pub fn line(r: &Row) -> String {
     format!(
-        "serve {:>3} clients {:>4.0} s: key→screen p50 {:>6.1} ms p95 {:>6.1} ms (worst client p95 {:>6.1} ms, {} of {} keys unanswered in 2 s), CPU {:.2} cores, RSS {:.2} MB/session, {:.0} B/s/client\nserve {:>3} clients memory: RSS {:.0} MB before, {:.0} MB with them, {:.0} MB after they left, {:.0} MB after a second round, {:.0} MB after a third",
+        "serve {:>3} clients {:>4.0} s: key→screen p50 {:>6.1} ms p95 {:>6.1} ms (worst client p95 {:>6.1} ms, {} of {} keys unanswered in 2 s), CPU {:.2} cores ({:.0} frames/s, {:.2} ms a frame), RSS {:.2} MB/session, {:.0} B/s/client\nserve {:>3} clients memory: RSS {:.0} MB before, {:.0} MB with them, {:.0} MB after they left, {:.0} MB after a second round, {:.0} MB after a third",
         r.clients,
         r.seconds,
         r.p50_ms,
@@ -239,6 +250,8 @@ pub fn line(r: &Row) -> String {
         r.lost,
         r.keys,
         r.cpu_cores,
+        r.frames_per_s,
+        r.cpu_ms_per_frame,
         r.rss_per_session_mb,
         r.bytes_per_s_per_client,
         r.clients,
