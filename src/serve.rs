@@ -15,14 +15,16 @@ pub mod client;
 pub mod conn;
 mod door;
 pub mod explorer;
+mod keyfile;
 pub mod keys;
 mod out;
 mod screen;
 
-pub use auth::{authorized_keys, fingerprint, host_key, host_key_path, passphrase};
+pub use auth::{fingerprint, host_key, host_key_path, passphrase};
+pub use keyfile::{Authorized, authorized_keys};
 
 use crate::app::{Action, Chord};
-use russh::keys::{PrivateKey, PublicKey};
+use russh::keys::PrivateKey;
 use std::collections::{HashMap, VecDeque};
 use std::net::{IpAddr, SocketAddr};
 use std::sync::atomic::{AtomicBool, AtomicU64, AtomicUsize, Ordering};
@@ -79,12 +81,12 @@ impl Default for Limits {
 pub struct Options {
     pub listen: SocketAddr,
     pub host_key: PrivateKey,
-    /// Keys that get in as guests.
-    pub keys: Vec<PublicKey>,
+    /// Keys that get in as guests (from where and until when their options say).
+    pub keys: Vec<Authorized>,
     /// The class's passphrase (any user name).
     pub passphrase: Option<String>,
     /// Keys that get in as the presenter.
-    pub presenter_keys: Vec<PublicKey>,
+    pub presenter_keys: Vec<Authorized>,
     /// The presenter's passphrase.
     pub presenter_passphrase: Option<String>,
     pub limits: Limits,

@@ -11,6 +11,7 @@ use crate::serve::client::{Login, Term, login};
 use crate::serve::{Limits, Options};
 use russh::keys::PrivateKey;
 use russh::keys::ssh_key::private::Ed25519Keypair;
+use std::sync::atomic::Ordering;
 use std::time::{Duration, Instant};
 
 /// One measurement.
@@ -28,6 +29,11 @@ pub struct Row {
     pub keys: usize,
     /// CPU time of the process (server and clients) over wall time, in cores.
     pub cpu_cores: f64,
+    /// Frames the server drew a second, over the second half.
+    pub frames_per_s: f64,
+    /// CPU of the process (clients included) per frame drawn, in ms: the cost of a frame as
+    /// the load of the machine changes it least.
+    pub cpu_ms_per_frame: f64,
     /// Resident memory added per session while all are open (clients included), in MB.
     pub rss_per_session_mb: f64,
     pub bytes_per_s_per_client: f64,
@@ -46,7 +52,7 @@ const PRESS_EVERY: Duration = Duration::from_millis(200);
 const ANSWER_WAIT: Duration = Duration::from_secs(2);
 
 /// Resident memory, in MB (Linux's /proc; 0 elsewhere).
-fn rss_mb() -> f64 {
+pub(super) fn rss_mb() -> f64 {
     let pages: f64 = std::fs::read_to_string("/proc/self/statm")
         .ok()
         .and_then(|s| s.split_whitespace().nth(1)?.parse().ok())
@@ -55,7 +61,7 @@ fn rss_mb() -> f64 {
 }
 
 /// CPU time used by the process (user and system), in seconds (USER_HZ is 100 on Linux).
-fn cpu_s() -> f64 {
+pub(super) fn cpu_s() -> f64 {
     let stat = std::fs::read_to_string("/proc/self/stat").unwrap_or_default();
     let after = stat.rsplit(')').next().unwrap_or("");
     let f: Vec<f64> = after
@@ -66,7 +72,7 @@ fn cpu_s() -> f64 {
     (f.get(10).copied().unwrap_or(0.0) + f.get(11).copied().unwrap_or(0.0)) / 100.0
 }
 
-fn key(seed: u8) -> PrivateKey {
+pub(super) fn key(seed: u8) -> PrivateKey {
     PrivateKey::from(Ed25519Keypair::from_seed(&[seed; 32]))
 }
 
@@ -82,6 +88,17 @@ async fn client(addr: std::net::SocketAddr, until: Instant) -> (Vec<Duration>, u
     if !t.until(0, b"lab frame", Duration::from_secs(30)).await {
         return (vec![], 0, 1);
     }
+    let (lat, bytes, lost) = press(&mut t, until).await;
+    (lat.into_iter().map(|(_, l)| l).collect(), bytes, lost)
+}
+
+/// Presses `?` on `t` every 200 ms until `until` (help on, help off): when each was sent and
+/// how long its screen took (2 s when it never came), the bytes received, and the keys never
+/// answered.
+pub(super) async fn press(
+    t: &mut Term,
+    until: Instant,
+) -> (Vec<(Instant, Duration)>, usize, usize) {
     let (mut lat, mut bytes, mut lost, mut help) = (vec![], 0, 0, false);
     let mut next = Instant::now();
     while Instant::now() < until {
@@ -94,9 +111,9 @@ async fn client(addr: std::net::SocketAddr, until: Instant) -> (Vec<Duration>, u
         help = !help;
         let needle: &[u8] = if help { b"help:" } else { b"lab frame" };
         if t.until(0, needle, ANSWER_WAIT).await {
-            lat.push(sent.elapsed());
+            lat.push((sent, sent.elapsed()));
         } else {
-            lat.push(ANSWER_WAIT);
+            lat.push((sent, ANSWER_WAIT));
             lost += 1;
         }
         next += PRESS_EVERY;
@@ -110,7 +127,7 @@ async fn client(addr: std::net::SocketAddr, until: Instant) -> (Vec<Duration>, u
     (lat, bytes, lost)
 }
 
-fn pct(sorted: &[Duration], p: f64) -> f64 {
+pub(super) fn pct(sorted: &[Duration], p: f64) -> f64 {
     if sorted.is_empty() {
         return f64::NAN;
     }
@@ -124,7 +141,7 @@ pub fn run(clients: usize, seconds: f64) -> std::io::Result<Row> {
     let server = crate::serve::start(Options {
         listen: std::net::SocketAddr::from(([127, 0, 0, 1], 0)),
         host_key: key(1),
-        keys: vec![key(2).public_key().clone()],
+        keys: vec![key(2).public_key().clone().into()],
         passphrase: None,
         presenter_keys: vec![],
         presenter_passphrase: None,
@@ -148,9 +165,12 @@ pub fn run(clients: usize, seconds: f64) -> std::io::Result<Row> {
     // Midway, with every session open: memory and CPU so far.
     std::thread::sleep(Duration::from_secs_f64(seconds / 2.0));
     let rss_during = rss_mb();
-    let (cpu0, t0) = (cpu_s(), Instant::now());
+    let frames = || server.shared.counts.frames.load(Ordering::Relaxed) as f64;
+    let (cpu0, t0, f0) = (cpu_s(), Instant::now(), frames());
     std::thread::sleep(until.saturating_duration_since(Instant::now()));
-    let cpu_cores = (cpu_s() - cpu0) / t0.elapsed().as_secs_f64().max(1e-9);
+    let wall = t0.elapsed().as_secs_f64().max(1e-9);
+    let (cpu, drawn) = (cpu_s() - cpu0, frames() - f0);
+    let cpu_cores = cpu / wall;
     let results: Vec<_> = rt.block_on(async {
         let mut out = vec![];
         for t in tasks {
@@ -195,6 +215,8 @@ pub fn run(clients: usize, seconds: f64) -> std::io::Result<Row> {
         lost: results.iter().map(|r| r.2).sum(),
         keys: all.len(),
         cpu_cores,
+        frames_per_s: drawn / wall,
+        cpu_ms_per_frame: cpu * 1e3 / drawn.max(1.0),
         rss_per_session_mb: (rss_during - rss_before) / clients.max(1) as f64,
         bytes_per_s_per_client: bytes as f64 / seconds / clients.max(1) as f64,
         rss_before_mb: rss_before,
@@ -219,7 +241,7 @@ fn left(server: &crate::serve::Running) -> f64 {
 /// A row as the bench prints it: its speed, then its memory.
 pub fn line(r: &Row) -> String {
     format!(
-        "serve {:>3} clients {:>4.0} s: key→screen p50 {:>6.1} ms p95 {:>6.1} ms (worst client p95 {:>6.1} ms, {} of {} keys unanswered in 2 s), CPU {:.2} cores, RSS {:.2} MB/session, {:.0} B/s/client\nserve {:>3} clients memory: RSS {:.0} MB before, {:.0} MB with them, {:.0} MB after they left, {:.0} MB after a second round, {:.0} MB after a third",
+        "serve {:>3} clients {:>4.0} s: key→screen p50 {:>6.1} ms p95 {:>6.1} ms (worst client p95 {:>6.1} ms, {} of {} keys unanswered in 2 s), CPU {:.2} cores ({:.0} frames/s, {:.2} ms a frame), RSS {:.2} MB/session, {:.0} B/s/client\nserve {:>3} clients memory: RSS {:.0} MB before, {:.0} MB with them, {:.0} MB after they left, {:.0} MB after a second round, {:.0} MB after a third",
         r.clients,
         r.seconds,
         r.p50_ms,
@@ -228,6 +250,8 @@ pub fn line(r: &Row) -> String {
         r.lost,
         r.keys,
         r.cpu_cores,
+        r.frames_per_s,
+        r.cpu_ms_per_frame,
         r.rss_per_session_mb,
         r.bytes_per_s_per_client,
         r.clients,

@@ -64,6 +64,29 @@ fn serve(a: &BenchArgs) -> CmdResult {
             bench::serve::line(&row)
         };
         emit(None, &(line + "\n"))?;
+        if a.attacks {
+            attacks(a, n)?;
+        }
+    }
+    Ok(())
+}
+
+/// `--attacks`: the rows of one client's floods beside a class of `n` students.
+fn attacks(a: &BenchArgs, n: usize) -> CmdResult {
+    let bar = super::progress::tasks();
+    bar.set_message(format!(
+        "bench: attacks beside {n} students, {} s each",
+        a.seconds
+    ));
+    let rows = bench::attacks::run(n, a.seconds);
+    bar.finish_and_clear();
+    for row in rows? {
+        let line = if a.json {
+            serde_json::to_string(&row).map_err(|e| Error::Failed(e.to_string()))?
+        } else {
+            bench::attacks::line(&row)
+        };
+        emit(None, &(line + "\n"))?;
     }
     Ok(())
 }

@@ -16,7 +16,8 @@ pub struct ServeArgs {
     /// make: every machine that reaches it may try to get in.
     #[arg(long, value_name = "ADDR:PORT", default_value = "127.0.0.1:2222")]
     pub listen: std::net::SocketAddr,
-    /// Public keys (OpenSSH authorized_keys format) that get in as students.
+    /// Public keys (OpenSSH authorized_keys format) that get in as students. Their from="…"
+    /// and expiry-time="…Z" options are honoured, restrict and no-… taken, any other refused.
     #[arg(long, value_name = "FILE")]
     pub authorized_keys: Option<PathBuf>,
     /// The class's passphrase (typed at ssh's password prompt, any user name). Without it or

@@ -51,8 +51,11 @@ pub fn roots(gamma: f64) -> (DVec2, DVec2, f64) {
         return (-DVec2::Y, -DVec2::Y, 0.0);
     }
     // d = √(γ² + 4iγ): Re d = √((|w| + γ²)/2) with |w| = γ√(γ² + 16), Im d = 4γ/(2 Re d).
+    // Re d as √γ √((|w|/γ + γ)/2): the product γ(√(γ² + 16) + γ)/2 underflows to 0 for a
+    // subnormal γ (at 4.9e-324 Re d was 0, Im λ+ −∞, and every run overflowed), where
+    // √γ does not.
     let root = (gamma * gamma + 16.0).sqrt();
-    let re = (0.5 * gamma * (root + gamma)).sqrt();
+    let re = gamma.sqrt() * (0.5 * (root + gamma)).sqrt();
     // Re λ+ = (Re d − γ)/2 = (Re d² − γ²)/(2(Re d + γ)), Re d² − γ² = 8γ/(√(γ² + 16) + γ),
     // and Im λ+ = −1 + γ/Re d = −(Re d − γ)/Re d: both free of the cancellation at large γ.
     let growth = 4.0 * gamma / ((root + gamma) * (re + gamma));

@@ -97,100 +97,6 @@ pub fn passphrase() -> Result<String, Error> {
     Ok(b.iter().map(|&x| word(x)).collect::<Vec<_>>().join("-"))
 }
 
-/// The public keys of an `authorized_keys` file: one a line, `#` comments. Options before a
-/// key are read as OpenSSH reads them (separated by commas, a value in double quotes may hold
-/// spaces, commas and `\"`); those turntable cannot honour are refused by name, never
-/// ignored: a key restricted by `from=` let in from anywhere would be worse than none. A file
-/// that admits nobody is refused too.
-pub fn authorized_keys(path: &Path) -> Result<Vec<PublicKey>, Error> {
-    let text = crate::files::read_bounded(path, 1 << 20)?;
-    let shown = crate::files::escape_controls(&path.display().to_string());
-    let mut keys = vec![];
-    for (n, line) in text.lines().enumerate() {
-        let line = line.trim();
-        if line.is_empty() || line.starts_with('#') {
-            continue;
-        }
-        let at = |why: String| Error::Invalid(format!("{shown}:{}: {why}", n + 1));
-        let key = match PublicKey::from_openssh(line) {
-            Ok(k) => k,
-            Err(e) => {
-                let (options, rest) =
-                    split_options(line).ok_or_else(|| at(format!("not a public key: {e}")))?;
-                let key = PublicKey::from_openssh(rest.trim())
-                    .map_err(|_| at(format!("not a public key: {e}")))?;
-                for o in options {
-                    refused(o).map_or(Ok(()), |why| Err(at(why)))?;
-                }
-                key
-            }
-        };
-        keys.push(key);
-    }
-    if keys.is_empty() {
-        return Err(Error::Invalid(format!(
-            "{shown}: no key in it: nobody could get in with it"
-        )));
-    }
-    Ok(keys)
-}
-
-/// A line's options (each `name` or `name=value`, quotes kept) and what follows them; None
-/// when a quote is left open or nothing follows.
-fn split_options(line: &str) -> Option<(Vec<&str>, &str)> {
-    let (mut quoted, mut escaped, mut start) = (false, false, 0);
-    let mut options = vec![];
-    for (i, c) in line.char_indices() {
-        match c {
-            _ if escaped => escaped = false,
-            '\\' if quoted => escaped = true,
-            '"' => quoted = !quoted,
-            ',' if !quoted => {
-                options.push(&line[start..i]);
-                start = i + 1;
-            }
-            c if c.is_whitespace() && !quoted => {
-                options.push(&line[start..i]);
-                return Some((options, &line[i..]));
-            }
-            _ => {}
-        }
-    }
-    None
-}
-
-/// Why an option is refused, or None for one turntable honours: `restrict` and the `no-…`
-/// options forbid what it never serves (forwarding, X11, an agent, a user's rc, a terminal on
-/// the server's system: the explorer is drawn into the channel), and `pty` is its own.
-fn refused(option: &str) -> Option<String> {
-    let name = option
-        .split('=')
-        .next()
-        .unwrap_or(option)
-        .to_ascii_lowercase();
-    let shown: String = crate::files::escape_controls(option)
-        .chars()
-        .take(80)
-        .collect();
-    match name.as_str() {
-        "restrict"
-        | "no-agent-forwarding"
-        | "no-port-forwarding"
-        | "no-pty"
-        | "no-user-rc"
-        | "no-x11-forwarding"
-        | "pty" => None,
-        "cert-authority" => Some(
-            "cert-authority: a certificate authority, not a key (serve takes plain keys only)"
-                .into(),
-        ),
-        _ => Some(format!(
-            "option {shown} is not honoured by turntable serve, and a key is never let in \
-             with its restriction ignored: remove the option or the line"
-        )),
-    }
-}
-
 /// Whether `given` is `expected`, in time that depends on their lengths only.
 pub fn same(given: &str, expected: &str) -> bool {
     let (a, b) = (given.as_bytes(), expected.as_bytes());
@@ -199,11 +105,6 @@ pub fn same(given: &str, expected: &str) -> bool {
         .zip(b.iter().cycle())
         .fold(a.len() ^ b.len(), |d, (x, y)| d | usize::from(x ^ y));
     diff == 0 && !b.is_empty()
-}
-
-/// Whether `key` is among `keys` (compared by the key itself, not its comment).
-pub fn known(keys: &[PublicKey], key: &PublicKey) -> bool {
-    keys.iter().any(|k| k.key_data() == key.key_data())
 }
 
 #[cfg(test)]
@@ -219,51 +120,6 @@ mod tests {
         let p = passphrase().unwrap();
         assert_eq!(p.split('-').count(), 4);
         assert_ne!(p, passphrase().unwrap());
-    }
-
-    /// Options are read as OpenSSH reads them; those not honoured are refused by name, and a
-    /// file that admits nobody is refused.
-    #[test]
-    fn authorized_keys_options_are_honoured_or_refused_by_name() {
-        let dir = tempfile::tempdir().unwrap();
-        let key = PrivateKey::from(Ed25519Keypair::from_seed(&[7; 32]));
-        let line = key.public_key().to_openssh().unwrap();
-        let path = dir.path().join("keys");
-        let read = |text: String| {
-            std::fs::write(&path, text).unwrap();
-            authorized_keys(&path).map_err(|e| e.to_string())
-        };
-        for ok in [
-            line.clone(),
-            format!("restrict {line}"),
-            format!("restrict,pty,no-port-forwarding {line} a comment"),
-        ] {
-            assert_eq!(read(ok.clone()).unwrap().len(), 1, "{ok}");
-        }
-        for (bad, said) in [
-            (
-                format!("command=\"echo hi\" {line}"),
-                "option command=\"echo hi\" is not",
-            ),
-            (
-                format!("from=\"10.9.9.9\" {line}"),
-                "option from=\"10.9.9.9\" is not",
-            ),
-            (
-                format!("expiry-time=\"20200101\" {line}"),
-                "option expiry-time=",
-            ),
-            (
-                format!("restrict,cert-authority {line}"),
-                "cert-authority: a certificate",
-            ),
-            (format!("command=\"a \\\" b, c\" {line}"), "option command="),
-            ("ssh-ed25519 AAAAnotbase64 x".into(), "not a public key"),
-            ("# nobody\n\n".into(), "nobody could get in"),
-        ] {
-            let e = read(bad.clone()).unwrap_err();
-            assert!(e.contains(said), "{bad}: {e}");
-        }
     }
 
     #[test]

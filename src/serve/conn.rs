@@ -5,6 +5,7 @@
 
 use super::door::Pass;
 use super::explorer::{self, Client, Outbox};
+use super::keyfile::{self, Authorized};
 use super::out::{Flushed, Guarded, UNSENT_MAX, write_out};
 use super::screen::Window;
 use super::{In, Shared, auth};
@@ -57,11 +58,15 @@ pub async fn serve(tcp: tokio::net::TcpStream, shared: Arc<Shared>, pass: Pass) 
     // behind it, says when a frame has left (see `Flushed`).
     let _ = socket2::SockRef::from(&tcp).set_tcp_notsent_lowat(UNSENT_MAX);
     let flushed = Arc::new(Flushed::default());
+    let Ok(peer) = tcp.peer_addr() else {
+        return;
+    };
     let (stage, mut staged) = tokio::sync::watch::channel(Stage::Knocking);
     let go = Arc::clone(&pass.go);
     let handler = Conn {
         shared: Arc::clone(&shared),
         pass,
+        peer: peer.ip(),
         stage: Arc::new(stage),
         presenter: false,
         channel: None,
@@ -156,6 +161,8 @@ struct Conn {
     shared: Arc<Shared>,
     /// Its place at the door.
     pass: Pass,
+    /// The client's address, as a key's `from=` sees it.
+    peer: std::net::IpAddr,
     stage: Arc<tokio::sync::watch::Sender<Stage>>,
     presenter: bool,
     /// Passphrases refused so far.
@@ -177,15 +184,21 @@ const REFUSED: &str = "turntable serves the explorer only: `ssh -t` to this addr
 const PASSWORD_TRIES: u32 = 3;
 
 impl Conn {
+    /// Whether `key` is among `keys`, from this client's address, now.
+    fn admits(&self, keys: &[Authorized], key: &PublicKey) -> bool {
+        let now = keyfile::now();
+        keys.iter().any(|k| k.admits(key, self.peer, now))
+    }
+
     fn who(&mut self, key: Option<&PublicKey>, password: Option<&str>) -> Auth {
         let o = &self.shared.options;
-        let presenter = key.is_some_and(|k| auth::known(&o.presenter_keys, k))
+        let presenter = key.is_some_and(|k| self.admits(&o.presenter_keys, k))
             || password.is_some_and(|p| {
                 o.presenter_passphrase
                     .as_deref()
                     .is_some_and(|e| auth::same(p, e))
             });
-        let guest = key.is_some_and(|k| auth::known(&o.keys, k))
+        let guest = key.is_some_and(|k| self.admits(&o.keys, k))
             || password.is_some_and(|p| o.passphrase.as_deref().is_some_and(|e| auth::same(p, e)));
         if presenter || guest {
             self.presenter = presenter;
@@ -247,7 +260,7 @@ impl Handler for Conn {
     ) -> Result<Auth, Self::Error> {
         let o = &self.shared.options;
         Ok(
-            if auth::known(&o.keys, key) || auth::known(&o.presenter_keys, key) {
+            if self.admits(&o.keys, key) || self.admits(&o.presenter_keys, key) {
                 Auth::Accept
             } else {
                 Auth::reject()

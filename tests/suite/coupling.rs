@@ -406,6 +406,33 @@ fn stokes_leaves_at_the_growth_rate() {
     }
 }
 
+/// A subnormal drag is a little drag: its roots solve the equation, Re λ+ is √(γ/2), and a
+/// run leaves where the straight line does. (At γ = 4.9e-324, γ(√(γ² + 16) + γ)/2 underflowed
+/// to 0: Re d was 0, Im λ+ −∞, and `run --gamma 4.9e-324` reported an overflow where 1e-320
+/// and 0 escape.)
+#[test]
+fn a_subnormal_drag_leaves_as_the_line_does() {
+    let i = Initial::velocity(0.5, 2.0, 0.8);
+    let mut line = Run::new(i, stokes(0.0)).unwrap();
+    let (_, end) = line.finish(100.0).unwrap();
+    for gamma in [4.9e-324, 1e-322, 1e-320, 1e-310, f64::MIN_POSITIVE, 1e-300] {
+        let (p, m, g) = roots(gamma);
+        for l in [p, m] {
+            let c = DVec2::new(gamma, 2.0);
+            let sq = DVec2::new(l.x * l.x - l.y * l.y, 2.0 * l.x * l.y);
+            let cl = DVec2::new(c.x * l.x - c.y * l.y, c.x * l.y + c.y * l.x);
+            let res = sq + cl - DVec2::X;
+            assert!(res.length() < 1e-15, "γ {gamma:e}: {res:?}");
+        }
+        let expected = gamma.sqrt() * 0.5f64.sqrt();
+        assert!((g / expected - 1.0).abs() < 1e-12, "γ {gamma:e}: {g:e}");
+        let mut run = Run::new(i, stokes(gamma)).unwrap();
+        let (o, e) = run.finish(100.0).unwrap();
+        assert_eq!(o, Outcome::Escaped, "γ {gamma:e}");
+        assert!((e.tau - end.tau).abs() < 1e-12, "γ {gamma:e}: τ {}", e.tau);
+    }
+}
+
 /// Only releases with no growing part stay: the centre at rest, and u0 = λ− q0 (here at
 /// ξ0 = 0.5, speed |λ−|/2 in direction arg λ−), which spirals into the centre.
 #[test]

@@ -19,9 +19,9 @@ fn server(limits: Limits) -> Running {
     start(Options {
         listen: "127.0.0.1:0".parse().unwrap(),
         host_key: key(1),
-        keys: vec![key(2).public_key().clone()],
+        keys: vec![key(2).public_key().clone().into()],
         passphrase: Some("ba-ke-di-lo".into()),
-        presenter_keys: vec![key(3).public_key().clone()],
+        presenter_keys: vec![key(3).public_key().clone().into()],
         presenter_passphrase: Some("mu-ra-te-vo".into()),
         limits,
         lesson: None,
@@ -536,12 +536,18 @@ fn a_hostile_or_silent_handshake_is_closed() {
     silent
         .set_read_timeout(Some(Duration::from_secs(10)))
         .unwrap();
-    let t0 = std::time::Instant::now();
     let mut buf = vec![];
-    let _ = silent.read_to_end(&mut buf);
+    // Closed by the server at the handshake's time: the read ends, not its own timeout.
+    let r = silent.read_to_end(&mut buf);
     assert!(
-        t0.elapsed() < Duration::from_secs(8),
-        "a silent client held on"
+        r.as_ref().map_or_else(
+            |e| !matches!(
+                e.kind(),
+                std::io::ErrorKind::WouldBlock | std::io::ErrorKind::TimedOut
+            ),
+            |_| true
+        ),
+        "a silent client held on: {r:?}"
     );
     // And the server still serves.
     rt().block_on(async {
@@ -655,8 +661,10 @@ fn a_login_without_a_shell_is_closed_after_the_grace() {
 }
 
 /// 200 silent TCP connections from twenty addresses and 50 logins without a shell from five
-/// others, all held: the presenter, from an address of their own, is in within 2 s. (Before,
-/// 90 silent connections from three addresses refused everyone for 30 s.)
+/// others, all held: the presenter, from an address of their own, gets in, the door holding
+/// at most its bound and making room among the silent ones, not the logged in. (Before, 90
+/// silent connections from three addresses refused everyone for 30 s.) How long it takes is
+/// the bench's (`bench --serve N --attacks`: within 2 s), not a test's.
 #[test]
 fn silent_connects_and_idle_logins_leave_the_presenter_a_way_in() {
     let s = server(Limits {
@@ -676,15 +684,14 @@ fn silent_connects_and_idle_logins_leave_the_presenter_a_way_in() {
         }
         let (waiting, logged_in) = s.shared.at_the_door();
         assert!(waiting <= 100 && logged_in == 50, "{waiting} {logged_in}");
-        let t0 = std::time::Instant::now();
         let p = login(s.addr, "teacher", Login::Key(&key(3)))
             .await
             .unwrap()
             .expect("the presenter gets in");
         let mut tp = Term::open(&p, 80, 24).await.unwrap();
         assert!(tp.until(0, b"lab frame", SECS).await);
-        let took = t0.elapsed();
-        assert!(took < Duration::from_secs(2), "the presenter took {took:?}");
+        let (waiting, logged_in) = s.shared.at_the_door();
+        assert!(waiting <= 100 && logged_in == 50, "{waiting} {logged_in}");
         // The idle logins are still held (the door made room among the silent ones).
         assert!(idle.iter().all(|h| !h.is_closed()));
         drop((silent, idle));
@@ -781,6 +788,69 @@ fn a_passphrase_typo_gets_another_try() {
         }
         let fourth = h.authenticate_password("class", "ba-ke-di-lo").await;
         assert!(!fourth.is_ok_and(|r| r.success()), "a fourth try got in");
+    });
+    s.stop("done");
+}
+
+/// Whether `key` gets in from `ip` (on the loopback: 127.0.0.x).
+async fn gets_in_from(ip: [u8; 4], addr: std::net::SocketAddr, key: &PrivateKey) -> bool {
+    let socket = tokio::net::TcpSocket::new_v4().unwrap();
+    socket.bind((ip, 0).into()).unwrap();
+    let tcp = socket.connect(addr).await.unwrap();
+    let config = std::sync::Arc::new(russh::client::Config::default());
+    let mut h = russh::client::connect_stream(config, tcp, Trust)
+        .await
+        .unwrap();
+    let key = russh::keys::PrivateKeyWithHashAlg::new(std::sync::Arc::new(key.clone()), None);
+    h.authenticate_publickey("class", key)
+        .await
+        .unwrap()
+        .success()
+}
+
+/// An authorized_keys file's `from=` and `expiry-time=` hold as sshd holds them: a key kept
+/// to 10.9.9.9 is refused from 127.0.0.1, one kept to 127.0.0.0/8 but not 127.0.0.2 gets in
+/// from 127.0.0.1 and not from .2, an expired key is refused, one not yet expired gets in.
+/// (Before, every option was ignored, then every one refused at start.)
+#[test]
+fn a_keys_from_and_expiry_time_are_honoured() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("keys");
+    let line = |n: u8| key(n).public_key().to_openssh().unwrap();
+    let text = format!(
+        "from=\"10.9.9.9\" {}\nfrom=\"127.0.0.0/8,!127.0.0.2\" {}\n\
+         expiry-time=\"20200101Z\" {}\nexpiry-time=\"29991231Z\",restrict {}\n",
+        line(4),
+        line(5),
+        line(6),
+        line(7)
+    );
+    std::fs::write(&path, text).unwrap();
+    let s = start(Options {
+        listen: "127.0.0.1:0".parse().unwrap(),
+        host_key: key(1),
+        keys: turntable::serve::authorized_keys(&path).unwrap(),
+        passphrase: None,
+        presenter_keys: vec![key(3).public_key().clone().into()],
+        presenter_passphrase: None,
+        limits: Limits::default(),
+        lesson: None,
+    })
+    .unwrap();
+    rt().block_on(async {
+        for (n, ip, admitted) in [
+            (4, [127, 0, 0, 1], false),
+            (5, [127, 0, 0, 1], true),
+            (5, [127, 0, 0, 2], false),
+            (6, [127, 0, 0, 1], false),
+            (7, [127, 0, 0, 1], true),
+        ] {
+            assert_eq!(
+                gets_in_from(ip, s.addr, &key(n)).await,
+                admitted,
+                "key {n} from {ip:?}"
+            );
+        }
     });
     s.stop("done");
 }

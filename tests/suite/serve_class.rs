@@ -48,7 +48,7 @@ fn serving(lesson: Option<turntable::serve::Lesson>) -> Running {
         host_key: key(1),
         keys: vec![],
         passphrase: Some("ba-ke-di-lo".into()),
-        presenter_keys: vec![key(3).public_key().clone()],
+        presenter_keys: vec![key(3).public_key().clone().into()],
         presenter_passphrase: None,
         limits: Limits::default(),
         lesson,

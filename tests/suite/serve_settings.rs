@@ -116,8 +116,12 @@ fn key_files_that_admit_nobody_or_restrict_unhonoured_are_refused() {
     for (text, said) in [
         (String::new(), "nobody could get in"),
         (
-            format!("from=\"10.9.9.9\" {line}"),
-            "from=\"10.9.9.9\" is not honoured",
+            format!("from=\"*.example.com\" {line}"),
+            "serve looks up no host names",
+        ),
+        (
+            format!("expiry-time=\"20200101Z\" {line}"),
+            "every key in it has expired",
         ),
         (
             format!("cert-authority {line}"),
@@ -125,7 +129,7 @@ fn key_files_that_admit_nobody_or_restrict_unhonoured_are_refused() {
         ),
         (
             format!("command=\"echo hi\" {line}"),
-            "command=\"echo hi\" is not honoured",
+            "option command is not honoured",
         ),
     ] {
         std::fs::write(&keys, text).unwrap();

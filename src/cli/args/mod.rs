@@ -259,6 +259,12 @@ pub struct BenchArgs {
     #[cfg(feature = "serve")]
     #[arg(long, default_value_t = 60.0, requires = "serve")]
     pub seconds: f64,
+    /// With --serve N: also a presenter and N students, and beside them, one at a time for
+    /// --seconds each, one client's floods (F2, keys, window changes) and the door held (200
+    /// silent connections, 50 logins without a shell): latencies, the CPU and memory each
+    /// costs, and a login meanwhile.
+    #[arg(long, requires = "serve")]
+    pub attacks: bool,
     /// A small bench that finishes in seconds (fewer settings, cases and angles).
     #[arg(long)]
     pub quick: bool,
