@@ -14,6 +14,7 @@ use ratatui::widgets::{Paragraph, Wrap};
 
 mod map;
 mod rest;
+mod trade;
 
 use crate::plot::page::escape::{curve_note, release_verdict};
 pub use map::map_grid;
@@ -46,6 +47,10 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App, th: &Theme) -> Option<Can
         Page::OutcomeMap => outcome_map(f, area, app, th),
         Page::RestRadius => {
             rest_radius(f, area, app, th);
+            None
+        }
+        Page::WorkPrecision => {
+            trade::work_precision(f, area, app, th);
             None
         }
     }
