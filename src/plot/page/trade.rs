@@ -62,7 +62,8 @@ pub fn measured(t: Option<&Trade>) -> String {
     let Some(t) = t else {
         return "computing the reference…".into();
     };
-    let refname = name(crate::sim::ending::reference(Settings::default()).scheme);
+    let reference = crate::sim::ending::reference(Settings::default()).scheme;
+    let refname = format!("{} {}", reference.method(), sci(reference.knob(), 0));
     let Some(Some(r)) = t.reference else {
         return match t.reference {
             Some(None) => format!("the reference ({refname}) could not finish: no error is told"),
@@ -84,45 +85,59 @@ pub fn measured(t: Option<&Trade>) -> String {
             "error: {what}, max(|Δτ|, |Δr|), against {refname}; resolution {res} (its agreement with dp54 tol=1e-12 in the other frame)"
         ),
         format!("error: {what}, max(|Δτ|, |Δr|), against {refname}; resolution {res}"),
-        format!("error: {what} vs {refname}, resolution {res}"),
-        format!("error vs {refname}, resolution {res}"),
+        format!("error: {what} vs {refname} (resolution {res})"),
+        format!("{what} vs {refname} (res. {res})"),
+        format!("vs {refname} (res. {res})"),
     ])
 }
 
-/// One point in words: its error (or "< resolution"), the bound it stated, its work, and
-/// whether the end game took its stop.
-pub fn said(t: Option<&Trade>, scheme: Scheme) -> String {
+/// One point in words after `lead` (`now`, `picked`): its error (or "< resolution"), the bound
+/// it stated, its work, and whether the end game took its stop; a shorter wording for a
+/// narrow box, whose clauses drop from the end.
+pub fn said(t: Option<&Trade>, scheme: Scheme, lead: &str) -> String {
     let head = name(scheme);
+    let short = format!("{} {}", scheme.method(), sci(scheme.knob(), 0));
     let Some(end) = t.and_then(|t| t.point(scheme)) else {
-        return format!("{head}: computing…");
+        return alternatives(&[format!("{lead} {head}: computing…"), format!("{lead} {short}: …")]);
     };
-    let Some(e) = end else {
-        return format!("{head}: could not finish within its step budget");
+    let (Some(e), Some(t)) = (end, t) else {
+        return alternatives(&[
+            format!("{lead} {head}: could not finish within its step budget"),
+            format!("{lead} {short}: did not finish"),
+        ]);
     };
-    let t = t.expect("a point belongs to a trade");
-    let error = match (t.reference, t.resolution()) {
+    let (error, brief) = match (t.reference, t.resolution()) {
         (Some(Some(r)), Some(res)) => match e.error(&r) {
-            Some(err) if err < res => format!("error < resolution {}", sci(res, 0)),
-            Some(err) => format!("error {}", sci(err, 1)),
-            None => format!(
-                "ends otherwise: it {} where the reference {}",
-                ends(e.outcome),
-                ends(r.outcome)
+            Some(err) if err < res => (
+                format!("error < resolution {}", sci(res, 0)),
+                format!("< res. {}", sci(res, 0)),
+            ),
+            Some(err) => (format!("error {}", sci(err, 1)), sci(err, 1)),
+            None => (
+                format!(
+                    "ends otherwise: it {} where the reference {}",
+                    ends(e.outcome),
+                    ends(r.outcome)
+                ),
+                format!("{} (wrong)", ends(e.outcome)),
             ),
         },
-        _ => "error: awaiting the reference".into(),
+        _ => ("error: awaiting the reference".into(), "…".into()),
     };
-    let stated = match e.stated {
-        None => "states no error".to_string(),
-        Some(s) if s.is_finite() => format!("stated ≤ {}", sci(s, 1)),
-        Some(_) => "states none: outcome in doubt".to_string(),
+    let (stated, stated_brief) = match e.stated {
+        None => ("states no error".to_string(), "states none".to_string()),
+        Some(s) if s.is_finite() => (format!("stated ≤ {}", sci(s, 1)), format!("stated {}", sci(s, 1))),
+        Some(_) => ("states none: outcome in doubt".to_string(), "in doubt".to_string()),
     };
     let end_game = if e.end_game {
         ", the end game took the stop"
     } else {
         ""
     };
-    format!("{head}: {error}, {stated}, {} RHS{end_game}", e.rhs)
+    alternatives(&[
+        format!("{lead} {head}: {error}, {stated}, {} RHS{end_game}", e.rhs),
+        format!("{lead} {short}: {brief} ({stated_brief}), {} RHS{end_game}", e.rhs),
+    ])
 }
 
 fn ends(o: Outcome) -> &'static str {
@@ -150,6 +165,7 @@ pub fn chart(app: &App) -> Chart {
     let mut stated = Vec::new();
     let mut xs = Vec::new();
     let mut ys = Vec::new();
+    let mut names = Vec::new();
     for &m in Method::VARIANTS {
         let mut mine: Vec<Scheme> = schemes.iter().copied().filter(|s| s.method() == m).collect();
         mine.sort_by(|a, b| b.knob().total_cmp(&a.knob()));
@@ -166,11 +182,18 @@ pub fn chart(app: &App) -> Chart {
                 (x, y)
             })
             .collect();
-        if !points.is_empty() {
+        if let Some(&(x, y)) = points.last() {
             let name = match m {
-                Method::Rk2Raw => "paper's RK2".to_string(),
+                Method::Rk2Raw => "paper".to_string(),
                 _ => m.to_string(),
             };
+            // Named at its tightest setting too, where the lines part.
+            names.push(Mark::Text {
+                x,
+                y,
+                label: name.clone(),
+                ink: ink(m),
+            });
             series.push(Series::new(name, ink(m), true, points));
         }
     }
@@ -194,7 +217,7 @@ pub fn chart(app: &App) -> Chart {
         .collect();
     if let Some(r) = res {
         series.push(Series {
-            name: "reference's resolution".into(),
+            name: "resolution".into(),
             points: vec![(x0, r), (x1, r)],
             style: Style::Line { dash: 1 },
             ink: Ink::Muted,
@@ -207,7 +230,7 @@ pub fn chart(app: &App) -> Chart {
         series.push(Series::new("ends otherwise", Ink::Escaped, false, otherwise));
     }
     let picked = trade_picked(app.view.trade_pick, &initial, settings);
-    let mut marks = Vec::new();
+    let mut marks = names;
     let mut mark = |s: Scheme, label: String, ink: Ink| {
         if let Some((x, y, _)) = at(s) {
             marks.push(Mark::Point { x, y, label, ink });

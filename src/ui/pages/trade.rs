@@ -28,7 +28,7 @@ pub(super) fn work_precision(f: &mut TuiFrame, area: Rect, app: &App, th: &Theme
     let lines = if picked == settings.scheme {
         vec![
             Line::from(Span::styled(
-                fit(format!("now {}", said(t, picked))),
+                fit(said(t, picked, "now")),
                 Style::default().fg(th.particle),
             )),
             Line::from(Span::styled(
@@ -39,11 +39,11 @@ pub(super) fn work_precision(f: &mut TuiFrame, area: Rect, app: &App, th: &Theme
     } else {
         vec![
             Line::from(Span::styled(
-                fit(format!("picked {}", said(t, picked))),
+                fit(said(t, picked, "picked")),
                 Style::default().fg(th.notice),
             )),
             Line::from(Span::styled(
-                fit(format!("now {}", said(t, settings.scheme))),
+                fit(said(t, settings.scheme, "now")),
                 Style::default().fg(th.particle),
             )),
         ]
