@@ -77,8 +77,11 @@ impl Ending {
     /// What the page measures against `reference`: the larger of |Δτ| and |Δq| of the end,
     /// None when the two end differently (stuck against escaped).
     pub fn error(&self, reference: &Ending) -> Option<f64> {
-        (self.outcome == reference.outcome)
-            .then(|| (self.tau - reference.tau).abs().max((self.q - reference.q).length()))
+        (self.outcome == reference.outcome).then(|| {
+            (self.tau - reference.tau)
+                .abs()
+                .max((self.q - reference.q).length())
+        })
     }
 }
 

@@ -154,8 +154,8 @@ impl Action {
             CycleMethod | Loosen | Tighten | ToggleCompare | EstimateError => Group::Integrator,
             ToggleFrame | ToggleSplit | ToggleForces | ToggleNetForce | ToggleVelocity
             | TogglePointModel | ZoomIn | ZoomOut | Pan(..) | ResetView | TauWindow(_)
-            | NextPage | PrevPage | Choose | PickPoint(_) | Omega(_) | R0c(_) | Unit(..) | UnitsOff | PinRun
-            | ClearPins => Group::View,
+            | NextPage | PrevPage | Choose | PickPoint(_) | Omega(_) | R0c(_) | Unit(..)
+            | UnitsOff | PinRun | ClearPins => Group::View,
             Quit | Dismiss | Follow | ToggleHelp | HelpScroll(_) | HelpPage(_) | Save | SaveAs
             | Type(_) | SetValues | ExportSvg | ToggleMouse | Readouts => Group::App,
             Answer(_) | GoOn => Group::Lesson,

@@ -1,10 +1,10 @@
 //! The explorer's pages (Tab cycles them) and the analysis results they show. A page asks for
 //! what it lacks ([`wanted`]); results arrive piece by piece ([`Charts::apply`]).
 
+use crate::analysis::trade::{self, Ending, REFERENCE_PIECES};
 use crate::analysis::{
     CURVE_POINTS, Cell, Job, PAPER_XI0, Piece, REST_POINTS, Speeds, pieces, settings_for,
 };
-use crate::analysis::trade::{self, Ending, REFERENCE_PIECES};
 use crate::engine::method::Scheme;
 use crate::engine::{Initial, Release, Settings};
 

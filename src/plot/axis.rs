@@ -166,7 +166,11 @@ mod tests {
             .map(|v| s.label(v))
             .collect();
         assert_eq!(labels, ["1e-12", "1e-10", "1e-8", "1e-6", "1e-4"]);
-        let labels: Vec<String> = s.ticks(0.5, 4.2, 8).into_iter().map(|v| s.label(v)).collect();
+        let labels: Vec<String> = s
+            .ticks(0.5, 4.2, 8)
+            .into_iter()
+            .map(|v| s.label(v))
+            .collect();
         assert_eq!(labels, ["10", "100", "1e3", "1e4"]);
     }
 

@@ -37,7 +37,9 @@ fn trade(a: &mut App) -> Trade {
 }
 
 fn end(t: &Trade, s: Scheme) -> Ending {
-    t.point(s).unwrap().unwrap_or_else(|| panic!("{s:?} failed"))
+    t.point(s)
+        .unwrap()
+        .unwrap_or_else(|| panic!("{s:?} failed"))
 }
 
 fn err(t: &Trade, s: Scheme) -> f64 {
@@ -62,11 +64,19 @@ fn each_setting_is_measured_against_the_converged_reference() {
     let (_, s) = run.finish(TRADE_TAU).unwrap();
     assert_eq!((r.tau, r.q), (s.tau, s.q()));
     let rk2 = |dt| err(&t, Method::Rk2.with(dt));
-    assert!(rk2(1e-2) > 1e3 * rk2(1e-4).max(res), "{} {}", rk2(1e-2), rk2(1e-4));
+    assert!(
+        rk2(1e-2) > 1e3 * rk2(1e-4).max(res),
+        "{} {}",
+        rk2(1e-2),
+        rk2(1e-4)
+    );
     for m in [Method::Dp54, Method::Dop853] {
         let (loose, tight) = (err(&t, m.with(1e-3)), err(&t, m.with(1e-12)));
         assert!(tight.max(res) < 1e-3 * loose, "{m}: {loose} {tight}");
-        assert!(tight < 10.0 * res, "{m} at 1e-12: {tight} (resolution {res})");
+        assert!(
+            tight < 10.0 * res,
+            "{m} at 1e-12: {tight} (resolution {res})"
+        );
     }
     let paper = end(&t, Method::Rk2Raw.with(1e-3));
     assert_eq!(paper.stated, None);
@@ -74,7 +84,11 @@ fn each_setting_is_measured_against_the_converged_reference() {
         let e = end(&t, s);
         assert!(e.rhs > 0, "{s:?}");
         if let Some(b) = e.stated.filter(|b| b.is_finite()) {
-            assert!(err(&t, s) <= b.max(res) * 1.0001, "{s:?}: {} > {b}", err(&t, s));
+            assert!(
+                err(&t, s) <= b.max(res) * 1.0001,
+                "{s:?}: {} > {b}",
+                err(&t, s)
+            );
         }
     }
 }
@@ -102,7 +116,10 @@ fn no_error_is_drawn_or_said_below_the_resolution() {
     let below = Method::Dp54.with(1e-13);
     assert_eq!(err(&t, below), 0.0);
     let said = turntable::plot::page::trade::said(Some(&t), below, "picked");
-    assert!(said.contains("< resolution") && !said.contains("error 0"), "{said}");
+    assert!(
+        said.contains("< resolution") && !said.contains("error 0"),
+        "{said}"
+    );
 }
 
 /// The run's own setting is marked "now"; off the page's ladder (tol 10^-10.5 after `>`) it
@@ -215,7 +232,10 @@ fn the_page_survives_every_size_and_says_what_it_measures() {
         let s = render(&mut a, w, h);
         assert!(!s.contains("NaN"), "{w}x{h}:\n{s}");
         if w >= 80 {
-            assert!(s.contains("now dp54") && s.contains("vs dp54 1e-13 (res"), "{s}");
+            assert!(
+                s.contains("now dp54") && s.contains("vs dp54 1e-13 (res"),
+                "{s}"
+            );
         }
         if w >= 120 {
             assert!(s.contains("error: when and where it stops"), "{s}");
@@ -230,7 +250,11 @@ fn the_page_survives_every_size_and_says_what_it_measures() {
     assert!(a.initial().frictionless);
     let s = render(&mut a, 80, 24);
     assert!(s.contains("closed form"), "{s}");
-    assert!(a.charts.trade(&a.initial(), trade_base(a.settings())).is_none());
+    assert!(
+        a.charts
+            .trade(&a.initial(), trade_base(a.settings()))
+            .is_none()
+    );
 }
 
 /// `E` on the page writes it as SVG (through `files`, a new file), whole once computed.
@@ -250,8 +274,14 @@ fn e_exports_the_page() {
         Some(format!("wrote this page to {}", path.display()).as_str())
     );
     let svg = std::fs::read_to_string(&path).unwrap();
-    assert!(svg.contains("RHS evaluations") && svg.contains("dop853"), "{svg}");
+    assert!(
+        svg.contains("RHS evaluations") && svg.contains("dop853"),
+        "{svg}"
+    );
     let _ = std::fs::remove_dir_all(&dir);
     // The release's initial conditions are what the page ran.
-    assert_eq!(a.initial(), Initial::velocity(0.5, std::f64::consts::PI, 1.0));
+    assert_eq!(
+        a.initial(),
+        Initial::velocity(0.5, std::f64::consts::PI, 1.0)
+    );
 }

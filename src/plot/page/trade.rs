@@ -15,8 +15,7 @@ use strum::VariantArray;
 
 /// The runs computed for the release and settings on screen, if any.
 pub fn shown(app: &App) -> Option<&Trade> {
-    app.charts
-        .trade(&app.initial(), trade_base(app.settings()))
+    app.charts.trade(&app.initial(), trade_base(app.settings()))
 }
 
 /// Whether every run of the page is in.
@@ -98,7 +97,10 @@ pub fn said(t: Option<&Trade>, scheme: Scheme, lead: &str) -> String {
     let head = name(scheme);
     let short = format!("{} {}", scheme.method(), sci(scheme.knob(), 0));
     let Some(end) = t.and_then(|t| t.point(scheme)) else {
-        return alternatives(&[format!("{lead} {head}: computing…"), format!("{lead} {short}: …")]);
+        return alternatives(&[
+            format!("{lead} {head}: computing…"),
+            format!("{lead} {short}: …"),
+        ]);
     };
     let (Some(e), Some(t)) = (end, t) else {
         return alternatives(&[
@@ -126,8 +128,14 @@ pub fn said(t: Option<&Trade>, scheme: Scheme, lead: &str) -> String {
     };
     let (stated, stated_brief) = match e.stated {
         None => ("states no error".to_string(), "states none".to_string()),
-        Some(s) if s.is_finite() => (format!("stated ≤ {}", sci(s, 1)), format!("stated {}", sci(s, 1))),
-        Some(_) => ("states none: outcome in doubt".to_string(), "in doubt".to_string()),
+        Some(s) if s.is_finite() => (
+            format!("stated ≤ {}", sci(s, 1)),
+            format!("stated {}", sci(s, 1)),
+        ),
+        Some(_) => (
+            "states none: outcome in doubt".to_string(),
+            "in doubt".to_string(),
+        ),
     };
     let end_game = if e.end_game {
         ", the end game took the stop"
@@ -136,7 +144,10 @@ pub fn said(t: Option<&Trade>, scheme: Scheme, lead: &str) -> String {
     };
     alternatives(&[
         format!("{lead} {head}: {error}, {stated}, {} RHS{end_game}", e.rhs),
-        format!("{lead} {short}: {brief} ({stated_brief}), {} RHS{end_game}", e.rhs),
+        format!(
+            "{lead} {short}: {brief} ({stated_brief}), {} RHS{end_game}",
+            e.rhs
+        ),
     ])
 }
 
@@ -155,7 +166,9 @@ pub fn chart(app: &App) -> Chart {
     let (initial, settings) = (app.initial(), app.settings());
     let t = shown(app);
     let schemes = trade_schemes(&initial, settings);
-    let done = t.map_or(0, |t| schemes.iter().filter(|s| t.point(**s).is_some()).count());
+    let done = t.map_or(0, |t| {
+        schemes.iter().filter(|s| t.point(**s).is_some()).count()
+    });
     let at = |s: Scheme| -> Option<(f64, f64, Ending)> {
         let e = t?.point(s)??;
         let y = drawn_error(t?, &e)?;
@@ -167,7 +180,11 @@ pub fn chart(app: &App) -> Chart {
     let mut ys = Vec::new();
     let mut names = Vec::new();
     for &m in Method::VARIANTS {
-        let mut mine: Vec<Scheme> = schemes.iter().copied().filter(|s| s.method() == m).collect();
+        let mut mine: Vec<Scheme> = schemes
+            .iter()
+            .copied()
+            .filter(|s| s.method() == m)
+            .collect();
         mine.sort_by(|a, b| b.knob().total_cmp(&a.knob()));
         let points: Vec<(f64, f64)> = mine
             .iter()
@@ -198,7 +215,9 @@ pub fn chart(app: &App) -> Chart {
         }
     }
     let res = t.and_then(Trade::resolution).map(f64::log10);
-    let lo = res.map_or(-12.0, |r| r - 0.5).min(ys.iter().copied().fold(f64::INFINITY, f64::min) - 0.3);
+    let lo = res
+        .map_or(-12.0, |r| r - 0.5)
+        .min(ys.iter().copied().fold(f64::INFINITY, f64::min) - 0.3);
     let hi = ys.iter().copied().fold(lo + 1.0, f64::max) + 0.5;
     let (x0, x1) = match (
         xs.iter().copied().reduce(f64::min),
@@ -227,7 +246,12 @@ pub fn chart(app: &App) -> Chart {
         series.push(Series::new("stated bound", Ink::Muted, false, stated));
     }
     if !otherwise.is_empty() {
-        series.push(Series::new("ends otherwise", Ink::Escaped, false, otherwise));
+        series.push(Series::new(
+            "ends otherwise",
+            Ink::Escaped,
+            false,
+            otherwise,
+        ));
     }
     let picked = trade_picked(app.view.trade_pick, &initial, settings);
     let mut marks = names;
@@ -247,7 +271,9 @@ pub fn chart(app: &App) -> Chart {
     };
     Chart {
         title: alternatives(&[
-            format!("work-precision: error against work for this release, to τ ≤ {TRADE_TAU}{progress}"),
+            format!(
+                "work-precision: error against work for this release, to τ ≤ {TRADE_TAU}{progress}"
+            ),
             format!("work-precision{progress}"),
             "work-precision".to_string(),
         ]),

@@ -49,10 +49,7 @@ pub(super) fn work_precision(f: &mut TuiFrame, area: Rect, app: &App, th: &Theme
         ]
     };
     f.render_widget(
-        Paragraph::new(lines).block(crate::ui::titled(
-            " j/k pick · Enter run it ".into(),
-            th,
-        )),
+        Paragraph::new(lines).block(crate::ui::titled(" j/k pick · Enter run it ".into(), th)),
         bottom,
     );
 }
@@ -66,7 +63,10 @@ fn closed_form(f: &mut TuiFrame, area: Rect, th: &Theme) {
         Paragraph::new(text)
             .wrap(ratatui::widgets::Wrap { trim: true })
             .style(Style::default().fg(th.foreground))
-            .block(crate::ui::titled(" work-precision: closed form ".into(), th)),
+            .block(crate::ui::titled(
+                " work-precision: closed form ".into(),
+                th,
+            )),
         area,
     );
 }
