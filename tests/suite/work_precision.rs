@@ -285,3 +285,22 @@ fn e_exports_the_page() {
         Initial::velocity(0.5, std::f64::consts::PI, 1.0)
     );
 }
+
+/// Plain mode says the page in words once its runs are in, and each point picked.
+#[test]
+fn plain_mode_says_what_is_measured_and_each_pick() {
+    let path = std::env::temp_dir().join(format!("turntable-wp-{}.keys", std::process::id()));
+    std::fs::write(&path, "# replay: --scene A\nbacktab\nj\nenter\n").unwrap();
+    let (code, out, err) = common::turntable(&["replay", "--plain", path.to_str().unwrap()]);
+    let _ = std::fs::remove_file(&path);
+    assert_eq!(code, 0, "{err}");
+    for words in [
+        "page: work-precision",
+        "work-precision, error: when and where it stops, max(|Δτ|, |Δr|), against dp54 1e-13; resolution",
+        "now dp54 tol=1e-10: error ",
+        "picked (Enter runs it) dp54 tol=1e-11: error ",
+        "the run is now at dp54 tol=1e-11",
+    ] {
+        assert!(out.contains(words), "{words} not in\n{out}");
+    }
+}
