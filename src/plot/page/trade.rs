@@ -159,6 +159,58 @@ fn ends(o: Outcome) -> &'static str {
     }
 }
 
+/// Each method's line through its settings (loosest first), named at its tightest, with the
+/// stated bounds beside and every value drawn (for the ranges).
+#[derive(Default)]
+struct Lines {
+    series: Vec<Series>,
+    names: Vec<Mark>,
+    stated: Vec<(f64, f64)>,
+    xs: Vec<f64>,
+    ys: Vec<f64>,
+}
+
+/// [`Lines`] of `schemes`, each drawn where `at` puts it (None: not drawn).
+fn lines(schemes: &[Scheme], at: &dyn Fn(Scheme) -> Option<(f64, f64, Ending)>) -> Lines {
+    let mut l = Lines::default();
+    for &m in Method::VARIANTS {
+        let mut mine: Vec<Scheme> = schemes
+            .iter()
+            .copied()
+            .filter(|s| s.method() == m)
+            .collect();
+        mine.sort_by(|a, b| b.knob().total_cmp(&a.knob()));
+        let points: Vec<(f64, f64)> = mine
+            .iter()
+            .filter_map(|&s| at(s))
+            .map(|(x, y, e)| {
+                if let Some(b) = e.stated.filter(|b| b.is_finite() && *b > 0.0) {
+                    l.stated.push((x, b.log10()));
+                    l.ys.push(b.log10());
+                }
+                l.xs.push(x);
+                l.ys.push(y);
+                (x, y)
+            })
+            .collect();
+        if let Some(&(x, y)) = points.last() {
+            let name = match m {
+                Method::Rk2Raw => "paper".to_string(),
+                _ => m.to_string(),
+            };
+            // Named at its tightest setting too, where the lines part.
+            l.names.push(Mark::Text {
+                x,
+                y,
+                label: name.clone(),
+                ink: ink(m),
+            });
+            l.series.push(Series::new(name, ink(m), true, points));
+        }
+    }
+    l
+}
+
 /// The page's chart: error against RHS evaluations, one line per method through its settings
 /// (loosest first), the resolution's line, the stated bounds as dots, the runs that ended
 /// otherwise along the top, the explorer's setting and the picked point marked.
@@ -174,46 +226,13 @@ pub fn chart(app: &App) -> Chart {
         let y = drawn_error(t?, &e)?;
         Some(((e.rhs.max(1) as f64).log10(), y.log10(), e))
     };
-    let mut series = Vec::new();
-    let mut stated = Vec::new();
-    let mut xs = Vec::new();
-    let mut ys = Vec::new();
-    let mut names = Vec::new();
-    for &m in Method::VARIANTS {
-        let mut mine: Vec<Scheme> = schemes
-            .iter()
-            .copied()
-            .filter(|s| s.method() == m)
-            .collect();
-        mine.sort_by(|a, b| b.knob().total_cmp(&a.knob()));
-        let points: Vec<(f64, f64)> = mine
-            .iter()
-            .filter_map(|&s| at(s))
-            .map(|(x, y, e)| {
-                if let Some(b) = e.stated.filter(|b| b.is_finite() && *b > 0.0) {
-                    stated.push((x, b.log10()));
-                    ys.push(b.log10());
-                }
-                xs.push(x);
-                ys.push(y);
-                (x, y)
-            })
-            .collect();
-        if let Some(&(x, y)) = points.last() {
-            let name = match m {
-                Method::Rk2Raw => "paper".to_string(),
-                _ => m.to_string(),
-            };
-            // Named at its tightest setting too, where the lines part.
-            names.push(Mark::Text {
-                x,
-                y,
-                label: name.clone(),
-                ink: ink(m),
-            });
-            series.push(Series::new(name, ink(m), true, points));
-        }
-    }
+    let Lines {
+        mut series,
+        names,
+        stated,
+        xs,
+        ys,
+    } = lines(&schemes, &at);
     let res = t.and_then(Trade::resolution).map(f64::log10);
     let lo = res
         .map_or(-12.0, |r| r - 0.5)
