@@ -179,6 +179,15 @@ impl Rows {
         ((d as u32 / 4) as u16).min(h - 1)
     }
 
+    /// Whether text at [`Rows::text_y`]`(r)` lands on row `r`: the canvas puts it on row
+    /// ⌊(y1 − y)·(h − 1)/(y1 − y0)⌋, and on the last row that can round to the one above (the
+    /// label then lands on another's).
+    fn lands(self, r: i64) -> bool {
+        let (y, h) = (self.y, self.h);
+        let at = (y[1] - self.text_y(r)) * f64::from(h.saturating_sub(1)) / (y[1] - y[0]);
+        at as i64 == r
+    }
+
     /// A y at which the canvas prints text on row `r` (it puts text at row
     /// ⌊(y1 − y)/(y1 − y0)·(h − 1)⌋).
     fn text_y(self, r: i64) -> f64 {
@@ -364,7 +373,8 @@ fn paint_labels(ctx: &mut Context, th: &Theme, marks: &[Mark], x: [f64; 2], rows
                 } else {
                     mx + col
                 };
-                if let Some(r) = taken.place(a, w, &mut (0..taken.rows)) {
+                let tries = &mut (0..taken.rows).filter(|r| rows.lands(*r));
+                if let Some(r) = taken.place(a, w, tries) {
                     ctx.print(a, at_row(r), Span::styled(label.clone(), style));
                 }
             }
@@ -380,7 +390,9 @@ fn paint_labels(ctx: &mut Context, th: &Theme, marks: &[Mark], x: [f64; 2], rows
                     // Text that would run past the plot's right edge ends there.
                     _ => px.min(x[1] - w).max(x[0]),
                 };
-                let tries = &mut [r0, r0 - 1, r0 + 1, r0 - 2, r0 + 2].into_iter();
+                let tries = &mut [r0, r0 - 1, r0 + 1, r0 - 2, r0 + 2]
+                    .into_iter()
+                    .filter(|r| rows.lands(*r));
                 if let Some(r) = taken.place(a, w, tries) {
                     ctx.print(a, at_row(r), Span::styled(label.clone(), style));
                 }

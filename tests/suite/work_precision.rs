@@ -304,3 +304,13 @@ fn plain_mode_says_what_is_measured_and_each_pick() {
         assert!(out.contains(words), "{words} not in\n{out}");
     }
 }
+
+/// Names on the chart's last row land there, not on the row above over another's: on C at
+/// 60×20 dop853's name stays whole beside the resolution's line (dp54's, with no room left,
+/// is left out). The canvas rounded text at the bottom edge one row up.
+#[test]
+fn names_on_the_last_row_cover_no_other() {
+    let mut a = app("C");
+    let s = render(&mut a, 60, 20);
+    assert!(s.contains("dop853") && !s.contains("ddp54"), "{s}");
+}
