@@ -247,15 +247,18 @@ pub enum Page {
     EscapeSpeed,
     OutcomeMap,
     RestRadius,
+    /// Error against work for each method and tolerance, on the release on screen.
+    WorkPrecision,
 }
 
 impl Page {
-    const ORDER: [Page; 5] = [
+    const ORDER: [Page; 6] = [
         Page::Turntable,
         Page::TimePlots,
         Page::EscapeSpeed,
         Page::OutcomeMap,
         Page::RestRadius,
+        Page::WorkPrecision,
     ];
 
     pub fn next(self) -> Page {
@@ -276,6 +279,7 @@ impl Page {
             Page::EscapeSpeed => "escape speed",
             Page::OutcomeMap => "outcome map",
             Page::RestRadius => "rest radius",
+            Page::WorkPrecision => "work-precision",
         }
     }
 }

@@ -4,6 +4,7 @@
 //! constant Ω, or a table spun up where the scene asks ([`Motion`]).
 
 pub mod accuracy;
+pub mod ending;
 mod motion;
 
 pub use motion::Motion;

@@ -17,6 +17,7 @@ use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::mpsc::{Receiver, Sender, channel};
 
 mod cells;
+pub mod trade;
 pub mod verdict;
 mod worker;
 
@@ -77,6 +78,14 @@ pub enum Job {
     },
     /// Final rest ξ against ξ0, released at rest in the lab, and ξ0c (Fig. 6).
     Rest,
+    /// The work–precision page for `initial`: the reference, its cross-check, then each
+    /// setting of [`trade::schemes`] (`paper`: the paper's raw RK2 among them; `extra`: the
+    /// explorer's setting when it is none of the others).
+    Trade {
+        initial: Initial,
+        paper: bool,
+        extra: Option<crate::engine::method::Scheme>,
+    },
 }
 
 /// One computed piece of a job.
@@ -92,6 +101,12 @@ pub enum Piece {
     Critical(f64),
     /// Where v_e is least and its value (φ, v_e); `None` if the search failed.
     Least(Option<(f64, f64)>),
+    /// Work–precision piece `i` (see [`Job::Trade`]): how its run ended, `None` if it could
+    /// not finish.
+    Trade {
+        i: usize,
+        end: Option<trade::Ending>,
+    },
 }
 
 /// The release speeds at one angle that end stuck.
@@ -321,6 +336,9 @@ pub fn pieces(job: &Job) -> usize {
         Job::Least { .. } => 1,
         Job::Map { size, .. } => size.0 * size.1,
         Job::Rest => REST_POINTS + 1,
+        Job::Trade { paper, extra, .. } => {
+            trade::REFERENCE_PIECES + trade::schemes(*paper, *extra).len()
+        }
     }
 }
 
@@ -373,6 +391,14 @@ pub fn piece_with(
             let xi = cell.ok().and_then(|c| c.rest).map(|r| r.0);
             Piece::Rest { i: k, xi }
         }
+        Job::Trade {
+            initial,
+            paper,
+            extra,
+        } => Piece::Trade {
+            i: k,
+            end: trade::piece(initial, paper, extra, k, settings),
+        },
     };
     go_on().then_some(p)
 }

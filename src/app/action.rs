@@ -81,8 +81,11 @@ pub enum Action {
     /// The next / previous page (turntable, time plots, escape speed, outcome map, rest radius).
     NextPage,
     PrevPage,
-    /// Back to the turntable with the release chosen on an analysis page.
+    /// Back to the turntable with the release chosen on an analysis page; on the
+    /// work–precision page, the run switched to the point picked.
     Choose,
+    /// The work–precision page's next (+1) or previous (−1) point.
+    PickPoint(i8),
     /// Mouse on the escape-speed or outcome-map page: the release (φ, v0) clicked.
     PickRelease(glam::DVec2),
     /// The μ measurement: change Ω (rad/s) or r0c (m) by this much.
@@ -151,8 +154,8 @@ impl Action {
             CycleMethod | Loosen | Tighten | ToggleCompare | EstimateError => Group::Integrator,
             ToggleFrame | ToggleSplit | ToggleForces | ToggleNetForce | ToggleVelocity
             | TogglePointModel | ZoomIn | ZoomOut | Pan(..) | ResetView | TauWindow(_)
-            | NextPage | PrevPage | Choose | Omega(_) | R0c(_) | Unit(..) | UnitsOff | PinRun
-            | ClearPins => Group::View,
+            | NextPage | PrevPage | Choose | PickPoint(_) | Omega(_) | R0c(_) | Unit(..)
+            | UnitsOff | PinRun | ClearPins => Group::View,
             Quit | Dismiss | Follow | ToggleHelp | HelpScroll(_) | HelpPage(_) | Save | SaveAs
             | Type(_) | SetValues | ExportSvg | ToggleMouse | Readouts => Group::App,
             Answer(_) | GoOn => Group::Lesson,

@@ -1,9 +1,11 @@
 //! The explorer's pages (Tab cycles them) and the analysis results they show. A page asks for
 //! what it lacks ([`wanted`]); results arrive piece by piece ([`Charts::apply`]).
 
+use crate::analysis::trade::{self, Ending, REFERENCE_PIECES};
 use crate::analysis::{
     CURVE_POINTS, Cell, Job, PAPER_XI0, Piece, REST_POINTS, Speeds, pieces, settings_for,
 };
+use crate::engine::method::Scheme;
 use crate::engine::{Initial, Release, Settings};
 
 pub use crate::scene::Page;
@@ -71,6 +73,35 @@ pub struct Rest {
     pub critical: Option<Option<f64>>,
 }
 
+/// The work–precision page's runs of one release (see [`crate::analysis::trade`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Trade {
+    pub initial: Initial,
+    pub settings: Settings,
+    /// The reference and its cross-check (`Some(None)`: could not finish).
+    pub reference: Option<Option<Ending>>,
+    pub check: Option<Option<Ending>>,
+    /// Each setting's end as it arrives, whatever the job that asked for it (an `extra` of
+    /// one job is kept for the next).
+    pub points: Vec<(Scheme, Option<Ending>)>,
+}
+
+impl Trade {
+    /// How `scheme`'s run ended: `None` not yet, `Some(None)` it could not finish.
+    pub fn point(&self, scheme: Scheme) -> Option<Option<Ending>> {
+        self.points
+            .iter()
+            .find(|(s, _)| *s == scheme)
+            .map(|(_, e)| *e)
+    }
+
+    /// The reference's resolution once it and its cross-check are in (see
+    /// [`trade::resolution`]).
+    pub fn resolution(&self) -> Option<f64> {
+        trade::resolution(&self.reference??, &self.check??)
+    }
+}
+
 /// What the analysis pages have received.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Charts {
@@ -78,6 +109,7 @@ pub struct Charts {
     pub curves: Vec<Curve>,
     pub map: Option<Map>,
     pub rest: Option<Rest>,
+    pub trade: Option<Trade>,
 }
 
 /// Curves kept besides the paper's four.
@@ -168,6 +200,27 @@ impl Charts {
             (Job::Rest, Piece::Critical(x)) => {
                 self.rest_for(settings).critical = Some(x.is_finite().then_some(x));
             }
+            (
+                Job::Trade {
+                    initial,
+                    paper,
+                    extra,
+                },
+                Piece::Trade { i, end },
+            ) => {
+                let t = self.trade_for(*initial, settings);
+                match i {
+                    0 => t.reference = Some(end),
+                    1 => t.check = Some(end),
+                    _ => {
+                        if let Some(&s) = trade::schemes(*paper, *extra).get(i - REFERENCE_PIECES)
+                            && t.point(s).is_none()
+                        {
+                            t.points.push((s, end));
+                        }
+                    }
+                }
+            }
             _ => {}
         }
     }
@@ -199,10 +252,45 @@ impl Charts {
                     v
                 })
                 .unwrap_or_default(),
+            Job::Trade {
+                initial,
+                paper,
+                extra,
+            } => match self.trade(initial, settings) {
+                Some(t) => [t.reference.is_some(), t.check.is_some()]
+                    .into_iter()
+                    .chain(
+                        trade::schemes(*paper, *extra)
+                            .into_iter()
+                            .map(|s| t.point(s).is_some()),
+                    )
+                    .collect(),
+                None => Vec::new(),
+            },
         };
         (0..pieces(job))
             .filter(|&k| !have.get(k).copied().unwrap_or(false))
             .collect()
+    }
+
+    /// The work–precision runs of `initial` at `settings`, if any.
+    pub fn trade(&self, initial: &Initial, settings: Settings) -> Option<&Trade> {
+        self.trade
+            .as_ref()
+            .filter(|t| t.initial == *initial && t.settings == settings)
+    }
+
+    fn trade_for(&mut self, initial: Initial, settings: Settings) -> &mut Trade {
+        if self.trade(&initial, settings).is_none() {
+            self.trade = Some(Trade {
+                initial,
+                settings,
+                reference: None,
+                check: None,
+                points: Vec::new(),
+            });
+        }
+        self.trade.as_mut().expect("just set")
     }
 
     fn rest_for(&mut self, settings: Settings) -> &mut Rest {
@@ -238,6 +326,7 @@ pub fn wanted(
     settings: Settings,
     map_grid: impl Fn(f64) -> Option<(usize, usize)>,
 ) -> Option<Job> {
+    let explorer = settings;
     let settings = settings_for(settings);
     let missing_curve = |xi0: f64| {
         let have = charts.curve(xi0, settings);
@@ -280,6 +369,41 @@ pub fn wanted(
             });
             (!done).then_some(Job::Rest)
         }
+        // Closed forms (μ = 0, Stokes drag): every method gives the same run.
+        Page::WorkPrecision if initial.frictionless || explorer.stokes().is_some() => None,
+        Page::WorkPrecision => {
+            let job = trade_job(initial, explorer);
+            let base = trade::trade_base(explorer);
+            (!charts.missing(&job, base).is_empty()).then_some(job)
+        }
+    }
+}
+
+/// The work–precision page's settings in the order `j`/`k` walk them, for `initial` with the
+/// explorer at `settings` (see [`crate::analysis::trade::schemes`]).
+pub fn trade_schemes(initial: &Initial, settings: Settings) -> Vec<Scheme> {
+    match trade_job(initial, settings) {
+        Job::Trade { paper, extra, .. } => trade::schemes(paper, extra),
+        _ => Vec::new(),
+    }
+}
+
+/// The point picked on the work–precision page: `pick` when it is one of the page's, else the
+/// explorer's own setting.
+pub fn trade_picked(pick: Option<Scheme>, initial: &Initial, settings: Settings) -> Scheme {
+    pick.filter(|p| trade_schemes(initial, settings).contains(p))
+        .unwrap_or(settings.scheme)
+}
+
+/// The work–precision job for `initial` with the explorer at `settings` (its setting an extra
+/// point when it is none of the page's).
+pub fn trade_job(initial: &Initial, settings: Settings) -> Job {
+    let paper = settings.hold() == 1.0;
+    let extra = Some(settings.scheme).filter(|s| !trade::schemes(paper, None).contains(s));
+    Job::Trade {
+        initial: *initial,
+        paper,
+        extra,
     }
 }
 

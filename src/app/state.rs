@@ -261,7 +261,13 @@ impl App {
             self.settings(),
             map_grid,
         )?;
-        Some((job, crate::analysis::settings_for(self.settings())))
+        let settings = match job {
+            crate::analysis::Job::Trade { .. } => {
+                crate::analysis::trade::trade_base(self.settings())
+            }
+            _ => crate::analysis::settings_for(self.settings()),
+        };
+        Some((job, settings))
     }
 
     /// A piece of an analysis job, brought by the shell's worker.

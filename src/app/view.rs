@@ -34,6 +34,8 @@ pub struct View {
     pub help_scroll: u16,
     /// The time plots' τ span when fixed (`t`/`T`); None: the run so far.
     pub tau_window: Option<f64>,
+    /// The point picked on the work–precision page (`j`/`k`); None: the explorer's setting.
+    pub trade_pick: Option<crate::engine::method::Scheme>,
 }
 
 impl View {
@@ -55,6 +57,7 @@ impl View {
             help: false,
             help_scroll: 0,
             tau_window: None,
+            trade_pick: None,
         }
     }
 

@@ -261,9 +261,9 @@ fn timed<T>(reps: usize, mut f: impl FnMut() -> T) -> (T, f64) {
     (out, best * 1e3)
 }
 
-/// The reference: dp54 at tol 1e-13.
+/// The reference: dp54 at tol 1e-13 (`sim::ending::reference`, the page's too).
 pub fn reference() -> Settings {
-    Settings::dp54(1e-13)
+    crate::sim::ending::reference(Settings::default())
 }
 
 const REST_TAU: f64 = 200.0;

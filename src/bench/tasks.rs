@@ -71,14 +71,10 @@ pub(super) fn distance(a: DVec2, b: DVec2) -> f64 {
     if b.length() > 10.0 { e / b.length() } else { e }
 }
 
-/// The cross-check of the reference across stops: dp54 at 1e-12 in the other frame. (rk4 at
-/// a small dt agrees on rest positions but not on stop times: its last steps before a stop are
-/// at the stability limit of the stiff friction direction, see the τ columns.)
+/// The cross-check of the reference across stops: dp54 at 1e-12 in the other frame
+/// (`sim::ending::reference_check`, the page's too).
 fn stop_check() -> Settings {
-    Settings {
-        frame: Frame::Table,
-        ..Settings::dp54(1e-12)
-    }
+    crate::sim::ending::reference_check(Settings::default())
 }
 
 /// A setting as the table names it: method, knob, and the frame when not the lab's.

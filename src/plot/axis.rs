@@ -15,6 +15,9 @@ pub enum Scale {
     /// Angles in radians, ticked at round multiples of π and read in π (`0`, `0.5π`, `π`),
     /// as an angle reads everywhere else (`present::angle`).
     Angle,
+    /// Powers of ten drawn as their logarithms (a value v stands for 10^v): ticked at whole
+    /// decades and read as the power (`1e-6`, `1`, `100`).
+    Decades,
 }
 
 impl Scale {
@@ -26,6 +29,17 @@ impl Scale {
                 .into_iter()
                 .map(|t| t * PI)
                 .collect(),
+            Scale::Decades => {
+                let step = ((b - a) / n.max(1) as f64).ceil().max(1.0);
+                let (first, last) = ((a / step).ceil(), (b / step).floor());
+                if !(first.is_finite() && last.is_finite()) {
+                    return vec![a];
+                }
+                (first as i64..=last as i64)
+                    .take(1000)
+                    .map(|k| k as f64 * step)
+                    .collect()
+            }
         }
     }
 
@@ -34,6 +48,10 @@ impl Scale {
         match self {
             Scale::Plain => tick_label(v),
             Scale::Angle => angle_tick(v),
+            Scale::Decades => match v.round() as i32 {
+                k @ 0..=2 => 10i32.pow(k as u32).to_string(),
+                k => format!("1e{k}"),
+            },
         }
     }
 }
@@ -137,6 +155,23 @@ mod tests {
             .map(|v| s.label(v))
             .collect();
         assert_eq!(labels, ["-5π", "0"]);
+    }
+
+    #[test]
+    fn decades_tick_at_whole_powers_of_ten() {
+        let s = Scale::Decades;
+        let labels: Vec<String> = s
+            .ticks(-12.3, -2.5, 5)
+            .into_iter()
+            .map(|v| s.label(v))
+            .collect();
+        assert_eq!(labels, ["1e-12", "1e-10", "1e-8", "1e-6", "1e-4"]);
+        let labels: Vec<String> = s
+            .ticks(0.5, 4.2, 8)
+            .into_iter()
+            .map(|v| s.label(v))
+            .collect();
+        assert_eq!(labels, ["10", "100", "1e3", "1e4"]);
     }
 
     #[test]

@@ -97,12 +97,19 @@ impl Choice {
     }
 }
 
-/// `base` with `method` at `tol` (frame, coupling and budget kept).
-fn at(base: Settings, method: Method, tol: f64) -> Settings {
-    Settings {
-        scheme: method.with(tol),
-        ..base
-    }
+/// The adaptive settings on offer: dp54 then dop853, each at tol 1e-3 … 1e-13, loosest first
+/// (frame, coupling and budget from `base`). What [`cheapest`] chooses among, and the
+/// work–precision page's adaptive points.
+pub fn ladder(base: Settings) -> Vec<Settings> {
+    [Method::Dp54, Method::Dop853]
+        .into_iter()
+        .flat_map(|method| {
+            TOLS.map(move |k| Settings {
+                scheme: method.with(10f64.powi(-k)),
+                ..base
+            })
+        })
+        .collect()
 }
 
 /// The cheapest of dp54 and dop853 at tol 1e-3 … 1e-13 whose stated error is ≤ `error`, for
@@ -122,32 +129,29 @@ pub fn cheapest(
         tried: Vec::new(),
         chosen: None,
     };
-    for method in [Method::Dp54, Method::Dop853] {
-        for k in TOLS {
-            let settings = at(base, method, 10f64.powi(-k));
-            let mut run = Run::new(initial, settings)?;
-            let (stated, check_rhs) = match run.run(tau_max, stop_on_escape) {
-                Ok(_) => {
-                    let d = doubt(&run, tau_max);
-                    let stated = if d.certain {
-                        d.tau_error.max(d.q_error)
-                    } else {
-                        f64::INFINITY
-                    };
-                    (stated, d.check_evals)
-                }
-                Err(_) => (f64::INFINITY, 0),
-            };
-            let t = Tried {
-                settings,
-                stated,
-                rhs: run.cost().rhs_evals,
-                check_rhs,
-            };
-            c.tried.push(t);
-            if stated <= error && c.chosen.is_none_or(|b| t.rhs < b.rhs) {
-                c.chosen = Some(t);
+    for settings in ladder(base) {
+        let mut run = Run::new(initial, settings)?;
+        let (stated, check_rhs) = match run.run(tau_max, stop_on_escape) {
+            Ok(_) => {
+                let d = doubt(&run, tau_max);
+                let stated = if d.certain {
+                    d.tau_error.max(d.q_error)
+                } else {
+                    f64::INFINITY
+                };
+                (stated, d.check_evals)
             }
+            Err(_) => (f64::INFINITY, 0),
+        };
+        let t = Tried {
+            settings,
+            stated,
+            rhs: run.cost().rhs_evals,
+            check_rhs,
+        };
+        c.tried.push(t);
+        if stated <= error && c.chosen.is_none_or(|b| t.rhs < b.rhs) {
+            c.chosen = Some(t);
         }
     }
     Ok(c)

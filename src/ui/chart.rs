@@ -179,6 +179,15 @@ impl Rows {
         ((d as u32 / 4) as u16).min(h - 1)
     }
 
+    /// Whether text at [`Rows::text_y`]`(r)` lands on row `r`: the canvas puts it on row
+    /// ⌊(y1 − y)·(h − 1)/(y1 − y0)⌋, and on the last row that can round to the one above (the
+    /// label then lands on another's).
+    fn lands(self, r: i64) -> bool {
+        let (y, h) = (self.y, self.h);
+        let at = (y[1] - self.text_y(r)) * f64::from(h.saturating_sub(1)) / (y[1] - y[0]);
+        at as i64 == r
+    }
+
     /// A y at which the canvas prints text on row `r` (it puts text at row
     /// ⌊(y1 − y)/(y1 − y0)·(h − 1)⌋).
     fn text_y(self, r: i64) -> f64 {
@@ -290,9 +299,9 @@ struct Taken {
 }
 
 impl Taken {
-    /// The first of `tries` (rows) where `w` from `a` is free, else the first; taken.
-    fn place(&mut self, a: f64, w: f64, tries: &mut dyn Iterator<Item = i64>) -> i64 {
-        let first = tries.next().unwrap_or(0);
+    /// The first of `tries` (rows) where `w` from `a` is free, taken; None when none is (the
+    /// label is then left out rather than written over another).
+    fn place(&mut self, a: f64, w: f64, tries: &mut dyn Iterator<Item = i64>) -> Option<i64> {
         let rows = self.rows;
         let free = |r: i64, t: &[(f64, f64, i64)]| {
             (0..rows).contains(&r)
@@ -300,18 +309,20 @@ impl Taken {
                     .iter()
                     .any(|&(x0, x1, rr)| rr == r && a < x1 && x0 < a + w)
         };
-        let r = std::iter::once(first)
-            .chain(tries)
-            .find(|&r| free(r, &self.spans))
-            .unwrap_or(first);
+        let r = loop {
+            let r = tries.next()?;
+            if free(r, &self.spans) {
+                break r;
+            }
+        };
         self.spans.push((a, a + w, r));
-        r
+        Some(r)
     }
 }
 
 /// The marks' dots and labels. Labels never overwrite one another: line labels go along the
 /// top, a row lower where the row is taken; a point keeps its dot and its words move a row up
-/// or down if they must. The last marks (the release) are placed first.
+/// or down if they must; a label with no room left is left out. The last marks (the release) are placed first.
 fn paint_labels(ctx: &mut Context, th: &Theme, marks: &[Mark], x: [f64; 2], rows: Rows, col: f64) {
     let at_row = |r: i64| rows.text_y(r);
     let mut taken = Taken {
@@ -329,7 +340,7 @@ fn paint_labels(ctx: &mut Context, th: &Theme, marks: &[Mark], x: [f64; 2], rows
         {
             let color = ink(th, i);
             let r0 = i64::from(rows.dot_row(py));
-            taken.place(px, col, &mut std::iter::once(r0));
+            taken.spans.push((px, px + col, r0));
             ctx.print(
                 px,
                 at_row(r0),
@@ -362,8 +373,10 @@ fn paint_labels(ctx: &mut Context, th: &Theme, marks: &[Mark], x: [f64; 2], rows
                 } else {
                     mx + col
                 };
-                let r = taken.place(a, w, &mut (0..taken.rows));
-                ctx.print(a, at_row(r), Span::styled(label.clone(), style));
+                let tries = &mut (0..taken.rows).filter(|r| rows.lands(*r));
+                if let Some(r) = taken.place(a, w, tries) {
+                    ctx.print(a, at_row(r), Span::styled(label.clone(), style));
+                }
             }
             Mark::Point { x: px, y: py, .. }
             | Mark::Text { x: px, y: py, .. }
@@ -377,8 +390,12 @@ fn paint_labels(ctx: &mut Context, th: &Theme, marks: &[Mark], x: [f64; 2], rows
                     // Text that would run past the plot's right edge ends there.
                     _ => px.min(x[1] - w).max(x[0]),
                 };
-                let r = taken.place(a, w, &mut [r0, r0 - 1, r0 + 1, r0 - 2, r0 + 2].into_iter());
-                ctx.print(a, at_row(r), Span::styled(label.clone(), style));
+                let tries = &mut [r0, r0 - 1, r0 + 1, r0 - 2, r0 + 2]
+                    .into_iter()
+                    .filter(|r| rows.lands(*r));
+                if let Some(r) = taken.place(a, w, tries) {
+                    ctx.print(a, at_row(r), Span::styled(label.clone(), style));
+                }
             }
         }
     }

@@ -287,7 +287,10 @@ fn every_key_in_the_keymap_does_what_its_help_says() {
                     ))
             }
             Action::NextPage => a.view.page == Page::TimePlots && after.contains("time plots"),
-            Action::PrevPage => a.view.page == Page::RestRadius && after.contains("rest radius"),
+            Action::PrevPage => {
+                a.view.page == Page::WorkPrecision && after.contains("work-precision")
+            }
+            Action::PickPoint(_) => after.contains("j/k pick a setting on the work-precision page"),
             Action::Choose => a.view.page == Page::Turntable && after.contains("Enter runs"),
             Action::PickRelease(_) => unreachable!("mouse actions have no key"),
             Action::Answer(yes) => {

@@ -56,3 +56,4 @@ mod terminals;
 mod text;
 mod tolerance;
 mod validation;
+mod work_precision;

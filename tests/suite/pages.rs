@@ -30,6 +30,7 @@ fn tab_cycles_the_pages_and_each_title_names_its_page() {
         (Page::EscapeSpeed, "escape speed"),
         (Page::OutcomeMap, "outcome map"),
         (Page::RestRadius, "rest radius"),
+        (Page::WorkPrecision, "work-precision"),
         (Page::Turntable, "lab frame"),
     ] {
         press(&mut a, KeyCode::Tab);
@@ -39,10 +40,10 @@ fn tab_cycles_the_pages_and_each_title_names_its_page() {
         assert!(!screen.contains("NaN"), "{screen}");
     }
     press(&mut a, KeyCode::BackTab);
-    assert_eq!(a.view.page, Page::RestRadius);
+    assert_eq!(a.view.page, Page::WorkPrecision);
     // As crossterm reports Shift-Tab: BackTab with Shift.
     a.handle_key(KeyEvent::new(KeyCode::BackTab, KeyModifiers::SHIFT));
-    assert_eq!(a.view.page, Page::OutcomeMap);
+    assert_eq!(a.view.page, Page::RestRadius);
 }
 
 #[test]
@@ -303,6 +304,7 @@ fn pages_survive_every_size() {
         Page::EscapeSpeed,
         Page::OutcomeMap,
         Page::RestRadius,
+        Page::WorkPrecision,
     ] {
         a.view.page = page;
         common::sync(&mut a);
@@ -663,6 +665,7 @@ fn a_theme_s_background_covers_every_cell() {
                 Page::EscapeSpeed,
                 Page::OutcomeMap,
                 Page::RestRadius,
+                Page::WorkPrecision,
             ] {
                 a.view.page = page;
                 common::sync(&mut a);

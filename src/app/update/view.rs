@@ -2,11 +2,11 @@
 //! SI units.
 
 use super::super::action::{Action, UnitKnob};
-use super::super::pages::Page;
+use super::super::pages::{Page, trade_picked, trade_schemes};
 use super::super::state::{App, ZOOM_RANGE, record_player};
 use super::round_sig;
-use crate::engine::Frame;
 use crate::engine::units::Units;
+use crate::engine::{Frame, Settings};
 use std::f64::consts::TAU;
 
 pub(super) fn apply(app: &mut App, action: Action) {
@@ -58,18 +58,11 @@ pub(super) fn apply(app: &mut App, action: Action) {
         }
         Action::NextPage => app.view.page = app.view.page.next(),
         Action::PrevPage => app.view.page = app.view.page.prev(),
-        Action::Choose => {
-            if matches!(app.view.page, Page::EscapeSpeed | Page::OutcomeMap) {
-                app.view.page = Page::Turntable;
-                app.playing = true;
-                app.exploration.restart();
-            } else {
-                app.notice = Some(
-                    "Enter runs the release chosen on the escape-speed or outcome-map page (Tab)"
-                        .into(),
-                );
-            }
+        Action::PickPoint(step) if app.view.page == Page::WorkPrecision => pick(app, step),
+        Action::PickPoint(_) => {
+            app.notice = Some("j/k pick a setting on the work-precision page (Tab)".into());
         }
+        Action::Choose => choose(app),
         // With SI units on, the μ probe's Ω is the table's: `o`/`O` turn the table.
         Action::Omega(d) if app.units.is_some() => {
             if let Some(u) = app.units {
@@ -126,6 +119,57 @@ pub(super) fn apply(app: &mut App, action: Action) {
         // Other groups' actions: `update` never sends them here.
         _ => {}
     }
+}
+
+/// The work–precision page's point `step` on from the one picked, in the page's order,
+/// wrapping round.
+fn pick(app: &mut App, step: i8) {
+    let (initial, settings) = (app.initial(), app.settings());
+    let all = trade_schemes(&initial, settings);
+    let now = trade_picked(app.view.trade_pick, &initial, settings);
+    let at = all.iter().position(|s| *s == now).unwrap_or(0) as i64;
+    let n = all.len().max(1) as i64;
+    app.view.trade_pick = all
+        .get((at + i64::from(step)).rem_euclid(n) as usize)
+        .copied();
+}
+
+/// Enter: the release chosen on the escape-speed or outcome-map page run on the turntable, or
+/// the run switched to the setting picked on the work–precision page.
+fn choose(app: &mut App) {
+    match app.view.page {
+        Page::EscapeSpeed | Page::OutcomeMap => {
+            app.view.page = Page::Turntable;
+            app.playing = true;
+            app.exploration.restart();
+        }
+        Page::WorkPrecision => switch_to_picked(app),
+        _ => {
+            app.notice = Some(
+                "Enter runs the release chosen on the escape-speed or outcome-map page, or the setting picked on the work-precision page (Tab)"
+                    .into(),
+            )
+        }
+    }
+}
+
+/// The run switched to the setting picked on the work–precision page (the page stays, its mark
+/// of the run's setting moving there).
+fn switch_to_picked(app: &mut App) {
+    let (initial, settings) = (app.initial(), app.settings());
+    let picked = trade_picked(app.view.trade_pick, &initial, settings);
+    app.view.trade_pick = None;
+    let to = Settings {
+        scheme: picked,
+        ..settings
+    };
+    let name = format!("{} {}", picked.method(), crate::present::accuracy(&to));
+    app.notice = Some(if picked == settings.scheme {
+        format!("the run is already at {name}: j/k pick another")
+    } else {
+        app.exploration.set_settings(to);
+        format!("the run is now at {name} (Tab to the turntable to watch it)")
+    });
 }
 
 /// Sets the table's μ, rpm and g. With units on already, the release is held in metres and

@@ -8,6 +8,7 @@ pub mod map;
 pub mod rest;
 pub mod table;
 pub mod time;
+pub mod trade;
 
 use super::Figure;
 use crate::analysis::{PAPER_XI0, settings_for};
@@ -44,6 +45,7 @@ pub fn figure(app: &App) -> (Figure, bool) {
                 .is_some_and(|r| r.xi.iter().all(Option::is_some) && r.critical.is_some());
             (one(rest::chart(app)), whole)
         }
+        Page::WorkPrecision => (one(trade::chart(app)), trade::whole(app)),
     }
 }
 

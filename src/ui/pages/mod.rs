@@ -14,6 +14,7 @@ use ratatui::widgets::{Paragraph, Wrap};
 
 mod map;
 mod rest;
+mod trade;
 
 use crate::plot::page::escape::{curve_note, release_verdict};
 pub use map::map_grid;
@@ -46,6 +47,10 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App, th: &Theme) -> Option<Can
         Page::OutcomeMap => outcome_map(f, area, app, th),
         Page::RestRadius => {
             rest_radius(f, area, app, th);
+            None
+        }
+        Page::WorkPrecision => {
+            trade::work_precision(f, area, app, th);
             None
         }
     }
@@ -85,7 +90,10 @@ fn geom(plot: Rect, c: &Chart, page: Page, app: &App) -> CanvasGeom {
 
 /// Whether `page` has numbers of its own to say in words ([`summary`]).
 pub fn summarized(page: Page) -> bool {
-    matches!(page, Page::EscapeSpeed | Page::RestRadius)
+    matches!(
+        page,
+        Page::EscapeSpeed | Page::RestRadius | Page::WorkPrecision
+    )
 }
 
 /// The analysis page on screen in words, for plain mode (a screen reader has no chart): what
@@ -139,6 +147,29 @@ pub fn summary(app: &App) -> Option<(String, Option<String>)> {
                     num(c, 6)
                 ),
                 None,
+            ))
+        }
+        Page::WorkPrecision => {
+            use crate::plot::page::trade::{measured, said, shown, whole};
+            let first = |s: String| {
+                s.split(super::fit::OR)
+                    .next()
+                    .unwrap_or_default()
+                    .to_string()
+            };
+            if !whole(app) {
+                return None;
+            }
+            let t = shown(app);
+            let picked = crate::app::pages::trade_picked(app.view.trade_pick, &i, app.settings());
+            let lead = if picked == app.settings().scheme {
+                "now"
+            } else {
+                "picked (Enter runs it)"
+            };
+            Some((
+                format!("work-precision, {}", first(measured(t))),
+                Some(first(said(t, picked, lead))),
             ))
         }
         _ => None,
