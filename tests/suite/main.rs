@@ -53,3 +53,4 @@ mod terminals;
 mod text;
 mod tolerance;
 mod validation;
+mod words;

@@ -5,7 +5,7 @@
 
 use super::MAX_SEGMENTS;
 use crate::engine::model::rotate;
-use crate::plot::page::table::{BODY_GLYPH, Picture, Point, RING_LABEL, SENSE_LABEL, STUCK_GLYPH};
+use crate::plot::page::table::{BODY_GLYPH, Picture, Point, SENSE_LABEL, STUCK_GLYPH};
 use crate::theme::Theme;
 use glam::DVec2;
 use ratatui::layout::Rect;
@@ -146,7 +146,7 @@ impl Painter {
         self.labelled(ctx);
     }
 
-    /// The table: its edge, three marks on its rim, the ξ = 1 circle, the pins' markers
+    /// The table: its edge, three marks on its rim, the circle inside which friction holds, the pins' markers
     /// along their paths and, where there is room, the words for the circle and the sense.
     fn table(&self, ctx: &mut Context) {
         let (th, table) = (&self.th, &self.pic.table);
@@ -167,12 +167,14 @@ impl Painter {
                 color: th.spokes,
             });
         }
-        ctx.draw(&Circle {
-            x: 0.0,
-            y: 0.0,
-            radius: 1.0,
-            color: th.limit_circle,
-        });
+        if let Some(ring) = &table.ring {
+            ctx.draw(&Circle {
+                x: 0.0,
+                y: 0.0,
+                radius: ring.r,
+                color: th.limit_circle,
+            });
+        }
         // Each pin's marker along its path (printed first: words printed later win); at its
         // end (below) the marker and its label, so pins read without colour.
         for p in &self.pic.pins {
@@ -181,9 +183,12 @@ impl Painter {
             }
         }
         if self.words {
-            let (ring, sense) = (table.ring_label, table.sense);
-            let ring_style = Style::default().fg(th.limit_circle);
-            ctx.print(ring.x, ring.y, Span::styled(RING_LABEL, ring_style));
+            if let Some(ring) = &table.ring {
+                let ring_style = Style::default().fg(th.limit_circle);
+                let at = ring.at;
+                ctx.print(at.x, at.y, Span::styled(ring.label.clone(), ring_style));
+            }
+            let sense = table.sense;
             let sense_style = Style::default().fg(th.table_edge);
             ctx.print(sense.x, sense.y, Span::styled(SENSE_LABEL, sense_style));
         }
@@ -285,7 +290,9 @@ impl Painter {
             cells.take_words(*p, text.chars().count());
         }
         if self.words {
-            cells.take_words(self.pic.table.ring_label, RING_LABEL.chars().count());
+            if let Some(ring) = &self.pic.table.ring {
+                cells.take_words(ring.at, ring.label.chars().count());
+            }
             cells.take_words(self.pic.table.sense, SENSE_LABEL.chars().count());
         }
         let mut out = Vec::new();
