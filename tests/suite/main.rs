@@ -42,6 +42,7 @@ mod rim_times;
 mod rod;
 mod serve;
 mod serve_class;
+mod serve_exports;
 mod serve_settings;
 mod si;
 mod spin_explorer;
