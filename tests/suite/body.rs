@@ -346,7 +346,10 @@ fn the_panel_judges_at_the_bodys_state() {
     assert_eq!(value(&lines, "rod"), "riding the table");
     assert_eq!(value(&lines, "ends"), format!("rests at ξ = {rest:.5}"));
     // The toppling risk is the run's largest, while sliding (f = 1); at rest it is "now".
-    assert_eq!(value(&lines, "μh/L max"), format!("≤ {:.4} ≪ 1 ok", 0.01 / 0.25));
+    assert_eq!(
+        value(&lines, "μh/L max"),
+        format!("≤ {:.4} ≪ 1 ok", 0.01 / 0.25)
+    );
     assert_eq!(
         value(&lines, "  now"),
         format!("≤ {:.4}", rest * 0.01 / 0.25),

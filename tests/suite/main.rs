@@ -11,6 +11,7 @@ mod bench;
 mod body;
 mod body_si;
 mod bounded;
+mod chart_labels;
 mod cli;
 mod common;
 mod config;

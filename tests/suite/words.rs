@@ -84,9 +84,15 @@ fn stokes_drag_holds_nothing_and_is_not_friction() {
         let pic = Picture::in_frame(&app, frame);
         assert!(pic.table.ring.is_none());
         let labels: Vec<_> = pic.point.unwrap().arrows.iter().map(|a| a.label).collect();
-        assert!(labels.contains(&"dr") && !labels.contains(&"fr"), "{labels:?}");
+        assert!(
+            labels.contains(&"dr") && !labels.contains(&"fr"),
+            "{labels:?}"
+        );
         let panel = panel_of(&app).join("\n");
-        assert!(panel.contains("Stokes drag") && !panel.contains("friction"), "{panel}");
+        assert!(
+            panel.contains("Stokes drag") && !panel.contains("friction"),
+            "{panel}"
+        );
     }
     // μ = 0: nothing holds either.
     let mut app = App::new(Scene::preset("A").unwrap());
@@ -118,13 +124,18 @@ fn e_tau_and_mu_are_said_for_what_they_are() {
     );
     let app = App::new(Scene::preset("spin").unwrap());
     let panel = panel_of(&app);
-    assert!(panel.iter().any(|l| l == "τ      0.000 = t·Ω_ref"), "{panel:?}");
+    assert!(
+        panel.iter().any(|l| l == "τ      0.000 = t·Ω_ref"),
+        "{panel:?}"
+    );
     let mut app = App::new(Scene::preset("A").unwrap());
     app.view.page = Page::RestRadius;
     sync(&mut app);
     let screen = render(&mut app, 120, 40);
     assert!(screen.contains("μ_k = 0.1"), "{screen}");
-    assert!(screen.contains("Eq. 22: μ_k = Ω² r0c / (g ξ0c)"), "{screen}");
-    assert!(screen.contains("a spin-up (key 7) measures μ_s"), "{screen}");
+    assert!(
+        screen.contains("Eq. 22: μ_k = Ω² r0c / (g ξ0c)"),
+        "{screen}"
+    );
+    assert!(screen.contains("a spin-up (7) measures μ_s"), "{screen}");
 }
-

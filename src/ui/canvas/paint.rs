@@ -188,9 +188,10 @@ impl Painter {
                 let at = ring.at;
                 ctx.print(at.x, at.y, Span::styled(ring.label.clone(), ring_style));
             }
-            let sense = table.sense;
-            let sense_style = Style::default().fg(th.table_edge);
-            ctx.print(sense.x, sense.y, Span::styled(SENSE_LABEL, sense_style));
+            if let Some(sense) = self.sense_at(self.stuck_label().as_ref()) {
+                let sense_style = Style::default().fg(th.table_edge);
+                ctx.print(sense.x, sense.y, Span::styled(SENSE_LABEL, sense_style));
+            }
         }
     }
 
@@ -271,6 +272,38 @@ impl Painter {
         Some((DVec2::new(x, stuck.at.y), format!("{words} {STUCK_GLYPH}")))
     }
 
+    /// Where the words for the table's sense go: the picture's place, or the first corner of
+    /// the table (upper right, lower left, lower right) clear of the particle, where it stuck
+    /// and the ring's words (`↺ tab■ stuck…` clobbered the sense); None where no corner is.
+    pub(super) fn sense_at(&self, stuck: Option<&(DVec2, String)>) -> Option<DVec2> {
+        let mut cells = Cells {
+            inner: self.inner,
+            xb: self.xb,
+            yb: self.yb,
+            taken: Vec::new(),
+        };
+        if let Some(p) = &self.pic.point {
+            cells.take_words(p.at, 1);
+        }
+        if let Some((p, text)) = stuck {
+            cells.take_words(*p, text.chars().count());
+        }
+        if let Some(ring) = &self.pic.table.ring {
+            cells.take_words(ring.at, ring.label.chars().count());
+        }
+        let n = SENSE_LABEL.chars().count();
+        let s = self.pic.table.sense;
+        let mirror = -s.x - n as f64 * self.cell.x;
+        [
+            s,
+            DVec2::new(mirror, s.y),
+            DVec2::new(s.x, -s.y),
+            DVec2::new(mirror, -s.y),
+        ]
+        .into_iter()
+        .find(|&p| cells.free(p, n))
+    }
+
     /// The arrows' labels and the pins' ends, each placed clear of the particle, of the fixed
     /// words (where it stuck, the ξ = 1 circle, the sense) and of one another; a label with no
     /// free place is left out (the panel's legend names the arrows, the pins' markers mark
@@ -293,7 +326,9 @@ impl Painter {
             if let Some(ring) = &self.pic.table.ring {
                 cells.take_words(ring.at, ring.label.chars().count());
             }
-            cells.take_words(self.pic.table.sense, SENSE_LABEL.chars().count());
+            if let Some(sense) = self.sense_at(stuck) {
+                cells.take_words(sense, SENSE_LABEL.chars().count());
+            }
         }
         let mut out = Vec::new();
         if let Some(p) = point {

@@ -63,7 +63,7 @@ fn measure_mu(f: &mut TuiFrame, bottom: Rect, app: &App, th: &Theme, xi0c: Optio
         ("Eq. 22: μ_k = Ω² r0c / (g ξ0c)".to_string(), muted),
         // The paper's "subtly different concept": a slide that stops against a coin that
         // starts to slide.
-        ("μ_k stops a slide; a spin-up (key 7) measures μ_s".to_string(), muted),
+        ("a spin-up (7) measures μ_s".to_string(), muted),
         (format!("g = {g} m/s²"), muted),
         ("o/O: Ω ±0.1   d/D: r0c ±1 mm".to_string(), muted),
     ];

@@ -153,7 +153,10 @@ fn table(pic: &Picture) -> (Vec<Series>, Vec<Mark>) {
         .collect();
     let rim = Series::new("the table's turn", Ink::TableEdge, true, rim);
     (
-        [Some(edge), ring, Some(rim)].into_iter().flatten().collect(),
+        [Some(edge), ring, Some(rim)]
+            .into_iter()
+            .flatten()
+            .collect(),
         vec![text(t.sense, SENSE_LABEL, Ink::TableEdge)],
     )
 }
