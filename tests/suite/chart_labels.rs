@@ -23,16 +23,24 @@ fn charts() -> &'static [(String, Panel)] {
         let mut out = Vec::new();
         for preset in ["A", "C", "D", "fig2"] {
             let mut app = App::new(Scene::preset(preset).unwrap());
-            for page in [Page::EscapeSpeed, Page::OutcomeMap, Page::RestRadius] {
+            // Each page's chart once its page has computed it (a page's pieces go when
+            // another page is shown).
+            let pages: [(&str, Page, fn(&App) -> Panel); 3] = [
+                (
+                    "escape",
+                    Page::EscapeSpeed,
+                    turntable::plot::page::escape::chart,
+                ),
+                ("map", Page::OutcomeMap, turntable::plot::page::map::chart),
+                ("rest", Page::RestRadius, turntable::plot::page::rest::chart),
+            ];
+            for (n, page, chart) in pages {
                 app.view.page = page;
                 sync(&mut app);
+                let c = chart(&app);
+                assert!(!c.series.is_empty() || !c.marks.is_empty(), "{preset} {n}");
+                out.push((format!("{preset} {n}"), c));
             }
-            let pages = [
-                ("escape", turntable::plot::page::escape::chart(&app)),
-                ("map", turntable::plot::page::map::chart(&app)),
-                ("rest", turntable::plot::page::rest::chart(&app)),
-            ];
-            out.extend(pages.map(|(n, c)| (format!("{preset} {n}"), c)));
             app.view.page = Page::TimePlots;
             let mut done = 0;
             for ticks in [40, 200, 400] {
@@ -148,7 +156,15 @@ proptest! {
 fn labels_are_drawn_clear_at_a_classs_sizes() {
     let mut cells = 0;
     for (name, chart) in charts() {
-        for (w, h) in [(118, 36), (48, 20), (28, 16), (88, 10), (48, 6)] {
+        for (w, h) in [
+            (118, 36),
+            (90, 38),
+            (50, 22),
+            (30, 18),
+            (48, 20),
+            (28, 16),
+            (88, 10),
+        ] {
             cells += check(name, chart, w, h);
         }
     }
