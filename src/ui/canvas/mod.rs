@@ -237,8 +237,11 @@ mod tests {
                         if let Some((at, text)) = &stuck {
                             others.push(cells.of(*at, text.chars().count()));
                         }
-                        if let Some(ring) = &p.pic.table.ring {
-                            others.push(cells.of(ring.at, ring.label.chars().count()));
+                        if let (Some(ring), Some(at)) = (&p.pic.table.ring, p.ring_at()) {
+                            let n = ring.label.chars().count();
+                            let (r, a, b) = cells.of(at, n);
+                            assert!(a >= 0 && b <= i64::from(inner.width), "ring cut");
+                            others.push((r, a, b));
                         }
                         for (tr, ta, tb) in others {
                             assert!(

@@ -183,9 +183,8 @@ impl Painter {
             }
         }
         if self.words {
-            if let Some(ring) = &table.ring {
+            if let (Some(ring), Some(at)) = (&table.ring, self.ring_at()) {
                 let ring_style = Style::default().fg(th.limit_circle);
-                let at = ring.at;
                 ctx.print(at.x, at.y, Span::styled(ring.label.clone(), ring_style));
             }
             if let Some(sense) = self.sense_at(self.stuck_label().as_ref()) {
@@ -272,6 +271,27 @@ impl Painter {
         Some((DVec2::new(x, stuck.at.y), format!("{words} {STUCK_GLYPH}")))
     }
 
+    /// Where the ring's words go: its place, moved left to end at the canvas's edge rather
+    /// than be cut there (`friction holds ξ≤0.` would say another radius).
+    pub(super) fn ring_at(&self) -> Option<DVec2> {
+        let ring = self.pic.table.ring.as_ref()?;
+        let n = ring.label.chars().count() as i64;
+        let w = i64::from(self.inner.width);
+        let cells = Cells {
+            inner: self.inner,
+            xb: self.xb,
+            yb: self.yb,
+            taken: Vec::new(),
+        };
+        let (_, col, _) = cells.of(ring.at, 0);
+        if col + n <= w || w < 2 {
+            return Some(ring.at);
+        }
+        let start = (w - n).max(0);
+        let x = self.xb[0] + (start as f64 + 0.25) * (self.xb[1] - self.xb[0]) / (w - 1) as f64;
+        Some(DVec2::new(x, ring.at.y))
+    }
+
     /// Where the words for the table's sense go: the picture's place, or the first corner of
     /// the table (upper right, lower left, lower right) clear of the particle, where it stuck
     /// and the ring's words (`↺ tab■ stuck…` clobbered the sense); None where no corner is.
@@ -288,8 +308,8 @@ impl Painter {
         if let Some((p, text)) = stuck {
             cells.take_words(*p, text.chars().count());
         }
-        if let Some(ring) = &self.pic.table.ring {
-            cells.take_words(ring.at, ring.label.chars().count());
+        if let (Some(ring), Some(at)) = (&self.pic.table.ring, self.ring_at()) {
+            cells.take_words(at, ring.label.chars().count());
         }
         let n = SENSE_LABEL.chars().count();
         let s = self.pic.table.sense;
@@ -323,8 +343,8 @@ impl Painter {
             cells.take_words(*p, text.chars().count());
         }
         if self.words {
-            if let Some(ring) = &self.pic.table.ring {
-                cells.take_words(ring.at, ring.label.chars().count());
+            if let (Some(ring), Some(at)) = (&self.pic.table.ring, self.ring_at()) {
+                cells.take_words(at, ring.label.chars().count());
             }
             if let Some(sense) = self.sense_at(stuck) {
                 cells.take_words(sense, SENSE_LABEL.chars().count());
