@@ -92,7 +92,16 @@ pub struct Options {
     pub limits: Limits,
     /// A lesson each presenter's session runs from its start (`--lesson`), and so the class.
     pub lesson: Option<Lesson>,
+    /// Where the presenter's `E` writes its pages (`--exports`), within [`EXPORTS`]; without
+    /// it, and for every student, nothing is written on the server.
+    pub exports: Option<std::path::PathBuf>,
 }
+
+/// What the presenter's `E` may write in `--exports`: pages in all, and their bytes.
+pub const EXPORTS: crate::session::ExportBound = crate::session::ExportBound {
+    files: 200,
+    bytes: 256 << 20,
+};
 
 /// A lesson for the class: the scene it opens on and its script at the first step.
 #[derive(Clone, Debug)]

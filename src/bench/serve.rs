@@ -146,6 +146,7 @@ pub fn run(clients: usize, seconds: f64) -> std::io::Result<Row> {
         presenter_keys: vec![],
         presenter_passphrase: None,
         lesson: None,
+        exports: None,
         limits: Limits {
             sessions: clients + 1,
             per_minute: clients * 2 + 10,

@@ -65,6 +65,11 @@ pub struct ServeArgs {
     /// presenter sees the class's answers to its questions.
     #[arg(long, value_name = "NAME|PATH")]
     pub lesson: Option<String>,
+    /// A directory where the presenter's `E` writes the page as SVG (never over a file; at
+    /// most 200 pages and 256 MB there). Without it nothing is written on the server; a
+    /// student's `E` never writes.
+    #[arg(long, value_name = "DIR")]
+    pub exports: Option<PathBuf>,
 }
 
 /// A count of 1 or more (0 would serve nobody).
@@ -158,6 +163,15 @@ impl ServeArgs {
         if let Some(l) = &lesson {
             said.push(format!("lesson for the class: {}", l.driver.name()));
         }
+        if let Some(dir) = &self.exports {
+            let shown = crate::files::escape_controls(&dir.display().to_string());
+            if !std::fs::metadata(dir).is_ok_and(|m| m.is_dir()) {
+                return Err(Error::Invalid(format!(
+                    "--exports {shown}: not a directory (make it first)"
+                )));
+            }
+            said.push(format!("the presenter's E writes to {shown}"));
+        }
         let options = Options {
             lesson,
             listen: self.listen,
@@ -167,6 +181,7 @@ impl ServeArgs {
             presenter_keys,
             presenter_passphrase,
             limits,
+            exports: self.exports.clone(),
         };
         Ok((options, said))
     }

@@ -198,7 +198,7 @@ pub fn time(
                 vec![Series::line("|u|", 0, over(&|s| s.u_lab().length()))],
             ),
             panel(
-                "energy: dE/dτ = −|u|",
+                "energy in the table's frame, E = ½|u|² − ½ξ²: dE/dτ = −|u|",
                 "(μg/Ω)²",
                 vec![
                     Series::line("E − E(0)", 0, e),

@@ -48,14 +48,32 @@ pub struct Client {
 /// A guest writes nothing on the server: saving and exporting are refused with a notice.
 fn guest(app: &mut App, effects: Effects) {
     for effect in effects {
+        let notice = refused(app, effect);
+        app.report(notice);
+    }
+}
+
+/// What a guest is told of an effect.
+fn refused(app: &App, effect: Effect) -> String {
+    match effect {
+        Effect::SaveScene { .. } => "not saved: over ssh nothing is written on the server".into(),
+        Effect::ExportSvg { .. } => {
+            "not exported: over ssh nothing is written on the server".into()
+        }
+        Effect::Readouts => crate::ui::plain::summary(app),
+    }
+}
+
+/// The presenter with `--exports`: its `E` writes the page there (its app's save path is
+/// set in that directory, so the effect names it), within [`super::EXPORTS`], under the
+/// files' policy; the rest as a guest.
+fn presenter(app: &mut App, effects: Effects) {
+    for effect in effects {
         let notice = match effect {
-            Effect::SaveScene { .. } => {
-                "not saved: over ssh nothing is written on the server".to_string()
+            Effect::ExportSvg { dir, page } => {
+                crate::session::export_svg(app, &dir, page, Some(super::EXPORTS))
             }
-            Effect::ExportSvg { .. } => {
-                "not exported: over ssh nothing is written on the server".to_string()
-            }
-            Effect::Readouts => crate::ui::plain::summary(app),
+            effect => refused(app, effect),
         };
         app.report(notice);
     }
@@ -131,6 +149,15 @@ pub fn run(
         adopt(&mut s, class);
         s.app.lesson.apart = false;
         s.app.notice = Some("you present: the class as it was left, and its followers".into());
+    }
+    if let Some(dir) = shared
+        .options
+        .exports
+        .as_ref()
+        .filter(|_| shared.presents(id))
+    {
+        s.app.save_path = dir.join(crate::app::state::SAVE_PATH);
+        s.carry = presenter;
     }
     let mut run = Run {
         shared: &shared,

@@ -149,6 +149,21 @@ impl Motion {
         }
     }
 
+    /// The radius inside which friction can hold a coin at rest on the table at τ, where the
+    /// grip it needs, ξ √(Ω⁴ + Ω̇²), reaches static friction μ_s/μ_k: μ_s/μ_k on the paper's
+    /// table (1, R_max, at μ_s = μ_k), shrinking as a spun-up table speeds up (infinite on a
+    /// table not yet turning). None where nothing is held: Stokes drag, or μ = 0.
+    pub fn hold_radius(&self, tau: f64) -> Option<f64> {
+        let settings = self.settings();
+        if settings.stokes().is_some() || self.initial().frictionless {
+            return None;
+        }
+        Some(match self {
+            Motion::Steady(_) => settings.hold(),
+            Motion::Spin(s) => settings.hold() / s.ramp().grip(1.0, tau),
+        })
+    }
+
     /// The release at τ = 0 (a coin at rest on a table turning at Ω0 moves with it).
     pub fn start(&self) -> State {
         let s = self.initial().state();

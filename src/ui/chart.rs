@@ -110,28 +110,30 @@ pub fn render_bare(
     }
     // One terminal column in x units.
     let col = (x[1] - x[0]) / f64::from(plot.width.max(1));
+    let labels = place_labels(
+        th,
+        &chart.marks,
+        x,
+        rows,
+        col,
+        Taken::of(plot, th, chart, x, y),
+    );
     let canvas = Canvas::default()
         .marker(th.marker)
         .x_bounds(x)
         .y_bounds(y)
         .paint(|ctx| {
-            for m in &chart.marks {
-                match m {
-                    Mark::VLine { x: mx, ink: i, .. } => {
-                        ctx.draw(&Seg::new(*mx, y[0], *mx, y[1], ink(th, *i)));
-                    }
-                    Mark::Arrow {
-                        from, to, ink: i, ..
-                    } => {
-                        ctx.draw(&Seg::new(from.0, from.1, to.0, to.1, ink(th, *i)));
-                    }
-                    _ => {}
-                }
-            }
+            lines(ctx, th, chart, y);
             ctx.layer();
             paint_series(ctx, th, &chart.series);
             ctx.layer();
-            paint_labels(ctx, th, &chart.marks, x, rows, col);
+            for (a, b, text, color) in &labels {
+                ctx.print(
+                    *a,
+                    *b,
+                    Span::styled(text.clone(), Style::default().fg(*color)),
+                );
+            }
         });
     f.render_widget(canvas, plot);
     Some(plot)
@@ -177,15 +179,6 @@ impl Rows {
         let (y, h) = (self.y, self.h);
         let d = ((y[1] - v) / (y[1] - y[0]) * (4.0 * f64::from(h) - 1.0)).max(0.0);
         ((d as u32 / 4) as u16).min(h - 1)
-    }
-
-    /// Whether text at [`Rows::text_y`]`(r)` lands on row `r`: the canvas puts it on row
-    /// ⌊(y1 − y)·(h − 1)/(y1 − y0)⌋, and on the last row that can round to the one above (the
-    /// label then lands on another's).
-    fn lands(self, r: i64) -> bool {
-        let (y, h) = (self.y, self.h);
-        let at = (y[1] - self.text_y(r)) * f64::from(h.saturating_sub(1)) / (y[1] - y[0]);
-        at as i64 == r
     }
 
     /// A y at which the canvas prints text on row `r` (it puts text at row
@@ -292,44 +285,133 @@ fn paint_series(ctx: &mut Context, th: &Theme, series: &[Series]) {
     }
 }
 
-/// The spans of the plot labels take: (left, right, row), in x units.
+/// What the plot's braille holds, cell by cell (the series, the lines and arrows, drawn once
+/// more off screen), and the cells labels take: a label goes only where neither is.
 struct Taken {
+    cols: i64,
     rows: i64,
-    spans: Vec<(f64, f64, i64)>,
+    /// Cells the drawing's braille covers, row by row.
+    drawn: Vec<bool>,
+    /// (row, first column, past the last) of each label (with its blanks) and dot placed.
+    spans: Vec<(i64, i64, i64)>,
+    /// x of the plot's left edge and columns per x unit, as the canvas places text.
+    x0: f64,
+    per_x: f64,
 }
 
 impl Taken {
-    /// The first of `tries` (rows) where `w` from `a` is free, taken; None when none is (the
-    /// label is then left out rather than written over another).
-    fn place(&mut self, a: f64, w: f64, tries: &mut dyn Iterator<Item = i64>) -> Option<i64> {
-        let rows = self.rows;
-        let free = |r: i64, t: &[(f64, f64, i64)]| {
-            (0..rows).contains(&r)
-                && !t
-                    .iter()
-                    .any(|&(x0, x1, rr)| rr == r && a < x1 && x0 < a + w)
-        };
-        let r = loop {
-            let r = tries.next()?;
-            if free(r, &self.spans) {
-                break r;
-            }
-        };
-        self.spans.push((a, a + w, r));
-        Some(r)
+    /// The plot's drawing without its labels: which cells hold braille.
+    fn of(plot: Rect, th: &Theme, chart: &Chart, x: [f64; 2], y: [f64; 2]) -> Taken {
+        let area = Rect::new(0, 0, plot.width, plot.height);
+        let mut buf = ratatui::buffer::Buffer::empty(area);
+        use ratatui::widgets::Widget;
+        Canvas::default()
+            .marker(th.marker)
+            .x_bounds(x)
+            .y_bounds(y)
+            .paint(|ctx| {
+                lines(ctx, th, chart, y);
+                paint_series(ctx, th, &chart.series);
+            })
+            .render(area, &mut buf);
+        let drawn = buf
+            .content()
+            .iter()
+            .map(|c| !matches!(c.symbol(), " " | "\u{2800}" | ""))
+            .collect();
+        Taken {
+            cols: i64::from(plot.width),
+            rows: i64::from(plot.height),
+            drawn,
+            spans: Vec::new(),
+            x0: x[0],
+            per_x: f64::from(plot.width.max(1) - 1) / (x[1] - x[0]),
+        }
+    }
+
+    /// The column the canvas prints text at `a` in.
+    fn col(&self, a: f64) -> i64 {
+        ((a - self.x0) * self.per_x).floor() as i64
+    }
+
+    /// An x the canvas prints text at in column `c` (a quarter into it: never a column off).
+    fn x_of(&self, c: i64) -> f64 {
+        self.x0 + (c as f64 + 0.25) / self.per_x
+    }
+
+    /// Whether `n` cells from x `a` on row `r` are on the plot, clear of the drawing and of
+    /// every label placed.
+    fn free(&self, a: f64, n: usize, r: i64) -> bool {
+        let c = self.col(a);
+        let end = c + n as i64;
+        (0..self.rows).contains(&r)
+            && c >= 0
+            && end <= self.cols
+            && (c..end).all(|k| !self.drawn[(r * self.cols + k) as usize])
+            && !self
+                .spans
+                .iter()
+                .any(|&(tr, ta, tb)| tr == r && c < tb && ta < end)
+    }
+
+    /// Takes `n` cells from x `a` on row `r`, and a blank cell either side: two labels
+    /// glued read as one (`0.2max`). A point's dot takes its cell alone: its words may touch it.
+    fn take(&mut self, a: f64, n: usize, r: i64) {
+        let c = self.col(a);
+        self.spans.push((r, c - 1, c + n as i64 + 1));
+    }
+
+    /// The first of `tries` (x, row) where `n` cells are free, taken; None if none is.
+    fn place(
+        &mut self,
+        n: usize,
+        tries: impl IntoIterator<Item = (f64, i64)>,
+    ) -> Option<(f64, i64)> {
+        let (a, r) = tries.into_iter().find(|&(a, r)| self.free(a, n, r))?;
+        self.take(a, n, r);
+        Some((a, r))
     }
 }
 
-/// The marks' dots and labels. Labels never overwrite one another: line labels go along the
-/// top, a row lower where the row is taken; a point keeps its dot and its words move a row up
-/// or down if they must; a label with no room left is left out. The last marks (the release) are placed first.
-fn paint_labels(ctx: &mut Context, th: &Theme, marks: &[Mark], x: [f64; 2], rows: Rows, col: f64) {
+/// The vertical lines and arrows the marks draw.
+fn lines(ctx: &mut Context, th: &Theme, chart: &Chart, y: [f64; 2]) {
+    for m in &chart.marks {
+        match m {
+            Mark::VLine { x: mx, ink: i, .. } => {
+                ctx.draw(&Seg::new(*mx, y[0], *mx, y[1], ink(th, *i)));
+            }
+            Mark::Arrow {
+                from, to, ink: i, ..
+            } => {
+                ctx.draw(&Seg::new(from.0, from.1, to.0, to.1, ink(th, *i)));
+            }
+            _ => {}
+        }
+    }
+}
+
+/// Rows nearest `r0` first: r0, r0 − 1, r0 + 1, r0 − 2, … over the plot's rows.
+fn near(r0: i64, rows: i64) -> impl Iterator<Item = i64> {
+    std::iter::once(r0).chain((1..rows).flat_map(move |k| [r0 - k, r0 + k]))
+}
+
+/// The marks' dots and labels. A label covers neither a curve (the drawing's braille) nor
+/// another label: line labels go along the top, lower where the row is taken; a point keeps
+/// its dot and its words go beside it, on the nearest row where they are clear; a label with
+/// no clear place is left out (the legend names the series). The last marks (the release)
+/// are placed first.
+fn place_labels(
+    th: &Theme,
+    marks: &[Mark],
+    x: [f64; 2],
+    rows: Rows,
+    col: f64,
+    mut taken: Taken,
+) -> Vec<(f64, f64, String, Color)> {
     let at_row = |r: i64| rows.text_y(r);
-    let mut taken = Taken {
-        rows: i64::from(rows.h),
-        spans: Vec::new(),
-    };
-    // The points' dots first: words go around them.
+    let mut out = Vec::new();
+    let n_rows = taken.rows;
+    // The points' dots first: words go around them (a dot sits on its curve by design).
     for m in marks {
         if let Mark::Point {
             x: px,
@@ -340,12 +422,9 @@ fn paint_labels(ctx: &mut Context, th: &Theme, marks: &[Mark], x: [f64; 2], rows
         {
             let color = ink(th, i);
             let r0 = i64::from(rows.dot_row(py));
-            taken.spans.push((px, px + col, r0));
-            ctx.print(
-                px,
-                at_row(r0),
-                Span::styled("●", Style::default().fg(color)),
-            );
+            let c = taken.col(px);
+            taken.spans.push((r0, c, c + 1));
+            out.push((px, at_row(r0), "●".to_string(), color));
         }
     }
     for m in marks.iter().rev() {
@@ -355,7 +434,6 @@ fn paint_labels(ctx: &mut Context, th: &Theme, marks: &[Mark], x: [f64; 2], rows
             | Mark::Point { label, ink: i, .. }
             | Mark::Arrow { label, ink: i, .. } => (label, ink(th, *i)),
         };
-        let style = Style::default().fg(color);
         // Whole words only, as many as the wider side of a point has room for.
         let label = match *m {
             Mark::Point { x: px, .. } => {
@@ -364,41 +442,53 @@ fn paint_labels(ctx: &mut Context, th: &Theme, marks: &[Mark], x: [f64; 2], rows
             }
             _ => label.clone(),
         };
-        let w = (label.width() + 1) as f64 * col;
-        match *m {
+        let n = label.width();
+        if n == 0 {
+            continue;
+        }
+        let w = n as f64 * col;
+        // Right of a column or ending left of it (never on it), as the mark prefers; then a
+        // cell or two further right, past a line beside it, before another row.
+        let beside = |t: &Taken, at: f64, left_first: bool| {
+            let c = t.col(at);
+            let (right, left) = (t.x_of(c + 1), t.x_of(c - n as i64));
+            let (a, b) = if left_first {
+                (left, right)
+            } else {
+                (right, left)
+            };
+            [a, b, t.x_of(c + 2), t.x_of(c + 3)]
+        };
+        let spot = match *m {
             Mark::VLine { x: mx, .. } => {
-                // Right of the line, or left of it in the right half.
-                let a = if mx > 0.5 * (x[0] + x[1]) {
-                    mx - w
-                } else {
-                    mx + col
-                };
-                let tries = &mut (0..taken.rows).filter(|r| rows.lands(*r));
-                if let Some(r) = taken.place(a, w, tries) {
-                    ctx.print(a, at_row(r), Span::styled(label.clone(), style));
-                }
+                // Right of the line, or left of it in the right half; the other side next.
+                let sides = beside(&taken, mx, mx > 0.5 * (x[0] + x[1]));
+                taken.place(n, (0..n_rows).flat_map(|r| sides.map(|a| (a, r))))
             }
-            Mark::Point { x: px, y: py, .. }
-            | Mark::Text { x: px, y: py, .. }
-            | Mark::Arrow { to: (px, py), .. } => {
+            Mark::Point { x: px, y: py, .. } => {
                 let r0 = i64::from(rows.dot_row(py));
-                // A point's words right of its dot, or left of it when they would run
-                // past the plot's edge (never cut).
-                let a = match m {
-                    Mark::Point { .. } if px + col + w > x[1] && px - w >= x[0] => px - w,
-                    Mark::Point { .. } => px + col,
-                    // Text that would run past the plot's right edge ends there.
-                    _ => px.min(x[1] - w).max(x[0]),
-                };
-                let tries = &mut [r0, r0 - 1, r0 + 1, r0 - 2, r0 + 2]
-                    .into_iter()
-                    .filter(|r| rows.lands(*r));
-                if let Some(r) = taken.place(a, w, tries) {
-                    ctx.print(a, at_row(r), Span::styled(label.clone(), style));
-                }
+                // Right of its dot, or left of it when they would run past the plot's edge
+                // (never cut); a row off before the other side.
+                let sides = beside(&taken, px, px + col + w > x[1]);
+                taken.place(n, near(r0, n_rows).flat_map(|r| sides.map(|a| (a, r))))
             }
+            Mark::Text { x: px, y: py, .. } | Mark::Arrow { to: (px, py), .. } => {
+                let r0 = i64::from(rows.dot_row(py));
+                // Text that would run past the plot's right edge ends there.
+                let c = taken.col(px.min(x[1] - w).max(x[0]));
+                let k = n as i64;
+                let shifts = [0, -k / 2, k / 2, -k, k].map(|d| taken.x_of(c + d));
+                taken.place(
+                    n,
+                    near(r0, n_rows.min(4)).flat_map(|r| shifts.map(|a| (a, r))),
+                )
+            }
+        };
+        if let Some((a, r)) = spot {
+            out.push((a, at_row(r), label, color));
         }
     }
+    out
 }
 
 #[cfg(test)]

@@ -110,6 +110,7 @@ fn server() -> Running {
             ..Limits::default()
         },
         lesson: None,
+        exports: None,
     })
     .unwrap()
 }

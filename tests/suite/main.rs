@@ -11,6 +11,7 @@ mod bench;
 mod body;
 mod body_si;
 mod bounded;
+mod chart_labels;
 mod cli;
 mod common;
 mod config;
@@ -45,6 +46,8 @@ mod serve;
 #[cfg(feature = "serve")]
 mod serve_class;
 #[cfg(feature = "serve")]
+mod serve_exports;
+#[cfg(feature = "serve")]
 mod serve_settings;
 mod si;
 mod spin_explorer;
@@ -56,4 +59,5 @@ mod terminals;
 mod text;
 mod tolerance;
 mod validation;
+mod words;
 mod work_precision;

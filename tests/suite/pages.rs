@@ -214,13 +214,13 @@ fn the_rest_radius_page_has_fig6_and_reads_mu_from_eq22() {
     let screen = render(&mut a, 100, 30);
     let mu = 3.3f64 * 3.3 * 0.12 / (9.81 * c);
     assert!(
-        screen.contains(&format!("μ = {}", turntable::ui::panel::num(mu, 4))),
+        screen.contains(&format!("μ_k = {}", turntable::ui::panel::num(mu, 4))),
         "{screen}"
     );
     press(&mut a, KeyCode::Char('o'));
     let mu2 = 3.4f64 * 3.4 * 0.12 / (9.81 * c);
     let screen = render(&mut a, 100, 30);
-    assert!(screen.contains(&format!("μ = {}", turntable::ui::panel::num(mu2, 4))));
+    assert!(screen.contains(&format!("μ_k = {}", turntable::ui::panel::num(mu2, 4))));
 }
 
 #[test]

@@ -25,6 +25,7 @@ fn server(limits: Limits) -> Running {
         presenter_passphrase: Some("mu-ra-te-vo".into()),
         limits,
         lesson: None,
+        exports: None,
     })
     .unwrap()
 }

@@ -52,6 +52,7 @@ fn serving(lesson: Option<turntable::serve::Lesson>) -> Running {
         presenter_passphrase: None,
         limits: Limits::default(),
         lesson,
+        exports: None,
     })
     .unwrap()
 }

@@ -21,7 +21,7 @@ pub struct ForceArrow {
 pub const FORCE_SHARE: f64 = 0.2;
 
 /// The forces on the particle in the frame shown (Sec. II). In the lab, an inertial frame,
-/// only friction acts in the plane (gravity and the normal force cancel; at μ = 0 nothing
+/// only friction (or Stokes drag) acts in the plane (gravity and the normal force cancel; at μ = 0 nothing
 /// does). In the rotating frame the fictitious Coriolis and centrifugal forces act too, and
 /// on a table speeding up the Euler force. All are scaled together so the longest is
 /// [`FORCE_SHARE`] of `half_width`.
@@ -35,6 +35,12 @@ fn forces(app: &App, frame: Frame, half_width: f64) -> (Vec<ForceArrow>, DVec2) 
     let now = app.sim().now();
     let motion = app.sim().motion();
     let [fr, co, ce, eu] = motion.forces(&now, app.initial().frictionless);
+    // Under Stokes drag the force opposing u is a drag, not friction: nothing is held.
+    let (fr_label, fr_word) = if app.settings().stokes().is_some() {
+        ("dr", "Stokes drag")
+    } else {
+        ("fr", "friction")
+    };
     let mut out = Vec::new();
     let mut push = |label, word, vec: DVec2, ink| {
         if vec.length() > 0.0 {
@@ -48,13 +54,13 @@ fn forces(app: &App, frame: Frame, half_width: f64) -> (Vec<ForceArrow>, DVec2) 
     };
     match frame {
         Frame::Lab => push(
-            "fr",
-            "friction",
+            fr_label,
+            fr_word,
             rotate(fr, motion.table_angle(now.tau)),
             Ink::Friction,
         ),
         Frame::Table => {
-            push("fr", "friction", fr, Ink::Friction);
+            push(fr_label, fr_word, fr, Ink::Friction);
             push("co", "Coriolis", co, Ink::Coriolis);
             push("cf", "centrifugal", ce, Ink::Centrifugal);
             push("eu", "Euler", eu, Ink::Accent);

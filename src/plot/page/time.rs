@@ -360,9 +360,9 @@ fn plots(app: &App, now: f64, window: Option<f64>) -> [Plot<'static>; 5] {
         ("|u|", Measure::Si(Quantity::Speed), u_s, u_m),
         (
             if drag.is_some() {
-                "dE/dτ = −γ|u|²:"
+                "E = ½|u|² − ½ξ² (table frame), dE/dτ = −γ|u|²:"
             } else {
-                "dE/dτ = −|u|:"
+                "E = ½|u|² − ½ξ² (table frame), dE/dτ = −|u|:"
             },
             Measure::Bare,
             energy_series(&src.p, app.sim(), drag),

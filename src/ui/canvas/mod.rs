@@ -225,6 +225,33 @@ mod tests {
                     );
                     let stuck = p.stuck_label();
                     let (labels, cells) = p.labels(stuck.as_ref());
+                    // The fixed words: the table's sense clear of the particle, where it
+                    // stuck and the ring's words.
+                    if let Some(sense) = p.sense_at(stuck.as_ref()) {
+                        let n = crate::plot::page::table::SENSE_LABEL.chars().count();
+                        let (r, a, b) = cells.of(sense, n);
+                        let mut others = Vec::new();
+                        if let Some(pt) = &p.pic.point {
+                            others.push(cells.of(pt.at, 1));
+                        }
+                        if let Some((at, text)) = &stuck {
+                            others.push(cells.of(*at, text.chars().count()));
+                        }
+                        if let (Some(ring), Some(at)) = (&p.pic.table.ring, p.ring_at()) {
+                            let n = ring.label.chars().count();
+                            let (r, a, b) = cells.of(at, n);
+                            assert!(a >= 0 && b <= i64::from(inner.width), "ring cut");
+                            others.push((r, a, b));
+                        }
+                        for (tr, ta, tb) in others {
+                            assert!(
+                                !(tr == r && a <= tb && ta <= b),
+                                "{w}×{h} {frame:?} τ={}: the sense at {r},{a} meets {:?}",
+                                app.now().tau,
+                                (tr, ta, tb)
+                            );
+                        }
+                    }
                     let fixed = cells.taken.len() - labels.len();
                     for (i, l) in labels.iter().enumerate() {
                         let (r, a, b) = cells.of(l.at, l.text.chars().count());

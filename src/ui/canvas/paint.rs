@@ -5,7 +5,7 @@
 
 use super::MAX_SEGMENTS;
 use crate::engine::model::rotate;
-use crate::plot::page::table::{BODY_GLYPH, Picture, Point, RING_LABEL, SENSE_LABEL, STUCK_GLYPH};
+use crate::plot::page::table::{BODY_GLYPH, Picture, Point, SENSE_LABEL, STUCK_GLYPH};
 use crate::theme::Theme;
 use glam::DVec2;
 use ratatui::layout::Rect;
@@ -146,7 +146,7 @@ impl Painter {
         self.labelled(ctx);
     }
 
-    /// The table: its edge, three marks on its rim, the ξ = 1 circle, the pins' markers
+    /// The table: its edge, three marks on its rim, the circle inside which friction holds, the pins' markers
     /// along their paths and, where there is room, the words for the circle and the sense.
     fn table(&self, ctx: &mut Context) {
         let (th, table) = (&self.th, &self.pic.table);
@@ -167,12 +167,14 @@ impl Painter {
                 color: th.spokes,
             });
         }
-        ctx.draw(&Circle {
-            x: 0.0,
-            y: 0.0,
-            radius: 1.0,
-            color: th.limit_circle,
-        });
+        if let Some(ring) = &table.ring {
+            ctx.draw(&Circle {
+                x: 0.0,
+                y: 0.0,
+                radius: ring.r,
+                color: th.limit_circle,
+            });
+        }
         // Each pin's marker along its path (printed first: words printed later win); at its
         // end (below) the marker and its label, so pins read without colour.
         for p in &self.pic.pins {
@@ -181,11 +183,14 @@ impl Painter {
             }
         }
         if self.words {
-            let (ring, sense) = (table.ring_label, table.sense);
-            let ring_style = Style::default().fg(th.limit_circle);
-            ctx.print(ring.x, ring.y, Span::styled(RING_LABEL, ring_style));
-            let sense_style = Style::default().fg(th.table_edge);
-            ctx.print(sense.x, sense.y, Span::styled(SENSE_LABEL, sense_style));
+            if let (Some(ring), Some(at)) = (&table.ring, self.ring_at()) {
+                let ring_style = Style::default().fg(th.limit_circle);
+                ctx.print(at.x, at.y, Span::styled(ring.label.clone(), ring_style));
+            }
+            if let Some(sense) = self.sense_at(self.stuck_label().as_ref()) {
+                let sense_style = Style::default().fg(th.table_edge);
+                ctx.print(sense.x, sense.y, Span::styled(SENSE_LABEL, sense_style));
+            }
         }
     }
 
@@ -266,6 +271,59 @@ impl Painter {
         Some((DVec2::new(x, stuck.at.y), format!("{words} {STUCK_GLYPH}")))
     }
 
+    /// Where the ring's words go: its place, moved left to end at the canvas's edge rather
+    /// than be cut there (`friction holds ξ≤0.` would say another radius).
+    pub(super) fn ring_at(&self) -> Option<DVec2> {
+        let ring = self.pic.table.ring.as_ref()?;
+        let n = ring.label.chars().count() as i64;
+        let w = i64::from(self.inner.width);
+        let cells = Cells {
+            inner: self.inner,
+            xb: self.xb,
+            yb: self.yb,
+            taken: Vec::new(),
+        };
+        let (_, col, _) = cells.of(ring.at, 0);
+        if col + n <= w || w < 2 {
+            return Some(ring.at);
+        }
+        let start = (w - n).max(0);
+        let x = self.xb[0] + (start as f64 + 0.25) * (self.xb[1] - self.xb[0]) / (w - 1) as f64;
+        Some(DVec2::new(x, ring.at.y))
+    }
+
+    /// Where the words for the table's sense go: the picture's place, or the first corner of
+    /// the table (upper right, lower left, lower right) clear of the particle, where it stuck
+    /// and the ring's words (`↺ tab■ stuck…` clobbered the sense); None where no corner is.
+    pub(super) fn sense_at(&self, stuck: Option<&(DVec2, String)>) -> Option<DVec2> {
+        let mut cells = Cells {
+            inner: self.inner,
+            xb: self.xb,
+            yb: self.yb,
+            taken: Vec::new(),
+        };
+        if let Some(p) = &self.pic.point {
+            cells.take_words(p.at, 1);
+        }
+        if let Some((p, text)) = stuck {
+            cells.take_words(*p, text.chars().count());
+        }
+        if let (Some(ring), Some(at)) = (&self.pic.table.ring, self.ring_at()) {
+            cells.take_words(at, ring.label.chars().count());
+        }
+        let n = SENSE_LABEL.chars().count();
+        let s = self.pic.table.sense;
+        let mirror = -s.x - n as f64 * self.cell.x;
+        [
+            s,
+            DVec2::new(mirror, s.y),
+            DVec2::new(s.x, -s.y),
+            DVec2::new(mirror, -s.y),
+        ]
+        .into_iter()
+        .find(|&p| cells.free(p, n))
+    }
+
     /// The arrows' labels and the pins' ends, each placed clear of the particle, of the fixed
     /// words (where it stuck, the ξ = 1 circle, the sense) and of one another; a label with no
     /// free place is left out (the panel's legend names the arrows, the pins' markers mark
@@ -285,8 +343,12 @@ impl Painter {
             cells.take_words(*p, text.chars().count());
         }
         if self.words {
-            cells.take_words(self.pic.table.ring_label, RING_LABEL.chars().count());
-            cells.take_words(self.pic.table.sense, SENSE_LABEL.chars().count());
+            if let (Some(ring), Some(at)) = (&self.pic.table.ring, self.ring_at()) {
+                cells.take_words(at, ring.label.chars().count());
+            }
+            if let Some(sense) = self.sense_at(stuck) {
+                cells.take_words(sense, SENSE_LABEL.chars().count());
+            }
         }
         let mut out = Vec::new();
         if let Some(p) = point {

@@ -41,8 +41,8 @@ fn measure_mu(f: &mut TuiFrame, bottom: Rect, app: &App, th: &Theme, xi0c: Optio
     let fields = [
         (
             match mu {
-                Some(mu) => format!("μ = {}", num(mu, 4)),
-                None => "μ = … (ξ0c still computing)".into(),
+                Some(mu) => format!("μ_k = {}", num(mu, 4)),
+                None => "μ_k = … (ξ0c still computing)".into(),
             },
             accent,
         ),
@@ -60,7 +60,10 @@ fn measure_mu(f: &mut TuiFrame, bottom: Rect, app: &App, th: &Theme, xi0c: Optio
             Style::default(),
         ),
         (format!("r0c = {} m", num(r0c, 4)), Style::default()),
-        ("Eq. 22: μ = Ω² r0c / (g ξ0c)".to_string(), muted),
+        ("Eq. 22: μ_k = Ω² r0c / (g ξ0c)".to_string(), muted),
+        // The paper's "subtly different concept": a slide that stops against a coin that
+        // starts to slide.
+        ("a spin-up (7) measures μ_s".to_string(), muted),
         (format!("g = {g} m/s²"), muted),
         ("o/O: Ω ±0.1   d/D: r0c ±1 mm".to_string(), muted),
     ];

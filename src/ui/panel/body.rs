@@ -137,19 +137,7 @@ pub(super) fn body_lines(
             th,
         ));
     }
-    let topple = match (c.topple, c.topple_verdict(), b.height) {
-        // Without a real table μ_k = 1 bounds it: the number is an upper bound (but 0, with
-        // no friction at all, is exact).
-        (Some(t), Some(v), _) => format!(
-            "{}{} {}",
-            if c.mu_assumed && t > 0.0 { "≤ " } else { "" },
-            ratio(t),
-            v.word()
-        ),
-        (_, _, None) => "no height given".into(),
-        _ => "not judged (Stokes)".into(),
-    };
-    out.push(kv("μh/L", topple, th));
+    let over_run = topple_lines(app, th, b, &c, xi, out);
     let rotation = if c.rotation.is_finite() {
         ratio(c.rotation)
     } else {
@@ -160,7 +148,7 @@ pub(super) fn body_lines(
         format!("{rotation} {}", c.rotation_verdict().word()),
         th,
     ));
-    if c.out_of_depth() {
+    if c.out_of_depth() || over_run.is_some_and(|r| r.out_of_depth()) {
         out.push(Line::from(Span::styled(
             "point model out of its depth",
             Style::default().fg(th.notice).add_modifier(Modifier::BOLD),
@@ -173,4 +161,61 @@ pub(super) fn body_lines(
         }
     }
     phase_line
+}
+
+/// μh/L: the run's largest where the body has a track (the toppling risk is while sliding, at
+/// μ_k m g: the appendix's case), and its value `now` where that differs (at rest, ξ of it:
+/// the static friction after the stop, not the risk); else at the state on screen. Returns
+/// the conditions over the run, where judged.
+fn topple_lines(
+    app: &App,
+    th: &Theme,
+    b: crate::engine::body::Body,
+    c: &crate::engine::body::Conditions,
+    xi: f64,
+    out: &mut Vec<Line<'static>>,
+) -> Option<crate::engine::body::Conditions> {
+    let most = app.rod().map(|r| {
+        let at = |(s, p): (&crate::engine::rod::RodState, &crate::engine::rod::Phase)| {
+            let rests = *p == crate::engine::rod::Phase::Rest;
+            crate::engine::body::friction(&app.settings(), false, rests, s.q.length())
+        };
+        r.states
+            .iter()
+            .zip(&r.phases)
+            .filter_map(at)
+            .fold(0.0, f64::max)
+    });
+    let mu = app.units.map(|u| u.mu);
+    let over_run = most.map(|f| b.conditions(xi, Some(f), mu));
+    let topple = |c: &crate::engine::body::Conditions, verdict: bool| match (
+        c.topple,
+        c.topple_verdict(),
+        b.height,
+    ) {
+        // Without a real table μ_k = 1 bounds it: the number is an upper bound (but 0, with
+        // no friction at all, is exact).
+        (Some(t), Some(v), _) => format!(
+            "{}{}{}",
+            if c.mu_assumed && t > 0.0 { "≤ " } else { "" },
+            ratio(t),
+            if verdict {
+                format!(" {}", v.word())
+            } else {
+                String::new()
+            }
+        ),
+        (_, _, None) => "no height given".into(),
+        _ => "not judged (Stokes)".into(),
+    };
+    match over_run.filter(|r| r.topple.is_some()) {
+        Some(r) => {
+            out.push(kv("μh/L max", topple(&r, true), th));
+            if r.topple != c.topple {
+                out.push(kv("  now", topple(c, false), th));
+            }
+        }
+        None => out.push(kv("μh/L", topple(c, true), th)),
+    }
+    over_run
 }

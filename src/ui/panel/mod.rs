@@ -49,10 +49,11 @@ pub fn status_text(sim: &Sim, th: &Theme) -> (String, ratatui::style::Color) {
                     "escape certified\n  {}\n  at τ = {}",
                     match e.by {
                         Certificate::Radial => "ξ > 1, moving out",
+                        // E said once where it is shown: the energy in the table's frame.
                         Certificate::Energy if sim.settings().hold() == 1.0 => {
-                            "E < −½: cannot rest"
+                            "E < −½: cannot rest\n  E = ½|u|²−½ξ² (table)"
                         }
-                        Certificate::Energy => "E < −½R²: cannot rest",
+                        Certificate::Energy => "E < −½R²: cannot rest\n  E = ½|u|²−½ξ² (table)",
                     },
                     num(e.tau, 3)
                 ),
@@ -265,6 +266,12 @@ fn motion_lines(app: &App, th: &Theme, s: &crate::engine::State, out: &mut Vec<L
             num(t, 4)
         }
     };
+    // A spun-up table's rate changes: its τ is t·Ω_ref, the reference rate's (its seconds,
+    // with a real table, are said beside it).
+    let tau_si = match app.scene().spin {
+        Some(_) if tau_si.is_empty() => " = t·Ω_ref".into(),
+        _ => tau_si,
+    };
     out.push(kv("τ", format!("{}{tau_si}", num(s.tau, 3)), th));
     out.push(kv("ξ", format!("{}{xi_si}", num(s.xi(), 5)), th));
     // Angles in the frame shown: θ in the lab; in the rotating view the table-frame angle Θ
@@ -408,7 +415,7 @@ fn arrow_legend(app: &App, th: &Theme, out: &mut Vec<Line<'static>>) {
         if app.view.forces
             && !drawn
                 .iter()
-                .any(|a| ["fr", "co", "cf", "eu"].contains(&a.label))
+                .any(|a| ["fr", "dr", "co", "cf", "eu"].contains(&a.label))
         {
             out.push(Line::from(Span::styled(
                 "forces: none in the plane",

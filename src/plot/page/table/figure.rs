@@ -1,7 +1,7 @@
 //! The turntable's [`Picture`] as a figure for `E`: what the canvas paints, from the same
 //! description, square about the same centre.
 
-use super::{BODY_GLYPH, Picture, RING_LABEL, SENSE_LABEL};
+use super::{BODY_GLYPH, Picture, SENSE_LABEL};
 use crate::app::App;
 use crate::engine::Frame;
 use crate::plot::{Figure, Ink, Mark, Panel, Series};
@@ -135,13 +135,16 @@ fn panel(app: &App, frame: Frame) -> Panel {
     }
 }
 
-/// The table: its edge, the ξ = 1 circle, the marks on its rim at its angle, its sense.
+/// The table: its edge, the circle inside which friction holds (ξ = 1 on the paper's), the marks on its rim at its angle, its sense.
 fn table(pic: &Picture) -> (Vec<Series>, Vec<Mark>) {
     let t = &pic.table;
     let mut edge = Series::line("table edge", 0, circle(t.r));
     edge.ink = Ink::TableEdge;
-    let mut ring = Series::line(RING_LABEL, 2, circle(1.0));
-    ring.ink = Ink::LimitCircle;
+    let ring = t.ring.as_ref().map(|ring| {
+        let mut s = Series::line(&ring.label, 2, circle(ring.r));
+        s.ink = Ink::LimitCircle;
+        s
+    });
     // The three marks as one line, broken between them.
     let rim = t
         .rim_marks()
@@ -150,7 +153,10 @@ fn table(pic: &Picture) -> (Vec<Series>, Vec<Mark>) {
         .collect();
     let rim = Series::new("the table's turn", Ink::TableEdge, true, rim);
     (
-        vec![edge, ring, rim],
+        [Some(edge), ring, Some(rim)]
+            .into_iter()
+            .flatten()
+            .collect(),
         vec![text(t.sense, SENSE_LABEL, Ink::TableEdge)],
     )
 }

@@ -15,7 +15,8 @@ use crate::present::num;
 use crate::sim::{Sim, TRAIL_DT};
 use glam::DVec2;
 
-/// The words that name the ξ = 1 circle (R_max = μg/Ω²: inside it friction can hold).
+/// The words that name the ξ = 1 circle (R_max = μg/Ω²: inside it friction can hold) where
+/// static and kinetic friction are the paper's one μ on a table at constant Ω.
 pub const RING_LABEL: &str = "ξ=1 (R_max)";
 /// The words for the table's sense of rotation (counterclockwise, in both frames).
 pub const SENSE_LABEL: &str = "↺ table";
@@ -79,15 +80,52 @@ pub struct Picture {
     pub body: Option<Body>,
 }
 
-/// The table: its edge's radius, its angle in the picture (the rim marks turn with it) and
-/// where its words go.
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// The table: its edge's radius, its angle in the picture (the rim marks turn with it), the
+/// circle inside which friction holds and where the words for the sense go.
+#[derive(Clone, Debug, PartialEq)]
 pub struct Table {
     pub r: f64,
     pub spin: f64,
-    /// Where [`RING_LABEL`] names the ξ = 1 circle and [`SENSE_LABEL`] the sense.
-    pub ring_label: DVec2,
+    pub ring: Option<Ring>,
+    /// Where [`SENSE_LABEL`] names the sense.
     pub sense: DVec2,
+}
+
+/// The circle inside which friction can hold a coin at rest on the table now
+/// ([`crate::sim::Motion::hold_radius`]): ξ = 1, R_max, on the paper's table; μ_s/μ_k with
+/// static friction above kinetic; on a table spinning up it shrinks as the table speeds up.
+/// None where nothing is held (Stokes drag, μ = 0).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Ring {
+    pub r: f64,
+    /// Its words ([`RING_LABEL`] where it is R_max) and where they go.
+    pub label: String,
+    pub at: DVec2,
+}
+
+impl Ring {
+    /// The ring of radius `r` (`r_max`: it is the paper's R_max) on a picture turned by `turn`.
+    fn new(r: f64, r_max: bool, turn: f64) -> Ring {
+        Ring {
+            r,
+            label: if r_max {
+                RING_LABEL.into()
+            } else {
+                format!("friction holds ξ≤{}", num(r, 3))
+            },
+            // Lower left, running right across the ring; a small ring (a table spun up
+            // fast) is named from its lower right, running out, so its words cover no more
+            // of it.
+            at: rotate(
+                if r >= 0.8 {
+                    DVec2::new(-0.95, -0.72) * r
+                } else {
+                    DVec2::new(0.72, -0.72) * r
+                },
+                turn,
+            ),
+        }
+    }
 }
 
 /// A pinned run: its path, its marker along it, its name at its end.
@@ -217,7 +255,10 @@ impl Picture {
                         Frame::Lab => motion.table_angle(now.tau),
                         Frame::Table => 0.0,
                     },
-                ring_label: rotate(DVec2::new(-0.95, -0.72), turn),
+                ring: motion.hold_radius(now.tau).map(|h| {
+                    let paper = matches!(motion, crate::sim::Motion::Steady(_)) && h == 1.0;
+                    Ring::new(h, paper, turn)
+                }),
                 sense: DVec2::new(-0.8, 0.62) * r,
             },
             release: (
