@@ -247,6 +247,7 @@ pub fn run(students: usize, seconds: f64) -> std::io::Result<Vec<AttackRow>> {
         presenter_keys: vec![key(3).public_key().clone().into()],
         presenter_passphrase: None,
         lesson: None,
+        exports: None,
         limits: Limits {
             sessions: students + 8,
             per_minute: students * 2 + 20,

@@ -836,6 +836,7 @@ fn a_keys_from_and_expiry_time_are_honoured() {
         presenter_passphrase: None,
         limits: Limits::default(),
         lesson: None,
+        exports: None,
     })
     .unwrap();
     rt().block_on(async {

@@ -19,9 +19,9 @@ fn server(exports: &Path) -> Running {
     start(Options {
         listen: "127.0.0.1:0".parse().unwrap(),
         host_key: key(1),
-        keys: vec![key(2).public_key().clone()],
+        keys: vec![key(2).public_key().clone().into()],
         passphrase: None,
-        presenter_keys: vec![key(3).public_key().clone()],
+        presenter_keys: vec![key(3).public_key().clone().into()],
         presenter_passphrase: None,
         limits: Limits::default(),
         lesson: None,
