@@ -15,7 +15,6 @@ pub mod client;
 pub mod conn;
 mod door;
 pub mod explorer;
-pub mod keys;
 mod out;
 mod screen;
 

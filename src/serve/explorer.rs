@@ -4,13 +4,13 @@
 //! wall-clock time. A follower applies the presenter's keys, mouse actions and ticks instead of
 //! its clock.
 
-use super::keys::Keys;
 use super::screen::{Screen, Window};
 use super::{In, Lead, Out, Shared};
 use crate::app::lesson::Prompt;
 use crate::app::state::InClass;
 use crate::app::{App, Chord, Effect, Effects};
 use crate::session::Session;
+use crate::terminal::input::Decoder;
 use crate::terminal::pace::{Clock, coalesce_drags};
 use crossterm::event::{
     DisableBracketedPaste, DisableMouseCapture, EnableBracketedPaste, EnableMouseCapture, Event,
@@ -136,7 +136,9 @@ pub fn run(
         shared: &shared,
         id,
         out: &out,
-        keys: Keys::default(),
+        // A client sends a terminal's sequence whole, in one message: a lone ESC ending one
+        // is the Esc key at once.
+        keys: Decoder::with_esc_wait(Duration::ZERO),
         clock: Clock::new(Instant::now()),
         in_flight: None,
         last_frame: None,
@@ -193,7 +195,7 @@ struct Run<'a> {
     shared: &'a Shared,
     id: u64,
     out: &'a Outbox,
-    keys: Keys,
+    keys: Decoder,
     clock: Clock,
     /// When the frame the channel has not yet taken was handed to it.
     in_flight: Option<Instant>,
@@ -299,7 +301,8 @@ impl Run<'_> {
                     }
                 }
                 Err(RecvTimeoutError::Timeout) => {
-                    let events = self.keys.expire(Instant::now());
+                    self.keys.expire(Instant::now());
+                    let events = self.keys.events();
                     self.events(s, events)?;
                 }
                 Err(RecvTimeoutError::Disconnected) => return Ok(String::new()),
@@ -316,7 +319,8 @@ impl Run<'_> {
             In::Data(bytes) => {
                 let now = Instant::now();
                 self.last_input = now;
-                let events = self.keys.feed(&bytes, now);
+                self.keys.feed(&bytes, false, now);
+                let events = self.keys.events();
                 self.events(s, events)?;
             }
             In::Resize => self.resized = true,

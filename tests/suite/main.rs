@@ -23,6 +23,7 @@ mod files;
 mod frictionless;
 mod fuzz;
 mod honest;
+mod keys;
 mod lessons;
 mod link;
 mod map_cells;
