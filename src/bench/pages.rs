@@ -238,7 +238,7 @@ fn held_key(presses: usize) -> Result<(usize, f64), Error> {
                     "the held key's last page did not complete in 10 s".into(),
                 ));
             }
-            std::thread::sleep(crate::terminal::PIECES_POLL);
+            std::thread::sleep(crate::terminal::drive::PIECES_POLL);
         }
     }
     Ok((completed, last_ms))
@@ -272,7 +272,7 @@ fn key_to_page(page: Page, presses: usize) -> Result<[(f64, f64); 3], Error> {
 }
 
 /// Waits until the page on screen needs nothing more and is drawn, taking pieces as the
-/// explorer's loop does (every `terminal::PIECES_POLL`) and drawing as they arrive (at most 60
+/// explorer's loop does (every `terminal::drive::PIECES_POLL`) and drawing as they arrive (at most 60
 /// frames a second); gives up after 10 s. How long it waited after the curve at
 /// the app's ξ0 was complete.
 fn wait_for_page(session: &mut Session<ratatui::backend::TestBackend>) -> Result<Duration, Error> {
@@ -303,6 +303,6 @@ fn wait_for_page(session: &mut Session<ratatui::backend::TestBackend>) -> Result
         if start.elapsed() > Duration::from_secs(10) {
             return Err(Error::Failed("the page did not complete in 10 s".into()));
         }
-        std::thread::sleep(crate::terminal::PIECES_POLL);
+        std::thread::sleep(crate::terminal::drive::PIECES_POLL);
     }
 }
