@@ -197,7 +197,7 @@ impl<B: Backend> Session<B> {
 
     /// Runs an interactive lesson: its steps are fed in by [`Session::pump_lesson`].
     pub fn start_lesson(&mut self, driver: crate::lesson::Driver) {
-        self.app.lesson.name = Some(driver.name().to_string());
+        self.app.tell_lesson(driver.name());
         self.lesson = Some(driver);
     }
 

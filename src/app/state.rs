@@ -136,6 +136,26 @@ pub struct App {
 }
 
 impl App {
+    /// The shell's word on a real table's scales (`--mu`, `--rpm`, `--g`, the configuration's):
+    /// readouts in SI too. None: the scene's own, if it has them, are dropped.
+    pub fn tell_units(&mut self, units: Option<crate::engine::units::Units>) {
+        self.units = units;
+        self.dirty = true;
+    }
+
+    /// The shell's word on how fast time plays at the start (`--speed`, the configuration's).
+    pub fn tell_speed(&mut self, speed: f64) {
+        self.speed = speed;
+        self.dirty = true;
+    }
+
+    /// The shell's word on whether it reads the mouse (`--mouse`, `--no-mouse`; always over
+    /// ssh).
+    pub fn tell_mouse(&mut self, on: bool) {
+        self.mouse = on;
+        self.dirty = true;
+    }
+
     /// The shell's word on where this screen's user stands in a served class.
     pub fn tell_class(&mut self, class: InClass) {
         if self.class != class {

@@ -133,7 +133,7 @@ pub fn page_times(reps: usize, presses: usize) -> Result<PageTimes, Error> {
     let v0_max = Charts::map_v0_max(&c, Release::Velocity, 0.5);
     let mut app = App::new(crate::scene::Scene::default_scene());
     app.resize(SIZE.0, SIZE.1);
-    app.view.page = Page::OutcomeMap;
+    open(&mut app, Page::OutcomeMap);
     let grid = crate::ui::pages::map_grid(&app, v0_max).ok_or(Error::invalid("no map fits"))?;
     let cells: Vec<usize> = (0..grid.0 * grid.1).collect();
     let cell = |k: &usize, curve: Option<&[Option<Speeds>]>| {
@@ -173,6 +173,16 @@ pub fn page_times(reps: usize, presses: usize) -> Result<PageTimes, Error> {
     })
 }
 
+/// Turns `app`'s pages to `page`, as the keys do.
+fn open(app: &mut App, page: Page) {
+    for _ in 0..16 {
+        if app.view.page == page {
+            return;
+        }
+        crate::app::update(app, crate::app::Action::NextPage);
+    }
+}
+
 fn dark() -> Result<crate::theme::Theme, Error> {
     crate::theme::Theme::builtin("dark").ok_or(Error::invalid("no dark theme"))
 }
@@ -180,7 +190,7 @@ fn dark() -> Result<crate::theme::Theme, Error> {
 /// A session at [`SIZE`] on `page`, with its workers, and the key `x`.
 fn session_on(page: Page) -> Result<(Session<ratatui::backend::TestBackend>, Chord), Error> {
     let mut app = App::new(crate::scene::Scene::default_scene());
-    app.view.page = page;
+    open(&mut app, page);
     let x = Chord::new(
         crossterm::event::KeyCode::Char('x'),
         crossterm::event::KeyModifiers::NONE,

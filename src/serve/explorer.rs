@@ -121,7 +121,7 @@ pub fn run(
         .filter(|_| shared.presents(id));
     let scene = lesson.map_or_else(crate::scene::Scene::default_scene, |l| l.scene.clone());
     let mut app = App::new(scene);
-    app.mouse = true;
+    app.tell_mouse(true);
     let mut s = match Session::new(app, theme, Screen::new(w, h), None) {
         Ok(s) => s,
         Err(_) => {
@@ -137,8 +137,9 @@ pub fn run(
     // lesson at the same step (the followers, waiting, are handed this).
     if let Some(class) = shared.take_up_class(id) {
         adopt(&mut s, class);
-        s.app.lesson.apart = false;
-        s.app.notice = Some("you present: the class as it was left, and its followers".into());
+        s.app.tell_class(InClass::Alone);
+        s.app
+            .report("you present: the class as it was left, and its followers".into());
     }
     let mut run = Run {
         shared: &shared,
@@ -260,7 +261,6 @@ impl Run<'_> {
             In::Unled if self.following => {
                 self.following = false;
                 s.app.tell_class(InClass::Alone);
-                s.app.lesson.apart = false;
                 s.app.report(
                     "the presenter left: on your own until they are back (F2: stay on your own)"
                         .into(),
@@ -275,13 +275,12 @@ impl Run<'_> {
                 adopt(s, class);
                 // A follower answers for itself (the answer it gave in class before stepping
                 // out, if this question is open).
-                s.app.lesson.apart = true;
+                s.app.tell_class(InClass::Following);
                 if let Some(yes) = self.shared.answered(self.id, s.app.lesson.asked) {
                     s.app.answer_apart(yes);
                 }
-                s.app.notice = Some(FOLLOWING.into());
+                s.app.report(FOLLOWING.into());
                 self.following = true;
-                s.app.tell_class(InClass::Following);
             }
         }
         Ok(Waited::Events(vec![]))

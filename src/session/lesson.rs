@@ -54,10 +54,7 @@ impl<B: Backend> Session<B> {
                 return Ok(None);
             }
             let Some(step) = d.next_step() else {
-                if !self.app.lesson.done {
-                    self.app.lesson.done = true;
-                    self.app.invalidate();
-                }
+                self.app.end_lesson();
                 return Ok(None);
             };
             match step {

@@ -62,7 +62,6 @@ impl Run<'_> {
             self.following = false;
             s.app.tell_class(InClass::Out);
             self.shared.unfollow(self.id);
-            s.app.lesson.apart = false;
             s.app
                 .report("stepped out of the class: F2 rejoins it".into());
         } else if self.shared.class_led(self.id) {
