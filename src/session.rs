@@ -135,7 +135,7 @@ impl<B: Backend> Session<B> {
     /// followers press them too).
     pub fn paste(&mut self, text: &str) -> Vec<Chord> {
         let mut pressed = vec![];
-        if self.app.prompt.is_none() {
+        if self.app.prompt().is_none() {
             return pressed;
         }
         // The prompt is one line: a pasted line break joins the lines. Then cleaned as any text
@@ -183,7 +183,7 @@ impl<B: Backend> Session<B> {
         }
         self.ask_analysis();
         // A lesson's `tick N` counts ticks of play: paused, the lesson holds where it is.
-        let played = self.app.playing;
+        let played = self.app.playing();
         self.app.tick();
         if let Some(d) = self.lesson.as_mut().filter(|_| played) {
             d.ticked();
@@ -283,12 +283,12 @@ pub fn sync(app: &mut App, analysis: &mut Analysis, compute: bool) -> bool {
             // In flight, or done and still lacking (a failed piece): ask no more.
             break;
         }
-        let todo = app.charts.missing(&job, settings);
+        let todo = app.charts().missing(&job, settings);
         // A map's cells lean on the escape speeds at its ξ0, which the page computed first; a
         // curve's start from a nearby ξ0's.
         let curve = match job {
-            crate::analysis::Job::Map { xi0, .. } => app.charts.curve(xi0, settings),
-            crate::analysis::Job::Curve { xi0 } => app.charts.near_curve(xi0, settings),
+            crate::analysis::Job::Map { xi0, .. } => app.charts().curve(xi0, settings),
+            crate::analysis::Job::Curve { xi0 } => app.charts().near_curve(xi0, settings),
             _ => None,
         }
         .map(|c| c.ve.clone());

@@ -296,7 +296,7 @@ fn wait_for_page(session: &mut Session<ratatui::backend::TestBackend>) -> Result
         let settings = crate::analysis::settings_for(app.settings());
         if curve.is_none()
             && app
-                .charts
+                .charts()
                 .curve(app.initial().xi0, settings)
                 .is_some_and(Curve::complete)
         {

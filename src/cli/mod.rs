@@ -140,7 +140,7 @@ fn explore(
     // Units: the flags, else the scene's own, else the configuration's.
     if units.is_some() {
         app.tell_units(units);
-    } else if app.units.is_none() {
+    } else if app.units().is_none() {
         app.tell_units(config.units);
     }
     // Speed: the flag, else a saved scene's own, else the configuration's.

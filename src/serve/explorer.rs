@@ -276,7 +276,7 @@ impl Run<'_> {
                 // A follower answers for itself (the answer it gave in class before stepping
                 // out, if this question is open).
                 s.app.tell_class(InClass::Following);
-                if let Some(yes) = self.shared.answered(self.id, s.app.lesson.asked) {
+                if let Some(yes) = self.shared.answered(self.id, s.app.lesson().asked) {
                     s.app.answer_apart(yes);
                 }
                 s.app.report(FOLLOWING.into());
@@ -310,7 +310,7 @@ impl Run<'_> {
                     if self.following
                         && k.modifiers == KeyModifiers::NONE
                         && matches!(k.code, KeyCode::Char('y' | 'n'))
-                        && s.app.lesson.prompt() == Prompt::Answer =>
+                        && s.app.lesson().prompt() == Prompt::Answer =>
                 {
                     self.answer(s, k.code == KeyCode::Char('y'))
                 }

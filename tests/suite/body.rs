@@ -379,7 +379,7 @@ fn c_compares_the_body_with_the_point_model() {
     key(&mut app, 'C');
     assert!(!app.view.point_model);
     assert!(
-        app.notice
+        app.notice()
             .as_deref()
             .unwrap()
             .contains("point model hidden")
@@ -408,12 +408,12 @@ fn c_compares_the_body_with_the_point_model() {
     assert!(point.view.point_model);
     assert!(
         point
-            .notice
+            .notice()
             .as_deref()
             .unwrap()
             .starts_with("no body to compare"),
         "{:?}",
-        point.notice
+        point.notice()
     );
     assert_eq!(canvas(&common::render(&mut point, 100, 30)), before);
     // `C` is in the help, from the keymap.
@@ -435,7 +435,7 @@ fn presets_keep_the_body() {
     assert_eq!(app.scene().body, body);
     let rod = app.rod().cloned().unwrap();
     assert_eq!(rod.states[0].q.x, 0.5);
-    assert!(app.notice.as_deref().unwrap().contains("the body stays"));
+    assert!(app.notice().as_deref().unwrap().contains("the body stays"));
     key(&mut app, 'x');
     key(&mut app, '0');
     assert_eq!(app.scene().body, body);

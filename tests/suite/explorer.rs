@@ -138,7 +138,7 @@ fn theta_dot_at_the_centre_shows_a_dash_not_nan() {
 /// A fresh app part-way into scene C, zoomed in (so "auto-frame" has something to undo).
 fn setup(dir: &std::path::Path) -> App {
     let mut a = app("C");
-    a.save_path = dir.join("scene.toml");
+    a.tell_save_path(dir.join("scene.toml"));
     for _ in 0..10 {
         a.tick();
     }
@@ -171,8 +171,8 @@ fn every_key_in_the_keymap_does_what_its_help_says() {
         }
         let before = render(&mut a, 80, 24);
         let (tau, init, set) = (a.sim().now().tau, a.initial(), a.settings());
-        let (speed, zoom, pan) = (a.speed, a.view.zoom, a.view.pan);
-        let init_playing = a.playing;
+        let (speed, zoom, pan) = (a.speed(), a.view.zoom, a.view.pan);
+        let init_playing = a.playing();
         press(&mut a, b.chord.event());
         let after = render(&mut a, 80, 24);
         let what = format!("{} ({})", b.chord.label(), b.help);
@@ -210,8 +210,8 @@ fn every_key_in_the_keymap_does_what_its_help_says() {
             Action::IntegratorStep => {
                 a.view.step_mode && !a.is_playing() && after.contains("h      ")
             }
-            Action::Faster => a.speed == 2.0 * speed && after.contains("×2"),
-            Action::Slower => a.speed == speed / 2.0 && after.contains("×1/2"),
+            Action::Faster => a.speed() == 2.0 * speed && after.contains("×2"),
+            Action::Slower => a.speed() == speed / 2.0 && after.contains("×1/2"),
             Action::Restart => now == 0.0 && a.initial() == init,
             Action::ToggleFrame => a.view.frame == Frame::Table,
             Action::ToggleSplit => {
@@ -246,15 +246,15 @@ fn every_key_in_the_keymap_does_what_its_help_says() {
             // This scene has no body: `C` only says so (tests/suite/body.rs tries it with one).
             Action::TogglePointModel => a.view.point_model && after.contains("no body to compare"),
             Action::PinRun => {
-                a.pins.len() == 1 && after.contains("pinned ◆C") && after.contains("pins   ◆C")
+                a.pins().len() == 1 && after.contains("pinned ◆C") && after.contains("pins   ◆C")
             }
-            Action::ClearPins => a.pins.is_empty() && after.contains("no pins to clear"),
+            Action::ClearPins => a.pins().is_empty() && after.contains("no pins to clear"),
             // Off at first: the first press turns SI units on at a record player's.
             Action::Unit(..) => {
-                a.units == Some(turntable::app::state::record_player())
+                a.units() == Some(turntable::app::state::record_player())
                     && after.contains("SI units: μ 0.15")
             }
-            Action::UnitsOff => a.units.is_none() && after.contains("SI units off"),
+            Action::UnitsOff => a.units().is_none() && after.contains("SI units off"),
             Action::ZoomIn => a.view.zoom > zoom,
             Action::ZoomOut => a.view.zoom < zoom,
             Action::Pan(dx, dy) => {
@@ -267,7 +267,10 @@ fn every_key_in_the_keymap_does_what_its_help_says() {
             Action::Type(_) => unreachable!("typed at the prompt, bound to no key"),
             Action::Save => {
                 after.contains("saved \"")
-                    && Scene::load(a.save_path.to_str().unwrap()).unwrap().initial == a.initial()
+                    && Scene::load(a.save_path().to_str().unwrap())
+                        .unwrap()
+                        .initial
+                        == a.initial()
             }
             Action::ExportSvg => {
                 after.contains("wrote this page to")
@@ -279,7 +282,7 @@ fn every_key_in_the_keymap_does_what_its_help_says() {
             Action::Follow => after.contains("F2 steps in and out of a class"),
             // The readouts in words, on the status line: τ, ξ, |u| and how the run stands.
             Action::Readouts => {
-                a.readouts_asked == 1
+                a.readouts_asked() == 1
                     && after.contains(&format!(
                         " τ = {}, ξ = {}, |u| = ",
                         num(a.now().tau, 3),
@@ -291,7 +294,7 @@ fn every_key_in_the_keymap_does_what_its_help_says() {
             Action::Choose => a.view.page == Page::Turntable && after.contains("Enter runs"),
             Action::PickRelease(_) => unreachable!("mouse actions have no key"),
             Action::Answer(yes) => {
-                let q = a.lesson.question.as_ref().unwrap();
+                let q = a.lesson().question.as_ref().unwrap();
                 q.answer == Some(yes)
                     && after.contains(if yes {
                         "You said it escapes"
@@ -299,13 +302,13 @@ fn every_key_in_the_keymap_does_what_its_help_says() {
                         "You said it does not"
                     })
             }
-            Action::GoOn => !a.lesson.waiting && a.playing == init_playing,
+            Action::GoOn => !a.lesson().waiting && a.playing() == init_playing,
             Action::Omega(d) => {
-                (a.mu_probe.0 - (turntable::app::MU_PROBE.0 + d)).abs() < 1e-12
+                (a.mu_probe().0 - (turntable::app::MU_PROBE.0 + d)).abs() < 1e-12
                     && after.contains("Ω = ")
             }
             Action::R0c(d) => {
-                (a.mu_probe.1 - (turntable::app::MU_PROBE.1 + d)).abs() < 1e-12
+                (a.mu_probe().1 - (turntable::app::MU_PROBE.1 + d)).abs() < 1e-12
                     && after.contains("r0c = ")
             }
         };
@@ -578,7 +581,7 @@ fn random_keys_keep_the_invariants() {
     // `S` then Enter, or `E`, write files: into a folder of the test's own.
     let dir = std::env::temp_dir().join(format!("turntable-random-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    a.save_path = dir.join("scene.toml");
+    a.tell_save_path(dir.join("scene.toml"));
     let mut x: u64 = 0x9E3779B97F4A7C15;
     for i in 0..1500 {
         x ^= x << 13;
@@ -845,7 +848,7 @@ fn the_trail_is_the_same_at_every_speed() {
     for _ in 0..8 {
         key(&mut fast, ']');
     }
-    assert_eq!(fast.speed, 256.0);
+    assert_eq!(fast.speed(), 256.0);
     fast.tick();
     while slow.sim().now().tau < fast.sim().now().tau - 1e-9 {
         slow.tick();
@@ -889,7 +892,7 @@ fn integrator_steps_one_at_a_time() {
     for _ in 0..200 {
         let before = a.sim().cost();
         key(&mut a, 'n');
-        assert!(a.view.step_mode && !a.playing);
+        assert!(a.view.step_mode && !a.playing());
         let st = a.sim().last_step().unwrap();
         if hs.len() > 1 {
             let c = a.sim().cost();
@@ -939,11 +942,11 @@ fn unit_keys_give_si_readouts_and_axes() {
         a.handle_key(KeyEvent::new(KeyCode::Char(c), m));
     };
     press(&mut a, 'u', KeyModifiers::NONE);
-    assert_eq!(a.units, Some(turntable::app::state::record_player()));
+    assert_eq!(a.units(), Some(turntable::app::state::record_player()));
     press(&mut a, 'u', KeyModifiers::NONE);
     press(&mut a, 'w', KeyModifiers::NONE);
     press(&mut a, 'G', KeyModifiers::NONE);
-    let u = a.units.unwrap();
+    let u = a.units().unwrap();
     let paper = turntable::app::state::record_player();
     assert!((u.mu - 0.16).abs() < 1e-12, "{u:?}");
     assert!((u.rpm - (paper.rpm + 1.0)).abs() < 1e-9, "{u:?}");
@@ -960,7 +963,7 @@ fn unit_keys_give_si_readouts_and_axes() {
     assert!(screen.contains(&format!("τ (1 = {tau})")), "{screen}");
     assert!(screen.contains(&format!("ξ (1 = {shown})")), "{screen}");
     press(&mut a, 'u', KeyModifiers::ALT);
-    assert_eq!(a.units, None);
+    assert_eq!(a.units(), None);
     let screen = render(&mut a, 100, 30);
     assert!(!screen.contains("(1 ="), "{screen}");
 }
@@ -1021,7 +1024,7 @@ fn steps_through_fast_history_are_one_tick_at_the_speed_now() {
     for _ in 0..6 {
         key(&mut a, '[');
     }
-    assert_eq!(a.speed, 1.0);
+    assert_eq!(a.speed(), 1.0);
     let t0 = a.sim().now().tau;
     assert!((t0 - 9.6).abs() < 1e-9, "{t0}");
     key(&mut a, ',');
@@ -1077,7 +1080,7 @@ fn the_title_and_a_saved_scene_tell_what_is_on_screen() {
     );
     assert!(!title.contains("tau") && !title.contains("xi"), "{title}");
     // Undecided: saved with the release in words, nothing about its end.
-    a.save_path = dir.join("undecided.toml");
+    a.tell_save_path(dir.join("undecided.toml"));
     key(&mut a, 's');
     let saved = Scene::load(dir.join("undecided.toml").to_str().unwrap()).unwrap();
     assert_eq!(
@@ -1086,10 +1089,8 @@ fn the_title_and_a_saved_scene_tell_what_is_on_screen() {
     );
     // An unedited preset saved under a name of one's own keeps its words (the title too).
     let mut b = app("B");
-    b.save_path = dir.join("b.toml");
-    b.prompt = Some(turntable::app::prompt::Prompt::new(
-        turntable::app::prompt::Asks::Name,
-    ));
+    b.tell_save_path(dir.join("b.toml"));
+    turntable::app::update(&mut b, Action::SaveAs);
     for c in "mine".chars() {
         b.press(Chord::new(KeyCode::Char(c), KeyModifiers::NONE));
     }
@@ -1119,7 +1120,7 @@ fn the_title_and_a_saved_scene_tell_what_is_on_screen() {
     key(&mut a, '+');
     key(&mut a, 'x');
     key(&mut a, 'X');
-    a.save_path = dir.join("decided.toml");
+    a.tell_save_path(dir.join("decided.toml"));
     // x then X: the edit is undone, the run restarted; play it to its end again.
     for _ in 0..200 {
         a.tick();
@@ -1199,7 +1200,7 @@ fn every_binding_is_listed_under_its_actions_group() {
 fn footer_names_what_space_does_now() {
     for (w, h) in [(80, 24), (140, 40)] {
         let mut a = app("C");
-        assert!(a.playing);
+        assert!(a.playing());
         let last = |a: &mut App| render(a, w, h).lines().last().unwrap().to_string();
         let playing = last(&mut a);
         assert!(playing.contains("Space pause"), "{playing}");
@@ -1219,7 +1220,7 @@ fn s_names_the_scene_it_saves() {
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     let mut a = app("D");
-    a.save_path = dir.join("turntable-scene.toml");
+    a.tell_save_path(dir.join("turntable-scene.toml"));
     let xi0 = a.initial().xi0;
     key(&mut a, 'S');
     for c in "Case Dx, μ × 2q".chars() {
@@ -1238,12 +1239,12 @@ fn s_names_the_scene_it_saves() {
         "the prompt shows what is typed:\n{screen}"
     );
     press(&mut a, KeyEvent::new(KeyCode::Enter, KeyModifiers::NONE));
-    assert_eq!(a.prompt, None);
+    assert!(a.prompt().is_none());
     let path = dir.join("case-dx-μ-2.toml");
     let saved = Scene::load(path.to_str().unwrap()).unwrap();
     assert_eq!(saved.name, "Case Dx, μ × 2");
     assert_eq!(saved.initial, a.initial());
-    assert!(a.notice.as_deref().unwrap().contains("case-dx-μ-2.toml"));
+    assert!(a.notice().as_deref().unwrap().contains("case-dx-μ-2.toml"));
     // The same name again: a new file beside it, never a replaced one.
     key(&mut a, 'S');
     for c in "case dx μ 2".chars() {
@@ -1293,7 +1294,7 @@ fn a_paste_types_the_name_at_the_prompt_only() {
         true,
     );
     s.paste("q x\nstill nothing");
-    assert!(!s.app.should_quit() && s.app.prompt.is_none());
+    assert!(!s.app.should_quit() && s.app.prompt().is_none());
     assert_eq!(s.app.initial(), app("B").initial());
     s.press("S".parse().unwrap());
     s.paste("Fig. 3 B\r\n, again");
@@ -1315,11 +1316,11 @@ fn saving_and_exporting_are_effects_the_shell_carries_out() {
     std::fs::create_dir_all(&dir).unwrap();
     let files = || std::fs::read_dir(&dir).unwrap().count();
     let mut a = app("C");
-    a.save_path = dir.join("scene.toml");
+    a.tell_save_path(dir.join("scene.toml"));
     let save = update(&mut a, Action::Save);
     assert!(
         matches!(&save[..], [Effect::SaveScene { scene, path }]
-            if *path == a.save_path && scene.initial == a.initial()),
+            if *path == a.save_path() && scene.initial == a.initial()),
         "{save:?}"
     );
     let export = update(&mut a, Action::ExportSvg);
@@ -1345,26 +1346,26 @@ fn saving_and_exporting_are_effects_the_shell_carries_out() {
     let mut r = a.clone();
     turntable::replay::answer(&mut r, save.clone());
     assert!(
-        r.notice
+        r.notice()
             .as_deref()
             .unwrap()
             .starts_with("replay saves nothing: \""),
         "{:?}",
-        r.notice
+        r.notice()
     );
     turntable::replay::answer(&mut r, export.clone());
     assert_eq!(
-        r.notice.as_deref(),
+        r.notice().as_deref(),
         Some("replay saves nothing: this page → turntable-turntable-N.svg (the first free N)")
     );
     assert_eq!(files(), 0, "a replay wrote nothing");
     // The explorer's shell writes them, and says where.
     turntable::session::carry_out(&mut a, save);
-    assert!(a.notice.as_deref().unwrap().starts_with("saved \""));
+    assert!(a.notice().as_deref().unwrap().starts_with("saved \""));
     turntable::session::carry_out(&mut a, named);
     turntable::session::carry_out(&mut a, export);
     assert!(
-        a.notice
+        a.notice()
             .as_deref()
             .unwrap()
             .starts_with("wrote this page to")
@@ -1376,7 +1377,7 @@ fn saving_and_exporting_are_effects_the_shell_carries_out() {
 
 /// What is typed at the prompt, while it is open.
 fn typed(a: &App) -> Option<&str> {
-    a.prompt.as_ref().map(|p| p.typed.as_str())
+    a.prompt().as_ref().map(|p| p.typed.as_str())
 }
 
 /// `:` takes values as typed: the run restarts from them; a bad line is refused with the
@@ -1400,11 +1401,11 @@ fn values_typed_at_the_prompt() {
     let screen = turntable::ui::export::plain_text(s.screen());
     assert!(screen.contains(" set: v0 0.6078▏"), "{screen}");
     s.press("enter".parse().unwrap());
-    assert_eq!(s.app.prompt, None);
+    assert!(s.app.prompt().is_none());
     assert_eq!(s.app.initial().v0, 0.6078);
     assert_eq!(s.app.sim().now().tau, 0.0, "the run restarts");
     assert_eq!(
-        s.app.notice.as_deref(),
+        s.app.notice().as_deref(),
         Some("set: ξ0 = 0.5, φ = 0, v0 = 0.6078")
     );
     // Refused: the reason beside the line, which stays to mend; nothing changes.
@@ -1413,7 +1414,7 @@ fn values_typed_at_the_prompt() {
     s.press("enter".parse().unwrap());
     let refused = s
         .app
-        .prompt
+        .prompt()
         .as_ref()
         .and_then(|p| p.refused.clone())
         .unwrap();
@@ -1432,14 +1433,14 @@ fn values_typed_at_the_prompt() {
         "{}",
         i.phi
     );
-    assert_eq!(s.app.units.map(|u| u.mu), Some(0.2));
+    assert_eq!(s.app.units().map(|u| u.mu), Some(0.2));
     // Esc: nothing set; q typed is a letter, not quit.
     s.press(":".parse().unwrap());
     typed_keys(&mut s, "q");
     assert!(!s.app.should_quit());
     s.press("esc".parse().unwrap());
     assert_eq!(
-        (s.app.prompt.clone(), s.app.notice.as_deref()),
+        (s.app.prompt().clone(), s.app.notice().as_deref()),
         (None, Some("nothing set"))
     );
     assert_eq!(s.app.initial().xi0, 1.1);

@@ -56,7 +56,7 @@ fn nothing_is_computed_for_a_page_not_on_screen() {
     );
     s.tick();
     assert_eq!(s.analysis.current(), None);
-    let c = &s.app.charts;
+    let c = &s.app.charts();
     assert!(c.curves.is_empty() && c.map.is_none() && c.rest.is_none());
     s.key(KeyEvent::new(KeyCode::Tab, KeyModifiers::NONE)); // time plots: from the run itself
     assert_eq!(s.analysis.current(), None);
@@ -69,10 +69,10 @@ fn the_escape_speed_page_holds_the_solver_s_curves() {
     common::sync(&mut a);
     let s = settings_for(a.settings());
     for xi0 in std::iter::once(0.5).chain(PAPER_XI0) {
-        let c = a.charts.curve(xi0, s).expect("curve");
+        let c = a.charts().curve(xi0, s).expect("curve");
         assert!(c.complete(), "{xi0}");
     }
-    let c = a.charts.curve(0.5, s).unwrap().clone();
+    let c = a.charts().curve(0.5, s).unwrap().clone();
     // Each value is the middle of a certified bracket of width ≤ vtol around v_e (its runs at
     // dp54 tol vtol/1000, see `curve_settings`): within vtol/2 of a converged v_e.
     for i in [0, 5, 23, 40, 71] {
@@ -120,8 +120,8 @@ fn the_outcome_map_agrees_with_the_escape_speeds() {
     a.view.page = Page::OutcomeMap;
     common::sync(&mut a);
     let s = settings_for(a.settings());
-    let curve = a.charts.curve(0.5, s).unwrap().clone();
-    let map = a.charts.map.clone().expect("map");
+    let curve = a.charts().curve(0.5, s).unwrap().clone();
+    let map = a.charts().map.clone().expect("map");
     let turntable::analysis::Job::Map {
         v0_max,
         size: (n, m),
@@ -182,7 +182,7 @@ fn a_click_on_the_map_picks_that_release_and_enter_runs_it() {
     assert_eq!(a.initial().release, Release::Velocity);
     press(&mut a, KeyCode::Enter);
     assert_eq!(a.view.page, Page::Turntable);
-    assert!(a.playing && a.sim().now().tau == 0.0);
+    assert!(a.playing() && a.sim().now().tau == 0.0);
 }
 
 #[test]
@@ -190,7 +190,7 @@ fn the_rest_radius_page_has_fig6_and_reads_mu_from_eq22() {
     let mut a = app("C");
     a.view.page = Page::RestRadius;
     common::sync(&mut a);
-    let rest = a.charts.rest.clone().expect("rest");
+    let rest = a.charts().rest.clone().expect("rest");
     let c = rest.critical.unwrap().unwrap();
     let want = critical_radius(settings_for(Settings::default()), 1e-6)
         .unwrap()
@@ -323,7 +323,7 @@ fn the_map_fills_the_plot_and_a_return_computes_only_what_is_missing() {
     common::sync(&mut a);
     render(&mut a, 90, 26);
     common::sync(&mut a);
-    let size = |a: &App| match a.charts.map.as_ref().map(|m| m.job) {
+    let size = |a: &App| match a.charts().map.as_ref().map(|m| m.job) {
         Some(Job::Map { size, .. }) => size,
         other => panic!("{other:?}"),
     };
@@ -340,17 +340,17 @@ fn the_map_fills_the_plot_and_a_return_computes_only_what_is_missing() {
         size(&a),
         (usize::from(plot.width), usize::from(plot.height))
     );
-    let map = a.charts.map.clone().unwrap();
+    let map = a.charts().map.clone().unwrap();
     assert!(map.cells.iter().all(Option::is_some));
     // Two cells lost: those two are what is missing, and all a new request computes.
-    let mut charts = a.charts.clone();
+    let mut charts = a.charts().clone();
     let cells = &mut charts.map.as_mut().unwrap().cells;
     cells[3] = None;
     cells[17] = None;
     let s = settings_for(a.settings());
     assert_eq!(charts.missing(&map.job, s), vec![3, 17]);
     let mut an = Analysis::inline();
-    let curve = a.charts.curve(0.5, s).map(|c| c.ve.clone());
+    let curve = a.charts().curve(0.5, s).map(|c| c.ve.clone());
     an.request(map.job, s, charts.missing(&map.job, s), curve);
     assert!(an.take().is_empty(), "inline, a request waits for compute");
     an.compute();
@@ -375,7 +375,7 @@ fn the_escape_page_does_not_guess_between_its_angles() {
     a.view.page = Page::EscapeSpeed;
     common::sync(&mut a);
     let s = settings_for(a.settings());
-    let c = a.charts.curve(0.5, s).unwrap().clone();
+    let c = a.charts().curve(0.5, s).unwrap().clone();
     let n = c.ve.len();
     let (v1, v2) = (
         c.ve[1].unwrap().hi().unwrap(),
@@ -409,7 +409,7 @@ fn outside_xi_1_the_pages_show_the_sticking_window() {
         a.explore().edit_initial(|i| i.xi0 = xi0);
         a.view.page = Page::EscapeSpeed;
         common::sync(&mut a);
-        let c = a.charts.curve(xi0, s).expect("curve").clone();
+        let c = a.charts().curve(xi0, s).expect("curve").clone();
         assert!(c.complete(), "{xi0}");
         let windows: Vec<(usize, f64, f64)> = (0..c.ve.len())
             .filter_map(|k| match c.ve[k].unwrap() {
@@ -450,7 +450,7 @@ fn outside_xi_1_the_pages_show_the_sticking_window() {
         a.view.page = Page::OutcomeMap;
         common::sync(&mut a);
         let top = windows.iter().map(|w| w.2).fold(0.0, f64::max);
-        let map = a.charts.map.clone().expect("map");
+        let map = a.charts().map.clone().expect("map");
         let analysis::Job::Map { v0_max, .. } = map.job else {
             panic!()
         };
@@ -502,7 +502,7 @@ fn the_map_grid_is_the_drawn_plot_at_every_size() {
         a.view.page = Page::OutcomeMap;
         a.resize(w, h);
         render(&mut a, w, h);
-        let job = a.charts.map.as_ref().map(|m| m.job);
+        let job = a.charts().map.as_ref().map(|m| m.job);
         let Some(g) = a.geom_for_tests() else {
             assert_eq!((w, h), (40, 12), "no plot at {w}×{h}");
             assert_eq!(job, None, "a map no one sees at {w}×{h}");
@@ -517,7 +517,7 @@ fn the_map_grid_is_the_drawn_plot_at_every_size() {
             "{w}×{h}"
         );
         assert!(
-            a.charts
+            a.charts()
                 .map
                 .as_ref()
                 .unwrap()
@@ -553,7 +553,7 @@ fn no_number_is_cut_at_any_width() {
     a.view.page = Page::EscapeSpeed;
     common::sync(&mut a);
     let s = settings_for(a.settings());
-    let c = a.charts.curve(0.5, s).unwrap();
+    let c = a.charts().curve(0.5, s).unwrap();
     let ((_, _), (_, vmax)) = c.extremes().unwrap();
     let (_, vmin) = c.least.unwrap().unwrap();
     // The greatest is a grid point's, known to the curve's bracket: four decimals.
@@ -747,7 +747,7 @@ fn the_lesson_line_is_a_whole_sentence_at_every_width() {
 fn the_xi_plot_zooms_on_a_stop_at_the_rim_beside_the_papers_escape() {
     let mut a = App::new(Scene::preset("C").unwrap());
     turntable::app::update(&mut a, turntable::app::Action::ToggleCompare);
-    a.speed = 2.0;
+    a.tell_speed(2.0);
     for _ in 0..300 {
         a.tick();
         a.catch_up();

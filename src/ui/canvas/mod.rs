@@ -199,7 +199,9 @@ mod tests {
                 if tick % 15 == 0 {
                     placed += check(&app, &th);
                 }
-                app.playing = true;
+                if !app.playing() {
+                    app.play(None);
+                }
                 app.tick();
             }
         }

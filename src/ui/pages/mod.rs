@@ -103,7 +103,7 @@ pub fn summary(app: &App) -> Option<(String, Option<String>)> {
             let window = i.xi0 > 1.0;
             // Inside ξ = 1, once the least v_e is refined too: said once, not grid then refined.
             let c = app
-                .charts
+                .charts()
                 .curve(i.xi0, settings)
                 .filter(|c| c.complete() && (window || c.least.is_some()))?;
             let what = if window {
@@ -128,7 +128,7 @@ pub fn summary(app: &App) -> Option<(String, Option<String>)> {
         }
         Page::RestRadius => {
             let rest = app
-                .charts
+                .charts()
                 .rest
                 .as_ref()
                 .filter(|r| r.settings == settings)?;

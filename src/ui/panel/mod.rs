@@ -174,7 +174,7 @@ fn readouts(app: &App, th: &Theme) -> Readouts {
     }
     let status = status_start..out.len();
     spin::lines(app, th, &mut out);
-    if let Some(u) = app.units {
+    if let Some(u) = app.units() {
         table_lines(app, th, u, &mut out);
     }
     model_lines(app, th, &mut out);
@@ -197,9 +197,9 @@ fn readouts(app: &App, th: &Theme) -> Readouts {
         }
         out.push(kv("  ξ", num(p.now().xi(), 5), th));
     }
-    if !app.pins.is_empty() {
+    if !app.pins().is_empty() {
         let names: Vec<String> = app
-            .pins
+            .pins()
             .iter()
             .map(|p| format!("{}{}", p.marker, p.spec.label))
             .collect();
@@ -238,10 +238,10 @@ fn release(i: &crate::engine::Initial) -> Vec<String> {
 fn motion_lines(app: &App, th: &Theme, s: &crate::engine::State, out: &mut Vec<Line<'static>>) {
     let motion = app.sim().motion();
     let si = |x: f64, show: fn(f64) -> String| {
-        app.units
+        app.units()
             .map_or(String::new(), |_| format!(" = {}", show(x)))
     };
-    let (tau_si, xi_si, rate_si, xi_dot_si, u_si) = match app.units {
+    let (tau_si, xi_si, rate_si, xi_dot_si, u_si) = match app.units() {
         Some(u) => (
             si(s.tau * u.t_s(), si_time),
             si(s.xi() * u.r_max_m(), si_length),
@@ -390,8 +390,12 @@ fn cost_lines(app: &App, th: &Theme, out: &mut Vec<Line<'static>>) {
         }
     }
     out.push(kv("RHS", format!("{}", c.rhs_evals), th));
-    let play = if app.playing { "▶" } else { "❚❚" };
-    out.push(kv("speed", format!("×{} {play}", fmt_speed(app.speed)), th));
+    let play = if app.playing() { "▶" } else { "❚❚" };
+    out.push(kv(
+        "speed",
+        format!("×{} {play}", fmt_speed(app.speed())),
+        th,
+    ));
 }
 
 /// The arrows' legend: exactly the arrows drawn, by their head labels; what is not drawn for

@@ -46,8 +46,8 @@ pub fn auto_extent(app: &App) -> f64 {
         .paper()
         .map_or(own, |p| own.max(reach(p).min(1.5 * own)));
     // Pins widen it as the paper's run does, so a pinned D (from ξ0 = 1.1) stays in view.
-    let m = app.pins.iter().fold(m, |m, p| {
-        let r = p.path.iter().fold(0.0, |m: f64, s| m.max(s.xi())) * p.scale(app.units).0;
+    let m = app.pins().iter().fold(m, |m, p| {
+        let r = p.path.iter().fold(0.0, |m: f64, s| m.max(s.xi())) * p.scale(app.units()).0;
         m.max(r.min(1.5 * own))
     });
     (m * 1.1)
@@ -225,7 +225,7 @@ impl Picture {
                 rotate(v0, turn) * speed_scale,
             ),
             pins: app
-                .pins
+                .pins()
                 .iter()
                 .map(|p| PinPath::of(p, app, frame))
                 .collect(),
@@ -256,7 +256,7 @@ fn shown(sim: &Sim, frame: Frame, turn: f64) -> Vec<DVec2> {
 
 impl PinPath {
     fn of(p: &crate::pin::Pin, app: &App, frame: Frame) -> PinPath {
-        let k = p.scale(app.units).0;
+        let k = p.scale(app.units()).0;
         let path: Vec<DVec2> = p
             .path
             .iter()
