@@ -210,7 +210,7 @@ fn plain(
         }
         // A page's numbers are said once computed: headless, at once (the terminal's plain
         // mode says them when its worker brings them).
-        if crate::ui::pages::summarized(s.app.view.page) {
+        if crate::ui::pages::summarized(s.app.view().page) {
             s.sync_analysis();
         }
         say(&s, &mut seen, out)?;

@@ -98,7 +98,7 @@ pub struct App {
     pub(super) playing: bool,
     pub(super) speed: f64,
     /// How it is shown: page, frame, framing, arrows, help.
-    pub view: super::view::View,
+    pub(super) view: super::view::View,
     pub(super) mouse: bool,
     pub(super) notice: Option<String>,
     /// How many times the readouts were asked for in words (`I`): plain mode prints them.
@@ -139,6 +139,11 @@ impl App {
     /// Whether time plays (Space; [`App::is_playing`] adds a paper's run catching up).
     pub fn playing(&self) -> bool {
         self.playing
+    }
+
+    /// How it is shown: page, frame, framing, arrows, help.
+    pub fn view(&self) -> &super::view::View {
+        &self.view
     }
 
     /// How fast time plays: a power of two, ×1/64 to ×256.

@@ -176,7 +176,7 @@ pub fn page_times(reps: usize, presses: usize) -> Result<PageTimes, Error> {
 /// Turns `app`'s pages to `page`, as the keys do.
 fn open(app: &mut App, page: Page) {
     for _ in 0..16 {
-        if app.view.page == page {
+        if app.view().page == page {
             return;
         }
         crate::app::update(app, crate::app::Action::NextPage);

@@ -57,7 +57,7 @@ pub fn draw(frame: &mut Frame, app: &App, th: &Theme) -> Vec<CanvasGeom> {
     );
     let (panel_area, lesson, status) = (r.panel, r.lesson, r.status);
     let canvas_area = caption::picture(&r, app);
-    let geom = match app.view.page {
+    let geom = match app.view().page {
         crate::app::pages::Page::Turntable => canvas::render(frame, canvas_area, app, th),
         _ => pages::render(frame, canvas_area, app, th)
             .into_iter()
@@ -73,7 +73,7 @@ pub fn draw(frame: &mut Frame, app: &App, th: &Theme) -> Vec<CanvasGeom> {
     );
     frame.render_widget(Paragraph::new(status_line(app, th, status.width)), status);
     caption::render(frame, &r, app, th);
-    if app.view.help {
+    if app.view().help {
         help::render(frame, r.help, app, th);
     }
     // A theme that sets a background sets it on every cell: widgets that paint none (chart

@@ -53,7 +53,7 @@ fn frame_toggle_redraws_the_same_trail_in_the_other_frame() {
     let lab = render(&mut a, 80, 24);
     assert!(lab.contains("lab frame"));
     key(&mut a, 'f');
-    assert_eq!(a.view.frame, Frame::Table);
+    assert_eq!(a.view().frame, Frame::Table);
     let rot = render(&mut a, 80, 24);
     assert!(rot.contains("rotating frame"));
     assert_eq!(a.sim().trail().len(), n, "the trail is stored once");
@@ -153,16 +153,21 @@ fn every_key_in_the_keymap_does_what_its_help_says() {
     for b in KEYMAP {
         let mut a = setup(&dir);
         if b.action == Action::Dismiss {
-            a.view.help = true;
+            turntable::app::update(&mut a, Action::ToggleHelp);
         }
         if let Action::TauWindow(narrow) = b.action {
-            a.view.page = Page::TimePlots;
-            a.view.tau_window = (!narrow).then_some(1e-2);
+            crate::common::turn_to(&mut a, Page::TimePlots);
+            // A window narrowed twice, so that widening it leaves it narrower than the run.
+            for _ in 0..if narrow { 0 } else { 2 } {
+                turntable::app::update(&mut a, Action::TauWindow(true));
+            }
         }
         if matches!(b.action, Action::HelpScroll(_) | Action::HelpPage(_)) {
-            a.view.help = true;
-            a.view.help_scroll = 5;
+            turntable::app::update(&mut a, Action::ToggleHelp);
+            render(&mut a, 80, 24);
+            turntable::app::update(&mut a, Action::HelpScroll(5));
         }
+        let window = a.view().tau_window;
         // The lesson's keys are live only while it asks or waits.
         match b.action {
             Action::Answer(_) => a.ask("Will it escape? (y/n)".into()),
@@ -171,7 +176,7 @@ fn every_key_in_the_keymap_does_what_its_help_says() {
         }
         let before = render(&mut a, 80, 24);
         let (tau, init, set) = (a.sim().now().tau, a.initial(), a.settings());
-        let (speed, zoom, pan) = (a.speed(), a.view.zoom, a.view.pan);
+        let (speed, zoom, pan) = (a.speed(), a.view().zoom, a.view().pan);
         let init_playing = a.playing();
         press(&mut a, b.chord.event());
         let after = render(&mut a, 80, 24);
@@ -183,14 +188,14 @@ fn every_key_in_the_keymap_does_what_its_help_says() {
         let now = a.sim().now().tau;
         let ok = match b.action {
             Action::Quit => a.should_quit(),
-            Action::Dismiss => !a.view.help && !a.should_quit(),
-            Action::ToggleHelp => a.view.help && after.contains("help"),
-            Action::HelpScroll(d) => i32::from(a.view.help_scroll) == 5 + i32::from(d),
-            Action::TauWindow(true) => a.view.tau_window.is_some_and(|w| w < now),
-            Action::TauWindow(false) => a.view.tau_window == Some(2e-2),
+            Action::Dismiss => !a.view().help && !a.should_quit(),
+            Action::ToggleHelp => a.view().help && after.contains("help"),
+            Action::HelpScroll(d) => i32::from(a.view().help_scroll) == 5 + i32::from(d),
+            Action::TauWindow(true) => a.view().tau_window.is_some_and(|w| w < now),
+            Action::TauWindow(false) => a.view().tau_window == window.map(|w| 2.0 * w),
             // A page down from 5 reaches the end of the help at 80x24 (as long as the keymap).
             Action::HelpPage(d) => {
-                a.view.help_scroll
+                a.view().help_scroll
                     == if d > 0 {
                         turntable::ui::help::max_scroll(
                             80,
@@ -208,14 +213,14 @@ fn every_key_in_the_keymap_does_what_its_help_says() {
                 unreachable!("mouse actions have no key")
             }
             Action::IntegratorStep => {
-                a.view.step_mode && !a.is_playing() && after.contains("h      ")
+                a.view().step_mode && !a.is_playing() && after.contains("h      ")
             }
             Action::Faster => a.speed() == 2.0 * speed && after.contains("×2"),
             Action::Slower => a.speed() == speed / 2.0 && after.contains("×1/2"),
             Action::Restart => now == 0.0 && a.initial() == init,
-            Action::ToggleFrame => a.view.frame == Frame::Table,
+            Action::ToggleFrame => a.view().frame == Frame::Table,
             Action::ToggleSplit => {
-                a.view.split && after.contains("lab frame") && after.contains("rotating frame")
+                a.view().split && after.contains("lab frame") && after.contains("rotating frame")
             }
             Action::CycleMethod => a.settings().method() != set.method() && now == 0.0,
             Action::Loosen => a.settings().scheme.knob() > set.scheme.knob() && now == 0.0,
@@ -238,13 +243,15 @@ fn every_key_in_the_keymap_does_what_its_help_says() {
             Action::ToggleCompare => a.paper().is_some() && after.contains("paper: rk2-raw"),
             // In the lab (the default view) friction is the only force.
             Action::ToggleForces => {
-                a.view.forces && after.contains("friction") && !after.contains("Coriolis")
+                a.view().forces && after.contains("friction") && !after.contains("Coriolis")
             }
             Action::EstimateError => after.contains("|Δr| ="),
-            Action::ToggleNetForce => a.view.net_force && after.contains("net net force"),
-            Action::ToggleVelocity => a.view.velocity && after.contains("v  velocity (lab)"),
+            Action::ToggleNetForce => a.view().net_force && after.contains("net net force"),
+            Action::ToggleVelocity => a.view().velocity && after.contains("v  velocity (lab)"),
             // This scene has no body: `C` only says so (tests/suite/body.rs tries it with one).
-            Action::TogglePointModel => a.view.point_model && after.contains("no body to compare"),
+            Action::TogglePointModel => {
+                a.view().point_model && after.contains("no body to compare")
+            }
             Action::PinRun => {
                 a.pins().len() == 1 && after.contains("pinned ◆C") && after.contains("pins   ◆C")
             }
@@ -255,13 +262,13 @@ fn every_key_in_the_keymap_does_what_its_help_says() {
                     && after.contains("SI units: μ 0.15")
             }
             Action::UnitsOff => a.units().is_none() && after.contains("SI units off"),
-            Action::ZoomIn => a.view.zoom > zoom,
-            Action::ZoomOut => a.view.zoom < zoom,
+            Action::ZoomIn => a.view().zoom > zoom,
+            Action::ZoomOut => a.view().zoom < zoom,
             Action::Pan(dx, dy) => {
-                let d = a.view.pan - pan;
+                let d = a.view().pan - pan;
                 d.x * dx > 0.0 || d.y * dy > 0.0
             }
-            Action::ResetView => a.view.zoom == 1.0 && a.view.pan == glam::DVec2::ZERO,
+            Action::ResetView => a.view().zoom == 1.0 && a.view().pan == glam::DVec2::ZERO,
             Action::SaveAs => typed(&a) == Some("") && after.contains("save as: ▏"),
             Action::SetValues => typed(&a) == Some("") && after.contains("set: ▏"),
             Action::Type(_) => unreachable!("typed at the prompt, bound to no key"),
@@ -289,9 +296,9 @@ fn every_key_in_the_keymap_does_what_its_help_says() {
                         num(a.now().xi(), 5)
                     ))
             }
-            Action::NextPage => a.view.page == Page::TimePlots && after.contains("time plots"),
-            Action::PrevPage => a.view.page == Page::RestRadius && after.contains("rest radius"),
-            Action::Choose => a.view.page == Page::Turntable && after.contains("Enter runs"),
+            Action::NextPage => a.view().page == Page::TimePlots && after.contains("time plots"),
+            Action::PrevPage => a.view().page == Page::RestRadius && after.contains("rest radius"),
+            Action::Choose => a.view().page == Page::Turntable && after.contains("Enter runs"),
             Action::PickRelease(_) => unreachable!("mouse actions have no key"),
             Action::Answer(yes) => {
                 let q = a.lesson().question.as_ref().unwrap();
@@ -323,7 +330,7 @@ fn esc_closes_help_before_quitting() {
     let mut a = app("C");
     key(&mut a, '?');
     a.handle_key(KeyEvent::new(KeyCode::Esc, KeyModifiers::NONE));
-    assert!(!a.view.help && !a.should_quit());
+    assert!(!a.view().help && !a.should_quit());
     // Esc is the reflex for closing things: it never quits. q does.
     a.handle_key(KeyEvent::new(KeyCode::Esc, KeyModifiers::NONE));
     assert!(!a.should_quit());
@@ -337,7 +344,7 @@ fn esc_closes_help_before_quitting() {
 fn q_and_ctrl_c_quit_with_the_help_open() {
     let mut a = app("C");
     key(&mut a, '?');
-    assert!(a.view.help);
+    assert!(a.view().help);
     key(&mut a, 'q');
     assert!(a.should_quit(), "q with the help open");
     let mut a = app("C");
@@ -451,7 +458,7 @@ fn help_scrolls_to_everything_at_every_size() {
         );
         let first = seen.clone();
         for i in 0..100 {
-            let before = a.view.help_scroll;
+            let before = a.view().help_scroll;
             if i % 2 == 0 {
                 a.handle_key(KeyEvent::new(KeyCode::Down, KeyModifiers::NONE));
             } else {
@@ -463,7 +470,7 @@ fn help_scrolls_to_everything_at_every_size() {
                 });
             }
             seen += &render(&mut a, w, h);
-            if a.view.help_scroll == before {
+            if a.view().help_scroll == before {
                 break;
             }
         }
@@ -474,7 +481,7 @@ fn help_scrolls_to_everything_at_every_size() {
             );
         }
         if first.contains("↓ more") {
-            assert!(a.view.help_scroll > 0 && !render(&mut a, w, h).contains("↓ more"));
+            assert!(a.view().help_scroll > 0 && !render(&mut a, w, h).contains("↓ more"));
         }
         // Back to the top with PgUp.
         for _ in 0..20 {
@@ -732,7 +739,11 @@ fn a_click_places_the_release_where_clicked() {
         modifiers: KeyModifiers::NONE,
     });
     let angle = 0.75 * std::f64::consts::PI;
-    assert!((a.view.turn - angle).abs() < 0.2, "turn {}", a.view.turn);
+    assert!(
+        (a.view().turn - angle).abs() < 0.2,
+        "turn {}",
+        a.view().turn
+    );
     assert!(
         (a.initial().xi0 - 0.4 * 2f64.sqrt()).abs() < 0.12,
         "{}",
@@ -770,8 +781,10 @@ fn forces_marks_and_glyphs_follow_the_frame() {
     for _ in 0..6 {
         a.tick();
     }
-    for zoom in [1.0, 4.0] {
-        a.view.zoom = zoom;
+    for zoom_ins in [0, 2] {
+        for _ in 0..zoom_ins {
+            turntable::app::update(&mut a, Action::ZoomIn);
+        }
         let lab = force_arrows(&a, 2.0);
         assert_eq!(lab.iter().map(|f| f.word).collect::<Vec<_>>(), ["friction"]);
         assert!((lab[0].vec.length() - FORCE_SHARE * 2.0).abs() < 1e-12);
@@ -785,7 +798,7 @@ fn forces_marks_and_glyphs_follow_the_frame() {
         assert!((longest - FORCE_SHARE * 2.0).abs() < 1e-12);
         key(&mut a, 'f');
     }
-    a.view.zoom = 1.0;
+    turntable::app::update(&mut a, Action::ResetView);
     key(&mut a, 'F');
     assert!(
         force_arrows(&a, 2.0).is_empty(),
@@ -892,7 +905,7 @@ fn integrator_steps_one_at_a_time() {
     for _ in 0..200 {
         let before = a.sim().cost();
         key(&mut a, 'n');
-        assert!(a.view.step_mode && !a.playing());
+        assert!(a.view().step_mode && !a.playing());
         let st = a.sim().last_step().unwrap();
         if hs.len() > 1 {
             let c = a.sim().cost();
@@ -957,7 +970,7 @@ fn unit_keys_give_si_readouts_and_axes() {
     let shown = turntable::present::si_length(r_max);
     assert!(screen.contains(&shown), "{shown}\n{screen}");
     // The time plots' axes carry the unit's SI value.
-    a.view.page = Page::TimePlots;
+    crate::common::turn_to(&mut a, Page::TimePlots);
     let screen = render(&mut a, 100, 30);
     let tau = turntable::present::si_time(1.0 / u.omega());
     assert!(screen.contains(&format!("τ (1 = {tau})")), "{screen}");
@@ -1134,13 +1147,13 @@ fn the_title_and_a_saved_scene_tell_what_is_on_screen() {
     let view = saved.view.unwrap();
     assert_eq!(
         (view.frame, view.forces, view.zoom),
-        (Frame::Table, true, a.view.zoom)
+        (Frame::Table, true, a.view().zoom)
     );
     assert!(view.zoom > 1.0);
     let back = App::new(saved);
     assert_eq!(
-        (back.view.frame, back.view.forces, back.view.zoom),
-        (Frame::Table, true, a.view.zoom)
+        (back.view().frame, back.view().forces, back.view().zoom),
+        (Frame::Table, true, a.view().zoom)
     );
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -627,16 +627,16 @@ fn an_interactive_lesson_holds_as_state_and_time_goes_on() {
     // it said the page was refused); n answers and does not step.
     s.pump_lesson().unwrap();
     assert!(s.app.lesson().question.is_some());
-    let (init, page) = (s.app.initial(), s.app.view.page);
+    let (init, page) = (s.app.initial(), s.app.view().page);
     press(&mut s, "enter");
-    assert_eq!((s.app.initial(), s.app.view.page), (init, page));
+    assert_eq!((s.app.initial(), s.app.view().page), (init, page));
     assert_eq!(s.app.lesson().question.as_ref().unwrap().answer, None);
     assert_eq!(
         s.app.notice().as_deref(),
         Some("the question first: y if it escapes, n if it stays")
     );
     press(&mut s, "n");
-    assert!(!s.app.view.step_mode);
+    assert!(!s.app.view().step_mode);
     assert_eq!(
         s.app.lesson().question.as_ref().unwrap().answer,
         Some(false)
@@ -657,7 +657,7 @@ fn an_interactive_lesson_holds_as_state_and_time_goes_on() {
     assert!(s.app.lesson().done);
     // Unheld, n is the integrator step again.
     press(&mut s, "n");
-    assert!(s.app.view.step_mode);
+    assert!(s.app.view().step_mode);
     // The last words stay until Esc says they were read, then the screen is the scene's.
     let screen = turntable::ui::export::plain_text(s.screen());
     assert!(screen.contains("three") && screen.contains("end · Esc closes · q quits"));
@@ -896,8 +896,8 @@ fn held(s: &Session<ratatui::backend::TestBackend>) -> Held {
         at: s.lesson().unwrap().taken(),
         initial: s.app.initial(),
         settings: s.app.settings(),
-        page: s.app.view.page,
-        frame: s.app.view.frame,
+        page: s.app.view().page,
+        frame: s.app.view().frame,
         caption: s.app.lesson().caption.as_ref().map(|c| c.to_string()),
         question: s.app.lesson().question.as_ref().map(|q| q.text.to_string()),
     }

@@ -33,16 +33,16 @@ fn tab_cycles_the_pages_and_each_title_names_its_page() {
         (Page::Turntable, "lab frame"),
     ] {
         press(&mut a, KeyCode::Tab);
-        assert_eq!(a.view.page, page);
+        assert_eq!(a.view().page, page);
         let screen = render(&mut a, 100, 30);
         assert!(screen.contains(words), "{words}:\n{screen}");
         assert!(!screen.contains("NaN"), "{screen}");
     }
     press(&mut a, KeyCode::BackTab);
-    assert_eq!(a.view.page, Page::RestRadius);
+    assert_eq!(a.view().page, Page::RestRadius);
     // As crossterm reports Shift-Tab: BackTab with Shift.
     a.handle_key(KeyEvent::new(KeyCode::BackTab, KeyModifiers::SHIFT));
-    assert_eq!(a.view.page, Page::OutcomeMap);
+    assert_eq!(a.view().page, Page::OutcomeMap);
 }
 
 #[test]
@@ -65,7 +65,7 @@ fn nothing_is_computed_for_a_page_not_on_screen() {
 #[test]
 fn the_escape_speed_page_holds_the_solver_s_curves() {
     let mut a = app("C");
-    a.view.page = Page::EscapeSpeed;
+    crate::common::turn_to(&mut a, Page::EscapeSpeed);
     common::sync(&mut a);
     let s = settings_for(a.settings());
     for xi0 in std::iter::once(0.5).chain(PAPER_XI0) {
@@ -117,7 +117,7 @@ fn the_escape_speed_page_holds_the_solver_s_curves() {
 #[test]
 fn the_outcome_map_agrees_with_the_escape_speeds() {
     let mut a = app("C");
-    a.view.page = Page::OutcomeMap;
+    crate::common::turn_to(&mut a, Page::OutcomeMap);
     common::sync(&mut a);
     let s = settings_for(a.settings());
     let curve = a.charts().curve(0.5, s).unwrap().clone();
@@ -164,7 +164,7 @@ fn the_outcome_map_agrees_with_the_escape_speeds() {
 #[test]
 fn a_click_on_the_map_picks_that_release_and_enter_runs_it() {
     let mut a = app("C");
-    a.view.page = Page::OutcomeMap;
+    crate::common::turn_to(&mut a, Page::OutcomeMap);
     common::sync(&mut a);
     render(&mut a, 100, 30);
     let g = a.geom_for_tests().expect("plot geometry");
@@ -181,14 +181,14 @@ fn a_click_on_the_map_picks_that_release_and_enter_runs_it() {
     assert!((a.initial().v0 - want.y).abs() < 1e-9);
     assert_eq!(a.initial().release, Release::Velocity);
     press(&mut a, KeyCode::Enter);
-    assert_eq!(a.view.page, Page::Turntable);
+    assert_eq!(a.view().page, Page::Turntable);
     assert!(a.playing() && a.sim().now().tau == 0.0);
 }
 
 #[test]
 fn the_rest_radius_page_has_fig6_and_reads_mu_from_eq22() {
     let mut a = app("C");
-    a.view.page = Page::RestRadius;
+    crate::common::turn_to(&mut a, Page::RestRadius);
     common::sync(&mut a);
     let rest = a.charts().rest.clone().expect("rest");
     let c = rest.critical.unwrap().unwrap();
@@ -304,7 +304,7 @@ fn pages_survive_every_size() {
         Page::OutcomeMap,
         Page::RestRadius,
     ] {
-        a.view.page = page;
+        crate::common::turn_to(&mut a, page);
         common::sync(&mut a);
         for (w, h) in [(40, 12), (60, 20), (80, 24), (200, 60), (1, 1)] {
             let s = render(&mut a, w, h);
@@ -319,7 +319,7 @@ fn pages_survive_every_size() {
 fn the_map_fills_the_plot_and_a_return_computes_only_what_is_missing() {
     use turntable::analysis::{Analysis, Job, Piece};
     let mut a = app("C");
-    a.view.page = Page::OutcomeMap;
+    crate::common::turn_to(&mut a, Page::OutcomeMap);
     common::sync(&mut a);
     render(&mut a, 90, 26);
     common::sync(&mut a);
@@ -372,7 +372,7 @@ fn the_map_fills_the_plot_and_a_return_computes_only_what_is_missing() {
 #[test]
 fn the_escape_page_does_not_guess_between_its_angles() {
     let mut a = app("C");
-    a.view.page = Page::EscapeSpeed;
+    crate::common::turn_to(&mut a, Page::EscapeSpeed);
     common::sync(&mut a);
     let s = settings_for(a.settings());
     let c = a.charts().curve(0.5, s).unwrap().clone();
@@ -407,7 +407,7 @@ fn outside_xi_1_the_pages_show_the_sticking_window() {
     let mut a = app("D");
     for xi0 in [1.1, 1.05, 1.3, 2.0] {
         a.explore().edit_initial(|i| i.xi0 = xi0);
-        a.view.page = Page::EscapeSpeed;
+        crate::common::turn_to(&mut a, Page::EscapeSpeed);
         common::sync(&mut a);
         let c = a.charts().curve(xi0, s).expect("curve").clone();
         assert!(c.complete(), "{xi0}");
@@ -447,7 +447,7 @@ fn outside_xi_1_the_pages_show_the_sticking_window() {
             "{screen}"
         );
         // The map's speeds reach past the window's top, and it has stuck cells.
-        a.view.page = Page::OutcomeMap;
+        crate::common::turn_to(&mut a, Page::OutcomeMap);
         common::sync(&mut a);
         let top = windows.iter().map(|w| w.2).fold(0.0, f64::max);
         let map = a.charts().map.clone().expect("map");
@@ -465,7 +465,7 @@ fn outside_xi_1_the_pages_show_the_sticking_window() {
     // D itself: thrown at 1.3 at 1.2π from ξ0 = 1.1 it sticks (at ξ = 0.67495); slower than
     // the window's floor it escapes.
     let mut d = app("D");
-    d.view.page = Page::EscapeSpeed;
+    crate::common::turn_to(&mut d, Page::EscapeSpeed);
     let screen = render(&mut d, 100, 30);
     assert!(
         screen.contains("release sticks (in the window)"),
@@ -499,7 +499,7 @@ fn the_map_grid_is_the_drawn_plot_at_every_size() {
     use turntable::analysis::Job;
     for (w, h) in [(40, 12), (56, 30), (59, 24), (60, 20), (80, 24), (200, 60)] {
         let mut a = app("C");
-        a.view.page = Page::OutcomeMap;
+        crate::common::turn_to(&mut a, Page::OutcomeMap);
         a.resize(w, h);
         render(&mut a, w, h);
         let job = a.charts().map.as_ref().map(|m| m.job);
@@ -550,7 +550,7 @@ fn the_map_grid_is_the_drawn_plot_at_every_size() {
 #[test]
 fn no_number_is_cut_at_any_width() {
     let mut a = app("C");
-    a.view.page = Page::EscapeSpeed;
+    crate::common::turn_to(&mut a, Page::EscapeSpeed);
     common::sync(&mut a);
     let s = settings_for(a.settings());
     let c = a.charts().curve(0.5, s).unwrap();
@@ -616,7 +616,7 @@ fn the_time_plots_share_one_tau_axis_and_a_fixed_window() {
     for _ in 0..60 {
         a.tick();
     }
-    a.view.page = Page::TimePlots;
+    crate::common::turn_to(&mut a, Page::TimePlots);
     let screen = render(&mut a, 100, 34);
     // fig2 is certified to escape at τ = 0: its line's label starts one column right of τ = 0.
     let cols: Vec<usize> = screen
@@ -636,7 +636,7 @@ fn the_time_plots_share_one_tau_axis_and_a_fixed_window() {
     assert!(ticks(&screen).contains("2.5"), "{screen}");
     press(&mut a, KeyCode::Char('t'));
     press(&mut a, KeyCode::Char('t'));
-    assert!((a.view.tau_window.unwrap() - 0.75).abs() < 1e-12);
+    assert!((a.view().tau_window.unwrap() - 0.75).abs() < 1e-12);
     let narrow = render(&mut a, 100, 34);
     assert!(
         ticks(&narrow).contains("0.6") && !ticks(&narrow).contains("2.5"),
@@ -644,7 +644,7 @@ fn the_time_plots_share_one_tau_axis_and_a_fixed_window() {
     );
     press(&mut a, KeyCode::Char('T'));
     press(&mut a, KeyCode::Char('T'));
-    assert_eq!(a.view.tau_window, None);
+    assert_eq!(a.view().tau_window, None);
     assert_eq!(render(&mut a, 100, 34), screen);
 }
 
@@ -656,7 +656,9 @@ fn a_theme_s_background_covers_every_cell() {
         let th = Theme::builtin(theme).unwrap();
         let mut a = App::new(Scene::preset("C").unwrap());
         for help in [false, true] {
-            a.view.help = help;
+            if a.view().help != help {
+                turntable::app::update(&mut a, turntable::app::Action::ToggleHelp);
+            }
             for page in [
                 Page::Turntable,
                 Page::TimePlots,
@@ -664,7 +666,7 @@ fn a_theme_s_background_covers_every_cell() {
                 Page::OutcomeMap,
                 Page::RestRadius,
             ] {
-                a.view.page = page;
+                crate::common::turn_to(&mut a, page);
                 common::sync(&mut a);
                 let mut t =
                     ratatui::Terminal::new(ratatui::backend::TestBackend::new(80, 24)).unwrap();
@@ -699,7 +701,7 @@ fn speeds_and_legends_read_without_colour() {
     for _ in 0..20 {
         a.tick();
     }
-    a.view.page = Page::TimePlots;
+    crate::common::turn_to(&mut a, Page::TimePlots);
     let screen = render(&mut a, 100, 34);
     for words in ["━ ξ  ·· Sec. III approx.", "━ E − E(0)  ·· −∫|u|dτ"] {
         assert!(screen.contains(words), "{words}\n{screen}");

@@ -146,7 +146,7 @@ fn pins_show_in_both_frames_and_on_the_time_plots_at_every_size() {
     for (w, h) in [(40, 12), (80, 24), (200, 60)] {
         for page in [Page::Turntable, Page::TimePlots] {
             for frame in ['f', 'f'] {
-                a.view.page = page;
+                crate::common::turn_to(&mut a, page);
                 key(&mut a, frame);
                 let screen = render(&mut a, w, h);
                 a.check_invariants().unwrap();
@@ -167,7 +167,7 @@ fn pins_show_in_both_frames_and_on_the_time_plots_at_every_size() {
         }
     }
     // The time plots span the longest pin (C stops at τ ≈ 5.6), not only the τ on screen.
-    a.view.page = Page::TimePlots;
+    crate::common::turn_to(&mut a, Page::TimePlots);
     assert!(a.plot_span() > 5.5 && a.sim().now().tau < 2.0);
     let screen = render(&mut a, 200, 60);
     assert!(screen.contains(" 5 "), "{screen}");

@@ -666,7 +666,7 @@ fn an_export_carries_what_the_screen_shows() {
         app.pins()[0].marker,
         app.pins()[0].spec.label.as_str()
     );
-    assert!(app.paper().is_some() && app.view.velocity && app.view.forces);
+    assert!(app.paper().is_some() && app.view().velocity && app.view().forces);
     common::render(&mut app, 160, 50);
     press(&mut app, KeyCode::Char('E'));
     let svg = std::fs::read_to_string(dir.join("turntable-turntable-1.svg")).unwrap();

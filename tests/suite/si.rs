@@ -110,7 +110,7 @@ fn the_table_stays_in_the_panel_and_the_mu_probe_reads_its_omega() {
         assert!(screen.contains(want), "{want}\n{screen}");
     }
     // The rest page's Eq. 22 uses the table's Ω, and `o` turns the table.
-    a.view.page = Page::RestRadius;
+    crate::common::turn_to(&mut a, Page::RestRadius);
     let screen = render(&mut a, 100, 40);
     assert!(
         screen.contains("Ω = 3.595 rad/s (34.3 rpm, the table's)"),
@@ -155,7 +155,7 @@ fn a_pin_from_another_table_is_drawn_in_this_ones_units() {
     // Units off: nothing to convert by.
     assert_eq!(pin.scale(None), (1.0, 1.0));
     for page in [Page::Turntable, Page::TimePlots] {
-        a.view.page = page;
+        crate::common::turn_to(&mut a, page);
         for (w, h) in [(40, 12), (80, 24), (200, 60)] {
             render(&mut a, w, h);
             a.check_invariants().unwrap();

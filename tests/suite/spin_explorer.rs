@@ -113,7 +113,7 @@ fn what_the_spin_up_does_not_model_is_refused_with_a_notice() {
         key(&mut a, k);
         assert!(a.notice().is_some(), "{k:?} says why");
         assert_eq!(
-            (a.initial(), a.settings(), a.sim().now().tau, a.view.page),
+            (a.initial(), a.settings(), a.sim().now().tau, a.view().page),
             (initial, settings, tau, Page::Turntable),
             "{k:?} changed nothing"
         );
@@ -274,7 +274,7 @@ fn the_spin_preset_opens_the_same_whatever_came_before() {
         }
         key(&mut a, KeyCode::Char('7'));
         prop_assert!(a.paper().is_none() && a.pins().is_empty());
-        prop_assert_eq!(a.view.page, Page::Turntable);
+        prop_assert_eq!(a.view().page, Page::Turntable);
         prop_assert_eq!(without_last_line(&common_render(&mut a)), expected.clone());
     });
 }

@@ -22,7 +22,7 @@ pub fn figure(app: &App) -> (Figure, bool) {
         title: title(app),
         panels: vec![panel],
     };
-    match app.view.page {
+    match app.view().page {
         Page::Turntable => (table::figure(app, title(app)), true),
         Page::TimePlots => {
             let panels = time::panels(app);

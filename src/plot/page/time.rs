@@ -45,7 +45,7 @@ fn series(name: &str, ink: Ink, path: &[State], y: impl Fn(&State) -> f64) -> Se
 /// and the escape certificate marked; each y range is what the window shows.
 pub fn panels(app: &App) -> Vec<Panel> {
     let now = app.sim().now().tau;
-    let span = app.view.tau_window.unwrap_or(app.plot_span()).max(1e-3);
+    let span = app.view().tau_window.unwrap_or(app.plot_span()).max(1e-3);
     let window = crate::engine::approx::window(&app.initial());
     let marks = marks(app, now);
     // The window's end is marked only where Sec. III's approximation holds within it: ξ, and
@@ -289,7 +289,7 @@ fn integrated(rate: &Series, ink: Ink) -> Series {
 const APPROX: &str = "Sec. III approx.";
 
 fn plots(app: &App, now: f64, window: Option<f64>) -> [Plot<'static>; 5] {
-    let rotating = app.view.frame == Frame::Table;
+    let rotating = app.view().frame == Frame::Table;
     let (theta_name, shift) = if rotating {
         ("Θ′", 1.0)
     } else {

@@ -277,13 +277,13 @@ fn motion_lines(app: &App, th: &Theme, s: &crate::engine::State, out: &mut Vec<L
         }
     };
     let theta_dot = s.theta_dot();
-    match app.view.frame {
+    match app.view().frame {
         crate::engine::Frame::Lab => {
             out.push(kv("θ", direction(s.r), th));
             out.push(kv("θ′", theta_dot.map_or("—".into(), lab_rate), th));
         }
         crate::engine::Frame::Table => {
-            out.push(kv("Θ", direction(motion.in_frame(s, app.view.frame)), th));
+            out.push(kv("Θ", direction(motion.in_frame(s, app.view().frame)), th));
             out.push(kv(
                 "Θ′",
                 theta_dot.map_or("—".into(), |t| num(t - motion.omega(s.tau), 4)),
@@ -372,7 +372,7 @@ fn model_lines(app: &App, th: &Theme, out: &mut Vec<Line<'static>>) {
 fn cost_lines(app: &App, th: &Theme, out: &mut Vec<Line<'static>>) {
     let c = app.sim().cost();
     out.push(kv("steps", format!("{} rej {}", c.steps, c.rejected), th));
-    if app.view.step_mode
+    if app.view().step_mode
         && let Some(st) = app.sim().last_step()
     {
         out.push(kv(
@@ -401,15 +401,15 @@ fn cost_lines(app: &App, th: &Theme, out: &mut Vec<Line<'static>>) {
 /// The arrows' legend: exactly the arrows drawn, by their head labels; what is not drawn for
 /// being zero says so.
 fn arrow_legend(app: &App, th: &Theme, out: &mut Vec<Line<'static>>) {
-    if (app.view.forces || app.view.net_force || app.view.velocity) && !app.point_shown() {
+    if (app.view().forces || app.view().net_force || app.view().velocity) && !app.point_shown() {
         out.push(Line::from(Span::styled(
             "arrows: point's, hidden (C)",
             Style::default().fg(th.muted),
         )));
-    } else if app.view.forces || app.view.net_force || app.view.velocity {
+    } else if app.view().forces || app.view().net_force || app.view().velocity {
         let drawn = crate::ui::canvas::arrows(app, 1.0, 1.0);
         let has = |l: &str| drawn.iter().any(|a| a.label == l);
-        if app.view.forces
+        if app.view().forces
             && !drawn
                 .iter()
                 .any(|a| ["fr", "co", "cf", "eu"].contains(&a.label))
@@ -426,14 +426,14 @@ fn arrow_legend(app: &App, th: &Theme, out: &mut Vec<Line<'static>>) {
                 Span::styled(fa.word, Style::default().fg(color)),
             ]));
         }
-        if app.view.net_force && !has("net") {
+        if app.view().net_force && !has("net") {
             out.push(Line::from(Span::styled(
                 "net force 0: balanced",
                 Style::default().fg(th.muted),
             )));
         }
         let (label, _, _) = crate::ui::canvas::velocity(app);
-        if app.view.velocity && !has(label) {
+        if app.view().velocity && !has(label) {
             out.push(Line::from(Span::styled(
                 format!("{label} = 0"),
                 Style::default().fg(th.muted),

@@ -176,17 +176,17 @@ impl Stuck {
 impl Picture {
     /// The turntable page of `app` as it stands.
     pub fn of(app: &App) -> Picture {
-        Picture::in_frame(app, app.view.frame)
+        Picture::in_frame(app, app.view().frame)
     }
 
     /// The turntable page of `app` as `frame` sees it (a split view draws both).
     pub fn in_frame(app: &App, frame: Frame) -> Picture {
-        let turn = app.view.turn;
+        let turn = app.view().turn;
         let now = app.sim().now();
         let motion = app.sim().motion();
         let i = app.initial();
         let extent = auto_extent(app);
-        let half_width = extent / app.view.zoom;
+        let half_width = extent / app.view().zoom;
         let speed_scale = 0.3 * extent / i.xi0.max(1.0);
         let body = app.rod().map(|rod| Body::of(rod, now.tau, frame, turn));
         let point = app
@@ -194,7 +194,7 @@ impl Picture {
             .then(|| Point::of(app, frame, half_width, speed_scale));
         // Zoomed in, the view follows the particle, or the body's centre with the point hidden.
         let followed = match (&point, body.as_ref().and_then(|b| b.bar)) {
-            _ if app.view.zoom <= 1.0 => DVec2::ZERO,
+            _ if app.view().zoom <= 1.0 => DVec2::ZERO,
             (None, Some((_, centre))) => centre,
             _ => rotate(motion.in_frame(&now, frame), turn),
         };
@@ -207,7 +207,7 @@ impl Picture {
         Picture {
             frame,
             turn,
-            centre: followed + app.view.pan * extent,
+            centre: followed + app.view().pan * extent,
             half_width,
             speed_scale,
             table: Table {
@@ -286,7 +286,7 @@ impl Point {
     /// The point model of `app` in `frame`, its force arrows scaled to `half_width`, its velocity by
     /// `speed_scale`.
     fn of(app: &App, frame: Frame, half_width: f64, speed_scale: f64) -> Point {
-        let turn = app.view.turn;
+        let turn = app.view().turn;
         let now = app.sim().now();
         let motion = app.sim().motion();
         let stuck = match app.sim().status() {
@@ -309,7 +309,7 @@ impl Point {
             Outcome::Running => format!("τ = {}", num(now.tau, 3)),
         };
         let mut steps: Vec<DVec2> = Vec::new();
-        if app.view.step_mode {
+        if app.view().step_mode {
             steps = app
                 .sim()
                 .step_marks
