@@ -93,7 +93,7 @@ fn run(
         return plain(app, steps, opts, out);
     }
     let mut s = Session::headless(app, opts.theme.clone(), opts.size.0, opts.size.1, false);
-    s.carry = answer;
+    s.carry_with(Answer);
     let mut shots = 0;
     // Ticks passed: the recording's clock.
     let mut ticks = 0;
@@ -168,7 +168,7 @@ fn plain(
 ) -> std::io::Result<()> {
     use crate::ui::plain::{Seen, describe, opening};
     let mut s = Session::headless(app, opts.theme.clone(), opts.size.0, opts.size.1, false);
-    s.carry = answer;
+    s.carry_with(Answer);
     let mut seen = Seen::of(&s.app);
     let say = |s: &Session<TestBackend>, seen: &mut Seen, out: &mut dyn std::io::Write| {
         let now = Seen::of(&s.app);
@@ -210,12 +210,21 @@ fn plain(
         }
         // A page's numbers are said once computed: headless, at once (the terminal's plain
         // mode says them when its worker brings them).
-        if crate::ui::pages::summarized(s.app.view.page) {
+        if crate::ui::pages::summarized(s.app.view().page) {
             s.sync_analysis();
         }
         say(&s, &mut seen, out)?;
     }
     out.flush()
+}
+
+/// A replay's effects: answered, never written ([`answer`]).
+pub struct Answer;
+
+impl crate::session::Carry for Answer {
+    fn carry(&mut self, app: &mut App, effects: Effects) {
+        answer(app, effects);
+    }
 }
 
 /// A replay writes no file: each effect is answered with what it would have written, where.

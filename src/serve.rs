@@ -16,7 +16,6 @@ pub mod conn;
 mod door;
 pub mod explorer;
 mod keyfile;
-pub mod keys;
 mod out;
 mod screen;
 

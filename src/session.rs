@@ -43,9 +43,9 @@ pub struct Session<B: Backend> {
     recorder: Option<SharedRecorder>,
     /// An interactive lesson's script, fed in as time passes (see [`Session::pump_lesson`]).
     lesson: Option<crate::lesson::Driver>,
-    /// How the effects `update` returns are carried out: [`carry_out`] (files written) unless
-    /// the shell says otherwise (a replay answers them with [`crate::replay::answer`]).
-    pub carry: fn(&mut App, Effects),
+    /// How the effects `update` returns are carried out: [`Write`] (files written) unless the
+    /// shell says otherwise ([`Session::carry_with`]).
+    carry: Box<dyn Carry + Send>,
     /// Where the analysis pages are computed: inline (computed when a frame is drawn) unless
     /// [`Session::with_worker`].
     pub analysis: Analysis,
@@ -71,7 +71,7 @@ impl<B: Backend> Session<B> {
             term,
             recorder,
             lesson: None,
-            carry: carry_out,
+            carry: Box::new(Write),
             analysis: Analysis::inline(),
         };
         tell_size(&mut s.app, &s.theme, size.width, size.height);
@@ -86,6 +86,12 @@ impl<B: Backend> Session<B> {
         self.analysis = Analysis::threaded();
         self.ask_analysis();
         self
+    }
+
+    /// The effects `update` returns carried out by `carry` from now on (a replay answers them,
+    /// a guest is refused them).
+    pub fn carry_with(&mut self, carry: impl Carry + Send + 'static) {
+        self.carry = Box::new(carry);
     }
 
     /// Whether time should tick: the model's runs (see [`App::is_playing`]), or a page
@@ -119,7 +125,7 @@ impl<B: Backend> Session<B> {
             lock(r).key(chord);
         }
         let effects = self.app.press(chord);
-        (self.carry)(&mut self.app, effects);
+        self.carry.carry(&mut self.app, effects);
         self.ask_analysis();
     }
 
@@ -129,7 +135,7 @@ impl<B: Backend> Session<B> {
     /// followers press them too).
     pub fn paste(&mut self, text: &str) -> Vec<Chord> {
         let mut pressed = vec![];
-        if self.app.prompt.is_none() {
+        if self.app.prompt().is_none() {
             return pressed;
         }
         // The prompt is one line: a pasted line break joins the lines. Then cleaned as any text
@@ -166,7 +172,7 @@ impl<B: Backend> Session<B> {
     /// keys and cells, not actions: it is not recorded).
     pub fn act(&mut self, action: Action) {
         let effects = crate::app::update(&mut self.app, action);
-        (self.carry)(&mut self.app, effects);
+        self.carry.carry(&mut self.app, effects);
         self.ask_analysis();
     }
 
@@ -177,7 +183,7 @@ impl<B: Backend> Session<B> {
         }
         self.ask_analysis();
         // A lesson's `tick N` counts ticks of play: paused, the lesson holds where it is.
-        let played = self.app.playing;
+        let played = self.app.playing();
         self.app.tick();
         if let Some(d) = self.lesson.as_mut().filter(|_| played) {
             d.ticked();
@@ -191,7 +197,7 @@ impl<B: Backend> Session<B> {
 
     /// Runs an interactive lesson: its steps are fed in by [`Session::pump_lesson`].
     pub fn start_lesson(&mut self, driver: crate::lesson::Driver) {
-        self.app.lesson.name = Some(driver.name().to_string());
+        self.app.tell_lesson(driver.name());
         self.lesson = Some(driver);
     }
 
@@ -277,12 +283,12 @@ pub fn sync(app: &mut App, analysis: &mut Analysis, compute: bool) -> bool {
             // In flight, or done and still lacking (a failed piece): ask no more.
             break;
         }
-        let todo = app.charts.missing(&job, settings);
+        let todo = app.charts().missing(&job, settings);
         // A map's cells lean on the escape speeds at its ξ0, which the page computed first; a
         // curve's start from a nearby ξ0's.
         let curve = match job {
-            crate::analysis::Job::Map { xi0, .. } => app.charts.curve(xi0, settings),
-            crate::analysis::Job::Curve { xi0 } => app.charts.near_curve(xi0, settings),
+            crate::analysis::Job::Map { xi0, .. } => app.charts().curve(xi0, settings),
+            crate::analysis::Job::Curve { xi0 } => app.charts().near_curve(xi0, settings),
             _ => None,
         }
         .map(|c| c.ve.clone());
@@ -293,6 +299,22 @@ pub fn sync(app: &mut App, analysis: &mut Analysis, compute: bool) -> bool {
         app.invalidate();
     }
     moved
+}
+
+/// What the shell does with the effects `update` returns, each reported back to the app as a
+/// notice: written ([`Write`]), answered with what would have been written (a replay:
+/// `crate::replay::Answer`), refused (a guest over SSH: `crate::serve::explorer::Guest`).
+pub trait Carry {
+    fn carry(&mut self, app: &mut App, effects: Effects);
+}
+
+/// Effects carried out for real: files written ([`carry_out`]).
+pub struct Write;
+
+impl Carry for Write {
+    fn carry(&mut self, app: &mut App, effects: Effects) {
+        carry_out(app, effects);
+    }
 }
 
 /// Carries out what `update` asked for: a scene saved to a new file, the page on screen

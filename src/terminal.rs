@@ -1,7 +1,7 @@
 //! The terminal: raw mode, alternate screen, mouse capture, bracketed paste; always restored
-//! (quit, panic, SIGTERM, SIGHUP) and taken back on SIGCONT. The event loop ticks in wall-clock
-//! time while playing, draws at most one frame in flight (see [`pace`]) and blocks when paused
-//! (no redraw when idle).
+//! (quit, panic, SIGTERM, SIGHUP) and taken back on SIGCONT. The event loop is the one every
+//! explorer runs ([`drive`]); here its terminal side: at most one frame in flight (see
+//! [`pace`]), keys read by [`input`], Ctrl-Z and the signals.
 
 use crate::app::App;
 use crate::session::{Session, SharedRecorder, lock, new_recorder};
@@ -20,15 +20,13 @@ use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, AtomicI32, Ordering};
 use std::time::{Duration, Instant};
 
+pub mod drive;
 pub mod input;
 pub mod pace;
 pub mod plain;
+use drive::{Link, Turn, Waited, drive};
 use input::Reader;
-use pace::{Clock, Flight};
-
-/// How often the loop looks for the analysis pages' pieces while they are coming: a key's page
-/// completes within this of its last piece (not a tick, 33 ms, later).
-pub const PIECES_POLL: Duration = Duration::from_millis(2);
+use pace::Flight;
 
 /// Puts the terminal back as it was. Safe to call more than once and on a dead terminal.
 pub fn restore() {
@@ -106,14 +104,6 @@ fn hung_up() -> bool {
         && fds[0]
             .revents()
             .intersects(PollFlags::HUP | PollFlags::ERR | PollFlags::NVAL)
-}
-
-/// Suspends the process (SIGTSTP's default action) with the terminal as it was, and takes
-/// the explorer's screen back when it continues.
-fn suspend(session: &mut Session<CrosstermBackend<Stdout>>) -> io::Result<()> {
-    restore();
-    signal_hook::low_level::emulate_default_handler(signal_hook::consts::SIGTSTP)?;
-    resume(session)
 }
 
 /// Continued (SIGCONT, also after a SIGSTOP this process never saw, whose shell put the
@@ -283,123 +273,161 @@ fn watch_signals(flags: Arc<Flags>, lost: Lost) -> io::Result<()> {
     Ok(())
 }
 
-fn event_loop(
-    session: &mut Session<CrosstermBackend<Stdout>>,
+/// The terminal's side of the loop ([`drive`]): signals, suspension, the frame in flight (see
+/// [`pace`]), and the keys, the mouse, pastes (bounded) and resizes, read here and not by
+/// crossterm.
+struct Local<'a> {
+    flags: &'a Flags,
+    input: Reader,
+    flight: Flight,
     fps: u32,
+    mouse_on: bool,
+}
+
+/// Whether `ev` is Ctrl-Z: raw mode turns off the terminal's own, so the loop suspends as it
+/// would.
+fn ctrl_z(ev: &Event) -> bool {
+    matches!(ev, Event::Key(k)
+        if k.code == KeyCode::Char('z') && k.modifiers.contains(KeyModifiers::CONTROL))
+}
+
+/// A signal's word to the loop: stop, or suspend (`suspend`) and take the terminal back
+/// (`resume`, also after a SIGSTOP this process never saw).
+fn signalled(
     flags: &Flags,
-) -> io::Result<()> {
-    let mut clock = Clock::new(Instant::now());
-    let mut flight = Flight::default();
-    let mut last_frame: Option<Instant> = None;
-    let mut mouse_on = session.app.mouse_capture();
-    // Keys, the mouse, pastes (bounded) and resizes, read here and not by crossterm.
-    let mut input = Reader::new()?;
-    while !session.app.should_quit() && !flags.stop.load(Ordering::Relaxed) {
-        if flags.suspend.swap(false, Ordering::Relaxed) {
-            suspend(session)?;
-            clock.restart(Instant::now());
+    suspend: impl FnOnce() -> io::Result<()>,
+    resume: impl FnOnce() -> io::Result<()>,
+) -> io::Result<Turn> {
+    if flags.stop.load(Ordering::Relaxed) {
+        return Ok(Turn::Stop(String::new()));
+    }
+    if flags.suspend.swap(false, Ordering::Relaxed) {
+        suspend()?;
+        flags.resume.store(true, Ordering::Relaxed);
+    }
+    if flags.resume.swap(false, Ordering::Relaxed) {
+        resume()?;
+        return Ok(Turn::Resumed);
+    }
+    Ok(Turn::Go)
+}
+
+/// Everything standard input has queued, after a wait of up to `timeout` for the first.
+fn read_all(input: &mut Reader, timeout: Duration) -> io::Result<Vec<Event>> {
+    let mut queued = vec![];
+    if input.poll(timeout)? {
+        // Take everything queued before drawing again, so held keys cannot lag.
+        queued.extend(std::iter::from_fn(|| input.read()));
+        while input.poll(Duration::ZERO)? {
+            queued.extend(std::iter::from_fn(|| input.read()));
         }
-        if flags.resume.swap(false, Ordering::Relaxed) {
-            resume(session)?;
-        }
-        // A lesson's steps that are due (never a wait: it holds as state, the loop goes on).
-        session.pump_lesson()?;
-        if session.app.mouse_capture() != mouse_on {
-            mouse_on = session.app.mouse_capture();
-            if mouse_on {
+    }
+    Ok(queued)
+}
+
+impl Link<CrosstermBackend<Stdout>> for Local<'_> {
+    fn turn(&mut self, session: &mut Session<CrosstermBackend<Stdout>>) -> io::Result<Turn> {
+        signalled(
+            self.flags,
+            || {
+                restore();
+                signal_hook::low_level::emulate_default_handler(signal_hook::consts::SIGTSTP)
+            },
+            || resume(session),
+        )
+    }
+
+    fn free(&self) -> bool {
+        !self.flight.awaiting()
+    }
+
+    fn gap(&self) -> Duration {
+        self.flight.gap(self.fps)
+    }
+
+    fn show(
+        &mut self,
+        session: &mut Session<CrosstermBackend<Stdout>>,
+        draw: bool,
+    ) -> io::Result<bool> {
+        if session.app.mouse_capture() != self.mouse_on {
+            self.mouse_on = session.app.mouse_capture();
+            if self.mouse_on {
                 execute!(session.term.backend_mut(), EnableMouseCapture)?;
             } else {
                 execute!(session.term.backend_mut(), DisableMouseCapture)?;
             }
         }
-        // Time passes only through ticks, and a recording counts them (a replay of it needs
-        // no clock); as many are due as wall-clock time says, however few frames get drawn.
-        if session.is_playing() {
-            for _ in 0..clock.due(Instant::now()) {
-                if !session.is_playing() {
-                    break;
-                }
-                session.tick();
-                // A lesson's `tick N` ends on its own tick, not a frame later.
-                session.pump_lesson()?;
-            }
-        }
-        // Pieces are taken as they arrive, not at the next tick: a page's next job (the map
-        // after its curve) is asked for at once, and its last piece drawn without waiting.
-        if session.analysis.busy() {
-            session.ask_analysis();
-        }
-        let gap = flight.gap(fps);
-        let frame_due = last_frame.map_or(Instant::now(), |t| t + gap);
-        if session.app.needs_redraw() && !flight.awaiting() && Instant::now() >= frame_due {
+        if draw {
             execute!(session.term.backend_mut(), BeginSynchronizedUpdate)?;
             session.draw()?;
             execute!(session.term.backend_mut(), EndSynchronizedUpdate)?;
-            last_frame = Some(Instant::now());
-            flight.sent();
+            self.flight.sent();
         }
-        let got_input = if flight.awaiting() {
-            // Nothing more is written until the frame has arrived; keys stay queued.
-            pace::ask(&mut flight, &mut input)?;
-            input.poll(Duration::ZERO)?
-        } else {
-            // Paused and drawn: wait for input (waking now and then only to notice signals).
-            let mut wake = Instant::now() + Duration::from_millis(250);
-            if session.is_playing() {
-                wake = wake.min(clock.next());
-            }
-            if session.analysis.busy() {
-                wake = wake.min(Instant::now() + PIECES_POLL);
-            }
-            if session.app.needs_redraw() {
-                wake = wake.min(frame_due.max(Instant::now()));
-            }
-            input.poll(wake.saturating_duration_since(Instant::now()))?
-        };
-        if got_input {
-            // Take everything queued before drawing again, so held keys cannot lag.
-            let mut queued: Vec<Event> = std::iter::from_fn(|| input.read()).collect();
-            while input.poll(Duration::ZERO)? {
-                queued.extend(std::iter::from_fn(|| input.read()));
-            }
-            for ev in pace::coalesce_drags(queued) {
-                match ev {
-                    // Raw mode turns off the terminal's own Ctrl-Z: suspend as it would.
-                    Event::Key(k)
-                        if k.code == KeyCode::Char('z')
-                            && k.modifiers.contains(KeyModifiers::CONTROL) =>
-                    {
-                        flags.suspend.store(true, Ordering::Relaxed);
-                    }
-                    Event::Key(k) => session.key(k),
-                    Event::Mouse(m) => {
-                        // The mouse maps through the canvas as drawn, so a changed screen is
-                        // drawn first: a frame in flight like any other.
-                        let draws = session.app.needs_redraw();
-                        if draws {
-                            execute!(session.term.backend_mut(), BeginSynchronizedUpdate)?;
-                        }
-                        session.mouse(m)?;
-                        if draws {
-                            execute!(session.term.backend_mut(), EndSynchronizedUpdate)?;
-                            last_frame = Some(Instant::now());
-                            flight.sent();
-                        }
-                    }
-                    Event::Resize(w, h) => session.resized(w, h),
-                    // Pasted text is not keys (a `q` in it would quit): ignored, and left out
-                    // of the recording as it leaves the screen alone. At the save prompt it
-                    // is the name: its letters are typed (and recorded as such).
-                    Event::Paste(text) => {
-                        session.paste(&text);
-                    }
-                    _ => {}
-                }
-            }
-        }
-        if !session.is_playing() {
-            clock.restart(Instant::now());
-        }
+        Ok(draw)
     }
-    Ok(())
+
+    fn wait(
+        &mut self,
+        _session: &mut Session<CrosstermBackend<Stdout>>,
+        wake: Instant,
+    ) -> io::Result<Waited> {
+        let timeout = if self.flight.awaiting() {
+            // Nothing more is written until the frame has arrived; keys stay queued.
+            pace::ask(&mut self.flight, &mut self.input)?;
+            Duration::ZERO
+        } else {
+            wake.saturating_duration_since(Instant::now())
+        };
+        read_all(&mut self.input, timeout).map(Waited::Events)
+    }
+
+    fn apply(
+        &mut self,
+        session: &mut Session<CrosstermBackend<Stdout>>,
+        ev: Event,
+    ) -> io::Result<bool> {
+        match ev {
+            ev if ctrl_z(&ev) => self.flags.suspend.store(true, Ordering::Relaxed),
+            Event::Key(k) => session.key(k),
+            Event::Mouse(m) => {
+                // The mouse maps through the canvas as drawn, so a changed screen is drawn
+                // first: a frame in flight like any other.
+                let draws = session.app.needs_redraw();
+                if draws {
+                    execute!(session.term.backend_mut(), BeginSynchronizedUpdate)?;
+                }
+                session.mouse(m)?;
+                if draws {
+                    execute!(session.term.backend_mut(), EndSynchronizedUpdate)?;
+                    self.flight.sent();
+                }
+                return Ok(draws);
+            }
+            Event::Resize(w, h) => session.resized(w, h),
+            // Pasted text is not keys (a `q` in it would quit): ignored, and left out of the
+            // recording as it leaves the screen alone. At the save prompt it is the name: its
+            // letters are typed (and recorded as such).
+            Event::Paste(text) => {
+                session.paste(&text);
+            }
+            _ => {}
+        }
+        Ok(false)
+    }
+}
+
+fn event_loop(
+    session: &mut Session<CrosstermBackend<Stdout>>,
+    fps: u32,
+    flags: &Flags,
+) -> io::Result<()> {
+    let mut local = Local {
+        flags,
+        input: Reader::new()?,
+        flight: Flight::default(),
+        fps,
+        mouse_on: session.app.mouse_capture(),
+    };
+    drive(session, &mut local).map(|_| ())
 }

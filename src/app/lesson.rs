@@ -19,10 +19,6 @@ pub struct Lesson {
     pub done: bool,
     /// Questions asked so far: which one is on screen (others' answers are to that one).
     pub asked: u32,
-    /// Set by the shell when the keys that move the lesson are not this screen's user's (a
-    /// served class's follower, led by the presenter): the user answers on their own, and
-    /// the caption speaks to that answer ([`Question::own`]).
-    pub apart: bool,
     /// Set by the shell that gathers others' answers to the question on screen (a served
     /// class's presenter): shown under the question.
     pub tally: Option<Tally>,
@@ -54,7 +50,7 @@ pub struct Question {
     /// The τ on screen when it was asked: unanswered, the run answers only once time has
     /// moved on from there (a run decided at once must not give the answer away).
     pub asked_at: f64,
-    /// The user's own answer when they answer apart ([`Lesson::apart`]); the keys' answer
+    /// The user's own answer when they answer apart ([`App::apart`]); the keys' answer
     /// still moves the lesson on.
     pub own: Option<bool>,
 }
@@ -130,8 +126,29 @@ impl App {
         self.dirty = true;
     }
 
+    /// Whether the keys that move the lesson are not this screen's user's (a served class's
+    /// follower, led by the presenter, as the shell told: [`App::tell_class`]): the user answers
+    /// on their own, and the caption speaks to that answer ([`Question::own`]).
+    pub fn apart(&self) -> bool {
+        self.class == super::state::InClass::Following
+    }
+
+    /// The lesson's name, for the caption's title (the shell runs it).
+    pub fn tell_lesson(&mut self, name: &str) {
+        self.lesson.name = Some(name.to_string());
+        self.dirty = true;
+    }
+
+    /// The shell's word that the lesson's script has run to its end.
+    pub fn end_lesson(&mut self) {
+        if !self.lesson.done {
+            self.lesson.done = true;
+            self.dirty = true;
+        }
+    }
+
     /// The user's own answer to the open question, when they answer apart (see
-    /// [`Lesson::apart`]); the first stands. Whether it was taken.
+    /// [`App::apart`]); the first stands. Whether it was taken.
     pub fn answer_apart(&mut self, yes: bool) -> bool {
         let open = self.lesson.prompt() == Prompt::Answer;
         match self.lesson.question.as_mut() {
@@ -195,13 +212,14 @@ impl App {
         // user answering apart, only what is theirs to do. What y and n mean is said with
         // them, however the question is worded ("will it stay?" reads the other way).
         let own = l.question.as_ref().and_then(|q| q.own);
+        let apart = self.apart();
         let prompt = match (l.prompt(), self.playing) {
-            (Prompt::Answer, _) if l.apart && own.is_some() => {
+            (Prompt::Answer, _) if apart && own.is_some() => {
                 Some("answered · the presenter goes on")
             }
-            (Prompt::Answer, _) if l.apart => Some("y escapes · n stays"),
-            (Prompt::GoOn, _) if l.apart => Some("the presenter goes on"),
-            (Prompt::None, _) if l.apart && !l.done => None,
+            (Prompt::Answer, _) if apart => Some("y escapes · n stays"),
+            (Prompt::GoOn, _) if apart => Some("the presenter goes on"),
+            (Prompt::None, _) if apart && !l.done => None,
             (Prompt::Answer, true) => Some("y escapes · n stays · Space pauses"),
             (Prompt::Answer, false) => Some("y escapes · n stays · Space plays"),
             (Prompt::GoOn, true) => Some("Enter: go on · Space pauses"),
@@ -234,7 +252,7 @@ impl App {
     /// whether it was right and how the run ended.
     fn verdict(&self, q: &Question) -> Option<String> {
         // Answering apart, the user's own answer is the one spoken to (none: the run's word).
-        let answer = if self.lesson.apart { q.own } else { q.answer };
+        let answer = if self.apart() { q.own } else { q.answer };
         if answer.is_none() && self.now().tau <= q.asked_at {
             return None;
         }
@@ -247,7 +265,7 @@ impl App {
         };
         // Answering apart, the run's word waits for the keys' (the others may not have
         // answered yet: the outcome is not given away).
-        if self.lesson.apart && q.answer.is_none() && self.now().tau <= q.asked_at {
+        if self.apart() && q.answer.is_none() && self.now().tau <= q.asked_at {
             return answer.map(|a| format!("You said {}.", said(a)));
         }
         let escaped = match self.sim().outcome_now() {

@@ -95,30 +95,30 @@ pub struct App {
     /// through [`App::initial`], [`App::sim`] and the like, changed only through its
     /// setters, which restart the runs.
     pub(super) exploration: super::exploration::Exploration,
-    pub playing: bool,
-    pub speed: f64,
+    pub(super) playing: bool,
+    pub(super) speed: f64,
     /// How it is shown: page, frame, framing, arrows, help.
-    pub view: super::view::View,
-    pub mouse: bool,
-    pub notice: Option<String>,
+    pub(super) view: super::view::View,
+    pub(super) mouse: bool,
+    pub(super) notice: Option<String>,
     /// How many times the readouts were asked for in words (`I`): plain mode prints them.
-    pub readouts_asked: u64,
+    pub(super) readouts_asked: u64,
     /// The line being typed (a name to save under, `S`, or values, `:`), while it is open.
-    pub prompt: Option<super::prompt::Prompt>,
+    pub(super) prompt: Option<super::prompt::Prompt>,
     /// Where `s` saves (`S` beside it, `E` in its folder).
-    pub save_path: PathBuf,
-    pub quit: bool,
+    pub(super) save_path: PathBuf,
+    pub(super) quit: bool,
     /// What the analysis pages have received (the shell's worker computes them).
-    pub charts: Charts,
+    pub(super) charts: Charts,
     /// A real table (`--mu`, `--rpm`, `--g` or the scene's `[units]`): readouts in SI too.
-    pub units: Option<crate::engine::units::Units>,
+    pub(super) units: Option<crate::engine::units::Units>,
     /// The μ measurement of the rest-radius page (Eq. 22): Ω in rad/s and r0c in metres.
-    pub mu_probe: (f64, f64),
+    pub(super) mu_probe: (f64, f64),
     /// Runs pinned beside the one on screen (`b`), oldest first, at most
     /// [`crate::pin::MAX_PINS`].
-    pub pins: Vec<crate::pin::Pin>,
+    pub(super) pins: Vec<crate::pin::Pin>,
     /// A narrated lesson's caption, question and wait.
-    pub lesson: super::lesson::Lesson,
+    pub(super) lesson: super::lesson::Lesson,
     /// Where this screen's user stands in a served class (the shell says: `tell_class`).
     pub(crate) class: InClass,
     pub(crate) dirty: bool,
@@ -136,6 +136,91 @@ pub struct App {
 }
 
 impl App {
+    /// Whether time plays (Space; [`App::is_playing`] adds a paper's run catching up).
+    pub fn playing(&self) -> bool {
+        self.playing
+    }
+
+    /// How it is shown: page, frame, framing, arrows, help.
+    pub fn view(&self) -> &super::view::View {
+        &self.view
+    }
+
+    /// How fast time plays: a power of two, ×1/64 to ×256.
+    pub fn speed(&self) -> f64 {
+        self.speed
+    }
+
+    /// The last notice: what was done, or why not.
+    pub fn notice(&self) -> &Option<String> {
+        &self.notice
+    }
+
+    /// How many times the readouts were asked for in words (`I`): plain mode prints them.
+    pub fn readouts_asked(&self) -> u64 {
+        self.readouts_asked
+    }
+
+    /// The line being typed (a name to save under, `S`, or values, `:`), while it is open.
+    pub fn prompt(&self) -> &Option<super::prompt::Prompt> {
+        &self.prompt
+    }
+
+    /// Where `s` saves (`S` beside it, `E` in its folder).
+    pub fn save_path(&self) -> &std::path::Path {
+        &self.save_path
+    }
+
+    /// The shell's word on where `s` saves (`S` beside it, `E` in its folder).
+    pub fn tell_save_path(&mut self, path: PathBuf) {
+        self.save_path = path;
+    }
+
+    /// What the analysis pages have received.
+    pub fn charts(&self) -> &Charts {
+        &self.charts
+    }
+
+    /// A real table's scales, if it has them: readouts in SI too.
+    pub fn units(&self) -> Option<crate::engine::units::Units> {
+        self.units
+    }
+
+    /// The μ measurement of the rest-radius page (Eq. 22): Ω in rad/s and r0c in metres.
+    pub fn mu_probe(&self) -> (f64, f64) {
+        self.mu_probe
+    }
+
+    /// The runs pinned beside the one on screen, oldest first.
+    pub fn pins(&self) -> &[crate::pin::Pin] {
+        &self.pins
+    }
+
+    /// A narrated lesson's caption, question and wait.
+    pub fn lesson(&self) -> &super::lesson::Lesson {
+        &self.lesson
+    }
+
+    /// The shell's word on a real table's scales (`--mu`, `--rpm`, `--g`, the configuration's):
+    /// readouts in SI too. None: the scene's own, if it has them, are dropped.
+    pub fn tell_units(&mut self, units: Option<crate::engine::units::Units>) {
+        self.units = units;
+        self.dirty = true;
+    }
+
+    /// The shell's word on how fast time plays at the start (`--speed`, the configuration's).
+    pub fn tell_speed(&mut self, speed: f64) {
+        self.speed = speed;
+        self.dirty = true;
+    }
+
+    /// The shell's word on whether it reads the mouse (`--mouse`, `--no-mouse`; always over
+    /// ssh).
+    pub fn tell_mouse(&mut self, on: bool) {
+        self.mouse = on;
+        self.dirty = true;
+    }
+
     /// The shell's word on where this screen's user stands in a served class.
     pub fn tell_class(&mut self, class: InClass) {
         if self.class != class {

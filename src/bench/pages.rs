@@ -133,7 +133,7 @@ pub fn page_times(reps: usize, presses: usize) -> Result<PageTimes, Error> {
     let v0_max = Charts::map_v0_max(&c, Release::Velocity, 0.5);
     let mut app = App::new(crate::scene::Scene::default_scene());
     app.resize(SIZE.0, SIZE.1);
-    app.view.page = Page::OutcomeMap;
+    open(&mut app, Page::OutcomeMap);
     let grid = crate::ui::pages::map_grid(&app, v0_max).ok_or(Error::invalid("no map fits"))?;
     let cells: Vec<usize> = (0..grid.0 * grid.1).collect();
     let cell = |k: &usize, curve: Option<&[Option<Speeds>]>| {
@@ -173,6 +173,16 @@ pub fn page_times(reps: usize, presses: usize) -> Result<PageTimes, Error> {
     })
 }
 
+/// Turns `app`'s pages to `page`, as the keys do.
+fn open(app: &mut App, page: Page) {
+    for _ in 0..16 {
+        if app.view().page == page {
+            return;
+        }
+        crate::app::update(app, crate::app::Action::NextPage);
+    }
+}
+
 fn dark() -> Result<crate::theme::Theme, Error> {
     crate::theme::Theme::builtin("dark").ok_or(Error::invalid("no dark theme"))
 }
@@ -180,7 +190,7 @@ fn dark() -> Result<crate::theme::Theme, Error> {
 /// A session at [`SIZE`] on `page`, with its workers, and the key `x`.
 fn session_on(page: Page) -> Result<(Session<ratatui::backend::TestBackend>, Chord), Error> {
     let mut app = App::new(crate::scene::Scene::default_scene());
-    app.view.page = page;
+    open(&mut app, page);
     let x = Chord::new(
         crossterm::event::KeyCode::Char('x'),
         crossterm::event::KeyModifiers::NONE,
@@ -238,7 +248,7 @@ fn held_key(presses: usize) -> Result<(usize, f64), Error> {
                     "the held key's last page did not complete in 10 s".into(),
                 ));
             }
-            std::thread::sleep(crate::terminal::PIECES_POLL);
+            std::thread::sleep(crate::terminal::drive::PIECES_POLL);
         }
     }
     Ok((completed, last_ms))
@@ -272,7 +282,7 @@ fn key_to_page(page: Page, presses: usize) -> Result<[(f64, f64); 3], Error> {
 }
 
 /// Waits until the page on screen needs nothing more and is drawn, taking pieces as the
-/// explorer's loop does (every `terminal::PIECES_POLL`) and drawing as they arrive (at most 60
+/// explorer's loop does (every `terminal::drive::PIECES_POLL`) and drawing as they arrive (at most 60
 /// frames a second); gives up after 10 s. How long it waited after the curve at
 /// the app's ξ0 was complete.
 fn wait_for_page(session: &mut Session<ratatui::backend::TestBackend>) -> Result<Duration, Error> {
@@ -286,7 +296,7 @@ fn wait_for_page(session: &mut Session<ratatui::backend::TestBackend>) -> Result
         let settings = crate::analysis::settings_for(app.settings());
         if curve.is_none()
             && app
-                .charts
+                .charts()
                 .curve(app.initial().xi0, settings)
                 .is_some_and(Curve::complete)
         {
@@ -303,6 +313,6 @@ fn wait_for_page(session: &mut Session<ratatui::backend::TestBackend>) -> Result
         if start.elapsed() > Duration::from_secs(10) {
             return Err(Error::Failed("the page did not complete in 10 s".into()));
         }
-        std::thread::sleep(crate::terminal::PIECES_POLL);
+        std::thread::sleep(crate::terminal::drive::PIECES_POLL);
     }
 }

@@ -167,6 +167,6 @@ fn prepared(
         force: false,
     };
     let (mut app, opts, steps) = prepare(&lesson.script, &replay)?;
-    app.lesson.name = Some(lesson.name.clone());
+    app.tell_lesson(&lesson.name);
     Ok((app, opts, steps))
 }

@@ -140,23 +140,25 @@ fn explore(
     let mut app = crate::app::App::new(scene);
     // Units: the flags, else the scene's own, else the configuration's.
     if units.is_some() {
-        app.units = units;
-    } else if app.units.is_none() {
-        app.units = config.units;
+        app.tell_units(units);
+    } else if app.units().is_none() {
+        app.tell_units(config.units);
     }
     // Speed: the flag, else a saved scene's own, else the configuration's.
     if let Some(x) = cli
         .speed
         .or(config.speed.filter(|_| app.scene().view.is_none()))
     {
-        app.speed = x;
+        app.tell_speed(x);
     }
-    app.playing = !(cli.paused || config.paused == Some(true));
-    app.mouse = match (cli.no_mouse, cli.mouse) {
+    if cli.paused || config.paused == Some(true) {
+        app.pause();
+    }
+    app.tell_mouse(match (cli.no_mouse, cli.mouse) {
         (true, _) => false,
         (_, true) => true,
         _ => config.mouse.unwrap_or(true),
-    };
+    });
     // The terminal died under the explorer: the recording is kept all the same, and where
     // it went is said (the terminal is restored by then).
     let save = recording.clone().map(|r| {

@@ -1,17 +1,17 @@
-//! One client's explorer: a [`Session`] on a `Screen`, on its own thread, with its own tick
-//! clock. A frame is drawn only once the last one has been taken by the channel (its flow
+//! One client's explorer: a [`Session`] on a `Screen`, on its own thread, in the explorer's
+//! one loop (`terminal::drive`) with its own tick clock. A frame is drawn only once the last one has been taken by the channel (its flow
 //! control: a client that reads slowly gets fewer frames, never older ones), while τ keeps
 //! wall-clock time. A follower applies the presenter's keys, mouse actions and ticks instead of
 //! its clock.
 
-use super::keys::Keys;
 use super::screen::{Screen, Window};
 use super::{In, Lead, Out, Shared};
 use crate::app::lesson::Prompt;
 use crate::app::state::InClass;
 use crate::app::{App, Chord, Effect, Effects};
-use crate::session::Session;
-use crate::terminal::pace::{Clock, coalesce_drags};
+use crate::session::{Pumped, Session};
+use crate::terminal::drive::{Link, Turn, Waited, drive};
+use crate::terminal::input::Decoder;
 use crossterm::event::{
     DisableBracketedPaste, DisableMouseCapture, EnableBracketedPaste, EnableMouseCapture, Event,
     KeyCode, KeyModifiers,
@@ -46,6 +46,14 @@ pub struct Client {
 }
 
 /// A guest writes nothing on the server: saving and exporting are refused with a notice.
+pub struct Guest;
+
+impl crate::session::Carry for Guest {
+    fn carry(&mut self, app: &mut App, effects: Effects) {
+        guest(app, effects);
+    }
+}
+
 fn guest(app: &mut App, effects: Effects) {
     for effect in effects {
         let notice = refused(app, effect);
@@ -67,6 +75,14 @@ fn refused(app: &App, effect: Effect) -> String {
 /// The presenter with `--exports`: its `E` writes the page there (its app's save path is
 /// set in that directory, so the effect names it), within [`super::EXPORTS`], under the
 /// files' policy; the rest as a guest.
+struct Presenter;
+
+impl crate::session::Carry for Presenter {
+    fn carry(&mut self, app: &mut App, effects: Effects) {
+        presenter(app, effects);
+    }
+}
+
 fn presenter(app: &mut App, effects: Effects) {
     for effect in effects {
         let notice = match effect {
@@ -131,7 +147,7 @@ pub fn run(
         .filter(|_| shared.presents(id));
     let scene = lesson.map_or_else(crate::scene::Scene::default_scene, |l| l.scene.clone());
     let mut app = App::new(scene);
-    app.mouse = true;
+    app.tell_mouse(true);
     let mut s = match Session::new(app, theme, Screen::new(w, h), None) {
         Ok(s) => s,
         Err(_) => {
@@ -139,7 +155,7 @@ pub fn run(
             return;
         }
     };
-    s.carry = guest;
+    s.carry_with(Guest);
     if let Some(l) = lesson {
         s.start_lesson(l.driver.clone());
     }
@@ -147,8 +163,9 @@ pub fn run(
     // lesson at the same step (the followers, waiting, are handed this).
     if let Some(class) = shared.take_up_class(id) {
         adopt(&mut s, class);
-        s.app.lesson.apart = false;
-        s.app.notice = Some("you present: the class as it was left, and its followers".into());
+        s.app.tell_class(InClass::Alone);
+        s.app
+            .report("you present: the class as it was left, and its followers".into());
     }
     if let Some(dir) = shared
         .options
@@ -156,17 +173,18 @@ pub fn run(
         .as_ref()
         .filter(|_| shared.presents(id))
     {
-        s.app.save_path = dir.join(crate::app::state::SAVE_PATH);
-        s.carry = presenter;
+        s.app.tell_save_path(dir.join(crate::app::state::SAVE_PATH));
+        s.carry_with(Presenter);
     }
     let mut run = Run {
         shared: &shared,
         id,
         out: &out,
-        keys: Keys::default(),
-        clock: Clock::new(Instant::now()),
+        inbox: &inbox,
+        // A client sends a terminal's sequence whole, in one message: a lone ESC ending one
+        // is the Esc key at once.
+        keys: Decoder::with_esc_wait(Duration::ZERO),
         in_flight: None,
-        last_frame: None,
         last_input: Instant::now(),
         mouse_on: s.app.mouse_capture(),
         following: false,
@@ -174,9 +192,7 @@ pub fn run(
         size,
         resized: false,
     };
-    let said = run
-        .start(&mut s)
-        .and_then(|()| run.event_loop(&mut s, &inbox));
+    let said = run.start(&mut s).and_then(|()| drive(&mut s, &mut run));
     let why = said.unwrap_or_else(|e| format!("error: {e}"));
     let mut bytes = s
         .term
@@ -220,11 +236,11 @@ struct Run<'a> {
     shared: &'a Shared,
     id: u64,
     out: &'a Outbox,
-    keys: Keys,
-    clock: Clock,
+    /// The connection's, the writer's and the class's messages.
+    inbox: &'a Receiver<In>,
+    keys: Decoder,
     /// When the frame the channel has not yet taken was handed to it.
     in_flight: Option<Instant>,
-    last_frame: Option<Instant>,
     last_input: Instant,
     mouse_on: bool,
     /// Applying the presenter's keys and ticks.
@@ -252,106 +268,22 @@ impl Run<'_> {
         Ok(())
     }
 
-    /// Returns why it ended, to be said to the client.
-    fn event_loop(&mut self, s: &mut Session<Screen>, inbox: &Receiver<In>) -> io::Result<String> {
-        let limits = self.shared.limits;
-        let gap = Duration::from_secs(1) / FPS;
-        loop {
-            if s.app.should_quit() {
-                return Ok("bye".into());
-            }
-            let now = Instant::now();
-            if !self.following && s.is_playing() {
-                for _ in 0..self.clock.due(now) {
-                    if !s.is_playing() {
-                        break;
-                    }
-                    s.tick();
-                    self.shared.lead(self.id, Lead::Tick);
-                    self.pump(s)?;
-                }
-            }
-            // A follower's lesson moves only when the presenter's does (`Lead::Lesson`).
-            if !self.following {
-                self.pump(s)?;
-            }
-            self.tally(s);
-            self.mouse(s)?;
-            let frame_due = self.last_frame.map_or(now, |t| t + gap);
-            if self.in_flight.is_none() {
-                if self.resized && now >= frame_due {
-                    self.resize(s);
-                }
-                if s.app.needs_redraw() && now >= frame_due {
-                    // The analysis pages are computed through the gate (as many at once as
-                    // cores); the frame itself is drawn outside it.
-                    self.shared.gate.run(|| s.sync_analysis());
-                    queue!(s.term.backend_mut(), BeginSynchronizedUpdate)?;
-                    s.draw()?;
-                    queue!(s.term.backend_mut(), EndSynchronizedUpdate)?;
-                    self.last_frame = Some(now);
-                    self.shared.counts.frames.fetch_add(1, Ordering::Relaxed);
-                }
-                if let Some(bytes) = s.term.backend_mut().take(&mut self.spare)
-                    && self.out.frame(bytes)
-                {
-                    self.in_flight = Some(now);
-                }
-            }
-            if self.in_flight.is_some_and(|t| now - t > limits.stall) {
-                return Ok("your connection stopped taking the screen".into());
-            }
-            // Following the class is attending it: a student who watches and types nothing
-            // for the idle time is not idle.
-            if self.following {
-                self.last_input = now;
-            }
-            if now - self.last_input > limits.idle {
-                return Ok(format!("idle for {} s: closed", limits.idle.as_secs()));
-            }
-            let mut wake = now + Duration::from_millis(250);
-            if s.is_playing() && !self.following {
-                wake = wake.min(self.clock.next());
-            }
-            if (s.app.needs_redraw() || self.resized) && self.in_flight.is_none() {
-                wake = wake.min(frame_due);
-            }
-            if let Some(d) = self.keys.deadline() {
-                wake = wake.min(d);
-            }
-            match inbox.recv_timeout(wake.saturating_duration_since(now)) {
-                Ok(msg) => {
-                    if let Some(why) = self.receive(s, msg)? {
-                        return Ok(why);
-                    }
-                }
-                Err(RecvTimeoutError::Timeout) => {
-                    let events = self.keys.expire(Instant::now());
-                    self.events(s, events)?;
-                }
-                Err(RecvTimeoutError::Disconnected) => return Ok(String::new()),
-            }
-            if !s.is_playing() || self.following {
-                self.clock.restart(Instant::now());
-            }
-        }
-    }
-
-    /// One message from the connection, the writer or the class; `Some` ends the session.
-    fn receive(&mut self, s: &mut Session<Screen>, msg: In) -> io::Result<Option<String>> {
+    /// One message from the connection, the writer or the class: the keys it brought, or why
+    /// the session ends.
+    fn receive(&mut self, s: &mut Session<Screen>, msg: In) -> io::Result<Waited> {
         match msg {
             In::Data(bytes) => {
                 let now = Instant::now();
                 self.last_input = now;
-                let events = self.keys.feed(&bytes, now);
-                self.events(s, events)?;
+                self.keys.feed(&bytes, false, now);
+                return Ok(Waited::Events(self.keys.events()));
             }
             In::Resize => self.resized = true,
             In::Sent(buffer) => {
                 self.in_flight = None;
                 self.spare = buffer;
             }
-            In::Close(why) => return Ok(Some(why)),
+            In::Close(why) => return Ok(Waited::Stop(why)),
             In::Lead(lead) if self.following => match lead {
                 Lead::Key(chord) => s.press(chord),
                 Lead::Act(action) => s.act(action),
@@ -364,7 +296,6 @@ impl Run<'_> {
             In::Unled if self.following => {
                 self.following = false;
                 s.app.tell_class(InClass::Alone);
-                s.app.lesson.apart = false;
                 s.app.report(
                     "the presenter left: on your own until they are back (F2: stay on your own)"
                         .into(),
@@ -374,21 +305,20 @@ impl Run<'_> {
             In::Join(follower) => self.shared.welcome(follower, &s.app, s.lesson()),
             In::Class => {
                 let Some(class) = self.shared.take_class(self.id) else {
-                    return Ok(None);
+                    return Ok(Waited::Events(vec![]));
                 };
                 adopt(s, class);
                 // A follower answers for itself (the answer it gave in class before stepping
                 // out, if this question is open).
-                s.app.lesson.apart = true;
-                if let Some(yes) = self.shared.answered(self.id, s.app.lesson.asked) {
+                s.app.tell_class(InClass::Following);
+                if let Some(yes) = self.shared.answered(self.id, s.app.lesson().asked) {
                     s.app.answer_apart(yes);
                 }
-                s.app.notice = Some(FOLLOWING.into());
+                s.app.report(FOLLOWING.into());
                 self.following = true;
-                s.app.tell_class(InClass::Following);
             }
         }
-        Ok(None)
+        Ok(Waited::Events(vec![]))
     }
 
     /// The client's latest window size, laid out for the frame about to be drawn.
@@ -401,23 +331,10 @@ impl Run<'_> {
         self.shared.counts.layouts.fetch_add(1, Ordering::Relaxed);
     }
 
-    /// The lesson's steps that are due; if it moved, the followers' lessons move alike (a
-    /// question it asked takes answers before any follower can see it).
-    fn pump(&mut self, s: &mut Session<Screen>) -> io::Result<()> {
-        let pumped = s.pump_lesson()?;
-        if pumped.moved {
-            self.tally(s);
-            self.shared.lead(self.id, Lead::Lesson);
-        }
-        // A click the lesson made, in the model's terms: in the same place for every follower.
-        if let Some(action) = pumped.act {
-            self.shared.lead(self.id, Lead::Act(action));
-        }
-        Ok(())
-    }
-
-    fn events(&mut self, s: &mut Session<Screen>, events: Vec<Event>) -> io::Result<()> {
-        for ev in coalesce_drags(events) {
+    /// One event of the client's: keys and the mouse applied and led to the followers; a
+    /// follower's own refused but for F2, its answers, `q` and Ctrl-C.
+    fn event(&mut self, s: &mut Session<Screen>, ev: Event) -> io::Result<()> {
+        {
             match ev {
                 Event::Key(k) if k.code == FOLLOW_KEY && k.modifiers == KeyModifiers::NONE => {
                     self.follow_key(s)
@@ -428,7 +345,7 @@ impl Run<'_> {
                     if self.following
                         && k.modifiers == KeyModifiers::NONE
                         && matches!(k.code, KeyCode::Char('y' | 'n'))
-                        && s.app.lesson.prompt() == Prompt::Answer =>
+                        && s.app.lesson().prompt() == Prompt::Answer =>
                 {
                     self.answer(s, k.code == KeyCode::Char('y'))
                 }
@@ -470,7 +387,7 @@ impl Run<'_> {
         Ok(())
     }
 
-    fn mouse(&mut self, s: &mut Session<Screen>) -> io::Result<()> {
+    fn mouse_capture(&mut self, s: &mut Session<Screen>) -> io::Result<()> {
         if s.app.mouse_capture() != self.mouse_on {
             self.mouse_on = s.app.mouse_capture();
             if self.mouse_on {
@@ -480,5 +397,116 @@ impl Run<'_> {
             }
         }
         Ok(())
+    }
+}
+
+impl Link<Screen> for Run<'_> {
+    fn turn(&mut self, _s: &mut Session<Screen>) -> io::Result<Turn> {
+        let limits = self.shared.limits;
+        let now = Instant::now();
+        if self.in_flight.is_some_and(|t| now - t > limits.stall) {
+            return Ok(Turn::Stop(
+                "your connection stopped taking the screen".into(),
+            ));
+        }
+        // Following the class is attending it: a student who watches and types nothing for
+        // the idle time is not idle.
+        if self.following {
+            self.last_input = now;
+        }
+        if now - self.last_input > limits.idle {
+            return Ok(Turn::Stop(format!(
+                "idle for {} s: closed",
+                limits.idle.as_secs()
+            )));
+        }
+        Ok(Turn::Go)
+    }
+
+    /// A follower's time and lesson move only when the presenter's do (`Lead::Tick`,
+    /// `Lead::Lesson`).
+    fn own_time(&self) -> bool {
+        !self.following
+    }
+
+    fn ticked(&mut self, _s: &mut Session<Screen>) {
+        self.shared.lead(self.id, Lead::Tick);
+    }
+
+    /// If the lesson moved, the followers' lessons move alike (a question it asked takes
+    /// answers before any follower can see it).
+    fn pumped(&mut self, s: &mut Session<Screen>, pumped: Pumped) -> io::Result<()> {
+        if pumped.moved {
+            self.tally(s);
+            self.shared.lead(self.id, Lead::Lesson);
+        }
+        // A click the lesson made, in the model's terms: in the same place for every follower.
+        if let Some(action) = pumped.act {
+            self.shared.lead(self.id, Lead::Act(action));
+        }
+        Ok(())
+    }
+
+    /// The channel has taken the last frame.
+    fn free(&self) -> bool {
+        self.in_flight.is_none()
+    }
+
+    fn gap(&self) -> Duration {
+        Duration::from_secs(1) / FPS
+    }
+
+    fn pending(&self) -> bool {
+        self.resized
+    }
+
+    fn show(&mut self, s: &mut Session<Screen>, draw: bool) -> io::Result<bool> {
+        self.tally(s);
+        self.mouse_capture(s)?;
+        if self.in_flight.is_some() {
+            return Ok(false);
+        }
+        if draw && self.resized {
+            self.resize(s);
+        }
+        let draw = draw && s.app.needs_redraw();
+        if draw {
+            // The analysis pages are computed through the gate (as many at once as cores);
+            // the frame itself is drawn outside it.
+            self.shared.gate.run(|| s.sync_analysis());
+            queue!(s.term.backend_mut(), BeginSynchronizedUpdate)?;
+            s.draw()?;
+            queue!(s.term.backend_mut(), EndSynchronizedUpdate)?;
+            self.shared.counts.frames.fetch_add(1, Ordering::Relaxed);
+        }
+        if let Some(bytes) = s.term.backend_mut().take(&mut self.spare)
+            && self.out.frame(bytes)
+        {
+            self.in_flight = Some(Instant::now());
+        }
+        Ok(draw)
+    }
+
+    fn deadline(&self) -> Option<Instant> {
+        self.keys.deadline()
+    }
+
+    fn wait(&mut self, s: &mut Session<Screen>, wake: Instant) -> io::Result<Waited> {
+        match self
+            .inbox
+            .recv_timeout(wake.saturating_duration_since(Instant::now()))
+        {
+            Ok(msg) => self.receive(s, msg),
+            Err(RecvTimeoutError::Timeout) => {
+                self.keys.expire(Instant::now());
+                Ok(Waited::Events(self.keys.events()))
+            }
+            Err(RecvTimeoutError::Disconnected) => Ok(Waited::Stop(String::new())),
+        }
+    }
+
+    fn apply(&mut self, s: &mut Session<Screen>, ev: Event) -> io::Result<bool> {
+        self.event(s, ev)?;
+        Ok(false)
     }
 }

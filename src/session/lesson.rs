@@ -37,9 +37,9 @@ impl<B: Backend> Session<B> {
         let Some(mut d) = self.lesson.take() else {
             return Ok(Pumped::default());
         };
-        let (at, done) = (d.taken(), self.app.lesson.done);
+        let (at, done) = (d.taken(), self.app.lesson().done);
         let result = self.feed(&mut d, own_clicks);
-        let moved = d.taken() != at || self.app.lesson.done != done;
+        let moved = d.taken() != at || self.app.lesson().done != done;
         self.lesson = Some(d);
         result.map(|act| Pumped { moved, act })
     }
@@ -49,15 +49,12 @@ impl<B: Backend> Session<B> {
         d: &mut crate::lesson::Driver,
         own_clicks: bool,
     ) -> Result<Option<Action>, B::Error> {
-        while !(self.app.lesson.holds() || self.app.should_quit()) {
-            if d.counting() && (d.plays() || self.app.playing) {
+        while !(self.app.lesson().holds() || self.app.should_quit()) {
+            if d.counting() && (d.plays() || self.app.playing()) {
                 return Ok(None);
             }
             let Some(step) = d.next_step() else {
-                if !self.app.lesson.done {
-                    self.app.lesson.done = true;
-                    self.app.invalidate();
-                }
+                self.app.end_lesson();
                 return Ok(None);
             };
             match step {

@@ -1,5 +1,5 @@
-//! The terminal's input, read and decoded here rather than by crossterm's event reader, so
-//! that a bracketed paste is bounded. crossterm's parser, after `ESC[200~`, keeps every byte
+//! Keys from a terminal, local or over SSH: one decoder for both, reading bytes here rather
+//! than by crossterm's event reader, so that a bracketed paste is bounded. crossterm's parser, after `ESC[200~`, keeps every byte
 //! until `ESC[201~` arrives: an unpaired start swallowed every key, `q` and Ctrl-C included,
 //! for good. Here a paste ends at `ESC[201~`; at a Ctrl-C byte (which then reaches the
 //! program as Ctrl-C); when its bytes stop coming for [`PASTE_IDLE`]; or [`PASTE_TIME`] after
@@ -7,8 +7,12 @@
 //!
 //! [`Decoder`] turns bytes into crossterm's own `Event`s as crossterm's parser does (keys,
 //! SGR and X10 mouse reports, focus, the cursor-position answer frame pacing waits for) and is
-//! pure: bytes and instants in, events out, so tests feed it without a terminal. [`Input`]
-//! reads standard input into it and watches SIGWINCH for resizes.
+//! pure: bytes and instants in, events out, so tests feed it without a terminal. [`Reader`]
+//! reads standard input into it and watches SIGWINCH for resizes; `serve` feeds it each SSH
+//! message a client sends. Around the grammar, the rules both need: a paste bounded in bytes
+//! and time, ESC ESC read as the Esc key and what the second ESC begins, and replies to
+//! terminal queries never read as keys (a cursor-position answer is an [`Input::Cursor`], for
+//! frame pacing; any other reply is dropped).
 //!
 //! The byte grammar follows crossterm 0.29's `event/sys/unix/parse.rs` (MIT), trimmed to the
 //! sequences a terminal sends to a program that asks for no keyboard enhancement.
@@ -21,10 +25,11 @@ use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
-pub(crate) mod paste;
+mod paste;
 mod seq;
 
-use paste::{PASTE_START, Paste, Step};
+pub use paste::{PASTE_END, PASTE_START};
+use paste::{Paste, Step};
 
 /// Most bytes of a paste kept (the rest is dropped; the paste goes on to its end).
 pub const PASTE_MAX: usize = 1 << 20;
@@ -33,7 +38,7 @@ pub const PASTE_IDLE: Duration = Duration::from_millis(500);
 /// A paste is ended this long after it began, whatever comes.
 pub const PASTE_TIME: Duration = Duration::from_secs(3);
 /// Longest escape sequence waited for (a longer one is dropped, not kept growing).
-pub(crate) const SEQ_MAX: usize = 64;
+const SEQ_MAX: usize = 64;
 /// A lone ESC at the end of a read is held this long for the rest of a sequence: a link that
 /// splits a terminal's reply (`ESC` | `[30;21R`) must not have its tail read as keys.
 pub const ESC_WAIT: Duration = Duration::from_millis(30);
@@ -47,14 +52,21 @@ pub enum Input {
 }
 
 /// Bytes in, [`Input`]s out (see the module).
-#[derive(Default)]
 pub struct Decoder {
     /// A sequence begun and not yet complete.
     seq: Vec<u8>,
     paste: Option<Paste>,
+    /// How long a lone ESC ending a read is held for the rest of a sequence.
+    esc_wait: Duration,
     /// When a lone ESC ending a read becomes the Esc key, if nothing follows it.
     esc_until: Option<Instant>,
     out: VecDeque<Input>,
+}
+
+impl Default for Decoder {
+    fn default() -> Decoder {
+        Decoder::new()
+    }
 }
 
 fn esc() -> Input {
@@ -62,14 +74,30 @@ fn esc() -> Input {
 }
 
 impl Decoder {
+    /// A terminal's decoder: a lone ESC ending a read waits [`ESC_WAIT`] for what may follow.
     pub fn new() -> Decoder {
-        Decoder::default()
+        Decoder::with_esc_wait(ESC_WAIT)
+    }
+
+    /// A decoder whose lone ESC ending a read waits `wait` (zero: it is the Esc key at once,
+    /// as for SSH, whose client sends a terminal's sequence whole, in one message).
+    pub fn with_esc_wait(wait: Duration) -> Decoder {
+        Decoder {
+            seq: Vec::new(),
+            paste: None,
+            esc_wait: wait,
+            esc_until: None,
+            out: VecDeque::new(),
+        }
     }
 
     /// Takes `bytes` read at `now`; `more` says more were waiting (the read filled its
     /// buffer), so that a lone ESC at the end is not yet taken for the Esc key.
     pub fn feed(&mut self, bytes: &[u8], more: bool, now: Instant) {
         self.expire(now);
+        if bytes.is_empty() {
+            return;
+        }
         self.esc_until = None;
         for (i, &b) in bytes.iter().enumerate() {
             let more = more || i + 1 < bytes.len();
@@ -85,7 +113,12 @@ impl Decoder {
             }
             self.seq.push(b);
             if self.seq == [0x1b] && !more {
-                self.esc_until = Some(now + ESC_WAIT);
+                if self.esc_wait.is_zero() {
+                    self.seq.clear();
+                    self.out.push_back(esc());
+                } else {
+                    self.esc_until = Some(now + self.esc_wait);
+                }
                 continue;
             }
             if self.seq == PASTE_START {
@@ -188,6 +221,11 @@ impl Decoder {
             }
         }
         None
+    }
+
+    /// Every event queued, oldest first (cursor answers left out).
+    pub fn events(&mut self) -> Vec<Event> {
+        std::iter::from_fn(|| self.next_event()).collect()
     }
 }
 
@@ -300,173 +338,5 @@ impl Reader {
         loop {
             std::thread::sleep(Duration::from_secs(1));
         }
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crossterm::event::{MouseButton, MouseEvent, MouseEventKind};
-
-    fn decode(bytes: &[u8]) -> Vec<Input> {
-        let mut d = Decoder::new();
-        let now = Instant::now();
-        d.feed(bytes, false, now);
-        d.expire(now + ESC_WAIT);
-        std::iter::from_fn(|| d.next_input()).collect()
-    }
-
-    /// An Esc pressed as the terminal answers a cursor-position query: over ssh both arrive
-    /// in one read (`ESC ESC[30;21R`), or the reply's ESC ends one read and its tail begins
-    /// the next. Neither is `[30;21R` typed.
-    #[test]
-    fn a_reply_behind_an_esc_is_never_keys() {
-        let esc = k(KeyCode::Esc, KeyModifiers::NONE);
-        assert_eq!(
-            decode(b"\x1b\x1b[30;21R"),
-            vec![esc.clone(), Input::Cursor(20, 29)]
-        );
-        assert_eq!(
-            decode(b"\x1b\x1b[A"),
-            vec![esc.clone(), k(KeyCode::Up, KeyModifiers::NONE)]
-        );
-        let t0 = Instant::now();
-        let mut d = Decoder::new();
-        d.feed(b"\x1b", false, t0);
-        assert_eq!(d.next_input(), None, "a lone ESC waits for what may follow");
-        assert_eq!(d.deadline(), Some(t0 + ESC_WAIT));
-        d.feed(b"[30;21R", false, t0 + ESC_WAIT / 2);
-        assert_eq!(d.next_input(), Some(Input::Cursor(20, 29)));
-        assert_eq!(d.next_input(), None);
-        // Alone, it is the Esc key once the wait is over.
-        d.feed(b"\x1b", false, t0);
-        d.expire(t0 + ESC_WAIT);
-        assert_eq!(d.next_input(), Some(esc));
-    }
-
-    fn k(code: KeyCode, m: KeyModifiers) -> Input {
-        Input::Event(Event::Key(KeyEvent::new(code, m)))
-    }
-
-    #[test]
-    fn keys_as_crossterm_reads_them() {
-        let none = KeyModifiers::NONE;
-        let ctrl = KeyModifiers::CONTROL;
-        assert_eq!(
-            decode(b"aQ\r\t\x7f\x03\x1b[A\x1b[1;2D\x1bOP\x1b[3~\x1b[Z\x1bx"),
-            vec![
-                k(KeyCode::Char('a'), none),
-                k(KeyCode::Char('Q'), KeyModifiers::SHIFT),
-                k(KeyCode::Enter, none),
-                k(KeyCode::Tab, none),
-                k(KeyCode::Backspace, none),
-                k(KeyCode::Char('c'), ctrl),
-                k(KeyCode::Up, none),
-                k(KeyCode::Left, KeyModifiers::SHIFT),
-                k(KeyCode::F(1), none),
-                k(KeyCode::Delete, none),
-                k(KeyCode::BackTab, KeyModifiers::SHIFT),
-                k(KeyCode::Char('x'), KeyModifiers::ALT),
-            ]
-        );
-        assert_eq!(decode("ξ".as_bytes()), vec![k(KeyCode::Char('ξ'), none)]);
-        assert_eq!(decode(b"\x1b"), vec![k(KeyCode::Esc, none)]);
-        assert_eq!(decode(b"\x1b[12;40R"), vec![Input::Cursor(39, 11)]);
-        assert_eq!(
-            decode(b"\x1b[<0;5;3M\x1b[<0;5;3m"),
-            vec![
-                Input::Event(Event::Mouse(MouseEvent {
-                    kind: MouseEventKind::Down(MouseButton::Left),
-                    column: 4,
-                    row: 2,
-                    modifiers: none,
-                })),
-                Input::Event(Event::Mouse(MouseEvent {
-                    kind: MouseEventKind::Up(MouseButton::Left),
-                    column: 4,
-                    row: 2,
-                    modifiers: none,
-                })),
-            ]
-        );
-    }
-
-    #[test]
-    fn a_paired_paste_is_one_event() {
-        assert_eq!(
-            decode(b"\x1b[200~sq\x1b[201~?"),
-            vec![
-                Input::Event(Event::Paste("sq".into())),
-                k(KeyCode::Char('?'), KeyModifiers::NONE),
-            ]
-        );
-    }
-
-    #[test]
-    fn an_unpaired_paste_ends_at_ctrl_c_or_in_time() {
-        let t0 = Instant::now();
-        let mut d = Decoder::new();
-        d.feed(b"\x1b[200~abc", false, t0);
-        assert!(d.pasting() && d.next_input().is_none());
-        // Ctrl-C reaches the program at once.
-        d.feed(b"q\x03q", false, t0);
-        assert_eq!(
-            d.next_input(),
-            Some(Input::Event(Event::Paste("abcq".into())))
-        );
-        assert_eq!(
-            d.next_input(),
-            Some(k(KeyCode::Char('c'), KeyModifiers::CONTROL))
-        );
-        assert_eq!(
-            d.next_input(),
-            Some(k(KeyCode::Char('q'), KeyModifiers::NONE))
-        );
-        // Idle: ended PASTE_IDLE after its last byte, and keys are keys again.
-        d.feed(b"\x1b[200~x", false, t0);
-        d.expire(t0 + PASTE_IDLE / 2);
-        assert!(d.pasting());
-        d.feed(b"q", false, t0 + PASTE_IDLE + PASTE_IDLE / 2);
-        assert_eq!(d.next_input(), Some(Input::Event(Event::Paste("x".into()))));
-        assert_eq!(
-            d.next_input(),
-            Some(k(KeyCode::Char('q'), KeyModifiers::NONE))
-        );
-        // Keys typed without a pause: ended PASTE_TIME after it began.
-        d.feed(b"\x1b[200~", false, t0);
-        let step = PASTE_IDLE / 2;
-        let mut t = t0;
-        while t < t0 + PASTE_TIME {
-            t += step;
-            d.feed(b"q", false, t);
-        }
-        assert!(!d.pasting(), "ended by PASTE_TIME");
-    }
-
-    #[test]
-    fn a_long_paste_keeps_at_most_its_bound() {
-        let mut d = Decoder::new();
-        let t0 = Instant::now();
-        d.feed(PASTE_START, false, t0);
-        let chunk = vec![b'a'; 64 * 1024];
-        for _ in 0..(PASTE_MAX / chunk.len() + 4) {
-            d.feed(&chunk, true, t0);
-        }
-        d.feed(paste::PASTE_END, false, t0);
-        match d.next_input() {
-            Some(Input::Event(Event::Paste(t))) => assert_eq!(t.len(), PASTE_MAX),
-            other => panic!("{other:?}"),
-        }
-    }
-
-    #[test]
-    fn an_endless_sequence_is_dropped() {
-        let mut bytes = b"\x1b[".to_vec();
-        bytes.extend(std::iter::repeat_n(b'1', 200));
-        bytes.push(b'q');
-        assert_eq!(
-            decode(&bytes).last(),
-            Some(&k(KeyCode::Char('q'), KeyModifiers::NONE))
-        );
     }
 }

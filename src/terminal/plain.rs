@@ -4,12 +4,12 @@
 //! in raw mode for the keys only, with output processing kept (a `\n` starts a new line), and
 //! is restored on quit, panic and every terminating signal, as the explorer's is.
 
-use super::pace::Clock;
+use super::drive::{Link, Turn, Waited};
 use super::{Flags, SaveRecording};
 use crate::app::App;
-use crate::session::Session;
+use crate::session::{Pumped, Session};
 use crate::ui::plain::{Seen, describe, opening};
-use crossterm::event::{Event, KeyCode, KeyModifiers};
+use crossterm::event::Event;
 use crossterm::terminal::{disable_raw_mode, enable_raw_mode};
 use ratatui::backend::TestBackend;
 use std::io::{self, Write};
@@ -75,77 +75,83 @@ fn say(app: &App, seen: &mut Seen, out: &mut impl Write) -> io::Result<()> {
     Ok(())
 }
 
+/// Plain mode's side of the loop ([`super::drive`]): what changed said as lines after every
+/// step of time or of the lesson and every key, no frames (its link is never free for one), and
+/// the signals as the explorer's.
+struct Lines<'a> {
+    flags: &'a Flags,
+    input: super::input::Reader,
+    out: io::Stdout,
+    seen: Seen,
+}
+
+impl Link<TestBackend> for Lines<'_> {
+    fn turn(&mut self, _session: &mut Session<TestBackend>) -> io::Result<Turn> {
+        super::signalled(
+            self.flags,
+            || {
+                restore();
+                signal_hook::low_level::emulate_default_handler(signal_hook::consts::SIGTSTP)
+            },
+            || {
+                // crossterm skips enabling raw mode while it believes it on.
+                disable_raw_mode()?;
+                enter()
+            },
+        )
+    }
+
+    fn pumped(&mut self, session: &mut Session<TestBackend>, _: Pumped) -> io::Result<()> {
+        say(&session.app, &mut self.seen, &mut self.out)
+    }
+
+    fn free(&self) -> bool {
+        false
+    }
+
+    fn gap(&self) -> Duration {
+        Duration::ZERO
+    }
+
+    fn show(&mut self, session: &mut Session<TestBackend>, _draw: bool) -> io::Result<bool> {
+        say(&session.app, &mut self.seen, &mut self.out)?;
+        self.out.flush()?;
+        Ok(false)
+    }
+
+    fn wait(&mut self, _session: &mut Session<TestBackend>, wake: Instant) -> io::Result<Waited> {
+        let timeout = wake.saturating_duration_since(Instant::now());
+        super::read_all(&mut self.input, timeout).map(Waited::Events)
+    }
+
+    fn apply(&mut self, session: &mut Session<TestBackend>, ev: Event) -> io::Result<bool> {
+        match ev {
+            ev if super::ctrl_z(&ev) => self.flags.suspend.store(true, Ordering::Relaxed),
+            Event::Key(k) => {
+                session.key(k);
+                say(&session.app, &mut self.seen, &mut self.out)?;
+                self.out.flush()?;
+            }
+            Event::Resize(w, h) => session.resize(w, h),
+            // No mouse capture, no pasted keys: nothing else is an input here.
+            _ => {}
+        }
+        Ok(false)
+    }
+}
+
 fn event_loop(session: &mut Session<TestBackend>, flags: &Flags) -> io::Result<()> {
     let mut out = io::stdout();
     for line in opening(&session.app) {
         writeln!(out, "{line}")?;
     }
     out.flush()?;
-    let mut seen = Seen::of(&session.app);
-    let mut clock = Clock::new(Instant::now());
-    // Keys read here, not by crossterm: a paste start cannot swallow them (`super::input`).
-    let mut input = super::input::Reader::new()?;
-    while !session.app.should_quit() && !flags.stop.load(Ordering::Relaxed) {
-        if flags.suspend.swap(false, Ordering::Relaxed) {
-            restore();
-            signal_hook::low_level::emulate_default_handler(signal_hook::consts::SIGTSTP)?;
-            flags.resume.store(true, Ordering::Relaxed);
-        }
-        if flags.resume.swap(false, Ordering::Relaxed) {
-            // crossterm skips enabling raw mode while it believes it on.
-            disable_raw_mode()?;
-            enter()?;
-            clock.restart(Instant::now());
-        }
-        let Ok(_) = session.pump_lesson();
-        session.ask_analysis();
-        say(&session.app, &mut seen, &mut out)?;
-        if session.is_playing() {
-            for _ in 0..clock.due(Instant::now()) {
-                if !session.is_playing() {
-                    break;
-                }
-                session.tick();
-                let Ok(_) = session.pump_lesson();
-                say(&session.app, &mut seen, &mut out)?;
-            }
-        }
-        out.flush()?;
-        let mut wake = Instant::now() + Duration::from_millis(250);
-        if session.is_playing() {
-            wake = wake.min(clock.next());
-        }
-        // A page's pieces are taken as they arrive, as in the explorer's loop.
-        if session.analysis.busy() {
-            wake = wake.min(Instant::now() + super::PIECES_POLL);
-        }
-        if input.poll(wake.saturating_duration_since(Instant::now()))? {
-            let mut queued: Vec<Event> = std::iter::from_fn(|| input.read()).collect();
-            while input.poll(Duration::ZERO)? {
-                queued.extend(std::iter::from_fn(|| input.read()));
-            }
-            for ev in queued {
-                match ev {
-                    Event::Key(k)
-                        if k.code == KeyCode::Char('z')
-                            && k.modifiers.contains(KeyModifiers::CONTROL) =>
-                    {
-                        flags.suspend.store(true, Ordering::Relaxed);
-                    }
-                    Event::Key(k) => {
-                        session.key(k);
-                        say(&session.app, &mut seen, &mut out)?;
-                    }
-                    Event::Resize(w, h) => session.resize(w, h),
-                    // No mouse capture, no pasted keys: nothing else is an input here.
-                    _ => {}
-                }
-            }
-            out.flush()?;
-        }
-        if !session.is_playing() {
-            clock.restart(Instant::now());
-        }
-    }
-    Ok(())
+    let mut lines = Lines {
+        flags,
+        seen: Seen::of(&session.app),
+        // Keys read here, not by crossterm: a paste start cannot swallow them (`super::input`).
+        input: super::input::Reader::new()?,
+        out,
+    };
+    super::drive::drive(session, &mut lines).map(|_| ())
 }

@@ -193,7 +193,7 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App, th: &Theme) {
     let cols = columns(popup.width.saturating_sub(2), th);
     let rows = cols.iter().map(Vec::len).max().unwrap_or(0);
     let shown = usize::from(popup.height.saturating_sub(2));
-    let top = usize::from(app.view.help_scroll).min(rows.saturating_sub(shown));
+    let top = usize::from(app.view().help_scroll).min(rows.saturating_sub(shown));
     let title = fit(
         " help: ? or Esc closes, ↑ ↓ PgUp PgDn wheel scroll ",
         ", ",

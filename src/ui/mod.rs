@@ -57,7 +57,7 @@ pub fn draw(frame: &mut Frame, app: &App, th: &Theme) -> Vec<CanvasGeom> {
     );
     let (panel_area, lesson, status) = (r.panel, r.lesson, r.status);
     let canvas_area = caption::picture(&r, app);
-    let geom = match app.view.page {
+    let geom = match app.view().page {
         crate::app::pages::Page::Turntable => canvas::render(frame, canvas_area, app, th),
         _ => pages::render(frame, canvas_area, app, th)
             .into_iter()
@@ -73,7 +73,7 @@ pub fn draw(frame: &mut Frame, app: &App, th: &Theme) -> Vec<CanvasGeom> {
     );
     frame.render_widget(Paragraph::new(status_line(app, th, status.width)), status);
     caption::render(frame, &r, app, th);
-    if app.view.help {
+    if app.view().help {
         help::render(frame, r.help, app, th);
     }
     // A theme that sets a background sets it on every cell: widgets that paint none (chart
@@ -116,7 +116,7 @@ pub fn lesson_line(app: &App) -> String {
     }
     let Some(p) = app.paper().filter(|_| !app.outcome_open()) else {
         // A newcomer, in no lesson and none taken, is told where the lessons are.
-        if app.lesson.name.is_none() && !app.lesson.done {
+        if app.lesson().name.is_none() && !app.lesson().done {
             return fit::alternatives(&[
                 " c: compare with the paper's scheme (raw RK2, fixed dt = 1e-3, no stick event) · new here? `turntable lesson` lists the lessons",
                 " c: compare with the paper's RK2 · new here? `turntable lesson` lists the lessons",
@@ -179,7 +179,7 @@ pub fn lesson_line(app: &App) -> String {
 }
 
 fn status_line(app: &App, th: &Theme, width: u16) -> Line<'static> {
-    if let Some(p) = &app.prompt {
+    if let Some(p) = &app.prompt() {
         // The end of a long line stays in sight: what is typed is what shows.
         let label = format!(" {}: ", p.label());
         let room = usize::from(width).saturating_sub(label.width() + "▏".width());
@@ -199,14 +199,18 @@ fn status_line(app: &App, th: &Theme, width: u16) -> Line<'static> {
             Style::default().fg(th.notice),
         ));
     }
-    if let Some(n) = &app.notice {
+    if let Some(n) = &app.notice() {
         return Line::from(Span::styled(
             // Clauses (", ") drop whole before words do: "comes to" is not left hanging.
             fit::fit(&format!(" {n}"), ", ", usize::from(width)),
             Style::default().fg(th.notice),
         ));
     }
-    let mouse = if app.mouse { "" } else { "  [mouse off]" };
+    let mouse = if app.mouse_capture() {
+        ""
+    } else {
+        "  [mouse off]"
+    };
     // A follower's own keys are not applied: the footer lists only what is theirs.
     if app.class == crate::app::state::InClass::Following {
         return Line::from(Span::styled(
@@ -226,7 +230,7 @@ fn status_line(app: &App, th: &Theme, width: u16) -> Line<'static> {
     // its end.
     let room = usize::from(width).saturating_sub(mouse.width());
     // Space's hint says what it does now (while a lesson waits, it goes on).
-    let space = if app.playing { "pause" } else { "play" };
+    let space = if app.playing() { "pause" } else { "play" };
     // A spun-up table has no paper's run and takes only ξ0.
     let (compare, edit) = match app.scene().spin {
         Some(_) => ("", "x"),

@@ -53,26 +53,26 @@ impl Seen {
             body: body_events(app),
             paper: app.paper().map(status),
             tau: app.now().tau,
-            playing: app.playing,
-            speed: app.speed,
-            frame: app.view.frame,
-            split: app.view.split,
-            forces: app.view.forces,
-            page: app.view.page,
+            playing: app.playing(),
+            speed: app.speed(),
+            frame: app.view().frame,
+            split: app.view().split,
+            forces: app.view().forces,
+            page: app.view().page,
             summary: super::pages::summary(app),
-            help: app.view.help,
-            notice: app.notice.clone(),
-            typing: app.prompt.clone(),
+            help: app.view().help,
+            notice: app.notice().clone(),
+            typing: app.prompt().clone(),
             caption: caption.as_ref().map(|c| c.text.clone()),
-            prompt: match app.lesson.prompt() {
+            prompt: match app.lesson().prompt() {
                 Prompt::Answer => Some("answer y or n"),
                 Prompt::GoOn => Some("Enter goes on (Space plays and pauses)"),
-                Prompt::None if app.lesson.done && app.lesson.name.is_some() => {
+                Prompt::None if app.lesson().done && app.lesson().name.is_some() => {
                     Some("end of the lesson; Esc closes it, q quits")
                 }
                 Prompt::None => None,
             },
-            readouts_asked: app.readouts_asked,
+            readouts_asked: app.readouts_asked(),
             readouts: readouts(app),
         }
     }

@@ -115,8 +115,8 @@ fn error_at_the_prompt_switches_the_run() {
         s.app.tick();
     }
     typed(&mut s, "error 1e-6");
-    assert_eq!(s.app.prompt, None);
-    let notice = s.app.notice.clone().unwrap();
+    assert!(s.app.prompt().is_none());
+    let notice = s.app.notice().clone().unwrap();
     assert!(notice.starts_with("error ≤ 1e-6: chose "), "{notice}");
     let now = s.app.settings();
     assert_ne!(now, before, "dp54 tol 1e-10 is not the cheapest for 1e-6");
@@ -128,7 +128,7 @@ fn error_at_the_prompt_switches_the_run() {
     typed(&mut s, "error 0");
     let refused = s
         .app
-        .prompt
+        .prompt()
         .as_ref()
         .and_then(|p| p.refused.clone())
         .unwrap();

@@ -154,7 +154,7 @@ fn no_person_facing_text_of_case_d_shows_radians() {
             s.press(Chord::new(KeyCode::Char(c), KeyModifiers::NONE));
         }
         s.press("enter".parse().unwrap());
-        let notice = s.app.notice.clone().unwrap_or_default();
+        let notice = s.app.notice().clone().unwrap_or_default();
         assert!(notice.contains("φ = 1.2π"), "{notice}");
         no_radians("the notice", &notice);
         no_radians("the screen with the notice", &screen(&mut s));

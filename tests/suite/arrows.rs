@@ -28,7 +28,7 @@ fn friction_opposes_the_slip_velocity_and_the_net_force_is_the_acceleration() {
     for c in ['a', 'A', 'i', 'f'] {
         key(&mut a, c);
     }
-    assert_eq!(a.view.frame, Frame::Table);
+    assert_eq!(a.view().frame, Frame::Table);
     let s = a.sim().now();
     let all = arrows(&a, 2.0, 0.5);
     let (fr, u, net) = (find(&all, "fr"), find(&all, "u"), find(&all, "net"));
@@ -105,16 +105,16 @@ fn stuck_the_forces_balance_and_nothing_moves_on_the_table() {
     );
     let back: Scene = toml::from_str(&text).unwrap();
     let b = App::new(back);
-    assert!(b.view.forces && b.view.net_force && b.view.velocity);
+    assert!(b.view().forces && b.view().net_force && b.view().velocity);
     assert!(!text.contains("speed"), "×1 is not saved: {text}");
     // So is the speed (slow motion for a class), and a bad one in a file is refused.
-    a.speed = 0.25;
+    a.tell_speed(0.25);
     let text = a.current_scene().to_toml();
     assert!(text.contains("speed = 0.25"), "{text}");
     let path = std::env::temp_dir().join(format!("turntable-speed-{}.toml", std::process::id()));
     std::fs::write(&path, &text).unwrap();
     let back = Scene::load(path.to_str().unwrap()).unwrap();
-    assert_eq!(App::new(back).speed, 0.25);
+    assert_eq!(App::new(back).speed(), 0.25);
     std::fs::write(&path, text.replace("speed = 0.25", "speed = 0.3")).unwrap();
     let err = Scene::load(path.to_str().unwrap()).unwrap_err().to_string();
     assert!(

@@ -383,9 +383,9 @@ fn c_compares_the_body_with_the_point_model() {
     let shown = canvas(&common::render(&mut app, 100, 30));
     assert!(shown.contains('■'), "{shown}");
     key(&mut app, 'C');
-    assert!(!app.view.point_model);
+    assert!(!app.view().point_model);
     assert!(
-        app.notice
+        app.notice()
             .as_deref()
             .unwrap()
             .contains("point model hidden")
@@ -395,8 +395,8 @@ fn c_compares_the_body_with_the_point_model() {
     assert!(!hidden.contains("stuck τ"), "{hidden}");
     // The body's bar and path are still drawn: the canvas is not the bare table.
     let mut bare = body_app(0.1);
+    turntable::app::update(&mut bare, turntable::app::Action::TogglePointModel);
     bare.explore().set_body(None);
-    bare.view.point_model = false;
     for _ in 0..60 {
         bare.tick();
     }
@@ -404,22 +404,22 @@ fn c_compares_the_body_with_the_point_model() {
     let saved = app.current_scene().to_toml();
     assert!(saved.contains("point = false"), "{saved}");
     key(&mut app, 'C');
-    assert!(app.view.point_model);
+    assert!(app.view().point_model);
     assert!(!app.current_scene().to_toml().contains("point ="));
     assert_eq!(canvas(&common::render(&mut app, 100, 30)), shown);
     // No body: nothing changes but the notice.
     let mut point = turntable::app::App::new(turntable::scene::Scene::preset("A").unwrap());
     let before = canvas(&common::render(&mut point, 100, 30));
     key(&mut point, 'C');
-    assert!(point.view.point_model);
+    assert!(point.view().point_model);
     assert!(
         point
-            .notice
+            .notice()
             .as_deref()
             .unwrap()
             .starts_with("no body to compare"),
         "{:?}",
-        point.notice
+        point.notice()
     );
     assert_eq!(canvas(&common::render(&mut point, 100, 30)), before);
     // `C` is in the help, from the keymap.
@@ -441,7 +441,7 @@ fn presets_keep_the_body() {
     assert_eq!(app.scene().body, body);
     let rod = app.rod().cloned().unwrap();
     assert_eq!(rod.states[0].q.x, 0.5);
-    assert!(app.notice.as_deref().unwrap().contains("the body stays"));
+    assert!(app.notice().as_deref().unwrap().contains("the body stays"));
     key(&mut app, 'x');
     key(&mut app, '0');
     assert_eq!(app.scene().body, body);

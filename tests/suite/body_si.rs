@@ -296,13 +296,13 @@ fn doubling_mu_halves_the_bodys_dimensionless_size() {
     }
     // The first press turns units on and changes nothing: the R_max size at that moment.
     key(&mut a, 'u');
-    let u0 = a.units.unwrap();
+    let u0 = a.units().unwrap();
     assert_eq!(a.scene().body.unwrap().length, 0.1);
     let metres = 0.1 * u0.r_max_m();
     for _ in 0..15 {
         key(&mut a, 'u');
     }
-    let u = a.units.unwrap();
+    let u = a.units().unwrap();
     assert_eq!(u.mu, 2.0 * u0.mu);
     let b = a.scene().body.unwrap();
     assert!((b.length - 0.05).abs() < 1e-12, "{b:?}");
@@ -316,10 +316,10 @@ fn doubling_mu_halves_the_bodys_dimensionless_size() {
     a.check_invariants().unwrap();
     // rpm: twice the speed is a quarter of R_max, four times L.
     let before = a.scene().body.unwrap().length;
-    let r_before = a.units.unwrap().r_max_m();
+    let r_before = a.units().unwrap().r_max_m();
     key(&mut a, 'w');
     let after = a.scene().body.unwrap().length;
-    assert!(rel(after / before, r_before / a.units.unwrap().r_max_m()) < 1e-12);
+    assert!(rel(after / before, r_before / a.units().unwrap().r_max_m()) < 1e-12);
     // And back: the same metres.
     key(&mut a, 'W');
     for _ in 0..15 {
@@ -339,7 +339,7 @@ fn doubling_mu_halves_the_bodys_dimensionless_size() {
 #[test]
 fn the_panel_shows_the_body_in_si_without_cutting_it() {
     let mut a = App::new(coin());
-    a.units = Some(Units::new(0.2, 33.333, 9.81).unwrap());
+    a.tell_units(Some(Units::new(0.2, 33.333, 9.81).unwrap()));
     let r = r_max(0.2, 33.333);
     let want = format!(
         "= {} h {}",

@@ -244,7 +244,7 @@ fn page_pieces_are_bounded_whatever_the_step() {
     // The page is complete: every curve's every piece arrived (unknown where over budget).
     let curve = s
         .app
-        .charts
+        .charts()
         .curve(0.5, settings_for(tiny))
         .expect("C's curve");
     assert!(curve.complete());
@@ -265,7 +265,7 @@ fn headless_pages_are_computed_for_frames_not_for_keys() {
     let mut s = session("A");
     tab(&mut s, 3);
     s.screen();
-    let cells = s.app.charts.map.as_ref().expect("map").cells.len() as u64;
+    let cells = s.app.charts().map.as_ref().expect("map").cells.len() as u64;
     assert!(cells > 500, "{cells}");
     let first = s.analysis.computed();
     assert_eq!(first, CURVE_POINTS as u64 + cells);
@@ -274,7 +274,7 @@ fn headless_pages_are_computed_for_frames_not_for_keys() {
     }
     assert_eq!(s.analysis.computed(), first, "keys compute nothing");
     s.screen();
-    let map = s.app.charts.map.as_ref().expect("map");
+    let map = s.app.charts().map.as_ref().expect("map");
     assert!(map.cells.iter().all(Option::is_some));
     assert_eq!(
         s.analysis.computed() - first,
@@ -297,7 +297,7 @@ fn a_map_coarser_than_its_plot_covers_it() {
     s.resize(320, 120);
     tab(&mut s, 3);
     let screen = turntable::ui::export::plain_text(s.screen());
-    let map = s.app.charts.map.as_ref().expect("map");
+    let map = s.app.charts().map.as_ref().expect("map");
     let turntable::analysis::Job::Map { size: (n, m), .. } = map.job else {
         panic!("{:?}", map.job)
     };

@@ -15,6 +15,9 @@ use turntable::plot::{Mark, Panel};
 use turntable::scene::Scene;
 use turntable::theme::Theme;
 
+/// A page's chart, described from the app.
+type Chart = fn(&App) -> Panel;
+
 /// The charts of every page over presets and a few times (computed once: the analysis pages
 /// take seconds).
 fn charts() -> &'static [(String, Panel)] {
@@ -25,7 +28,7 @@ fn charts() -> &'static [(String, Panel)] {
             let mut app = App::new(Scene::preset(preset).unwrap());
             // Each page's chart once its page has computed it (a page's pieces go when
             // another page is shown).
-            let pages: [(&str, Page, fn(&App) -> Panel); 3] = [
+            let pages: [(&str, Page, Chart); 3] = [
                 (
                     "escape",
                     Page::EscapeSpeed,
@@ -35,17 +38,19 @@ fn charts() -> &'static [(String, Panel)] {
                 ("rest", Page::RestRadius, turntable::plot::page::rest::chart),
             ];
             for (n, page, chart) in pages {
-                app.view.page = page;
+                super::common::turn_to(&mut app, page);
                 sync(&mut app);
                 let c = chart(&app);
                 assert!(!c.series.is_empty() || !c.marks.is_empty(), "{preset} {n}");
                 out.push((format!("{preset} {n}"), c));
             }
-            app.view.page = Page::TimePlots;
+            super::common::turn_to(&mut app, Page::TimePlots);
             let mut done = 0;
             for ticks in [40, 200, 400] {
                 for _ in done..ticks {
-                    app.playing = true;
+                    if !app.playing() {
+                        let _ = turntable::app::update(&mut app, turntable::app::Action::PlayPause);
+                    }
                     app.tick();
                 }
                 done = ticks;

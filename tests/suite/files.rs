@@ -269,14 +269,14 @@ fn saving_twice_keeps_both() {
 
     let d = dir("save");
     let mut app = App::new(Scene::default_scene());
-    app.save_path = d.join("turntable-scene.toml");
-    std::fs::write(&app.save_path, "mine").unwrap();
+    app.tell_save_path(d.join("turntable-scene.toml"));
+    std::fs::write(app.save_path(), "mine").unwrap();
     let effects = update(&mut app, Action::Save);
     turntable::session::carry_out(&mut app, effects);
-    assert_eq!(std::fs::read_to_string(&app.save_path).unwrap(), "mine");
+    assert_eq!(std::fs::read_to_string(app.save_path()).unwrap(), "mine");
     let second = d.join("turntable-scene-2.toml");
     assert!(
-        app.notice
+        app.notice()
             .as_deref()
             .unwrap()
             .ends_with("turntable-scene-2.toml")

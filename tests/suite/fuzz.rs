@@ -70,7 +70,7 @@ fn fuzz(seed: u64, steps: usize) {
     let theme = Theme::builtin(rng.pick(&BUILTIN)).unwrap();
     let mut app = App::new(scene);
     let dir = std::env::temp_dir().join(format!("turntable-fuzz-{}", std::process::id()));
-    app.save_path = dir.join("scene.toml");
+    app.tell_save_path(dir.join("scene.toml"));
     let mut s = Session::headless(app, theme, 80, 24, false);
     let sizes = [
         (0, 0),
@@ -116,10 +116,11 @@ fn fuzz(seed: u64, steps: usize) {
             }
             _ => {
                 let k = random_key(&mut rng);
+                // Quitting ends a session: a key that quits is left out, and it carries on.
+                let before = s.app.clone();
                 s.key(k);
                 if s.app.should_quit() {
-                    // Quitting ends a session; carry on as a fresh one would.
-                    s.app.quit = false;
+                    s.app = before;
                 }
             }
         }
@@ -177,7 +178,8 @@ fn edits_at_the_bounds_clamp() {
                     24,
                     false,
                 );
-                s.app.save_path = std::env::temp_dir().join("turntable-never-written.toml");
+                s.app
+                    .tell_save_path(std::env::temp_dir().join("turntable-never-written.toml"));
                 for b in KEYMAP {
                     let mut k = b.chord.event();
                     // Not the keys that write files or open the name prompt (whose letters
@@ -192,8 +194,11 @@ fn edits_at_the_bounds_clamp() {
                         if alt {
                             k.modifiers |= KeyModifiers::ALT;
                         }
+                        let before = s.app.clone();
                         s.key(k);
-                        s.app.quit = false;
+                        if s.app.should_quit() {
+                            s.app = before;
+                        }
                         s.tick();
                         let i = s.app.initial();
                         assert!(

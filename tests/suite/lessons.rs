@@ -579,29 +579,29 @@ fn an_interactive_lesson_holds_as_state_and_time_goes_on() {
     s.start_lesson(Driver::new("t", parse(script).unwrap()));
     s.pump_lesson().unwrap();
     // Paused by the lesson's `pause`, held at its wait with the caption up.
-    assert!(!s.app.playing && s.app.lesson.waiting);
-    assert_eq!(s.app.lesson.caption.as_deref(), Some("one"));
+    assert!(!s.app.playing() && s.app.lesson().waiting);
+    assert_eq!(s.app.lesson().caption.as_deref(), Some("one"));
     let screen = turntable::ui::export::plain_text(s.screen());
     assert!(screen.contains("Enter: go on · Space plays"), "{screen}");
     // Space plays the scene while it waits: time goes on, the lesson holds.
     press(&mut s, "space");
-    assert!(s.app.playing && s.app.lesson.waiting);
+    assert!(s.app.playing() && s.app.lesson().waiting);
     let tau = s.app.now().tau;
     s.tick();
     s.pump_lesson().unwrap();
     assert!(s.app.now().tau > tau);
-    assert!(s.app.lesson.waiting);
+    assert!(s.app.lesson().waiting);
     let screen = turntable::ui::export::plain_text(s.screen());
     assert!(screen.contains("Enter: go on · Space pauses"), "{screen}");
     // Space again pauses, and still the lesson waits; Enter goes on.
     press(&mut s, "space");
     s.pump_lesson().unwrap();
-    assert!(!s.app.playing && s.app.lesson.waiting);
+    assert!(!s.app.playing() && s.app.lesson().waiting);
     press(&mut s, "enter");
-    assert!(!s.app.lesson.waiting);
+    assert!(!s.app.lesson().waiting);
     s.pump_lesson().unwrap();
     // The lesson's `play` set time going whatever the keys did; `tick 3` counts.
-    assert!(s.app.playing);
+    assert!(s.app.playing());
     s.tick();
     // A pause from the keys holds the lesson inside its `tick 3`, however long.
     press(&mut s, "space");
@@ -609,52 +609,55 @@ fn an_interactive_lesson_holds_as_state_and_time_goes_on() {
         s.tick();
         s.pump_lesson().unwrap();
     }
-    assert_eq!(s.app.lesson.caption.as_deref(), Some("one"));
+    assert_eq!(s.app.lesson().caption.as_deref(), Some("one"));
     press(&mut s, "space");
     s.tick();
     s.pump_lesson().unwrap();
     assert_eq!(
-        s.app.lesson.caption.as_deref(),
+        s.app.lesson().caption.as_deref(),
         Some("one"),
         "two ticks of three"
     );
     s.tick();
     s.pump_lesson().unwrap();
-    assert_eq!(s.app.lesson.caption, None);
-    let q = s.app.lesson.question.clone().unwrap();
+    assert_eq!(s.app.lesson().caption, None);
+    let q = s.app.lesson().question.clone().unwrap();
     assert_eq!((q.text.as_str(), q.answer), ("Will it escape? (y/n)", None));
     // Held at the question: Enter says what it waits for and changes nothing (on a spin-up
     // it said the page was refused); n answers and does not step.
     s.pump_lesson().unwrap();
-    assert!(s.app.lesson.question.is_some());
-    let (init, page) = (s.app.initial(), s.app.view.page);
+    assert!(s.app.lesson().question.is_some());
+    let (init, page) = (s.app.initial(), s.app.view().page);
     press(&mut s, "enter");
-    assert_eq!((s.app.initial(), s.app.view.page), (init, page));
-    assert_eq!(s.app.lesson.question.as_ref().unwrap().answer, None);
+    assert_eq!((s.app.initial(), s.app.view().page), (init, page));
+    assert_eq!(s.app.lesson().question.as_ref().unwrap().answer, None);
     assert_eq!(
-        s.app.notice.as_deref(),
+        s.app.notice().as_deref(),
         Some("the question first: y if it escapes, n if it stays")
     );
     press(&mut s, "n");
-    assert!(!s.app.view.step_mode);
-    assert_eq!(s.app.lesson.question.as_ref().unwrap().answer, Some(false));
+    assert!(!s.app.view().step_mode);
+    assert_eq!(
+        s.app.lesson().question.as_ref().unwrap().answer,
+        Some(false)
+    );
     // A speed key before the lesson's `play 0.5`: the scene plays at the speed it names.
     press(&mut s, "]");
     s.pump_lesson().unwrap();
-    assert!(s.app.playing);
-    assert_eq!(s.app.speed, 0.5);
+    assert!(s.app.playing());
+    assert_eq!(s.app.speed(), 0.5);
     for _ in 0..199 {
         s.tick();
         s.pump_lesson().unwrap();
     }
-    assert!(s.app.lesson.question.is_some(), "after 199 of 200 ticks");
+    assert!(s.app.lesson().question.is_some(), "after 199 of 200 ticks");
     s.tick();
     s.pump_lesson().unwrap();
-    assert_eq!(s.app.lesson.caption.as_deref(), Some("three"));
-    assert!(s.app.lesson.done);
+    assert_eq!(s.app.lesson().caption.as_deref(), Some("three"));
+    assert!(s.app.lesson().done);
     // Unheld, n is the integrator step again.
     press(&mut s, "n");
-    assert!(s.app.view.step_mode);
+    assert!(s.app.view().step_mode);
     // The last words stay until Esc says they were read, then the screen is the scene's.
     let screen = turntable::ui::export::plain_text(s.screen());
     assert!(screen.contains("three") && screen.contains("end · Esc closes · q quits"));
@@ -663,7 +666,7 @@ fn an_interactive_lesson_holds_as_state_and_time_goes_on() {
         s.tick();
         s.pump_lesson().unwrap();
     }
-    assert!(s.app.lesson.done && s.app.caption().is_none());
+    assert!(s.app.lesson().done && s.app.caption().is_none());
     let screen = turntable::ui::export::plain_text(s.screen());
     assert!(
         !screen.contains("three") && !screen.contains("lesson"),
@@ -893,10 +896,10 @@ fn held(s: &Session<ratatui::backend::TestBackend>) -> Held {
         at: s.lesson().unwrap().taken(),
         initial: s.app.initial(),
         settings: s.app.settings(),
-        page: s.app.view.page,
-        frame: s.app.view.frame,
-        caption: s.app.lesson.caption.as_ref().map(|c| c.to_string()),
-        question: s.app.lesson.question.as_ref().map(|q| q.text.to_string()),
+        page: s.app.view().page,
+        frame: s.app.view().frame,
+        caption: s.app.lesson().caption.as_ref().map(|c| c.to_string()),
+        question: s.app.lesson().question.as_ref().map(|q| q.text.to_string()),
     }
 }
 
@@ -921,7 +924,7 @@ fn take_lesson(name: &str, keys: &[(u16, usize, u8)]) -> Vec<Held> {
     let (mut out, mut last, mut presses) = (Vec::new(), usize::MAX, keys.iter().peekable());
     let mut due = keys.first().map_or(0, |k| usize::from(k.0));
     for turn in 0..20_000 {
-        if s.app.lesson.done {
+        if s.app.lesson().done {
             return out;
         }
         let at = s.lesson().unwrap().taken();
@@ -944,17 +947,17 @@ fn take_lesson(name: &str, keys: &[(u16, usize, u8)]) -> Vec<Held> {
                 );
             }
         }
-        if s.app.lesson.waiting {
+        if s.app.lesson().waiting {
             press(&mut s, "enter");
         } else if s
             .app
-            .lesson
+            .lesson()
             .question
             .as_ref()
             .is_some_and(|q| q.answer.is_none())
         {
             press(&mut s, "y");
-        } else if !s.app.playing {
+        } else if !s.app.playing() {
             press(&mut s, "space");
         } else {
             s.tick();

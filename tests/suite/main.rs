@@ -24,6 +24,7 @@ mod files;
 mod frictionless;
 mod fuzz;
 mod honest;
+mod keys;
 mod lessons;
 mod link;
 mod map_cells;

@@ -34,16 +34,16 @@ fn tab_cycles_the_pages_and_each_title_names_its_page() {
         (Page::Turntable, "lab frame"),
     ] {
         press(&mut a, KeyCode::Tab);
-        assert_eq!(a.view.page, page);
+        assert_eq!(a.view().page, page);
         let screen = render(&mut a, 100, 30);
         assert!(screen.contains(words), "{words}:\n{screen}");
         assert!(!screen.contains("NaN"), "{screen}");
     }
     press(&mut a, KeyCode::BackTab);
-    assert_eq!(a.view.page, Page::WorkPrecision);
+    assert_eq!(a.view().page, Page::WorkPrecision);
     // As crossterm reports Shift-Tab: BackTab with Shift.
     a.handle_key(KeyEvent::new(KeyCode::BackTab, KeyModifiers::SHIFT));
-    assert_eq!(a.view.page, Page::RestRadius);
+    assert_eq!(a.view().page, Page::RestRadius);
 }
 
 #[test]
@@ -57,7 +57,7 @@ fn nothing_is_computed_for_a_page_not_on_screen() {
     );
     s.tick();
     assert_eq!(s.analysis.current(), None);
-    let c = &s.app.charts;
+    let c = &s.app.charts();
     assert!(c.curves.is_empty() && c.map.is_none() && c.rest.is_none());
     s.key(KeyEvent::new(KeyCode::Tab, KeyModifiers::NONE)); // time plots: from the run itself
     assert_eq!(s.analysis.current(), None);
@@ -66,14 +66,14 @@ fn nothing_is_computed_for_a_page_not_on_screen() {
 #[test]
 fn the_escape_speed_page_holds_the_solver_s_curves() {
     let mut a = app("C");
-    a.view.page = Page::EscapeSpeed;
+    crate::common::turn_to(&mut a, Page::EscapeSpeed);
     common::sync(&mut a);
     let s = settings_for(a.settings());
     for xi0 in std::iter::once(0.5).chain(PAPER_XI0) {
-        let c = a.charts.curve(xi0, s).expect("curve");
+        let c = a.charts().curve(xi0, s).expect("curve");
         assert!(c.complete(), "{xi0}");
     }
-    let c = a.charts.curve(0.5, s).unwrap().clone();
+    let c = a.charts().curve(0.5, s).unwrap().clone();
     // Each value is the middle of a certified bracket of width ≤ vtol around v_e (its runs at
     // dp54 tol vtol/1000, see `curve_settings`): within vtol/2 of a converged v_e.
     for i in [0, 5, 23, 40, 71] {
@@ -118,11 +118,11 @@ fn the_escape_speed_page_holds_the_solver_s_curves() {
 #[test]
 fn the_outcome_map_agrees_with_the_escape_speeds() {
     let mut a = app("C");
-    a.view.page = Page::OutcomeMap;
+    crate::common::turn_to(&mut a, Page::OutcomeMap);
     common::sync(&mut a);
     let s = settings_for(a.settings());
-    let curve = a.charts.curve(0.5, s).unwrap().clone();
-    let map = a.charts.map.clone().expect("map");
+    let curve = a.charts().curve(0.5, s).unwrap().clone();
+    let map = a.charts().map.clone().expect("map");
     let turntable::analysis::Job::Map {
         v0_max,
         size: (n, m),
@@ -165,7 +165,7 @@ fn the_outcome_map_agrees_with_the_escape_speeds() {
 #[test]
 fn a_click_on_the_map_picks_that_release_and_enter_runs_it() {
     let mut a = app("C");
-    a.view.page = Page::OutcomeMap;
+    crate::common::turn_to(&mut a, Page::OutcomeMap);
     common::sync(&mut a);
     render(&mut a, 100, 30);
     let g = a.geom_for_tests().expect("plot geometry");
@@ -182,16 +182,16 @@ fn a_click_on_the_map_picks_that_release_and_enter_runs_it() {
     assert!((a.initial().v0 - want.y).abs() < 1e-9);
     assert_eq!(a.initial().release, Release::Velocity);
     press(&mut a, KeyCode::Enter);
-    assert_eq!(a.view.page, Page::Turntable);
-    assert!(a.playing && a.sim().now().tau == 0.0);
+    assert_eq!(a.view().page, Page::Turntable);
+    assert!(a.playing() && a.sim().now().tau == 0.0);
 }
 
 #[test]
 fn the_rest_radius_page_has_fig6_and_reads_mu_from_eq22() {
     let mut a = app("C");
-    a.view.page = Page::RestRadius;
+    crate::common::turn_to(&mut a, Page::RestRadius);
     common::sync(&mut a);
-    let rest = a.charts.rest.clone().expect("rest");
+    let rest = a.charts().rest.clone().expect("rest");
     let c = rest.critical.unwrap().unwrap();
     let want = critical_radius(settings_for(Settings::default()), 1e-6)
         .unwrap()
@@ -306,7 +306,7 @@ fn pages_survive_every_size() {
         Page::RestRadius,
         Page::WorkPrecision,
     ] {
-        a.view.page = page;
+        crate::common::turn_to(&mut a, page);
         common::sync(&mut a);
         for (w, h) in [(40, 12), (60, 20), (80, 24), (200, 60), (1, 1)] {
             let s = render(&mut a, w, h);
@@ -321,11 +321,11 @@ fn pages_survive_every_size() {
 fn the_map_fills_the_plot_and_a_return_computes_only_what_is_missing() {
     use turntable::analysis::{Analysis, Job, Piece};
     let mut a = app("C");
-    a.view.page = Page::OutcomeMap;
+    crate::common::turn_to(&mut a, Page::OutcomeMap);
     common::sync(&mut a);
     render(&mut a, 90, 26);
     common::sync(&mut a);
-    let size = |a: &App| match a.charts.map.as_ref().map(|m| m.job) {
+    let size = |a: &App| match a.charts().map.as_ref().map(|m| m.job) {
         Some(Job::Map { size, .. }) => size,
         other => panic!("{other:?}"),
     };
@@ -342,17 +342,17 @@ fn the_map_fills_the_plot_and_a_return_computes_only_what_is_missing() {
         size(&a),
         (usize::from(plot.width), usize::from(plot.height))
     );
-    let map = a.charts.map.clone().unwrap();
+    let map = a.charts().map.clone().unwrap();
     assert!(map.cells.iter().all(Option::is_some));
     // Two cells lost: those two are what is missing, and all a new request computes.
-    let mut charts = a.charts.clone();
+    let mut charts = a.charts().clone();
     let cells = &mut charts.map.as_mut().unwrap().cells;
     cells[3] = None;
     cells[17] = None;
     let s = settings_for(a.settings());
     assert_eq!(charts.missing(&map.job, s), vec![3, 17]);
     let mut an = Analysis::inline();
-    let curve = a.charts.curve(0.5, s).map(|c| c.ve.clone());
+    let curve = a.charts().curve(0.5, s).map(|c| c.ve.clone());
     an.request(map.job, s, charts.missing(&map.job, s), curve);
     assert!(an.take().is_empty(), "inline, a request waits for compute");
     an.compute();
@@ -374,10 +374,10 @@ fn the_map_fills_the_plot_and_a_return_computes_only_what_is_missing() {
 #[test]
 fn the_escape_page_does_not_guess_between_its_angles() {
     let mut a = app("C");
-    a.view.page = Page::EscapeSpeed;
+    crate::common::turn_to(&mut a, Page::EscapeSpeed);
     common::sync(&mut a);
     let s = settings_for(a.settings());
-    let c = a.charts.curve(0.5, s).unwrap().clone();
+    let c = a.charts().curve(0.5, s).unwrap().clone();
     let n = c.ve.len();
     let (v1, v2) = (
         c.ve[1].unwrap().hi().unwrap(),
@@ -409,9 +409,9 @@ fn outside_xi_1_the_pages_show_the_sticking_window() {
     let mut a = app("D");
     for xi0 in [1.1, 1.05, 1.3, 2.0] {
         a.explore().edit_initial(|i| i.xi0 = xi0);
-        a.view.page = Page::EscapeSpeed;
+        crate::common::turn_to(&mut a, Page::EscapeSpeed);
         common::sync(&mut a);
-        let c = a.charts.curve(xi0, s).expect("curve").clone();
+        let c = a.charts().curve(xi0, s).expect("curve").clone();
         assert!(c.complete(), "{xi0}");
         let windows: Vec<(usize, f64, f64)> = (0..c.ve.len())
             .filter_map(|k| match c.ve[k].unwrap() {
@@ -449,10 +449,10 @@ fn outside_xi_1_the_pages_show_the_sticking_window() {
             "{screen}"
         );
         // The map's speeds reach past the window's top, and it has stuck cells.
-        a.view.page = Page::OutcomeMap;
+        crate::common::turn_to(&mut a, Page::OutcomeMap);
         common::sync(&mut a);
         let top = windows.iter().map(|w| w.2).fold(0.0, f64::max);
-        let map = a.charts.map.clone().expect("map");
+        let map = a.charts().map.clone().expect("map");
         let analysis::Job::Map { v0_max, .. } = map.job else {
             panic!()
         };
@@ -467,7 +467,7 @@ fn outside_xi_1_the_pages_show_the_sticking_window() {
     // D itself: thrown at 1.3 at 1.2π from ξ0 = 1.1 it sticks (at ξ = 0.67495); slower than
     // the window's floor it escapes.
     let mut d = app("D");
-    d.view.page = Page::EscapeSpeed;
+    crate::common::turn_to(&mut d, Page::EscapeSpeed);
     let screen = render(&mut d, 100, 30);
     assert!(
         screen.contains("release sticks (in the window)"),
@@ -501,10 +501,10 @@ fn the_map_grid_is_the_drawn_plot_at_every_size() {
     use turntable::analysis::Job;
     for (w, h) in [(40, 12), (56, 30), (59, 24), (60, 20), (80, 24), (200, 60)] {
         let mut a = app("C");
-        a.view.page = Page::OutcomeMap;
+        crate::common::turn_to(&mut a, Page::OutcomeMap);
         a.resize(w, h);
         render(&mut a, w, h);
-        let job = a.charts.map.as_ref().map(|m| m.job);
+        let job = a.charts().map.as_ref().map(|m| m.job);
         let Some(g) = a.geom_for_tests() else {
             assert_eq!((w, h), (40, 12), "no plot at {w}×{h}");
             assert_eq!(job, None, "a map no one sees at {w}×{h}");
@@ -519,7 +519,7 @@ fn the_map_grid_is_the_drawn_plot_at_every_size() {
             "{w}×{h}"
         );
         assert!(
-            a.charts
+            a.charts()
                 .map
                 .as_ref()
                 .unwrap()
@@ -552,10 +552,10 @@ fn the_map_grid_is_the_drawn_plot_at_every_size() {
 #[test]
 fn no_number_is_cut_at_any_width() {
     let mut a = app("C");
-    a.view.page = Page::EscapeSpeed;
+    crate::common::turn_to(&mut a, Page::EscapeSpeed);
     common::sync(&mut a);
     let s = settings_for(a.settings());
-    let c = a.charts.curve(0.5, s).unwrap();
+    let c = a.charts().curve(0.5, s).unwrap();
     let ((_, _), (_, vmax)) = c.extremes().unwrap();
     let (_, vmin) = c.least.unwrap().unwrap();
     // The greatest is a grid point's, known to the curve's bracket: four decimals.
@@ -618,7 +618,7 @@ fn the_time_plots_share_one_tau_axis_and_a_fixed_window() {
     for _ in 0..60 {
         a.tick();
     }
-    a.view.page = Page::TimePlots;
+    crate::common::turn_to(&mut a, Page::TimePlots);
     let screen = render(&mut a, 100, 34);
     // fig2 is certified to escape at τ = 0: its line's label starts one column right of τ = 0.
     let cols: Vec<usize> = screen
@@ -638,7 +638,7 @@ fn the_time_plots_share_one_tau_axis_and_a_fixed_window() {
     assert!(ticks(&screen).contains("2.5"), "{screen}");
     press(&mut a, KeyCode::Char('t'));
     press(&mut a, KeyCode::Char('t'));
-    assert!((a.view.tau_window.unwrap() - 0.75).abs() < 1e-12);
+    assert!((a.view().tau_window.unwrap() - 0.75).abs() < 1e-12);
     let narrow = render(&mut a, 100, 34);
     assert!(
         ticks(&narrow).contains("0.6") && !ticks(&narrow).contains("2.5"),
@@ -646,7 +646,7 @@ fn the_time_plots_share_one_tau_axis_and_a_fixed_window() {
     );
     press(&mut a, KeyCode::Char('T'));
     press(&mut a, KeyCode::Char('T'));
-    assert_eq!(a.view.tau_window, None);
+    assert_eq!(a.view().tau_window, None);
     assert_eq!(render(&mut a, 100, 34), screen);
 }
 
@@ -658,7 +658,9 @@ fn a_theme_s_background_covers_every_cell() {
         let th = Theme::builtin(theme).unwrap();
         let mut a = App::new(Scene::preset("C").unwrap());
         for help in [false, true] {
-            a.view.help = help;
+            if a.view().help != help {
+                turntable::app::update(&mut a, turntable::app::Action::ToggleHelp);
+            }
             for page in [
                 Page::Turntable,
                 Page::TimePlots,
@@ -667,7 +669,7 @@ fn a_theme_s_background_covers_every_cell() {
                 Page::RestRadius,
                 Page::WorkPrecision,
             ] {
-                a.view.page = page;
+                crate::common::turn_to(&mut a, page);
                 common::sync(&mut a);
                 let mut t =
                     ratatui::Terminal::new(ratatui::backend::TestBackend::new(80, 24)).unwrap();
@@ -702,7 +704,7 @@ fn speeds_and_legends_read_without_colour() {
     for _ in 0..20 {
         a.tick();
     }
-    a.view.page = Page::TimePlots;
+    crate::common::turn_to(&mut a, Page::TimePlots);
     let screen = render(&mut a, 100, 34);
     for words in ["━ ξ  ·· Sec. III approx.", "━ E − E(0)  ·· −∫|u|dτ"] {
         assert!(screen.contains(words), "{words}\n{screen}");
@@ -750,7 +752,7 @@ fn the_lesson_line_is_a_whole_sentence_at_every_width() {
 fn the_xi_plot_zooms_on_a_stop_at_the_rim_beside_the_papers_escape() {
     let mut a = App::new(Scene::preset("C").unwrap());
     turntable::app::update(&mut a, turntable::app::Action::ToggleCompare);
-    a.speed = 2.0;
+    a.tell_speed(2.0);
     for _ in 0..300 {
         a.tick();
         a.catch_up();

@@ -31,8 +31,8 @@ fn four_cases() -> App {
 #[test]
 fn a_pin_ends_where_the_engines_run_stops() {
     let a = four_cases();
-    assert_eq!(a.pins.len(), 4);
-    for (pin, name) in a.pins.iter().zip(["A", "B", "C", "D"]) {
+    assert_eq!(a.pins().len(), 4);
+    for (pin, name) in a.pins().iter().zip(["A", "B", "C", "D"]) {
         assert_eq!(pin.spec.label, name);
         let mut run = Run::new(pin.spec.initial, Settings::default()).unwrap();
         let (out, _) = run.finish(1e3).unwrap();
@@ -60,10 +60,10 @@ fn a_pin_ends_where_the_engines_run_stops() {
         );
     }
     // C: a converged run stops just inside ξ = 1 (docs/numerics.md).
-    let c = a.pins[2].end().xi();
+    let c = a.pins()[2].end().xi();
     assert!(c > 0.99 && c < 1.0, "{c}");
     // Each pin its own marker.
-    let markers: Vec<char> = a.pins.iter().map(|p| p.marker).collect();
+    let markers: Vec<char> = a.pins().iter().map(|p| p.marker).collect();
     assert_eq!(markers, MARKERS[..4]);
 }
 
@@ -72,7 +72,7 @@ fn an_escaping_pin_is_followed_out_of_view_and_a_long_one_is_bounded() {
     let mut a = app("C");
     a.explore().set_initial(Initial::velocity(0.5, 0.0, 1.2));
     key(&mut a, 'b');
-    let p = &a.pins[0];
+    let p = &a.pins()[0];
     assert_eq!(p.outcome, Outcome::Escaped);
     assert!(p.end().xi() > turntable::app::exploration::view_radius(&p.spec.initial));
     assert_eq!(p.spec.label, "A", "an edited run is lettered");
@@ -87,7 +87,7 @@ fn an_escaping_pin_is_followed_out_of_view_and_a_long_one_is_bounded() {
     key(&mut a, '5');
     key(&mut a, 'F');
     key(&mut a, 'b');
-    let p = &a.pins[1];
+    let p = &a.pins()[1];
     assert_eq!(p.end().tau, turntable::pin::PIN_TAU_MAX);
     assert!(p.path.len() <= 2 * PIN_POINTS, "{}", p.path.len());
     assert_eq!(p.spec.label, "B");
@@ -97,7 +97,7 @@ fn an_escaping_pin_is_followed_out_of_view_and_a_long_one_is_bounded() {
         key(&mut a, 'm');
     }
     key(&mut a, 'b');
-    let p = &a.pins[2];
+    let p = &a.pins()[2];
     assert!(p.path.len() <= 2 * PIN_POINTS, "{}", p.path.len());
     assert!(p.end().tau <= turntable::pin::PIN_TAU_MAX);
     // At dt = 1e-6 the step budget ends it first, and the notice says so.
@@ -105,10 +105,10 @@ fn an_escaping_pin_is_followed_out_of_view_and_a_long_one_is_bounded() {
         key(&mut a, '>');
     }
     key(&mut a, 'b');
-    let p = &a.pins[3];
+    let p = &a.pins()[3];
     assert_eq!(p.outcome, Outcome::Running);
     assert!(p.end().tau < 1.0, "{}", p.end().tau);
-    let n = a.notice.clone().unwrap();
+    let n = a.notice().clone().unwrap();
     assert!(n.contains("where a pin's 200000 steps ran out"), "{n}");
 }
 
@@ -118,22 +118,22 @@ fn a_seventh_pin_replaces_the_oldest_and_b_clears() {
     for c in ['5', 'b', '6', 'b'] {
         key(&mut a, c);
     }
-    assert_eq!(a.pins.len(), MAX_PINS);
+    assert_eq!(a.pins().len(), MAX_PINS);
     key(&mut a, '3');
     key(&mut a, 'x');
     key(&mut a, 'b');
-    assert_eq!(a.pins.len(), MAX_PINS);
-    let labels: Vec<&str> = a.pins.iter().map(|p| p.spec.label.as_str()).collect();
+    assert_eq!(a.pins().len(), MAX_PINS);
+    let labels: Vec<&str> = a.pins().iter().map(|p| p.spec.label.as_str()).collect();
     // A went, its marker passed on to the newest, which is lettered (an edited C): the first
     // letter no pin holds.
     assert_eq!(labels, ["B", "C", "D", "fig1", "fig2", "A"]);
-    assert_eq!(a.pins[5].marker, MARKERS[0]);
-    let n = a.notice.clone().unwrap();
+    assert_eq!(a.pins()[5].marker, MARKERS[0]);
+    let n = a.notice().clone().unwrap();
     assert!(n.contains("the oldest, ◆A, unpinned"), "{n}");
     let screen = render(&mut a, 100, 30);
     assert!(screen.contains("unpinned"), "{screen}");
     key(&mut a, 'B');
-    assert!(a.pins.is_empty());
+    assert!(a.pins().is_empty());
     assert!(render(&mut a, 100, 30).contains("6 pins cleared"));
 }
 
@@ -146,7 +146,7 @@ fn pins_show_in_both_frames_and_on_the_time_plots_at_every_size() {
     for (w, h) in [(40, 12), (80, 24), (200, 60)] {
         for page in [Page::Turntable, Page::TimePlots] {
             for frame in ['f', 'f'] {
-                a.view.page = page;
+                crate::common::turn_to(&mut a, page);
                 key(&mut a, frame);
                 let screen = render(&mut a, w, h);
                 a.check_invariants().unwrap();
@@ -167,7 +167,7 @@ fn pins_show_in_both_frames_and_on_the_time_plots_at_every_size() {
         }
     }
     // The time plots span the longest pin (C stops at τ ≈ 5.6), not only the τ on screen.
-    a.view.page = Page::TimePlots;
+    crate::common::turn_to(&mut a, Page::TimePlots);
     assert!(a.plot_span() > 5.5 && a.sim().now().tau < 2.0);
     let screen = render(&mut a, 200, 60);
     assert!(screen.contains(" 5 "), "{screen}");
@@ -182,7 +182,7 @@ fn pins_are_saved_with_the_scene_and_load_back() {
     let text = std::fs::read_to_string(&path).unwrap();
     assert_eq!(text.matches("[[pins]]").count(), 4, "{text}");
     let back = App::new(Scene::load(path.to_str().unwrap()).unwrap());
-    assert_eq!(back.pins, a.pins, "the same paths, recomputed");
+    assert_eq!(back.pins(), a.pins(), "the same paths, recomputed");
     // Too many pins are refused with the file's name.
     let eight = text.clone() + &text[text.find("[[pins]]").unwrap()..];
     std::fs::write(dir.join("eight.toml"), &eight).unwrap();

@@ -242,7 +242,7 @@ fn i_reads_every_readout_as_the_panel_shows_it() {
     }
     // The explorer shows the same answer as a one-line notice; plain mode says it once.
     assert_eq!(
-        p.app.notice.as_deref(),
+        p.app.notice().as_deref(),
         Some("τ = 7.500, ξ = 0.99717, |u| = 0.0000: stuck at ξ = 0.9972 (τ = 5.602)")
     );
     assert!(!said.iter().any(|l| l.starts_with("τ = 7.500,")));

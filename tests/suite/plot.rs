@@ -519,7 +519,7 @@ fn the_explorer_writes_the_page_to_a_new_file() {
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     let mut app = App::new(turntable::scene::Scene::preset("B").unwrap());
-    app.save_path = dir.join("turntable-scene.toml");
+    app.tell_save_path(dir.join("turntable-scene.toml"));
     let press = |app: &mut App, code| {
         let effects = app.handle_key(KeyEvent::new(code, KeyModifiers::NONE));
         turntable::session::carry_out(app, effects);
@@ -532,7 +532,7 @@ fn the_explorer_writes_the_page_to_a_new_file() {
     press(&mut app, KeyCode::Char('E'));
     let first = dir.join("turntable-turntable-1.svg");
     assert_eq!(
-        app.notice.as_deref(),
+        app.notice().as_deref(),
         Some(format!("wrote this page to {}", first.display()).as_str())
     );
     let tags = parse(&std::fs::read_to_string(&first).unwrap());
@@ -551,7 +551,7 @@ fn the_explorer_writes_the_page_to_a_new_file() {
     press(&mut app, KeyCode::Char('E'));
     press(&mut app, KeyCode::Char('E'));
     assert!(
-        app.notice
+        app.notice()
             .as_deref()
             .unwrap()
             .ends_with("turntable-turntable-4.svg")
@@ -647,7 +647,7 @@ fn an_export_carries_what_the_screen_shows() {
     std::fs::create_dir_all(&dir).unwrap();
     // Fig. 2: at rest on the table at ξ0 = 1.1, where Sec. III's approximations hold early.
     let mut app = App::new(turntable::scene::Scene::preset("fig2").unwrap());
-    app.save_path = dir.join("turntable-scene.toml");
+    app.tell_save_path(dir.join("turntable-scene.toml"));
     let press = |app: &mut App, code| {
         let effects = app.handle_key(KeyEvent::new(code, KeyModifiers::NONE));
         turntable::session::carry_out(app, effects);
@@ -661,8 +661,12 @@ fn an_export_carries_what_the_screen_shows() {
     for _ in 0..40 {
         app.tick();
     }
-    let pin = format!("{}{}", app.pins[0].marker, app.pins[0].spec.label.as_str());
-    assert!(app.paper().is_some() && app.view.velocity && app.view.forces);
+    let pin = format!(
+        "{}{}",
+        app.pins()[0].marker,
+        app.pins()[0].spec.label.as_str()
+    );
+    assert!(app.paper().is_some() && app.view().velocity && app.view().forces);
     common::render(&mut app, 160, 50);
     press(&mut app, KeyCode::Char('E'));
     let svg = std::fs::read_to_string(dir.join("turntable-turntable-1.svg")).unwrap();

@@ -201,7 +201,7 @@ fn record_then_replay_gives_the_same_screen() {
         let mut rng = Rng(seed);
         let mut app = App::new(Scene::default_scene());
         let tmp = std::env::temp_dir().join(format!("turntable-record-{}", std::process::id()));
-        app.save_path = tmp.join("scene.toml");
+        app.tell_save_path(tmp.join("scene.toml"));
         let mut s = Session::headless(
             app,
             turntable::theme::Theme::builtin("dark").unwrap(),

@@ -31,7 +31,7 @@ fn doubling_mu_doubles_r_max_and_halves_xi0_for_the_same_metres() {
     a.explore().set_initial(Initial::velocity(0.5, 0.0, 0.7));
     assert_eq!(outcome(&a), Outcome::Escaped);
     key(&mut a, 'u');
-    let u0 = a.units.unwrap();
+    let u0 = a.units().unwrap();
     assert_eq!(
         a.initial().xi0,
         0.5,
@@ -44,7 +44,7 @@ fn doubling_mu_doubles_r_max_and_halves_xi0_for_the_same_metres() {
     for _ in 0..15 {
         key(&mut a, 'u');
     }
-    let u = a.units.unwrap();
+    let u = a.units().unwrap();
     assert_eq!(u.mu, 2.0 * u0.mu);
     assert!((u.r_max_m() / u0.r_max_m() - 2.0).abs() < 1e-12);
     // The same metres and m/s: ξ0 and v0 halve.
@@ -86,7 +86,7 @@ fn the_table_stays_in_the_panel_and_the_mu_probe_reads_its_omega() {
     key(&mut a, 'u');
     key(&mut a, 'w');
     a.handle_key(KeyEvent::new(KeyCode::Esc, KeyModifiers::NONE));
-    let u = a.units.unwrap();
+    let u = a.units().unwrap();
     for (w, h) in [(40, 12), (80, 24), (200, 60)] {
         let screen = render(&mut a, w, h);
         a.check_invariants().unwrap();
@@ -101,7 +101,7 @@ fn the_table_stays_in_the_panel_and_the_mu_probe_reads_its_omega() {
     }
     // The largest table the knobs reach still fits the panel whole.
     let mut big = App::new(Scene::preset("B").unwrap());
-    big.units = Some(Units::new(10.0, 1e4, 1000.0).unwrap());
+    big.tell_units(Some(Units::new(10.0, 1e4, 1000.0).unwrap()));
     let screen = render(&mut big, 80, 24);
     for want in [
         "Ω      1047 rad/s 10000 rpm │",
@@ -110,7 +110,7 @@ fn the_table_stays_in_the_panel_and_the_mu_probe_reads_its_omega() {
         assert!(screen.contains(want), "{want}\n{screen}");
     }
     // The rest page's Eq. 22 uses the table's Ω, and `o` turns the table.
-    a.view.page = Page::RestRadius;
+    crate::common::turn_to(&mut a, Page::RestRadius);
     let screen = render(&mut a, 100, 40);
     assert!(
         screen.contains("Ω = 3.595 rad/s (34.3 rpm, the table's)"),
@@ -118,14 +118,14 @@ fn the_table_stays_in_the_panel_and_the_mu_probe_reads_its_omega() {
     );
     let xi0 = a.initial().xi0;
     key(&mut a, 'o');
-    let v = a.units.unwrap();
+    let v = a.units().unwrap();
     assert!((v.omega() - (u.omega() + 0.1)).abs() < 1e-9, "{v:?}");
     assert!(
         a.initial().xi0 > xi0,
         "a faster table: a smaller R_max, a larger ξ0"
     );
     assert_eq!(
-        a.mu_probe,
+        a.mu_probe(),
         turntable::app::MU_PROBE,
         "the probe's own Ω is left alone"
     );
@@ -139,14 +139,14 @@ fn a_pin_from_another_table_is_drawn_in_this_ones_units() {
     a.explore().set_initial(Initial::velocity(0.5, 0.0, 0.7));
     key(&mut a, 'u');
     key(&mut a, 'b');
-    let before = a.units;
+    let before = a.units();
     for _ in 0..15 {
         key(&mut a, 'u');
     }
-    let pin = &a.pins[0];
+    let pin = &a.pins()[0];
     assert_eq!(pin.spec.units, before);
     assert_eq!(pin.outcome, Outcome::Escaped);
-    let (kl, kt) = pin.scale(a.units);
+    let (kl, kt) = pin.scale(a.units());
     assert!(
         (kl - 0.5).abs() < 1e-12 && (kt - 1.0).abs() < 1e-12,
         "{kl} {kt}"
@@ -155,7 +155,7 @@ fn a_pin_from_another_table_is_drawn_in_this_ones_units() {
     // Units off: nothing to convert by.
     assert_eq!(pin.scale(None), (1.0, 1.0));
     for page in [Page::Turntable, Page::TimePlots] {
-        a.view.page = page;
+        crate::common::turn_to(&mut a, page);
         for (w, h) in [(40, 12), (80, 24), (200, 60)] {
             render(&mut a, w, h);
             a.check_invariants().unwrap();

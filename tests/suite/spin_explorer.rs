@@ -111,13 +111,13 @@ fn what_the_spin_up_does_not_model_is_refused_with_a_notice() {
         KeyCode::Tab,
     ] {
         key(&mut a, k);
-        assert!(a.notice.is_some(), "{k:?} says why");
+        assert!(a.notice().is_some(), "{k:?} says why");
         assert_eq!(
-            (a.initial(), a.settings(), a.sim().now().tau, a.view.page),
+            (a.initial(), a.settings(), a.sim().now().tau, a.view().page),
             (initial, settings, tau, Page::Turntable),
             "{k:?} changed nothing"
         );
-        assert!(a.paper().is_none() && a.pins.is_empty());
+        assert!(a.paper().is_none() && a.pins().is_empty());
     }
     assert_eq!(a.initial().release, Release::TableRest);
     // The method cycles, passing the paper's raw scheme by: the spin-up needs its events.
@@ -143,9 +143,9 @@ fn the_error_estimate_shadows_the_spin_up() {
     assert!(e.error > 0.0 && e.error < 1e-6, "{e:?}");
     key(&mut a, KeyCode::Char('e'));
     assert!(
-        a.notice.as_deref().unwrap().contains("|Δr|"),
+        a.notice().as_deref().unwrap().contains("|Δr|"),
         "{:?}",
-        a.notice
+        a.notice()
     );
 }
 
@@ -273,8 +273,8 @@ fn the_spin_preset_opens_the_same_whatever_came_before() {
             a.tick();
         }
         key(&mut a, KeyCode::Char('7'));
-        prop_assert!(a.paper().is_none() && a.pins.is_empty());
-        prop_assert_eq!(a.view.page, Page::Turntable);
+        prop_assert!(a.paper().is_none() && a.pins().is_empty());
+        prop_assert_eq!(a.view().page, Page::Turntable);
         prop_assert_eq!(without_last_line(&common_render(&mut a)), expected.clone());
     });
 }

@@ -98,7 +98,7 @@ fn the_export_has_a_panel_per_frame_and_a_saved_scene_keeps_the_split() {
             "the turntable in the rotating frame (the table's)"
         ]
     );
-    let saved = a.view.saved(a.speed);
+    let saved = a.view().saved(a.speed());
     assert!(saved.split);
     assert!(turntable::app::view::View::of(Some(saved)).split);
 }

@@ -78,9 +78,12 @@ fn the_spin_ups_ring_shrinks_and_the_coin_slips_as_it_passes() {
 #[test]
 fn stokes_drag_holds_nothing_and_is_not_friction() {
     let mut app = with_coupling("A", Coupling::Stokes { gamma: 0.4 });
-    app.view.forces = true;
+    let _ = turntable::app::update(&mut app, turntable::app::Action::ToggleForces);
+    assert!(app.view().forces);
     for frame in [Frame::Lab, Frame::Table] {
-        app.view.frame = frame;
+        if app.view().frame != frame {
+            let _ = turntable::app::update(&mut app, turntable::app::Action::ToggleFrame);
+        }
         let pic = Picture::in_frame(&app, frame);
         assert!(pic.table.ring.is_none());
         let labels: Vec<_> = pic.point.unwrap().arrows.iter().map(|a| a.label).collect();
@@ -116,7 +119,7 @@ fn e_tau_and_mu_are_said_for_what_they_are() {
     let s = app.sim().now();
     assert!(s.energy() < -0.5 && (s.energy() + 0.5 * 1.1 * 1.1).abs() < 1e-12);
     let mut app = App::new(Scene::preset("C").unwrap());
-    app.view.page = Page::TimePlots;
+    super::common::turn_to(&mut app, Page::TimePlots);
     let screen = render(&mut app, 120, 40);
     assert!(
         screen.contains("E = ½|u|² − ½ξ² (table frame), dE/dτ = −|u|:"),
@@ -129,7 +132,7 @@ fn e_tau_and_mu_are_said_for_what_they_are() {
         "{panel:?}"
     );
     let mut app = App::new(Scene::preset("A").unwrap());
-    app.view.page = Page::RestRadius;
+    super::common::turn_to(&mut app, Page::RestRadius);
     sync(&mut app);
     let screen = render(&mut app, 120, 40);
     assert!(screen.contains("μ_k = 0.1"), "{screen}");

@@ -14,7 +14,7 @@ use turntable::scene::Scene;
 
 fn app(scene: &str) -> App {
     let mut a = App::new(Scene::preset(scene).unwrap());
-    a.view.page = Page::WorkPrecision;
+    super::common::turn_to(&mut a, Page::WorkPrecision);
     a
 }
 
@@ -26,7 +26,7 @@ fn press(app: &mut App, c: char) {
 fn trade(a: &mut App) -> Trade {
     common::sync(a);
     let t = a
-        .charts
+        .charts()
         .trade(&a.initial(), trade_base(a.settings()))
         .expect("the page's runs")
         .clone();
@@ -159,28 +159,35 @@ fn j_and_k_pick_a_point_and_enter_runs_it() {
     let at = all.iter().position(|s| *s == a.settings().scheme).unwrap();
     press(&mut a, 'j');
     press(&mut a, 'j');
-    assert_eq!(a.view.trade_pick, Some(all[at + 2]));
+    assert_eq!(a.view().trade_pick, Some(all[at + 2]));
     press(&mut a, 'k');
-    assert_eq!(a.view.trade_pick, Some(all[at + 1]));
+    assert_eq!(a.view().trade_pick, Some(all[at + 1]));
     let screen = render(&mut a, 120, 40);
     assert!(screen.contains("picked dp54 1e-11: "), "{screen}");
     a.handle_key(KeyEvent::new(KeyCode::Enter, KeyModifiers::NONE));
     assert_eq!(a.settings().scheme, all[at + 1]);
-    assert_eq!(a.view.page, Page::WorkPrecision);
+    assert_eq!(a.view().page, Page::WorkPrecision);
     assert_eq!(
-        a.notice.as_deref(),
+        a.notice().as_deref(),
         Some("the run is now at dp54 tol=1e-11 (Tab to the turntable to watch it)")
     );
     // The first point back from the start wraps to the last: the paper's RK2 at dt 1e-4.
-    a.view.trade_pick = Some(all[0]);
+    while a.view().trade_pick != Some(all[0]) {
+        press(&mut a, 'j');
+    }
     press(&mut a, 'k');
-    assert_eq!(a.view.trade_pick, Some(Method::Rk2Raw.with(1e-4)));
+    assert_eq!(a.view().trade_pick, Some(Method::Rk2Raw.with(1e-4)));
     a.handle_key(KeyEvent::new(KeyCode::Enter, KeyModifiers::NONE));
     assert_eq!(a.settings().scheme, Method::Rk2Raw.with(1e-4));
     // Elsewhere j says where it works.
-    a.view.page = Page::Turntable;
+    super::common::turn_to(&mut a, Page::Turntable);
     press(&mut a, 'j');
-    assert!(a.notice.as_deref().unwrap().contains("work-precision page"));
+    assert!(
+        a.notice()
+            .as_deref()
+            .unwrap()
+            .contains("work-precision page")
+    );
 }
 
 /// The page computes only while shown: asked for on the Tab that shows it, dropped by the Tab
@@ -201,7 +208,7 @@ fn it_computes_only_while_shown_and_a_switch_recomputes_nothing() {
     for _ in 0..5 {
         tab(&mut s);
     }
-    assert_eq!(s.app.view.page, Page::WorkPrecision);
+    assert_eq!(s.app.view().page, Page::WorkPrecision);
     assert!(matches!(
         s.analysis.current(),
         Some((turntable::analysis::Job::Trade { .. }, _))
@@ -251,7 +258,7 @@ fn the_page_survives_every_size_and_says_what_it_measures() {
     let s = render(&mut a, 80, 24);
     assert!(s.contains("closed form"), "{s}");
     assert!(
-        a.charts
+        a.charts()
             .trade(&a.initial(), trade_base(a.settings()))
             .is_none()
     );
@@ -264,13 +271,13 @@ fn e_exports_the_page() {
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     let mut a = app("A");
-    a.save_path = dir.join("scene.toml");
+    a.tell_save_path(dir.join("scene.toml"));
     trade(&mut a);
     let export = turntable::app::update(&mut a, turntable::app::Action::ExportSvg);
     turntable::session::carry_out(&mut a, export);
     let path = dir.join("turntable-work-precision-1.svg");
     assert_eq!(
-        a.notice.as_deref(),
+        a.notice().as_deref(),
         Some(format!("wrote this page to {}", path.display()).as_str())
     );
     let svg = std::fs::read_to_string(&path).unwrap();

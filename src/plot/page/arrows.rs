@@ -26,7 +26,7 @@ pub const FORCE_SHARE: f64 = 0.2;
 /// on a table speeding up the Euler force. All are scaled together so the longest is
 /// [`FORCE_SHARE`] of `half_width`.
 pub fn force_arrows(app: &App, half_width: f64) -> Vec<ForceArrow> {
-    forces(app, app.view.frame, half_width).0
+    forces(app, app.view().frame, half_width).0
 }
 
 /// [`force_arrows`], and the net force at their scale (their sum: du/dτ in the rotating
@@ -83,18 +83,18 @@ fn forces(app: &App, frame: Frame, half_width: f64) -> (Vec<ForceArrow>, DVec2) 
 /// the rotating frame, the lab velocity in the lab; `speed_scale` world units per unit speed,
 /// as the initial velocity's arrow). A zero vector is not drawn.
 pub fn arrows(app: &App, half_width: f64, speed_scale: f64) -> Vec<ForceArrow> {
-    arrows_in(app, app.view.frame, half_width, speed_scale)
+    arrows_in(app, app.view().frame, half_width, speed_scale)
 }
 
 /// [`arrows`] as `frame` sees them (a split view draws both frames).
 pub fn arrows_in(app: &App, frame: Frame, half_width: f64, speed_scale: f64) -> Vec<ForceArrow> {
     let (mut out, net) = forces(app, frame, half_width);
-    if !app.view.forces {
+    if !app.view().forces {
         out.clear();
     }
     // Below this the sum is rounding: the forces balance (stuck).
     let balanced = 1e-9 * half_width;
-    if app.view.net_force && net.length() > balanced {
+    if app.view().net_force && net.length() > balanced {
         out.push(ForceArrow {
             label: "net",
             word: "net force",
@@ -102,7 +102,7 @@ pub fn arrows_in(app: &App, frame: Frame, half_width: f64, speed_scale: f64) -> 
             ink: Ink::Foreground,
         });
     }
-    if app.view.velocity {
+    if app.view().velocity {
         let (label, word, v) = velocity_in(app, frame);
         if v.length() > 0.0 {
             out.push(ForceArrow {
@@ -118,7 +118,7 @@ pub fn arrows_in(app: &App, frame: Frame, half_width: f64, speed_scale: f64) -> 
 
 /// The velocity the frame shown sees: `u` relative to the table (rotating), `v` (lab).
 pub fn velocity(app: &App) -> (&'static str, &'static str, DVec2) {
-    velocity_in(app, app.view.frame)
+    velocity_in(app, app.view().frame)
 }
 
 fn velocity_in(app: &App, frame: Frame) -> (&'static str, &'static str, DVec2) {

@@ -15,7 +15,7 @@ use std::f64::consts::TAU;
 pub fn chart(app: &App) -> Chart {
     let i = app.initial();
     let settings = crate::analysis::settings_for(app.settings());
-    let mine = app.charts.curve(i.xi0, settings);
+    let mine = app.charts().curve(i.xi0, settings);
     // Outside ξ = 1 a throw too slow escapes too: the sticking speeds are a window, and the
     // paper's v_e curves (Fig. 5, inside ξ = 1) are another quantity.
     let window = i.xi0 > 1.0;
@@ -59,7 +59,7 @@ pub fn chart(app: &App) -> Chart {
         y_label: crate::plot::axis(
             if window { "v0" } else { "v_e" },
             Quantity::Speed,
-            app.units,
+            app.units(),
         ),
         x: [0.0, TAU],
         y: [0.0, (1.1 * top).max(0.1)],
@@ -77,7 +77,7 @@ fn paper_curves(app: &App, settings: Settings, window: bool) -> (Vec<Series>, Ve
     let mut marks = Vec::new();
     let others = if window { &[][..] } else { &PAPER_XI0[..] };
     for &xi0 in others.iter().filter(|x| **x != app.initial().xi0) {
-        if let Some(c) = app.charts.curve(xi0, settings) {
+        if let Some(c) = app.charts().curve(xi0, settings) {
             let points = c.points();
             // Named at its peak rather than in the legend (their faint colours are all one),
             // which keeps the legend's room for the current curve.

@@ -15,7 +15,7 @@ use std::f64::consts::TAU;
 pub fn shown(app: &App) -> Option<&Map> {
     let i = app.initial();
     let settings = crate::analysis::settings_for(app.settings());
-    app.charts.map.as_ref().filter(|m| match m.job {
+    app.charts().map.as_ref().filter(|m| match m.job {
         crate::analysis::Job::Map { xi0, release, .. } => {
             xi0 == i.xi0 && release == i.release && m.settings == settings
         }
@@ -31,7 +31,7 @@ pub fn chart(app: &App) -> Chart {
     let v0_max = match map.map(|m| m.job) {
         Some(crate::analysis::Job::Map { v0_max, .. }) => v0_max,
         _ => app
-            .charts
+            .charts()
             .curve(i.xi0, settings)
             .map_or(1.0, |c| Charts::map_v0_max(c, i.release, i.xi0)),
     };
@@ -77,7 +77,7 @@ pub fn frame(app: &App, v0_max: f64, progress: String) -> Chart {
     };
     let mut series = Vec::new();
     if i.release != Release::LabRest
-        && let Some(c) = app.charts.curve(i.xi0, settings)
+        && let Some(c) = app.charts().curve(i.xi0, settings)
     {
         let window = i.xi0 > 1.0;
         series.push(Series {
@@ -107,7 +107,7 @@ pub fn frame(app: &App, v0_max: f64, progress: String) -> Chart {
         ),
         note: String::new(),
         x_label: format!("φ (rad, {frame_word} frame)  blank: escapes  ·:▒▓ stuck, ξ <¼ <½ <¾ ≤1"),
-        y_label: crate::plot::axis("v0", Quantity::Speed, app.units),
+        y_label: crate::plot::axis("v0", Quantity::Speed, app.units()),
         x: [0.0, TAU],
         y: [0.0, v0_max],
         x_scale: Scale::Angle,

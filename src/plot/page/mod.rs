@@ -23,7 +23,7 @@ pub fn figure(app: &App) -> (Figure, bool) {
         title: title(app),
         panels: vec![panel],
     };
-    match app.view.page {
+    match app.view().page {
         Page::Turntable => (table::figure(app, title(app)), true),
         Page::TimePlots => {
             let panels = time::panels(app);
@@ -57,8 +57,11 @@ fn curves_whole(app: &App) -> bool {
     if i.xi0 <= 1.0 {
         xi0s.extend(PAPER_XI0.iter().filter(|x| **x != i.xi0));
     }
-    xi0s.iter()
-        .all(|&x| app.charts.curve(x, settings).is_some_and(|c| c.complete()))
+    xi0s.iter().all(|&x| {
+        app.charts()
+            .curve(x, settings)
+            .is_some_and(|c| c.complete())
+    })
 }
 
 /// The figure's title: the release on screen and its τ.

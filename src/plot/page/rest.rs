@@ -10,7 +10,10 @@ use crate::present::{Quantity, num};
 /// The radii computed for the settings on screen, if any.
 pub fn shown(app: &App) -> Option<&Rest> {
     let settings = crate::analysis::settings_for(app.settings());
-    app.charts.rest.as_ref().filter(|r| r.settings == settings)
+    app.charts()
+        .rest
+        .as_ref()
+        .filter(|r| r.settings == settings)
 }
 
 /// Fig. 6's chart: the final ξ of each release at rest in the lab against its ξ0 (those that
@@ -57,8 +60,8 @@ pub fn chart(app: &App) -> Chart {
             "rest radius".to_string(),
         ]),
         note: xi0c.map_or(String::new(), |c| format!("ξ0c = {}", num(c, 6))),
-        x_label: crate::plot::axis("ξ0", Quantity::Length, app.units),
-        y_label: crate::plot::axis("final ξ", Quantity::Length, app.units),
+        x_label: crate::plot::axis("ξ0", Quantity::Length, app.units()),
+        y_label: crate::plot::axis("final ξ", Quantity::Length, app.units()),
         x: [0.0, REST_XI0_MAX],
         y: [0.0, 1.05],
         series: vec![

@@ -45,7 +45,7 @@ fn series(name: &str, ink: Ink, path: &[State], y: impl Fn(&State) -> f64) -> Se
 /// and the escape certificate marked; each y range is what the window shows.
 pub fn panels(app: &App) -> Vec<Panel> {
     let now = app.sim().now().tau;
-    let span = app.view.tau_window.unwrap_or(app.plot_span()).max(1e-3);
+    let span = app.view().tau_window.unwrap_or(app.plot_span()).max(1e-3);
     let window = crate::engine::approx::window(&app.initial());
     let marks = marks(app, now);
     // The window's end is marked only where Sec. III's approximation holds within it: ξ, and
@@ -65,9 +65,9 @@ pub fn panels(app: &App) -> Vec<Panel> {
                 s.iter()
                     .flat_map(|s| s.points.iter().filter(|p| p.0 <= span).map(|p| p.1)),
             ),
-            x_label: super::super::axis("τ", Quantity::Time, app.units),
+            x_label: super::super::axis("τ", Quantity::Time, app.units()),
             y_label: match measure {
-                Measure::Si(q) => super::super::axis(name, q, app.units),
+                Measure::Si(q) => super::super::axis(name, q, app.units()),
                 Measure::Angle => format!("{name} (rad)"),
                 Measure::Bare => name.into(),
             },
@@ -207,10 +207,10 @@ impl Sources<'_> {
     fn pin_series(&mut self, k: usize, dims: (i32, i32), y: &PathPoints<'_>) -> Vec<Series> {
         let app = self.app;
         let pin_marks = &mut self.pin_marks;
-        app.pins
+        app.pins()
             .iter()
             .map(|pin| {
-                let (kl, kt) = pin.scale(app.units);
+                let (kl, kt) = pin.scale(app.units());
                 let ky = kl.powi(dims.0) * kt.powi(dims.1);
                 let points: Vec<(f64, f64)> = y(&pin.path)
                     .into_iter()
@@ -289,7 +289,7 @@ fn integrated(rate: &Series, ink: Ink) -> Series {
 const APPROX: &str = "Sec. III approx.";
 
 fn plots(app: &App, now: f64, window: Option<f64>) -> [Plot<'static>; 5] {
-    let rotating = app.view.frame == Frame::Table;
+    let rotating = app.view().frame == Frame::Table;
     let (theta_name, shift) = if rotating {
         ("Θ′", 1.0)
     } else {

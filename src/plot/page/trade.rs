@@ -15,7 +15,8 @@ use strum::VariantArray;
 
 /// The runs computed for the release and settings on screen, if any.
 pub fn shown(app: &App) -> Option<&Trade> {
-    app.charts.trade(&app.initial(), trade_base(app.settings()))
+    app.charts()
+        .trade(&app.initial(), trade_base(app.settings()))
 }
 
 /// Whether every run of the page is in.
@@ -272,7 +273,7 @@ pub fn chart(app: &App) -> Chart {
             otherwise,
         ));
     }
-    let picked = trade_picked(app.view.trade_pick, &initial, settings);
+    let picked = trade_picked(app.view().trade_pick, &initial, settings);
     let mut marks = names;
     let mut mark = |s: Scheme, label: String, ink: Ink| {
         if let Some((x, y, _)) = at(s) {

@@ -33,11 +33,11 @@ impl Run<'_> {
     pub(super) fn answer(&mut self, s: &mut Session<Screen>, yes: bool) {
         let taken = s
             .app
-            .lesson
+            .lesson()
             .question
             .as_ref()
             .is_some_and(|q| q.own.is_none())
-            && self.shared.answer(self.id, s.app.lesson.asked, yes);
+            && self.shared.answer(self.id, s.app.lesson().asked, yes);
         if taken {
             s.app.answer_apart(yes);
         }
@@ -46,7 +46,7 @@ impl Run<'_> {
     /// (The presenter's thread, while a question is on screen.) The class's answers so far,
     /// told to the model for the caption; reset by a new question.
     pub(super) fn tally(&mut self, s: &mut Session<Screen>) {
-        let l = &s.app.lesson;
+        let l = &s.app.lesson();
         if l.question.is_none() && l.tally.is_none() {
             return;
         }
@@ -62,7 +62,6 @@ impl Run<'_> {
             self.following = false;
             s.app.tell_class(InClass::Out);
             self.shared.unfollow(self.id);
-            s.app.lesson.apart = false;
             s.app
                 .report("stepped out of the class: F2 rejoins it".into());
         } else if self.shared.class_led(self.id) {

@@ -74,10 +74,10 @@ fn title(app: &App, frame: Frame, point: bool) -> String {
         Frame::Lab => " lab frame ".to_string(),
         Frame::Table => " rotating frame ".to_string(),
     };
-    if app.view.zoom != 1.0 {
+    if app.view().zoom != 1.0 {
         title.push_str(&format!(
             "zoom ×{} (follows {}) ",
-            crate::ui::panel::num(app.view.zoom, 2),
+            crate::ui::panel::num(app.view().zoom, 2),
             if point { "●" } else { "the body" }
         ));
     }
@@ -104,16 +104,16 @@ pub fn split(area: Rect) -> [Rect; 2] {
 /// Draws the canvas (both frames' in a split view, the frame chosen first) and returns the
 /// geometry of each (where it is and which world it shows).
 pub fn render(f: &mut TuiFrame, area: Rect, app: &App, th: &Theme) -> Vec<CanvasGeom> {
-    if !app.view.split {
-        return vec![render_in(f, area, app, app.view.frame, th)];
+    if !app.view().split {
+        return vec![render_in(f, area, app, app.view().frame, th)];
     }
-    let other = match app.view.frame {
+    let other = match app.view().frame {
         Frame::Lab => Frame::Table,
         Frame::Table => Frame::Lab,
     };
     let [a, b] = split(area);
     vec![
-        render_in(f, a, app, app.view.frame, th),
+        render_in(f, a, app, app.view().frame, th),
         render_in(f, b, app, other, th),
     ]
 }
@@ -192,14 +192,22 @@ mod tests {
                 update(&mut app, Action::PinRun);
             }
             update(&mut app, Action::Preset(shown));
-            app.view.forces = true;
-            app.view.net_force = true;
-            app.view.velocity = true;
+            for (on, toggle) in [
+                (app.view().forces, Action::ToggleForces),
+                (app.view().net_force, Action::ToggleNetForce),
+                (app.view().velocity, Action::ToggleVelocity),
+            ] {
+                if !on {
+                    update(&mut app, toggle);
+                }
+            }
             for tick in 0..300 {
                 if tick % 15 == 0 {
                     placed += check(&app, &th);
                 }
-                app.playing = true;
+                if !app.playing() {
+                    app.play(None);
+                }
                 app.tick();
             }
         }

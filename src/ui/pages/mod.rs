@@ -26,14 +26,14 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App, th: &Theme) -> Option<Can
     if let Some(gamma) = app.settings().stokes()
         && !app.initial().frictionless
         && matches!(
-            app.view.page,
+            app.view().page,
             Page::EscapeSpeed | Page::OutcomeMap | Page::RestRadius
         )
     {
         no_threshold(f, area, th, gamma);
         return None;
     }
-    match app.view.page {
+    match app.view().page {
         Page::Turntable => None,
         Page::TimePlots => {
             super::time_plots::render(f, area, app, th);
@@ -82,7 +82,7 @@ fn geom(plot: Rect, c: &Chart, page: Page, app: &App) -> CanvasGeom {
         x: crate::plot::sane(c.x),
         y: crate::plot::sane(c.y),
         arrow_scale: 1.0,
-        frame: app.view.frame,
+        frame: app.view().frame,
         turn: 0.0,
         page,
     }
@@ -106,12 +106,12 @@ pub fn summary(app: &App) -> Option<(String, Option<String>)> {
     if app.settings().stokes().is_some() {
         return None;
     }
-    match app.view.page {
+    match app.view().page {
         Page::EscapeSpeed => {
             let window = i.xi0 > 1.0;
             // Inside ξ = 1, once the least v_e is refined too: said once, not grid then refined.
             let c = app
-                .charts
+                .charts()
                 .curve(i.xi0, settings)
                 .filter(|c| c.complete() && (window || c.least.is_some()))?;
             let what = if window {
@@ -136,7 +136,7 @@ pub fn summary(app: &App) -> Option<(String, Option<String>)> {
         }
         Page::RestRadius => {
             let rest = app
-                .charts
+                .charts()
                 .rest
                 .as_ref()
                 .filter(|r| r.settings == settings)?;
@@ -161,7 +161,7 @@ pub fn summary(app: &App) -> Option<(String, Option<String>)> {
                 return None;
             }
             let t = shown(app);
-            let picked = crate::app::pages::trade_picked(app.view.trade_pick, &i, app.settings());
+            let picked = crate::app::pages::trade_picked(app.view().trade_pick, &i, app.settings());
             let lead = if picked == app.settings().scheme {
                 "now"
             } else {

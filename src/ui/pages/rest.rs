@@ -26,11 +26,11 @@ pub(super) fn rest_radius(f: &mut TuiFrame, area: Rect, app: &App, th: &Theme) {
 fn measure_mu(f: &mut TuiFrame, bottom: Rect, app: &App, th: &Theme, xi0c: Option<f64>) {
     // With SI units on, the table's Ω and g (o/O turn the table).
     let (omega, g) = app
-        .units
-        .map_or((app.mu_probe.0, crate::engine::units::G_DEFAULT), |u| {
+        .units()
+        .map_or((app.mu_probe().0, crate::engine::units::G_DEFAULT), |u| {
             (u.omega(), u.g)
         });
-    let r0c = app.mu_probe.1;
+    let r0c = app.mu_probe().1;
     let mu = xi0c.map(|c| omega * omega * r0c / (g * c));
     let (accent, muted) = (
         Style::default().fg(th.accent),
@@ -51,7 +51,7 @@ fn measure_mu(f: &mut TuiFrame, bottom: Rect, app: &App, th: &Theme, xi0c: Optio
                 "Ω = {} rad/s ({} rpm{})",
                 num(omega, 3),
                 num(omega * 60.0 / TAU, 1),
-                if app.units.is_some() {
+                if app.units().is_some() {
                     ", the table's"
                 } else {
                     ""

@@ -21,7 +21,7 @@ pub(super) fn work_precision(f: &mut TuiFrame, area: Rect, app: &App, th: &Theme
     let [top, bottom] = Layout::vertical([Constraint::Min(6), Constraint::Length(4)]).areas(area);
     super::super::chart::render(f, top, th, &chart(app));
     let (initial, settings) = (app.initial(), app.settings());
-    let picked = trade_picked(app.view.trade_pick, &initial, settings);
+    let picked = trade_picked(app.view().trade_pick, &initial, settings);
     let t = shown(app);
     let width = usize::from(bottom.width.saturating_sub(2));
     let fit = |s: String| crate::ui::fit::fit(&s, ", ", width);

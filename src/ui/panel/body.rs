@@ -92,14 +92,14 @@ pub(super) fn body_lines(
         None => (s.xi(), app.sim().outcome_now() == Outcome::Stuck),
     };
     let f = crate::engine::body::friction(&app.settings(), app.initial().frictionless, stuck, xi);
-    let c = b.conditions(xi, f, app.units.map(|u| u.mu));
+    let c = b.conditions(xi, f, app.units().map(|u| u.mu));
     // In exponent form when small: a body 1e-9 long is not "L 0.0000".
     let size = match b.height {
         Some(h) => format!("L {} h {}", ratio(b.length), ratio(h)),
         None => format!("L {}", ratio(b.length)),
     };
     out.push(kv("body", size, th));
-    if let Some(u) = app.units {
+    if let Some(u) = app.units() {
         // The same sizes in SI, on a line of their own under the value (the panel is 30
         // wide); one indented span, so plain mode reads it on the body's line.
         let m = |x: f64| si_length(x * u.r_max_m());
@@ -186,7 +186,7 @@ fn topple_lines(
             .filter_map(at)
             .fold(0.0, f64::max)
     });
-    let mu = app.units.map(|u| u.mu);
+    let mu = app.units().map(|u| u.mu);
     let over_run = most.map(|f| b.conditions(xi, Some(f), mu));
     let topple = |c: &crate::engine::body::Conditions, verdict: bool| match (
         c.topple,

@@ -175,7 +175,7 @@ fn readouts(app: &App, th: &Theme) -> Readouts {
     }
     let status = status_start..out.len();
     spin::lines(app, th, &mut out);
-    if let Some(u) = app.units {
+    if let Some(u) = app.units() {
         table_lines(app, th, u, &mut out);
     }
     model_lines(app, th, &mut out);
@@ -198,9 +198,9 @@ fn readouts(app: &App, th: &Theme) -> Readouts {
         }
         out.push(kv("  ξ", num(p.now().xi(), 5), th));
     }
-    if !app.pins.is_empty() {
+    if !app.pins().is_empty() {
         let names: Vec<String> = app
-            .pins
+            .pins()
             .iter()
             .map(|p| format!("{}{}", p.marker, p.spec.label))
             .collect();
@@ -239,10 +239,10 @@ fn release(i: &crate::engine::Initial) -> Vec<String> {
 fn motion_lines(app: &App, th: &Theme, s: &crate::engine::State, out: &mut Vec<Line<'static>>) {
     let motion = app.sim().motion();
     let si = |x: f64, show: fn(f64) -> String| {
-        app.units
+        app.units()
             .map_or(String::new(), |_| format!(" = {}", show(x)))
     };
-    let (tau_si, xi_si, rate_si, xi_dot_si, u_si) = match app.units {
+    let (tau_si, xi_si, rate_si, xi_dot_si, u_si) = match app.units() {
         Some(u) => (
             si(s.tau * u.t_s(), si_time),
             si(s.xi() * u.r_max_m(), si_length),
@@ -284,13 +284,13 @@ fn motion_lines(app: &App, th: &Theme, s: &crate::engine::State, out: &mut Vec<L
         }
     };
     let theta_dot = s.theta_dot();
-    match app.view.frame {
+    match app.view().frame {
         crate::engine::Frame::Lab => {
             out.push(kv("θ", direction(s.r), th));
             out.push(kv("θ′", theta_dot.map_or("—".into(), lab_rate), th));
         }
         crate::engine::Frame::Table => {
-            out.push(kv("Θ", direction(motion.in_frame(s, app.view.frame)), th));
+            out.push(kv("Θ", direction(motion.in_frame(s, app.view().frame)), th));
             out.push(kv(
                 "Θ′",
                 theta_dot.map_or("—".into(), |t| num(t - motion.omega(s.tau), 4)),
@@ -379,7 +379,7 @@ fn model_lines(app: &App, th: &Theme, out: &mut Vec<Line<'static>>) {
 fn cost_lines(app: &App, th: &Theme, out: &mut Vec<Line<'static>>) {
     let c = app.sim().cost();
     out.push(kv("steps", format!("{} rej {}", c.steps, c.rejected), th));
-    if app.view.step_mode
+    if app.view().step_mode
         && let Some(st) = app.sim().last_step()
     {
         out.push(kv(
@@ -397,22 +397,26 @@ fn cost_lines(app: &App, th: &Theme, out: &mut Vec<Line<'static>>) {
         }
     }
     out.push(kv("RHS", format!("{}", c.rhs_evals), th));
-    let play = if app.playing { "▶" } else { "❚❚" };
-    out.push(kv("speed", format!("×{} {play}", fmt_speed(app.speed)), th));
+    let play = if app.playing() { "▶" } else { "❚❚" };
+    out.push(kv(
+        "speed",
+        format!("×{} {play}", fmt_speed(app.speed())),
+        th,
+    ));
 }
 
 /// The arrows' legend: exactly the arrows drawn, by their head labels; what is not drawn for
 /// being zero says so.
 fn arrow_legend(app: &App, th: &Theme, out: &mut Vec<Line<'static>>) {
-    if (app.view.forces || app.view.net_force || app.view.velocity) && !app.point_shown() {
+    if (app.view().forces || app.view().net_force || app.view().velocity) && !app.point_shown() {
         out.push(Line::from(Span::styled(
             "arrows: point's, hidden (C)",
             Style::default().fg(th.muted),
         )));
-    } else if app.view.forces || app.view.net_force || app.view.velocity {
+    } else if app.view().forces || app.view().net_force || app.view().velocity {
         let drawn = crate::ui::canvas::arrows(app, 1.0, 1.0);
         let has = |l: &str| drawn.iter().any(|a| a.label == l);
-        if app.view.forces
+        if app.view().forces
             && !drawn
                 .iter()
                 .any(|a| ["fr", "dr", "co", "cf", "eu"].contains(&a.label))
@@ -429,14 +433,14 @@ fn arrow_legend(app: &App, th: &Theme, out: &mut Vec<Line<'static>>) {
                 Span::styled(fa.word, Style::default().fg(color)),
             ]));
         }
-        if app.view.net_force && !has("net") {
+        if app.view().net_force && !has("net") {
             out.push(Line::from(Span::styled(
                 "net force 0: balanced",
                 Style::default().fg(th.muted),
             )));
         }
         let (label, _, _) = crate::ui::canvas::velocity(app);
-        if app.view.velocity && !has(label) {
+        if app.view().velocity && !has(label) {
             out.push(Line::from(Span::styled(
                 format!("{label} = 0"),
                 Style::default().fg(th.muted),

@@ -37,7 +37,7 @@ pub fn lines(app: &App, th: &Theme, out: &mut Vec<Line<'static>>) {
     let tau = app.sim().now().tau;
     let ramp = run.ramp();
     let rpm = |omega: f64| {
-        app.units.map_or(String::new(), |u| {
+        app.units().map_or(String::new(), |u| {
             format!(" = {} rpm", num(omega * u.rpm, 1))
         })
     };
@@ -64,7 +64,7 @@ pub fn lines(app: &App, th: &Theme, out: &mut Vec<Line<'static>>) {
 /// Ω_slip² r0 / g: as a fraction of the true μ_s, or beside it with a real table.
 fn mu_read(app: &App, run: &SpinRun, inferred: f64) -> String {
     let hold = run.settings().hold();
-    match app.units {
+    match app.units() {
         Some(u) => format!("{} (μs {})", num(inferred * u.mu, 4), num(hold * u.mu, 4)),
         None => format!("{} μs", num(inferred / hold, 4)),
     }

@@ -213,3 +213,14 @@ pub fn mouse(
         modifiers: crossterm::event::KeyModifiers::NONE,
     }
 }
+
+/// Turns `app`'s pages to `page`, as Tab does.
+pub fn turn_to(app: &mut turntable::app::App, page: turntable::app::pages::Page) {
+    for _ in 0..16 {
+        if app.view().page == page {
+            return;
+        }
+        turntable::app::update(app, turntable::app::Action::NextPage);
+    }
+    panic!("no page {page:?}");
+}

@@ -30,7 +30,7 @@ fn export(app: &mut App, tag: &str) -> Vec<Tag> {
     let dir = std::env::temp_dir().join(format!("turntable-table-{tag}-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
-    app.save_path = dir.join("turntable-scene.toml");
+    app.tell_save_path(dir.join("turntable-scene.toml"));
     common::render(app, 120, 40);
     press(app, "E");
     let svg = std::fs::read_to_string(dir.join("turntable-turntable-1.svg")).unwrap();
@@ -127,10 +127,10 @@ fn pins_carry_their_names_and_c_the_papers_run() {
     let mut app = App::new(Scene::default_scene());
     press(&mut app, "1 b 2 b 3 b 4 b c");
     ticks(&mut app, 20);
-    assert_eq!(app.pins.len(), 4);
+    assert_eq!(app.pins().len(), 4);
     let tags = export(&mut app, "pins");
     let said = labels(&tags);
-    for p in &app.pins {
+    for p in app.pins() {
         let name = format!("{}{}", p.marker, p.spec.label.as_str());
         assert!(said.contains(&name.as_str()), "{name}: {said:?}");
         assert!(!line(&tags, &name).is_empty());

@@ -53,9 +53,9 @@ fn arrow(from: DVec2, vec: DVec2, label: impl Into<String>, ink: Ink) -> Mark {
 /// The turntable page of `app` as a figure titled `title`: one panel, or in a split view
 /// (`%`) one for each frame, the frame chosen first, as the canvas shows them.
 pub fn figure(app: &App, title: String) -> Figure {
-    let mut frames = vec![app.view.frame];
-    if app.view.split {
-        frames.push(match app.view.frame {
+    let mut frames = vec![app.view().frame];
+    if app.view().split {
+        frames.push(match app.view().frame {
             Frame::Lab => Frame::Table,
             Frame::Table => Frame::Lab,
         });

@@ -47,8 +47,8 @@ pub fn auto_extent(app: &App) -> f64 {
         .paper()
         .map_or(own, |p| own.max(reach(p).min(1.5 * own)));
     // Pins widen it as the paper's run does, so a pinned D (from ξ0 = 1.1) stays in view.
-    let m = app.pins.iter().fold(m, |m, p| {
-        let r = p.path.iter().fold(0.0, |m: f64, s| m.max(s.xi())) * p.scale(app.units).0;
+    let m = app.pins().iter().fold(m, |m, p| {
+        let r = p.path.iter().fold(0.0, |m: f64, s| m.max(s.xi())) * p.scale(app.units()).0;
         m.max(r.min(1.5 * own))
     });
     (m * 1.1)
@@ -214,17 +214,17 @@ impl Stuck {
 impl Picture {
     /// The turntable page of `app` as it stands.
     pub fn of(app: &App) -> Picture {
-        Picture::in_frame(app, app.view.frame)
+        Picture::in_frame(app, app.view().frame)
     }
 
     /// The turntable page of `app` as `frame` sees it (a split view draws both).
     pub fn in_frame(app: &App, frame: Frame) -> Picture {
-        let turn = app.view.turn;
+        let turn = app.view().turn;
         let now = app.sim().now();
         let motion = app.sim().motion();
         let i = app.initial();
         let extent = auto_extent(app);
-        let half_width = extent / app.view.zoom;
+        let half_width = extent / app.view().zoom;
         let speed_scale = 0.3 * extent / i.xi0.max(1.0);
         let body = app.rod().map(|rod| Body::of(rod, now.tau, frame, turn));
         let point = app
@@ -232,7 +232,7 @@ impl Picture {
             .then(|| Point::of(app, frame, half_width, speed_scale));
         // Zoomed in, the view follows the particle, or the body's centre with the point hidden.
         let followed = match (&point, body.as_ref().and_then(|b| b.bar)) {
-            _ if app.view.zoom <= 1.0 => DVec2::ZERO,
+            _ if app.view().zoom <= 1.0 => DVec2::ZERO,
             (None, Some((_, centre))) => centre,
             _ => rotate(motion.in_frame(&now, frame), turn),
         };
@@ -245,7 +245,7 @@ impl Picture {
         Picture {
             frame,
             turn,
-            centre: followed + app.view.pan * extent,
+            centre: followed + app.view().pan * extent,
             half_width,
             speed_scale,
             table: Table {
@@ -266,7 +266,7 @@ impl Picture {
                 rotate(v0, turn) * speed_scale,
             ),
             pins: app
-                .pins
+                .pins()
                 .iter()
                 .map(|p| PinPath::of(p, app, frame))
                 .collect(),
@@ -297,7 +297,7 @@ fn shown(sim: &Sim, frame: Frame, turn: f64) -> Vec<DVec2> {
 
 impl PinPath {
     fn of(p: &crate::pin::Pin, app: &App, frame: Frame) -> PinPath {
-        let k = p.scale(app.units).0;
+        let k = p.scale(app.units()).0;
         let path: Vec<DVec2> = p
             .path
             .iter()
@@ -327,7 +327,7 @@ impl Point {
     /// The point model of `app` in `frame`, its force arrows scaled to `half_width`, its velocity by
     /// `speed_scale`.
     fn of(app: &App, frame: Frame, half_width: f64, speed_scale: f64) -> Point {
-        let turn = app.view.turn;
+        let turn = app.view().turn;
         let now = app.sim().now();
         let motion = app.sim().motion();
         let stuck = match app.sim().status() {
@@ -350,7 +350,7 @@ impl Point {
             Outcome::Running => format!("τ = {}", num(now.tau, 3)),
         };
         let mut steps: Vec<DVec2> = Vec::new();
-        if app.view.step_mode {
+        if app.view().step_mode {
             steps = app
                 .sim()
                 .step_marks
