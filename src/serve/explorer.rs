@@ -8,7 +8,7 @@ use super::screen::{Screen, Window};
 use super::{In, Lead, Out, Shared};
 use crate::app::lesson::Prompt;
 use crate::app::state::InClass;
-use crate::app::{App, Chord, Effect, Effects};
+use crate::app::{App, Chord};
 use crate::session::{Pumped, Session};
 use crate::terminal::drive::{Link, Turn, Waited, drive};
 use crate::terminal::input::Decoder;
@@ -29,7 +29,10 @@ use std::time::{Duration, Instant};
 /// Frames a second at most, as the local explorer's default.
 const FPS: u32 = 30;
 
+mod carry;
 mod follow;
+pub use carry::Guest;
+use carry::Presenter;
 use follow::{FOLLOWING, WAITING, adopt};
 /// The key that steps out of the class, and back into it (not bound in the explorer).
 pub const FOLLOW_KEY: KeyCode = KeyCode::F(2);
@@ -43,56 +46,6 @@ pub struct Client {
     /// LANG (or LC_ALL, LC_CTYPE), if the client sent it.
     pub lang: Option<String>,
     pub colorterm: Option<String>,
-}
-
-/// A guest writes nothing on the server: saving and exporting are refused with a notice.
-pub struct Guest;
-
-impl crate::session::Carry for Guest {
-    fn carry(&mut self, app: &mut App, effects: Effects) {
-        guest(app, effects);
-    }
-}
-
-fn guest(app: &mut App, effects: Effects) {
-    for effect in effects {
-        let notice = refused(app, effect);
-        app.report(notice);
-    }
-}
-
-/// What a guest is told of an effect.
-fn refused(app: &App, effect: Effect) -> String {
-    match effect {
-        Effect::SaveScene { .. } => "not saved: over ssh nothing is written on the server".into(),
-        Effect::ExportSvg { .. } => {
-            "not exported: over ssh nothing is written on the server".into()
-        }
-        Effect::Readouts => crate::ui::plain::summary(app),
-    }
-}
-
-/// The presenter with `--exports`: its `E` writes the page there (its app's save path is
-/// set in that directory, so the effect names it), within [`super::EXPORTS`], under the
-/// files' policy; the rest as a guest.
-struct Presenter;
-
-impl crate::session::Carry for Presenter {
-    fn carry(&mut self, app: &mut App, effects: Effects) {
-        presenter(app, effects);
-    }
-}
-
-fn presenter(app: &mut App, effects: Effects) {
-    for effect in effects {
-        let notice = match effect {
-            Effect::ExportSvg { dir, page } => {
-                crate::session::export_svg(app, &dir, page, Some(super::EXPORTS))
-            }
-            effect => refused(app, effect),
-        };
-        app.report(notice);
-    }
 }
 
 /// The client's screen size within the server's bound.
