@@ -1,6 +1,6 @@
 //! The terminal: raw mode, alternate screen, mouse capture, bracketed paste; always restored
 //! (quit, panic, SIGTERM, SIGHUP) and taken back on SIGCONT. The event loop is the one every
-//! explorer runs ([`drive`]); here its terminal side: at most one frame in flight (see
+//! explorer runs ([`drive()`]); here its terminal side: at most one frame in flight (see
 //! [`pace`]), keys read by [`input`], Ctrl-Z and the signals.
 
 use crate::app::App;

@@ -3,6 +3,7 @@
 //! its step or tolerance, on the paper's cases and on seeded random releases; then the speed goals, which also time
 //! the explorer's frame and its terminal output.
 
+#[cfg(feature = "serve")]
 pub mod attacks;
 pub mod bytes;
 pub mod check;

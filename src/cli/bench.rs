@@ -72,6 +72,7 @@ fn serve(a: &BenchArgs) -> CmdResult {
 }
 
 /// `--attacks`: the rows of one client's floods beside a class of `n` students.
+#[cfg(feature = "serve")]
 fn attacks(a: &BenchArgs, n: usize) -> CmdResult {
     let bar = super::progress::tasks();
     bar.set_message(format!(

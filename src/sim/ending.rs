@@ -1,7 +1,7 @@
 //! How one run ends, measured: where and when it stopped (or was certified to escape), what it
 //! cost, and what its second opinion states about it. The bench's work–precision rows, `run
 //! --error`'s search and the explorer's work–precision page measure runs through these, against
-//! the one converged reference ([`reference`]) whose resolution is its agreement with
+//! the one converged reference ([`reference()`]) whose resolution is its agreement with
 //! [`reference_check`].
 
 use crate::engine::run::raw_at_rest;

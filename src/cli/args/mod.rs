@@ -263,6 +263,7 @@ pub struct BenchArgs {
     /// --seconds each, one client's floods (F2, keys, window changes) and the door held (200
     /// silent connections, 50 logins without a shell): latencies, the CPU and memory each
     /// costs, and a login meanwhile.
+    #[cfg(feature = "serve")]
     #[arg(long, requires = "serve")]
     pub attacks: bool,
     /// A small bench that finishes in seconds (fewer settings, cases and angles).
