@@ -10,8 +10,8 @@
 //! through.
 
 use super::serve::{cpu_s, key, pct, press, rss_mb};
+use crate::serve::Limits;
 use crate::serve::client::{Login, Term, Trust, login};
-use crate::serve::{Limits, Options};
 use std::net::SocketAddr;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -239,21 +239,14 @@ async fn member(
 
 /// The class of `students` and the presenter, and each attack beside it for `seconds`.
 pub fn run(students: usize, seconds: f64) -> std::io::Result<Vec<AttackRow>> {
-    let server = crate::serve::start(Options {
-        listen: SocketAddr::from(([127, 0, 0, 1], 0)),
-        host_key: key(1),
-        keys: vec![key(2).public_key().clone().into()],
-        passphrase: None,
-        presenter_keys: vec![key(3).public_key().clone().into()],
-        presenter_passphrase: None,
-        lesson: None,
-        exports: None,
-        limits: Limits {
+    let server = super::serve::server(
+        true,
+        Limits {
             sessions: students + 8,
             per_minute: students * 2 + 20,
             ..Limits::default()
         },
-    })?;
+    )?;
     let rt = tokio::runtime::Builder::new_multi_thread()
         .worker_threads(2)
         .enable_all()

@@ -138,21 +138,14 @@ pub(super) fn pct(sorted: &[Duration], p: f64) -> f64 {
 /// Runs the measurement with `clients` clients for `seconds`.
 pub fn run(clients: usize, seconds: f64) -> std::io::Result<Row> {
     let rss_before = rss_mb();
-    let server = crate::serve::start(Options {
-        listen: std::net::SocketAddr::from(([127, 0, 0, 1], 0)),
-        host_key: key(1),
-        keys: vec![key(2).public_key().clone().into()],
-        passphrase: None,
-        presenter_keys: vec![],
-        presenter_passphrase: None,
-        lesson: None,
-        exports: None,
-        limits: Limits {
+    let server = server(
+        false,
+        Limits {
             sessions: clients + 1,
             per_minute: clients * 2 + 10,
             ..Limits::default()
         },
-    })?;
+    )?;
     let rt = tokio::runtime::Builder::new_multi_thread()
         .worker_threads(2)
         .enable_all()
@@ -262,4 +255,24 @@ pub fn line(r: &Row) -> String {
         r.rss_second_mb,
         r.rss_third_mb
     )
+}
+
+/// The bench's server on 127.0.0.1 (a free port): its host key, the students' key and, if
+/// asked, a presenter's, within `limits`.
+pub(super) fn server(presenter: bool, limits: Limits) -> std::io::Result<crate::serve::Running> {
+    crate::serve::start(Options {
+        listen: std::net::SocketAddr::from(([127, 0, 0, 1], 0)),
+        host_key: key(1),
+        keys: vec![key(2).public_key().clone().into()],
+        passphrase: None,
+        presenter_keys: if presenter {
+            vec![key(3).public_key().clone().into()]
+        } else {
+            vec![]
+        },
+        presenter_passphrase: None,
+        lesson: None,
+        exports: None,
+        limits,
+    })
 }
