@@ -424,7 +424,9 @@ fn place_labels(
             let r0 = i64::from(rows.dot_row(py));
             let c = taken.col(px);
             taken.spans.push((r0, c, c + 1));
-            out.push((px, at_row(r0), "●".to_string(), color));
+            // Printed where it was reserved: at `px` itself the canvas's own rounding can put
+            // it a column off (π on 105 columns), under the words placed beside it.
+            out.push((taken.x_of(c), at_row(r0), "●".to_string(), color));
         }
     }
     for m in marks.iter().rev() {

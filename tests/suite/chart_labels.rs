@@ -169,6 +169,9 @@ fn labels_are_drawn_clear_at_a_classs_sizes() {
             (48, 20),
             (28, 16),
             (88, 10),
+            // A dot on a column's edge (π on 105 columns), which the canvas and the
+            // placement once rounded apart.
+            (109, 11),
         ] {
             cells += check(name, chart, w, h);
         }
