@@ -108,16 +108,7 @@ pub fn render_bare(
     if x_axis {
         x_ticks(f, inner, plot, th, chart, x);
     }
-    // One terminal column in x units.
-    let col = (x[1] - x[0]) / f64::from(plot.width.max(1));
-    let labels = place_labels(
-        th,
-        &chart.marks,
-        x,
-        rows,
-        col,
-        Taken::of(plot, th, chart, x, y),
-    );
+    let labels = place_labels(th, &chart.marks, x, rows, Taken::of(plot, th, chart, x, y));
     let canvas = Canvas::default()
         .marker(th.marker)
         .x_bounds(x)
@@ -126,16 +117,14 @@ pub fn render_bare(
             lines(ctx, th, chart, y);
             ctx.layer();
             paint_series(ctx, th, &chart.series);
-            ctx.layer();
-            for (a, b, text, color) in &labels {
-                ctx.print(
-                    *a,
-                    *b,
-                    Span::styled(text.clone(), Style::default().fg(*color)),
-                );
-            }
         });
     f.render_widget(canvas, plot);
+    // Written in the cells they were placed in: the canvas's own text placement rounds by
+    // another path and can land a column or a row off (π on 105 columns, y0 on 4 rows).
+    for (c, r, text, color) in labels {
+        f.buffer_mut()
+            .set_string(plot.x + c, plot.y + r, text, Style::default().fg(color));
+    }
     Some(plot)
 }
 
@@ -179,19 +168,6 @@ impl Rows {
         let (y, h) = (self.y, self.h);
         let d = ((y[1] - v) / (y[1] - y[0]) * (4.0 * f64::from(h) - 1.0)).max(0.0);
         ((d as u32 / 4) as u16).min(h - 1)
-    }
-
-    /// A y at which the canvas prints text on row `r` (it puts text at row
-    /// ⌊(y1 − y)/(y1 − y0)·(h − 1)⌋).
-    fn text_y(self, r: i64) -> f64 {
-        let (y, h) = (self.y, self.h);
-        if h > 1 {
-            // The middle of the row, or the bottom edge for the last (text below y0 is dropped).
-            let k = (r as f64 + 0.5).min(f64::from(h - 1));
-            y[1] - k * (y[1] - y[0]) / f64::from(h - 1)
-        } else {
-            y[1]
-        }
     }
 }
 
@@ -294,7 +270,7 @@ struct Taken {
     drawn: Vec<bool>,
     /// (row, first column, past the last) of each label (with its blanks) and dot placed.
     spans: Vec<(i64, i64, i64)>,
-    /// x of the plot's left edge and columns per x unit, as the canvas places text.
+    /// x of the plot's left edge and braille dots per x unit.
     x0: f64,
     per_x: f64,
 }
@@ -325,24 +301,19 @@ impl Taken {
             drawn,
             spans: Vec::new(),
             x0: x[0],
-            per_x: f64::from(plot.width.max(1) - 1) / (x[1] - x[0]),
+            per_x: (2.0 * f64::from(plot.width) - 1.0) / (x[1] - x[0]),
         }
     }
 
-    /// The column the canvas prints text at `a` in.
+    /// The column the braille of `a` falls in (the canvas maps x to dot columns
+    /// 0..2w − 1 by truncation, two to a cell), so that a dot sits on its curve.
     fn col(&self, a: f64) -> i64 {
-        ((a - self.x0) * self.per_x).floor() as i64
+        ((a - self.x0) * self.per_x).floor() as i64 / 2
     }
 
-    /// An x the canvas prints text at in column `c` (a quarter into it: never a column off).
-    fn x_of(&self, c: i64) -> f64 {
-        self.x0 + (c as f64 + 0.25) / self.per_x
-    }
-
-    /// Whether `n` cells from x `a` on row `r` are on the plot, clear of the drawing and of
-    /// every label placed.
-    fn free(&self, a: f64, n: usize, r: i64) -> bool {
-        let c = self.col(a);
+    /// Whether `n` cells from column `c` on row `r` are on the plot, clear of the drawing and
+    /// of every label placed.
+    fn free(&self, c: i64, n: usize, r: i64) -> bool {
         let end = c + n as i64;
         (0..self.rows).contains(&r)
             && c >= 0
@@ -356,20 +327,19 @@ impl Taken {
 
     /// Takes `n` cells from x `a` on row `r`, and a blank cell either side: two labels
     /// glued read as one (`0.2max`). A point's dot takes its cell alone: its words may touch it.
-    fn take(&mut self, a: f64, n: usize, r: i64) {
-        let c = self.col(a);
+    fn take(&mut self, c: i64, n: usize, r: i64) {
         self.spans.push((r, c - 1, c + n as i64 + 1));
     }
 
-    /// The first of `tries` (x, row) where `n` cells are free, taken; None if none is.
+    /// The first of `tries` (column, row) where `n` cells are free, taken; None if none is.
     fn place(
         &mut self,
         n: usize,
-        tries: impl IntoIterator<Item = (f64, i64)>,
-    ) -> Option<(f64, i64)> {
-        let (a, r) = tries.into_iter().find(|&(a, r)| self.free(a, n, r))?;
-        self.take(a, n, r);
-        Some((a, r))
+        tries: impl IntoIterator<Item = (i64, i64)>,
+    ) -> Option<(i64, i64)> {
+        let (c, r) = tries.into_iter().find(|&(c, r)| self.free(c, n, r))?;
+        self.take(c, n, r);
+        Some((c, r))
     }
 }
 
@@ -405,12 +375,16 @@ fn place_labels(
     marks: &[Mark],
     x: [f64; 2],
     rows: Rows,
-    col: f64,
     mut taken: Taken,
-) -> Vec<(f64, f64, String, Color)> {
-    let at_row = |r: i64| rows.text_y(r);
+) -> Vec<(u16, u16, String, Color)> {
     let mut out = Vec::new();
-    let n_rows = taken.rows;
+    let (n_cols, n_rows) = (taken.cols, taken.rows);
+    // Cells placed are on the plot (`free` saw to it).
+    let mut put = |c: i64, r: i64, text: String, color| {
+        if let (Ok(c), Ok(r)) = (u16::try_from(c), u16::try_from(r)) {
+            out.push((c, r, text, color));
+        }
+    };
     // The points' dots first: words go around them (a dot sits on its curve by design).
     for m in marks {
         if let Mark::Point {
@@ -420,13 +394,12 @@ fn place_labels(
             ..
         } = *m
         {
-            let color = ink(th, i);
             let r0 = i64::from(rows.dot_row(py));
             let c = taken.col(px);
-            taken.spans.push((r0, c, c + 1));
-            // Printed where it was reserved: at `px` itself the canvas's own rounding can put
-            // it a column off (π on 105 columns), under the words placed beside it.
-            out.push((taken.x_of(c), at_row(r0), "●".to_string(), color));
+            if (0..n_cols).contains(&c) {
+                taken.spans.push((r0, c, c + 1));
+                put(c, r0, "●".to_string(), ink(th, i));
+            }
         }
     }
     for m in marks.iter().rev() {
@@ -439,8 +412,9 @@ fn place_labels(
         // Whole words only, as many as the wider side of a point has room for.
         let label = match *m {
             Mark::Point { x: px, .. } => {
-                let side = (x[1] - px - col).max(px - x[0]) / col;
-                fit_label(label, (side.max(0.0) as usize).saturating_sub(1))
+                let c = taken.col(px);
+                let side = (n_cols - c - 1).max(c).max(0) as usize;
+                fit_label(label, side.saturating_sub(1))
             }
             _ => label.clone(),
         };
@@ -448,46 +422,45 @@ fn place_labels(
         if n == 0 {
             continue;
         }
-        let w = n as f64 * col;
+        let k = n as i64;
         // Right of a column or ending left of it (never on it), as the mark prefers; then a
         // cell or two further right, past a line beside it, before another row.
-        let beside = |t: &Taken, at: f64, left_first: bool| {
-            let c = t.col(at);
-            let (right, left) = (t.x_of(c + 1), t.x_of(c - n as i64));
+        let beside = |c: i64, left_first: bool| {
+            let (right, left) = (c + 1, c - k);
             let (a, b) = if left_first {
                 (left, right)
             } else {
                 (right, left)
             };
-            [a, b, t.x_of(c + 2), t.x_of(c + 3)]
+            [a, b, c + 2, c + 3]
         };
         let spot = match *m {
             Mark::VLine { x: mx, .. } => {
                 // Right of the line, or left of it in the right half; the other side next.
-                let sides = beside(&taken, mx, mx > 0.5 * (x[0] + x[1]));
+                let sides = beside(taken.col(mx), mx > 0.5 * (x[0] + x[1]));
                 taken.place(n, (0..n_rows).flat_map(|r| sides.map(|a| (a, r))))
             }
             Mark::Point { x: px, y: py, .. } => {
-                let r0 = i64::from(rows.dot_row(py));
+                let (r0, c) = (i64::from(rows.dot_row(py)), taken.col(px));
                 // Right of its dot, or left of it when they would run past the plot's edge
                 // (never cut); a row off before the other side.
-                let sides = beside(&taken, px, px + col + w > x[1]);
-                taken.place(n, near(r0, n_rows).flat_map(|r| sides.map(|a| (a, r))))
+                let sides = beside(c, c + 1 + k > n_cols);
+                let rows = near(r0, n_rows).filter(|_| (0..n_cols).contains(&c));
+                taken.place(n, rows.flat_map(|r| sides.map(|a| (a, r))))
             }
             Mark::Text { x: px, y: py, .. } | Mark::Arrow { to: (px, py), .. } => {
                 let r0 = i64::from(rows.dot_row(py));
                 // Text that would run past the plot's right edge ends there.
-                let c = taken.col(px.min(x[1] - w).max(x[0]));
-                let k = n as i64;
-                let shifts = [0, -k / 2, k / 2, -k, k].map(|d| taken.x_of(c + d));
+                let c = taken.col(px).min(n_cols - k).max(0);
+                let shifts = [0, -k / 2, k / 2, -k, k].map(|d| c + d);
                 taken.place(
                     n,
                     near(r0, n_rows.min(4)).flat_map(|r| shifts.map(|a| (a, r))),
                 )
             }
         };
-        if let Some((a, r)) = spot {
-            out.push((a, at_row(r), label, color));
+        if let Some((c, r)) = spot {
+            put(c, r, label, color);
         }
     }
     out
