@@ -334,6 +334,8 @@ pub fn wanted(
     };
     match page {
         Page::Turntable | Page::TimePlots => None,
+        // Closed forms (μ = 0, Stokes drag): no threshold, and every method gives the same run.
+        _ if crate::sim::closed_form(initial, explorer) => None,
         Page::EscapeSpeed => std::iter::once(initial.xi0)
             .chain(PAPER_XI0)
             .find_map(missing_curve)
@@ -369,8 +371,6 @@ pub fn wanted(
             });
             (!done).then_some(Job::Rest)
         }
-        // Closed forms (μ = 0, Stokes drag): every method gives the same run.
-        Page::WorkPrecision if initial.frictionless || explorer.stokes().is_some() => None,
         Page::WorkPrecision => {
             let job = trade_job(initial, explorer);
             let base = trade::trade_base(explorer);

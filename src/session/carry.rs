@@ -65,7 +65,14 @@ pub fn export_svg(
     page: crate::app::pages::Page,
     bound: Option<ExportBound>,
 ) -> String {
+    use crate::app::pages::Page;
     use std::io::Write;
+    if crate::sim::closed_form(&app.initial(), app.settings())
+        && !matches!(page, Page::Turntable | Page::TimePlots)
+    {
+        return "not exported: in closed form (μ = 0 or Stokes drag) this page draws nothing"
+            .to_string();
+    }
     let (fig, whole) = crate::plot::page::figure(app);
     let text = crate::plot::to_svg(&fig);
     let slug = crate::plot::page::slug(page);

@@ -281,7 +281,7 @@ fn every_key_in_the_keymap_does_what_its_help_says() {
             }
             Action::ExportSvg => {
                 after.contains("wrote this page to")
-                    && std::fs::read_to_string(dir.join("turntable-turntable-1.svg"))
+                    && std::fs::read_to_string(dir.join("turntable-table-1.svg"))
                         .is_ok_and(|s| s.starts_with("<?xml"))
             }
             Action::ToggleMouse => !a.mouse_capture() && after.contains("mouse off"),
@@ -1372,7 +1372,7 @@ fn saving_and_exporting_are_effects_the_shell_carries_out() {
     turntable::replay::answer(&mut r, export.clone());
     assert_eq!(
         r.notice().as_deref(),
-        Some("replay saves nothing: this page → turntable-turntable-N.svg (the first free N)")
+        Some("replay saves nothing: this page → turntable-table-N.svg (the first free N)")
     );
     assert_eq!(files(), 0, "a replay wrote nothing");
     // The explorer's shell writes them, and says where.
@@ -1387,7 +1387,7 @@ fn saving_and_exporting_are_effects_the_shell_carries_out() {
             .starts_with("wrote this page to")
     );
     assert!(dir.join("scene.toml").exists() && dir.join("mine.toml").exists());
-    assert!(dir.join("turntable-turntable-1.svg").exists());
+    assert!(dir.join("turntable-table-1.svg").exists());
     let _ = std::fs::remove_dir_all(&dir);
 }
 

@@ -123,3 +123,39 @@ fn without_friction_only_coriolis_and_centrifugal_act_on_the_table() {
     assert!((fr1.length() - 1.0).abs() < 1e-15);
     assert_eq!((co, ce), (co1, ce1));
 }
+
+/// At μ = 0 nothing sticks: the threshold pages say so instead of drawing the paper's
+/// friction figures beside a release that leaves, ask the worker for nothing, and export
+/// nothing (the twin of Stokes drag's "no threshold").
+#[test]
+fn without_friction_the_threshold_pages_say_there_is_none() {
+    use turntable::app::pages::Page;
+    let mut app = turntable::app::App::new(turntable::scene::Scene::preset("C").unwrap());
+    turntable::app::update(&mut app, turntable::app::Action::ToggleFriction);
+    assert!(app.initial().frictionless);
+    for page in [
+        Page::EscapeSpeed,
+        Page::OutcomeMap,
+        Page::RestRadius,
+        Page::WorkPrecision,
+    ] {
+        super::common::turn_to(&mut app, page);
+        let screen = super::common::render(&mut app, 80, 24);
+        let said = if page == Page::WorkPrecision {
+            "closed form"
+        } else {
+            "μ = 0: no threshold"
+        };
+        assert!(screen.contains(said), "{page:?}\n{screen}");
+        assert!(!screen.contains("release sticks"), "{page:?}\n{screen}");
+        assert!(app.wanted_job(|_| Some((10, 10))).is_none(), "{page:?}");
+        let dir = tempfile::tempdir().unwrap();
+        let said = turntable::session::export_svg(&app, dir.path(), page, None);
+        assert!(said.starts_with("not exported"), "{said}");
+        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
+    }
+    // Friction back on: the pages draw and compute again.
+    turntable::app::update(&mut app, turntable::app::Action::ToggleFriction);
+    super::common::turn_to(&mut app, Page::EscapeSpeed);
+    assert!(app.wanted_job(|_| Some((10, 10))).is_some());
+}

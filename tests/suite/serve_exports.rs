@@ -74,13 +74,13 @@ fn the_presenters_e_writes_to_the_exports_and_a_students_never() {
         }
         // The presenter's E writes the page there, whole.
         assert!(said(&mut tp, b"E", b"wrote this page to", 150).await);
-        assert_eq!(pages(dir.path()), ["turntable-turntable-1.svg"]);
-        let svg = std::fs::read_to_string(dir.path().join("turntable-turntable-1.svg")).unwrap();
+        assert_eq!(pages(dir.path()), ["turntable-table-1.svg"]);
+        let svg = std::fs::read_to_string(dir.path().join("turntable-table-1.svg")).unwrap();
         assert!(svg.trim_end().ends_with("</svg>"), "{}", &svg[..200]);
         // Never over a file: one in the way is passed by.
-        std::fs::write(dir.path().join("turntable-turntable-2.svg"), "mine").unwrap();
-        assert!(said(&mut tp, b"E", b"turntable-turntable-3.svg", 160).await);
-        let mine = std::fs::read_to_string(dir.path().join("turntable-turntable-2.svg")).unwrap();
+        std::fs::write(dir.path().join("turntable-table-2.svg"), "mine").unwrap();
+        assert!(said(&mut tp, b"E", b"turntable-table-3.svg", 160).await);
+        let mine = std::fs::read_to_string(dir.path().join("turntable-table-2.svg")).unwrap();
         assert_eq!(mine, "mine");
         // The follower, given the presenter's E, wrote nothing of its own: three files.
         assert_eq!(pages(dir.path()).len(), 3);

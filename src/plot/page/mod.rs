@@ -75,7 +75,11 @@ fn title(app: &App) -> String {
     format!("Released at {release}, τ = {}", num(app.sim().now().tau, 3))
 }
 
-/// The page's name in a file name: `time-plots`.
+/// The page's name in a file name after `turntable-`: `time-plots`, `table` (not
+/// `turntable-turntable`).
 pub fn slug(page: Page) -> String {
-    page.title().replace(' ', "-")
+    match page {
+        Page::Turntable => "table".to_string(),
+        _ => page.title().replace(' ', "-"),
+    }
 }

@@ -23,14 +23,13 @@ use rest::rest_radius;
 
 /// Draws `app.page` in `area`; returns the plot's geometry where a click means a release.
 pub fn render(f: &mut TuiFrame, area: Rect, app: &App, th: &Theme) -> Option<CanvasGeom> {
-    if let Some(gamma) = app.settings().stokes()
-        && !app.initial().frictionless
+    if crate::sim::closed_form(&app.initial(), app.settings())
         && matches!(
             app.view().page,
             Page::EscapeSpeed | Page::OutcomeMap | Page::RestRadius
         )
     {
-        no_threshold(f, area, th, gamma);
+        no_threshold(f, area, th, app.settings().stokes());
         return None;
     }
     match app.view().page {
@@ -56,17 +55,30 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App, th: &Theme) -> Option<Can
     }
 }
 
-/// Under Stokes drag (extends the paper) the threshold pages have nothing to draw: every release
-/// leaves. Said instead, with the rate.
-fn no_threshold(f: &mut TuiFrame, area: Rect, th: &Theme, gamma: f64) {
-    let block = super::titled(" Stokes drag: no threshold ".to_string(), th);
-    let text = format!(
-        "Under Stokes drag γ = {gamma} there is no escape speed, outcome map or rest radius: \
-         every release leaves, exponentially at the rate Re λ+ = {}, except those with \
-         u0 = λ− q0 (the centre at rest, and one speed and direction at each radius), which \
-         spiral into the centre.",
-        num(crate::engine::stokes::growth_rate(gamma), 6)
-    );
+/// Under Stokes drag (extends the paper) or at μ = 0 the threshold pages have nothing to draw:
+/// nothing sticks. Said instead: under drag with the rate every release leaves at.
+fn no_threshold(f: &mut TuiFrame, area: Rect, th: &Theme, stokes: Option<f64>) {
+    let (title, text) = match stokes {
+        Some(gamma) => (
+            " Stokes drag: no threshold ",
+            format!(
+                "Under Stokes drag γ = {gamma} there is no escape speed, outcome map or rest \
+                 radius: every release leaves, exponentially at the rate Re λ+ = {}, except \
+                 those with u0 = λ− q0 (the centre at rest, and one speed and direction at each \
+                 radius), which spiral into the centre.",
+                num(crate::engine::stokes::growth_rate(gamma), 6)
+            ),
+        ),
+        None => (
+            " μ = 0: no threshold ",
+            "With no friction (μ = 0) there is no escape speed, outcome map or rest radius: \
+             the particle keeps its lab velocity, a straight line that leaves ξ = 1, unless it \
+             is released at rest in the lab, where it stays. These pages are the paper's, with \
+             friction: F turns it back on."
+                .to_string(),
+        ),
+    };
+    let block = super::titled(title.to_string(), th);
     f.render_widget(
         Paragraph::new(text)
             .wrap(Wrap { trim: true })
