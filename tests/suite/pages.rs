@@ -628,7 +628,7 @@ fn the_time_plots_share_one_tau_axis_and_a_fixed_window() {
     assert_eq!(cols.len(), 5, "{screen}");
     assert!(cols.iter().all(|c| *c == cols[0]), "{cols:?}\n{screen}");
     assert!(
-        screen.contains("θ (rad) ━ θ  ·· Eq. 20, friction dropped"),
+        screen.contains("θ (rad) ━ run  ·· Eq. 20, friction dropped"),
         "{screen}"
     );
     // The approximation's window is marked on ξ alone: on the table Eq. 20's Θ′ drops the
@@ -706,7 +706,7 @@ fn speeds_and_legends_read_without_colour() {
     }
     crate::common::turn_to(&mut a, Page::TimePlots);
     let screen = render(&mut a, 100, 34);
-    for words in ["━ ξ  ·· Sec. III approx.", "━ E − E(0)  ·· −∫|u|dτ"] {
+    for words in ["ξ ━ run  ·· Sec. III approx.", "━ E − E(0)  ·· −∫|u|dτ"] {
         assert!(screen.contains(words), "{words}\n{screen}");
     }
 }
@@ -772,7 +772,7 @@ fn the_xi_plot_zooms_on_a_stop_at_the_rim_beside_the_papers_escape() {
         xi.y
     );
     assert!(xi.y_label.contains("zoom on the stop"), "{}", xi.y_label);
-    let paper = xi.series.iter().find(|s| s.name == "ξ paper RK2").unwrap();
+    let paper = xi.series.iter().find(|s| s.name == "paper RK2").unwrap();
     let top = paper.points.iter().map(|p| p.1).fold(0.0, f64::max);
     assert!(
         top > xi.y[1],

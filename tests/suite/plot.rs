@@ -530,7 +530,7 @@ fn the_explorer_writes_the_page_to_a_new_file() {
     }
     common::render(&mut app, 100, 30);
     press(&mut app, KeyCode::Char('E'));
-    let first = dir.join("turntable-turntable-1.svg");
+    let first = dir.join("turntable-table-1.svg");
     assert_eq!(
         app.notice().as_deref(),
         Some(format!("wrote this page to {}", first.display()).as_str())
@@ -547,18 +547,18 @@ fn the_explorer_writes_the_page_to_a_new_file() {
         now.xi()
     );
     // Never over a file: a second press, and a name taken meanwhile, give new names.
-    std::fs::write(dir.join("turntable-turntable-3.svg"), "mine").unwrap();
+    std::fs::write(dir.join("turntable-table-3.svg"), "mine").unwrap();
     press(&mut app, KeyCode::Char('E'));
     press(&mut app, KeyCode::Char('E'));
     assert!(
         app.notice()
             .as_deref()
             .unwrap()
-            .ends_with("turntable-turntable-4.svg")
+            .ends_with("turntable-table-4.svg")
     );
-    assert!(dir.join("turntable-turntable-2.svg").exists());
+    assert!(dir.join("turntable-table-2.svg").exists());
     assert_eq!(
-        std::fs::read_to_string(dir.join("turntable-turntable-3.svg")).unwrap(),
+        std::fs::read_to_string(dir.join("turntable-table-3.svg")).unwrap(),
         "mine"
     );
     // The escape-speed page: the curves the page computed, v_e(0.5, 0) among them.
@@ -669,7 +669,7 @@ fn an_export_carries_what_the_screen_shows() {
     assert!(app.paper().is_some() && app.view().velocity && app.view().forces);
     common::render(&mut app, 160, 50);
     press(&mut app, KeyCode::Char('E'));
-    let svg = std::fs::read_to_string(dir.join("turntable-turntable-1.svg")).unwrap();
+    let svg = std::fs::read_to_string(dir.join("turntable-table-1.svg")).unwrap();
     let tags = parse(&svg);
     assert_eq!(
         drawn(&tags),
@@ -715,14 +715,14 @@ fn an_export_carries_what_the_screen_shows() {
         [
             // ξ = 1 where the ξ plot reaches it (fig2 starts at 1.1).
             [
-                with_pin("ξ", "ξ paper RK2", "Sec. III approx."),
+                with_pin("run", "paper RK2", "Sec. III approx."),
                 vec!["ξ = 1 (R_max)".to_string()]
             ]
             .concat(),
             // On the table Eq. 20 drops the friction term: its legend says so.
-            with_pin("θ", "θ paper RK2", "Eq. 20, friction dropped"),
-            with_pin("θ′", "θ′ paper RK2", "Eq. 20, friction dropped"),
-            ["|u|", "|u| paper RK2", pin.as_str()]
+            with_pin("run", "paper RK2", "Eq. 20, friction dropped"),
+            with_pin("run", "paper RK2", "Eq. 20, friction dropped"),
+            ["run", "paper RK2", pin.as_str()]
                 .map(String::from)
                 .to_vec(),
             ["E − E(0)", "−∫|u|dτ"].map(String::from).to_vec(),
@@ -744,7 +744,7 @@ fn an_export_carries_what_the_screen_shows() {
     assert!((dots[0] - 1.1).abs() < 1e-4, "{dots:?}");
     let lines: Vec<&Tag> = panels[0]
         .iter()
-        .filter(|t| t.attr("data-name") == Some("ξ") && t.name == "polyline")
+        .filter(|t| t.attr("data-name") == Some("run") && t.name == "polyline")
         .collect();
     let end = *points(lines[lines.len() - 1]).last().unwrap();
     let now = app.sim().now();

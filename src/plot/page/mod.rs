@@ -76,7 +76,7 @@ fn title(app: &App) -> String {
 }
 
 /// The page's name in a file name after `turntable-`: `time-plots`, `table` (not
-/// `turntable-turntable`).
+/// `turntable-turntable`, said twice).
 pub fn slug(page: Page) -> String {
     match page {
         Page::Turntable => "table".to_string(),

@@ -191,9 +191,11 @@ impl Sources<'_> {
         })
     }
 
-    fn paper_series(&self, name: &str, y: &dyn Fn(&State) -> f64) -> Option<Series> {
+    /// The paper's RK2 beside the run: the legend names the scheme (the plot names the
+    /// variable, never twice: not `ξ ━ ξ`).
+    fn paper_series(&self, y: &dyn Fn(&State) -> f64) -> Option<Series> {
         self.paper.as_ref().map(|pp| Series {
-            name: format!("{name} paper RK2"),
+            name: PAPER.into(),
             ink: Ink::Paper,
             points: pp.iter().map(|s| (s.tau, y(s))).collect(),
             style: Style::Line { dash: 0 },
@@ -287,6 +289,9 @@ fn integrated(rate: &Series, ink: Ink) -> Series {
 /// The five plots in order: ξ, θ (Θ), θ′ (Θ′), |u| and the energy identity.
 /// The legend's name for Sec. III's approximations where they hold.
 const APPROX: &str = "Sec. III approx.";
+/// The legend's names for the run on screen and the paper's scheme beside it.
+const RUN: &str = "run";
+const PAPER: &str = "paper RK2";
 
 fn plots(app: &App, now: f64, window: Option<f64>) -> [Plot<'static>; 5] {
     let rotating = app.view().frame == Frame::Table;
@@ -308,12 +313,12 @@ fn plots(app: &App, now: f64, window: Option<f64>) -> [Plot<'static>; 5] {
     let th_of = move |s: &State| s.theta_dot().map_or(f64::NAN, |t| t - shift);
     let u_of = |s: &State| s.u_lab().length();
     let angle = move |path: &[State]| unwrapped_angle(path, shift);
-    let mut xi_s = vec![series("ξ", Ink::Trail, &src.p, xi_of)];
-    xi_s.extend(src.paper_series("ξ", &xi_of));
+    let mut xi_s = vec![series(RUN, Ink::Trail, &src.p, xi_of)];
+    xi_s.extend(src.paper_series(&xi_of));
     xi_s.extend(src.pin_series(0, (1, 0), &|p| along(p, &xi_of)));
     xi_s.extend(src.approx(APPROX, &|t| Some(crate::engine::approx::xi(&i, t))));
-    let mut th_s = vec![series(theta_name, Ink::Trail, &src.p, th_of)];
-    th_s.extend(src.paper_series(theta_name, &th_of));
+    let mut th_s = vec![series(RUN, Ink::Trail, &src.p, th_of)];
+    th_s.extend(src.paper_series(&th_of));
     th_s.extend(src.pin_series(2, (0, -1), &|p| along(p, &th_of)));
     // On the table Eq. 20 drops the friction term, which near the release is the larger:
     // the legend says so.
@@ -329,13 +334,13 @@ fn plots(app: &App, now: f64, window: Option<f64>) -> [Plot<'static>; 5] {
     }));
     let angle_name = if rotating { "Θ" } else { "θ" };
     let mut a_s = vec![Series {
-        name: angle_name.into(),
+        name: RUN.into(),
         ink: Ink::Trail,
         points: angle(&src.p),
         style: Style::Line { dash: 0 },
     }];
     a_s.extend(src.paper.as_ref().map(|pp| Series {
-        name: format!("{angle_name} paper RK2"),
+        name: PAPER.into(),
         ink: Ink::Paper,
         points: angle(pp),
         style: Style::Line { dash: 0 },
@@ -344,8 +349,8 @@ fn plots(app: &App, now: f64, window: Option<f64>) -> [Plot<'static>; 5] {
     if let Some(rate) = th_s.iter().find(|s| s.name == th_approx) {
         a_s.push(integrated(rate, Ink::Muted));
     }
-    let mut u_s = vec![series("|u|", Ink::Trail, &src.p, u_of)];
-    u_s.extend(src.paper_series("|u|", &u_of));
+    let mut u_s = vec![series(RUN, Ink::Trail, &src.p, u_of)];
+    u_s.extend(src.paper_series(&u_of));
     u_s.extend(src.pin_series(3, (1, -1), &|p| along(p, &u_of)));
     let drag = if app.initial().frictionless {
         None

@@ -33,7 +33,7 @@ fn export(app: &mut App, tag: &str) -> Vec<Tag> {
     app.tell_save_path(dir.join("turntable-scene.toml"));
     common::render(app, 120, 40);
     press(app, "E");
-    let svg = std::fs::read_to_string(dir.join("turntable-turntable-1.svg")).unwrap();
+    let svg = std::fs::read_to_string(dir.join("turntable-table-1.svg")).unwrap();
     std::fs::remove_dir_all(&dir).unwrap();
     parse(&svg)
 }
