@@ -25,10 +25,16 @@ impl Scale {
     pub fn ticks(self, a: f64, b: f64, n: usize) -> Vec<f64> {
         match self {
             Scale::Plain => ticks(a, b, n),
-            Scale::Angle => ticks(a / PI, b / PI, n)
-                .into_iter()
-                .map(|t| t * PI)
-                .collect(),
+            Scale::Angle => {
+                // A span too small for round fractions of π (a coin at rest at Θ = 0 before
+                // it slips read `2e-4π`): plain radians, as the axis name says.
+                if (b - a) / PI / (n.max(1) as f64) < ANGLE_STEP {
+                    ticks(a, b, n)
+                } else {
+                    let t = ticks(a / PI, b / PI, n);
+                    t.into_iter().map(|t| t * PI).collect()
+                }
+            }
             Scale::Decades => {
                 let step = ((b - a) / n.max(1) as f64).ceil().max(1.0);
                 let (first, last) = ((a / step).ceil(), (b / step).floor());
@@ -47,7 +53,14 @@ impl Scale {
     pub fn label(self, v: f64) -> String {
         match self {
             Scale::Plain => tick_label(v),
-            Scale::Angle => angle_tick(v),
+            Scale::Angle => {
+                let x = v / PI / ANGLE_STEP;
+                if (x - x.round()).abs() < 1e-9 {
+                    angle_tick(v)
+                } else {
+                    tick_label(v)
+                }
+            }
             Scale::Decades => match v.round() as i32 {
                 k @ 0..=2 => 10i32.pow(k as u32).to_string(),
                 k => format!("1e{k}"),
@@ -55,6 +68,9 @@ impl Scale {
         }
     }
 }
+
+/// The finest step an angle axis ticks in π (0.05π); below it, radians.
+const ANGLE_STEP: f64 = 0.05;
 
 /// An axis name with the SI value of its unit beside it when the table is real:
 /// `τ (1 = 303 ms)`.
@@ -155,6 +171,19 @@ mod tests {
             .map(|v| s.label(v))
             .collect();
         assert_eq!(labels, ["-5π", "0"]);
+        // Too narrow for round fractions of π: radians, never `2e-4π`.
+        let labels: Vec<String> = s
+            .ticks(-1e-3, 1e-3, 2)
+            .into_iter()
+            .map(|v| s.label(v))
+            .collect();
+        assert_eq!(labels, ["-0.001", "0", "0.001"]);
+        let labels: Vec<String> = s
+            .ticks(1.4, 1.8, 3)
+            .into_iter()
+            .map(|v| s.label(v))
+            .collect();
+        assert_eq!(labels, ["1.4", "1.6", "1.8"]);
     }
 
     #[test]
