@@ -15,7 +15,7 @@ pub mod build;
 pub mod page;
 mod svg;
 
-pub use axis::{Scale, axis, extent, sane, tick_label, ticks};
+pub use axis::{Scale, axis, extent, sane, ticks};
 pub use svg::to_svg;
 
 /// A figure: a title over panels stacked top to bottom.

@@ -8,8 +8,8 @@ use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
 use turntable::app::keymap::KEYMAP;
 use turntable::app::{App, Chord};
 use turntable::engine::{Outcome, Run, Settings, Status};
+use turntable::present::num;
 use turntable::scene::Scene;
-use turntable::ui::panel::num;
 use turntable::ui::plain::{Seen, describe, opening};
 
 /// The app and what plain mode has printed of it so far.
