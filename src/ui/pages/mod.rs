@@ -4,7 +4,7 @@
 
 use crate::app::pages::Page;
 use crate::app::{App, CanvasGeom};
-use crate::plot::Panel as Chart;
+use crate::plot::Chart;
 use crate::present::num;
 use crate::theme::Theme;
 use ratatui::Frame as TuiFrame;
