@@ -5,6 +5,7 @@ use common::render;
 use crossterm::event::{KeyCode, KeyEvent, KeyModifiers, MouseButton, MouseEvent, MouseEventKind};
 use turntable::app::keymap::KEYMAP;
 use turntable::app::pages::Page;
+use turntable::app::testing::Testing as _;
 use turntable::app::{Action, App, Chord};
 use turntable::engine::{Frame, Outcome, Run, Settings, Status};
 use turntable::present::num;

@@ -3,6 +3,7 @@
 //! no panic, `check_invariants()` after every step, and no NaN or infinity on any screen.
 
 use crossterm::event::{KeyCode, KeyEvent, KeyModifiers, MouseButton, MouseEvent, MouseEventKind};
+use turntable::app::testing::Testing as _;
 use turntable::app::{Action, App, KEYMAP};
 use turntable::scene::{PRESETS, Scene};
 use turntable::session::Session;

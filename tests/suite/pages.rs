@@ -8,6 +8,7 @@ use std::f64::consts::TAU;
 use turntable::analysis::{self, CURVE_VTOL, PAPER_XI0, map_cell, settings_for};
 use turntable::app::App;
 use turntable::app::pages::Page;
+use turntable::app::testing::Testing as _;
 use turntable::engine::solve::{critical_radius, escape_speed};
 use turntable::engine::{Outcome, Release, Settings};
 use turntable::scene::Scene;

@@ -6,6 +6,7 @@ use crate::common;
 use common::turntable;
 use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
 use turntable::app::keymap::KEYMAP;
+use turntable::app::testing::Testing as _;
 use turntable::app::{App, Chord};
 use turntable::engine::{Outcome, Run, Settings, Status};
 use turntable::present::num;

@@ -7,6 +7,7 @@ use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
 use turntable::analysis::trade::{Ending, TRADE_TAU, trade_base};
 use turntable::app::App;
 use turntable::app::pages::{Page, Trade, trade_schemes};
+use turntable::app::testing::Testing as _;
 use turntable::engine::method::Scheme;
 use turntable::engine::{Initial, Method, Outcome, Run};
 use turntable::plot::{Chart, Mark};
