@@ -98,7 +98,14 @@ impl<'a> Cast<'a> {
             ""
         };
         self.event(ticks, "o", &format!("{clear}{changes}"))?;
-        self.last = Some(buf.clone());
+        // Into the last frame's cells, not a fresh copy: a huge screen's frame is tens of MB.
+        match &mut self.last {
+            Some(last) => {
+                last.area = buf.area;
+                last.content.clone_from(&buf.content);
+            }
+            None => self.last = Some(buf.clone()),
+        }
         Ok(())
     }
 

@@ -11,6 +11,7 @@ pub mod pages;
 pub mod pins;
 pub mod prompt;
 pub mod state;
+pub mod testing;
 pub mod update;
 pub mod view;
 
@@ -25,22 +26,12 @@ pub use state::{
 pub use update::update;
 pub use view::View;
 
-use crate::engine::Settings;
 use crate::scene::Scene;
-use crossterm::event::{KeyCode, KeyEvent, KeyModifiers, MouseButton, MouseEvent, MouseEventKind};
+use crossterm::event::{KeyCode, KeyModifiers, MouseButton, MouseEvent, MouseEventKind};
 
 impl App {
     pub fn new(scene: Scene) -> App {
         App::build(scene)
-    }
-
-    /// A terminal's key event: its chord, if it has one (releases have none). Returns what
-    /// the shell must carry out (see [`update()`]).
-    pub fn handle_key(&mut self, key: KeyEvent) -> Effects {
-        match Chord::from_event(&key) {
-            Some(chord) => self.press(chord),
-            None => Effects::new(),
-        }
     }
 
     /// Keymap → action → update; returns what the shell must carry out.
@@ -62,16 +53,6 @@ impl App {
     pub fn report(&mut self, notice: String) {
         self.notice = Some(notice);
         self.dirty = true;
-    }
-
-    /// The mouse as actions, through the canvas as last drawn: a click places the release
-    /// point, a drag sets the initial velocity, the wheel zooms. Returns what the shell must
-    /// carry out (see [`update()`]).
-    pub fn handle_mouse(&mut self, ev: MouseEvent) -> Effects {
-        match self.mouse_action(ev) {
-            Some(a) => update(self, a),
-            None => Effects::new(),
-        }
     }
 
     /// What a mouse event asks for, through the canvas as last drawn, in the model's terms
@@ -162,17 +143,6 @@ impl App {
         self.measured = m;
     }
 
-    /// The canvas geometry of the last draw (where mouse cells land in world coordinates):
-    /// the first canvas.
-    pub fn geom_for_tests(&self) -> Option<CanvasGeom> {
-        self.geom.first().copied()
-    }
-
-    /// Every canvas of the last draw (two in a split view).
-    pub fn geoms_for_tests(&self) -> &[CanvasGeom] {
-        &self.geom
-    }
-
     /// Whether time should tick for the model: playing, or the paper's run still catching
     /// up (the shell adds a page filling in: `Session::is_playing`).
     pub fn is_playing(&self) -> bool {
@@ -181,73 +151,5 @@ impl App {
 
     pub fn mouse_capture(&self) -> bool {
         self.mouse
-    }
-
-    /// No NaN or infinity in any readout, cursors in range, settings valid.
-    pub fn check_invariants(&self) -> Result<(), String> {
-        let check_sim = |name: &str, sim: &crate::sim::Sim| -> Result<(), String> {
-            if sim.samples.is_empty() || sim.cursor >= sim.samples.len() {
-                return Err(format!(
-                    "{name}: cursor {} out of {} samples",
-                    sim.cursor,
-                    sim.samples.len()
-                ));
-            }
-            let s = sim.now();
-            let vals = [
-                ("tau", s.tau),
-                ("xi", s.xi()),
-                ("xi'", s.xi_dot()),
-                ("|u|", s.u().length()),
-                ("theta", s.r.y.atan2(s.r.x)),
-            ];
-            for (k, v) in vals {
-                if !v.is_finite() {
-                    return Err(format!("{name}: {k} = {v}"));
-                }
-            }
-            if let Some(t) = s.theta_dot()
-                && !t.is_finite()
-            {
-                return Err(format!("{name}: theta' = {t}"));
-            }
-            Ok(())
-        };
-        check_sim("run", self.sim())?;
-        if let Some(p) = self.paper() {
-            check_sim("paper", p)?;
-            if p.settings() != Settings::paper() {
-                return Err("paper run does not use the paper's settings".into());
-            }
-        }
-        // The runs are those of the initial conditions shown: `Exploration` holds that.
-        self.initial().validate().map_err(|e| e.to_string())?;
-        self.settings().validate().map_err(|e| e.to_string())?;
-        if self.pins.len() > crate::pin::MAX_PINS {
-            return Err(format!("{} pins", self.pins.len()));
-        }
-        for p in &self.pins {
-            let finite = |s: &crate::engine::State| {
-                [s.tau, s.r.x, s.r.y, s.v.x, s.v.y]
-                    .iter()
-                    .all(|v| v.is_finite())
-            };
-            if p.path.is_empty() || p.path.len() > 2 * crate::pin::PIN_POINTS {
-                return Err(format!("pin {}: {} points", p.spec.label, p.path.len()));
-            }
-            if !p.path.iter().all(finite) {
-                return Err(format!("pin {}: a point not finite", p.spec.label));
-            }
-        }
-        if !(state::SPEED_RANGE.0..=state::SPEED_RANGE.1).contains(&self.speed) {
-            return Err(format!("speed {} out of range", self.speed));
-        }
-        if !(self.view.zoom.is_finite() && self.view.zoom > 0.0 && self.view.pan.is_finite()) {
-            return Err(format!(
-                "bad view: zoom {} pan {}",
-                self.view.zoom, self.view.pan
-            ));
-        }
-        Ok(())
     }
 }

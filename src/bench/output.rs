@@ -4,7 +4,7 @@ use super::{Report, Speed, Task};
 use crate::engine::Method;
 use crate::error::Error;
 use crate::plot::extent;
-use crate::plot::{Ink, Mark, Panel as Chart, Series, Style};
+use crate::plot::{Chart, Ink, Mark, Series, Style};
 use crate::theme::Theme;
 use crate::ui::chart::render;
 use crate::ui::export::plain_text;

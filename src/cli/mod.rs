@@ -31,16 +31,10 @@ pub fn check_initial(i: &Initial) -> Result<(), Error> {
     crate::check::initial(i, crate::check::Via::Flags)
 }
 
-/// A number as the CSV outputs write it: the shortest digits that read back exactly, in
-/// exponent form outside 1e-5..1e16 (never a 300-digit decimal), and −0 as 0.
+/// A number as the CSV outputs write it: [`digits`](crate::engine::model::digits), plain
+/// from 1e-5 to 1e16, and −0 as 0 (−0 + 0 is +0).
 pub(crate) fn num(x: f64) -> String {
-    if x == 0.0 {
-        "0".into()
-    } else if (1e-5..1e16).contains(&x.abs()) {
-        format!("{x}")
-    } else {
-        format!("{x:e}")
-    }
+    crate::engine::model::digits(x + 0.0, 1e-5..1e16)
 }
 
 pub use crate::check::PHI_MAX;

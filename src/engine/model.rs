@@ -76,6 +76,16 @@ pub struct Initial {
     pub frictionless: bool,
 }
 
+/// A number as the shortest digits that read back to it exactly: plain where its size lies
+/// in `plain` (and 0, inf and NaN), else in e-notation (1e300, not 301 digits).
+pub fn digits(x: f64, plain: std::ops::Range<f64>) -> String {
+    if x == 0.0 || !x.is_finite() || plain.contains(&x.abs()) {
+        format!("{x}")
+    } else {
+        format!("{x:e}")
+    }
+}
+
 impl Initial {
     pub fn velocity(xi0: f64, phi: f64, v0: f64) -> Self {
         Initial {
@@ -130,14 +140,9 @@ impl Initial {
     /// energies stay finite.
     pub const MAX: f64 = 1e12;
 
-    /// A number for a message: plain where that is short, else in e-notation (1e300, not
-    /// 301 digits).
+    /// A number for a message: [`digits`], plain from 1e-4 to 1e9.
     pub fn show(x: f64) -> String {
-        if x == 0.0 || !x.is_finite() || (1e-4..1e9).contains(&x.abs()) {
-            format!("{x}")
-        } else {
-            format!("{x:e}")
-        }
+        digits(x, 1e-4..1e9)
     }
 
     /// Checks the values a user may type: finite, 0 ≤ ξ0, v0 ≤ [`Initial::MAX`].

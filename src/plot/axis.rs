@@ -2,7 +2,7 @@
 //! drawn. The terminal's charts and the SVG writer place the same ticks.
 
 use crate::engine::units::Units;
-pub use crate::present::tick_label;
+use crate::present::tick_label;
 use crate::present::{Quantity, angle_tick, unit_of};
 use std::f64::consts::PI;
 

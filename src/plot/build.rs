@@ -2,7 +2,7 @@
 //! engine and the analysis) and the explorer's `E` (which takes what it already holds). Axis
 //! names carry the paper's units: lengths in R_max = μg/Ω², time in 1/Ω, speeds in μg/Ω.
 
-use super::{Figure, Ink, Mark, Panel, Scale, Series, Style, extent};
+use super::{Chart, Figure, Ink, Mark, Scale, Series, Style, extent};
 use crate::engine::{Frame, Initial, State};
 use crate::present::num;
 use std::f64::consts::TAU;
@@ -104,7 +104,7 @@ pub fn trajectory(title: &str, runs: &[Traced], frame: Frame) -> Figure {
     series.push(rim());
     Figure {
         title: title.into(),
-        panels: vec![Panel {
+        panels: vec![Chart {
             title: format!("path in the {name}"),
             x_label: axes.0.into(),
             y_label: axes.1.into(),
@@ -113,7 +113,7 @@ pub fn trajectory(title: &str, runs: &[Traced], frame: Frame) -> Figure {
             equal_aspect: true,
             series,
             marks,
-            ..Panel::default()
+            ..Chart::default()
         }],
     }
 }
@@ -160,7 +160,7 @@ pub fn time(
         xi.push(Series::new("Sec. III approx.", Ink::Trail, false, pts));
     }
     // Each y range is what the τ range shows.
-    let panel = |title: &str, y_label: &str, series: Vec<Series>| Panel {
+    let panel = |title: &str, y_label: &str, series: Vec<Series>| Chart {
         title: title.into(),
         x_label: TAU_AXIS.into(),
         y_label: y_label.into(),
@@ -173,7 +173,7 @@ pub fn time(
         equal_aspect: false,
         series,
         marks: marks.clone(),
-        ..Panel::default()
+        ..Chart::default()
     };
     // The window's end is marked where the approximation is drawn: the ξ plot.
     let mut xi_panel = panel("distance from the centre", "ξ (R_max)", xi);
@@ -229,7 +229,7 @@ pub fn escape_speed(
         .fold(0.0_f64, f64::max);
     Figure {
         title: title.into(),
-        panels: vec![Panel {
+        panels: vec![Chart {
             title: "escape speed against the direction of the throw (Fig. 5)".into(),
             x_label: PHI_AXIS.into(),
             x_scale: Scale::Angle,
@@ -247,7 +247,7 @@ pub fn escape_speed(
                 })
                 .into_iter()
                 .collect(),
-            ..Panel::default()
+            ..Chart::default()
         }],
     }
 }
@@ -265,7 +265,7 @@ pub fn rest_radius(title: &str, points: &[(f64, Option<f64>)], xi0c: Option<f64>
     ];
     Figure {
         title: title.into(),
-        panels: vec![Panel {
+        panels: vec![Chart {
             title: "released at rest in the lab: where it stops (Fig. 6); beyond ξ0c it escapes"
                 .into(),
             x_label: "ξ0, release radius (R_max)".into(),
@@ -282,7 +282,7 @@ pub fn rest_radius(title: &str, points: &[(f64, Option<f64>)], xi0c: Option<f64>
                 })
                 .into_iter()
                 .collect(),
-            ..Panel::default()
+            ..Chart::default()
         }],
     }
 }
@@ -303,7 +303,7 @@ pub fn outcome_map(
     }
     Figure {
         title: title.into(),
-        panels: vec![Panel {
+        panels: vec![Chart {
             title: "how a throw ends: shaded, it stops (by where); blank, it escapes".into(),
             x_label: PHI_AXIS.into(),
             x_scale: Scale::Angle,
@@ -313,7 +313,7 @@ pub fn outcome_map(
             equal_aspect: false,
             series,
             marks: vec![],
-            ..Panel::default()
+            ..Chart::default()
         }],
     }
 }

@@ -15,19 +15,19 @@ pub mod build;
 pub mod page;
 mod svg;
 
-pub use axis::{Scale, axis, extent, sane, tick_label, ticks};
+pub use axis::{Scale, axis, extent, sane, ticks};
 pub use svg::to_svg;
 
 /// A figure: a title over panels stacked top to bottom.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Figure {
     pub title: String,
-    pub panels: Vec<Panel>,
+    pub panels: Vec<Chart>,
 }
 
 /// One plot: axes with names (units included), ranges, what is drawn, a legend.
 #[derive(Clone, Debug, Default, PartialEq)]
-pub struct Panel {
+pub struct Chart {
     pub title: String,
     /// A line of readouts (the terminal puts it under the x ticks, SVG after the title).
     pub note: String,

@@ -3,7 +3,7 @@
 //! Coordinates carry four decimals of a pixel: the data can be read back from them.
 
 use super::sane;
-use super::{Figure, Ink, Mark, Panel, Style};
+use super::{Chart, Figure, Ink, Mark, Style};
 use std::fmt::Write as _;
 
 const WIDTH: f64 = 800.0;
@@ -119,7 +119,7 @@ impl Axes {
     }
 }
 
-fn panel(s: &mut String, p: &Panel, top: f64, height: f64) {
+fn panel(s: &mut String, p: &Chart, top: f64, height: f64) {
     let (x0, y0) = (LEFT, top + TOP);
     let (w, h) = (WIDTH - LEFT - RIGHT, height - TOP - BOTTOM);
     let (xr, yr) = match p.equal_aspect {
@@ -141,7 +141,7 @@ fn panel(s: &mut String, p: &Panel, top: f64, height: f64) {
 }
 
 /// The panel's title, grid, ticks and axis names, and the clip its data are drawn in.
-fn axes(s: &mut String, p: &Panel, ax: &Axes, top: f64) {
+fn axes(s: &mut String, p: &Chart, ax: &Axes, top: f64) {
     let Axes {
         x0,
         y0,
@@ -211,7 +211,7 @@ fn axes(s: &mut String, p: &Panel, ax: &Axes, top: f64) {
 
 /// The series, in the palette's colours and dashes in turn; returns each one's legend entry
 /// (its escaped name and a sample of its look).
-fn series(s: &mut String, p: &Panel, ax: &Axes) -> Vec<(String, String)> {
+fn series(s: &mut String, p: &Chart, ax: &Axes) -> Vec<(String, String)> {
     let Axes { w, h, xr, yr, .. } = *ax;
     let mut colours = 0;
     let mut next_colour = |ink: Ink| match ink {
@@ -306,7 +306,7 @@ fn series(s: &mut String, p: &Panel, ax: &Axes) -> Vec<(String, String)> {
 }
 
 /// The marks: vertical lines and points, labelled on the side with room.
-fn marks(s: &mut String, p: &Panel, ax: &Axes) {
+fn marks(s: &mut String, p: &Chart, ax: &Axes) {
     let Axes {
         x0, y0, w, h, yr, ..
     } = *ax;
@@ -452,7 +452,7 @@ mod tests {
     fn a_line_maps_back_to_its_data() {
         let fig = Figure {
             title: "t".into(),
-            panels: vec![Panel {
+            panels: vec![Chart {
                 title: "p".into(),
                 x_label: "x".into(),
                 y_label: "y".into(),
@@ -465,7 +465,7 @@ mod tests {
                     vec![(0.0, 0.0), (5.0, f64::NAN), (10.0, 1.0), (2.0, 0.5)],
                 )],
                 marks: vec![],
-                ..Panel::default()
+                ..Chart::default()
             }],
         };
         let svg = to_svg(&fig);

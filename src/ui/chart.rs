@@ -4,7 +4,7 @@
 //! (see `CanvasGeom`).
 
 use super::fit::{fit, fit_label};
-use crate::plot::{Ink, Mark, Panel as Chart, Series, sane};
+use crate::plot::{Chart, Ink, Mark, Series, sane};
 use crate::theme::Theme;
 use ratatui::Frame as TuiFrame;
 use ratatui::layout::Rect;

@@ -5,6 +5,13 @@ use ratatui::buffer::Buffer;
 use ratatui::style::{Color, Modifier};
 use unicode_width::UnicodeWidthStr;
 
+/// Columns a cell's symbol takes, at least one. A one-byte symbol (ASCII, most of a screen)
+/// takes one without asking unicode-width: this runs for every cell of every recorded frame.
+fn columns(c: &ratatui::buffer::Cell) -> usize {
+    let s = c.symbol();
+    if s.len() == 1 { 1 } else { s.width().max(1) }
+}
+
 /// The cells of each row that are drawn: a wide symbol hides the cells it covers.
 fn rows(buf: &Buffer) -> impl Iterator<Item = Vec<&ratatui::buffer::Cell>> {
     let w = usize::from(buf.area.width).max(1);
@@ -15,7 +22,7 @@ fn rows(buf: &Buffer) -> impl Iterator<Item = Vec<&ratatui::buffer::Cell>> {
             if skip == 0 {
                 shown.push(c);
             }
-            skip = skip.max(c.symbol().width()).saturating_sub(1);
+            skip = skip.max(columns(c)) - 1;
         }
         shown
     })
@@ -58,7 +65,7 @@ pub fn ansi_text(buf: &Buffer) -> String {
 pub fn ansi_changes(prev: Option<&Buffer>, buf: &Buffer) -> String {
     let prev = prev.filter(|p| p.area == buf.area);
     let w = usize::from(buf.area.width);
-    let wide = |b: &Buffer, i: usize| b.content.get(i).is_some_and(|c| c.symbol().width() > 1);
+    let wide = |b: &Buffer, i: usize| b.content.get(i).is_some_and(|c| columns(c) > 1);
     let differs = |i: usize| match prev {
         None => true,
         Some(p) => {
@@ -90,7 +97,7 @@ pub fn ansi_changes(prev: Option<&Buffer>, buf: &Buffer) -> String {
             } else {
                 in_run = false;
             }
-            x += c.symbol().width().max(1);
+            x += columns(c);
         }
         if current.is_some() {
             out.push_str("\x1b[0m");

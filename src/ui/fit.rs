@@ -3,7 +3,7 @@
 
 use unicode_width::UnicodeWidthStr;
 
-pub use crate::present::{OR, alternatives};
+use crate::present::OR;
 
 /// `text` cut to `width` columns: its first wording that fits whole; else, of its last,
 /// whole fields (separated by `sep`) from the end, then whole words of the last field kept;
@@ -110,6 +110,7 @@ pub fn wrap(text: &str, width: usize, rows: usize) -> Vec<String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::present::alternatives;
 
     #[test]
     fn wrap_breaks_between_words_and_marks_what_is_left_out() {

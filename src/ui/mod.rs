@@ -14,6 +14,7 @@ pub mod time_plots;
 
 use crate::app::{App, CanvasGeom};
 use crate::engine::Outcome;
+use crate::present::alternatives;
 use crate::theme::Theme;
 use ratatui::Frame;
 use ratatui::layout::{Alignment, Rect};
@@ -89,18 +90,18 @@ pub fn draw(frame: &mut Frame, app: &App, th: &Theme) -> Vec<CanvasGeom> {
 }
 
 /// The one-line lesson: the paper's scheme against the converged run, or what μ = 0 means;
-/// said several ways, longest first (`fit::alternatives`), so a narrow screen reads a whole
+/// said several ways, longest first (`present::alternatives`), so a narrow screen reads a whole
 /// shorter sentence.
 pub fn lesson_line(app: &App) -> String {
     if app.initial().frictionless {
-        return fit::alternatives(&[
+        return alternatives(&[
             " μ = 0: a straight line in the lab, a spiral in the rotating frame (f switches)",
             " μ = 0: a straight line in the lab, a spiral on the table",
             " μ = 0: a straight line in the lab",
         ]);
     }
     if app.scene().spin.is_some() {
-        return fit::alternatives(&[
+        return alternatives(&[
             " the table spins up: the coin rides it until friction cannot hold it, then slides",
             " the table spins up until the coin slides",
             " the table spins up",
@@ -108,7 +109,7 @@ pub fn lesson_line(app: &App) -> String {
     }
     if let Some(gamma) = app.settings().stokes() {
         let rate = crate::present::num(crate::engine::stokes::growth_rate(gamma), 4);
-        return fit::alternatives(&[
+        return alternatives(&[
             format!(" Stokes drag γ = {gamma}: linear, in closed form; it leaves as e^({rate}τ)"),
             format!(" Stokes drag γ = {gamma}: it leaves as e^({rate}τ)"),
             format!(" Stokes: leaves as e^({rate}τ)"),
@@ -117,7 +118,7 @@ pub fn lesson_line(app: &App) -> String {
     let Some(p) = app.paper().filter(|_| !app.outcome_open()) else {
         // A newcomer, in no lesson and none taken, is told where the lessons are.
         if app.lesson().name.is_none() && !app.lesson().done {
-            return fit::alternatives(&[
+            return alternatives(&[
                 " c: compare with the paper's scheme (raw RK2, fixed dt = 1e-3, no stick event) · new here? `turntable lesson` lists the lessons",
                 " c: compare with the paper's RK2 · new here? `turntable lesson` lists the lessons",
                 " c: compare with the paper's RK2 · new here? `turntable lesson`",
@@ -126,7 +127,7 @@ pub fn lesson_line(app: &App) -> String {
                 " c: the paper's RK2",
             ]);
         }
-        return fit::alternatives(&[
+        return alternatives(&[
             " c: compare with the paper's scheme (raw RK2, fixed dt = 1e-3, no stick event)",
             " c: compare with the paper's scheme (RK2, dt = 1e-3)",
             " c: compare with the paper's RK2",
@@ -146,7 +147,7 @@ pub fn lesson_line(app: &App) -> String {
     };
     let method = app.settings().method();
     if a == b {
-        fit::alternatives(&[
+        alternatives(&[
             format!(
                 " paper's RK2 (○) and {method} (●) agree so far: {}",
                 both(a)
@@ -155,19 +156,19 @@ pub fn lesson_line(app: &App) -> String {
             format!(" ○ ●: {}", both(a)),
         ])
     } else if a == Outcome::Stuck && b == Outcome::Escaped {
-        fit::alternatives(&[
+        alternatives(&[
             " ● sticks; the paper's fixed-step RK2 (○) steps over the stop and escapes",
             " ● sticks; the paper's RK2 (○) steps over the stop",
             " ● sticks, ○ escapes",
         ])
     } else if a == Outcome::Stuck {
-        fit::alternatives(&[
+        alternatives(&[
             " ● sticks; the paper's RK2 (○) has no stop event: it dithers about |u| = 0",
             " ● sticks; the paper's RK2 (○) dithers about |u| = 0",
             " ● sticks, ○ dithers",
         ])
     } else {
-        fit::alternatives(&[
+        alternatives(&[
             format!(
                 " disagree: {method} (●) {}, paper's RK2 (○) {}",
                 name(a),

@@ -8,9 +8,9 @@ use crate::app::App;
 use crate::app::lesson::Prompt;
 use crate::app::pages::Page;
 use crate::engine::{Frame, Outcome, Release, Status};
+use crate::present::{num, speed};
 use crate::sim::Sim;
 use crate::theme::Theme;
-use crate::ui::panel::{num, speed};
 
 /// What plain mode says about an [`App`], compared from one moment to the next.
 #[derive(Clone, Debug, PartialEq)]
@@ -151,7 +151,7 @@ fn run_changes(was: &Seen, now: &Seen, out: &mut Vec<String>) {
 /// The view's changes: speed, frame, arrows, page (and its summary), help.
 fn view_changes(was: &Seen, now: &Seen, out: &mut Vec<String>) {
     if now.speed != was.speed {
-        out.push(format!("speed ×{}", crate::ui::panel::fmt_speed(now.speed)));
+        out.push(format!("speed ×{}", crate::present::fmt_speed(now.speed)));
     }
     if now.frame != was.frame {
         out.push(match now.frame {

@@ -11,7 +11,7 @@ use ratatui::layout::{Constraint, Layout, Rect};
 /// with the cursor at the τ on screen, the stop and the escape certificate marked, and the
 /// paper's Sec. III approximations over their window for releases at rest.
 pub fn render(f: &mut TuiFrame, area: Rect, app: &App, th: &Theme) {
-    let title = super::fit::alternatives(&[
+    let title = crate::present::alternatives(&[
         "time plots: ξ, θ, θ′, |u|, energy against τ (t/T: τ window)",
         "time plots: ξ, θ, θ′, |u|, energy",
         "time plots",

@@ -5,6 +5,7 @@ use crate::common;
 use common::render;
 use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
 use turntable::app::App;
+use turntable::app::testing::Testing as _;
 use turntable::engine::{Frame, Outcome};
 use turntable::scene::Scene;
 use turntable::ui::canvas::{ForceArrow, arrows};

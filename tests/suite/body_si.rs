@@ -7,6 +7,7 @@ use common::{render, seeded as config, turntable};
 use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
 use proptest::prelude::*;
 use turntable::app::App;
+use turntable::app::testing::Testing as _;
 use turntable::engine::body::Body;
 use turntable::engine::units::{Length, Units, show_metres, show_r_max_in_metres};
 use turntable::scene::Scene;

@@ -2,6 +2,7 @@
 
 use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
 use turntable::app::App;
+use turntable::app::testing::Testing as _;
 use turntable::engine::{Initial, Release};
 use turntable::scene::Scene;
 use turntable::session::Session;

@@ -11,24 +11,24 @@ use ratatui::backend::TestBackend;
 use std::sync::OnceLock;
 use turntable::app::App;
 use turntable::app::pages::Page;
-use turntable::plot::{Mark, Panel};
+use turntable::plot::{Chart, Mark};
 use turntable::scene::Scene;
 use turntable::theme::Theme;
 
 /// A page's chart, described from the app.
-type Chart = fn(&App) -> Panel;
+type MakeChart = fn(&App) -> Chart;
 
 /// The charts of every page over presets and a few times (computed once: the analysis pages
 /// take seconds).
-fn charts() -> &'static [(String, Panel)] {
-    static CHARTS: OnceLock<Vec<(String, Panel)>> = OnceLock::new();
+fn charts() -> &'static [(String, Chart)] {
+    static CHARTS: OnceLock<Vec<(String, Chart)>> = OnceLock::new();
     CHARTS.get_or_init(|| {
         let mut out = Vec::new();
         for preset in ["A", "C", "D", "fig2"] {
             let mut app = App::new(Scene::preset(preset).unwrap());
             // Each page's chart once its page has computed it (a page's pieces go when
             // another page is shown).
-            let pages: [(&str, Page, Chart); 3] = [
+            let pages: [(&str, Page, MakeChart); 3] = [
                 (
                     "escape",
                     Page::EscapeSpeed,
@@ -66,7 +66,7 @@ fn charts() -> &'static [(String, Panel)] {
     })
 }
 
-fn unlabelled(chart: &Panel) -> Panel {
+fn unlabelled(chart: &Chart) -> Chart {
     let mut c = chart.clone();
     for m in &mut c.marks {
         match m {
@@ -79,7 +79,7 @@ fn unlabelled(chart: &Panel) -> Panel {
     c
 }
 
-fn labels(chart: &Panel) -> Vec<String> {
+fn labels(chart: &Chart) -> Vec<String> {
     chart
         .marks
         .iter()
@@ -93,7 +93,7 @@ fn labels(chart: &Panel) -> Vec<String> {
         .collect()
 }
 
-fn draw(chart: &Panel, w: u16, h: u16) -> Vec<Vec<String>> {
+fn draw(chart: &Chart, w: u16, h: u16) -> Vec<Vec<String>> {
     let th = Theme::builtin("dark").unwrap();
     let mut t = Terminal::new(TestBackend::new(w, h)).unwrap();
     t.draw(|f| {
@@ -107,7 +107,7 @@ fn draw(chart: &Panel, w: u16, h: u16) -> Vec<Vec<String>> {
 }
 
 /// Checks `chart` at `w` × `h`; returns how many label cells it saw.
-fn check(name: &str, chart: &Panel, w: u16, h: u16) -> usize {
+fn check(name: &str, chart: &Chart, w: u16, h: u16) -> usize {
     let with = draw(chart, w, h);
     let without = draw(&unlabelled(chart), w, h);
     let texts = labels(chart);

@@ -8,6 +8,7 @@ use glam::DVec2;
 use proptest::prelude::*;
 use std::f64::consts::{PI, TAU};
 use turntable::app::App;
+use turntable::app::testing::Testing as _;
 use turntable::engine::doubt::{doubt, second_opinion};
 use turntable::engine::solve::{critical_radius, escape_speed};
 use turntable::engine::stokes::{Stokes, growth_rate, roots};

@@ -8,7 +8,7 @@ use turntable::analysis::{CURVE_VTOL, Job, Piece, Speeds, angle, piece_with, set
 use turntable::engine::Settings;
 use turntable::engine::par::par_map;
 use turntable::engine::solve::{always, escape_speed};
-use turntable::plot::{Ink, Panel, Series, Style};
+use turntable::plot::{Chart, Ink, Series, Style};
 
 /// The page's escape speeds at `xi0`, each started from `near`'s when given.
 fn page_curve(xi0: f64, near: Option<&[Option<Speeds>]>) -> Vec<f64> {
@@ -29,7 +29,7 @@ fn page_curve(xi0: f64, near: Option<&[Option<Speeds>]>) -> Vec<f64> {
 /// page draws its curve at that size).
 fn drawn(ve: &[f64], top: f64) -> Vec<String> {
     let n = ve.len();
-    let chart = Panel {
+    let chart = Chart {
         x: [0.0, std::f64::consts::TAU],
         y: [0.0, top],
         series: vec![Series {
@@ -38,7 +38,7 @@ fn drawn(ve: &[f64], top: f64) -> Vec<String> {
             style: Style::Line { dash: 0 },
             ink: Ink::Trail,
         }],
-        ..Panel::default()
+        ..Chart::default()
     };
     let theme = turntable::theme::Theme::builtin("dark").expect("dark");
     let mut t = ratatui::Terminal::new(TestBackend::new(120, 40)).expect("terminal");
@@ -72,9 +72,9 @@ fn the_curve_drawn_is_the_tight_curve_cell_by_cell() {
             .map(|hi| Some(Speeds::Stick { lo: 0.0, hi }))
             .collect();
         let top = 1.1 * tight.iter().copied().fold(0.0, f64::max);
-        let chart = Panel {
+        let chart = Chart {
             y: [0.0, top],
-            ..Panel::default()
+            ..Chart::default()
         };
         let plot = turntable::ui::chart::plot_area(area, &chart).expect("a plot");
         // A value's dot row, as a real number: the canvas truncates it.

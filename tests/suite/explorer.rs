@@ -5,12 +5,13 @@ use common::render;
 use crossterm::event::{KeyCode, KeyEvent, KeyModifiers, MouseButton, MouseEvent, MouseEventKind};
 use turntable::app::keymap::KEYMAP;
 use turntable::app::pages::Page;
+use turntable::app::testing::Testing as _;
 use turntable::app::{Action, App, Chord};
 use turntable::engine::{Frame, Outcome, Run, Settings, Status};
+use turntable::present::num;
 use turntable::scene::{PRESETS, Scene};
 use turntable::session::Session;
 use turntable::theme::Theme;
-use turntable::ui::panel::num;
 
 fn theme() -> Theme {
     Theme::builtin("dark").expect("dark theme")

@@ -8,6 +8,7 @@ use std::f64::consts::TAU;
 use turntable::analysis::{self, CURVE_VTOL, PAPER_XI0, map_cell, settings_for};
 use turntable::app::App;
 use turntable::app::pages::Page;
+use turntable::app::testing::Testing as _;
 use turntable::engine::solve::{critical_radius, escape_speed};
 use turntable::engine::{Outcome, Release, Settings};
 use turntable::scene::Scene;
@@ -106,7 +107,7 @@ fn the_escape_speed_page_holds_the_solver_s_curves() {
     // The least refined to 1e-8, the greatest a grid point's, known to the curve's 1e-4.
     let note = format!(
         "min {}, max {}",
-        label(turntable::ui::panel::speed(vleast), pmin, 3),
+        label(turntable::present::speed(vleast), pmin, 3),
         label(turntable::present::curve_speed(vmax), pmax, 2)
     );
     assert!(screen.contains(&note), "{note}\n{screen}");
@@ -214,13 +215,13 @@ fn the_rest_radius_page_has_fig6_and_reads_mu_from_eq22() {
     let screen = render(&mut a, 100, 30);
     let mu = 3.3f64 * 3.3 * 0.12 / (9.81 * c);
     assert!(
-        screen.contains(&format!("μ_k = {}", turntable::ui::panel::num(mu, 4))),
+        screen.contains(&format!("μ_k = {}", turntable::present::num(mu, 4))),
         "{screen}"
     );
     press(&mut a, KeyCode::Char('o'));
     let mu2 = 3.4f64 * 3.4 * 0.12 / (9.81 * c);
     let screen = render(&mut a, 100, 30);
-    assert!(screen.contains(&format!("μ_k = {}", turntable::ui::panel::num(mu2, 4))));
+    assert!(screen.contains(&format!("μ_k = {}", turntable::present::num(mu2, 4))));
 }
 
 #[test]
@@ -560,7 +561,7 @@ fn no_number_is_cut_at_any_width() {
     let (_, vmin) = c.least.unwrap().unwrap();
     // The greatest is a grid point's, known to the curve's bracket: four decimals.
     let (min, max) = (
-        turntable::ui::panel::speed(vmin),
+        turntable::present::speed(vmin),
         turntable::present::curve_speed(vmax),
     );
     let long = " ? help  Space pause  .,  step  [] speed  f frame  m method  c compare  a forces  1-7 presets  x/p/v edit  q quit";
@@ -695,7 +696,7 @@ fn a_theme_s_background_covers_every_cell() {
 /// are named with dots in their legend.
 #[test]
 fn speeds_and_legends_read_without_colour() {
-    use turntable::ui::panel::speed;
+    use turntable::present::speed;
     assert_eq!(speed(0.6078), "0.6078");
     assert_eq!(speed(1.3), "1.3000");
     assert_eq!(speed(0.6077971), "0.607797");
@@ -716,7 +717,7 @@ fn speeds_and_legends_read_without_colour() {
 /// and without the paper's run, at μ = 0 too.
 #[test]
 fn the_lesson_line_is_a_whole_sentence_at_every_width() {
-    use turntable::ui::fit::OR;
+    use turntable::present::OR;
     for keys in [
         &[][..],
         &[KeyCode::Char('c')][..],

@@ -7,6 +7,7 @@ use common::render;
 use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
 use turntable::app::App;
 use turntable::app::pages::Page;
+use turntable::app::testing::Testing as _;
 use turntable::engine::{Initial, Outcome, Run, Settings, Status};
 use turntable::pin::{MARKERS, MAX_PINS, PIN_POINTS};
 use turntable::scene::Scene;

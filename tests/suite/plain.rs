@@ -6,10 +6,11 @@ use crate::common;
 use common::turntable;
 use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
 use turntable::app::keymap::KEYMAP;
+use turntable::app::testing::Testing as _;
 use turntable::app::{App, Chord};
 use turntable::engine::{Outcome, Run, Settings, Status};
+use turntable::present::num;
 use turntable::scene::Scene;
-use turntable::ui::panel::num;
 use turntable::ui::plain::{Seen, describe, opening};
 
 /// The app and what plain mode has printed of it so far.

@@ -5,6 +5,7 @@ use crate::common;
 use crate::reference;
 use common::turntable;
 use std::path::PathBuf;
+use turntable::app::testing::Testing as _;
 
 mod table;
 

@@ -8,6 +8,7 @@ use russh::client::Handle;
 use russh::keys::PrivateKey;
 use russh::keys::ssh_key::private::Ed25519Keypair;
 use std::time::Duration;
+use turntable::app::testing::Testing as _;
 use turntable::serve::client::{Login, Term, Trust, login};
 use turntable::serve::{Limits, Options, Running, start};
 

@@ -7,6 +7,7 @@ use common::render;
 use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
 use turntable::app::App;
 use turntable::app::pages::Page;
+use turntable::app::testing::Testing as _;
 use turntable::engine::units::Units;
 use turntable::engine::{Initial, Outcome, Run};
 use turntable::present::{si_length, si_rate};

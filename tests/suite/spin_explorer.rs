@@ -7,6 +7,7 @@ use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
 use glam::DVec2;
 use turntable::app::App;
 use turntable::app::pages::Page;
+use turntable::app::testing::Testing as _;
 use turntable::engine::spinup::Onset;
 use turntable::engine::{Frame, Method, Release};
 use turntable::plot::page::table::Picture;

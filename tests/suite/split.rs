@@ -5,6 +5,7 @@
 use crate::common::render;
 use crossterm::event::{KeyCode, KeyEvent, KeyModifiers, MouseButton, MouseEventKind};
 use turntable::app::App;
+use turntable::app::testing::Testing as _;
 use turntable::engine::Frame;
 use turntable::scene::Scene;
 

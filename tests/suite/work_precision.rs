@@ -7,9 +7,10 @@ use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
 use turntable::analysis::trade::{Ending, TRADE_TAU, trade_base};
 use turntable::app::App;
 use turntable::app::pages::{Page, Trade, trade_schemes};
+use turntable::app::testing::Testing as _;
 use turntable::engine::method::Scheme;
 use turntable::engine::{Initial, Method, Outcome, Run};
-use turntable::plot::{Mark, Panel};
+use turntable::plot::{Chart, Mark};
 use turntable::scene::Scene;
 
 fn app(scene: &str) -> App {
@@ -100,7 +101,7 @@ fn no_error_is_drawn_or_said_below_the_resolution() {
     let mut a = app("A");
     let t = trade(&mut a);
     let floor = t.resolution().unwrap().log10();
-    let c: Panel = turntable::plot::page::trade::chart(&a);
+    let c: Chart = turntable::plot::page::trade::chart(&a);
     let drawn: Vec<(f64, f64)> = c
         .series
         .iter()

@@ -1,7 +1,7 @@
 //! The escape speed page: v_e(φ) (Fig. 5) or, outside ξ = 1, the sticking window, and what
 //! the curve says of the release on screen.
 
-use super::super::{Ink, Mark, Panel as Chart, Scale, Series, Style};
+use super::super::{Chart, Ink, Mark, Scale, Series, Style};
 use crate::analysis::PAPER_XI0;
 use crate::analysis::verdict::{Verdict, judge, widest_window};
 use crate::app::App;

@@ -2,7 +2,7 @@
 //! cells shaded by their rest radius, the v_e curve (or the sticking window) over them.
 
 use super::super::build::cells_by_rest;
-use super::super::{Ink, Mark, Panel as Chart, Scale, Series, Style};
+use super::super::{Chart, Ink, Mark, Scale, Series, Style};
 use crate::analysis::map_cell;
 use crate::app::App;
 use crate::app::pages::{Charts, Map, map_filled};

@@ -1,7 +1,7 @@
 //! The rest radius page's chart: Fig. 6, where a particle released at rest in the lab comes to
 //! rest, against ξ0.
 
-use super::super::{Ink, Mark, Panel as Chart, Series};
+use super::super::{Chart, Ink, Mark, Series};
 use crate::analysis::{REST_POINTS, REST_XI0_MAX};
 use crate::app::App;
 use crate::app::pages::Rest;

@@ -3,7 +3,7 @@
 //! 19–20) over their window for releases at rest, the paper's RK2 run beside the converged
 //! one and the pins': what the page draws and `E` writes.
 
-use super::super::{Ink, Mark, Panel, Scale, Series, Style, extent};
+use super::super::{Chart, Ink, Mark, Scale, Series, Style, extent};
 use crate::app::App;
 use crate::engine::approx::table_rest;
 use crate::engine::{Frame, Release, State, Status};
@@ -43,7 +43,7 @@ fn series(name: &str, ink: Ink, path: &[State], y: impl Fn(&State) -> f64) -> Se
 /// The five panels in order (ξ, θ, θ′, |u|, energy) over the τ window (the run so far, or
 /// a span the user fixed: t / T), aligned in τ with the cursor at the τ on screen, the stop
 /// and the escape certificate marked; each y range is what the window shows.
-pub fn panels(app: &App) -> Vec<Panel> {
+pub fn panels(app: &App) -> Vec<Chart> {
     let now = app.sim().now().tau;
     let span = app.view().tau_window.unwrap_or(app.plot_span()).max(1e-3);
     let window = crate::engine::approx::window(&app.initial());
@@ -57,10 +57,10 @@ pub fn panels(app: &App) -> Vec<Panel> {
         label: "approx. valid ←".into(),
         ink: Ink::Muted,
     });
-    let mut panels: Vec<Panel> = plots(app, now, window)
+    let mut panels: Vec<Chart> = plots(app, now, window)
         .into_iter()
         .enumerate()
-        .map(|(k, (name, measure, s, pm))| Panel {
+        .map(|(k, (name, measure, s, pm))| Chart {
             y: extent(
                 s.iter()
                     .flat_map(|s| s.points.iter().filter(|p| p.0 <= span).map(|p| p.1)),
@@ -85,7 +85,7 @@ pub fn panels(app: &App) -> Vec<Panel> {
                 .chain(window_mark.clone().filter(|_| k == 0 || (lab && k <= 2)))
                 .chain(pm)
                 .collect(),
-            ..Panel::default()
+            ..Chart::default()
         })
         .collect();
     if let Some(xi) = panels.first_mut() {
@@ -98,7 +98,7 @@ pub fn panels(app: &App) -> Vec<Panel> {
 /// beside a run that stopped just inside ξ = 1, zoomed on the stop (a few times its distance
 /// from the rim each way), where a stop at 0.997 is told from the rim and the paper's run is
 /// seen crossing it and leaving through the top.
-fn near_the_rim(app: &App, xi: &mut Panel, span: f64) {
+fn near_the_rim(app: &App, xi: &mut Chart, span: f64) {
     if xi.y[0] > 1.2 || xi.y[1] < 0.8 {
         return;
     }

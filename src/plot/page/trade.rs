@@ -4,7 +4,7 @@
 //! error told below the reference's resolution (drawn at it, said "< resolution"); the stated
 //! bounds beside; the explorer's setting and the picked point marked.
 
-use super::super::{Ink, Mark, Panel as Chart, Scale, Series, Style};
+use super::super::{Chart, Ink, Mark, Scale, Series, Style};
 use crate::analysis::trade::{Ending, TRADE_TAU, trade_base};
 use crate::app::App;
 use crate::app::pages::{Trade, trade_picked, trade_schemes};

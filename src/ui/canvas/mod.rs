@@ -77,7 +77,7 @@ fn title(app: &App, frame: Frame, point: bool) -> String {
     if app.view().zoom != 1.0 {
         title.push_str(&format!(
             "zoom ×{} (follows {}) ",
-            crate::ui::panel::num(app.view().zoom, 2),
+            crate::present::num(app.view().zoom, 2),
             if point { "●" } else { "the body" }
         ));
     }

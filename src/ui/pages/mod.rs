@@ -4,9 +4,9 @@
 
 use crate::app::pages::Page;
 use crate::app::{App, CanvasGeom};
-use crate::plot::Panel as Chart;
+use crate::plot::Chart;
+use crate::present::num;
 use crate::theme::Theme;
-use crate::ui::panel::num;
 use ratatui::Frame as TuiFrame;
 use ratatui::layout::Rect;
 use ratatui::style::Style;
@@ -132,7 +132,7 @@ pub fn summary(app: &App) -> Option<(String, Option<String>)> {
                 "escape speed v_e(φ)"
             };
             let note = curve_note(c, window);
-            let note = note.split(super::fit::OR).next().unwrap_or_default();
+            let note = note.split(crate::present::OR).next().unwrap_or_default();
             let (verdict, _) = release_verdict(app, Some(c));
             Some((
                 format!("{what} at ξ0 = {}: {note}", num(i.xi0, 3)),
@@ -164,7 +164,7 @@ pub fn summary(app: &App) -> Option<(String, Option<String>)> {
         Page::WorkPrecision => {
             use crate::plot::page::trade::{measured, said, shown, whole};
             let first = |s: String| {
-                s.split(super::fit::OR)
+                s.split(crate::present::OR)
                     .next()
                     .unwrap_or_default()
                     .to_string()

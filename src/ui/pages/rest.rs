@@ -2,9 +2,9 @@
 //! and the paper's μ measurement (Eq. 22) beside it.
 
 use crate::app::App;
+use crate::present::num;
 use crate::theme::Theme;
 use crate::ui::chart;
-use crate::ui::panel::num;
 use ratatui::Frame as TuiFrame;
 use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::style::Style;

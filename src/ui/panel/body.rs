@@ -1,9 +1,10 @@
 //! The appendix's body in the panel: its size, its phase and centre at the τ on screen, the
 //! two conditions for treating it as a point, and how its track ends.
 
-use super::{kv, num};
+use super::kv;
 use crate::app::App;
 use crate::engine::Outcome;
+use crate::present::num;
 use crate::present::{angle, ratio, si_length};
 use crate::theme::Theme;
 use ratatui::style::{Modifier, Style};

@@ -19,8 +19,10 @@ mod spin;
 use body::body_lines;
 pub use body::{BodyNow, body_end, body_now, phase_word};
 
-use crate::present::{Quantity, angle, rate, sci, si_length, si_rate, si_speed, si_time, unit_of};
-pub use crate::present::{fmt_speed, num, speed};
+use crate::present::{
+    Quantity, angle, fmt_speed, num, rate, sci, si_length, si_rate, si_speed, si_time, speed,
+    unit_of,
+};
 
 /// Status of a run at the sample on screen, and its colour.
 pub fn status_text(sim: &Sim, th: &Theme) -> (String, ratatui::style::Color) {

@@ -7,6 +7,7 @@ use crate::common;
 use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
 use glam::DVec2;
 use turntable::app::App;
+use turntable::app::testing::Testing as _;
 use turntable::engine::Status;
 use turntable::engine::model::rotate;
 use turntable::scene::Scene;

@@ -4,7 +4,7 @@
 use super::{BODY_GLYPH, Picture, SENSE_LABEL};
 use crate::app::App;
 use crate::engine::Frame;
-use crate::plot::{Figure, Ink, Mark, Panel, Series};
+use crate::plot::{Chart, Figure, Ink, Mark, Series};
 use glam::DVec2;
 use std::f64::consts::TAU;
 
@@ -67,7 +67,7 @@ pub fn figure(app: &App, title: String) -> Figure {
 }
 
 /// The turntable as `frame` sees it, one panel.
-fn panel(app: &App, frame: Frame) -> Panel {
+fn panel(app: &App, frame: Frame) -> Chart {
     let pic = Picture::in_frame(app, frame);
     let (c, r) = (pic.centre, pic.half_width);
     let (x, y) = ([c.x - r, c.x + r], [c.y - r, c.y + r]);
@@ -122,7 +122,7 @@ fn panel(app: &App, frame: Frame) -> Panel {
         Frame::Lab => "the lab frame",
         Frame::Table => "the rotating frame (the table's)",
     };
-    Panel {
+    Chart {
         title: format!("the turntable in {name}"),
         x_label: "x (R_max)".into(),
         y_label: "y (R_max)".into(),
@@ -131,7 +131,7 @@ fn panel(app: &App, frame: Frame) -> Panel {
         equal_aspect: true,
         series,
         marks,
-        ..Panel::default()
+        ..Chart::default()
     }
 }
 
