@@ -80,6 +80,10 @@ impl Seen {
                 Prompt::Answer => Some("answer y or n"),
                 Prompt::GoOn if app.apart() => Some("the presenter goes on"),
                 Prompt::GoOn => Some("Enter goes on (Space plays and pauses)"),
+                // A follower's Esc is the presenter's to press.
+                Prompt::None if app.lesson().done && app.lesson().name.is_some() && app.apart() => {
+                    Some("end of the lesson")
+                }
                 Prompt::None if app.lesson().done && app.lesson().name.is_some() => {
                     Some("end of the lesson; Esc closes it, q quits")
                 }

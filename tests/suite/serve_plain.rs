@@ -150,7 +150,7 @@ fn a_plain_student_follows_the_lesson_and_answers_in_words() {
         )
         .await;
         tp.send(b"\r").await.unwrap();
-        says(&mut tf, &mut at, &["The end."]).await;
+        says(&mut tf, &mut at, &["The end.", "end of the lesson\r\n"]).await;
         tf.send(b"q").await.unwrap();
         assert!(tf.until_closed(WAIT).await);
         only_lines(&tf.seen);
