@@ -13,7 +13,7 @@ pub struct Lesson {
 }
 
 /// The lessons, in the order they are best taken.
-pub const LESSONS: [Lesson; 4] = [
+pub const LESSONS: [Lesson; 6] = [
     Lesson {
         name: "stick",
         about: "the stick condition and R_max (Sec. II)",
@@ -33,6 +33,16 @@ pub const LESSONS: [Lesson; 4] = [
         name: "spin",
         about: "the table spun up until the coin slides: mu read from the slip (Sec. IV)",
         script: include_str!("lessons/spin.keys"),
+    },
+    Lesson {
+        name: "forces",
+        about: "finite-time stops, Stokes drag, forces by frame, v_e >= 1 - xi0 (Sec. II)",
+        script: include_str!("lessons/forces.keys"),
+    },
+    Lesson {
+        name: "slow",
+        about: "slow on the table and in the lab (Figs. 1-2, Sec. III); properties 3-4",
+        script: include_str!("lessons/slow.keys"),
     },
 ];
 
@@ -133,24 +143,18 @@ pub struct Check {
 /// Ticks a verdict stays on screen before a caption may replace it (3 s).
 const READ_TICKS: u64 = 3 * crate::app::TICKS_PER_SECOND as u64;
 
-/// Reads `script` as an interactive lesson runs it: where it holds, where time plays through
-/// a hold, and where a caption replaces a verdict before it can be read.
+/// Reads `script` as an interactive lesson runs it: where it holds (a `wait` holds time too),
+/// and where a caption replaces a verdict before it can be read.
 pub fn check(script: &str) -> Result<Check, crate::script::ParseError> {
     // Parsed whole first: a script that does not parse is refused as `replay` refuses it.
     crate::script::parse(script)?;
     let mut c = Check::default();
-    // The explorer opens playing; the last question not yet followed by a `wait`.
-    let (mut playing, mut open_question) = (true, None);
-    let mut playing_waits = Vec::new();
+    // The last question not yet followed by a `wait`, and the ticks played since.
+    let mut open_question = None;
     for (index, line) in script.lines().enumerate() {
         let n = index + 1;
         for step in crate::script::parse(line)? {
             match step {
-                Step::Play(_) => playing = true,
-                Step::Pause => playing = false,
-                Step::Key(k) if k.code == crossterm::event::KeyCode::Char(' ') => {
-                    playing = !playing
-                }
                 Step::Tick(t) => {
                     c.seconds += t as f64 / f64::from(crate::app::TICKS_PER_SECOND);
                     if let Some((_, since)) = open_question.as_mut() {
@@ -160,9 +164,6 @@ pub fn check(script: &str) -> Result<Check, crate::script::ParseError> {
                 Step::Wait => {
                     c.waits += 1;
                     open_question = None;
-                    if playing {
-                        playing_waits.push(n.to_string());
-                    }
                 }
                 Step::Say(text) => {
                     c.captions += usize::from(text.is_some());
@@ -186,14 +187,6 @@ pub fn check(script: &str) -> Result<Check, crate::script::ParseError> {
                 _ => {}
             }
         }
-    }
-    if !playing_waits.is_empty() {
-        c.findings.push(format!(
-            "time plays through {} of the waits ({} {}): the run goes on while the class reads; `pause` before a wait holds the scene",
-            playing_waits.len(),
-            if playing_waits.len() == 1 { "line" } else { "lines" },
-            playing_waits.join(", ")
-        ));
     }
     if c.waits + c.questions == 0 {
         c.findings.push(format!(

@@ -15,6 +15,9 @@ pub struct Lesson {
     pub question: Option<Question>,
     /// Held until Enter (interactive lessons only: headless, `wait` goes on).
     pub waiting: bool,
+    /// Time was playing when the lesson came to its `wait`: the wait held it, and Enter
+    /// plays it again.
+    pub resume: bool,
     /// The lesson's script has run to its end.
     pub done: bool,
     /// Questions asked so far: which one is on screen (others' answers are to that one).
@@ -169,9 +172,13 @@ impl App {
         }
     }
 
-    /// `wait` in an interactive lesson: hold until Enter.
+    /// `wait` in an interactive lesson: hold until Enter, and hold time with it (a preset
+    /// left playing would move on while the class reads; Space still plays it). Enter takes
+    /// time up as the wait found it.
     pub fn wait(&mut self) {
         self.lesson.waiting = true;
+        self.lesson.resume = self.playing;
+        self.playing = false;
         self.dirty = true;
     }
 

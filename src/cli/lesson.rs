@@ -17,8 +17,8 @@ pub struct LessonArgs {
     /// List the lessons (also what `turntable lesson` alone does).
     #[arg(long, conflicts_with_all = ["name", "headless"])]
     pub list: bool,
-    /// Say what a teacher should know of the lesson before class: where it holds, where
-    /// time plays through a wait, where a caption replaces a question's verdict unread.
+    /// Say what a teacher should know of the lesson before class: where it holds, whether it
+    /// runs to its end at once, where a caption replaces a question's verdict unread.
     #[arg(long, requires = "name", conflicts_with_all = ["headless", "plain"])]
     pub check: bool,
     /// No terminal: run the lesson as `replay` runs a script and print its snapshots (a `wait`

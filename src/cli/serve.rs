@@ -207,6 +207,10 @@ pub fn run(a: &ServeArgs) -> CmdResult {
         out,
         "students: ssh -p {port} class@HOST   (F2 steps out of the class and back in)"
     )?;
+    writeln!(
+        out,
+        "with a screen reader: ssh -p {port} plain@HOST   (lines, no screen)"
+    )?;
     out.flush()?;
     drop(out);
     if let Some(n) = signals.forever().next() {

@@ -4,7 +4,7 @@
 //! handlers refuse the other channel kinds.
 
 use super::door::Pass;
-use super::explorer::{self, Client, Outbox};
+use super::explorer::{self, Client, Outbox, PLAIN_USER};
 use super::keyfile::{self, Authorized};
 use super::out::{Flushed, Guarded, UNSENT_MAX, write_out};
 use super::screen::Window;
@@ -268,11 +268,13 @@ impl Handler for Conn {
         )
     }
 
-    async fn auth_publickey(&mut self, _user: &str, key: &PublicKey) -> Result<Auth, Self::Error> {
+    async fn auth_publickey(&mut self, user: &str, key: &PublicKey) -> Result<Auth, Self::Error> {
+        self.client.plain = user == PLAIN_USER;
         Ok(self.who(Some(key), None))
     }
 
-    async fn auth_password(&mut self, _user: &str, password: &str) -> Result<Auth, Self::Error> {
+    async fn auth_password(&mut self, user: &str, password: &str) -> Result<Auth, Self::Error> {
+        self.client.plain = user == PLAIN_USER;
         // Past its tries nothing is compared (russh would still ask this handler).
         if self.password_tries >= PASSWORD_TRIES {
             return Ok(Auth::reject());
@@ -348,6 +350,9 @@ impl Handler for Conn {
         match name {
             "LANG" | "LC_ALL" | "LC_CTYPE" => self.client.lang = value,
             "COLORTERM" => self.client.colorterm = value,
+            // `ssh -o SetEnv=TURNTABLE_PLAIN=1` (or SendEnv): plain mode whatever the user
+            // name; 0 or empty turns it off.
+            "TURNTABLE_PLAIN" => self.client.plain = !matches!(value.as_deref(), Some("" | "0")),
             _ => return session.channel_failure(channel),
         }
         session.channel_success(channel)

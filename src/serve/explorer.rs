@@ -31,11 +31,16 @@ const FPS: u32 = 30;
 
 mod carry;
 mod follow;
+mod plain;
 pub use carry::Guest;
 use carry::Presenter;
 use follow::{FOLLOWING, WAITING, adopt};
 /// The key that steps out of the class, and back into it (not bound in the explorer).
 pub const FOLLOW_KEY: KeyCode = KeyCode::F(2);
+
+/// The user name that asks for plain mode (`ssh plain@HOST`): any other name is the
+/// explorer's screen.
+pub const PLAIN_USER: &str = "plain";
 
 /// What the client said about its terminal.
 #[derive(Clone, Debug, Default)]
@@ -46,6 +51,8 @@ pub struct Client {
     /// LANG (or LC_ALL, LC_CTYPE), if the client sent it.
     pub lang: Option<String>,
     pub colorterm: Option<String>,
+    /// Plain mode: lines for a screen reader, no screen (user `plain`, or `TURNTABLE_PLAIN`).
+    pub plain: bool,
 }
 
 /// The client's screen size within the server's bound.
@@ -100,7 +107,7 @@ pub fn run(
         .filter(|_| shared.presents(id));
     let scene = lesson.map_or_else(crate::scene::Scene::default_scene, |l| l.scene.clone());
     let mut app = App::new(scene);
-    app.tell_mouse(true);
+    app.tell_mouse(!client.plain);
     let mut s = match Session::new(app, theme, Screen::new(w, h), None) {
         Ok(s) => s,
         Err(_) => {
@@ -144,21 +151,26 @@ pub fn run(
         spare: Vec::new(),
         size,
         resized: false,
+        plain: None,
     };
-    let said = run.start(&mut s).and_then(|()| drive(&mut s, &mut run));
+    let said = run
+        .start(&mut s, client.plain)
+        .and_then(|()| drive(&mut s, &mut run));
     let why = said.unwrap_or_else(|e| format!("error: {e}"));
     let mut bytes = s
         .term
         .backend_mut()
         .take(&mut run.spare)
         .unwrap_or_default();
-    let _ = queue!(
-        bytes,
-        DisableMouseCapture,
-        DisableBracketedPaste,
-        LeaveAlternateScreen,
-        cursor::Show
-    );
+    if run.plain.is_none() {
+        let _ = queue!(
+            bytes,
+            DisableMouseCapture,
+            DisableBracketedPaste,
+            LeaveAlternateScreen,
+            cursor::Show
+        );
+    }
     bytes.extend(format!("turntable: {why}\r\n").as_bytes());
     out.end(bytes);
     shared.leave_class(id, &s.app, s.lesson());
@@ -203,14 +215,20 @@ struct Run<'a> {
     /// The client's window size, applied when the next frame is drawn if `resized`.
     size: Arc<Window>,
     resized: bool,
+    /// In plain mode, what its last lines said (see `plain`).
+    plain: Option<crate::ui::plain::Seen>,
 }
 
 impl Run<'_> {
-    fn start(&mut self, s: &mut Session<Screen>) -> io::Result<()> {
-        let b = s.term.backend_mut();
-        queue!(b, EnterAlternateScreen, cursor::Hide, EnableBracketedPaste)?;
-        if self.mouse_on {
-            queue!(b, EnableMouseCapture)?;
+    fn start(&mut self, s: &mut Session<Screen>, plain: bool) -> io::Result<()> {
+        if plain {
+            self.open_plain(s)?;
+        } else {
+            let b = s.term.backend_mut();
+            queue!(b, EnterAlternateScreen, cursor::Hide, EnableBracketedPaste)?;
+            if self.mouse_on {
+                queue!(b, EnableMouseCapture)?;
+            }
         }
         if self.shared.class_led(self.id) {
             self.shared.join(self.id);
@@ -341,7 +359,8 @@ impl Run<'_> {
     }
 
     fn mouse_capture(&mut self, s: &mut Session<Screen>) -> io::Result<()> {
-        if s.app.mouse_capture() != self.mouse_on {
+        // Plain mode sends no escape sequence (a class handed over asks for the mouse).
+        if self.plain.is_none() && s.app.mouse_capture() != self.mouse_on {
             self.mouse_on = s.app.mouse_capture();
             if self.mouse_on {
                 queue!(s.term.backend_mut(), EnableMouseCapture)?;
@@ -400,9 +419,10 @@ impl Link<Screen> for Run<'_> {
         Ok(())
     }
 
-    /// The channel has taken the last frame.
+    /// The channel has taken the last frame (in plain mode no frame is drawn: its lines are
+    /// said at every turn, see `show`).
     fn free(&self) -> bool {
-        self.in_flight.is_none()
+        self.in_flight.is_none() && self.plain.is_none()
     }
 
     fn gap(&self) -> Duration {
@@ -418,6 +438,13 @@ impl Link<Screen> for Run<'_> {
         self.mouse_capture(s)?;
         if self.in_flight.is_some() {
             return Ok(false);
+        }
+        if self.plain.is_some() {
+            if self.resized {
+                self.resize(s);
+            }
+            self.shared.gate.run(|| s.sync_analysis());
+            self.say_plain(s)?;
         }
         if draw && self.resized {
             self.resize(s);

@@ -64,9 +64,26 @@ impl Seen {
             notice: app.notice().clone(),
             typing: app.prompt().clone(),
             caption: caption.as_ref().map(|c| c.text.clone()),
+            // A served class's follower answers for itself, and the presenter goes on.
             prompt: match app.lesson().prompt() {
+                Prompt::Answer
+                    if app.apart()
+                        && app
+                            .lesson()
+                            .question
+                            .as_ref()
+                            .is_some_and(|q| q.own.is_some()) =>
+                {
+                    Some("answered; the presenter goes on")
+                }
+                Prompt::Answer if app.apart() => Some("answer y if it escapes, n if it stays"),
                 Prompt::Answer => Some("answer y or n"),
+                Prompt::GoOn if app.apart() => Some("the presenter goes on"),
                 Prompt::GoOn => Some("Enter goes on (Space plays and pauses)"),
+                // A follower's Esc is the presenter's to press.
+                Prompt::None if app.lesson().done && app.lesson().name.is_some() && app.apart() => {
+                    Some("end of the lesson")
+                }
                 Prompt::None if app.lesson().done && app.lesson().name.is_some() => {
                     Some("end of the lesson; Esc closes it, q quits")
                 }
@@ -232,13 +249,14 @@ fn prompt_changes(was: &Seen, now: &Seen, out: &mut Vec<String>) {
     if now.caption != was.caption
         && let Some(c) = &now.caption
     {
-        // A verdict added under a question: only the new words.
-        let new = match &was.caption {
-            Some(w) if c.starts_with(w.as_str()) => &c[w.len()..],
-            _ => c.as_str(),
-        };
+        // A verdict added or changed under a question: only the lines that are new (the
+        // question is not read again when "You said it escapes." becomes the run's word).
+        let same = was.caption.as_deref().map_or(0, |w| {
+            w.lines().zip(c.lines()).take_while(|(a, b)| a == b).count()
+        });
         out.extend(
-            new.lines()
+            c.lines()
+                .skip(same)
                 .filter(|l| !l.trim().is_empty())
                 .map(String::from),
         );

@@ -67,7 +67,15 @@ fn numbers_are_read_as_written() {
 }
 
 /// Phrases that name a figure, section, equation, key or property: references, not claims.
-const REFERENCES: [&str; 14] = [
+const REFERENCES: [&str; 22] = [
+    "Fig. 1",
+    "Sec. III",
+    "property 3",
+    "property 4",
+    "key 1",
+    "key 5",
+    "(2ξ0)",
+    "(12ξ0)",
     "Figs. 3 and 4",
     "Fig. 2",
     "Fig. 5",
@@ -83,6 +91,42 @@ const REFERENCES: [&str; 14] = [
     "keys 1 to 4",
     "Ω²",
 ];
+
+/// A converged run's states, step by step, up to its end or `tau_max`.
+fn states(i: Initial, tau_max: f64) -> Vec<turntable::engine::State> {
+    let mut run = Run::new(i, Settings::dp54(1e-12)).unwrap();
+    let mut out = vec![run.state()];
+    while run.outcome() == Outcome::Running && run.tau() < tau_max {
+        run.step(tau_max).unwrap();
+        out.push(run.state());
+    }
+    out
+}
+
+/// A converged run's state at `tau`.
+fn at(i: Initial, tau: f64) -> turntable::engine::State {
+    let mut run = Run::new(i, Settings::dp54(1e-12)).unwrap();
+    run.run(tau, false).unwrap();
+    let s = run.state();
+    assert!((s.tau - tau).abs() < 1e-9, "{}", s.tau);
+    s
+}
+
+/// The least escape speed over φ from `xi0` (0.2 or 0.5), each found once.
+fn least_ve(xi0: f64) -> f64 {
+    static LEAST: std::sync::OnceLock<[f64; 2]> = std::sync::OnceLock::new();
+    let least = |x: f64| {
+        easiest_angle(x, 36, Settings::dp54(1e-10), 1e-10, 1e-4)
+            .unwrap()
+            .1
+    };
+    let [at_02, at_05] = *LEAST.get_or_init(|| [least(0.2), least(0.5)]);
+    match xi0 {
+        0.2 => at_02,
+        0.5 => at_05,
+        _ => least(xi0),
+    }
+}
 
 fn converged(i: Initial, tau_max: f64) -> (Outcome, f64, f64) {
     let mut run = Run::new(i, Settings::dp54(1e-12)).unwrap();
@@ -435,6 +479,8 @@ fn claims(lesson: &str) -> Vec<Claim> {
                 ),
             ]
         }
+        "forces" => forces_claims(),
+        "slow" => slow_claims(),
         other => panic!("no claims listed for lesson {other}"),
     }
 }
@@ -488,8 +534,18 @@ fn every_number_in_lesson_spin_is_checked() {
 }
 
 #[test]
+fn every_number_in_lesson_forces_is_checked() {
+    check_lesson("forces");
+}
+
+#[test]
+fn every_number_in_lesson_slow_is_checked() {
+    check_lesson("slow");
+}
+
+#[test]
 fn every_lesson_has_claims_and_snapshots() {
-    assert_eq!(LESSONS.len(), 4);
+    assert_eq!(LESSONS.len(), 6);
     for l in LESSONS {
         assert!(find(&l.name.to_uppercase()).is_some());
         let steps = parse(l.script).unwrap();
@@ -672,6 +728,46 @@ fn an_interactive_lesson_holds_as_state_and_time_goes_on() {
         !screen.contains("three") && !screen.contains("lesson"),
         "{screen}"
     );
+}
+
+/// A `wait` holds time as well as the lesson: a preset left playing stands still while the
+/// class reads (Space still plays it), and Enter takes time up as the wait found it.
+#[test]
+fn a_wait_holds_time_and_enter_takes_it_up() {
+    let mut s = Session::headless(
+        app(),
+        turntable::theme::Theme::builtin("dark").unwrap(),
+        80,
+        24,
+        false,
+    );
+    let script = "2\nplay\nsay one\nwait\ntick 3\nsay two\nwait\npause\nsay three\nwait\n";
+    s.start_lesson(Driver::new("t", parse(script).unwrap()));
+    s.pump_lesson().unwrap();
+    assert!(s.app.lesson().waiting && !s.app.playing());
+    let screen = turntable::ui::export::plain_text(s.screen());
+    assert!(screen.contains("Enter: go on · Space plays"), "{screen}");
+    press(&mut s, "enter");
+    assert!(s.app.playing(), "Enter takes time up as the wait found it");
+    for _ in 0..3 {
+        s.pump_lesson().unwrap();
+        s.tick();
+    }
+    s.pump_lesson().unwrap();
+    assert_eq!(s.app.lesson().caption.as_deref(), Some("two"));
+    assert!(s.app.lesson().waiting && !s.app.playing());
+    // Space plays the scene at a wait; Enter leaves it playing, and the lesson's `pause`
+    // then holds it.
+    press(&mut s, "space");
+    assert!(s.app.playing() && s.app.lesson().waiting);
+    press(&mut s, "enter");
+    assert!(s.app.playing());
+    s.pump_lesson().unwrap();
+    assert_eq!(s.app.lesson().caption.as_deref(), Some("three"));
+    // A wait that found time paused leaves it paused after Enter.
+    assert!(!s.app.playing());
+    press(&mut s, "enter");
+    assert!(!s.app.playing());
 }
 
 /// The run answers the prediction: right or not by the engine's outcome, and only once time
@@ -987,7 +1083,7 @@ proptest::proptest! {
 }
 
 /// `lesson --check` says what a teacher should know before class: a lesson that never holds,
-/// time playing through its waits, a caption that replaces a verdict before it is read.
+/// a caption that replaces a verdict before it is read.
 #[test]
 fn the_lesson_check_finds_the_authoring_traps() {
     let dir = std::env::temp_dir().join(format!("turntable-check-{}", std::process::id()));
@@ -1012,10 +1108,6 @@ fn the_lesson_check_finds_the_authoring_traps() {
     let (_, text) = check("say one\nwait\nask Out? (y/n)\nsay two\npause\nwait\n");
     assert!(text.contains("1 question, 2 waits"), "{text}");
     assert!(
-        text.contains("time plays through 1 of the waits (line 2)"),
-        "{text}"
-    );
-    assert!(
         text.contains("line 4: this say replaces the question of line 3"),
         "{text}"
     );
@@ -1033,4 +1125,215 @@ fn the_lesson_check_finds_the_authoring_traps() {
         let text = String::from_utf8(out.stdout).unwrap();
         assert!(out.status.success() && !text.contains("replaces"), "{text}");
     }
+}
+
+/// Lesson forces: friction against the slip, the forces of each frame, the finite stop and
+/// its bound, Stokes drag, the energy bound on escape.
+fn forces_claims() -> Vec<Claim> {
+    use turntable::engine::stokes::{Stokes, growth_rate};
+    let c = |k: &'static str, f: Box<dyn Fn()>| -> Claim { (k, f) };
+    let b = || converged(preset("B"), 50.0);
+    vec![
+        // Friction is −û, against u = v − ẑ×r, not v: at B's throw 40° off −v.
+        c(
+            "40",
+            Box::new(|| {
+                let s = preset("B").state();
+                let u = s.v - turntable::engine::model::zcross(s.r);
+                assert_eq!(u, s.u());
+                let fr = turntable::engine::model::friction(u, glam::DVec2::X);
+                assert!((fr + u.normalize()).length() < 1e-15);
+                assert!(shows(fr.angle_to(-s.v).abs().to_degrees(), "40"));
+            }),
+        ),
+        // Friction's strength 1; γ = 1; and along B's run the slip falls at least at 1 − ξ
+        // (d|u|/dτ ≤ ξ − 1 over every step, ξ growing), and E = ½|u|² − ½ξ² falls by the
+        // path's length (dE/dτ = −|u|).
+        c(
+            "1",
+            Box::new(|| {
+                let f =
+                    turntable::engine::model::friction(glam::DVec2::new(0.3, -0.4), glam::DVec2::X);
+                assert!((f.length() - 1.0).abs() < 1e-15);
+                let run = states(preset("B"), 50.0);
+                let mut path = 0.0;
+                for w in run.windows(2) {
+                    let (a, z) = (&w[0], &w[1]);
+                    let dt = z.tau - a.tau;
+                    assert!(z.xi() >= a.xi());
+                    if dt > 0.0 {
+                        let rate = (z.u().length() - a.u().length()) / dt;
+                        assert!(rate <= z.xi() - 1.0 + 1e-9, "{rate} at ξ = {}", z.xi());
+                    }
+                    path += (z.q() - a.q()).length();
+                }
+                let (e0, e1) = (run[0].energy(), run.last().unwrap().energy());
+                assert!(
+                    e0 - e1 >= path - 1e-9 && (e0 - e1 - path) < 1e-3 * path,
+                    "{e0} {e1} {path}"
+                );
+            }),
+        ),
+        // Stokes drag is 0 at u = 0: at rest on the table inside ξ = 1 it is not held.
+        c(
+            "0",
+            Box::new(|| {
+                let s = Stokes::new(1.0, Initial::at_rest(0.5, Release::TableRest));
+                assert!(s.escape().is_some());
+            }),
+        ),
+        c(
+            "2.7001",
+            Box::new(move || {
+                let (o, _, tau) = b();
+                assert_eq!(o, Outcome::Stuck);
+                assert!(shows(tau, "2.7001"), "{tau}");
+            }),
+        ),
+        c("0.9453", Box::new(move || assert!(shows(b().1, "0.9453")))),
+        c("0.6", Box::new(|| assert_eq!(preset("B").v0, 0.6))),
+        c(
+            "10.96",
+            Box::new(move || {
+                let (_, xi, tau) = b();
+                let bound = 0.6 / (1.0 - xi);
+                assert!(shows(bound, "10.96") && tau <= bound, "{bound}");
+            }),
+        ),
+        c(
+            "1.0409",
+            Box::new(|| {
+                let t = Stokes::new(1.0, preset("B")).escape().unwrap();
+                assert!(shows(t, "1.0409"), "{t}");
+            }),
+        ),
+        c(
+            "0.300",
+            Box::new(|| {
+                let s = Stokes::new(1.0, preset("B"));
+                assert!(shows(growth_rate(1.0), "0.300") && s.growth() == growth_rate(1.0));
+                // Far out, ξ grows at that rate.
+                let (x20, x30) = (s.at(20.0).0.length(), s.at(30.0).0.length());
+                assert!(shows((x30 / x20).ln() / 10.0, "0.300"));
+            }),
+        ),
+        // ξ0 of A and B, and the bound 1 − ξ0 there.
+        c(
+            "0.5",
+            Box::new(|| {
+                assert_eq!((preset("A").xi0, preset("B").xi0), (0.5, 0.5));
+                assert!(least_ve(0.5) >= 1.0 - 0.5);
+            }),
+        ),
+        c(
+            "0.3134",
+            Box::new(|| {
+                assert_eq!(preset("A"), Initial::velocity(0.5, PI, 1.0));
+                let (o, xi, _) = converged(preset("A"), 50.0);
+                assert_eq!(o, Outcome::Stuck);
+                assert!(shows(xi, "0.3134"));
+            }),
+        ),
+        c(
+            "0.5700",
+            Box::new(|| assert!(shows(least_ve(0.5), "0.5700"))),
+        ),
+        c("0.2", Box::new(|| assert!(least_ve(0.2) >= 1.0 - 0.2))),
+        c(
+            "0.9274",
+            Box::new(|| assert!(shows(least_ve(0.2), "0.9274"), "{}", least_ve(0.2))),
+        ),
+        c("0.8", Box::new(|| assert!(shows(1.0 - 0.2, "0.8")))),
+    ]
+}
+
+/// Lesson slow: Sec. III's closed forms against converged runs, and properties 3-4.
+fn slow_claims() -> Vec<Claim> {
+    let c = |k: &'static str, f: Box<dyn Fn()>| -> Claim { (k, f) };
+    let fig2 = || Initial::at_rest(1.1, Release::TableRest);
+    let fig1 = || Initial::at_rest(500.0, Release::LabRest);
+    let cosh = |tau: f64| (1.1 - 1.0) * f64::cosh(tau) + 1.0;
+    let theta_dot = move |tau: f64| at(fig2(), tau).theta_dot().unwrap();
+    vec![
+        c("1.1", Box::new(move || assert_eq!(preset("fig2"), fig2()))),
+        // At rest on the table θ′ = 1; friction's strength 1 (ξ″ − ξ = −1); the snapshot's τ.
+        c(
+            "1",
+            Box::new(move || {
+                assert!((fig2().state().theta_dot().unwrap() - 1.0).abs() < 1e-15);
+                let f =
+                    turntable::engine::model::friction(glam::DVec2::new(0.3, -0.4), glam::DVec2::X);
+                assert!((f.length() - 1.0).abs() < 1e-15);
+            }),
+        ),
+        c(
+            "1.1525",
+            Box::new(move || assert!(shows(at(fig2(), 1.0).xi(), "1.1525"))),
+        ),
+        c(
+            "1.1543",
+            Box::new(move || assert!(shows(cosh(1.0), "1.1543"))),
+        ),
+        c(
+            "3",
+            Box::new(move || assert!(shows(at(fig2(), 3.0).tau, "3"))),
+        ),
+        c(
+            "1.7228",
+            Box::new(move || assert!(shows(at(fig2(), 3.0).xi(), "1.7228"))),
+        ),
+        c(
+            "2.0068",
+            Box::new(move || assert!(shows(cosh(3.0), "2.0068"))),
+        ),
+        // θ′ > 0 all along (property 3), and between 0 and 1 as it leaves (property 4).
+        c(
+            "0",
+            Box::new(move || {
+                let run = states(fig2(), 12.0);
+                assert!(run.iter().all(|s| s.theta_dot().unwrap() > 0.0));
+                assert!(run.iter().all(|s| s.theta_dot().unwrap() <= 1.0 + 1e-12));
+                assert_eq!(converged(fig2(), 50.0).0, Outcome::Escaped);
+            }),
+        ),
+        c("5", Box::new(move || assert!(theta_dot(5.0) < 1.0))),
+        c(
+            "0.5258",
+            Box::new(move || assert!(shows(theta_dot(5.0), "0.5258"))),
+        ),
+        c(
+            "10",
+            Box::new(move || assert!(theta_dot(10.0) < theta_dot(5.0))),
+        ),
+        c(
+            "0.2237",
+            Box::new(move || assert!(shows(theta_dot(10.0), "0.2237"))),
+        ),
+        c(
+            "500",
+            Box::new(move || {
+                assert_eq!(preset("fig1"), fig1());
+                assert_eq!(converged(fig1(), 50.0).0, Outcome::Escaped);
+            }),
+        ),
+        c(
+            "0.1",
+            Box::new(|| assert!(shows(10f64.powi(2) / (2.0 * 500.0), "0.1"))),
+        ),
+        c(
+            "501.67",
+            Box::new(|| assert!(shows(500.0 + 10f64.powi(4) / (12.0 * 500.0), "501.67"))),
+        ),
+        c(
+            "0.0998",
+            Box::new(move || {
+                let s = at(fig1(), 10.0);
+                assert!(shows(s.r.y.atan2(s.r.x), "0.0998"));
+            }),
+        ),
+        c(
+            "501.66",
+            Box::new(move || assert!(shows(at(fig1(), 10.0).xi(), "501.66"))),
+        ),
+    ]
 }

@@ -49,6 +49,8 @@ mod serve_class;
 #[cfg(feature = "serve")]
 mod serve_exports;
 #[cfg(feature = "serve")]
+mod serve_plain;
+#[cfg(feature = "serve")]
 mod serve_settings;
 mod si;
 mod spin_explorer;

@@ -82,8 +82,12 @@ fn the_presenters_e_writes_to_the_exports_and_a_students_never() {
         assert!(said(&mut tp, b"E", b"turntable-table-3.svg", 160).await);
         let mine = std::fs::read_to_string(dir.path().join("turntable-table-2.svg")).unwrap();
         assert_eq!(mine, "mine");
-        // The follower, given the presenter's E, wrote nothing of its own: three files.
+        // The follower, given the presenter's E, wrote nothing of its own: three files; and
+        // it is told nothing (it was told `not exported`, of an E it never pressed).
         assert_eq!(pages(dir.path()).len(), 3);
+        ts.channel.window_change(150, 30, 0, 0).await.unwrap();
+        assert!(ts.until(0, b"following", SECS).await);
+        assert!(!ts.until(0, b"not exported", Duration::from_secs(2)).await);
         // Stepped out, the student's own E writes nothing.
         assert!(said(&mut ts, b"\x1bOQ", b"stepped", 150).await);
         assert!(said(&mut ts, b"E", b"not exported", 160).await);

@@ -257,7 +257,7 @@ fn bodies_show_no_infinity() {
         "1e4",
     ]);
     assert_eq!(code, 0, "{err}");
-    assert!(out.contains("mu h/L = 5.000e15"), "{out}");
+    assert!(out.contains("mu h/L max = 5.000e15"), "{out}");
     assert!(finite(&out), "{out}");
     let (code, _, err) = turntable(&["run", "--body-length", "1e-300", "--body-height", "10"]);
     assert_eq!(code, 2);

@@ -14,7 +14,13 @@ pub(super) fn apply(app: &mut App, action: Action) {
         Action::GoOn if app.lesson.prompt() == Prompt::Answer => {
             app.report("the question first: y if it escapes, n if it stays".into());
         }
-        Action::GoOn => app.lesson.waiting = false,
+        Action::GoOn => {
+            app.lesson.waiting = false;
+            if std::mem::take(&mut app.lesson.resume) {
+                app.playing = true;
+                app.view.step_mode = false;
+            }
+        }
         // Other groups' actions: `update` never sends them here.
         _ => {}
     }

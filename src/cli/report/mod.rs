@@ -64,7 +64,8 @@ pub struct RunReport {
     pub chosen: Option<ChosenReport>,
 }
 
-/// `run --json`'s `body`: the body's size and the appendix's two conditions at the end.
+/// `run --json`'s `body`: the body's size and the appendix's two conditions: μh/L the run's
+/// largest (while sliding), L/ξ at the end.
 #[derive(Debug, Serialize)]
 pub struct BodyReport {
     pub length: f64,
@@ -173,12 +174,17 @@ impl BodyReport {
     /// The conditions at `end` of `run`, on the table `units` gives (μ_k = 1 assumed without).
     pub fn new(body: Body, run: &Run, end: &State, units: Option<Units>) -> BodyReport {
         let xi = end.q().length();
-        let f = friction(
-            &run.settings(),
-            run.initial().frictionless,
-            run.outcome() == Outcome::Stuck,
-            xi,
-        );
+        let (settings, frictionless) = (run.settings(), run.initial().frictionless);
+        let stuck = run.outcome() == Outcome::Stuck;
+        // The appendix's toppling risk is while sliding (μ_k m g): the run's largest friction,
+        // not the static friction at rest after a stop (ξ of it), unless it never slid.
+        let slid = !matches!(run.status(), crate::engine::Status::Stuck { tau, .. } if tau == 0.0);
+        let at_end = friction(&settings, frictionless, stuck, xi);
+        let sliding = friction(&settings, frictionless, false, xi).filter(|_| slid);
+        let f = match (at_end, sliding) {
+            (Some(a), Some(b)) => Some(a.max(b)),
+            (a, _) => a,
+        };
         let c = body.conditions(xi, f, units.map(|u| u.mu));
         BodyReport {
             length: body.length,
@@ -435,8 +441,10 @@ impl BodyReport {
         let b = self;
         let mut text = String::new();
         let topple = match (b.mu_h_over_l, b.height) {
-            (Some(t), _) if b.mu_assumed => format!("mu h/L <= {t:.3e} (mu_k <= 1 assumed)"),
-            (Some(t), _) => format!("mu h/L = {t:.3e}"),
+            (Some(t), _) if b.mu_assumed => {
+                format!("mu h/L max <= {t:.3e} (mu_k <= 1 assumed)")
+            }
+            (Some(t), _) => format!("mu h/L max = {t:.3e}"),
             (None, None) => "no height given".into(),
             (None, Some(_)) => "toppling not judged under Stokes drag".into(),
         };

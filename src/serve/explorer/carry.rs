@@ -14,6 +14,11 @@ impl crate::session::Carry for Guest {
 
 fn guest(app: &mut App, effects: Effects) {
     for effect in effects {
+        // A follower given the presenter's `s`, `S` or `E`: the presenter's to write (or
+        // not), not the follower's to be told it was refused.
+        if app.apart() && !matches!(effect, Effect::Readouts) {
+            continue;
+        }
         let notice = refused(app, effect);
         app.report(notice);
     }
