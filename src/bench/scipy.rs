@@ -115,12 +115,12 @@ fn wait_at_most(mut child: Child, limit: Duration) -> Option<Output> {
 }
 
 /// Why SciPy was not measured, in the bench's words.
-fn not_found(python: &Path, why: &str) -> Versus {
-    Versus::NotFound(format!("{} {why}", python.display()))
+fn not_found(python: &Path, why: &str) -> String {
+    format!("{} {why}", python.display())
 }
 
 /// One point through the script: what it printed, and the process's wall ms; or why not.
-fn scipy_point(python: &Path, xi0: f64, phi: f64, limit: Duration) -> Result<(Point, f64), Versus> {
+fn scipy_point(python: &Path, xi0: f64, phi: f64, limit: Duration) -> Result<(Point, f64), String> {
     use std::io::Write as _;
     let t = Instant::now();
     let mut child = Command::new(python)
@@ -182,7 +182,10 @@ pub fn compare(
         .and_then(|c| wait_at_most(c, limit))
         .is_some_and(|o| o.status.success());
     if !found {
-        return Ok(not_found(python, "could not import scipy.integrate"));
+        return Ok(Versus::NotFound(not_found(
+            python,
+            "could not import scipy.integrate",
+        )));
     }
     let mut c = Scipy {
         version: String::new(),
@@ -201,7 +204,7 @@ pub fn compare(
             let phi = crate::analysis::angle(k, angles);
             let (p, wall) = match scipy_point(python, xi0, phi, limit) {
                 Ok(p) => p,
-                Err(why) => return Ok(why),
+                Err(why) => return Ok(Versus::NotFound(why)),
             };
             let at = |v0: f64| Initial::velocity(xi0, phi, v0);
             let solve = |s| escape_speed(xi0, phi, s, VTOL);
