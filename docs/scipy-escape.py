@@ -3,14 +3,15 @@ finds and certifies it: what `turntable bench` measures a certified `escape` aga
 
     python3 docs/scipy-escape.py XI0 PHI [VTOL]
 
-Prints the bracket, whether it is certified, the runs and the right-hand-side evaluations, the
-time it took (`ms`: process CPU time from the first run to the verdict; Python's start-up and
-the import of SciPy and NumPy are not in it) and how much of it the search took before the
-certificate (`search-ms`).
+Prints one line: the bracket, whether it is certified, the runs and the right-hand-side
+evaluations, SciPy's version, the time it took (`ms`: process CPU time from the first run to
+the verdict; Python's start-up and the import of SciPy and NumPy are not in it) and how much of
+it the search took before the certificate (`search-ms`).
 
 The integrator is Hairer's Fortran DOP853 (`scipy.integrate.ode(...).set_integrator('dop853')`,
-rtol = atol), stepped to its own ends (a `solout` callback reads each accepted step). The search
-is turntable's (`engine::solve::escape`):
+rtol = atol), stepped to its own ends (a `solout` callback reads each accepted step; the
+right-hand side is a Python function, as any SciPy user's is). The search is turntable's
+(`engine::solve::escape`):
 
 * a scan of 41 speeds up to 2(1 + xi0) + 2 at tol 1e-6, each run cut short by the stick
   certificate (H < 0 inside xi < 1) or ended by the escape certificate (xi > 1 moving out, or
@@ -18,22 +19,30 @@ is turntable's (`engine::solve::escape`):
 * the bracket confirmed at tol vtol/100 and narrowed by regula falsi (Illinois) on the smooth
   measure H = (|u|^2 - (1 - xi)^2)/2 at the end of a run (-(1 - xi_rest)^2/2 stuck, H on
   crossing xi = 1 escaping), bisection where H is missing or the falsi point hugs an end, then a
-  pair of runs 0.9 vtol apart around the estimate;
-* the certificate: both ends of the bracket run in full, and a second opinion of each
-  (DOP853 at 0.3x the tolerance, in the other frame) ending the same way with |dH| < |H|/4;
-  if not, the whole search again 100x tighter (at most twice), as `solve_certified` does.
+  pair of runs 0.9 vtol apart around the estimate (turntable narrows by a safeguarded secant:
+  the same number of runs within one or two);
+* every run of the search, as turntable's, ends where the slow manifold near the saddle tells
+  its fate beyond doubt (`fate`, a line-for-line copy of `engine::saddle::fate`), and reports
+  H carried to xi = 1 there;
+* the certificate: both ends of the bracket run on in full from where the search stopped them
+  (no shortcut), and a second opinion of each (DOP853 at 0.3x the tolerance, in the other
+  frame, from the release) ending the same way with |dH| < |H|/4; if not, the whole search
+  again 100x tighter (at most twice), as `solve_certified` does.
 
-What it does not copy: turntable's closed forms near a stop and its slow-manifold reading of a
-run's fate near the saddle (runs here integrate on to |u| < 1000 tol, then to the stop at constant
-deceleration, or to the escape certificate), and event location inside a step (H on crossing xi = 1 is interpolated
-linearly between the steps around it). Units and frames as in CONVENTIONS.md: table frame
-q' = u, u' = -2 z x u + q - u/|u|; lab frame r' = v, v' = -u/|u| with u = v - z x r.
+What it cannot copy: turntable's implicit end game (Radau IIA steps and closed forms near a
+stop). A run in full near the rim crawls to its stop in explicit steps at the stability limit
+of the friction's turning direction (step ~ |u|): the certificate's four runs take most of the
+time. A stuck run ends at |u| < 1000 tol, the rest of the way at constant deceleration; H on
+crossing xi = 1 is interpolated linearly between the steps around it. Units and frames as in
+CONVENTIONS.md: table frame q' = u, u' = -2 z x u + q - u/|u|; lab frame r' = v, v' = -u/|u|
+with u = v - z x r.
 """
 import math
 import sys
 import time
 import warnings
 
+import scipy
 from scipy.integrate import ode
 
 CLASSIFY_TAU = 1e4
@@ -80,16 +89,79 @@ def rest_h(y, frame):
     return -0.5 * (1 - xi_rest) ** 2
 
 
-def probe(xi0, phi, v0, tol, frame, early):
-    """(escapes, H at the end or None) of the release thrown at v0 (table-frame velocity)."""
+NEAR = 0.02  # the slow manifold's reading applies this close to the saddle (s and g)
+SLAVED = 0.1  # misalignment from the manifold (relative, in 1 - cos a) below which u is slaved
+
+
+def carry(i0, g):
+    """I = s^2 - g^2 carried along the slow manifold from gap g to xi = 1 (RK4, 4 steps in g)."""
+
+    def slope(g, i):
+        s2, rho = i + g * g, 1 - g
+        k = 2 * s2 / ((rho * rho + s2) * (rho * rho + s2))
+        return 2 * k / (1 - k)
+
+    dg, gg, i = -g / 4, g, i0
+    for _ in range(4):
+        k1 = slope(gg, i)
+        k2 = slope(gg + 0.5 * dg, i + 0.5 * dg * k1)
+        k3 = slope(gg + 0.5 * dg, i + 0.5 * dg * k2)
+        k4 = slope(gg + dg, i + dg * k3)
+        i += dg / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
+        gg += dg
+    return i
+
+
+def fate(y, frame):
+    """(escapes, H at xi = 1) read off the slow manifold near the saddle, or None: turntable's
+    `engine::saddle::fate`, line for line."""
+    qx, qy, a, b = y
+    ux, uy = (a, b) if frame == "table" else (a + qy, b - qx)
+    rho, speed = math.hypot(qx, qy), math.hypot(ux, uy)
+    g = 1 - rho
+    if not (0 < speed <= NEAR and 0 < g <= NEAR):
+        return None
+    cos = (qx * ux + qy * uy) / (rho * speed)
+    if cos <= 0:
+        return None
+    sin = (qx * uy - qy * ux) / (rho * speed)
+    on = sin * (rho * rho + speed * speed) / (-2 * speed)
+    one_minus_cos = sin * sin / (1 + cos)
+    s2 = speed * speed
+    k = 2 * s2 / ((rho * rho + s2) * (rho * rho + s2))
+    misaligned = max(abs(one_minus_cos / k - 1), abs(on - 1))
+    if misaligned > SLAVED:
+        return None
+    i0 = s2 - g * g
+    rough = 4 * (i0 * g + g * g * g / 3)
+    if abs(i0 - rough) < 0.5 * rough * (3 * misaligned + speed):
+        return None
+    i = carry(i0, g)
+    doubt = (i0 - i) * (3 * misaligned + speed) + 1e-16
+    if i > doubt:
+        return True, 0.5 * i
+    if i < -doubt:
+        return False, 0.5 * i
+    return None
+
+
+def start(xi0, phi, v0, frame):
+    """The release thrown at v0 (table-frame velocity) as a state in `frame`, at tau = 0."""
     ux, uy = v0 * math.cos(phi), v0 * math.sin(phi)
-    y0 = [xi0, 0.0, ux, uy] if frame == "table" else [xi0, 0.0, ux, uy + xi0]
+    return 0.0, [xi0, 0.0, ux, uy] if frame == "table" else [xi0, 0.0, ux, uy + xi0]
+
+
+def probe(at, tol, frame, early, shortcut):
+    """(escapes, H at the end or None, where it stopped) of the run from `at` = (tau, state).
+    With `early`, a run stops at the stick certificate; with `shortcut`, where the slow
+    manifold tells its fate (as turntable's search); without either it runs in full."""
+    t0, y0 = at
     xi, _, speed, h = look(y0, frame)
     if speed == 0.0:
-        return (xi > 1, None) if xi != 1 else (True, None)
+        return ((xi > 1, None) if xi != 1 else (True, None)) + (at,)
     verdict = []
     prev = [xi, h]
-    last = list(y0)
+    last = [t0, list(y0)]
 
     def solout(t, y):
         xi, xi_dot, speed, h = look(y, frame)
@@ -106,28 +178,34 @@ def probe(xi0, phi, v0, tol, frame, early):
         if speed < 1e3 * tol and xi < 1:
             verdict.append((False, rest_h(y, frame)))
             return -1
+        told = fate(y, frame) if shortcut else None
+        last[:] = [t, list(y)]
+        if told:
+            verdict.append(told)
+            return -1
         prev[:] = [xi, h]
-        last[:] = list(y)
         return 0
 
     r = ode(table if frame == "table" else lab)
     r.set_integrator("dop853", rtol=tol, atol=tol, nsteps=10**6)
     r.set_solout(solout)
-    r.set_initial_value(y0, 0.0)
+    r.set_initial_value(y0, t0)
     # No test for stiffness (IWORK(4) = NSTIFF < 0, as solve_ivp's DOP853, which has none): a
     # run crawling up to the saddle takes many short steps, and must not be broken off.
     r._integrator.iwork[3] = -1
     r.integrate(CLASSIFY_TAU)
+    end = (last[0], last[1])
     if verdict:
-        return verdict[0]
+        return verdict[0] + (end,)
     if r.t >= CLASSIFY_TAU:
-        return True, None  # lingering at the saddle: the threshold itself, counted as escaping
-    xi, _, _, h = look(last, frame)
+        # Lingering at the saddle: the threshold itself, counted as escaping.
+        return True, None, end
+    xi, _, _, h = look(last[1], frame)
     if xi < 1 and h < 0:
         # Stuck for certain, where DOP853 gave up as stiff (the friction turns with u/|u|
         # before a stop near the rim): the rest of the way at constant deceleration.
-        return False, rest_h(last, frame)
-    raise RuntimeError(f"no verdict at v0 = {v0}: DOP853 stopped at tau = {r.t}")
+        return False, rest_h(last[1], frame), end
+    raise RuntimeError(f"no verdict from {at}: DOP853 stopped at tau = {r.t}")
 
 
 def search(xi0, phi, tol, vtol):
@@ -137,10 +215,11 @@ def search(xi0, phi, tol, vtol):
 
     def run(v0, t, early):
         runs[0] += 1
-        out = probe(xi0, phi, v0, t, "lab", early)
+        escapes, h, end = probe(start(xi0, phi, v0, "lab"), t, "lab", early, True)
         if not early:
-            full[v0] = out
-        return out
+            # Where it stopped, for the certificate to run on from (turntable's `Kept`).
+            full[v0] = (escapes, h, end)
+        return escapes, h
 
     top = 2 * (1 + xi0) + 2
     grid = [top * i / 40 for i in range(41)]
@@ -201,10 +280,13 @@ def search(xi0, phi, tol, vtol):
 
 
 def confirmed(xi0, phi, v0, tol, want, full):
-    """The run at v0 in full (kept from the search when it ran in full) and its second opinion,
-    DOP853 at 0.3x the tolerance in the table frame: both end as `want`, |dH| < |H|/4."""
-    own = full.get(v0) or probe(xi0, phi, v0, tol, "lab", False)
-    check = probe(xi0, phi, v0, max(0.3 * tol, 1e-14), "table", False)
+    """The run at v0 run on in full from where the search stopped it (no shortcut) and its
+    second opinion, DOP853 at 0.3x the tolerance in the table frame from the release: both end
+    as `want`, |dH| < |H|/4."""
+    kept = full.get(v0)
+    at = kept[2] if kept else start(xi0, phi, v0, "lab")
+    own = probe(at, tol, "lab", False, False)
+    check = probe(start(xi0, phi, v0, "table"), max(0.3 * tol, 1e-14), "table", False, False)
     if own[0] != want or check[0] != want:
         return False
     if own[1] is None or check[1] is None:
@@ -236,7 +318,8 @@ def main():
     value = hi if lo is None else 0.5 * (lo + hi)
     print(
         f"v_escape {value:.10f}  bracket {lo} {hi}  certified {certified}  "
-        f"runs {total_runs}  rhs {evals[0]}  ms {ms:.1f}  search-ms {1e3 * searched:.1f}"
+        f"runs {total_runs}  rhs {evals[0]}  scipy {scipy.__version__}  ms {ms:.1f}  "
+        f"search-ms {1e3 * searched:.1f}"
     )
 
 

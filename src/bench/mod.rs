@@ -42,6 +42,9 @@ pub struct Config {
     pub seed: u64,
     /// Timed repetitions after the warm-up (the minimum is reported).
     pub reps: usize,
+    /// The Python interpreter whose SciPy the certified escape is measured against (None: not
+    /// tried).
+    pub python: Option<std::path::PathBuf>,
 }
 
 impl Config {
@@ -51,6 +54,7 @@ impl Config {
             cases: 100,
             seed: 5,
             reps: 3,
+            python: None,
         }
     }
     pub fn quick() -> Self {
@@ -59,6 +63,7 @@ impl Config {
             cases: 12,
             seed: 5,
             reps: 1,
+            python: None,
         }
     }
     fn dts(&self) -> Vec<f64> {
@@ -330,7 +335,12 @@ pub fn run(cfg: &Config, mut progress: impl FnMut(&str)) -> Result<Report, Error
     progress("the pages on all cores");
     let pages = pages::page_times(cfg.reps, if cfg.quick { 4 } else { 8 })?;
     progress("SciPy's DOP853 on the same escape speeds");
-    let scipy = scipy::compare(if cfg.quick { 1 } else { 3 }, cfg.reps)?;
+    let scipy = scipy::compare(
+        cfg.python.as_deref(),
+        if cfg.quick { 1 } else { 3 },
+        cfg.reps,
+        scipy::POINT_LIMIT,
+    )?;
     let load = std::fs::read_to_string("/proc/loadavg")
         .ok()
         .map(|l| l.split_whitespace().take(3).collect::<Vec<_>>().join(" "));

@@ -25,6 +25,7 @@ pub fn bench(a: BenchArgs) -> CmdResult {
     if let Some(s) = a.seed {
         cfg.seed = s;
     }
+    cfg.python = Some(a.python);
     let bar = super::progress::tasks();
     let report = bench::run(&cfg, |task| bar.set_message(format!("bench: {task}")));
     bar.finish_and_clear();

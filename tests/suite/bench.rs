@@ -14,6 +14,7 @@ fn tiny() -> Config {
         cases: 3,
         seed: 7,
         reps: 0,
+        python: None,
     }
 }
 

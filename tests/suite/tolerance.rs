@@ -65,3 +65,58 @@ fn the_error_never_grows_as_the_tolerance_tightens() {
         worst[0], worst[1]
     );
 }
+
+/// The bench's stop families (issue 42): the rest cases (A, B, D and seeded releases), case C at
+/// the saddle's edge and stops near the rim at ξ0 = 0.999: each adaptive method's stop (time
+/// and place) against the converged reference, floored at the reference's resolution (its
+/// agreement with its cross-check), never more than 10× off the least error at a looser
+/// tolerance (measured at most 6.2× for dp54: ξ0 0.999 at tol 1e-12, 3.5e-10 off, the
+/// double-precision floor near the saddle; 3.8× on a seeded rest case at tol 1e-4; 3.1× for
+/// dop853; case C by dop853, 7.5e-6 at tol 1e-6 and 1.7e-5 at 1e-7, is 2.2×: its stop time
+/// moves with H at the saddle's edge, and tol 1e-6 is the lucky one, 7.5× its tolerance where
+/// its neighbours are 36–170×). Not yet true nearer the rim: at ξ0 = 0.99 a tolerance loose
+/// enough for the implicit end game to take the whole stretch from the release (its natural
+/// step past the stiff limit) is far more accurate than asked, and the first tolerance at
+/// which the method steps there itself is off by its own error in |u| over the deceleration
+/// 1 − ξ ≈ 0.01 (dp54, v0 = 0.005: 2.6e-11 at tol 1e-7, 1.0e-7 at 1e-8, stated 1.0e-7; with
+/// the stiff limit halved the jump moved to tol 1e-10), so those stops are not covered here.
+#[test]
+fn a_stop_is_never_further_off_at_a_tighter_tolerance() {
+    use turntable::sim::ending::{End, finish, reference, reference_check};
+    let mut releases = turntable::bench::cases(6, 5);
+    releases.push(Initial::velocity(0.5, 0.0, 0.6078));
+    for f in [0.5, 0.99] {
+        releases.push(Initial::velocity(0.999, 0.0, f * (1.0 - 0.999)));
+    }
+    let off = |a: &End, b: &End| (a.tau - b.tau).abs().max((a.q - b.q).length());
+    let mut worst = [1.0f64; 2];
+    for i in releases {
+        let base = Settings::default();
+        let truth = finish(i, reference(base), 1e3).unwrap();
+        let check = finish(i, reference_check(base), 1e3).unwrap();
+        let resolution = off(&truth, &check).max(1e-12);
+        for (m, method) in ["dp54", "dop853"].into_iter().enumerate() {
+            let mut least = f64::INFINITY;
+            for e in 3..=12 {
+                let tol = 10f64.powi(-e);
+                let scheme = match method {
+                    "dp54" => Scheme::Dp54 { tol },
+                    _ => Scheme::Dop853 { tol },
+                };
+                let end = finish(i, Settings { scheme, ..base }, 1e3).unwrap();
+                assert_eq!(end.outcome, truth.outcome, "{i:?} {method} tol {tol:e}");
+                let err = off(&end, &truth).max(resolution);
+                assert!(
+                    err <= 10.0 * least,
+                    "{i:?} {method} tol {tol:e}: {err:e}, against {least:e} at a looser one"
+                );
+                worst[m] = worst[m].max(err / least);
+                least = least.min(err);
+            }
+        }
+    }
+    eprintln!(
+        "worst growth of a stop's error as the tolerance tightens: dp54 {:.1}×, dop853 {:.1}×",
+        worst[0], worst[1]
+    );
+}

@@ -281,6 +281,10 @@ pub struct BenchArgs {
     /// Seed of the random releases.
     #[arg(long)]
     pub seed: Option<u64>,
+    /// The Python interpreter whose SciPy (compiled DOP853, docs/scipy-escape.py) a certified
+    /// escape is measured against; where it or SciPy is missing, the bench says so.
+    #[arg(long, value_name = "PATH", default_value = "python3")]
+    pub python: std::path::PathBuf,
 }
 
 /// The integrator, shared by every command.
