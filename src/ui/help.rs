@@ -9,6 +9,7 @@ use ratatui::layout::Rect;
 use ratatui::style::{Modifier, Style};
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Borders, Clear, Paragraph};
+use std::sync::{Arc, Mutex};
 use unicode_width::UnicodeWidthStr;
 
 /// Help rows per group: bindings with the same help text share a row, keys joined by `/`
@@ -109,35 +110,77 @@ fn popup(area: Rect) -> Rect {
     }
 }
 
+/// One row of the help: a group's header, or a key's label (padded to its column's widest)
+/// and a piece of its help.
+enum Row {
+    Header(&'static str),
+    Entry { key: String, text: String },
+}
+
+impl Row {
+    fn line(&self, th: &Theme) -> Line<'_> {
+        match self {
+            Row::Header(g) => Line::from(Span::styled(
+                *g,
+                Style::default().fg(th.accent).add_modifier(Modifier::BOLD),
+            )),
+            Row::Entry { key, text } => Line::from(vec![
+                Span::styled(key.as_str(), Style::default().fg(th.notice)),
+                Span::styled(text.as_str(), Style::default().fg(th.foreground)),
+            ]),
+        }
+    }
+}
+
+/// The help's columns at one inside width, each its rows.
+type Laid = Vec<Vec<Row>>;
+
+/// Widths whose help is kept laid out: a class's few window sizes.
+const LAID_KEPT: usize = 16;
+
+/// The help laid out for a box whose inside is `width` wide: once a width for every session
+/// (its text is the key table's), not once a frame (choosing the split lays it out once per
+/// place it could split: a served help frame cost several plain ones).
+fn laid(width: u16) -> Arc<Laid> {
+    static KEPT: Mutex<Vec<(u16, Arc<Laid>)>> = Mutex::new(Vec::new());
+    let mut kept = KEPT.lock().unwrap_or_else(|e| e.into_inner());
+    if let Some((_, l)) = kept.iter().find(|(w, _)| *w == width) {
+        return Arc::clone(l);
+    }
+    let l = Arc::new(columns(width));
+    if kept.len() >= LAID_KEPT {
+        kept.remove(0);
+    }
+    kept.push((width, Arc::clone(&l)));
+    l
+}
+
 /// The help's columns for a box whose inside is `width` wide: two from 60 cells, else one.
-/// Each is its lines, a help text too long for the column wrapped at words under itself.
-fn columns(width: u16, th: &Theme) -> Vec<Vec<Line<'static>>> {
+/// Each is its rows, a help text too long for the column wrapped at words under itself.
+fn columns(width: u16) -> Laid {
     let items = items();
     if width < 60 {
-        return vec![column(&items, usize::from(width), th)];
+        return vec![column(&items, usize::from(width))];
     }
     // Two columns, split where the taller is shortest (wrapped rows counted), never leaving
     // a header alone at the foot of the first.
     let colw = usize::from((width - 1) / 2);
     (1..items.len())
         .filter(|&k| items[k - 1].0.is_none())
-        .map(|k| vec![column(&items[..k], colw, th), column(&items[k..], colw, th)])
+        .map(|k| vec![column(&items[..k], colw), column(&items[k..], colw)])
         .min_by_key(|cols| cols.iter().map(Vec::len).max())
         .unwrap_or_default()
 }
 
 /// One column: labels take its widest label's width and two blanks, so no help text is glued
 /// to its keys.
-fn column(items: &[Item], width: usize, th: &Theme) -> Vec<Line<'static>> {
+fn column(items: &[Item], width: usize) -> Vec<Row> {
     let lw = items.iter().map(|(_, k, _)| k.width()).max().unwrap_or(0) + 2;
     let room = width.saturating_sub(1 + lw).max(8);
     let mut out = Vec::new();
     for (g, k, help) in items {
         if let Some(g) = g {
-            out.push(Line::from(Span::styled(
-                g.to_string(),
-                Style::default().fg(th.accent).add_modifier(Modifier::BOLD),
-            )));
+            out.push(Row::Header(g));
             continue;
         }
         let mut chunks = vec![String::new()];
@@ -152,27 +195,24 @@ fn column(items: &[Item], width: usize, th: &Theme) -> Vec<Line<'static>> {
                 chunks.push(word.to_string());
             }
         }
-        for (i, chunk) in chunks.into_iter().enumerate() {
+        for (i, text) in chunks.into_iter().enumerate() {
             let key = if i == 0 { k.as_str() } else { "" };
-            out.push(Line::from(vec![
-                Span::styled(
-                    format!(" {key}{}", " ".repeat(lw - key.width())),
-                    Style::default().fg(th.notice),
-                ),
-                Span::styled(chunk, Style::default().fg(th.foreground)),
-            ]));
+            out.push(Row::Entry {
+                key: format!(" {key}{}", " ".repeat(lw - key.width())),
+                text,
+            });
         }
     }
     out
 }
 
 /// How far the help scrolls at a `width` × `height` terminal: its rows less those shown.
-pub fn max_scroll(width: u16, height: u16, th: &Theme) -> u16 {
+pub fn max_scroll(width: u16, height: u16) -> u16 {
     let Some(r) = super::layout::regions(width, height) else {
         return 0;
     };
     let p = popup(r.help);
-    let rows = columns(p.width.saturating_sub(2), th)
+    let rows = laid(p.width.saturating_sub(2))
         .iter()
         .map(Vec::len)
         .max()
@@ -190,7 +230,7 @@ pub fn page(height: u16) -> u16 {
 pub fn render(f: &mut TuiFrame, area: Rect, app: &App, th: &Theme) {
     let popup = popup(area);
     f.render_widget(Clear, popup);
-    let cols = columns(popup.width.saturating_sub(2), th);
+    let cols = laid(popup.width.saturating_sub(2));
     let rows = cols.iter().map(Vec::len).max().unwrap_or(0);
     let shown = usize::from(popup.height.saturating_sub(2));
     let top = usize::from(app.view().help_scroll).min(rows.saturating_sub(shown));
@@ -221,9 +261,10 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App, th: &Theme) {
         .style(Style::default().bg(th.background).fg(th.foreground));
     let inner = block.inner(popup);
     f.render_widget(block, popup);
-    let scroll = (u16::try_from(top).unwrap_or(u16::MAX), 0);
+    // The rows in view only (a paragraph scrolled past the others lays them out too).
+    let shown_of = |col| in_view(col, top, shown, th);
     if cols.len() == 1 {
-        f.render_widget(Paragraph::new(cols[0].clone()).scroll(scroll), inner);
+        f.render_widget(Paragraph::new(shown_of(&cols[0])), inner);
         return;
     }
     // The widths `columns` wrapped to, a blank between.
@@ -236,7 +277,16 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App, th: &Theme) {
             ..inner
         },
     ];
-    for (col, area) in cols.into_iter().zip(halves) {
-        f.render_widget(Paragraph::new(col).scroll(scroll), area);
+    for (col, area) in cols.iter().zip(halves) {
+        f.render_widget(Paragraph::new(shown_of(col)), area);
     }
+}
+
+/// The rows of `col` from `top`, as many as are `shown`.
+fn in_view<'a>(col: &'a [Row], top: usize, shown: usize, th: &Theme) -> Vec<Line<'a>> {
+    col.iter()
+        .skip(top)
+        .take(shown)
+        .map(|r| r.line(th))
+        .collect()
 }
