@@ -5,10 +5,11 @@ use crate::app::App;
 use crate::app::keymap::{GROUPS, KEYMAP};
 use crate::theme::Theme;
 use ratatui::Frame as TuiFrame;
+use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
 use ratatui::style::{Modifier, Style};
 use ratatui::text::{Line, Span};
-use ratatui::widgets::{Block, Borders, Clear, Paragraph};
+use ratatui::widgets::{Block, Borders, Paragraph, Widget};
 use std::sync::{Arc, Mutex};
 use unicode_width::UnicodeWidthStr;
 
@@ -229,11 +230,56 @@ pub fn page(height: u16) -> u16 {
 
 pub fn render(f: &mut TuiFrame, area: Rect, app: &App, th: &Theme) {
     let popup = popup(area);
-    f.render_widget(Clear, popup);
+    let key = Drawn {
+        popup,
+        scroll: app.view().help_scroll,
+        colours: [th.accent, th.notice, th.foreground, th.background],
+    };
+    let drawn = drawn(key, th);
+    let buf = f.buffer_mut();
+    let area = popup.intersection(buf.area);
+    for y in area.top()..area.bottom() {
+        let (to, from) = (buf.index_of(area.x, y), drawn.index_of(area.x, y));
+        let n = usize::from(area.width);
+        buf.content[to..to + n].clone_from_slice(&drawn.content[from..from + n]);
+    }
+}
+
+/// What the help's box shows is a function of these alone.
+#[derive(Clone, Copy, PartialEq)]
+struct Drawn {
+    popup: Rect,
+    scroll: u16,
+    colours: [ratatui::style::Color; 4],
+}
+
+/// The help's boxes kept drawn: a class's sizes and themes, and where their readers scrolled.
+const DRAWN_KEPT: usize = 32;
+
+/// The help's box as `key` has it, drawn once for every session that shows it so (a served
+/// help frame drew its hundred rows of text each time: its cells are copied instead).
+fn drawn(key: Drawn, th: &Theme) -> Arc<Buffer> {
+    static KEPT: Mutex<Vec<(Drawn, Arc<Buffer>)>> = Mutex::new(Vec::new());
+    let mut kept = KEPT.lock().unwrap_or_else(|e| e.into_inner());
+    if let Some((_, b)) = kept.iter().find(|(k, _)| *k == key) {
+        return Arc::clone(b);
+    }
+    let mut b = Buffer::empty(key.popup);
+    draw_box(&mut b, key.popup, key.scroll, th);
+    let b = Arc::new(b);
+    if kept.len() >= DRAWN_KEPT {
+        kept.remove(0);
+    }
+    kept.push((key, Arc::clone(&b)));
+    b
+}
+
+/// The help's box on `buf` (empty) at `popup`, scrolled `scroll` rows down (at most to its end).
+fn draw_box(buf: &mut Buffer, popup: Rect, scroll: u16, th: &Theme) {
     let cols = laid(popup.width.saturating_sub(2));
     let rows = cols.iter().map(Vec::len).max().unwrap_or(0);
     let shown = usize::from(popup.height.saturating_sub(2));
-    let top = usize::from(app.view().help_scroll).min(rows.saturating_sub(shown));
+    let top = usize::from(scroll).min(rows.saturating_sub(shown));
     let title = fit(
         " help: ? or Esc closes, ↑ ↓ PgUp PgDn wheel scroll ",
         ", ",
@@ -260,11 +306,11 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App, th: &Theme) {
         )
         .style(Style::default().bg(th.background).fg(th.foreground));
     let inner = block.inner(popup);
-    f.render_widget(block, popup);
+    block.render(popup, buf);
     // The rows in view only (a paragraph scrolled past the others lays them out too).
     let shown_of = |col| in_view(col, top, shown, th);
     if cols.len() == 1 {
-        f.render_widget(Paragraph::new(shown_of(&cols[0])), inner);
+        Paragraph::new(shown_of(&cols[0])).render(inner, buf);
         return;
     }
     // The widths `columns` wrapped to, a blank between.
@@ -278,7 +324,7 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App, th: &Theme) {
         },
     ];
     for (col, area) in cols.iter().zip(halves) {
-        f.render_widget(Paragraph::new(shown_of(col)), area);
+        Paragraph::new(shown_of(col)).render(area, buf);
     }
 }
 
@@ -289,4 +335,29 @@ fn in_view<'a>(col: &'a [Row], top: usize, shown: usize, th: &Theme) -> Vec<Line
         .take(shown)
         .map(|r| r.line(th))
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Sessions showing the help alike share one drawing of its box, which is the box drawn
+    /// directly; another scroll is another drawing.
+    #[test]
+    fn the_helps_box_is_drawn_once_for_all_who_show_it_alike() {
+        let th = Theme::builtin("dark").unwrap();
+        let key = Drawn {
+            popup: Rect::new(3, 1, 97, 27),
+            scroll: 2,
+            colours: [th.accent, th.notice, th.foreground, th.background],
+        };
+        let (a, b) = (drawn(key, &th), drawn(key, &th));
+        assert!(Arc::ptr_eq(&a, &b));
+        let mut direct = Buffer::empty(key.popup);
+        draw_box(&mut direct, key.popup, key.scroll, &th);
+        assert_eq!(*a, direct);
+        let other = drawn(Drawn { scroll: 3, ..key }, &th);
+        assert!(!Arc::ptr_eq(&a, &other));
+        assert_ne!(*a, *other);
+    }
 }
