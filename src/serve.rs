@@ -17,6 +17,7 @@ mod door;
 pub mod explorer;
 mod keyfile;
 mod out;
+mod pace;
 mod screen;
 
 pub use auth::{fingerprint, host_key, host_key_path, passphrase};
@@ -211,6 +212,8 @@ pub struct Shared {
     door: Arc<door::Door>,
     pub counts: Counts,
     pub gate: Gate,
+    /// What a frame costs: how often a picture that only time moves is drawn.
+    pub pace: pace::Pace,
     stopping: AtomicBool,
 }
 
@@ -336,6 +339,7 @@ pub fn start(options: Options) -> std::io::Result<Running> {
         door,
         counts: Counts::default(),
         gate: Gate::new(cores),
+        pace: pace::Pace::new(cores),
         stopping: AtomicBool::new(false),
     });
     let listener = {

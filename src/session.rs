@@ -76,7 +76,7 @@ impl<B: Backend> Session<B> {
             carry: Box::new(Write),
             analysis: Analysis::inline(),
         };
-        tell_size(&mut s.app, &s.theme, size.width, size.height);
+        tell_size(&mut s.app, size.width, size.height);
         s.ask_analysis();
         Ok(s)
     }
@@ -214,7 +214,7 @@ impl<B: Backend> Session<B> {
         if let Some(r) = &self.recorder {
             lock(r).resize(width, height);
         }
-        tell_size(&mut self.app, &self.theme, width, height);
+        tell_size(&mut self.app, width, height);
         self.ask_analysis();
     }
 
@@ -250,11 +250,11 @@ impl<B: Backend> Session<B> {
 
 /// Tells `app` the terminal is now `width` × `height`, and what the view measures there (the
 /// help's page and end).
-pub fn tell_size(app: &mut App, theme: &Theme, width: u16, height: u16) {
+pub fn tell_size(app: &mut App, width: u16, height: u16) {
     app.resize(width, height);
     app.measured(crate::app::Measured {
         help_page: crate::ui::help::page(height),
-        help_max_scroll: crate::ui::help::max_scroll(width, height, theme),
+        help_max_scroll: crate::ui::help::max_scroll(width, height),
     });
 }
 

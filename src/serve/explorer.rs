@@ -4,6 +4,7 @@
 //! wall-clock time. A follower applies the presenter's keys, mouse actions and ticks instead of
 //! its clock.
 
+use super::pace::thread_cpu;
 use super::screen::{Screen, Window};
 use super::{In, Lead, Out, Shared};
 use crate::app::lesson::Prompt;
@@ -152,6 +153,8 @@ pub fn run(
         size,
         resized: false,
         plain: None,
+        answering: false,
+        still_gap: Duration::from_secs(1) / FPS,
     };
     let said = run
         .start(&mut s, client.plain)
@@ -217,6 +220,12 @@ struct Run<'a> {
     resized: bool,
     /// In plain mode, what its last lines said (see `plain`).
     plain: Option<crate::ui::plain::Seen>,
+    /// Input came (the client's, or the presenter's keys and mouse) since the last frame: the
+    /// next one answers it, at the explorer's rate.
+    answering: bool,
+    /// The least time between frames that only time moved, as the server's load allows
+    /// (`pace`), measured at the last frame.
+    still_gap: Duration,
 }
 
 impl Run<'_> {
@@ -244,6 +253,7 @@ impl Run<'_> {
     fn receive(&mut self, s: &mut Session<Screen>, msg: In) -> io::Result<Waited> {
         match msg {
             In::Data(bytes) => {
+                self.answering = true;
                 let now = Instant::now();
                 self.last_input = now;
                 self.keys.feed(&bytes, false, now);
@@ -256,8 +266,14 @@ impl Run<'_> {
             }
             In::Close(why) => return Ok(Waited::Stop(why)),
             In::Lead(lead) if self.following => match lead {
-                Lead::Key(chord) => s.press(chord),
-                Lead::Act(action) => s.act(action),
+                Lead::Key(chord) => {
+                    self.answering = true;
+                    s.press(chord);
+                }
+                Lead::Act(action) => {
+                    self.answering = true;
+                    s.act(action);
+                }
                 Lead::Tick => s.tick(),
                 Lead::Lesson => {
                     s.follow_lesson()?;
@@ -425,8 +441,14 @@ impl Link<Screen> for Run<'_> {
         self.in_flight.is_none() && self.plain.is_none()
     }
 
+    /// The explorer's rate for a frame that answers input, a slower one for a picture only
+    /// time moves while the server's cores cannot draw it that often for every session.
     fn gap(&self) -> Duration {
-        Duration::from_secs(1) / FPS
+        if self.answering || self.resized {
+            Duration::from_secs(1) / FPS
+        } else {
+            self.still_gap
+        }
     }
 
     fn pending(&self) -> bool {
@@ -454,9 +476,14 @@ impl Link<Screen> for Run<'_> {
             // The analysis pages are computed through the gate (as many at once as cores);
             // the frame itself is drawn outside it.
             self.shared.gate.run(|| s.sync_analysis());
+            let cpu = thread_cpu();
             queue!(s.term.backend_mut(), BeginSynchronizedUpdate)?;
             s.draw()?;
             queue!(s.term.backend_mut(), EndSynchronizedUpdate)?;
+            let pace = &self.shared.pace;
+            pace.drew(thread_cpu().saturating_sub(cpu));
+            self.answering = false;
+            self.still_gap = pace.gap(self.shared.sessions(), Duration::from_secs(1) / FPS);
             self.shared.counts.frames.fetch_add(1, Ordering::Relaxed);
         }
         if let Some(bytes) = s.term.backend_mut().take(&mut self.spare)

@@ -5,10 +5,12 @@ use crate::app::App;
 use crate::app::keymap::{GROUPS, KEYMAP};
 use crate::theme::Theme;
 use ratatui::Frame as TuiFrame;
+use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
 use ratatui::style::{Modifier, Style};
 use ratatui::text::{Line, Span};
-use ratatui::widgets::{Block, Borders, Clear, Paragraph};
+use ratatui::widgets::{Block, Borders, Paragraph, Widget};
+use std::sync::{Arc, Mutex};
 use unicode_width::UnicodeWidthStr;
 
 /// Help rows per group: bindings with the same help text share a row, keys joined by `/`
@@ -109,35 +111,77 @@ fn popup(area: Rect) -> Rect {
     }
 }
 
+/// One row of the help: a group's header, or a key's label (padded to its column's widest)
+/// and a piece of its help.
+enum Row {
+    Header(&'static str),
+    Entry { key: String, text: String },
+}
+
+impl Row {
+    fn line(&self, th: &Theme) -> Line<'_> {
+        match self {
+            Row::Header(g) => Line::from(Span::styled(
+                *g,
+                Style::default().fg(th.accent).add_modifier(Modifier::BOLD),
+            )),
+            Row::Entry { key, text } => Line::from(vec![
+                Span::styled(key.as_str(), Style::default().fg(th.notice)),
+                Span::styled(text.as_str(), Style::default().fg(th.foreground)),
+            ]),
+        }
+    }
+}
+
+/// The help's columns at one inside width, each its rows.
+type Laid = Vec<Vec<Row>>;
+
+/// Widths whose help is kept laid out: a class's few window sizes.
+const LAID_KEPT: usize = 16;
+
+/// The help laid out for a box whose inside is `width` wide: once a width for every session
+/// (its text is the key table's), not once a frame (choosing the split lays it out once per
+/// place it could split: a served help frame cost several plain ones).
+fn laid(width: u16) -> Arc<Laid> {
+    static KEPT: Mutex<Vec<(u16, Arc<Laid>)>> = Mutex::new(Vec::new());
+    let mut kept = KEPT.lock().unwrap_or_else(|e| e.into_inner());
+    if let Some((_, l)) = kept.iter().find(|(w, _)| *w == width) {
+        return Arc::clone(l);
+    }
+    let l = Arc::new(columns(width));
+    if kept.len() >= LAID_KEPT {
+        kept.remove(0);
+    }
+    kept.push((width, Arc::clone(&l)));
+    l
+}
+
 /// The help's columns for a box whose inside is `width` wide: two from 60 cells, else one.
-/// Each is its lines, a help text too long for the column wrapped at words under itself.
-fn columns(width: u16, th: &Theme) -> Vec<Vec<Line<'static>>> {
+/// Each is its rows, a help text too long for the column wrapped at words under itself.
+fn columns(width: u16) -> Laid {
     let items = items();
     if width < 60 {
-        return vec![column(&items, usize::from(width), th)];
+        return vec![column(&items, usize::from(width))];
     }
     // Two columns, split where the taller is shortest (wrapped rows counted), never leaving
     // a header alone at the foot of the first.
     let colw = usize::from((width - 1) / 2);
     (1..items.len())
         .filter(|&k| items[k - 1].0.is_none())
-        .map(|k| vec![column(&items[..k], colw, th), column(&items[k..], colw, th)])
+        .map(|k| vec![column(&items[..k], colw), column(&items[k..], colw)])
         .min_by_key(|cols| cols.iter().map(Vec::len).max())
         .unwrap_or_default()
 }
 
 /// One column: labels take its widest label's width and two blanks, so no help text is glued
 /// to its keys.
-fn column(items: &[Item], width: usize, th: &Theme) -> Vec<Line<'static>> {
+fn column(items: &[Item], width: usize) -> Vec<Row> {
     let lw = items.iter().map(|(_, k, _)| k.width()).max().unwrap_or(0) + 2;
     let room = width.saturating_sub(1 + lw).max(8);
     let mut out = Vec::new();
     for (g, k, help) in items {
         if let Some(g) = g {
-            out.push(Line::from(Span::styled(
-                g.to_string(),
-                Style::default().fg(th.accent).add_modifier(Modifier::BOLD),
-            )));
+            out.push(Row::Header(g));
             continue;
         }
         let mut chunks = vec![String::new()];
@@ -152,27 +196,24 @@ fn column(items: &[Item], width: usize, th: &Theme) -> Vec<Line<'static>> {
                 chunks.push(word.to_string());
             }
         }
-        for (i, chunk) in chunks.into_iter().enumerate() {
+        for (i, text) in chunks.into_iter().enumerate() {
             let key = if i == 0 { k.as_str() } else { "" };
-            out.push(Line::from(vec![
-                Span::styled(
-                    format!(" {key}{}", " ".repeat(lw - key.width())),
-                    Style::default().fg(th.notice),
-                ),
-                Span::styled(chunk, Style::default().fg(th.foreground)),
-            ]));
+            out.push(Row::Entry {
+                key: format!(" {key}{}", " ".repeat(lw - key.width())),
+                text,
+            });
         }
     }
     out
 }
 
 /// How far the help scrolls at a `width` × `height` terminal: its rows less those shown.
-pub fn max_scroll(width: u16, height: u16, th: &Theme) -> u16 {
+pub fn max_scroll(width: u16, height: u16) -> u16 {
     let Some(r) = super::layout::regions(width, height) else {
         return 0;
     };
     let p = popup(r.help);
-    let rows = columns(p.width.saturating_sub(2), th)
+    let rows = laid(p.width.saturating_sub(2))
         .iter()
         .map(Vec::len)
         .max()
@@ -189,11 +230,56 @@ pub fn page(height: u16) -> u16 {
 
 pub fn render(f: &mut TuiFrame, area: Rect, app: &App, th: &Theme) {
     let popup = popup(area);
-    f.render_widget(Clear, popup);
-    let cols = columns(popup.width.saturating_sub(2), th);
+    let key = Drawn {
+        popup,
+        scroll: app.view().help_scroll,
+        colours: [th.accent, th.notice, th.foreground, th.background],
+    };
+    let drawn = drawn(key, th);
+    let buf = f.buffer_mut();
+    let area = popup.intersection(buf.area);
+    for y in area.top()..area.bottom() {
+        let (to, from) = (buf.index_of(area.x, y), drawn.index_of(area.x, y));
+        let n = usize::from(area.width);
+        buf.content[to..to + n].clone_from_slice(&drawn.content[from..from + n]);
+    }
+}
+
+/// What the help's box shows is a function of these alone.
+#[derive(Clone, Copy, PartialEq)]
+struct Drawn {
+    popup: Rect,
+    scroll: u16,
+    colours: [ratatui::style::Color; 4],
+}
+
+/// The help's boxes kept drawn: a class's sizes and themes, and where their readers scrolled.
+const DRAWN_KEPT: usize = 32;
+
+/// The help's box as `key` has it, drawn once for every session that shows it so (a served
+/// help frame drew its hundred rows of text each time: its cells are copied instead).
+fn drawn(key: Drawn, th: &Theme) -> Arc<Buffer> {
+    static KEPT: Mutex<Vec<(Drawn, Arc<Buffer>)>> = Mutex::new(Vec::new());
+    let mut kept = KEPT.lock().unwrap_or_else(|e| e.into_inner());
+    if let Some((_, b)) = kept.iter().find(|(k, _)| *k == key) {
+        return Arc::clone(b);
+    }
+    let mut b = Buffer::empty(key.popup);
+    draw_box(&mut b, key.popup, key.scroll, th);
+    let b = Arc::new(b);
+    if kept.len() >= DRAWN_KEPT {
+        kept.remove(0);
+    }
+    kept.push((key, Arc::clone(&b)));
+    b
+}
+
+/// The help's box on `buf` (empty) at `popup`, scrolled `scroll` rows down (at most to its end).
+fn draw_box(buf: &mut Buffer, popup: Rect, scroll: u16, th: &Theme) {
+    let cols = laid(popup.width.saturating_sub(2));
     let rows = cols.iter().map(Vec::len).max().unwrap_or(0);
     let shown = usize::from(popup.height.saturating_sub(2));
-    let top = usize::from(app.view().help_scroll).min(rows.saturating_sub(shown));
+    let top = usize::from(scroll).min(rows.saturating_sub(shown));
     let title = fit(
         " help: ? or Esc closes, ↑ ↓ PgUp PgDn wheel scroll ",
         ", ",
@@ -220,10 +306,11 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App, th: &Theme) {
         )
         .style(Style::default().bg(th.background).fg(th.foreground));
     let inner = block.inner(popup);
-    f.render_widget(block, popup);
-    let scroll = (u16::try_from(top).unwrap_or(u16::MAX), 0);
+    block.render(popup, buf);
+    // The rows in view only (a paragraph scrolled past the others lays them out too).
+    let shown_of = |col| in_view(col, top, shown, th);
     if cols.len() == 1 {
-        f.render_widget(Paragraph::new(cols[0].clone()).scroll(scroll), inner);
+        Paragraph::new(shown_of(&cols[0])).render(inner, buf);
         return;
     }
     // The widths `columns` wrapped to, a blank between.
@@ -236,7 +323,41 @@ pub fn render(f: &mut TuiFrame, area: Rect, app: &App, th: &Theme) {
             ..inner
         },
     ];
-    for (col, area) in cols.into_iter().zip(halves) {
-        f.render_widget(Paragraph::new(col).scroll(scroll), area);
+    for (col, area) in cols.iter().zip(halves) {
+        Paragraph::new(shown_of(col)).render(area, buf);
+    }
+}
+
+/// The rows of `col` from `top`, as many as are `shown`.
+fn in_view<'a>(col: &'a [Row], top: usize, shown: usize, th: &Theme) -> Vec<Line<'a>> {
+    col.iter()
+        .skip(top)
+        .take(shown)
+        .map(|r| r.line(th))
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Sessions showing the help alike share one drawing of its box, which is the box drawn
+    /// directly; another scroll is another drawing.
+    #[test]
+    fn the_helps_box_is_drawn_once_for_all_who_show_it_alike() {
+        let th = Theme::builtin("dark").unwrap();
+        let key = Drawn {
+            popup: Rect::new(3, 1, 97, 27),
+            scroll: 2,
+            colours: [th.accent, th.notice, th.foreground, th.background],
+        };
+        let (a, b) = (drawn(key, &th), drawn(key, &th));
+        assert!(Arc::ptr_eq(&a, &b));
+        let mut direct = Buffer::empty(key.popup);
+        draw_box(&mut direct, key.popup, key.scroll, &th);
+        assert_eq!(*a, direct);
+        let other = drawn(Drawn { scroll: 3, ..key }, &th);
+        assert!(!Arc::ptr_eq(&a, &other));
+        assert_ne!(*a, *other);
     }
 }

@@ -200,11 +200,7 @@ fn every_key_in_the_keymap_does_what_its_help_says() {
             Action::HelpPage(d) => {
                 a.view().help_scroll
                     == if d > 0 {
-                        turntable::ui::help::max_scroll(
-                            80,
-                            24,
-                            &turntable::theme::Theme::builtin("dark").unwrap(),
-                        )
+                        turntable::ui::help::max_scroll(80, 24)
                     } else {
                         0
                     }
@@ -414,12 +410,7 @@ fn help_overlay_lists_every_binding() {
     // 80×24 shows it in three pages (the last a row).
     let small = render(&mut a, 80, 24);
     // As many rows as the keymap makes: 21 on screen, the rest a page down.
-    let all = 21
-        + turntable::ui::help::max_scroll(
-            80,
-            24,
-            &turntable::theme::Theme::builtin("dark").unwrap(),
-        );
+    let all = 21 + turntable::ui::help::max_scroll(80, 24);
     assert!(all > 30, "{all}");
     assert!(
         small.contains("presets A B C D fig1")

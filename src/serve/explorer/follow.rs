@@ -22,7 +22,7 @@ pub(super) fn adopt(s: &mut Session<Screen>, (app, lesson): Handed) {
     s.app = *app;
     s.set_lesson(lesson);
     s.app.tell_tally(None);
-    crate::session::tell_size(&mut s.app, &s.theme, w, h);
+    crate::session::tell_size(&mut s.app, w, h);
     s.app.invalidate();
     s.ask_analysis();
 }

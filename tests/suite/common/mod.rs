@@ -42,7 +42,7 @@ pub fn render_with(
     h: u16,
 ) -> String {
     let mut t = ratatui::Terminal::new(ratatui::backend::TestBackend::new(w, h)).unwrap();
-    turntable::session::tell_size(app, theme, w, h);
+    turntable::session::tell_size(app, w, h);
     sync(app);
     let mut geom = Vec::new();
     t.draw(|f| geom = turntable::ui::draw(f, app, theme))
