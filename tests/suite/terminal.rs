@@ -494,7 +494,10 @@ fn a_recording_that_cannot_be_written_at_exit_is_kept() {
             return;
         };
         wait_for("the first frame", || contains(&seen, 0, ALT_ON));
-        pty.type_keys(b"x");
+        assert!(!contains(&seen, 0, b"rotating frame"));
+        pty.type_keys(b"f");
+        // The key read and drawn before the signal (SIGTERM could beat an unread key).
+        wait_for("the key drawn", || contains(&seen, 0, b"rotating frame"));
         std::fs::remove_dir_all(&gone).unwrap();
         if how == "q" {
             pty.type_keys(b"q");
@@ -514,7 +517,7 @@ fn a_recording_that_cannot_be_written_at_exit_is_kept() {
             script.starts_with("# turntable key script\n")
                 && script
                     .lines()
-                    .any(|l| l.split_whitespace().any(|k| k == "x")),
+                    .any(|l| l.split_whitespace().any(|k| k == "f")),
             "{how}: {script}"
         );
     }
