@@ -12,7 +12,7 @@ use turntable::app::testing::Testing as _;
 use turntable::serve::client::{Login, Term, Trust, login};
 use turntable::serve::{Limits, Options, Running, start};
 
-const WAIT: Duration = Duration::from_secs(30);
+pub(super) const WAIT: Duration = Duration::from_secs(30);
 
 /// The class's lesson: two scenes, each held for Enter, then a question.
 const LESSON: &str = "# a class's lesson, for the tests
@@ -32,11 +32,11 @@ wait
 say The end.
 ";
 
-fn key(n: u8) -> PrivateKey {
+pub(super) fn key(n: u8) -> PrivateKey {
     PrivateKey::from(Ed25519Keypair::from_seed(&[n; 32]))
 }
 
-fn server(dir: &std::path::Path) -> Running {
+pub(super) fn server(dir: &std::path::Path) -> Running {
     let path = dir.join("class.keys");
     std::fs::write(&path, LESSON).unwrap();
     let lesson = turntable::cli::lesson::for_class(path.to_str().unwrap()).unwrap();
@@ -58,7 +58,7 @@ fn serving(lesson: Option<turntable::serve::Lesson>) -> Running {
     .unwrap()
 }
 
-fn rt() -> tokio::runtime::Runtime {
+pub(super) fn rt() -> tokio::runtime::Runtime {
     tokio::runtime::Builder::new_current_thread()
         .enable_all()
         .build()

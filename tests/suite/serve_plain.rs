@@ -2,59 +2,9 @@
 //! reads the class in lines, as `turntable --plain` says them: no escape sequence, each line
 //! ended by CR LF, following the presenter's lesson and answering its question in words.
 
+use super::serve_class::{WAIT, key, rt, server};
 use russh::client::Handle;
-use russh::keys::PrivateKey;
-use russh::keys::ssh_key::private::Ed25519Keypair;
-use std::time::Duration;
 use turntable::serve::client::{Login, Term, Trust, login};
-use turntable::serve::{Limits, Options, Running, start};
-
-const WAIT: Duration = Duration::from_secs(30);
-
-const LESSON: &str = "6
-pause
-X*20
-say First: at rest on the table at xi0 = 0.9.
-wait
-6
-pause
-say Second: at rest at xi0 = 1.1, outside R_max.
-wait
-ask Will it escape? (y/n)
-play
-tick 30
-wait
-say The end.
-";
-
-fn key(n: u8) -> PrivateKey {
-    PrivateKey::from(Ed25519Keypair::from_seed(&[n; 32]))
-}
-
-fn server(dir: &std::path::Path) -> Running {
-    let path = dir.join("class.keys");
-    std::fs::write(&path, LESSON).unwrap();
-    let lesson = turntable::cli::lesson::for_class(path.to_str().unwrap()).unwrap();
-    start(Options {
-        listen: "127.0.0.1:0".parse().unwrap(),
-        host_key: key(1),
-        keys: vec![],
-        passphrase: Some("ba-ke-di-lo".into()),
-        presenter_keys: vec![key(3).public_key().clone().into()],
-        presenter_passphrase: None,
-        limits: Limits::default(),
-        lesson: Some(lesson),
-        exports: None,
-    })
-    .unwrap()
-}
-
-fn rt() -> tokio::runtime::Runtime {
-    tokio::runtime::Builder::new_current_thread()
-        .enable_all()
-        .build()
-        .unwrap()
-}
 
 async fn student(addr: std::net::SocketAddr, user: &str) -> Handle<Trust> {
     login(addr, user, Login::Password("ba-ke-di-lo"))
