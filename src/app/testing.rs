@@ -1,7 +1,7 @@
 //! What only the tests use, kept out of the model's own surface: the integration tests
 //! (`tests/`) reach only what is public, so these are public, but no shell and nothing in the
 //! library calls them. A test brings them in with `use turntable::app::testing::Testing as _`;
-//! the program's door into the model stays [`update`](super::update) and the `tell_*` methods.
+//! the program's door into the model stays [`update`](super::update()) and the `tell_*` methods.
 
 use super::{App, CanvasGeom, Chord, Effects, state, update};
 use crate::engine::Settings;
