@@ -158,6 +158,20 @@ fn the_readme_is_a_front_page() {
             assert!(bound, "README names key {key}, which is not bound");
         }
     }
+    // The Tab row names the pages in the order Tab turns them.
+    let tab = keys.lines().find(|l| l.starts_with("| `Tab`")).unwrap();
+    let mut page = turntable::app::pages::Page::Turntable.next();
+    let mut at = 0;
+    while page != turntable::app::pages::Page::Turntable {
+        let found = tab[at..].find(page.title());
+        assert!(
+            found.is_some(),
+            "README's Tab row: {} not after {at}: {tab}",
+            page.title()
+        );
+        at += found.unwrap();
+        page = page.next();
+    }
     for page in [
         "docs/keys.md",
         "docs/command-line.md",
@@ -166,4 +180,77 @@ fn the_readme_is_a_front_page() {
     ] {
         assert!(readme.contains(page), "README does not point to {page}");
     }
+}
+
+/// GitHub's anchor for a heading: lower case, letters, digits, `-` and `_` kept, spaces to `-`.
+fn slug(heading: &str) -> String {
+    heading
+        .trim()
+        .to_lowercase()
+        .chars()
+        .filter_map(|c| match c {
+            ' ' => Some('-'),
+            c if c.is_alphanumeric() || c == '-' || c == '_' => Some(c),
+            _ => None,
+        })
+        .collect()
+}
+
+/// The anchors a markdown file offers: its headings' slugs and its explicit `id`s.
+fn anchors(text: &str) -> Vec<String> {
+    let mut out: Vec<String> = text
+        .lines()
+        .filter(|l| l.starts_with('#'))
+        .map(|l| slug(l.trim_start_matches('#')))
+        .collect();
+    out.extend(
+        text.split("<a id=\"")
+            .skip(1)
+            .filter_map(|s| s.split('"').next())
+            .map(String::from),
+    );
+    out
+}
+
+/// Every relative link in the README and the docs reaches a file that is there, and a `#part`
+/// a heading or an `id` of it (a link into another page broke when its heading became a
+/// bullet).
+#[test]
+fn every_link_in_the_docs_leads_somewhere() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut pages = vec![root.join("README.md"), root.join("ARCHITECTURE.md")];
+    for e in std::fs::read_dir(root.join("docs")).unwrap() {
+        let p = e.unwrap().path();
+        if p.extension().is_some_and(|x| x == "md") {
+            pages.push(p);
+        }
+    }
+    let mut seen = 0;
+    for page in &pages {
+        let text = std::fs::read_to_string(page).unwrap();
+        for link in text.split("](").skip(1) {
+            let target = link.split(')').next().unwrap();
+            if target.contains("://") || target.starts_with("mailto:") || target.contains(' ') {
+                continue;
+            }
+            let (file, part) = target.split_once('#').unwrap_or((target, ""));
+            let dest = if file.is_empty() {
+                page.clone()
+            } else {
+                page.parent().unwrap().join(file)
+            };
+            assert!(dest.exists(), "{}: {target} is not there", page.display());
+            if !part.is_empty() && dest.extension().is_some_and(|x| x == "md") {
+                let have = anchors(&std::fs::read_to_string(&dest).unwrap());
+                assert!(
+                    have.iter().any(|a| a == part),
+                    "{}: {target}: no heading or id #{part} in {}",
+                    page.display(),
+                    dest.display()
+                );
+            }
+            seen += 1;
+        }
+    }
+    assert!(seen > 20, "{seen} links");
 }
