@@ -9,13 +9,6 @@ mod motion;
 
 pub use motion::Motion;
 
-/// Whether a run is in closed form, every method giving the same exact run: μ = 0 (a straight
-/// line in the lab) or Stokes drag (linear). Nothing then sticks and nothing has a threshold:
-/// no escape speed, outcome map, rest radius, tolerance to choose or trade of work for error.
-pub fn closed_form(initial: &crate::engine::Initial, settings: crate::engine::Settings) -> bool {
-    initial.frictionless || settings.stokes().is_some()
-}
-
 use crate::engine::doubt::{Doubt, doubt};
 use crate::engine::method::TOL_RANGE;
 use crate::engine::run::{Escape, Outcome, Run, RunError, Status, StepInfo};

@@ -208,7 +208,7 @@ pub(super) fn make_rod(
     steps: u64,
 ) -> Option<crate::engine::rod::RodTrack> {
     let body = body?;
-    if crate::sim::closed_form(initial, settings) {
+    if crate::engine::closed_form(initial, settings) {
         return None;
     }
     let tol = settings.scheme.tol().unwrap_or(1e-10);

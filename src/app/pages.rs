@@ -335,7 +335,7 @@ pub fn wanted(
     match page {
         Page::Turntable | Page::TimePlots => None,
         // Closed forms (μ = 0, Stokes drag): no threshold, and every method gives the same run.
-        _ if crate::sim::closed_form(initial, explorer) => None,
+        _ if crate::engine::closed_form(initial, explorer) => None,
         Page::EscapeSpeed => std::iter::once(initial.xi0)
             .chain(PAPER_XI0)
             .find_map(missing_curve)

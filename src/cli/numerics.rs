@@ -131,7 +131,7 @@ fn choose(
             "--error {why} (the stated error of the end's time and place)"
         )));
     }
-    if crate::sim::closed_form(&initial, settings) {
+    if crate::engine::closed_form(&initial, settings) {
         return Err(Error::Invalid(
             "--error chooses a method and tolerance: a frictionless or Stokes-drag run is in closed form, exact".into(),
         ));
@@ -153,7 +153,7 @@ fn rod_motion(
     tau_max: f64,
     check: bool,
 ) -> Result<Option<super::report::MotionReport>, Error> {
-    if crate::sim::closed_form(initial, settings) {
+    if crate::engine::closed_form(initial, settings) {
         return Ok(None);
     }
     let tol = settings.scheme.tol().unwrap_or(1e-10);

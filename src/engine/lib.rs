@@ -26,5 +26,7 @@ pub mod work;
 
 pub use method::{Coupling, CouplingName, Method, Settings};
 pub use model::{Frame, Initial, Release, State};
-pub use run::{Certificate, Escape, Limit, Outcome, Run, RunError, Status, StepInfo, Stop};
+pub use run::{
+    Certificate, Escape, Limit, Outcome, Run, RunError, Status, StepInfo, Stop, closed_form,
+};
 pub use stepper::Cost;

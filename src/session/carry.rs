@@ -67,7 +67,7 @@ pub fn export_svg(
 ) -> String {
     use crate::app::pages::Page;
     use std::io::Write;
-    if crate::sim::closed_form(&app.initial(), app.settings())
+    if crate::engine::closed_form(&app.initial(), app.settings())
         && !matches!(page, Page::Turntable | Page::TimePlots)
     {
         return "not exported: in closed form (μ = 0 or Stokes drag) this page draws nothing"

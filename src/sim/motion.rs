@@ -155,7 +155,7 @@ impl Motion {
     /// table not yet turning). None where nothing is held: Stokes drag, or μ = 0.
     pub fn hold_radius(&self, tau: f64) -> Option<f64> {
         let settings = self.settings();
-        if super::closed_form(&self.initial(), settings) {
+        if crate::engine::closed_form(&self.initial(), settings) {
             return None;
         }
         Some(match self {

@@ -144,7 +144,7 @@ fn accuracy(app: &mut App, asked: Result<f64, String>) {
     use crate::sim::accuracy::{EXPLORER_TAU, cheapest};
     let settings = app.settings();
     let chosen = asked.and_then(|e| {
-        if crate::sim::closed_form(&app.initial(), settings) {
+        if crate::engine::closed_form(&app.initial(), settings) {
             return Err(
                 "closed form here (μ = 0 or Stokes drag): exact, no tolerance to choose".into(),
             );

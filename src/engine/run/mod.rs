@@ -97,6 +97,14 @@ pub struct Run {
     stokes: Option<Box<Stokes>>,
 }
 
+/// Whether a release under `settings` runs in closed form, every method giving the same exact
+/// run: μ = 0 (a straight line in the lab) or Stokes drag (linear, Eq. 3 with a drag in place of
+/// friction). Nothing then sticks and nothing has a threshold: no escape speed, outcome map,
+/// rest radius, tolerance to choose or trade of work for error.
+pub fn closed_form(initial: &Initial, settings: Settings) -> bool {
+    initial.frictionless || settings.stokes().is_some()
+}
+
 impl Run {
     pub fn new(initial: Initial, settings: Settings) -> Result<Run, Error> {
         initial.validate()?;
@@ -235,7 +243,7 @@ impl Run {
 
     /// Whether the run is in closed form throughout (μ = 0, or Stokes drag): no steps.
     pub fn closed_form(&self) -> bool {
-        self.initial.frictionless || self.stokes.is_some()
+        closed_form(&self.initial, self.settings())
     }
 
     /// The Stokes solution, when the coupling is Stokes drag (and friction is on).

@@ -23,7 +23,7 @@ use rest::rest_radius;
 
 /// Draws `app.page` in `area`; returns the plot's geometry where a click means a release.
 pub fn render(f: &mut TuiFrame, area: Rect, app: &App, th: &Theme) -> Option<CanvasGeom> {
-    if crate::sim::closed_form(&app.initial(), app.settings())
+    if crate::engine::closed_form(&app.initial(), app.settings())
         && matches!(
             app.view().page,
             Page::EscapeSpeed | Page::OutcomeMap | Page::RestRadius

@@ -14,7 +14,7 @@ use ratatui::widgets::Paragraph;
 /// Draws the page in `area`: the chart, and a box of two lines (the picked point, the
 /// explorer's setting) with what the keys do.
 pub(super) fn work_precision(f: &mut TuiFrame, area: Rect, app: &App, th: &Theme) {
-    if crate::sim::closed_form(&app.initial(), app.settings()) {
+    if crate::engine::closed_form(&app.initial(), app.settings()) {
         closed_form(f, area, th);
         return;
     }
