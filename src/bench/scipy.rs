@@ -119,17 +119,37 @@ fn not_found(python: &Path, why: &str) -> String {
     format!("{} {why}", python.display())
 }
 
+/// The least time the import check is given, whatever the script's limit: a loaded machine
+/// starts an interpreter slowly, and a slow start is not a missing SciPy.
+const IMPORT_LIMIT: Duration = Duration::from_secs(30);
+
+/// Starts `cmd`, again while the executable is busy (ETXTBSY: a just-written interpreter held
+/// open for a moment by another thread's fork).
+fn spawn(cmd: &mut Command) -> std::io::Result<std::process::Child> {
+    let mut tries = 0;
+    loop {
+        match cmd.spawn() {
+            Err(e) if e.raw_os_error() == Some(26) && tries < 50 => {
+                tries += 1;
+                std::thread::sleep(Duration::from_millis(10));
+            }
+            r => return r,
+        }
+    }
+}
+
 /// One point through the script: what it printed, and the process's wall ms; or why not.
 fn scipy_point(python: &Path, xi0: f64, phi: f64, limit: Duration) -> Result<(Point, f64), String> {
     use std::io::Write as _;
     let t = Instant::now();
-    let mut child = Command::new(python)
-        .args(["-", &xi0.to_string(), &phi.to_string(), &VTOL.to_string()])
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::null())
-        .spawn()
-        .map_err(|_| not_found(python, "could not be started"))?;
+    let mut child = spawn(
+        Command::new(python)
+            .args(["-", &xi0.to_string(), &phi.to_string(), &VTOL.to_string()])
+            .stdin(Stdio::piped())
+            .stdout(Stdio::piped())
+            .stderr(Stdio::null()),
+    )
+    .map_err(|_| not_found(python, "could not be started"))?;
     // The script is read whole before it runs: a pipe's buffer holds it.
     let fed = child
         .stdin
@@ -172,15 +192,16 @@ pub fn compare(
     let Some(python) = python else {
         return Ok(Versus::NotRun);
     };
-    let found = Command::new(python)
-        .args(["-c", "import scipy.integrate"])
-        .stdin(Stdio::null())
-        .stdout(Stdio::null())
-        .stderr(Stdio::null())
-        .spawn()
-        .ok()
-        .and_then(|c| wait_at_most(c, limit))
-        .is_some_and(|o| o.status.success());
+    let found = spawn(
+        Command::new(python)
+            .args(["-c", "import scipy.integrate"])
+            .stdin(Stdio::null())
+            .stdout(Stdio::null())
+            .stderr(Stdio::null()),
+    )
+    .ok()
+    .and_then(|c| wait_at_most(c, limit.max(IMPORT_LIMIT)))
+    .is_some_and(|o| o.status.success());
     if !found {
         return Ok(Versus::NotFound(not_found(
             python,
