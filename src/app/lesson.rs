@@ -227,6 +227,7 @@ impl App {
             (Prompt::Answer, _) if apart => Some("y escapes · n stays"),
             (Prompt::GoOn, _) if apart => Some("the presenter goes on"),
             (Prompt::None, _) if apart && !l.done => None,
+            (Prompt::None, _) if apart => Some("end · presenter closes it"),
             (Prompt::Answer, true) => Some("y escapes · n stays · Space pauses"),
             (Prompt::Answer, false) => Some("y escapes · n stays · Space plays"),
             (Prompt::GoOn, true) => Some("Enter: go on · Space pauses"),

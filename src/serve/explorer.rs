@@ -36,7 +36,7 @@ mod link;
 mod plain;
 pub use carry::Guest;
 use carry::Presenter;
-use follow::{FOLLOWING, WAITING, adopt};
+use follow::{ARRIVED, FOLLOWING, LEFT, WAITING, adopt};
 /// The key that steps out of the class, and back into it (not bound in the explorer).
 pub const FOLLOW_KEY: KeyCode = KeyCode::F(2);
 
@@ -156,6 +156,7 @@ pub fn run(
         plain: None,
         answering: false,
         still_gap: Duration::from_secs(1) / FPS,
+        waiting: false,
     };
     let said = run
         .start(&mut s, client.plain)
@@ -227,6 +228,9 @@ struct Run<'a> {
     /// The least time between frames that only time moved, as the server's load allows
     /// (`pace`), measured at the last frame.
     still_gap: Duration,
+    /// Told there is no presenter (none yet, or the last left): the class handed next is a
+    /// presenter's arrival, and is announced as one.
+    waiting: bool,
 }
 
 impl Run<'_> {
@@ -245,6 +249,7 @@ impl Run<'_> {
         } else if !self.shared.presents(self.id) && self.shared.wait_for_class(self.id) {
             // Students come before the teacher: they follow once the teacher is in.
             s.app.report(WAITING.into());
+            self.waiting = true;
         }
         Ok(())
     }
@@ -283,11 +288,9 @@ impl Run<'_> {
             In::Lead(_) => {}
             In::Unled if self.following => {
                 self.following = false;
+                self.waiting = true;
                 s.app.tell_class(InClass::Alone);
-                s.app.report(
-                    "the presenter left: on your own until they are back (F2: stay on your own)"
-                        .into(),
-                );
+                s.app.report(LEFT.into());
             }
             In::Unled | In::Answered => {}
             In::Join(follower) => self.shared.welcome(follower, &s.app, s.lesson()),
@@ -302,7 +305,11 @@ impl Run<'_> {
                 if let Some(yes) = self.shared.answered(self.id, s.app.lesson().asked) {
                     s.app.answer_apart(yes);
                 }
-                s.app.report(FOLLOWING.into());
+                s.app.report(if std::mem::take(&mut self.waiting) {
+                    ARRIVED.into()
+                } else {
+                    FOLLOWING.into()
+                });
                 self.following = true;
             }
         }

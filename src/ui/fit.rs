@@ -55,9 +55,38 @@ pub fn fit_label(label: &str, width: usize) -> String {
     fit(bare, "\u{0}", width)
 }
 
+/// A word that relates the words either side of it: a line never breaks next to it where the
+/// formula fits on one (`ξ0 =` / `0.5` reads as a sentence cut short).
+fn relation(word: &str) -> bool {
+    matches!(
+        word,
+        "=" | "≈" | "<" | ">" | "≤" | "≥" | "≠" | "→" | "+" | "−" | "-" | "×" | "/" | "±"
+    )
+}
+
+/// The words of `para` with each formula (words joined by a [`relation`]) kept as one, unless
+/// it is wider than `width`, when its words go on their own.
+fn units(para: &str, width: usize) -> Vec<String> {
+    let mut formulas: Vec<Vec<&str>> = Vec::new();
+    for word in para.split(' ').filter(|w| !w.is_empty()) {
+        match formulas.last_mut() {
+            Some(f) if relation(word) || f.last().is_some_and(|w| relation(w)) => f.push(word),
+            _ => formulas.push(vec![word]),
+        }
+    }
+    formulas
+        .into_iter()
+        .flat_map(|f| match f.join(" ") {
+            whole if whole.width() <= width => vec![whole],
+            _ => f.into_iter().map(String::from).collect(),
+        })
+        .collect()
+}
+
 /// `text` wrapped to `width` columns in at most `rows` lines: paragraphs at `\n`, lines
-/// broken between words (a word wider than the line is broken where it must be). When the
-/// lines are more than `rows`, the last kept ends in `…`, whole words dropped to make room.
+/// broken between words, never inside a formula that fits a line (see [`relation`]); a word
+/// wider than the line is broken where it must be. When the lines are more than `rows`, the
+/// last kept ends in `…`, whole words dropped to make room.
 pub fn wrap(text: &str, width: usize, rows: usize) -> Vec<String> {
     let mut lines: Vec<String> = Vec::new();
     if width == 0 || rows == 0 {
@@ -65,7 +94,8 @@ pub fn wrap(text: &str, width: usize, rows: usize) -> Vec<String> {
     }
     for para in text.split('\n') {
         let mut line = String::new();
-        for word in para.split(' ').filter(|w| !w.is_empty()) {
+        for word in units(para, width) {
+            let word = word.as_str();
             let joined = if line.is_empty() {
                 word.to_string()
             } else {
@@ -91,7 +121,7 @@ pub fn wrap(text: &str, width: usize, rows: usize) -> Vec<String> {
     if lines.len() > rows {
         lines.truncate(rows);
         let last = lines.pop().unwrap_or_default();
-        let mut words: Vec<&str> = last.split(' ').collect();
+        let mut words = units(&last, width);
         loop {
             let cut = match words.join(" ") {
                 kept if kept.is_empty() => "…".to_string(),
@@ -124,7 +154,16 @@ mod tests {
                 "slides."
             ]
         );
-        assert_eq!(wrap(t, 16, 2), ["Friction holds", "it inside ξ = …"]);
+        assert_eq!(wrap(t, 16, 2), ["Friction holds", "it inside …"]);
+        // A formula is not broken where it fits a line, and dropped whole.
+        let f = "It stops at ξ = 0.9453, u = v − Ω×r.";
+        assert_eq!(
+            wrap(f, 16, 9),
+            ["It stops at", "ξ = 0.9453,", "u = v − Ω×r."]
+        );
+        assert_eq!(wrap(f, 24, 9), ["It stops at ξ = 0.9453,", "u = v − Ω×r."]);
+        assert_eq!(wrap(f, 20, 2), ["It stops at", "ξ = 0.9453, …"]);
+        assert_eq!(wrap("a ξ0 = 0.5", 5, 9), ["a ξ0", "= 0.5"]);
         assert_eq!(wrap("abcdefgh ij", 3, 9), ["abc", "def", "gh", "ij"]);
         assert_eq!(wrap("ab", 1, 1), ["…"]);
         assert!(wrap(t, 0, 5).is_empty() && wrap(t, 5, 0).is_empty());

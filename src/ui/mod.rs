@@ -130,6 +130,10 @@ pub fn lesson_line(app: &App) -> String {
         ]);
     }
     let Some(p) = app.paper().filter(|_| !app.outcome_open()) else {
+        // A follower's c is not applied: the comparison is the presenter's to show.
+        if app.class == crate::app::state::InClass::Following {
+            return String::new();
+        }
         // A newcomer, in no lesson and none taken, is told where the lessons are.
         if app.lesson().name.is_none() && !app.lesson().done {
             return alternatives(&[
@@ -217,7 +221,14 @@ fn status_line(app: &App, th: &Theme, width: u16) -> Line<'static> {
     if let Some(n) = &app.notice() {
         return Line::from(Span::styled(
             // Clauses (", ") drop whole before words do: "comes to" is not left hanging.
-            fit::fit(&format!(" {n}"), ", ", usize::from(width)),
+            fit::fit(
+                &n.split(crate::present::OR)
+                    .map(|wording| format!(" {wording}"))
+                    .collect::<Vec<_>>()
+                    .join(&crate::present::OR.to_string()),
+                ", ",
+                usize::from(width),
+            ),
             Style::default().fg(th.notice),
         ));
     }

@@ -244,7 +244,13 @@ fn prompt_changes(was: &Seen, now: &Seen, out: &mut Vec<String>) {
     } else if now.notice != was.notice
         && let Some(n) = &now.notice
     {
-        out.push(n.clone());
+        // Said whole: a line is not cut to a width (its shorter wordings are for a screen).
+        out.push(
+            n.split(crate::present::OR)
+                .next()
+                .unwrap_or_default()
+                .into(),
+        );
     }
     if now.caption != was.caption
         && let Some(c) = &now.caption

@@ -659,6 +659,12 @@ fn an_interactive_lesson_holds_as_state_and_time_goes_on() {
     // The lesson's `play` set time going whatever the keys did; `tick 3` counts.
     assert!(s.app.playing());
     s.tick();
+    // Enter while the lesson moves on by itself: it says so (it spoke of the pages' Enter).
+    press(&mut s, "enter");
+    assert_eq!(
+        s.app.notice().as_deref(),
+        Some("the lesson goes on by itself here: Enter at its next stop")
+    );
     // A pause from the keys holds the lesson inside its `tick 3`, however long.
     press(&mut s, "space");
     for _ in 0..10 {

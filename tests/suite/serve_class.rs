@@ -254,6 +254,23 @@ fn a_presenters_lesson_runs_for_every_follower_in_step() {
             ))
             .await
         );
+        // The last words close with the presenter's Esc, the followers' with it: each is
+        // told whose key that is (a follower's own Esc is not applied).
+        assert!(until(&mut [&mut tp], |s| all_show(s, &["Esc closes"])).await);
+        assert!(
+            until(&mut [&mut f1, &mut f2], |s| all_show(
+                s,
+                &["end · presenter closes it"]
+            ))
+            .await
+        );
+        tp.send(b"\x1b").await;
+        assert!(
+            until(&mut [&mut tp, &mut f1, &mut f2], |s| s
+                .iter()
+                .all(|rows| !rows.join("\n").contains("The end.")))
+            .await
+        );
     });
     s.stop("done");
 }
@@ -583,7 +600,8 @@ fn a_click_in_the_presenters_lesson_reaches_a_follower_of_another_size() {
 }
 
 /// Students come before the teacher: one who logged in first is told it waits, and follows
-/// the class as soon as the presenter is in (it stayed on its own until it pressed F2).
+/// the class as soon as the presenter is in, told so (it stayed on its own until it pressed
+/// F2, and was not told when it began to follow).
 #[test]
 fn a_student_who_came_first_follows_the_presenter() {
     let dir = tempfile::tempdir().unwrap();
@@ -606,8 +624,10 @@ fn a_student_who_came_first_follows_the_presenter() {
                 &["First: at rest"]
             ))
             .await
-                && until(&mut [&mut tf], |s| all_show(s, &["following the class"])).await
+                && until(&mut [&mut tf], |s| all_show(s, &["the presenter is here"])).await
         );
+        // Keys a follower cannot use are not offered it (c compares only for the presenter).
+        assert!(tp.shows("c: compare") && !tf.shows("c: "));
         tp.send(b"\r").await;
         assert!(
             until(&mut [&mut tp, &mut tf], |s| all_show(
@@ -668,7 +688,7 @@ fn a_presenter_back_after_a_drop_is_followed_where_the_class_was() {
         assert!(
             until(&mut [&mut f1, &mut f2], |s| all_show(
                 s,
-                &["following the class"]
+                &["the presenter is here"]
             ))
             .await
         );

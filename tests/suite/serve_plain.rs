@@ -69,7 +69,7 @@ fn a_plain_student_follows_the_lesson_and_answers_in_words() {
             &mut tf,
             &mut at,
             &[
-                "following the class",
+                "the presenter is here: you follow the class",
                 "First: at rest",
                 "the presenter goes on",
             ],

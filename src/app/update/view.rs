@@ -144,6 +144,10 @@ fn choose(app: &mut App) {
             app.exploration.restart();
         }
         Page::WorkPrecision => switch_to_picked(app),
+        // A lesson that goes on by itself: a teacher's Enter is for its next stop.
+        _ if app.lesson.name.is_some() && !app.lesson.done => {
+            app.notice = Some("the lesson goes on by itself here: Enter at its next stop".into())
+        }
         _ => {
             app.notice = Some(
                 "Enter runs the release chosen on the escape-speed or outcome-map page, or the setting picked on the work-precision page (Tab)"

@@ -7,12 +7,22 @@ use crate::app::lesson::Prompt;
 use crate::app::state::InClass;
 use crate::session::Session;
 
+// Each said two ways, the second for a narrow window (see `present::alternatives`): the
+// key that does something about it is the part that must not be cut.
+
 /// What a follower is told on joining, and at each key of its own while it follows.
-pub(super) const FOLLOWING: &str = "following the class: F2 steps out to explore";
+pub(super) const FOLLOWING: &str =
+    "following the class: F2 steps out to explore\u{1f}following the class (F2: step out)";
 
 /// What a student who came before the presenter is told (and told again by F2).
-pub(super) const WAITING: &str =
-    "no presenter yet: you follow the class when they come (F2: on your own)";
+pub(super) const WAITING: &str = "no presenter yet: you follow the class when they come (F2: on your own)\u{1f}no presenter yet: you follow when they come (F2: alone)";
+
+/// What a student who waited for the presenter (see [`WAITING`], [`LEFT`]) is told when one
+/// comes: the screen now moves with someone else's keys.
+pub(super) const ARRIVED: &str = "the presenter is here: you follow the class (F2 steps out)\u{1f}the presenter is here: following (F2: step out)";
+
+/// What the followers are told when the presenter leaves.
+pub(super) const LEFT: &str = "the presenter left: on your own until they are back (F2: stay on your own)\u{1f}the presenter left: on your own until they are back";
 
 /// The class's state, handed over (to a follower, or to a presenter taking up the class its
 /// last presenter left), drawn in this client's own theme and size; the presenter's tally is
