@@ -131,6 +131,12 @@ pub enum In {
     Class,
     /// (To a follower.) The presenter left.
     Unled,
+    /// (To a presenter still in, the class taken by another: the teacher back while the dropped
+    /// connection lingers, or their second window.) Hand the class over to it.
+    HandOver,
+    /// (To a presenter who took the class from one still in.) The class it handed over is
+    /// waiting (`Shared::take_up_class`), or nothing is, should it have ended first.
+    TakeUp,
     /// (To the presenter.) A follower answered its question: the tally changed.
     Answered,
 }
@@ -233,16 +239,19 @@ impl Shared {
         drop(sessions);
         if presenter {
             let mut class = lock(&self.class);
-            class.presenter = Some(id);
+            let before = class.presenter.replace(id);
             class.poll = class::Poll::default();
-            // A presenter who takes over (the teacher back after a dropped connection) is
-            // sent the followers, those asking to follow and those waiting for a class (who
-            // came first, or whose presenter left): each is handed this class, not left
-            // applying its keys and lesson steps to the last one's.
             let waiting = std::mem::take(&mut class.waiting);
             class.joining.extend(waiting);
-            for &f in class.followers.iter().chain(&class.joining) {
-                self.send(id, In::Join(f));
+            match before {
+                // The teacher back while the dropped connection lingers (the server has not
+                // seen it go): that session hands its class over, lesson and all, and the
+                // class is called once it is taken up (`In::TakeUp`).
+                Some(old) => {
+                    class.handing = Some((old, id));
+                    self.send(old, In::HandOver);
+                }
+                None => self.call_class(&class, id),
             }
         }
         Some(id)
@@ -258,6 +267,10 @@ impl Shared {
         if empty {
             // Nobody left to take the class up for: it gives back what it held.
             class.left = None;
+        }
+        // Gone before it handed its class over: the new presenter is not kept waiting.
+        if let Some((_, new)) = class.handing.take_if(|(old, _)| *old == id) {
+            self.send(new, In::TakeUp);
         }
         if class.presenter == Some(id) {
             class.presenter = None;

@@ -21,6 +21,8 @@ pub struct Class {
     /// The class as its last presenter left it (a dropped connection): the next presenter
     /// takes it up there, the lesson at the same step. One at most.
     pub left: Option<Handed>,
+    /// A presenter still in (the old) handing the class over to the one who took it (the new).
+    pub handing: Option<(u64, u64)>,
     pub poll: Poll,
 }
 
@@ -65,8 +67,18 @@ impl Shared {
     /// (The presenter's thread.) `follower` gets the class as it is, and from now on what
     /// the presenter does: one lock, so nothing falls between. The state waits in one place
     /// a follower, the latest replacing any not yet taken.
-    pub(super) fn welcome(&self, follower: u64, app: &App, lesson: Option<&crate::lesson::Driver>) {
+    pub(super) fn welcome(
+        &self,
+        id: u64,
+        follower: u64,
+        app: &App,
+        lesson: Option<&crate::lesson::Driver>,
+    ) {
         let mut class = lock(&self.class);
+        // Asked of a presenter since replaced: the one who took the class answers it.
+        if class.presenter != Some(id) {
+            return;
+        }
         if !class.followers.contains(&follower) {
             class.followers.push(follower);
         }
@@ -157,13 +169,37 @@ impl Shared {
         }
     }
 
-    /// (The presenter's thread, as it ends.) The class as it leaves it, for the next
-    /// presenter to take up.
+    /// (The presenter's thread, as it ends or hands the class over.) The class as it leaves
+    /// it, for the next presenter to take up (told so if it is waiting for it).
     pub(super) fn leave_class(&self, id: u64, app: &App, lesson: Option<&crate::lesson::Driver>) {
         let mut class = lock(&self.class);
-        if class.presenter == Some(id) {
+        let handing = class.handing.take_if(|(old, _)| *old == id);
+        if class.presenter == Some(id) || handing.is_some() {
             class.left = Some((Box::new(app.clone()), lesson.cloned()));
         }
+        if let Some((_, new)) = handing {
+            self.send(new, In::TakeUp);
+        }
+    }
+
+    /// (The presenter `id`'s thread, or the class's lock held for it.) Every follower, every
+    /// one asking to follow and every one waiting for a class is sent to `id` to be handed
+    /// its class: none is left applying its keys and lesson steps to another's.
+    pub(super) fn call_class(&self, class: &Class, id: u64) {
+        for &f in class.followers.iter().chain(&class.joining) {
+            self.send(id, In::Join(f));
+        }
+    }
+
+    /// (A presenter's thread, told [`In::TakeUp`].) The class handed over, if it was; its
+    /// followers are called either way.
+    pub(super) fn take_over(&self, id: u64) -> Option<Handed> {
+        let handed = self.take_up_class(id);
+        let class = lock(&self.class);
+        if class.presenter == Some(id) {
+            self.call_class(&class, id);
+        }
+        handed
     }
 
     /// (A new presenter's thread.) The class as the last presenter left it, if one did.

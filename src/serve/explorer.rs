@@ -36,7 +36,7 @@ mod link;
 mod plain;
 pub use carry::Guest;
 use carry::Presenter;
-use follow::{ARRIVED, FOLLOWING, LEFT, WAITING, adopt};
+use follow::{ARRIVED, FOLLOWING, LEFT, TAKEN_UP, WAITING, adopt};
 /// The key that steps out of the class, and back into it (not bound in the explorer).
 pub const FOLLOW_KEY: KeyCode = KeyCode::F(2);
 
@@ -126,8 +126,7 @@ pub fn run(
     if let Some(class) = shared.take_up_class(id) {
         adopt(&mut s, class);
         s.app.tell_class(InClass::Alone);
-        s.app
-            .report("you present: the class as it was left, and its followers".into());
+        s.app.report(TAKEN_UP.into());
     }
     if let Some(dir) = shared
         .options
@@ -293,7 +292,21 @@ impl Run<'_> {
                 s.app.report(LEFT.into());
             }
             In::Unled | In::Answered => {}
-            In::Join(follower) => self.shared.welcome(follower, &s.app, s.lesson()),
+            In::Join(follower) => self.shared.welcome(self.id, follower, &s.app, s.lesson()),
+            In::HandOver => {
+                self.shared.leave_class(self.id, &s.app, s.lesson());
+                s.app.tell_tally(None);
+                s.app.report(
+                    "another presenter took the class over, as it was: you are on your own".into(),
+                );
+            }
+            In::TakeUp => {
+                if let Some(class) = self.shared.take_over(self.id) {
+                    adopt(s, class);
+                    s.app.tell_class(InClass::Alone);
+                    s.app.report(TAKEN_UP.into());
+                }
+            }
             In::Class => {
                 let Some(class) = self.shared.take_class(self.id) else {
                     return Ok(Waited::Events(vec![]));

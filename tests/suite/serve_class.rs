@@ -382,48 +382,56 @@ fn a_followers_answer_moves_neither_the_presenter_nor_the_others() {
     s.stop("done");
 }
 
-/// A second presenter (the teacher back after a dropped connection) takes the class over:
-/// the followers are handed its class, lesson and all, not left applying its keys to the
-/// first one's.
+/// A second presenter (the teacher back while the dropped connection lingers: the server has
+/// not seen it go) takes the class over where it was, the lesson at the same step, and the
+/// followers with it; the first leads no more and is told so. (It took the class over from
+/// its own start: the lesson back at step 1 for everyone.)
 #[test]
-fn a_presenter_who_takes_over_hands_the_followers_its_class() {
+fn a_presenter_who_takes_over_takes_the_class_where_it_was() {
     let dir = tempfile::tempdir().unwrap();
     let s = server(dir.path());
     rt().block_on(async {
-        let (_h, tp, mut f1, _f2) = class(s.addr).await;
+        let (_h, mut tp, mut f1, _f2) = class(s.addr).await;
         assert!(until(&mut [&mut f1], |s| all_show(s, &["First: at rest"])).await);
         tp.send(b"\r").await;
         assert!(until(&mut [&mut f1], |s| all_show(s, &["Second: at rest"])).await);
-        // The second presenter's lesson starts at its beginning: so does the class's.
         let p2 = login(s.addr, "teacher", Login::Key(&key(3)))
             .await
             .unwrap()
             .unwrap();
         let mut tp2 = Tty::open(&p2, 80, 24).await;
         assert!(
-            until(&mut [&mut tp2, &mut f1], |s| all_show(
+            until(&mut [&mut tp2], |s| all_show(
                 s,
-                &["First: at rest"]
+                &["Second: at rest", "you present: the class as it was left"]
             ))
             .await
         );
+        assert!(
+            until(&mut [&mut tp], |s| all_show(
+                s,
+                &["another presenter took the class over"]
+            ))
+            .await
+        );
+        assert!(!tp2.shows("First: at rest") && !f1.shows("First: at rest"));
+        assert!(until(&mut [&mut tp2, &mut f1], |s| body(&s[0]) == body(&s[1])).await);
         // The first presenter leads no more; the second's Enter moves the class one step.
         tp.send(b"\r").await;
-        tp2.send(b"\r").await;
-        assert!(
-            until(&mut [&mut tp2, &mut f1], |s| all_show(
-                s,
-                &["Second: at rest"]
-            ))
-            .await
-        );
         tokio::time::sleep(Duration::from_millis(500)).await;
         until(&mut [&mut f1], |_| true).await;
         assert!(
             !f1.shows("Will it escape?"),
-            "the follower went past the class"
+            "the first presenter still led"
         );
-        assert!(until(&mut [&mut tp2, &mut f1], |s| body(&s[0]) == body(&s[1])).await);
+        tp2.send(b"\r").await;
+        assert!(
+            until(&mut [&mut tp2, &mut f1], |s| all_show(
+                s,
+                &["Will it escape?"]
+            ))
+            .await
+        );
     });
     s.stop("done");
 }

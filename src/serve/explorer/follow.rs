@@ -21,6 +21,9 @@ pub(super) const WAITING: &str = "no presenter yet: you follow the class when th
 /// comes: the screen now moves with someone else's keys.
 pub(super) const ARRIVED: &str = "the presenter is here: you follow the class (F2 steps out)\u{1f}the presenter is here: following (F2: step out)";
 
+/// What a presenter who takes up a class its last presenter left (or still held) is told.
+pub(super) const TAKEN_UP: &str = "you present: the class as it was left, and its followers";
+
 /// What the followers are told when the presenter leaves.
 pub(super) const LEFT: &str = "the presenter left: on your own until they are back (F2: stay on your own)\u{1f}the presenter left: on your own until they are back";
 
