@@ -368,9 +368,10 @@ impl Handler for Conn {
         };
         let (tx, rx) = std::sync::mpsc::channel();
         let Some(number) = self.shared.enter(tx.clone(), self.presenter) else {
+            let n = self.shared.limits.sessions;
             let full = format!(
-                "turntable: the class is full ({} sessions); try again later\r\n",
-                self.shared.limits.sessions
+                "turntable: the class is full ({n} session{}); try again later\r\n",
+                if n == 1 { "" } else { "s" }
             );
             return self.refuse(channel, &full, session);
         };
