@@ -1,6 +1,6 @@
 //! `turntable serve`: the explorer over SSH, for a class. Each connection that gets in (an
 //! authorized key, or the passphrase) and asks for a shell gets its own explorer
-//! ([`explorer`]), on the same [`Session`](crate::session::Session) the terminal and replay
+//! ([`explorer`]), on the same [`Explorer`](crate::session::Explorer) the terminal and replay
 //! use, drawn at the client's size into the channel; nothing else is served (no command, no
 //! SFTP, no forwarding: `conn`). A presenter leads: followers apply the presenter's keys,
 //! mouse actions and ticks, not its frames. Guests write no file on the server. Limits bound what any

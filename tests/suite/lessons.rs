@@ -11,7 +11,7 @@ use turntable::engine::{Initial, Method, Outcome, Release, Run, Settings};
 use turntable::lesson::{Driver, LESSONS, find};
 use turntable::scene::Scene;
 use turntable::script::{Step, parse};
-use turntable::session::Session;
+use turntable::session::Explorer;
 use turntable::ui::fit::wrap;
 
 /// The captions and questions of a lesson, in order.
@@ -614,7 +614,7 @@ fn app() -> App {
     App::new(Scene::default_scene())
 }
 
-fn press(s: &mut Session<ratatui::backend::TestBackend>, key: &str) {
+fn press(s: &mut Explorer<ratatui::backend::TestBackend>, key: &str) {
     let chord: Chord = key.parse().unwrap();
     s.press(chord);
 }
@@ -625,7 +625,7 @@ fn press(s: &mut Session<ratatui::backend::TestBackend>, key: &str) {
 #[test]
 fn an_interactive_lesson_holds_as_state_and_time_goes_on() {
     let script = "pause\nsay one\nwait\nplay\ntick 3\nsay two\nask Will it escape? (y/n)\nplay 0.5\ntick 200\nsay three\n";
-    let mut s = Session::headless(
+    let mut s = Explorer::headless(
         app(),
         turntable::theme::Theme::builtin("dark").unwrap(),
         80,
@@ -734,7 +734,7 @@ fn an_interactive_lesson_holds_as_state_and_time_goes_on() {
 /// class reads (Space still plays it), and Enter takes time up as the wait found it.
 #[test]
 fn a_wait_holds_time_and_enter_takes_it_up() {
-    let mut s = Session::headless(
+    let mut s = Explorer::headless(
         app(),
         turntable::theme::Theme::builtin("dark").unwrap(),
         80,
@@ -774,7 +774,7 @@ fn a_wait_holds_time_and_enter_takes_it_up() {
 /// has moved on from the question (scene C sticks; fig2 is decided at τ = 0).
 #[test]
 fn the_run_answers_the_prediction() {
-    let mut s = Session::headless(
+    let mut s = Explorer::headless(
         app(),
         turntable::theme::Theme::builtin("dark").unwrap(),
         80,
@@ -782,7 +782,7 @@ fn the_run_answers_the_prediction() {
         false,
     );
     fn text(
-        s: &mut Session<ratatui::backend::TestBackend>,
+        s: &mut Explorer<ratatui::backend::TestBackend>,
         script: &str,
     ) -> (String, Option<&'static str>) {
         for step in parse(script).unwrap() {
@@ -841,7 +841,7 @@ fn the_run_answers_the_prediction() {
     assert!(text_none(&mut s, "say"));
 }
 
-fn text_none(s: &mut Session<ratatui::backend::TestBackend>, script: &str) -> bool {
+fn text_none(s: &mut Explorer<ratatui::backend::TestBackend>, script: &str) -> bool {
     for step in parse(script).unwrap() {
         s.apply(&step);
     }
@@ -936,7 +936,7 @@ fn a_long_caption_at_every_size() {
         .step_by(9)
         .flat_map(|w| (12..=40).step_by(7).map(move |h| (w, h)))
     {
-        let mut s = Session::headless(
+        let mut s = Explorer::headless(
             app(),
             turntable::theme::Theme::builtin("dark").unwrap(),
             w,
@@ -963,7 +963,7 @@ fn a_long_caption_at_every_size() {
         assert!(screen.contains(" …"), "{w}×{h}:\n{screen}");
     }
     // Too small for the explorer: its notice, and no caption.
-    let mut s = Session::headless(
+    let mut s = Explorer::headless(
         app(),
         turntable::theme::Theme::builtin("dark").unwrap(),
         39,
@@ -987,7 +987,7 @@ struct Held {
     question: Option<String>,
 }
 
-fn held(s: &Session<ratatui::backend::TestBackend>) -> Held {
+fn held(s: &Explorer<ratatui::backend::TestBackend>) -> Held {
     Held {
         at: s.lesson().unwrap().taken(),
         initial: s.app.initial(),
@@ -1008,7 +1008,7 @@ const PACING: [&str; 5] = ["space", ".", ",", "[", "]"];
 /// the scene at each hold point, and checks that a pacing key never moves the lesson.
 fn take_lesson(name: &str, keys: &[(u16, usize, u8)]) -> Vec<Held> {
     let steps = parse(find(name).unwrap().script).unwrap();
-    let mut s = Session::headless(
+    let mut s = Explorer::headless(
         app(),
         turntable::theme::Theme::builtin("dark").unwrap(),
         80,

@@ -49,7 +49,7 @@ fn tab_cycles_the_pages_and_each_title_names_its_page() {
 
 #[test]
 fn nothing_is_computed_for_a_page_not_on_screen() {
-    let mut s = turntable::session::Session::headless(
+    let mut s = turntable::session::Explorer::headless(
         app("C"),
         turntable::theme::Theme::builtin("dark").unwrap(),
         80,
