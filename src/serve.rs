@@ -19,6 +19,7 @@ mod keyfile;
 mod out;
 mod pace;
 mod screen;
+pub mod testing;
 
 pub use auth::{fingerprint, host_key, host_key_path, passphrase};
 pub use keyfile::{Authorized, authorized_keys};
@@ -293,11 +294,6 @@ impl Shared {
     /// Connections open now, in or not.
     pub fn connections(&self) -> usize {
         self.connections.load(Ordering::Relaxed)
-    }
-
-    /// Connections at the door now: not in, and in without an explorer.
-    pub fn at_the_door(&self) -> (usize, usize) {
-        self.door.count()
     }
 }
 

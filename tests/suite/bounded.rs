@@ -7,6 +7,7 @@ use turntable::engine::{Initial, Release};
 use turntable::scene::Scene;
 use turntable::session::Explorer;
 use turntable::sim::STEPS_PER_TICK;
+use turntable::sim::testing::Testing as _;
 
 fn key(c: char) -> KeyEvent {
     KeyEvent::new(KeyCode::Char(c), KeyModifiers::NONE)

@@ -11,6 +11,7 @@ use turntable::engine::{Frame, Outcome, Run, Settings, Status};
 use turntable::present::num;
 use turntable::scene::{PRESETS, Scene};
 use turntable::session::Explorer;
+use turntable::sim::testing::Testing as _;
 use turntable::theme::Theme;
 
 fn theme() -> Theme {

@@ -3,10 +3,11 @@
 //! without holding up time; the command's errors. Their screens are goldens in
 //! `tests/replay` (`lesson-NAME.txt`, see tests/suite/replay.rs).
 
+use crate::common::easiest_angle;
 use std::f64::consts::PI;
 use std::process::Command;
 use turntable::app::{App, Chord};
-use turntable::engine::solve::{critical_radius, easiest_angle, escape_speed, sweep_escape};
+use turntable::engine::solve::{critical_radius, escape_speed, sweep_escape};
 use turntable::engine::{Initial, Method, Outcome, Release, Run, Settings};
 use turntable::lesson::{Driver, LESSONS, find};
 use turntable::scene::Scene;

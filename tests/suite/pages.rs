@@ -94,8 +94,7 @@ fn the_escape_speed_page_holds_the_solver_s_curves() {
     // search at a tighter tolerance agrees to the page's third decimal in π.
     let (pmin, vleast) = c.least.expect("refined").expect("found");
     let (phi, v) =
-        turntable::engine::solve::easiest_angle(0.5, 72, Settings::dp54(1e-12), 1e-10, 1e-5)
-            .unwrap();
+        crate::common::easiest_angle(0.5, 72, Settings::dp54(1e-12), 1e-10, 1e-5).unwrap();
     assert!((pmin - phi).abs() < 1e-3, "{pmin} vs {phi}");
     assert!(
         (vleast - v).abs() < 1e-7 && vleast <= vmin,
