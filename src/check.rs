@@ -113,10 +113,9 @@ pub fn named(e: impl Into<Error>, via: Via) -> Error {
 /// `--xi0-max` as a release's `--xi0`).
 pub fn retyped(e: Error, field: Field, to: &str) -> Error {
     match e {
-        Error::Value { value, .. } if value.field == field => Error::Value {
-            name: Some(to.to_string()),
-            value,
-        },
+        Error::Invalid { value: Some(r), .. } if r.value.field == field => {
+            Error::named(r.value, to)
+        }
         e => e,
     }
 }
@@ -125,7 +124,7 @@ pub fn retyped(e: Error, field: Field, to: &str) -> Error {
 pub fn initial(i: &Initial, via: Via) -> Result<(), Error> {
     i.validate().map_err(|e| named(e, via))?;
     if i.phi.abs() > PHI_MAX {
-        return Err(Error::Invalid(format!(
+        return Err(Error::invalid(format!(
             "{} must lie in [-{PHI_MAX:e}, {PHI_MAX:e}] rad, got {}",
             via.name("phi"),
             Initial::show(i.phi)
@@ -151,7 +150,7 @@ pub fn release(i: &Initial, s: &Settings, via: Via) -> Result<(), Error> {
             _ => " = true",
         };
         let n = |k| via.name(k);
-        return Err(Error::Invalid(format!(
+        return Err(Error::invalid(format!(
             "{}{on} is mu = 0, no coupling to the table at all: drop {}, {} and {}",
             n("frictionless"),
             n("coupling"),

@@ -8,15 +8,9 @@ use std::sync::Arc;
 
 #[derive(Debug, Clone)]
 pub enum Error {
-    /// Input refused: flags, initial conditions, settings, scene, theme and script files.
-    Invalid(String),
-    /// A value the engine refused, by field, value and range. `name` is the value as the
-    /// user typed it (`--v0`, `[initial] v0`: see `crate::check`); until it is set, the
-    /// message gives the engine's own name.
-    Value {
-        name: Option<String>,
-        value: Invalid,
-    },
+    /// Input refused (flags, initial conditions, settings, scene, theme and script files),
+    /// with why; `value` is the value the engine refused, when that is why.
+    Invalid { why: String, value: Option<Refused> },
     /// A run that could not finish: its step budget, or a step size that underflowed.
     Run(RunError),
     /// Anything else that could not be done: a solver that found no answer, a file that could
@@ -31,15 +25,19 @@ pub enum Error {
     Cancelled,
 }
 
+/// A value the engine refused, by field, value and range, kept beside the words that say so.
+/// Until it is `named` as the user typed it (`--v0`, `[initial] v0`: see `crate::check`), the
+/// words give the engine's own name.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Refused {
+    pub value: Invalid,
+    pub named: bool,
+}
+
 impl std::fmt::Display for Error {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
-            Error::Invalid(m) | Error::Failed(m) => f.write_str(m),
-            Error::Value {
-                name: Some(n),
-                value,
-            } => f.write_str(&value.named(n)),
-            Error::Value { name: None, value } => value.fmt(f),
+            Error::Invalid { why: m, .. } | Error::Failed(m) => f.write_str(m),
             Error::Run(r) => r.fmt(f),
             Error::Io { what, source } if what.is_empty() => source.fmt(f),
             Error::Io { what, source } => write!(f, "{what}: {source}"),
@@ -53,9 +51,9 @@ impl std::error::Error for Error {
     fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
         match self {
             Error::Io { source, .. } => Some(&**source),
-            Error::Value { value, .. } => Some(value),
+            Error::Invalid { value: Some(r), .. } => Some(&r.value),
             Error::Run(r) => Some(r),
-            Error::Invalid(_) | Error::Failed(_) | Error::Cancelled => None,
+            Error::Invalid { value: None, .. } | Error::Failed(_) | Error::Cancelled => None,
         }
     }
 }
@@ -70,8 +68,8 @@ impl PartialEq for Error {
     fn eq(&self, other: &Error) -> bool {
         use Error::*;
         match (self, other) {
-            (Invalid(a), Invalid(b)) | (Failed(a), Failed(b)) => a == b,
-            (Value { name: n, value: v }, Value { name: m, value: w }) => n == m && v == w,
+            (Invalid { why: a, value: v }, Invalid { why: b, value: w }) => a == b && v == w,
+            (Failed(a), Failed(b)) => a == b,
             (Run(a), Run(b)) => a == b,
             (Cancelled, Cancelled) => true,
             (Io { what: a, source: s }, Io { what: b, source: t }) => {
@@ -85,7 +83,21 @@ impl PartialEq for Error {
 impl Error {
     /// Input refused, with why.
     pub fn invalid(why: impl Into<String>) -> Error {
-        Error::Invalid(why.into())
+        Error::Invalid {
+            why: why.into(),
+            value: None,
+        }
+    }
+
+    /// The value the engine refused, its words the engine's own until it is named.
+    pub fn refused(value: Invalid) -> Error {
+        Error::Invalid {
+            why: value.to_string(),
+            value: Some(Refused {
+                value,
+                named: false,
+            }),
+        }
     }
 
     /// `what` (a file, a terminal) failed with `e`, kept as the source.
@@ -99,7 +111,7 @@ impl Error {
     /// The value the engine refused (its field, value and range), if this is one.
     pub fn refused_value(&self) -> Option<&Invalid> {
         match self {
-            Error::Value { value, .. } => Some(value),
+            Error::Invalid { value: Some(r), .. } => Some(&r.value),
             _ => None,
         }
     }
@@ -108,18 +120,26 @@ impl Error {
     /// named.
     pub fn name_field(self, name: impl FnOnce(Field) -> String) -> Error {
         match self {
-            Error::Value { name: None, value } => Error::Value {
-                name: Some(name(value.field)),
-                value,
-            },
+            Error::Invalid {
+                value: Some(r @ Refused { named: false, .. }),
+                ..
+            } => Error::named(r.value, &name(r.value.field)),
             e => e,
+        }
+    }
+
+    /// The value the engine refused, called `name` (as typed).
+    pub fn named(value: Invalid, name: &str) -> Error {
+        Error::Invalid {
+            why: value.named(name),
+            value: Some(Refused { value, named: true }),
         }
     }
 
     /// The same error with `what` (a flag, a file) in front of its message.
     pub fn context(self, what: &str) -> Error {
         match self {
-            Error::Invalid(_) | Error::Value { .. } => Error::Invalid(format!("{what}: {self}")),
+            Error::Invalid { .. } => Error::invalid(format!("{what}: {self}")),
             Error::Io { what: w, source } => Error::Io {
                 what: if w.is_empty() {
                     what.to_string()
@@ -135,7 +155,7 @@ impl Error {
     /// The process's exit code for this error: 2 for input refused, else 1.
     pub fn exit_code(&self) -> u8 {
         match self {
-            Error::Invalid(_) | Error::Value { .. } => 2,
+            Error::Invalid { .. } => 2,
             Error::Run(_) | Error::Failed(_) | Error::Io { .. } | Error::Cancelled => 1,
         }
     }
@@ -147,8 +167,8 @@ impl From<crate::engine::error::Error> for Error {
     fn from(e: crate::engine::error::Error) -> Error {
         use crate::engine::error::Error as E;
         match e {
-            E::Invalid(value) => Error::Value { name: None, value },
-            E::Refused(m) => Error::Invalid(m.into_owned()),
+            E::Invalid(value) => Error::refused(value),
+            E::Refused(m) => Error::invalid(m),
             E::Run(r) => Error::Run(r),
             E::NoAnswer(m) => Error::Failed(m.into_owned()),
             E::Cancelled => Error::Cancelled,

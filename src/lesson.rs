@@ -59,7 +59,7 @@ pub fn names() -> String {
 }
 
 /// An interactive lesson's place in its script: the session feeds it in as time passes (see
-/// `Session::pump_lesson`).
+/// `Explorer::pump_lesson`).
 /// Cloned cheaply (its steps are shared): a served class hands each follower the presenter's.
 #[derive(Clone, Debug)]
 pub struct Driver {

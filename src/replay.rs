@@ -1,5 +1,5 @@
 //! Key scripts run headlessly: the real [`App`] update and [`crate::ui::draw`] code on an
-//! off-screen `TestBackend` through the same [`Session`] as the interactive loop, with each
+//! off-screen `TestBackend` through the same [`Explorer`] as the interactive loop, with each
 //! `snapshot` written out as it is taken, as plain text or ANSI-styled text.
 //!
 //! Nothing here reads the clock or the environment: the same script gives byte-identical
@@ -8,7 +8,7 @@
 use crate::app::{App, Effect, Effects};
 use crate::asciicast::Cast;
 use crate::script::Step;
-use crate::session::Session;
+use crate::session::Explorer;
 use crate::ui::export::{ansi_text, plain_text};
 use ratatui::backend::TestBackend;
 
@@ -92,7 +92,7 @@ fn run(
     if opts.plain {
         return plain(app, steps, opts, out);
     }
-    let mut s = Session::headless(app, opts.theme.clone(), opts.size.0, opts.size.1, false);
+    let mut s = Explorer::headless(app, opts.theme.clone(), opts.size.0, opts.size.1, false);
     s.carry_with(Answer);
     let mut shots = 0;
     // Ticks passed: the recording's clock.
@@ -167,10 +167,10 @@ fn plain(
     out: &mut dyn std::io::Write,
 ) -> std::io::Result<()> {
     use crate::ui::plain::{Seen, describe, opening};
-    let mut s = Session::headless(app, opts.theme.clone(), opts.size.0, opts.size.1, false);
+    let mut s = Explorer::headless(app, opts.theme.clone(), opts.size.0, opts.size.1, false);
     s.carry_with(Answer);
     let mut seen = Seen::of(&s.app);
-    let say = |s: &Session<TestBackend>, seen: &mut Seen, out: &mut dyn std::io::Write| {
+    let say = |s: &Explorer<TestBackend>, seen: &mut Seen, out: &mut dyn std::io::Write| {
         let now = Seen::of(&s.app);
         for line in describe(seen, &now) {
             writeln!(out, "{line}")?;
@@ -248,7 +248,7 @@ pub fn answer(app: &mut App, effects: Effects) {
 }
 
 fn snapshot(
-    s: &mut Session<TestBackend>,
+    s: &mut Explorer<TestBackend>,
     out: &mut dyn std::io::Write,
     n: usize,
     label: Option<&str>,

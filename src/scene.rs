@@ -372,22 +372,22 @@ impl Scene {
             return Ok(s);
         }
         if !(name_or_path.contains('/') || name_or_path.ends_with(".toml")) {
-            return Err(Error::Invalid(format!(
+            return Err(Error::invalid(format!(
                 "unknown scene '{name_or_path}' (presets: {}; or a path to a .toml file)",
                 PRESETS.join(", ")
             )));
         }
         let text = crate::files::read_bounded(Path::new(name_or_path), crate::files::READ_CAP)
-            .map_err(|e| Error::Invalid(format!("scene file {e}")))?;
+            .map_err(|e| Error::invalid(format!("scene file {e}")))?;
         let file = format!("scene file {name_or_path}");
         let scene: Scene = toml::from_str(&text).map_err(|e| {
-            Error::Invalid(format!("{file}: {}", crate::files::toml_error(&text, &e)))
+            Error::invalid(format!("{file}: {}", crate::files::toml_error(&text, &e)))
         })?;
         let scene_file = crate::check::Via::Scene;
         crate::check::release(&scene.initial, &scene.settings, scene_file)
             .map_err(|e| e.context(&file))?;
         if scene.pins.len() > crate::pin::MAX_PINS {
-            return Err(Error::Invalid(format!(
+            return Err(Error::invalid(format!(
                 "{file}: {} pins, at most {} are kept",
                 scene.pins.len(),
                 crate::pin::MAX_PINS
@@ -396,13 +396,13 @@ impl Scene {
         for (k, p) in scene.pins.iter().enumerate() {
             let what = format!("{file}: pin {} ({:?})", k + 1, p.label.as_str());
             if p.label.chars().count() > crate::pin::LABEL_MAX {
-                return Err(Error::Invalid(format!(
+                return Err(Error::invalid(format!(
                     "{what}: a label is at most {} characters",
                     crate::pin::LABEL_MAX
                 )));
             }
             if !p.turn.is_finite() {
-                return Err(Error::Invalid(format!("{what}: turn must be finite")));
+                return Err(Error::invalid(format!("{what}: turn must be finite")));
             }
             let pin = crate::check::Via::Pin;
             if let Some(u) = p.units {
@@ -416,7 +416,7 @@ impl Scene {
         if let Some(v) = scene.view
             && speed_power(v.speed).is_none()
         {
-            return Err(Error::Invalid(format!(
+            return Err(Error::invalid(format!(
                 "{file}: [view] speed must be a power of two from 1/64 to 256, got {}",
                 crate::engine::Initial::show(v.speed)
             )));
@@ -430,7 +430,7 @@ impl Scene {
                 || !scene.pins.is_empty()
                 || scene.view.is_some_and(|v| v.page != Page::Turntable)
             {
-                return Err(Error::Invalid(format!(
+                return Err(Error::invalid(format!(
                     "{file}: [spin] spins the table up under a coin at rest on it: it needs [initial] release = \"table-rest\", no [body] or pins, and the turntable page"
                 )));
             }

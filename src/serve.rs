@@ -1,6 +1,6 @@
 //! `turntable serve`: the explorer over SSH, for a class. Each connection that gets in (an
 //! authorized key, or the passphrase) and asks for a shell gets its own explorer
-//! ([`explorer`]), on the same [`Session`](crate::session::Session) the terminal and replay
+//! ([`explorer`]), on the same [`Explorer`](crate::session::Explorer) the terminal and replay
 //! use, drawn at the client's size into the channel; nothing else is served (no command, no
 //! SFTP, no forwarding: `conn`). A presenter leads: followers apply the presenter's keys,
 //! mouse actions and ticks, not its frames. Guests write no file on the server. Limits bound what any
@@ -19,6 +19,7 @@ mod keyfile;
 mod out;
 mod pace;
 mod screen;
+pub mod testing;
 
 pub use auth::{fingerprint, host_key, host_key_path, passphrase};
 pub use keyfile::{Authorized, authorized_keys};
@@ -306,11 +307,6 @@ impl Shared {
     /// Connections open now, in or not.
     pub fn connections(&self) -> usize {
         self.connections.load(Ordering::Relaxed)
-    }
-
-    /// Connections at the door now: not in, and in without an explorer.
-    pub fn at_the_door(&self) -> (usize, usize) {
-        self.door.count()
     }
 }
 

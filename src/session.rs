@@ -37,23 +37,23 @@ pub fn lock(r: &SharedRecorder) -> MutexGuard<'_, Recorder> {
 
 /// The app, a terminal to draw it on, and optionally a recorder of everything applied.
 /// Every event goes through here, in the interactive loop and in a replay alike.
-pub struct Session<B: Backend> {
+pub struct Explorer<B: Backend> {
     pub app: App,
     /// How the app is drawn: the view's, not the model's.
     pub theme: Theme,
     pub term: Terminal<B>,
     recorder: Option<SharedRecorder>,
-    /// An interactive lesson's script, fed in as time passes (see [`Session::pump_lesson`]).
+    /// An interactive lesson's script, fed in as time passes (see [`Explorer::pump_lesson`]).
     lesson: Option<crate::lesson::Driver>,
     /// How the effects `update` returns are carried out: [`Write`] (files written) unless the
-    /// shell says otherwise ([`Session::carry_with`]).
+    /// shell says otherwise ([`Explorer::carry_with`]).
     carry: Box<dyn Carry + Send>,
     /// Where the analysis pages are computed: inline (computed when a frame is drawn) unless
-    /// [`Session::with_worker`].
+    /// [`Explorer::with_worker`].
     pub analysis: Analysis,
 }
 
-impl<B: Backend> Session<B> {
+impl<B: Backend> Explorer<B> {
     /// With a `recorder` (see [`new_recorder`]), the script starts with the terminal's
     /// current size.
     pub fn new(
@@ -67,7 +67,7 @@ impl<B: Backend> Session<B> {
         if let Some(r) = &recorder {
             lock(r).resize(size.width, size.height);
         }
-        let mut s = Session {
+        let mut s = Explorer {
             app,
             theme,
             term,
@@ -107,7 +107,7 @@ impl<B: Backend> Session<B> {
         sync(&mut self.app, &mut self.analysis, true)
     }
 
-    /// As [`Session::sync_analysis`], but an inline request is only noted: keys and ticks
+    /// As [`Explorer::sync_analysis`], but an inline request is only noted: keys and ticks
     /// call this, so fifty edits before a frame compute one page, not fifty.
     pub fn ask_analysis(&mut self) -> bool {
         sync(&mut self.app, &mut self.analysis, false)
@@ -157,7 +157,7 @@ impl<B: Backend> Session<B> {
     /// A mouse event. The app maps cells through the canvas as last drawn, so anything
     /// changed since the last frame is drawn first: a recording and its replay then see the
     /// same canvas whatever else happened in between. Returns the action it made, if any
-    /// (a served class's followers apply it: [`Session::act`]).
+    /// (a served class's followers apply it: [`Explorer::act`]).
     pub fn mouse(&mut self, ev: MouseEvent) -> Result<Option<Action>, B::Error> {
         self.draw_if_needed()?;
         if let Some(r) = &self.recorder {
@@ -197,7 +197,7 @@ impl<B: Backend> Session<B> {
         self.lesson.as_ref()
     }
 
-    /// Runs an interactive lesson: its steps are fed in by [`Session::pump_lesson`].
+    /// Runs an interactive lesson: its steps are fed in by [`Explorer::pump_lesson`].
     pub fn start_lesson(&mut self, driver: crate::lesson::Driver) {
         self.app.tell_lesson(driver.name());
         self.lesson = Some(driver);
@@ -365,11 +365,11 @@ fn ok<T>(r: Result<T, Infallible>) -> T {
     }
 }
 
-impl Session<TestBackend> {
+impl Explorer<TestBackend> {
     /// A session on an off-screen terminal of `width` × `height` cells.
     pub fn headless(app: App, theme: Theme, width: u16, height: u16, record: bool) -> Self {
         let recorder = record.then(new_recorder);
-        ok(Session::new(
+        ok(Explorer::new(
             app,
             theme,
             TestBackend::new(width, height),

@@ -6,6 +6,7 @@
 pub mod accuracy;
 pub mod ending;
 mod motion;
+pub mod testing;
 
 pub use motion::Motion;
 
@@ -137,10 +138,6 @@ impl Sim {
     /// How the run ends, as far as it has been integrated (not the sample on screen).
     pub fn outcome(&self) -> Outcome {
         self.run.outcome()
-    }
-    /// How far the run has been integrated (the screen may be behind).
-    pub fn run_tau(&self) -> f64 {
-        self.run.tau()
     }
 
     /// The state on screen.

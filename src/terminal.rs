@@ -4,7 +4,7 @@
 //! [`pace`]), keys read by [`input`], Ctrl-Z and the signals.
 
 use crate::app::App;
-use crate::session::{Session, SharedRecorder, lock, new_recorder};
+use crate::session::{Explorer, SharedRecorder, lock, new_recorder};
 use crossterm::event::{
     DisableBracketedPaste, DisableMouseCapture, EnableBracketedPaste, EnableMouseCapture, Event,
     KeyCode, KeyModifiers,
@@ -109,7 +109,7 @@ fn hung_up() -> bool {
 /// Continued (SIGCONT, also after a SIGSTOP this process never saw, whose shell put the
 /// terminal back in cooked mode): raw mode again, and a full redraw of a screen that may hold
 /// anything now.
-fn resume(session: &mut Session<CrosstermBackend<Stdout>>) -> io::Result<()> {
+fn resume(session: &mut Explorer<CrosstermBackend<Stdout>>) -> io::Result<()> {
     // crossterm skips enabling raw mode while it believes it on: forget that belief first.
     disable_raw_mode()?;
     enter(session.app.mouse_capture())?;
@@ -132,7 +132,7 @@ pub type SaveRecording = Box<dyn FnOnce(String) + Send>;
 /// Returns the signal (SIGTERM, SIGHUP, SIGINT, …) that ended it, if one did, and with `record` the
 /// session as a key script (also after a signal or an error, as far as it got). If the
 /// terminal is gone and the process must end without returning, `record` gets that script.
-/// With `lesson`, its script is fed in as the session goes (`Session::pump_lesson`).
+/// With `lesson`, its script is fed in as the session goes (`Explorer::pump_lesson`).
 pub fn run(
     app: App,
     theme: crate::theme::Theme,
@@ -148,8 +148,8 @@ pub fn run(
         // The analysis pages fill in off this thread: keys never wait for them.
         |recorder| {
             setup(mouse)
-                .and_then(|b| Session::new(app, theme, b, recorder))
-                .map(Session::with_worker)
+                .and_then(|b| Explorer::new(app, theme, b, recorder))
+                .map(Explorer::with_worker)
         },
         |session, flags| event_loop(session, fps.clamp(1, 240), flags),
     )
@@ -163,8 +163,8 @@ fn supervise<B: ratatui::backend::Backend>(
     record: Option<SaveRecording>,
     restore: fn(),
     lesson: Option<crate::lesson::Driver>,
-    start: impl FnOnce(Option<SharedRecorder>) -> io::Result<Session<B>>,
-    event_loop: impl FnOnce(&mut Session<B>, &Flags) -> io::Result<()>,
+    start: impl FnOnce(Option<SharedRecorder>) -> io::Result<Explorer<B>>,
+    event_loop: impl FnOnce(&mut Explorer<B>, &Flags) -> io::Result<()>,
 ) -> (io::Result<Option<i32>>, Option<String>) {
     let flags = Arc::new(Flags::default());
     let finished = Arc::new(AtomicBool::new(false));
@@ -326,7 +326,7 @@ fn read_all(input: &mut Reader, timeout: Duration) -> io::Result<Vec<Event>> {
 }
 
 impl Link<CrosstermBackend<Stdout>> for Local<'_> {
-    fn turn(&mut self, session: &mut Session<CrosstermBackend<Stdout>>) -> io::Result<Turn> {
+    fn turn(&mut self, session: &mut Explorer<CrosstermBackend<Stdout>>) -> io::Result<Turn> {
         signalled(
             self.flags,
             || {
@@ -347,7 +347,7 @@ impl Link<CrosstermBackend<Stdout>> for Local<'_> {
 
     fn show(
         &mut self,
-        session: &mut Session<CrosstermBackend<Stdout>>,
+        session: &mut Explorer<CrosstermBackend<Stdout>>,
         draw: bool,
     ) -> io::Result<bool> {
         if session.app.mouse_capture() != self.mouse_on {
@@ -369,7 +369,7 @@ impl Link<CrosstermBackend<Stdout>> for Local<'_> {
 
     fn wait(
         &mut self,
-        _session: &mut Session<CrosstermBackend<Stdout>>,
+        _session: &mut Explorer<CrosstermBackend<Stdout>>,
         wake: Instant,
     ) -> io::Result<Waited> {
         let timeout = if self.flight.awaiting() {
@@ -384,7 +384,7 @@ impl Link<CrosstermBackend<Stdout>> for Local<'_> {
 
     fn apply(
         &mut self,
-        session: &mut Session<CrosstermBackend<Stdout>>,
+        session: &mut Explorer<CrosstermBackend<Stdout>>,
         ev: Event,
     ) -> io::Result<bool> {
         match ev {
@@ -418,7 +418,7 @@ impl Link<CrosstermBackend<Stdout>> for Local<'_> {
 }
 
 fn event_loop(
-    session: &mut Session<CrosstermBackend<Stdout>>,
+    session: &mut Explorer<CrosstermBackend<Stdout>>,
     fps: u32,
     flags: &Flags,
 ) -> io::Result<()> {

@@ -236,15 +236,15 @@ impl Theme {
                 "" => "a theme name is needed".to_string(),
                 n => format!("unknown theme '{n}'"),
             };
-            Error::Invalid(format!("{what} ({})", available(user)))
+            Error::invalid(format!("{what} ({})", available(user)))
         })
     }
 
     fn read(path: &Path) -> Result<Theme, Error> {
         let text = crate::files::read_bounded(path, crate::files::READ_CAP)
-            .map_err(|e| Error::Invalid(format!("theme file {e}")))?;
+            .map_err(|e| Error::invalid(format!("theme file {e}")))?;
         parse(&text).map_err(|p| {
-            Error::Invalid(format!(
+            Error::invalid(format!(
                 "theme file {}: {p}",
                 crate::files::escape_controls(&path.display().to_string())
             ))

@@ -10,6 +10,8 @@ use crate::present::num;
 use crate::scene::Scene;
 use crate::sim::Sim;
 
+pub mod testing;
+
 #[derive(Clone, Debug)]
 pub struct Exploration {
     /// The scene as loaded (what `0` resets to).
@@ -111,19 +113,6 @@ impl Exploration {
         self.initial = from.carry(self.initial, to);
         self.scene.body = self.scene.body.map(|b| b.carried(from, to));
         self.restart();
-    }
-
-    /// A body (or none) in place of the scene's; the runs restart.
-    pub fn set_body(&mut self, body: Option<crate::engine::body::Body>) {
-        self.scene.body = body;
-        self.restart();
-    }
-
-    /// The body's track computed again within `steps` steps, so cut short there as a track
-    /// that runs out of its budget is: the same body, release and settings, a smaller budget.
-    pub fn limit_body_steps(&mut self, steps: u64) {
-        self.rod = make_rod(self.scene.body, &self.initial, self.settings, steps);
-        self.rod_notice = self.rod.as_ref().and_then(rod_cut_notice);
     }
 
     /// The paper's run beside the one on screen, or not. It starts at τ = 0 and catches up

@@ -144,7 +144,7 @@ impl App {
     }
 
     /// Whether time should tick for the model: playing, or the paper's run still catching
-    /// up (the shell adds a page filling in: `Session::is_playing`).
+    /// up (the shell adds a page filling in: `Explorer::is_playing`).
     pub fn is_playing(&self) -> bool {
         self.playing || self.paper_lags()
     }

@@ -39,11 +39,6 @@ pub struct Link {
     pub unpaced_in_flight: usize,
 }
 
-/// The default scene playing for `seconds` of link time at `rate` bytes/s.
-pub fn simulate(rate: f64, seconds: f64) -> Result<Link, Error> {
-    simulate_scene(&Scene::default_scene(), rate, seconds)
-}
-
 /// The default scene with a body, as `turntable --body-length 0.1 --body-height 0.01` opens
 /// it: the bar, its centre's path and the panel's body lines change as it plays.
 pub fn body_scene() -> Scene {

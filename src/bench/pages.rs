@@ -14,7 +14,7 @@ use crate::engine::par::{cores, par_map};
 use crate::engine::solve::escape_speed;
 use crate::engine::{Release, Settings};
 use crate::error::Error;
-use crate::session::Session;
+use crate::session::Explorer;
 use serde::Serialize;
 use std::time::{Duration, Instant};
 
@@ -188,7 +188,7 @@ fn dark() -> Result<crate::theme::Theme, Error> {
 }
 
 /// A session at [`SIZE`] on `page`, with its workers, and the key `x`.
-fn session_on(page: Page) -> Result<(Session<ratatui::backend::TestBackend>, Chord), Error> {
+fn session_on(page: Page) -> Result<(Explorer<ratatui::backend::TestBackend>, Chord), Error> {
     let mut app = App::new(crate::scene::Scene::default_scene());
     open(&mut app, page);
     let x = Chord::new(
@@ -196,13 +196,13 @@ fn session_on(page: Page) -> Result<(Session<ratatui::backend::TestBackend>, Cho
         crossterm::event::KeyModifiers::NONE,
     );
     Ok((
-        Session::headless(app, dark()?, SIZE.0, SIZE.1, false).with_worker(),
+        Explorer::headless(app, dark()?, SIZE.0, SIZE.1, false).with_worker(),
         x,
     ))
 }
 
 /// Whether the page on screen needs nothing more.
-fn complete(session: &Session<ratatui::backend::TestBackend>) -> bool {
+fn complete(session: &Explorer<ratatui::backend::TestBackend>) -> bool {
     let app = &session.app;
     app.wanted_job(|v| crate::ui::pages::map_grid(app, v))
         .is_none()
@@ -285,7 +285,7 @@ fn key_to_page(page: Page, presses: usize) -> Result<[(f64, f64); 3], Error> {
 /// explorer's loop does (every `terminal::drive::PIECES_POLL`) and drawing as they arrive (at most 60
 /// frames a second); gives up after 10 s. How long it waited after the curve at
 /// the app's ξ0 was complete.
-fn wait_for_page(session: &mut Session<ratatui::backend::TestBackend>) -> Result<Duration, Error> {
+fn wait_for_page(session: &mut Explorer<ratatui::backend::TestBackend>) -> Result<Duration, Error> {
     let start = Instant::now();
     let frame = Duration::from_secs(1) / 60;
     let mut drawn = start;

@@ -48,7 +48,7 @@ fn write_template(dir: &std::path::Path, path: &std::path::Path, shown: &str) ->
     use std::io::Write;
     let failed = |e: std::io::Error| Error::Failed(format!("{shown}: {e}"));
     if path.symlink_metadata().is_ok() {
-        return Err(Error::Invalid(format!(
+        return Err(Error::invalid(format!(
             "{shown} is there already: kept as it is (`turntable config` prints the template)"
         )));
     }

@@ -16,7 +16,7 @@ pub fn bench(a: BenchArgs) -> CmdResult {
     };
     if let Some(n) = a.cases {
         if n > 10_000 {
-            return Err(Error::Invalid(format!(
+            return Err(Error::invalid(format!(
                 "--cases must be at most 10000, got {n}"
             )));
         }
@@ -49,8 +49,8 @@ pub fn bench(a: BenchArgs) -> CmdResult {
 #[cfg(feature = "serve")]
 fn serve(a: &BenchArgs) -> CmdResult {
     if !(1.0..=3600.0).contains(&a.seconds) || a.serve.iter().any(|&n| !(1..=1000).contains(&n)) {
-        return Err(Error::Invalid(
-            "--serve takes 1 to 1000 clients a row, --seconds 1 to 3600".into(),
+        return Err(Error::invalid(
+            "--serve takes 1 to 1000 clients a row, --seconds 1 to 3600",
         ));
     }
     for &n in &a.serve {

@@ -70,7 +70,7 @@ impl Config {
     /// Reads the configuration file `path` (`--config`): it must be there.
     pub fn read(path: &Path) -> Result<Config, Error> {
         let text = crate::files::read_bounded(path, crate::files::READ_CAP)
-            .map_err(|e| Error::Invalid(format!("config file {e}")))?;
+            .map_err(|e| Error::invalid(format!("config file {e}")))?;
         Config::parse(&text, path)
     }
 
@@ -78,7 +78,7 @@ impl Config {
     /// paths).
     pub fn parse(text: &str, path: &Path) -> Result<Config, Error> {
         let shown = crate::files::escape_controls(&path.display().to_string());
-        let refuse = |m: String| Error::Invalid(format!("config file {shown}: {m}"));
+        let refuse = |m: String| Error::invalid(format!("config file {shown}: {m}"));
         let table: toml::Table =
             toml::from_str(text).map_err(|e| refuse(crate::files::toml_error(text, &e)))?;
         let mut c = Config {

@@ -56,7 +56,7 @@ pub fn run(a: &LessonArgs) -> Result<Option<(Look, Driver)>, Error> {
     let lesson = source(name)?;
     if a.check {
         let check = crate::lesson::check(&lesson.script)
-            .map_err(|e| Error::Invalid(format!("{}: {e}", crate::files::escape_controls(name))))?;
+            .map_err(|e| Error::invalid(format!("{}: {e}", crate::files::escape_controls(name))))?;
         crate::files::emit(None, &format!("lesson {}: {check}", lesson.name))?;
         return Ok(None);
     }
@@ -119,7 +119,7 @@ impl From<Lesson> for Source {
 fn own(path: &str) -> Result<Source, Error> {
     let p = std::path::Path::new(path);
     if !p.is_file() {
-        return Err(Error::Invalid(format!(
+        return Err(Error::invalid(format!(
             "unknown lesson '{}': neither one of the lessons ({}; `turntable lesson --list` says what each covers) nor a key script file",
             crate::files::escape_controls(path),
             names()

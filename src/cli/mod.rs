@@ -48,7 +48,7 @@ pub(crate) fn bracket_width(name: &str, x: f64) -> Result<(), Error> {
     if (BRACKET_MIN..=1.0).contains(&x) {
         Ok(())
     } else {
-        Err(Error::Invalid(format!(
+        Err(Error::invalid(format!(
             "--{name} must lie in [{BRACKET_MIN:e}, 1] (narrower than the runs can certify), got {}",
             Initial::show(x)
         )))
@@ -116,8 +116,8 @@ fn explore(
     let term = std::env::var("TERM").ok();
     let scene_ref = look.scene.as_deref().map(scene_reference);
     if term.as_deref() == Some("dumb") && !plain {
-        return Err(Error::Invalid(
-            "TERM=dumb cannot show the explorer (it needs cursor movement); set TERM to your terminal's type (e.g. xterm), or use `turntable --plain` (the explorer in lines of text), `turntable replay SCRIPT` or a subcommand".into(),
+        return Err(Error::invalid(
+            "TERM=dumb cannot show the explorer (it needs cursor movement); set TERM to your terminal's type (e.g. xterm), or use `turntable --plain` (the explorer in lines of text), `turntable replay SCRIPT` or a subcommand",
         ));
     }
     let recording = match &cli.record {
@@ -259,13 +259,13 @@ fn needs_terminal(plain: bool) -> Result<(), Error> {
     if plain {
         // Plain mode writes lines: its output may go to a pipe or a file, its keys may not.
         if !std::io::stdin().is_terminal() {
-            return Err(Error::Invalid(
-                "plain mode reads keys from a terminal (stdin must be a tty); headless, use `turntable replay --plain SCRIPT`".into(),
+            return Err(Error::invalid(
+                "plain mode reads keys from a terminal (stdin must be a tty); headless, use `turntable replay --plain SCRIPT`",
             ));
         }
     } else if !(std::io::stdin().is_terminal() && std::io::stdout().is_terminal()) {
-        return Err(Error::Invalid(
-            "the explorer needs a terminal (stdin and stdout must be a tty); headless, use `turntable replay SCRIPT` or a subcommand (see --help)".into(),
+        return Err(Error::invalid(
+            "the explorer needs a terminal (stdin and stdout must be a tty); headless, use `turntable replay SCRIPT` or a subcommand (see --help)",
         ));
     }
     Ok(())

@@ -127,13 +127,13 @@ fn choose(
 ) -> Result<crate::sim::accuracy::Choice, Error> {
     use crate::sim::accuracy::{cheapest, refused};
     if let Some(why) = refused(error) {
-        return Err(Error::Invalid(format!(
+        return Err(Error::invalid(format!(
             "--error {why} (the stated error of the end's time and place)"
         )));
     }
     if crate::engine::closed_form(&initial, settings) {
-        return Err(Error::Invalid(
-            "--error chooses a method and tolerance: a frictionless or Stokes-drag run is in closed form, exact".into(),
+        return Err(Error::invalid(
+            "--error chooses a method and tolerance: a frictionless or Stokes-drag run is in closed form, exact",
         ));
     }
     let c = cheapest(initial, settings, a.tau_max, !a.follow, error)?;
@@ -180,7 +180,7 @@ fn run_inputs(a: &RunArgs) -> Result<(Initial, crate::engine::Settings), Error> 
         frictionless: a.frictionless,
     };
     if !(a.tau_max.is_finite() && a.tau_max > 0.0 && a.tau_max <= TAU_MAX_LIMIT) {
-        return Err(Error::Invalid(format!(
+        return Err(Error::invalid(format!(
             "--tau-max must lie in (0, {TAU_MAX_LIMIT:e}], got {}",
             Initial::show(a.tau_max)
         )));
@@ -265,14 +265,14 @@ fn print(report: &(impl Report + serde::Serialize), json: bool) -> CmdResult {
 pub(super) fn solver_settings(n: &super::NumericsArgs) -> Result<crate::engine::Settings, Error> {
     let s = n.settings()?;
     if let Some(gamma) = s.stokes() {
-        return Err(Error::Invalid(format!(
+        return Err(Error::invalid(format!(
             "under Stokes drag (gamma {}) there is no escape speed, critical radius or outcome map: every release leaves, at the rate {} (turntable run --coupling stokes says how)",
             Initial::show(gamma),
             crate::engine::stokes::growth_rate(gamma)
         )));
     }
     if !s.method().stick_events() {
-        return Err(Error::Invalid(format!(
+        return Err(Error::invalid(format!(
             "{} has no stick event, so its runs never come to rest: the solvers need dp54, dop853, rk4 or rk2",
             s.method()
         )));
@@ -284,7 +284,7 @@ pub(super) fn positive(name: &str, x: f64) -> Result<(), Error> {
     if x.is_finite() && x > 0.0 {
         Ok(())
     } else {
-        Err(Error::Invalid(format!(
+        Err(Error::invalid(format!(
             "--{name} must be a positive number, got {}",
             Initial::show(x)
         )))
@@ -318,7 +318,7 @@ pub fn critical(a: CriticalArgs) -> CmdResult {
         positive("r0c", r)?;
         let m = w * w * r / a.g;
         if !(m.is_finite() && m > 0.0) {
-            return Err(Error::Invalid(format!(
+            return Err(Error::invalid(format!(
                 "mu = omega² r0c / (xi0c g) is out of range for omega {}, r0c {}, g {}: check the units (rad/s, m, m/s²)",
                 Initial::show(w),
                 Initial::show(r),

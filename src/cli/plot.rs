@@ -91,8 +91,8 @@ pub fn plot(a: PlotArgs) -> CmdResult {
         }
         PlotFigure::Time { run, svg } => {
             let [(_, initial, settings)] = &pick(&run)?[..] else {
-                return Err(Error::Invalid(
-                    "plot time draws one run: give one --scene and at most one --method".into(),
+                return Err(Error::invalid(
+                    "plot time draws one run: give one --scene and at most one --method",
                 ));
             };
             let out = open(&svg)?;
@@ -128,7 +128,7 @@ fn pick(r: &PlotRun) -> Result<Vec<(String, Initial, crate::engine::Settings)>, 
     for name in &r.scene {
         let scene = crate::scene::Scene::load(name)?;
         if scene.spin.is_some() {
-            return Err(Error::Invalid(format!(
+            return Err(Error::invalid(format!(
                 "scene {name}: [spin] spins the table up; `plot` draws the constant-Ω table: open it in the explorer (`turntable --scene {name}`) or report it with `turntable spinup --scene {name}`"
             )));
         }

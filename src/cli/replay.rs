@@ -53,7 +53,7 @@ pub fn run(a: ReplayArgs) -> CmdResult {
         "the replay's output on stdout",
     );
     let bounded = |e: std::io::Error| match crate::files::bound_reached(&e) {
-        Some(m) => Error::Invalid(format!(
+        Some(m) => Error::invalid(format!(
             "{m}; stopped there (shorten the script: fewer snapshots, ticks or a smaller resize)"
         )),
         None => Error::from(e),
@@ -69,7 +69,7 @@ pub fn run(a: ReplayArgs) -> CmdResult {
             let dest = file.get_ref().get_ref().dest().display().to_string();
             if let Err(e) = replay_cast(app, &steps, &opts, &mut so, &mut file, &title) {
                 return Err(match crate::files::bound_reached(&e) {
-                    Some(m) => Error::Invalid(format!(
+                    Some(m) => Error::invalid(format!(
                         "{m}; nothing was written to {} (shorten the script: fewer ticks or a smaller resize)",
                         crate::files::escape_controls(&dest)
                     )),
@@ -93,7 +93,7 @@ pub fn prepare(
     a: &ReplayArgs,
 ) -> Result<(crate::app::App, Options, Vec<crate::script::Step>), Error> {
     let steps =
-        crate::script::parse(text).map_err(|e| Error::Invalid(format!("{}: {e}", a.script)))?;
+        crate::script::parse(text).map_err(|e| Error::invalid(format!("{}: {e}", a.script)))?;
     let own = script_options(text).map_err(|e| e.context(&a.script))?;
     let scene = match a.look.scene.as_ref().or(own.scene.as_ref()) {
         Some(s) => crate::scene::Scene::load(s)?,
@@ -103,7 +103,10 @@ pub fn prepare(
     // No user themes by name: a replay reads no configuration.
     let theme =
         crate::theme::Theme::resolve(theme.map(String::as_str), false).map_err(|e| match e {
-            Error::Invalid(m) if !m.starts_with("theme file") => Error::Invalid(format!(
+            Error::Invalid {
+                why: m,
+                value: None,
+            } if !m.starts_with("theme file") => Error::invalid(format!(
                 "{m}; replay reads no configuration: name a theme of yours by its path"
             )),
             e => e,

@@ -82,7 +82,7 @@ impl ServeArgs {
     fn check(&self) -> Result<(), Error> {
         let (w, h) = self.max_size;
         if w == 0 || h == 0 {
-            return Err(Error::Invalid(format!(
+            return Err(Error::invalid(format!(
                 "--max-size {w}x{h}: a side of 0 draws nothing (1x1 at least)"
             )));
         }
@@ -91,16 +91,15 @@ impl ServeArgs {
             ("--presenter-passphrase", &self.presenter_passphrase),
         ] {
             if p.as_deref().is_some_and(|p| p.trim().is_empty()) {
-                return Err(Error::Invalid(format!(
+                return Err(Error::invalid(format!(
                     "{flag} is empty: nobody could get in with it"
                 )));
             }
         }
         if self.passphrase.is_some() && self.passphrase == self.presenter_passphrase {
-            return Err(Error::Invalid(
+            return Err(Error::invalid(
                 "--passphrase and --presenter-passphrase are the same: every student would \
-                 present"
-                    .into(),
+                 present",
             ));
         }
         Ok(())
@@ -112,7 +111,7 @@ impl ServeArgs {
         let path = match &self.host_key {
             Some(p) => p.clone(),
             None => crate::serve::host_key_path(|v| std::env::var_os(v)).ok_or_else(|| {
-                Error::Invalid("no XDG_DATA_HOME or HOME for the host key: pass --host-key".into())
+                Error::invalid("no XDG_DATA_HOME or HOME for the host key: pass --host-key")
             })?,
         };
         let host_key = crate::serve::host_key(&path)?;
@@ -166,7 +165,7 @@ impl ServeArgs {
         if let Some(dir) = &self.exports {
             let shown = crate::files::escape_controls(&dir.display().to_string());
             if !std::fs::metadata(dir).is_ok_and(|m| m.is_dir()) {
-                return Err(Error::Invalid(format!(
+                return Err(Error::invalid(format!(
                     "--exports {shown}: not a directory (make it first)"
                 )));
             }

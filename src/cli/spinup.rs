@@ -78,7 +78,7 @@ fn inputs(a: &SpinupArgs) -> Result<(f64, Ramp, Settings, Option<Units>), Error>
     if let Some(path) = &a.scene {
         let scene = crate::scene::Scene::load(path)?;
         let Some(ramp) = scene.spin else {
-            return Err(Error::Invalid(format!(
+            return Err(Error::invalid(format!(
                 "scene {path} has no [spin] (rate, omega0): add one, or give --rate"
             )));
         };
@@ -94,7 +94,7 @@ fn inputs(a: &SpinupArgs) -> Result<(f64, Ramp, Settings, Option<Units>), Error>
 pub fn spinup(a: SpinupArgs) -> CmdResult {
     let (xi0, ramp, settings, units) = inputs(&a)?;
     if !(a.tau_max.is_finite() && a.tau_max > 0.0 && a.tau_max <= 1e9) {
-        return Err(Error::Invalid(format!(
+        return Err(Error::invalid(format!(
             "--tau-max must lie in (0, 1e9], got {}",
             Initial::show(a.tau_max)
         )));

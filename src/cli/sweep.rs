@@ -38,7 +38,7 @@ fn sweep_body(a: &super::BodySweepArgs) -> CmdResult {
         ));
     }
     if !(a.tau_max.is_finite() && a.tau_max > 0.0 && a.tau_max <= 1e6) {
-        return Err(Error::Invalid(format!(
+        return Err(Error::invalid(format!(
             "--tau-max must lie in (0, 1e6], got {}",
             Initial::show(a.tau_max)
         )));
@@ -105,7 +105,7 @@ fn sweep_body(a: &super::BodySweepArgs) -> CmdResult {
 /// How many points a sweep may take.
 pub(super) fn points(n: usize) -> Result<(), Error> {
     if n == 0 || n > 100_000 {
-        return Err(Error::Invalid(format!(
+        return Err(Error::invalid(format!(
             "--points must lie in 1..=100000, got {n}"
         )));
     }

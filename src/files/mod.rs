@@ -103,7 +103,7 @@ pub fn emit(out: Option<&Path>, text: &str) -> io::Result<()> {
 /// command (no output may replace it). Errors name the file.
 pub fn read_bounded(path: &Path, cap: u64) -> Result<String, Error> {
     let name = escape_controls(&path.display().to_string());
-    let refuse = |e: String| Error::Invalid(format!("{name}: {e}"));
+    let refuse = |e: String| Error::invalid(format!("{name}: {e}"));
     let f = OpenOptions::new()
         .read(true)
         .custom_flags(open_flags(rustix::fs::OFlags::NONBLOCK))
@@ -129,9 +129,9 @@ pub fn read_capped(r: impl Read, cap: u64) -> Result<String, Error> {
     let mut bytes = Vec::new();
     r.take(cap + 1)
         .read_to_end(&mut bytes)
-        .map_err(|e| Error::Invalid(e.to_string()))?;
+        .map_err(|e| Error::invalid(e.to_string()))?;
     if bytes.len() as u64 > cap {
-        return Err(Error::Invalid(format!("larger than {} KiB", cap >> 10)));
+        return Err(Error::invalid(format!("larger than {} KiB", cap >> 10)));
     }
     String::from_utf8(bytes).map_err(|_| Error::invalid("not UTF-8 text"))
 }

@@ -133,7 +133,7 @@ fn alive(pid: i32) -> bool {
 /// Opens `path` for the output named by `flag` (`--out`, `--record`, …) under the policy
 /// above: a refusal is input refused (exit 2) and names the flag.
 pub fn open_output(flag: &str, path: &Path, force: bool) -> Result<Output, Error> {
-    Output::create(path, force).map_err(|e| Error::Invalid(format!("{flag} {e}")))
+    Output::create(path, force).map_err(|e| Error::invalid(format!("{flag} {e}")))
 }
 
 impl Output {

@@ -4,7 +4,7 @@ use crate::error::Error;
 
 /// `WxH`, each at most the scripts' own limit.
 pub fn parse_size(s: &str) -> Result<(u16, u16), Error> {
-    let bad = || Error::Invalid(format!("bad size '{s}': expected WxH, e.g. 80x24"));
+    let bad = || Error::invalid(format!("bad size '{s}': expected WxH, e.g. 80x24"));
     let (w, h) = s.split_once(['x', 'X']).ok_or_else(bad)?;
     let n = |t: &str| -> Result<u16, Error> {
         if t.is_empty() || !t.bytes().all(|b| b.is_ascii_digit()) {
@@ -12,7 +12,7 @@ pub fn parse_size(s: &str) -> Result<(u16, u16), Error> {
         }
         match t.parse::<u16>() {
             Ok(v) if v <= crate::script::MAX_SIZE => Ok(v),
-            _ => Err(Error::Invalid(format!(
+            _ => Err(Error::invalid(format!(
                 "size {t} out of range 0..={}",
                 crate::script::MAX_SIZE
             ))),
@@ -38,12 +38,12 @@ pub fn script_options(text: &str) -> Result<ScriptOptions, Error> {
             continue;
         };
         let at = format!("line {}", n + 1);
-        let words = split_words(args).map_err(|e| Error::Invalid(format!("{at}: {e}")))?;
+        let words = split_words(args).map_err(|e| Error::invalid(format!("{at}: {e}")))?;
         let mut it = words.iter().map(String::as_str);
         while let Some(a) = it.next() {
             let mut value = || {
                 it.next()
-                    .ok_or_else(|| Error::Invalid(format!("{at}: {a} needs a value")))
+                    .ok_or_else(|| Error::invalid(format!("{at}: {a} needs a value")))
             };
             match a {
                 "--ansi" => o.ansi = true,
@@ -51,7 +51,7 @@ pub fn script_options(text: &str) -> Result<ScriptOptions, Error> {
                 "--scene" => o.scene = Some(value()?.to_string()),
                 "--theme" => o.theme = Some(value()?.to_string()),
                 other => {
-                    return Err(Error::Invalid(format!(
+                    return Err(Error::invalid(format!(
                         "{at}: unknown replay option '{other}'"
                     )));
                 }

@@ -31,22 +31,22 @@ pub fn host_key(path: &Path) -> Result<PrivateKey, Error> {
             .mode();
         // As sshd: a host key others may read is no longer the server's alone.
         if mode & 0o077 != 0 {
-            return Err(Error::Invalid(format!(
+            return Err(Error::invalid(format!(
                 "{shown}: the host key is readable by others (mode {:o}): `chmod 600` it",
                 mode & 0o777
             )));
         }
         let text = crate::files::read_bounded(path, 64 * 1024)?;
         let key = PrivateKey::from_openssh(text.as_bytes())
-            .map_err(|e| Error::Invalid(format!("{shown}: not an OpenSSH private key: {e}")))?;
+            .map_err(|e| Error::invalid(format!("{shown}: not an OpenSSH private key: {e}")))?;
         if key.is_encrypted() {
-            return Err(Error::Invalid(format!(
+            return Err(Error::invalid(format!(
                 "{shown}: the host key is encrypted (passphrase-protected), and serve cannot \
                  ask for its passphrase: give an unencrypted key"
             )));
         }
         return weak(key.public_key())
-            .map(|why| Err(Error::Invalid(format!("{shown}: {why}"))))
+            .map(|why| Err(Error::invalid(format!("{shown}: {why}"))))
             .unwrap_or(Ok(key));
     }
     let mut seed = [0u8; 32];

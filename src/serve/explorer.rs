@@ -1,4 +1,4 @@
-//! One client's explorer: a [`Session`] on a `Screen`, on its own thread, in the explorer's
+//! One client's explorer: a [`Explorer`] on a `Screen`, on its own thread, in the explorer's
 //! one loop (`terminal::drive`) with its own tick clock. A frame is drawn only once the last one has been taken by the channel (its flow
 //! control: a client that reads slowly gets fewer frames, never older ones), while τ keeps
 //! wall-clock time. A follower applies the presenter's keys, mouse actions and ticks instead of
@@ -10,7 +10,7 @@ use super::{In, Lead, Out, Shared};
 use crate::app::lesson::Prompt;
 use crate::app::state::InClass;
 use crate::app::{App, Chord};
-use crate::session::{Pumped, Session};
+use crate::session::{Explorer, Pumped};
 use crate::terminal::drive::{Link, Turn, Waited, drive};
 use crate::terminal::input::Decoder;
 use crossterm::event::{
@@ -110,7 +110,7 @@ pub fn run(
     let scene = lesson.map_or_else(crate::scene::Scene::default_scene, |l| l.scene.clone());
     let mut app = App::new(scene);
     app.tell_mouse(!client.plain);
-    let mut s = match Session::new(app, theme, Screen::new(w, h), None) {
+    let mut s = match Explorer::new(app, theme, Screen::new(w, h), None) {
         Ok(s) => s,
         Err(_) => {
             shared.leave(id);
@@ -137,7 +137,7 @@ pub fn run(
         s.app.tell_save_path(dir.join(crate::app::state::SAVE_PATH));
         s.carry_with(Presenter);
     }
-    let mut run = Run {
+    let mut run = Remote {
         shared: &shared,
         id,
         out: &out,
@@ -201,7 +201,9 @@ impl Outbox {
     }
 }
 
-struct Run<'a> {
+/// One SSH client's explorer, as the one loop drives it (`terminal::drive::Link`): the
+/// terminal's `Local` and plain mode's `Lines` are the others.
+struct Remote<'a> {
     shared: &'a Shared,
     id: u64,
     out: &'a Outbox,
@@ -232,8 +234,8 @@ struct Run<'a> {
     waiting: bool,
 }
 
-impl Run<'_> {
-    fn start(&mut self, s: &mut Session<Screen>, plain: bool) -> io::Result<()> {
+impl Remote<'_> {
+    fn start(&mut self, s: &mut Explorer<Screen>, plain: bool) -> io::Result<()> {
         if plain {
             self.open_plain(s)?;
         } else {
@@ -255,7 +257,7 @@ impl Run<'_> {
 
     /// One message from the connection, the writer or the class: the keys it brought, or why
     /// the session ends.
-    fn receive(&mut self, s: &mut Session<Screen>, msg: In) -> io::Result<Waited> {
+    fn receive(&mut self, s: &mut Explorer<Screen>, msg: In) -> io::Result<Waited> {
         match msg {
             In::Data(bytes) => {
                 self.answering = true;
@@ -330,7 +332,7 @@ impl Run<'_> {
     }
 
     /// The client's latest window size, laid out for the frame about to be drawn.
-    fn resize(&mut self, s: &mut Session<Screen>) {
+    fn resize(&mut self, s: &mut Explorer<Screen>) {
         self.resized = false;
         let (w, h) = self.size.take();
         let (w, h) = clamp(self.shared, w, h);
@@ -341,7 +343,7 @@ impl Run<'_> {
 
     /// One event of the client's: keys and the mouse applied and led to the followers; a
     /// follower's own refused but for F2, its answers, `q` and Ctrl-C.
-    fn event(&mut self, s: &mut Session<Screen>, ev: Event) -> io::Result<()> {
+    fn event(&mut self, s: &mut Explorer<Screen>, ev: Event) -> io::Result<()> {
         {
             match ev {
                 Event::Key(k) if k.code == FOLLOW_KEY && k.modifiers == KeyModifiers::NONE => {
@@ -395,7 +397,7 @@ impl Run<'_> {
         Ok(())
     }
 
-    fn mouse_capture(&mut self, s: &mut Session<Screen>) -> io::Result<()> {
+    fn mouse_capture(&mut self, s: &mut Explorer<Screen>) -> io::Result<()> {
         // Plain mode sends no escape sequence (a class handed over asks for the mouse).
         if self.plain.is_none() && s.app.mouse_capture() != self.mouse_on {
             self.mouse_on = s.app.mouse_capture();

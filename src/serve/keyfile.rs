@@ -72,16 +72,16 @@ fn keys_at(path: &Path, now: i64) -> Result<Vec<Authorized>, Error> {
                 .chars()
                 .take(300)
                 .collect();
-            Error::Invalid(format!("{shown}:{}: {why}", n + 1))
+            Error::invalid(format!("{shown}:{}: {why}", n + 1))
         })?);
     }
     if keys.is_empty() {
-        return Err(Error::Invalid(format!(
+        return Err(Error::invalid(format!(
             "{shown}: no key in it: nobody could get in with it"
         )));
     }
     if keys.iter().all(|k| k.expiry.is_some_and(|last| now > last)) {
-        return Err(Error::Invalid(format!(
+        return Err(Error::invalid(format!(
             "{shown}: every key in it has expired (expiry-time): nobody could get in with it"
         )));
     }

@@ -1,7 +1,7 @@
 //! An interactive lesson fed into the session as time passes: its steps applied up to where
 //! it holds, a click's action handed back for a class's followers.
 
-use super::Session;
+use super::Explorer;
 use crate::app::Action;
 use crate::script::Step;
 use ratatui::backend::Backend;
@@ -13,7 +13,7 @@ pub struct Pumped {
     pub act: Option<Action>,
 }
 
-impl<B: Backend> Session<B> {
+impl<B: Backend> Explorer<B> {
     /// Applies the lesson's steps that are due: all of them up to a `tick N` still counting
     /// (it counts the session's ticks of play: a pause from the keys holds it, and after the
     /// script's own `pause` it ends at once, as in a replay), a `wait` or an unanswered `ask`
@@ -26,7 +26,7 @@ impl<B: Backend> Session<B> {
         self.pump_with(true)
     }
 
-    /// [`Session::pump_lesson`] for a class's follower, whose lesson moves with the
+    /// [`Explorer::pump_lesson`] for a class's follower, whose lesson moves with the
     /// presenter's: its `mouse` steps are skipped, the presenter's click coming as the action
     /// it made, right after this pump.
     pub fn follow_lesson(&mut self) -> Result<Pumped, B::Error> {

@@ -6,7 +6,7 @@
 //! Where input comes from and where a frame goes is the backend's: a [`Link`].
 
 use super::pace::{Clock, coalesce_drags};
-use crate::session::{Pumped, Session};
+use crate::session::{Explorer, Pumped};
 use crossterm::event::Event;
 use ratatui::backend::Backend;
 use std::convert::Infallible;
@@ -56,7 +56,7 @@ impl IntoIo for Infallible {
 /// A backend of the loop: where input comes from and where frames go.
 pub trait Link<B: Backend> {
     /// At the start of each turn: signals, suspension, a client's limits.
-    fn turn(&mut self, s: &mut Session<B>) -> io::Result<Turn>;
+    fn turn(&mut self, s: &mut Explorer<B>) -> io::Result<Turn>;
 
     /// Whether the session keeps its own time and feeds its own lesson (a served class's
     /// follower takes the presenter's ticks and lesson steps instead).
@@ -65,10 +65,10 @@ pub trait Link<B: Backend> {
     }
 
     /// A tick was taken, before the lesson moves with it.
-    fn ticked(&mut self, _s: &mut Session<B>) {}
+    fn ticked(&mut self, _s: &mut Explorer<B>) {}
 
-    /// The lesson was fed (see [`Session::pump_lesson`]).
-    fn pumped(&mut self, _s: &mut Session<B>, _pumped: Pumped) -> io::Result<()> {
+    /// The lesson was fed (see [`Explorer::pump_lesson`]).
+    fn pumped(&mut self, _s: &mut Explorer<B>, _pumped: Pumped) -> io::Result<()> {
         Ok(())
     }
 
@@ -85,7 +85,7 @@ pub trait Link<B: Backend> {
 
     /// Once a turn: brings the link up to date, drawing a frame if `draw` (the link is free,
     /// a frame is due and the app or the link needs one). Returns whether it drew.
-    fn show(&mut self, s: &mut Session<B>, draw: bool) -> io::Result<bool>;
+    fn show(&mut self, s: &mut Explorer<B>, draw: bool) -> io::Result<bool>;
 
     /// When the link must wake whatever else is due (a paste's or a held ESC's end).
     fn deadline(&self) -> Option<Instant> {
@@ -93,16 +93,16 @@ pub trait Link<B: Backend> {
     }
 
     /// Waits for input until `wake` at most.
-    fn wait(&mut self, s: &mut Session<B>, wake: Instant) -> io::Result<Waited>;
+    fn wait(&mut self, s: &mut Explorer<B>, wake: Instant) -> io::Result<Waited>;
 
     /// Applies one event; returns whether it drew a frame (a click maps through the screen as
     /// drawn).
-    fn apply(&mut self, s: &mut Session<B>, ev: Event) -> io::Result<bool>;
+    fn apply(&mut self, s: &mut Explorer<B>, ev: Event) -> io::Result<bool>;
 }
 
 /// Runs the loop until the app quits or the link stops it; returns why it ended ("bye" for a
 /// quit).
-pub fn drive<B, L>(s: &mut Session<B>, link: &mut L) -> io::Result<String>
+pub fn drive<B, L>(s: &mut Explorer<B>, link: &mut L) -> io::Result<String>
 where
     B: Backend,
     B::Error: IntoIo,
@@ -179,7 +179,7 @@ where
     }
 }
 
-fn pump<B, L>(s: &mut Session<B>, link: &mut L) -> io::Result<()>
+fn pump<B, L>(s: &mut Explorer<B>, link: &mut L) -> io::Result<()>
 where
     B: Backend,
     B::Error: IntoIo,

@@ -131,7 +131,7 @@ impl Flight {
 }
 
 /// Events queued together, each run of mouse drags folded into its last: a drag redraws
-/// before it applies (see `Session::mouse`), and a backlog of drags would be a backlog of
+/// before it applies (see `Explorer::mouse`), and a backlog of drags would be a backlog of
 /// frames.
 pub fn coalesce_drags(events: Vec<Event>) -> Vec<Event> {
     let drag =

@@ -7,7 +7,7 @@
 use super::drive::{Link, Turn, Waited};
 use super::{Flags, SaveRecording};
 use crate::app::App;
-use crate::session::{Pumped, Session};
+use crate::session::{Explorer, Pumped};
 use crate::ui::plain::{Seen, describe, opening};
 use crossterm::event::Event;
 use crossterm::terminal::{disable_raw_mode, enable_raw_mode};
@@ -56,8 +56,8 @@ pub fn run(
                 // The analysis pages compute off this thread, as in the explorer: their
                 // numbers are said when they arrive (`ui::pages::summary`), and keys never
                 // wait for them.
-                Session::new(app, theme, TestBackend::new(w, h), recorder)
-                    .map(Session::with_worker)
+                Explorer::new(app, theme, TestBackend::new(w, h), recorder)
+                    .map(Explorer::with_worker)
                     .map_err(|e| match e {})
             })
         },
@@ -86,7 +86,7 @@ struct Lines<'a> {
 }
 
 impl Link<TestBackend> for Lines<'_> {
-    fn turn(&mut self, _session: &mut Session<TestBackend>) -> io::Result<Turn> {
+    fn turn(&mut self, _session: &mut Explorer<TestBackend>) -> io::Result<Turn> {
         super::signalled(
             self.flags,
             || {
@@ -101,7 +101,7 @@ impl Link<TestBackend> for Lines<'_> {
         )
     }
 
-    fn pumped(&mut self, session: &mut Session<TestBackend>, _: Pumped) -> io::Result<()> {
+    fn pumped(&mut self, session: &mut Explorer<TestBackend>, _: Pumped) -> io::Result<()> {
         say(&session.app, &mut self.seen, &mut self.out)
     }
 
@@ -113,18 +113,18 @@ impl Link<TestBackend> for Lines<'_> {
         Duration::ZERO
     }
 
-    fn show(&mut self, session: &mut Session<TestBackend>, _draw: bool) -> io::Result<bool> {
+    fn show(&mut self, session: &mut Explorer<TestBackend>, _draw: bool) -> io::Result<bool> {
         say(&session.app, &mut self.seen, &mut self.out)?;
         self.out.flush()?;
         Ok(false)
     }
 
-    fn wait(&mut self, _session: &mut Session<TestBackend>, wake: Instant) -> io::Result<Waited> {
+    fn wait(&mut self, _session: &mut Explorer<TestBackend>, wake: Instant) -> io::Result<Waited> {
         let timeout = wake.saturating_duration_since(Instant::now());
         super::read_all(&mut self.input, timeout).map(Waited::Events)
     }
 
-    fn apply(&mut self, session: &mut Session<TestBackend>, ev: Event) -> io::Result<bool> {
+    fn apply(&mut self, session: &mut Explorer<TestBackend>, ev: Event) -> io::Result<bool> {
         match ev {
             ev if super::ctrl_z(&ev) => self.flags.suspend.store(true, Ordering::Relaxed),
             Event::Key(k) => {
@@ -140,7 +140,7 @@ impl Link<TestBackend> for Lines<'_> {
     }
 }
 
-fn event_loop(session: &mut Session<TestBackend>, flags: &Flags) -> io::Result<()> {
+fn event_loop(session: &mut Explorer<TestBackend>, flags: &Flags) -> io::Result<()> {
     let mut out = io::stdout();
     for line in opening(&session.app) {
         writeln!(out, "{line}")?;

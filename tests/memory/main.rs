@@ -193,9 +193,12 @@ fn a_class_that_leaves_gives_back_every_byte_it_held() {
         .unwrap();
     rt.block_on(async {
         // The first class makes what lives as long as the server (lazy statics, the
-        // runtime's wheels and queues): the baseline is after it.
+        // runtime's wheels and queues): the baseline is after it, once its connections,
+        // sessions and tasks are gone (3 s at most, as long as a fixed wait used to be).
+        let tasks = s.tasks();
         class(&s).await;
-        tokio::time::sleep(Duration::from_secs(3)).await;
+        let gone = || s.shared.connections() == 0 && s.shared.sessions() == 0 && s.tasks() == tasks;
+        eventually(Duration::from_secs(3), gone).await;
         let (base, tasks) = (held(), s.tasks());
         for round in 1..=3 {
             let in_class = class(&s).await;
@@ -258,10 +261,12 @@ fn a_followers_f2_flood_holds_a_bounded_number_of_bytes() {
         for _ in 0..100 {
             tf.send("\x1bOQ".repeat(100).as_bytes()).await.unwrap();
         }
-        // The presses taken and answered (each rejoin takes a follower a millisecond or so).
+        // The presses taken and answered: a `q` after them, which a follower may press whether
+        // it follows or not, ends its session once they are (in place of a 5 s wait).
         let mut tf = tf;
-        let at = tf.seen.len();
-        let _ = tf.until(at, b"\0", Duration::from_secs(5)).await;
+        tf.send(b"q").await.unwrap();
+        assert!(tf.until_closed(SECS).await);
+        assert!(eventually(SECS, || s.shared.sessions() == 1).await);
         let peak = PEAK.load(Ordering::Relaxed) - before;
         eprintln!("10,000 F2s: the server held at most {peak} B more than before");
         assert!(

@@ -6,7 +6,7 @@ use crossterm::event::{KeyCode, KeyModifiers};
 use turntable::app::{App, Chord};
 use turntable::engine::{Initial, Run, Settings};
 use turntable::scene::Scene;
-use turntable::session::Session;
+use turntable::session::Explorer;
 use turntable::sim::accuracy::cheapest;
 
 /// Case B's neighbour: ξ0 = 0.5 thrown out at v0 = 0.3, a stop at τ ≈ 0.65.
@@ -96,14 +96,14 @@ fn a_bad_error_is_refused_by_name() {
 
 #[test]
 fn error_at_the_prompt_switches_the_run() {
-    let mut s = Session::headless(
+    let mut s = Explorer::headless(
         App::new(Scene::preset("B").unwrap()),
         theme(),
         80,
         24,
         false,
     );
-    let typed = |s: &mut Session<ratatui::backend::TestBackend>, text: &str| {
+    let typed = |s: &mut Explorer<ratatui::backend::TestBackend>, text: &str| {
         s.press(":".parse().unwrap());
         for c in text.chars() {
             s.press(Chord::new(KeyCode::Char(c), KeyModifiers::NONE));

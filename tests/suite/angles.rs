@@ -10,7 +10,7 @@ use turntable::app::{App, Chord};
 use turntable::plot::Scale;
 use turntable::present::{ANGLE_DECIMALS, angle};
 use turntable::scene::Scene;
-use turntable::session::Session;
+use turntable::session::Explorer;
 use turntable::theme::Theme;
 
 /// An angle's text read back, in units of π.
@@ -62,12 +62,12 @@ fn nothing_but_a_finite_angle_is_said_as_one() {
     }
 }
 
-fn session(scene: &str, w: u16, h: u16) -> Session<ratatui::backend::TestBackend> {
+fn session(scene: &str, w: u16, h: u16) -> Explorer<ratatui::backend::TestBackend> {
     let app = App::new(Scene::preset(scene).unwrap());
-    Session::headless(app, Theme::builtin("dark").unwrap(), w, h, false)
+    Explorer::headless(app, Theme::builtin("dark").unwrap(), w, h, false)
 }
 
-fn screen(s: &mut Session<ratatui::backend::TestBackend>) -> String {
+fn screen(s: &mut Explorer<ratatui::backend::TestBackend>) -> String {
     turntable::ui::export::plain_text(s.screen())
 }
 

@@ -298,9 +298,10 @@ fn terminal_bytes_fit_a_slow_link() {
 /// the bounds, and sim time kept.
 #[test]
 fn over_a_slow_link_one_frame_is_in_flight() {
-    use turntable::bench::link::simulate;
-    let slow = simulate(4096.0, 10.0).unwrap();
-    let fast = simulate(16384.0, 10.0).unwrap();
+    use turntable::bench::link::simulate_scene;
+    let default = turntable::scene::Scene::default_scene();
+    let slow = simulate_scene(&default, 4096.0, 10.0).unwrap();
+    let fast = simulate_scene(&default, 16384.0, 10.0).unwrap();
     for l in [&slow, &fast] {
         assert_eq!(l.in_flight, 1, "{l:?}");
         assert!(l.time_kept > 0.95 && l.time_kept <= 1.0, "{l:?}");
@@ -323,9 +324,10 @@ fn over_a_slow_link_one_frame_is_in_flight() {
 /// about as large as without the body (measured 540 against 529 bytes at 4 KB/s).
 #[test]
 fn over_a_slow_link_a_body_costs_about_what_the_point_does() {
-    use turntable::bench::link::{body_scene, simulate, simulate_scene};
+    use turntable::bench::link::{body_scene, simulate_scene};
+    let default = turntable::scene::Scene::default_scene();
     for rate in [4096.0, 16384.0] {
-        let point = simulate(rate, 10.0).unwrap();
+        let point = simulate_scene(&default, rate, 10.0).unwrap();
         let body = simulate_scene(&body_scene(), rate, 10.0).unwrap();
         assert!(body.scene.contains("body"), "{body:?}");
         assert_eq!(body.in_flight, 1, "{body:?}");

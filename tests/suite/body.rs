@@ -3,6 +3,7 @@
 
 use crate::common;
 use common::turntable;
+use turntable::app::exploration::testing::Testing as _;
 use turntable::engine::Outcome;
 
 fn json(args: &[&str]) -> serde_json::Value {

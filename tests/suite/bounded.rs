@@ -5,16 +5,17 @@ use turntable::app::App;
 use turntable::app::testing::Testing as _;
 use turntable::engine::{Initial, Release};
 use turntable::scene::Scene;
-use turntable::session::Session;
+use turntable::session::Explorer;
 use turntable::sim::STEPS_PER_TICK;
+use turntable::sim::testing::Testing as _;
 
 fn key(c: char) -> KeyEvent {
     KeyEvent::new(KeyCode::Char(c), KeyModifiers::NONE)
 }
 
-fn session(scene: &str) -> Session<ratatui::backend::TestBackend> {
+fn session(scene: &str) -> Explorer<ratatui::backend::TestBackend> {
     let app = App::new(Scene::preset(scene).unwrap());
-    Session::headless(
+    Explorer::headless(
         app,
         turntable::theme::Theme::builtin("dark").unwrap(),
         80,
@@ -38,7 +39,7 @@ fn compare_after_a_long_session_catches_up_over_ticks() {
             };
         }
         let app = App::new(scene);
-        let mut s = Session::headless(
+        let mut s = Explorer::headless(
             app,
             turntable::theme::Theme::builtin("dark").unwrap(),
             80,
@@ -119,7 +120,7 @@ fn error_estimate_is_bounded() {
     }
 }
 
-fn keys(s: &mut Session<ratatui::backend::TestBackend>, keys: &str) {
+fn keys(s: &mut Explorer<ratatui::backend::TestBackend>, keys: &str) {
     for c in keys.chars() {
         s.key(key(c));
     }
@@ -229,7 +230,7 @@ fn page_pieces_are_bounded_whatever_the_step() {
     let mut scene = Scene::preset("C").unwrap();
     scene.settings = tiny;
     let app = App::new(scene);
-    let mut s = Session::headless(
+    let mut s = Explorer::headless(
         app,
         turntable::theme::Theme::builtin("dark").unwrap(),
         80,
@@ -251,7 +252,7 @@ fn page_pieces_are_bounded_whatever_the_step() {
     assert!(curve.complete());
 }
 
-fn tab(s: &mut Session<ratatui::backend::TestBackend>, n: usize) {
+fn tab(s: &mut Explorer<ratatui::backend::TestBackend>, n: usize) {
     for _ in 0..n {
         s.key(KeyEvent::new(KeyCode::Tab, KeyModifiers::NONE));
     }

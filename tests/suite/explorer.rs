@@ -10,7 +10,8 @@ use turntable::app::{Action, App, Chord};
 use turntable::engine::{Frame, Outcome, Run, Settings, Status};
 use turntable::present::num;
 use turntable::scene::{PRESETS, Scene};
-use turntable::session::Session;
+use turntable::session::Explorer;
+use turntable::sim::testing::Testing as _;
 use turntable::theme::Theme;
 
 fn theme() -> Theme {
@@ -1295,8 +1296,8 @@ fn s_names_the_scene_it_saves() {
 /// nothing elsewhere: a `q` in it quits nothing.
 #[test]
 fn a_paste_types_the_name_at_the_prompt_only() {
-    use turntable::session::Session;
-    let mut s = Session::headless(
+    use turntable::session::Explorer;
+    let mut s = Explorer::headless(
         app("B"),
         turntable::theme::Theme::builtin("dark").unwrap(),
         80,
@@ -1394,14 +1395,14 @@ fn typed(a: &App) -> Option<&str> {
 /// reason beside it and kept to mend; Esc changes nothing.
 #[test]
 fn values_typed_at_the_prompt() {
-    let mut s = Session::headless(
+    let mut s = Explorer::headless(
         App::new(Scene::preset("B").unwrap()),
         theme(),
         80,
         24,
         false,
     );
-    let typed_keys = |s: &mut Session<ratatui::backend::TestBackend>, text: &str| {
+    let typed_keys = |s: &mut Explorer<ratatui::backend::TestBackend>, text: &str| {
         for c in text.chars() {
             s.press(Chord::new(KeyCode::Char(c), KeyModifiers::NONE));
         }

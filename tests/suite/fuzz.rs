@@ -6,7 +6,7 @@ use crossterm::event::{KeyCode, KeyEvent, KeyModifiers, MouseButton, MouseEvent,
 use turntable::app::testing::Testing as _;
 use turntable::app::{Action, App, KEYMAP};
 use turntable::scene::{PRESETS, Scene};
-use turntable::session::Session;
+use turntable::session::Explorer;
 use turntable::theme::{BUILTIN, Theme};
 use turntable::ui::export::plain_text;
 
@@ -72,7 +72,7 @@ fn fuzz(seed: u64, steps: usize) {
     let mut app = App::new(scene);
     let dir = std::env::temp_dir().join(format!("turntable-fuzz-{}", std::process::id()));
     app.tell_save_path(dir.join("scene.toml"));
-    let mut s = Session::headless(app, theme, 80, 24, false);
+    let mut s = Explorer::headless(app, theme, 80, 24, false);
     let sizes = [
         (0, 0),
         (1, 1),
@@ -173,7 +173,7 @@ fn edits_at_the_bounds_clamp() {
                     frictionless,
                     ..scene.initial
                 };
-                let mut s = Session::headless(
+                let mut s = Explorer::headless(
                     App::new(scene),
                     Theme::builtin("mono").unwrap(),
                     80,

@@ -171,7 +171,7 @@ fn words_that_say_what_the_numbers_are() {
 fn the_explorer_says_when_an_outcome_is_in_doubt() {
     use turntable::app::App;
     use turntable::scene::Scene;
-    use turntable::session::Session;
+    use turntable::session::Explorer;
 
     use turntable::ui::export::plain_text;
     for (v0, tol, doubtful) in [(0.6078236, 1e-6, true), (0.6078, 1e-10, false)] {
@@ -179,7 +179,7 @@ fn the_explorer_says_when_an_outcome_is_in_doubt() {
         scene.initial.v0 = v0;
         scene.settings = Settings::dp54(tol);
         let app = App::new(scene);
-        let mut s = Session::headless(
+        let mut s = Explorer::headless(
             app,
             turntable::theme::Theme::builtin("dark").unwrap(),
             80,
@@ -195,7 +195,7 @@ fn the_explorer_says_when_an_outcome_is_in_doubt() {
     }
     // The paper's RK2 beside C: its escape is certified for its own path, and the panel says
     // in the same breath which outcome holds (it read "escape certified … in doubt").
-    let mut s = Session::headless(
+    let mut s = Explorer::headless(
         App::new(Scene::default_scene()),
         turntable::theme::Theme::builtin("dark").unwrap(),
         100,
@@ -224,11 +224,11 @@ fn the_explorer_says_when_an_outcome_is_in_doubt() {
 fn the_explorer_shows_phi_as_the_paper_does() {
     use turntable::app::App;
     use turntable::scene::Scene;
-    use turntable::session::Session;
+    use turntable::session::Explorer;
 
     use turntable::ui::export::plain_text;
     let app = App::new(Scene::preset("D").unwrap());
-    let mut s = Session::headless(
+    let mut s = Explorer::headless(
         app,
         turntable::theme::Theme::builtin("dark").unwrap(),
         80,

@@ -3,15 +3,16 @@
 //! without holding up time; the command's errors. Their screens are goldens in
 //! `tests/replay` (`lesson-NAME.txt`, see tests/suite/replay.rs).
 
+use crate::common::easiest_angle;
 use std::f64::consts::PI;
 use std::process::Command;
 use turntable::app::{App, Chord};
-use turntable::engine::solve::{critical_radius, easiest_angle, escape_speed, sweep_escape};
+use turntable::engine::solve::{critical_radius, escape_speed, sweep_escape};
 use turntable::engine::{Initial, Method, Outcome, Release, Run, Settings};
 use turntable::lesson::{Driver, LESSONS, find};
 use turntable::scene::Scene;
 use turntable::script::{Step, parse};
-use turntable::session::Session;
+use turntable::session::Explorer;
 use turntable::ui::fit::wrap;
 
 /// The captions and questions of a lesson, in order.
@@ -614,7 +615,7 @@ fn app() -> App {
     App::new(Scene::default_scene())
 }
 
-fn press(s: &mut Session<ratatui::backend::TestBackend>, key: &str) {
+fn press(s: &mut Explorer<ratatui::backend::TestBackend>, key: &str) {
     let chord: Chord = key.parse().unwrap();
     s.press(chord);
 }
@@ -625,7 +626,7 @@ fn press(s: &mut Session<ratatui::backend::TestBackend>, key: &str) {
 #[test]
 fn an_interactive_lesson_holds_as_state_and_time_goes_on() {
     let script = "pause\nsay one\nwait\nplay\ntick 3\nsay two\nask Will it escape? (y/n)\nplay 0.5\ntick 200\nsay three\n";
-    let mut s = Session::headless(
+    let mut s = Explorer::headless(
         app(),
         turntable::theme::Theme::builtin("dark").unwrap(),
         80,
@@ -740,7 +741,7 @@ fn an_interactive_lesson_holds_as_state_and_time_goes_on() {
 /// class reads (Space still plays it), and Enter takes time up as the wait found it.
 #[test]
 fn a_wait_holds_time_and_enter_takes_it_up() {
-    let mut s = Session::headless(
+    let mut s = Explorer::headless(
         app(),
         turntable::theme::Theme::builtin("dark").unwrap(),
         80,
@@ -780,7 +781,7 @@ fn a_wait_holds_time_and_enter_takes_it_up() {
 /// has moved on from the question (scene C sticks; fig2 is decided at τ = 0).
 #[test]
 fn the_run_answers_the_prediction() {
-    let mut s = Session::headless(
+    let mut s = Explorer::headless(
         app(),
         turntable::theme::Theme::builtin("dark").unwrap(),
         80,
@@ -788,7 +789,7 @@ fn the_run_answers_the_prediction() {
         false,
     );
     fn text(
-        s: &mut Session<ratatui::backend::TestBackend>,
+        s: &mut Explorer<ratatui::backend::TestBackend>,
         script: &str,
     ) -> (String, Option<&'static str>) {
         for step in parse(script).unwrap() {
@@ -847,7 +848,7 @@ fn the_run_answers_the_prediction() {
     assert!(text_none(&mut s, "say"));
 }
 
-fn text_none(s: &mut Session<ratatui::backend::TestBackend>, script: &str) -> bool {
+fn text_none(s: &mut Explorer<ratatui::backend::TestBackend>, script: &str) -> bool {
     for step in parse(script).unwrap() {
         s.apply(&step);
     }
@@ -942,7 +943,7 @@ fn a_long_caption_at_every_size() {
         .step_by(9)
         .flat_map(|w| (12..=40).step_by(7).map(move |h| (w, h)))
     {
-        let mut s = Session::headless(
+        let mut s = Explorer::headless(
             app(),
             turntable::theme::Theme::builtin("dark").unwrap(),
             w,
@@ -969,7 +970,7 @@ fn a_long_caption_at_every_size() {
         assert!(screen.contains(" …"), "{w}×{h}:\n{screen}");
     }
     // Too small for the explorer: its notice, and no caption.
-    let mut s = Session::headless(
+    let mut s = Explorer::headless(
         app(),
         turntable::theme::Theme::builtin("dark").unwrap(),
         39,
@@ -993,7 +994,7 @@ struct Held {
     question: Option<String>,
 }
 
-fn held(s: &Session<ratatui::backend::TestBackend>) -> Held {
+fn held(s: &Explorer<ratatui::backend::TestBackend>) -> Held {
     Held {
         at: s.lesson().unwrap().taken(),
         initial: s.app.initial(),
@@ -1014,7 +1015,7 @@ const PACING: [&str; 5] = ["space", ".", ",", "[", "]"];
 /// the scene at each hold point, and checks that a pacing key never moves the lesson.
 fn take_lesson(name: &str, keys: &[(u16, usize, u8)]) -> Vec<Held> {
     let steps = parse(find(name).unwrap().script).unwrap();
-    let mut s = Session::headless(
+    let mut s = Explorer::headless(
         app(),
         turntable::theme::Theme::builtin("dark").unwrap(),
         80,

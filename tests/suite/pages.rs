@@ -49,7 +49,7 @@ fn tab_cycles_the_pages_and_each_title_names_its_page() {
 
 #[test]
 fn nothing_is_computed_for_a_page_not_on_screen() {
-    let mut s = turntable::session::Session::headless(
+    let mut s = turntable::session::Explorer::headless(
         app("C"),
         turntable::theme::Theme::builtin("dark").unwrap(),
         80,
@@ -94,8 +94,7 @@ fn the_escape_speed_page_holds_the_solver_s_curves() {
     // search at a tighter tolerance agrees to the page's third decimal in π.
     let (pmin, vleast) = c.least.expect("refined").expect("found");
     let (phi, v) =
-        turntable::engine::solve::easiest_angle(0.5, 72, Settings::dp54(1e-12), 1e-10, 1e-5)
-            .unwrap();
+        crate::common::easiest_angle(0.5, 72, Settings::dp54(1e-12), 1e-10, 1e-5).unwrap();
     assert!((pmin - phi).abs() < 1e-3, "{pmin} vs {phi}");
     assert!(
         (vleast - v).abs() < 1e-7 && vleast <= vmin,

@@ -2,8 +2,9 @@
 //! own scheme (raw RK2, δt = 1e-3) parts from them.
 use crate::reference;
 
+use crate::common::easiest_angle;
 use std::f64::consts::PI;
-use turntable::engine::solve::{critical_radius, easiest_angle, escape_speed, sweep_escape};
+use turntable::engine::solve::{critical_radius, escape_speed, sweep_escape};
 use turntable::engine::{Initial, Outcome, Run, Settings};
 
 fn finish(i: Initial, s: Settings, tau_max: f64) -> (Outcome, f64, f64, f64) {

@@ -460,7 +460,8 @@ fn replay_plain_says_the_bodys_events() {
 /// 0.001π said; ξ0c to the 6 digits said).
 #[test]
 fn plain_mode_says_the_analysis_pages_numbers() {
-    use turntable::engine::solve::{critical_radius, easiest_angle};
+    use crate::common::easiest_angle;
+    use turntable::engine::solve::critical_radius;
     let script = std::env::temp_dir().join(format!("turntable-pages-{}.keys", std::process::id()));
     std::fs::write(&script, "tab\ntab\nv*30\ntab\ntab\n").unwrap();
     let (code, out, err) = turntable(&["replay", "--plain", script.to_str().unwrap()]);

@@ -6,6 +6,7 @@
 use proptest::prelude::*;
 use proptest::test_runner::RngSeed;
 use std::f64::consts::TAU;
+use turntable::app::exploration::testing::Testing as _;
 use turntable::engine::doubt::doubt;
 use turntable::engine::model::rotate;
 use turntable::engine::saddle::saddle_h;

@@ -16,7 +16,7 @@ use turntable::cli::replay::{ReplayArgs, prepare};
 use turntable::replay::{Options, replay};
 use turntable::scene::Scene;
 use turntable::script::parse;
-use turntable::session::Session;
+use turntable::session::Explorer;
 use turntable::ui::export::plain_text;
 
 fn dir() -> PathBuf {
@@ -192,7 +192,7 @@ fn the_same_script_gives_the_same_bytes() {
 
 use turntable::rng::SplitMix64 as Rng;
 
-/// A live session is recorded through the same `Session` the interactive loop uses (ticks
+/// A live session is recorded through the same `Explorer` the interactive loop uses (ticks
 /// only while playing, as the loop calls them); replaying the recording gives the same
 /// final screen.
 #[test]
@@ -202,7 +202,7 @@ fn record_then_replay_gives_the_same_screen() {
         let mut app = App::new(Scene::default_scene());
         let tmp = std::env::temp_dir().join(format!("turntable-record-{}", std::process::id()));
         app.tell_save_path(tmp.join("scene.toml"));
-        let mut s = Session::headless(
+        let mut s = Explorer::headless(
             app,
             turntable::theme::Theme::builtin("dark").unwrap(),
             80,

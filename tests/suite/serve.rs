@@ -7,6 +7,7 @@ use russh::keys::PrivateKey;
 use russh::keys::ssh_key::private::Ed25519Keypair;
 use std::time::Duration;
 use turntable::serve::client::{Login, Term, Trust, eventually, frozen_login, login};
+use turntable::serve::testing::Testing as _;
 use turntable::serve::{Limits, Options, Running, start};
 
 const SECS: Duration = Duration::from_secs(10);

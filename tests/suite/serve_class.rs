@@ -469,10 +469,10 @@ fn a_presenters_paste_reaches_the_followers() {
 
 /// A local session of `w` × `h` on the default scene, paused: what a client of that size
 /// shows when it does the same.
-fn local(w: u16, h: u16) -> turntable::session::Session<ratatui::backend::TestBackend> {
+fn local(w: u16, h: u16) -> turntable::session::Explorer<ratatui::backend::TestBackend> {
     let app = turntable::app::App::new(turntable::scene::Scene::default_scene());
     let theme = turntable::theme::Theme::builtin("dark").unwrap();
-    let mut s = turntable::session::Session::headless(app, theme, w, h, false);
+    let mut s = turntable::session::Explorer::headless(app, theme, w, h, false);
     s.press(turntable::app::Chord::new(
         crossterm::event::KeyCode::Char(' '),
         crossterm::event::KeyModifiers::NONE,
@@ -481,7 +481,7 @@ fn local(w: u16, h: u16) -> turntable::session::Session<ratatui::backend::TestBa
 }
 
 /// A local session's screen as rows, as `screen` reads a client's.
-fn rows(s: &mut turntable::session::Session<ratatui::backend::TestBackend>) -> Vec<String> {
+fn rows(s: &mut turntable::session::Explorer<ratatui::backend::TestBackend>) -> Vec<String> {
     let buf = s.screen();
     let (w, h) = (buf.area.width, buf.area.height);
     (0..h)

@@ -579,7 +579,7 @@ fn an_esc_beside_a_cursor_reply_leaves_the_scene_alone() {
     use turntable::terminal::input::{Decoder, ESC_WAIT, Input};
     let scene = turntable::scene::Scene::preset("C").unwrap();
     let theme = turntable::theme::Theme::builtin("dark").unwrap();
-    let mut s = turntable::session::Session::headless(
+    let mut s = turntable::session::Explorer::headless(
         turntable::app::App::new(scene),
         theme,
         80,

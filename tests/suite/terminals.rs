@@ -6,7 +6,7 @@ use std::process::{Command, Stdio};
 use turntable::app::App;
 use turntable::cli::MarkerArg;
 use turntable::scene::Scene;
-use turntable::session::Session;
+use turntable::session::Explorer;
 use turntable::theme::Theme;
 
 #[test]
@@ -57,7 +57,7 @@ fn a_locale_that_is_not_utf8_gets_ascii_markers() {
 /// The default scene's screen at 120×40 with `marker`, after a second of play.
 fn screen(marker: Marker) -> String {
     let theme = Theme::builtin("dark").unwrap().with_marker(marker);
-    let mut s = Session::headless(App::new(Scene::default_scene()), theme, 120, 40, false);
+    let mut s = Explorer::headless(App::new(Scene::default_scene()), theme, 120, 40, false);
     for _ in 0..30 {
         s.tick();
     }
@@ -91,7 +91,7 @@ fn an_ascii_terminal_gets_only_ascii() {
     let theme = Theme::builtin("dark")
         .unwrap()
         .with_marker(MarkerArg::Ascii.marker());
-    let mut s = Session::headless(App::new(Scene::preset("D").unwrap()), theme, 100, 30, false);
+    let mut s = Explorer::headless(App::new(Scene::preset("D").unwrap()), theme, 100, 30, false);
     let mut seen = 0;
     for keys in ["", "\t", "\t", "\t", "\t", "?"] {
         for k in keys.chars() {

@@ -196,14 +196,14 @@ fn j_and_k_pick_a_point_and_enter_runs_it() {
 /// the points are those of the release, not of the run's setting.
 #[test]
 fn it_computes_only_while_shown_and_a_switch_recomputes_nothing() {
-    let mut s = turntable::session::Session::headless(
+    let mut s = turntable::session::Explorer::headless(
         App::new(Scene::preset("A").unwrap()),
         turntable::theme::Theme::builtin("dark").unwrap(),
         80,
         24,
         false,
     );
-    let tab = |s: &mut turntable::session::Session<_>| {
+    let tab = |s: &mut turntable::session::Explorer<_>| {
         s.key(KeyEvent::new(KeyCode::Tab, KeyModifiers::NONE))
     };
     for _ in 0..5 {

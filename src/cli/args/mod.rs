@@ -441,13 +441,13 @@ impl NumericsArgs {
         };
         match (self.method.adaptive(), self.tol, self.dt) {
             (true, _, Some(_)) => {
-                return Err(Error::Invalid(format!(
+                return Err(Error::invalid(format!(
                     "--dt applies to the fixed-step methods (rk4, rk2, rk2-raw); {} takes --tol",
                     self.method
                 )));
             }
             (false, Some(_), _) => {
-                return Err(Error::Invalid(format!(
+                return Err(Error::invalid(format!(
                     "--tol applies to dp54 and dop853; {} takes --dt",
                     self.method
                 )));

@@ -60,7 +60,7 @@ impl BodyArgs {
             return Ok(None);
         };
         let r_max = |flag: &str, l: Length, zero_ok: bool| -> Result<f64, Error> {
-            l.size_in_r_max(units, zero_ok).map_err(|e| Error::Invalid(match e {
+            l.size_in_r_max(units, zero_ok).map_err(|e| Error::invalid(match e {
                 SizeRefused::Range(what) => format!("--{flag} must be {what}, got {}", l.show()),
                 SizeRefused::NoTable => format!(
                     "--{flag} {} is a length in metres, which needs the real table's R_max: add {where_units}, or give it in units of R_max (a plain number)",
@@ -116,7 +116,7 @@ impl CouplingArgs {
         });
         let c = name
             .with(self.mu_static_ratio, self.gamma)
-            .map_err(|e| Error::Invalid(e.named("--gamma", "--mu-static-ratio", "--coupling")))?;
+            .map_err(|e| Error::invalid(e.named("--gamma", "--mu-static-ratio", "--coupling")))?;
         c.validate()
             .map_err(|e| crate::check::named(e, crate::check::Via::Flags))?;
         Ok(Some(c))

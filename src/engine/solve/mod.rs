@@ -4,8 +4,8 @@
 use super::doubt::doubt;
 use super::method::{Settings, TOL_RANGE};
 use super::model::{Initial, Release};
-use super::par::{par_map, par_map_counted};
-use super::roots::{bisect, golden_min};
+use super::par::par_map_counted;
+use super::roots::bisect;
 use super::run::{Outcome, Run};
 use crate::error::Error;
 use serde::Serialize;
@@ -286,30 +286,4 @@ pub fn sweep_rest(
     })
     .into_iter()
     .collect()
-}
-
-/// Where v_e(φ) is least for a given ξ0, to `phi_tol` (Fig. 5's minimum, which the paper
-/// puts near φ ≈ 0.4 for every ξ0): a scan of `n` angles, then golden-section search.
-pub fn easiest_angle(
-    xi0: f64,
-    n: usize,
-    settings: Settings,
-    tol: f64,
-    phi_tol: f64,
-) -> Result<(f64, f64), Error> {
-    let ve = |phi: f64| escape_speed(xi0, phi, settings, tol).map(|t| t.value);
-    let step = std::f64::consts::TAU / n as f64;
-    let phis: Vec<f64> = (0..n).map(|i| step * i as f64).collect();
-    let vals: Vec<Result<f64, Error>> = par_map(&phis, |&p| ve(p));
-    let vals: Vec<f64> = vals.into_iter().collect::<Result<_, _>>()?;
-    let imin = (0..n)
-        .min_by(|&a, &b| vals[a].total_cmp(&vals[b]))
-        .unwrap_or(0);
-    let phi = golden_min(
-        &mut |p| ve(p),
-        phis[imin] - step,
-        phis[imin] + step,
-        phi_tol,
-    )?;
-    Ok((super::model::turn_angle(phi), ve(phi)?))
 }

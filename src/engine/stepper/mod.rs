@@ -260,22 +260,6 @@ impl<V: Vector> Stepper<V> {
         seg
     }
 
-    /// One step of exactly `h` through the adaptive scheme's tableau, accepted whatever its
-    /// error: what the measured orders of convergence and of the dense output are taken on.
-    pub fn forced(&mut self, rhs: impl Fn(V) -> V, scheme: Scheme, h: f64) -> Segment<V> {
-        let tol = scheme.tol().unwrap_or(1.0);
-        let trial = Trial::try_step(
-            &rhs,
-            scheme,
-            self.y,
-            self.f,
-            h,
-            (tol, f64::INFINITY),
-            &mut Cost::default(),
-        );
-        self.accept(&rhs, h, trial, &mut Cost::default())
-    }
-
     /// The step from `start` (this stepper before its latest step) taken again, of exactly
     /// `h`: to an event located inside that step on its dense output, landed on by a full
     /// step. The step size and controller stay this stepper's (its step was accepted).

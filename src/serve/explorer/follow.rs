@@ -2,10 +2,10 @@
 //! its own answers, the presenter's tally, and F2 (step out, rejoin, wait for a presenter).
 
 use super::super::class::Handed;
-use super::{Run, Screen};
+use super::{Remote, Screen};
 use crate::app::lesson::Prompt;
 use crate::app::state::InClass;
-use crate::session::Session;
+use crate::session::Explorer;
 
 // Each said two ways, the second for a narrow window (see `present::alternatives`): the
 // key that does something about it is the part that must not be cut.
@@ -30,7 +30,7 @@ pub(super) const LEFT: &str = "the presenter left: on your own until they are ba
 /// The class's state, handed over (to a follower, or to a presenter taking up the class its
 /// last presenter left), drawn in this client's own theme and size; the presenter's tally is
 /// the presenter's own.
-pub(super) fn adopt(s: &mut Session<Screen>, (app, lesson): Handed) {
+pub(super) fn adopt(s: &mut Explorer<Screen>, (app, lesson): Handed) {
     let (w, h) = (s.app.screen.0, s.app.screen.1);
     s.app = *app;
     s.set_lesson(lesson);
@@ -40,10 +40,10 @@ pub(super) fn adopt(s: &mut Session<Screen>, (app, lesson): Handed) {
     s.ask_analysis();
 }
 
-impl Run<'_> {
+impl Remote<'_> {
     /// A follower's own answer to the open question: told to the presenter's tally, and shown
     /// on its own screen if counted (the presenter may have closed it meanwhile).
-    pub(super) fn answer(&mut self, s: &mut Session<Screen>, yes: bool) {
+    pub(super) fn answer(&mut self, s: &mut Explorer<Screen>, yes: bool) {
         let taken = s
             .app
             .lesson()
@@ -58,7 +58,7 @@ impl Run<'_> {
 
     /// (The presenter's thread, while a question is on screen.) The class's answers so far,
     /// told to the model for the caption; reset by a new question.
-    pub(super) fn tally(&mut self, s: &mut Session<Screen>) {
+    pub(super) fn tally(&mut self, s: &mut Explorer<Screen>) {
         let l = &s.app.lesson();
         if l.question.is_none() && l.tally.is_none() {
             return;
@@ -70,7 +70,7 @@ impl Run<'_> {
     }
 
     /// F2: a follower steps out (and explores from where the class is); out, it rejoins.
-    pub(super) fn follow_key(&mut self, s: &mut Session<Screen>) {
+    pub(super) fn follow_key(&mut self, s: &mut Explorer<Screen>) {
         if self.following {
             self.following = false;
             s.app.tell_class(InClass::Out);

@@ -3,8 +3,8 @@
 
 use super::*;
 
-impl Link<Screen> for Run<'_> {
-    fn turn(&mut self, _s: &mut Session<Screen>) -> io::Result<Turn> {
+impl Link<Screen> for Remote<'_> {
+    fn turn(&mut self, _s: &mut Explorer<Screen>) -> io::Result<Turn> {
         let limits = self.shared.limits;
         let now = Instant::now();
         if self.in_flight.is_some_and(|t| now - t > limits.stall) {
@@ -32,13 +32,13 @@ impl Link<Screen> for Run<'_> {
         !self.following
     }
 
-    fn ticked(&mut self, _s: &mut Session<Screen>) {
+    fn ticked(&mut self, _s: &mut Explorer<Screen>) {
         self.shared.lead(self.id, Lead::Tick);
     }
 
     /// If the lesson moved, the followers' lessons move alike (a question it asked takes
     /// answers before any follower can see it).
-    fn pumped(&mut self, s: &mut Session<Screen>, pumped: Pumped) -> io::Result<()> {
+    fn pumped(&mut self, s: &mut Explorer<Screen>, pumped: Pumped) -> io::Result<()> {
         if pumped.moved {
             self.tally(s);
             self.shared.lead(self.id, Lead::Lesson);
@@ -70,7 +70,7 @@ impl Link<Screen> for Run<'_> {
         self.resized
     }
 
-    fn show(&mut self, s: &mut Session<Screen>, draw: bool) -> io::Result<bool> {
+    fn show(&mut self, s: &mut Explorer<Screen>, draw: bool) -> io::Result<bool> {
         self.tally(s);
         self.mouse_capture(s)?;
         if self.in_flight.is_some() {
@@ -113,7 +113,7 @@ impl Link<Screen> for Run<'_> {
         self.keys.deadline()
     }
 
-    fn wait(&mut self, s: &mut Session<Screen>, wake: Instant) -> io::Result<Waited> {
+    fn wait(&mut self, s: &mut Explorer<Screen>, wake: Instant) -> io::Result<Waited> {
         match self
             .inbox
             .recv_timeout(wake.saturating_duration_since(Instant::now()))
@@ -127,7 +127,7 @@ impl Link<Screen> for Run<'_> {
         }
     }
 
-    fn apply(&mut self, s: &mut Session<Screen>, ev: Event) -> io::Result<bool> {
+    fn apply(&mut self, s: &mut Explorer<Screen>, ev: Event) -> io::Result<bool> {
         self.event(s, ev)?;
         Ok(false)
     }

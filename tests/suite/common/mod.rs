@@ -224,3 +224,57 @@ pub fn turn_to(app: &mut turntable::app::App, page: turntable::app::pages::Page)
     }
     panic!("no page {page:?}");
 }
+
+/// Where v_e(φ) is least for a given ξ0, to `phi_tol` (Fig. 5's minimum, which the paper
+/// puts near φ ≈ 0.4 for every ξ0): a scan of `n` angles, then golden-section search. The
+/// tests' own (the analysis page seeks it from its curve: `analysis::least`). Each search is
+/// made once for all the tests that ask the same (the lessons, the paper and plain mode ask
+/// again for ξ0 = 0.2, 0.5 and 0.8).
+pub fn easiest_angle(
+    xi0: f64,
+    n: usize,
+    settings: turntable::engine::Settings,
+    tol: f64,
+    phi_tol: f64,
+) -> Result<(f64, f64), turntable::engine::error::Error> {
+    type Found = std::collections::HashMap<String, (f64, f64)>;
+    static FOUND: std::sync::LazyLock<std::sync::Mutex<Found>> =
+        std::sync::LazyLock::new(Default::default);
+    let key = format!("{xi0:e} {n} {settings:?} {tol:e} {phi_tol:e}");
+    let found = |f: &Found| f.get(&key).copied();
+    if let Some(r) = found(&FOUND.lock().unwrap_or_else(|e| e.into_inner())) {
+        return Ok(r);
+    }
+    let r = search_easiest_angle(xi0, n, settings, tol, phi_tol)?;
+    FOUND
+        .lock()
+        .unwrap_or_else(|e| e.into_inner())
+        .insert(key, r);
+    Ok(r)
+}
+
+fn search_easiest_angle(
+    xi0: f64,
+    n: usize,
+    settings: turntable::engine::Settings,
+    tol: f64,
+    phi_tol: f64,
+) -> Result<(f64, f64), turntable::engine::error::Error> {
+    let ve =
+        |phi: f64| turntable::engine::solve::escape_speed(xi0, phi, settings, tol).map(|t| t.value);
+    let step = std::f64::consts::TAU / n as f64;
+    let phis: Vec<f64> = (0..n).map(|i| step * i as f64).collect();
+    let vals: Vec<Result<f64, turntable::engine::error::Error>> =
+        turntable::engine::par::par_map(&phis, |&p| ve(p));
+    let vals: Vec<f64> = vals.into_iter().collect::<Result<_, _>>()?;
+    let imin = (0..n)
+        .min_by(|&a, &b| vals[a].total_cmp(&vals[b]))
+        .unwrap_or(0);
+    let phi = turntable::engine::roots::golden_min(
+        &mut |p| ve(p),
+        phis[imin] - step,
+        phis[imin] + step,
+        phi_tol,
+    )?;
+    Ok((turntable::engine::model::turn_angle(phi), ve(phi)?))
+}
