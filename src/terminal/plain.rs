@@ -76,7 +76,7 @@ fn say(app: &App, seen: &mut Seen, out: &mut impl Write) -> io::Result<()> {
 }
 
 /// Plain mode's side of the loop ([`super::drive`]): what changed said as lines after every
-/// step of time or of the lesson and every key, no frames (its link is never free for one), and
+/// step of time or of the lesson and every turn of the loop, no frames (its link is never free for one), and
 /// the signals as the explorer's.
 struct Lines<'a> {
     flags: &'a Flags,
@@ -127,11 +127,9 @@ impl Link<TestBackend> for Lines<'_> {
     fn apply(&mut self, session: &mut Explorer<TestBackend>, ev: Event) -> io::Result<bool> {
         match ev {
             ev if super::ctrl_z(&ev) => self.flags.suspend.store(true, Ordering::Relaxed),
-            Event::Key(k) => {
-                session.key(k);
-                say(&session.app, &mut self.seen, &mut self.out)?;
-                self.out.flush()?;
-            }
+            // Said by the loop's `show`, once the lesson's steps the key let go are applied:
+            // Enter after a wait said "playing from τ" for a scene the lesson then replaced.
+            Event::Key(k) => session.key(k),
             Event::Resize(w, h) => session.resize(w, h),
             // No mouse capture, no pasted keys: nothing else is an input here.
             _ => {}
