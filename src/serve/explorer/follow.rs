@@ -60,6 +60,7 @@ impl Run<'_> {
     pub(super) fn follow_key(&mut self, s: &mut Session<Screen>) {
         if self.following {
             self.following = false;
+            self.at = None;
             s.app.tell_class(InClass::Out);
             self.shared.unfollow(self.id);
             s.app
