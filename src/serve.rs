@@ -15,6 +15,7 @@ pub mod client;
 pub mod conn;
 mod door;
 pub mod explorer;
+mod frames;
 mod keyfile;
 mod out;
 mod pace;
@@ -123,8 +124,8 @@ pub enum In {
     Sent(Vec<u8>),
     /// End, saying why.
     Close(String),
-    /// The presenter's key or tick (applied while following).
-    Lead(Lead),
+    /// The presenter's key or tick (applied while following), and its place in the class.
+    Lead(Lead, class::Place),
     /// (To the presenter.) This session asks to follow: send it the class.
     Join(u64),
     /// (To a follower.) The class as it is now, its lesson's place included, is waiting to be
@@ -199,8 +200,11 @@ fn lock<T>(m: &Mutex<T>) -> MutexGuard<'_, T> {
 /// Work done by all sessions, counted: what a client made the server do.
 #[derive(Default)]
 pub struct Counts {
-    /// Frames drawn.
+    /// Frames drawn (all of them, or all but a follower's status line: see `shared`).
     pub frames: AtomicU64,
+    /// Of them, a follower's taken from another's drawing of the same frame, its own line
+    /// drawn over it.
+    pub shared: AtomicU64,
     /// Sizes applied to a session (each lays its screen out again).
     pub layouts: AtomicU64,
 }
@@ -221,6 +225,8 @@ pub struct Shared {
     pub gate: Gate,
     /// What a frame costs: how often a picture that only time moves is drawn.
     pub pace: pace::Pace,
+    /// The class's frames, drawn once for all its followers of one size.
+    pub frames: frames::Frames,
     stopping: AtomicBool,
 }
 
@@ -268,12 +274,14 @@ impl Shared {
         if empty {
             // Nobody left to take the class up for: it gives back what it held.
             class.left = None;
+            self.frames.forget(None);
         }
         // Gone before it handed its class over: the new presenter is not kept waiting.
         if let Some((_, new)) = class.handing.take_if(|(old, _)| *old == id) {
             self.send(new, In::TakeUp);
         }
         if class.presenter == Some(id) {
+            self.frames.forget(Some(id));
             class.presenter = None;
             class.poll = class::Poll::default();
             // Followers go on from where the class was, on their own clocks, and follow
@@ -349,6 +357,7 @@ pub fn start(options: Options) -> std::io::Result<Running> {
         counts: Counts::default(),
         gate: Gate::new(cores),
         pace: pace::Pace::new(cores),
+        frames: frames::Frames::default(),
         stopping: AtomicBool::new(false),
     });
     let listener = {

@@ -13,7 +13,7 @@ use ratatui::backend::{Backend, TestBackend};
 use ratatui::buffer::Buffer;
 use ratatui::symbols::Marker;
 use std::convert::Infallible;
-use std::sync::{Arc, Mutex, MutexGuard};
+use std::sync::{Arc, Mutex, MutexGuard, OnceLock};
 
 mod carry;
 mod lesson;
@@ -233,6 +233,48 @@ impl<B: Backend> Explorer<B> {
         Ok(())
     }
 
+    /// Draws as [`Explorer::draw`] does, all but the status line ([`crate::ui::draw_common`])
+    /// taken from `common` when another session drew it there at this size, else drawn here
+    /// and left there (sessions in the same state, a served class's followers of one size,
+    /// draw it once for them all: one draws while the others wait, then copy it). Whether it
+    /// was taken.
+    pub fn draw_sharing(&mut self, common: &OnceLock<Common>) -> Result<bool, B::Error> {
+        self.sync_analysis();
+        let (mut geom, mut taken) = (Vec::new(), false);
+        let ascii = self.theme.marker == Marker::Dot;
+        let (app, th) = (&self.app, &self.theme);
+        self.term.draw(|f| {
+            let mut drew = false;
+            let c = common.get_or_init(|| {
+                drew = true;
+                let geom = crate::ui::draw_common(f, app, th);
+                if ascii {
+                    ascii_cells(f.buffer_mut());
+                }
+                Common {
+                    buffer: f.buffer_mut().clone(),
+                    geom,
+                }
+            });
+            if drew {
+                geom.clone_from(&c.geom);
+            } else if c.buffer.area == f.buffer_mut().area {
+                f.buffer_mut().content.clone_from_slice(&c.buffer.content);
+                geom.clone_from(&c.geom);
+                taken = true;
+            } else {
+                // Drawn at another size: this one's own.
+                geom = crate::ui::draw_common(f, app, th);
+            }
+            crate::ui::draw_own(f, app, th);
+            if ascii {
+                ascii_cells(f.buffer_mut());
+            }
+        })?;
+        self.app.drawn(geom);
+        Ok(taken)
+    }
+
     /// Draws when the app asks for it; returns whether it drew.
     pub fn draw_if_needed(&mut self) -> Result<bool, B::Error> {
         if self.app.needs_redraw() {
@@ -246,6 +288,13 @@ impl<B: Backend> Explorer<B> {
     pub fn take_recording(&mut self) -> Option<String> {
         self.recorder.take().map(|r| lock(&r).clone().finish())
     }
+}
+
+/// A frame but its status line, as [`Explorer::draw_sharing`] shares it: its cells and where
+/// its canvases went.
+pub struct Common {
+    buffer: Buffer,
+    geom: Vec<crate::app::CanvasGeom>,
 }
 
 /// Tells `app` the terminal is now `width` × `height`, and what the view measures there (the

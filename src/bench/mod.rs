@@ -8,6 +8,8 @@ pub mod attacks;
 pub mod bytes;
 pub mod check;
 mod crossover;
+#[cfg(feature = "serve")]
+pub mod follow;
 mod goals;
 pub mod link;
 pub mod models;

@@ -54,6 +54,10 @@ fn serve(a: &BenchArgs) -> CmdResult {
         ));
     }
     for &n in &a.serve {
+        if a.followers {
+            followers(a, n)?;
+            continue;
+        }
         let bar = super::progress::tasks();
         bar.set_message(format!("bench: serve with {n} clients for {} s", a.seconds));
         let row = bench::serve::run(n, a.seconds);
@@ -69,6 +73,26 @@ fn serve(a: &BenchArgs) -> CmdResult {
             attacks(a, n)?;
         }
     }
+    Ok(())
+}
+
+/// `--followers`: a presenter and `n` students following it.
+#[cfg(feature = "serve")]
+fn followers(a: &BenchArgs, n: usize) -> CmdResult {
+    let bar = super::progress::tasks();
+    bar.set_message(format!(
+        "bench: a presenter and {n} followers for {} s",
+        a.seconds
+    ));
+    let row = bench::follow::run(n, a.seconds);
+    bar.finish_and_clear();
+    let row = row?;
+    let line = if a.json {
+        serde_json::to_string(&row).map_err(|e| Error::Failed(e.to_string()))?
+    } else {
+        bench::follow::line(&row)
+    };
+    emit(None, &(line + "\n"))?;
     Ok(())
 }
 

@@ -16,14 +16,34 @@ pub struct Class {
     pub joining: Vec<u64>,
     /// Follow as soon as a class is led: came before the presenter, or the presenter left.
     pub waiting: Vec<u64>,
-    /// The class's state handed to each follower, until it takes it: one at most, the latest.
-    pub handed: HashMap<u64, Handed>,
+    /// The class's state handed to each follower, until it takes it: one at most, the latest;
+    /// and the place it was taken at.
+    pub handed: HashMap<u64, (Handed, Place)>,
     /// The class as its last presenter left it (a dropped connection): the next presenter
     /// takes it up there, the lesson at the same step. One at most.
     pub left: Option<Handed>,
     /// A presenter still in (the old) handing the class over to the one who took it (the new).
     pub handing: Option<(u64, u64)>,
     pub poll: Poll,
+    /// What the presenters have led, in all: each lead's place in the class.
+    pub led: u64,
+}
+
+/// Where the class's state is: who leads it, and the count of leads given then. Followers
+/// handed the class at one place and given every lead since, in order, are in one state
+/// (their own notices and answers apart), and see one screen at one size.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Place {
+    pub presenter: u64,
+    pub led: u64,
+}
+
+impl Place {
+    /// The place a follower at `self` is in once given the lead made at `next`: None when
+    /// that is not the lead after its own (another presenter's), its state then unknown.
+    pub fn then(self, next: Place) -> Option<Place> {
+        (next.presenter == self.presenter && next.led == self.led + 1).then_some(next)
+    }
 }
 
 /// The class's state as a follower takes it: the presenter's `App` and its lesson's place.
@@ -66,7 +86,7 @@ impl Shared {
 
     /// (The presenter's thread.) `follower` gets the class as it is, and from now on what
     /// the presenter does: one lock, so nothing falls between. The state waits in one place
-    /// a follower, the latest replacing any not yet taken.
+    /// a follower, the latest replacing any not yet taken, at `id`'s place.
     pub(super) fn welcome(
         &self,
         id: u64,
@@ -83,13 +103,18 @@ impl Shared {
             class.followers.push(follower);
         }
         let handed = (Box::new(app.clone()), lesson.cloned());
-        if class.handed.insert(follower, handed).is_none() {
+        let at = Place {
+            presenter: id,
+            led: class.led,
+        };
+        if class.handed.insert(follower, (handed, at)).is_none() {
             self.send(follower, In::Class);
         }
     }
 
-    /// (A follower's thread, told [`In::Class`].) The class handed to it; it may ask again.
-    pub(super) fn take_class(&self, id: u64) -> Option<Handed> {
+    /// (A follower's thread, told [`In::Class`].) The class handed to it, and its place; it
+    /// may ask again.
+    pub(super) fn take_class(&self, id: u64) -> Option<(Handed, Place)> {
         let mut class = lock(&self.class);
         class.joining.retain(|&f| f != id);
         class.handed.remove(&id)
@@ -211,16 +236,21 @@ impl Shared {
         class.left.take()
     }
 
-    /// (A session's thread.) If `id` presents, its followers do `lead` too.
+    /// (A session's thread.) If `id` presents, its followers do `lead` too, told its place.
     pub(super) fn lead(&self, id: u64, lead: Lead) {
-        let class = lock(&self.class);
+        let mut class = lock(&self.class);
         if class.presenter != Some(id) {
             return;
         }
+        class.led += 1;
+        let at = Place {
+            presenter: id,
+            led: class.led,
+        };
         let sessions = lock(&self.sessions);
         for f in &class.followers {
             if let Some(tx) = sessions.get(f) {
-                let _ = tx.send(In::Lead(lead));
+                let _ = tx.send(In::Lead(lead, at));
             }
         }
     }

@@ -149,6 +149,7 @@ pub fn run(
         last_input: Instant::now(),
         mouse_on: s.app.mouse_capture(),
         following: false,
+        at: None,
         spare: Vec::new(),
         size,
         resized: false,
@@ -216,6 +217,8 @@ struct Remote<'a> {
     mouse_on: bool,
     /// Applying the presenter's keys and ticks.
     following: bool,
+    /// Following, the class's place its state is at (None: not known, its frames its own).
+    at: Option<super::class::Place>,
     /// The last frame's buffer, handed back by the channel: the next is drawn into it.
     spare: Vec<u8>,
     /// The client's window size, applied when the next frame is drawn if `resized`.
@@ -272,24 +275,15 @@ impl Remote<'_> {
                 self.spare = buffer;
             }
             In::Close(why) => return Ok(Waited::Stop(why)),
-            In::Lead(lead) if self.following => match lead {
-                Lead::Key(chord) => {
-                    self.answering = true;
-                    s.press(chord);
-                }
-                Lead::Act(action) => {
-                    self.answering = true;
-                    s.act(action);
-                }
-                Lead::Tick => s.tick(),
-                Lead::Lesson => {
-                    s.follow_lesson()?;
-                }
-            },
-            In::Lead(_) => {}
+            In::Lead(lead, at) if self.following => {
+                self.at = self.at.and_then(|was| was.then(at));
+                self.lead(s, lead)?;
+            }
+            In::Lead(..) => {}
             In::Unled if self.following => {
                 self.following = false;
                 self.waiting = true;
+                self.at = None;
                 s.app.tell_class(InClass::Alone);
                 s.app.report(LEFT.into());
             }
@@ -310,10 +304,11 @@ impl Remote<'_> {
                 }
             }
             In::Class => {
-                let Some(class) = self.shared.take_class(self.id) else {
+                let Some((class, at)) = self.shared.take_class(self.id) else {
                     return Ok(Waited::Events(vec![]));
                 };
                 adopt(s, class);
+                self.at = Some(at);
                 // A follower answers for itself (the answer it gave in class before stepping
                 // out, if this question is open).
                 s.app.tell_class(InClass::Following);
@@ -329,6 +324,25 @@ impl Remote<'_> {
             }
         }
         Ok(Waited::Events(vec![]))
+    }
+
+    /// The presenter's key, mouse action, tick or lesson step, applied by a follower.
+    fn lead(&mut self, s: &mut Explorer<Screen>, lead: Lead) -> io::Result<()> {
+        match lead {
+            Lead::Key(chord) => {
+                self.answering = true;
+                s.press(chord);
+            }
+            Lead::Act(action) => {
+                self.answering = true;
+                s.act(action);
+            }
+            Lead::Tick => s.tick(),
+            Lead::Lesson => {
+                s.follow_lesson()?;
+            }
+        }
+        Ok(())
     }
 
     /// The client's latest window size, laid out for the frame about to be drawn.

@@ -29,6 +29,15 @@ pub use layout::{MIN_SIZE, PANEL_W};
 /// view), for the caller to hand to [`App::drawn`] so mouse cells map to the table. Pure: it
 /// reads the state only. Never panics, whatever the size.
 pub fn draw(frame: &mut Frame, app: &App, th: &Theme) -> Vec<CanvasGeom> {
+    let geom = draw_common(frame, app, th);
+    draw_own(frame, app, th);
+    geom
+}
+
+/// All of the screen but its status line and what lies over it ([`draw_own`]): what a served
+/// class's followers of one size, in the same state, see alike, so that it can be drawn once
+/// for them all.
+pub fn draw_common(frame: &mut Frame, app: &App, th: &Theme) -> Vec<CanvasGeom> {
     let area = frame.area();
     let base = Style::default().bg(th.background).fg(th.foreground);
     let Some(r) = layout::regions(area.width, area.height) else {
@@ -56,7 +65,6 @@ pub fn draw(frame: &mut Frame, app: &App, th: &Theme) -> Vec<CanvasGeom> {
         ])),
         r.title,
     );
-    let (panel_area, lesson, status) = (r.panel, r.lesson, r.status);
     let canvas_area = caption::picture(&r, app);
     let geom = match app.view().page {
         crate::app::pages::Page::Turntable => canvas::render(frame, canvas_area, app, th),
@@ -64,29 +72,56 @@ pub fn draw(frame: &mut Frame, app: &App, th: &Theme) -> Vec<CanvasGeom> {
             .into_iter()
             .collect(),
     };
-    panel::render(frame, panel_area, app, th);
+    panel::render(frame, r.panel, app, th);
     frame.render_widget(
         Paragraph::new(Span::styled(
             fit::fit(&lesson_line(app), "\0", usize::from(area.width)),
             Style::default().fg(th.notice),
         )),
-        lesson,
+        r.lesson,
     );
-    frame.render_widget(Paragraph::new(status_line(app, th, status.width)), status);
     caption::render(frame, &r, app, th);
-    if app.view().help {
+    unset_background(frame.buffer_mut(), area, th);
+    geom
+}
+
+/// The status line (a notice, the prompt, the keys: one user's own while the rest is the
+/// class's) and the help over it, on a screen [`draw_common`] drew, for this state or for
+/// another that differs only here (its status row painted and left empty).
+pub fn draw_own(frame: &mut Frame, app: &App, th: &Theme) {
+    let area = frame.area();
+    let Some(r) = layout::regions(area.width, area.height) else {
+        return;
+    };
+    paint(frame.buffer_mut(), r.status, th);
+    frame.render_widget(
+        Paragraph::new(status_line(app, th, r.status.width)),
+        r.status,
+    );
+    let over = if app.view().help {
         help::render(frame, r.help, app, th);
+        r.help
+    } else {
+        r.status
+    };
+    unset_background(frame.buffer_mut(), over, th);
+}
+
+/// A theme that sets a background sets it on every cell of `area`: widgets that paint none
+/// (chart interiors, cleared cells) would show the terminal's own, white boxes on a dark theme.
+fn unset_background(buf: &mut ratatui::buffer::Buffer, area: Rect, th: &Theme) {
+    if th.background == ratatui::style::Color::Reset {
+        return;
     }
-    // A theme that sets a background sets it on every cell: widgets that paint none (chart
-    // interiors, cleared cells) would show the terminal's own, white boxes on a dark theme.
-    if th.background != ratatui::style::Color::Reset {
-        for cell in &mut frame.buffer_mut().content {
+    let area = area.intersection(buf.area);
+    for y in area.top()..area.bottom() {
+        let start = buf.index_of(area.x, y);
+        for cell in &mut buf.content[start..start + usize::from(area.width)] {
             if cell.bg == ratatui::style::Color::Reset {
                 cell.bg = th.background;
             }
         }
     }
-    geom
 }
 
 /// The theme's colours on every cell of `area`, a row at a time (as a paragraph styled over

@@ -155,7 +155,7 @@ fn sessions_and_connections_are_limited() {
         assert!(tb.until_closed(SECS).await);
         assert!(tb.seen.is_empty() && tb.exit == Some(1));
         let said = String::from_utf8_lossy(&tb.errors);
-        assert!(said.contains("the class is full (1 sessions)"), "{said}");
+        assert!(said.contains("the class is full (1 session)"), "{said}");
         // The presenter has places beyond the class's.
         let p = login(s.addr, "p", Login::Key(&key(3)))
             .await

@@ -712,3 +712,58 @@ fn a_presenter_back_after_a_drop_is_followed_where_the_class_was() {
     });
     s.stop("done");
 }
+
+/// Followers of one size share one drawing of each frame, and each still sees its own: one
+/// who came later, while the presenter played, shows what the first shows; a follower's own
+/// answer never reaches the other's screen; one of another size draws its own.
+#[test]
+fn followers_of_one_size_share_a_frame_and_each_sees_its_own() {
+    let dir = tempfile::tempdir().unwrap();
+    let s = server(dir.path());
+    rt().block_on(async {
+        let (mut handles, mut tp, mut f1, mut f2) = class(s.addr).await;
+        assert!(
+            until(&mut [&mut f1, &mut f2], |s| all_show(
+                s,
+                &["First: at rest"]
+            ))
+            .await
+        );
+        // Played a while, a third follower coming meanwhile.
+        tp.send(b" ").await;
+        let f = login(s.addr, "class", Login::Password("ba-ke-di-lo"))
+            .await
+            .unwrap()
+            .unwrap();
+        let mut f3 = Tty::open(&f, 80, 24).await;
+        handles.push(f);
+        assert!(until(&mut [&mut f3], |s| all_show(s, &["First: at rest"])).await);
+        tokio::time::sleep(Duration::from_millis(500)).await;
+        tp.send(b" ").await;
+        let same = |s: &[Vec<String>]| body(&s[0]) == body(&s[1]);
+        assert!(until(&mut [&mut f1, &mut f3], same).await);
+        let counts = &s.shared.counts;
+        assert!(counts.shared.load(std::sync::atomic::Ordering::Relaxed) > 0);
+        on_to_the_question(&mut tp, &mut f1, &mut f3).await;
+        let asked = ["Will it escape?", "y escapes · n stays"];
+        assert!(until(&mut [&mut f1, &mut f2, &mut f3], |s| all_show(s, &asked)).await);
+        assert!(until(&mut [&mut f1, &mut f3], same).await);
+        let before = counts.shared.load(std::sync::atomic::Ordering::Relaxed);
+        f1.send(b"y").await;
+        assert!(until(&mut [&mut f1], |s| all_show(s, &["You said it escapes."])).await);
+        // The presenter plays on (the question stays open): the followers draw on.
+        tp.send(b" ").await;
+        tokio::time::sleep(Duration::from_millis(500)).await;
+        until(&mut [&mut f2, &mut f3], |_| true).await;
+        for f in [&f2, &f3] {
+            assert!(
+                !f.shows("You said"),
+                "another's answer shown:\n{}",
+                f.rows().join("\n")
+            );
+            assert!(f.shows("y escapes · n stays"));
+        }
+        assert!(counts.shared.load(std::sync::atomic::Ordering::Relaxed) >= before);
+    });
+    s.stop("done");
+}

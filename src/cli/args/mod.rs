@@ -266,6 +266,12 @@ pub struct BenchArgs {
     #[cfg(feature = "serve")]
     #[arg(long, requires = "serve")]
     pub attacks: bool,
+    /// With --serve N: a class of followers instead: a presenter playing and pressing a key
+    /// every 200 ms, and N students following it: the presenter's key to each follower's
+    /// screen, the CPU and the CPU a frame.
+    #[cfg(feature = "serve")]
+    #[arg(long, requires = "serve")]
+    pub followers: bool,
     /// A small bench that finishes in seconds (fewer settings, cases and angles).
     #[arg(long)]
     pub quick: bool,

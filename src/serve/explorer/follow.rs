@@ -73,6 +73,7 @@ impl Remote<'_> {
     pub(super) fn follow_key(&mut self, s: &mut Explorer<Screen>) {
         if self.following {
             self.following = false;
+            self.at = None;
             s.app.tell_class(InClass::Out);
             self.shared.unfollow(self.id);
             s.app

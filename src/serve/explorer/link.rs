@@ -1,6 +1,7 @@
 //! A client's explorer as the one loop sees it (`terminal::drive`'s `Link`): its turns, its
 //! clock or the presenter's, and a frame when the channel is free and the pace allows.
 
+use super::super::frames::Key;
 use super::*;
 
 impl Link<Screen> for Remote<'_> {
@@ -93,7 +94,19 @@ impl Link<Screen> for Remote<'_> {
             self.shared.gate.run(|| s.sync_analysis());
             let cpu = thread_cpu();
             queue!(s.term.backend_mut(), BeginSynchronizedUpdate)?;
-            s.draw()?;
+            // A follower at a known place shares the frame with the others there.
+            let key = self
+                .at
+                .filter(|_| self.following)
+                .and_then(|at| Key::of(at, &s.app, &s.theme));
+            match key {
+                Some(key) => {
+                    if s.draw_sharing(&self.shared.frames.at(&key))? {
+                        self.shared.counts.shared.fetch_add(1, Ordering::Relaxed);
+                    }
+                }
+                None => s.draw()?,
+            }
             queue!(s.term.backend_mut(), EndSynchronizedUpdate)?;
             let pace = &self.shared.pace;
             pace.drew(thread_cpu().saturating_sub(cpu));
