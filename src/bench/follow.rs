@@ -155,17 +155,7 @@ pub fn run(students: usize, seconds: f64) -> std::io::Result<FollowRow> {
     drop(rt);
     server.stop("bench done");
     own.sort();
-    let mut all: Vec<Duration> = results.iter().flat_map(|r| r.0.clone()).collect();
-    all.sort();
-    let worst = results
-        .iter()
-        .map(|r| {
-            let mut v = r.0.clone();
-            v.sort();
-            pct(&v, 0.95)
-        })
-        .fold(0.0, f64::max);
-    let bytes: usize = results.iter().map(|r| r.1).sum();
+    let super::serve::Clients { all, worst, bytes } = super::serve::Clients::of(&results);
     Ok(FollowRow {
         students,
         seconds,

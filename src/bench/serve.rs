@@ -127,6 +127,32 @@ pub(super) async fn press(
     (lat, bytes, lost)
 }
 
+/// What the clients measured, together: every latency (sorted), the worst client's p95 and
+/// the bytes they read.
+pub(super) struct Clients {
+    pub all: Vec<Duration>,
+    pub worst: f64,
+    pub bytes: usize,
+}
+
+impl Clients {
+    /// Of each client's latencies, bytes read and keys unanswered.
+    pub fn of(results: &[(Vec<Duration>, usize, usize)]) -> Self {
+        let mut all: Vec<Duration> = results.iter().flat_map(|r| r.0.clone()).collect();
+        all.sort();
+        let worst = results
+            .iter()
+            .map(|r| {
+                let mut v = r.0.clone();
+                v.sort();
+                pct(&v, 0.95)
+            })
+            .fold(0.0, f64::max);
+        let bytes = results.iter().map(|r| r.1).sum();
+        Clients { all, worst, bytes }
+    }
+}
+
 pub(super) fn pct(sorted: &[Duration], p: f64) -> f64 {
     if sorted.is_empty() {
         return f64::NAN;
@@ -189,17 +215,7 @@ pub fn run(clients: usize, seconds: f64) -> std::io::Result<Row> {
     }
     drop(rt);
     server.stop("bench done");
-    let mut all: Vec<Duration> = results.iter().flat_map(|r| r.0.clone()).collect();
-    all.sort();
-    let worst = results
-        .iter()
-        .map(|r| {
-            let mut v = r.0.clone();
-            v.sort();
-            pct(&v, 0.95)
-        })
-        .fold(0.0, f64::max);
-    let bytes: usize = results.iter().map(|r| r.1).sum();
+    let Clients { all, worst, bytes } = Clients::of(&results);
     Ok(Row {
         clients,
         seconds,
