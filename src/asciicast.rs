@@ -35,6 +35,8 @@ pub struct Cast<'a> {
     cells: u64,
     /// Seconds of holds so far, added to the ticks' time.
     held: f64,
+    /// The same screens for an animated SVG (`replay --svg`).
+    film: Option<&'a mut crate::film::Film>,
 }
 
 /// Seconds after the start at `ticks` with `held` seconds of holds, to the microsecond
@@ -60,7 +62,14 @@ impl<'a> Cast<'a> {
             frames: 0,
             cells: 0,
             held: 0.0,
+            film: None,
         })
+    }
+
+    /// Records the same screens into `film` too.
+    pub fn filming(mut self, film: Option<&'a mut crate::film::Film>) -> Self {
+        self.film = film;
+        self
     }
 
     fn event(&mut self, ticks: u64, kind: &str, data: &str) -> io::Result<()> {
@@ -92,6 +101,9 @@ impl<'a> Cast<'a> {
             }));
         }
         self.frames += 1;
+        if let Some(film) = self.film.as_deref_mut() {
+            film.frame(ticks as f64 / f64::from(TICKS_PER_SECOND) + self.held, buf)?;
+        }
         let clear = if self.last.is_none() {
             "\x1b[?25l\x1b[2J"
         } else {

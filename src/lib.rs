@@ -11,6 +11,7 @@ pub mod cli;
 pub use turntable_engine as engine;
 pub mod error;
 pub mod files;
+pub mod film;
 pub mod lesson;
 pub mod pin;
 pub mod plot;

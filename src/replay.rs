@@ -69,7 +69,7 @@ pub fn replay_to(
 
 /// Runs `steps` as [`replay_to`] does and records them as an asciicast v2 (see
 /// [`crate::asciicast`]) to `cast`: a frame after each key, tick, resize or mouse event that
-/// changed the screen, timed by the ticks passed.
+/// changed the screen, timed by the ticks passed; the same screens into `film` if given.
 pub fn replay_cast(
     app: App,
     steps: &[Step],
@@ -77,8 +77,9 @@ pub fn replay_cast(
     out: &mut dyn std::io::Write,
     cast: &mut dyn std::io::Write,
     title: &str,
+    film: Option<&mut crate::film::Film>,
 ) -> std::io::Result<()> {
-    let mut cast = Cast::new(cast, opts.size.0, opts.size.1, title)?;
+    let mut cast = Cast::new(cast, opts.size.0, opts.size.1, title)?.filming(film);
     run(app, steps, opts, out, Some(&mut cast))
 }
 

@@ -162,7 +162,15 @@ pub fn cast_worst(size: (u16, u16), ticks: usize) -> Result<CastBytes, Error> {
             line: 0,
             longest: 0,
         };
-        crate::replay::replay_cast(app, &steps, &opts, &mut io::sink(), &mut lines, "bench")?;
+        crate::replay::replay_cast(
+            app,
+            &steps,
+            &opts,
+            &mut io::sink(),
+            &mut lines,
+            "bench",
+            None,
+        )?;
         if lines.longest > worst.0 {
             worst = (lines.longest, theme.to_string());
         }

@@ -164,6 +164,7 @@ fn prepared(
         plain,
         look: look.clone(),
         asciicast: None,
+        svg: None,
         force: false,
     };
     let (mut app, opts, steps) = prepare(&lesson.script, &replay)?;

@@ -6,6 +6,7 @@ use crate::script::{parse_size, script_options};
 use clap::Args;
 
 #[derive(Args, Debug, Default)]
+#[command(group(clap::ArgGroup::new("recording").args(["asciicast", "svg"]).multiple(true)))]
 pub struct ReplayArgs {
     /// The key script (`-` reads stdin).
     #[arg(value_name = "SCRIPT")]
@@ -19,15 +20,20 @@ pub struct ReplayArgs {
     pub ansi: bool,
     /// Print what plain mode (`turntable --plain`) says, line by line, instead of screens; a
     /// snapshot prints the readouts.
-    #[arg(long, conflicts_with_all = ["ansi", "asciicast"])]
+    #[arg(long, conflicts_with_all = ["ansi", "asciicast", "svg"])]
     pub plain: bool,
     /// Also record the replay as an asciicast v2 file (asciinema's player plays it at the
     /// pace of the ticks, 30 a second), written atomically; an existing file is kept unless
     /// --force, and the script, scene and theme never.
     #[arg(long, value_name = "OUT.cast")]
     pub asciicast: Option<std::path::PathBuf>,
-    /// Replace the --asciicast file if it exists.
-    #[arg(long, requires = "asciicast")]
+    /// Also record the replay as an animated SVG, which a browser (or a README on a forge)
+    /// plays with nothing installed: the same screens, at most ten a second, written
+    /// atomically as --asciicast is.
+    #[arg(long, value_name = "OUT.svg")]
+    pub svg: Option<std::path::PathBuf>,
+    /// Replace the --asciicast or --svg file if it exists.
+    #[arg(long, requires = "recording")]
     pub force: bool,
     #[command(flatten)]
     pub look: super::Look,
@@ -46,6 +52,14 @@ pub fn run(a: ReplayArgs) -> CmdResult {
         Some(path) => Some(crate::files::open_output("--asciicast", path, a.force)?),
         None => None,
     };
+    let svg = match &a.svg {
+        Some(path) => Some(crate::files::open_output("--svg", path, a.force)?),
+        None => None,
+    };
+    let mut film = svg
+        .as_ref()
+        .map(|_| crate::film::Film::new(opts.size.0, opts.size.1, opts.theme.background));
+    let title = crate::text::clean(&format!("turntable replay {}", a.script));
     let so = std::io::BufWriter::new(std::io::stdout().lock());
     let mut so = crate::files::Capped::new(
         so,
@@ -58,6 +72,15 @@ pub fn run(a: ReplayArgs) -> CmdResult {
         )),
         None => Error::from(e),
     };
+    // Nothing is written should a bound stop the recording: each file says so.
+    let nothing = |e: std::io::Error, dests: &[String]| match crate::files::bound_reached(&e) {
+        Some(m) => Error::invalid(format!(
+            "{m}; nothing was written to {} (shorten the script: fewer ticks or a smaller resize)",
+            crate::files::escape_controls(&dests.join(" or "))
+        )),
+        None => Error::from(e),
+    };
+    let svg_dest = svg.as_ref().map(|f| f.dest().display().to_string());
     match cast {
         Some(out) => {
             let mut file = crate::files::Capped::new(
@@ -65,23 +88,42 @@ pub fn run(a: ReplayArgs) -> CmdResult {
                 crate::replay::CAST_BYTES_MAX,
                 "--asciicast",
             );
-            let title = crate::text::clean(&format!("turntable replay {}", a.script));
             let dest = file.get_ref().get_ref().dest().display().to_string();
-            if let Err(e) = replay_cast(app, &steps, &opts, &mut so, &mut file, &title) {
-                return Err(match crate::files::bound_reached(&e) {
-                    Some(m) => Error::invalid(format!(
-                        "{m}; nothing was written to {} (shorten the script: fewer ticks or a smaller resize)",
-                        crate::files::escape_controls(&dest)
-                    )),
-                    None => Error::from(e),
-                });
-            }
+            let dests: Vec<String> = std::iter::once(dest).chain(svg_dest.clone()).collect();
+            replay_cast(
+                app,
+                &steps,
+                &opts,
+                &mut so,
+                &mut file,
+                &title,
+                film.as_mut(),
+            )
+            .map_err(|e| nothing(e, &dests))?;
             file.into_inner()
                 .into_inner()
                 .map_err(|e| e.into_error())?
                 .finish()?;
         }
+        None if film.is_some() => {
+            let dests: Vec<String> = svg_dest.clone().into_iter().collect();
+            let sink = &mut std::io::sink();
+            replay_cast(app, &steps, &opts, &mut so, sink, &title, film.as_mut())
+                .map_err(|e| nothing(e, &dests))?;
+        }
         None => replay_to(app, &steps, &opts, &mut so).map_err(bounded)?,
+    }
+    if let (Some(film), Some(out)) = (film, svg) {
+        let mut file = crate::files::Capped::new(
+            std::io::BufWriter::new(out),
+            crate::replay::CAST_BYTES_MAX,
+            "--svg",
+        );
+        film.write(&title, &mut file)?;
+        file.into_inner()
+            .into_inner()
+            .map_err(|e| e.into_error())?
+            .finish()?;
     }
     Ok(())
 }

@@ -468,7 +468,16 @@ fn bounded_outputs_stop_at_their_bound_and_say_so() {
             replay_to(app(), &steps, &opts, &mut full).unwrap();
             let mut full_cast = Vec::new();
             if !plain {
-                replay_cast(app(), &steps, &opts, &mut Vec::new(), &mut full_cast, "t").unwrap();
+                replay_cast(
+                    app(),
+                    &steps,
+                    &opts,
+                    &mut Vec::new(),
+                    &mut full_cast,
+                    "t",
+                    None,
+                )
+                .unwrap();
             }
             // Exactly enough, one byte short, then anywhere.
             let pick = |i: u64, len: usize, rng: &mut Rng| match i {
@@ -498,7 +507,7 @@ fn bounded_outputs_stop_at_their_bound_and_say_so() {
                 }
                 let cap = pick(i, full_cast.len(), &mut rng);
                 let mut cast = Capped::new(Vec::new(), cap, "--asciicast");
-                let r = replay_cast(app(), &steps, &opts, &mut Vec::new(), &mut cast, "t");
+                let r = replay_cast(app(), &steps, &opts, &mut Vec::new(), &mut cast, "t", None);
                 let got = cast.into_inner();
                 assert!(got.len() as u64 <= cap && full_cast.starts_with(&got));
                 match r {

@@ -1,0 +1,300 @@
+//! An animated SVG of a replay (`replay --svg`): the screens its recording shows, at most ten
+//! a second, stacked in one picture that a CSS animation steps through. A browser plays it,
+//! and so does a README on a forge, with nothing installed (an asciicast needs a player).
+
+use ratatui::buffer::{Buffer, Cell};
+use ratatui::style::{Color, Modifier};
+use std::fmt::Write as _;
+use std::io::{self, Write};
+
+/// A cell's size in the picture, in pixels, and the font's (a monospace font's advance is
+/// 0.6 of its size; each run of text is also stretched to its cells, so none drifts).
+const CELL_W: f64 = 8.4;
+const CELL_H: f64 = 17.0;
+const FONT: f64 = 14.0;
+
+/// The least time between two screens kept: a screen that follows sooner replaces the last.
+const STEP: f64 = 0.1;
+
+/// Most screens a picture holds: two minutes at ten a second.
+pub const MAX_SCREENS: usize = 1200;
+
+/// How long the last screen stays before the picture starts again, in seconds.
+const END_HOLD: f64 = 3.0;
+
+/// The screens recorded so far: each the second it shows from and its rows drawn as SVG (the
+/// picture draws a row once however many screens show it: from one to the next most stay).
+pub struct Film {
+    width: u16,
+    height: u16,
+    background: Color,
+    screens: Vec<(f64, Vec<String>)>,
+}
+
+impl Film {
+    /// A film of a `width` × `height` terminal whose theme paints `background`.
+    pub fn new(width: u16, height: u16, background: Color) -> Self {
+        Film {
+            width,
+            height,
+            background,
+            screens: Vec::new(),
+        }
+    }
+
+    /// The screen `buf` from second `t` on (what lies outside the film's size is left out).
+    pub fn frame(&mut self, t: f64, buf: &Buffer) -> io::Result<()> {
+        let drawn = self.draw(buf);
+        match self.screens.last_mut() {
+            Some(last) if last.1 == drawn => return Ok(()),
+            Some(last) if t - last.0 < STEP => {
+                last.1 = drawn;
+                return Ok(());
+            }
+            _ => {}
+        }
+        if self.screens.len() >= MAX_SCREENS {
+            return Err(io::Error::other(crate::files::BoundReached {
+                message: format!(
+                    "--svg reached its bound of {MAX_SCREENS} screens (two minutes at ten a second)"
+                ),
+            }));
+        }
+        self.screens.push((t, drawn));
+        Ok(())
+    }
+
+    /// The picture: every screen, one below the other, and the animation that shows each in
+    /// turn for its time, then starts again.
+    pub fn write(&self, title: &str, out: &mut dyn Write) -> io::Result<()> {
+        let (w, h) = (
+            f64::from(self.width) * CELL_W,
+            f64::from(self.height) * CELL_H,
+        );
+        let total = self.screens.last().map_or(0.0, |s| s.0) + END_HOLD;
+        let mut frames = String::new();
+        for (i, (t, _)) in self.screens.iter().enumerate() {
+            let _ = write!(
+                frames,
+                "{:.4}%{{transform:translateY({:.1}px)}}",
+                100.0 * t / total,
+                -(i as f64) * h
+            );
+        }
+        writeln!(
+            out,
+            r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w:.1}" height="{h:.1}" viewBox="0 0 {w:.1} {h:.1}" xml:space="preserve">"#
+        )?;
+        writeln!(out, "<title>{}</title>", escape(title))?;
+        writeln!(
+            out,
+            "<style>text{{font-family:'DejaVu Sans Mono',Menlo,Consolas,monospace;font-size:{FONT}px;white-space:pre}}.b{{font-weight:bold}}@keyframes play{{{frames}}}#screens{{animation:play {total:.3}s steps(1,end) infinite}}</style>"
+        )?;
+        writeln!(
+            out,
+            r#"<rect width="100%" height="100%" fill="{}"/>"#,
+            hex(self.background, "#000000")
+        )?;
+        // Each row once, by its first place in the order shown.
+        let mut known: std::collections::HashMap<&str, usize> = Default::default();
+        writeln!(out, "<defs>")?;
+        for row in self.screens.iter().flat_map(|s| &s.1) {
+            if !known.contains_key(row.as_str()) {
+                writeln!(out, r#"<g id="r{}">{row}</g>"#, known.len())?;
+                known.insert(row, known.len());
+            }
+        }
+        writeln!(out, "</defs>")?;
+        writeln!(out, r#"<g id="screens">"#)?;
+        for (i, (_, rows)) in self.screens.iter().enumerate() {
+            write!(out, r#"<g transform="translate(0 {:.1})">"#, i as f64 * h)?;
+            for (y, row) in rows.iter().enumerate() {
+                let r = known[row.as_str()];
+                write!(out, r##"<use href="#r{r}" y="{:.1}"/>"##, y as f64 * CELL_H)?;
+            }
+            writeln!(out, "</g>")?;
+        }
+        writeln!(out, "</g></svg>")
+    }
+
+    /// One screen's rows, each at the top: the cells whose background is not the theme's as
+    /// rectangles, then the text in runs of one colour and weight, each stretched to its cells.
+    fn draw(&self, buf: &Buffer) -> Vec<String> {
+        let mut rows = Vec::new();
+        let (w, h) = (
+            self.width.min(buf.area.width),
+            self.height.min(buf.area.height),
+        );
+        for y in 0..h {
+            let row: Vec<&Cell> = (0..w)
+                .map(|x| &buf[(buf.area.x + x, buf.area.y + y)])
+                .collect();
+            let mut out = String::new();
+            let top = 0.0;
+            let mut x = 0;
+            while x < row.len() {
+                let bg = row[x].bg;
+                let run = row[x..].iter().take_while(|c| c.bg == bg).count();
+                if bg != self.background && bg != Color::Reset {
+                    let _ = write!(
+                        out,
+                        r#"<rect x="{:.1}" y="{top:.1}" width="{:.1}" height="{CELL_H}" fill="{}"/>"#,
+                        x as f64 * CELL_W,
+                        run as f64 * CELL_W,
+                        hex(bg, "#000000")
+                    );
+                }
+                x += run;
+            }
+            let _ = write!(out, r#"<text y="{:.1}">"#, top + CELL_H * 0.78);
+            let mut x = 0;
+            while x < row.len() {
+                let key = |c: &Cell| (c.fg, c.modifier.contains(Modifier::BOLD));
+                let here = key(row[x]);
+                let run = row[x..].iter().take_while(|c| key(c) == here).count();
+                let text: String = row[x..x + run].iter().map(|c| c.symbol()).collect();
+                if !text.trim().is_empty() {
+                    let bold = if here.1 { r#" class="b""# } else { "" };
+                    let _ = write!(
+                        out,
+                        r#"<tspan x="{:.1}" textLength="{:.1}" lengthAdjust="spacingAndGlyphs" fill="{}"{bold}>{}</tspan>"#,
+                        x as f64 * CELL_W,
+                        run as f64 * CELL_W,
+                        hex(here.0, "#d0d0d0"),
+                        escape(&text)
+                    );
+                }
+                x += run;
+            }
+            out.push_str("</text>");
+            rows.push(out);
+        }
+        rows
+    }
+}
+
+/// XML's special characters escaped.
+fn escape(s: &str) -> String {
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+}
+
+/// A terminal colour as the xterm palette shows it; `default` for the terminal's own.
+fn hex(c: Color, default: &str) -> String {
+    const BASIC: [(u8, u8, u8); 16] = [
+        (0, 0, 0),
+        (205, 0, 0),
+        (0, 205, 0),
+        (205, 205, 0),
+        (0, 0, 238),
+        (205, 0, 205),
+        (0, 205, 205),
+        (229, 229, 229),
+        (127, 127, 127),
+        (255, 0, 0),
+        (0, 255, 0),
+        (255, 255, 0),
+        (92, 92, 255),
+        (255, 0, 255),
+        (0, 255, 255),
+        (255, 255, 255),
+    ];
+    let indexed = |i: u8| match i {
+        0..=15 => BASIC[usize::from(i)],
+        16..=231 => {
+            let level = |v: u8| if v == 0 { 0 } else { 55 + 40 * v };
+            let i = i - 16;
+            (level(i / 36), level(i / 6 % 6), level(i % 6))
+        }
+        _ => {
+            let v = 8 + 10 * (i - 232);
+            (v, v, v)
+        }
+    };
+    let (r, g, b) = match c {
+        Color::Reset => return default.into(),
+        Color::Rgb(r, g, b) => (r, g, b),
+        Color::Indexed(i) => indexed(i),
+        Color::Black => indexed(0),
+        Color::Red => indexed(1),
+        Color::Green => indexed(2),
+        Color::Yellow => indexed(3),
+        Color::Blue => indexed(4),
+        Color::Magenta => indexed(5),
+        Color::Cyan => indexed(6),
+        Color::Gray => indexed(7),
+        Color::DarkGray => indexed(8),
+        Color::LightRed => indexed(9),
+        Color::LightGreen => indexed(10),
+        Color::LightYellow => indexed(11),
+        Color::LightBlue => indexed(12),
+        Color::LightMagenta => indexed(13),
+        Color::LightCyan => indexed(14),
+        Color::White => indexed(15),
+    };
+    format!("#{r:02x}{g:02x}{b:02x}")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use ratatui::layout::Rect;
+    use ratatui::style::Style;
+
+    #[test]
+    fn colours_are_xterms() {
+        assert_eq!(hex(Color::Rgb(1, 2, 255), ""), "#0102ff");
+        assert_eq!(hex(Color::Indexed(16), ""), "#000000");
+        assert_eq!(hex(Color::Indexed(196), ""), "#ff0000");
+        assert_eq!(hex(Color::Indexed(244), ""), "#808080");
+        assert_eq!(hex(Color::Reset, "#123456"), "#123456");
+    }
+
+    /// Screens closer than a tenth of a second replace one another; the same screen again is
+    /// not kept; each kept screen is shown from its time, in order, and the bound holds.
+    #[test]
+    fn screens_are_kept_a_tenth_apart_and_shown_in_turn() {
+        let mut buf = Buffer::empty(Rect::new(0, 0, 4, 2));
+        let mut film = Film::new(4, 2, Color::Black);
+        buf.set_string(0, 0, "a<&", Style::default().fg(Color::Red));
+        film.frame(0.0, &buf).unwrap();
+        film.frame(0.05, &buf).unwrap();
+        buf.set_string(0, 1, "b", Style::default());
+        film.frame(0.05, &buf).unwrap();
+        buf.set_string(0, 1, "c", Style::default());
+        film.frame(0.5, &buf).unwrap();
+        assert_eq!(film.screens.len(), 2);
+        assert_eq!(film.screens[0].0, 0.0);
+        assert!(film.screens[0].1[1].contains(">b   </tspan>"));
+        let mut out = Vec::new();
+        film.write("t<", &mut out).unwrap();
+        let svg = String::from_utf8(out).unwrap();
+        assert!(svg.contains("<title>t&lt;</title>"));
+        assert!(
+            svg.contains(r##"fill="#cd0000">a&lt;&amp;</tspan>"##),
+            "{svg}"
+        );
+        // 3.5 s in all: the second screen from 0.5 s, one screen's height up.
+        assert!(
+            svg.contains("14.2857%{transform:translateY(-34.0px)}"),
+            "{svg}"
+        );
+        assert!(svg.contains("animation:play 3.500s"));
+        // The first row is drawn once for both screens: three rows in all.
+        assert_eq!(svg.matches(r#"<g id="r"#).count(), 3);
+        assert_eq!(svg.matches(r##"<use href="#r0""##).count(), 2);
+        let mut full = Film::new(4, 2, Color::Black);
+        let err = (0..=MAX_SCREENS)
+            .map(|i| {
+                buf.set_string(0, 0, format!("{i:4}"), Style::default());
+                full.frame(i as f64, &buf)
+            })
+            .find_map(Result::err)
+            .unwrap();
+        assert!(
+            err.to_string()
+                .contains("--svg reached its bound of 1200 screens")
+        );
+    }
+}
