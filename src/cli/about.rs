@@ -9,7 +9,8 @@ pub fn completions(shell: clap_complete::Shell) -> CmdResult {
     use clap::CommandFactory;
     let mut out = Vec::new();
     clap_complete::generate(shell, &mut Cli::command(), "turntable", &mut out);
-    crate::files::emit(None, &String::from_utf8_lossy(&out))?;
+    let script = super::args::with_files(shell, String::from_utf8_lossy(&out).into_owned());
+    crate::files::emit(None, &script)?;
     Ok(())
 }
 

@@ -36,7 +36,8 @@ pub struct LessonArgs {
     #[arg(long, conflicts_with = "ansi")]
     pub plain: bool,
     /// Colour theme: dark, light, high-contrast, mono, or a .toml file.
-    #[arg(long, value_name = "NAME|PATH")]
+    #[arg(long, value_name = "NAME|PATH", value_parser = crate::cli::args::NameOrPath::themes(),
+        hide_possible_values = true)]
     pub theme: Option<String>,
 }
 

@@ -85,7 +85,11 @@ pub fn plot(a: PlotArgs) -> CmdResult {
                 .collect();
             let title = match &played[..] {
                 [(_, one)] => one.title.clone(),
-                _ => format!("{} runs", played.len()),
+                [rest @ .., (last, _)] => {
+                    let rest: Vec<&str> = rest.iter().map(|(n, _)| n.as_str()).collect();
+                    format!("{} and {last}", rest.join(", "))
+                }
+                [] => String::new(),
             };
             write(out, &svg, &build::trajectory(&title, &runs, frame))
         }

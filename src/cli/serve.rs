@@ -196,20 +196,12 @@ pub fn run(a: &ServeArgs) -> CmdResult {
         what: format!("listening on {}", a.listen),
         source: std::sync::Arc::new(e),
     })?;
-    let port = running.addr.port();
     let mut out = std::io::stdout().lock();
     writeln!(out, "turntable serve: listening on {}", running.addr)?;
     for line in said {
         writeln!(out, "{line}")?;
     }
-    writeln!(
-        out,
-        "students: ssh -p {port} class@HOST   (F2 steps out of the class and back in)"
-    )?;
-    writeln!(
-        out,
-        "with a screen reader: ssh -p {port} plain@HOST   (lines, no screen)"
-    )?;
+    out.write_all(banner(running.addr, &hosts(running.addr)).as_bytes())?;
     out.flush()?;
     drop(out);
     if let Some(n) = signals.forever().next() {
@@ -217,4 +209,107 @@ pub fn run(a: &ServeArgs) -> CmdResult {
         let _ = writeln!(std::io::stderr(), "turntable serve: ended by signal {n}");
     }
     Ok(())
+}
+
+/// The names a class may reach the server by: the address it listens on, or, listening on
+/// every address (`0.0.0.0`, `::`), this machine's address on its default route (a UDP socket
+/// connected, which sends nothing) and its host name. None when it has neither.
+pub fn hosts(listen: std::net::SocketAddr) -> Vec<String> {
+    use std::net::{IpAddr, UdpSocket};
+    let ip = listen.ip();
+    if !ip.is_unspecified() {
+        return vec![ip.to_string()];
+    }
+    // A public address of the listening family: only its route is looked up.
+    let (any, far) = match ip {
+        IpAddr::V4(_) => ("0.0.0.0:0", "8.8.8.8:53"),
+        IpAddr::V6(_) => ("[::]:0", "[2001:4860:4860::8888]:53"),
+    };
+    let mut out: Vec<String> = UdpSocket::bind(any)
+        .and_then(|s| s.connect(far).and_then(|()| s.local_addr()))
+        .map(|a| a.ip())
+        .ok()
+        .filter(|a| !a.is_loopback() && !a.is_unspecified())
+        .map(|a| a.to_string())
+        .into_iter()
+        .collect();
+    let name = rustix::system::uname()
+        .nodename()
+        .to_string_lossy()
+        .into_owned();
+    let name = crate::files::escape_controls(&name);
+    if !name.is_empty() && name != "localhost" && !name.contains(char::is_whitespace) {
+        out.push(name);
+    }
+    out
+}
+
+/// What the teacher is told: where the class reaches the server, and the command each kind of
+/// user types there (the first of `hosts`, else `HOST`).
+pub fn banner(addr: std::net::SocketAddr, hosts: &[String]) -> String {
+    let port = addr.port();
+    let host = hosts.first().map_or("HOST", String::as_str);
+    let reach = match hosts {
+        [] => "HOST: this machine's address on the class's network (none found here)".to_string(),
+        [_] if !addr.ip().is_unspecified() => String::new(),
+        _ => format!(
+            "this machine: {} (the class's network must reach the one you give)",
+            hosts.join(", ")
+        ),
+    };
+    let mut s = String::new();
+    if !reach.is_empty() {
+        s += &format!("{reach}\n");
+    }
+    s += &format!(
+        "students: ssh -p {port} class@{host}   (F2 steps out of the class and back in)\n"
+    );
+    s += &format!(
+        "presenter: ssh -p {port} class@{host}   with the presenter passphrase (or a --presenter-keys key): leads the class\n"
+    );
+    s += &format!("with a screen reader: ssh -p {port} plain@{host}   (lines, no screen)\n");
+    s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Issue 46 item 7: the banner names where the class reaches the server, never a bare
+    /// `HOST` when an address is known, and says how the presenter comes in.
+    #[test]
+    fn the_banner_names_the_machine_and_the_presenters_way_in() {
+        let any = "0.0.0.0:2222".parse().unwrap();
+        let b = banner(any, &["192.0.2.2".into(), "vm".into()]);
+        assert!(b.contains("this machine: 192.0.2.2, vm"), "{b}");
+        assert!(b.contains("students: ssh -p 2222 class@192.0.2.2"), "{b}");
+        assert!(
+            b.contains("presenter: ssh -p 2222 class@192.0.2.2   with the presenter passphrase"),
+            "{b}"
+        );
+        assert!(b.contains("ssh -p 2222 plain@192.0.2.2"), "{b}");
+        assert!(!b.contains("HOST"), "{b}");
+        // Nothing found: HOST, said to be the machine's address.
+        let b = banner(any, &[]);
+        assert!(
+            b.contains("class@HOST") && b.contains("none found here"),
+            "{b}"
+        );
+        // One address listened on: that one, with no list.
+        let lo = "127.0.0.1:2300".parse().unwrap();
+        assert_eq!(hosts(lo), ["127.0.0.1"]);
+        let b = banner(lo, &hosts(lo));
+        assert!(
+            b.starts_with("students: ssh -p 2300 class@127.0.0.1"),
+            "{b}"
+        );
+        // Every address: what is found is neither the loopback nor blank.
+        for h in hosts(any) {
+            assert!(!h.is_empty() && !h.contains(char::is_whitespace), "{h}");
+            assert!(
+                h.parse::<std::net::IpAddr>()
+                    .map_or(true, |ip| !ip.is_loopback())
+            );
+        }
+    }
 }

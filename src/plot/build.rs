@@ -53,37 +53,59 @@ pub fn trajectory(title: &str, runs: &[Traced], frame: Frame) -> Figure {
         * 1.08;
     let mut marks = Vec::new();
     let mut arrows = Vec::new();
-    for (r, pts) in runs.iter().zip(&paths) {
-        let named = |what: &str| match runs.len() {
-            1 => what.to_string(),
-            _ => format!("{}: {what}", r.name),
-        };
-        let (Some(&first), Some(&last), Some(s0)) = (pts.first(), pts.last(), r.path.first())
-        else {
-            continue;
-        };
-        marks.push(Mark::Point {
-            x: first.0,
-            y: first.1,
-            label: named("release"),
-            ink: Ink::Foreground,
-        });
-        marks.push(Mark::Point {
-            x: last.0,
-            y: last.1,
-            label: named(&r.end),
-            ink: Ink::Foreground,
-        });
-        // As the canvas draws it: 0.3 of the view's reach per unit speed, beyond ξ = 1 less.
+    // A release, and its initial velocity, that several runs share is marked once, named by
+    // those runs (by none when all share it): the same spot labelled twice wrote the labels
+    // over one another.
+    let release = |k: usize| {
+        let s0 = runs[k].path.first()?;
         let (v, word) = match frame {
             Frame::Lab => (s0.v, "v0"),
             Frame::Table => (s0.u(), "u0"),
         };
-        let k = 0.3 * reach / s0.xi().max(1.0);
+        Some((*paths[k].first()?, (v.x, v.y), word, s0.xi()))
+    };
+    for (k, (r, pts)) in runs.iter().zip(&paths).enumerate() {
+        let named = |what: &str| match runs.len() {
+            1 => what.to_string(),
+            _ => format!("{}: {what}", r.name),
+        };
+        let (Some(&last), Some((first, v, word, xi0))) = (pts.last(), release(k)) else {
+            continue;
+        };
+        let end = Mark::Point {
+            x: last.0,
+            y: last.1,
+            label: named(&r.end),
+            ink: Ink::Foreground,
+        };
+        let same: Vec<usize> = (0..runs.len())
+            .filter(|&j| release(j).is_some_and(|(f, w, _, _)| f == first && w == v))
+            .collect();
+        if same[0] != k {
+            marks.push(end);
+            continue;
+        }
+        let shared = |what: &str| match same.len() {
+            1 => named(what),
+            n if n == runs.len() => what.to_string(),
+            _ => {
+                let names: Vec<&str> = same.iter().map(|&j| runs[j].name.as_str()).collect();
+                format!("{}: {what}", names.join(", "))
+            }
+        };
+        marks.push(Mark::Point {
+            x: first.0,
+            y: first.1,
+            label: shared("release"),
+            ink: Ink::Foreground,
+        });
+        marks.push(end);
+        // As the canvas draws it: 0.3 of the view's reach per unit speed, beyond ξ = 1 less.
+        let k = 0.3 * reach / xi0.max(1.0);
         arrows.push(Mark::Arrow {
             from: first,
-            to: (first.0 + k * v.x, first.1 + k * v.y),
-            label: named(word),
+            to: (first.0 + k * v.0, first.1 + k * v.1),
+            label: shared(word),
             ink: Ink::Arrow,
         });
     }

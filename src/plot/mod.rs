@@ -16,7 +16,7 @@ pub mod page;
 mod svg;
 
 pub use axis::{Scale, axis, extent, sane, ticks};
-pub use svg::to_svg;
+pub use svg::{label_width, to_svg};
 
 /// A figure: a title over panels stacked top to bottom.
 #[derive(Clone, Debug, PartialEq)]

@@ -346,9 +346,14 @@ fn marks(s: &mut String, p: &Chart, ax: &Axes) {
                 ink,
             } => arrow(s, ax, *from, *to, label, *ink),
             Mark::Point { x, y, label, .. } if ax.inside(*x, *y) => {
-                let (lx, anchor) = match ax.px(*x) > x0 + 0.6 * w {
-                    true => (ax.px(*x) - 7.0, "end"),
-                    false => (ax.px(*x) + 7.0, "start"),
+                // The label on the side where it fits inside the plot (its width estimated
+                // at 11 px type), else on the side with more room.
+                let px = ax.px(*x);
+                let (right, left) = (x0 + w - (px + 7.0), px - 7.0 - x0);
+                let need = label_width(label);
+                let (lx, anchor) = match right >= need || (left < need && right >= left) {
+                    true => (px + 7.0, "start"),
+                    false => (px - 7.0, "end"),
                 };
                 let _ = writeln!(
                     s,
@@ -364,6 +369,11 @@ fn marks(s: &mut String, p: &Chart, ax: &Axes) {
             _ => {}
         }
     }
+}
+
+/// About how wide `label` is at 11 px type: 6.2 px a character (what the tests measure by).
+pub fn label_width(label: &str) -> f64 {
+    6.2 * label.chars().count() as f64
 }
 
 /// An arrow from `from` to `to` (data units) with its head and its label beyond it.

@@ -86,16 +86,16 @@ const GLYPHS: [(&str, &str); 9] = [
 ];
 
 /// One entry: a group header, or a key (or glyph) and its help.
-type Item = (Option<&'static str>, String, &'static str);
+type Item = (Option<String>, String, &'static str);
 
 fn items() -> Vec<Item> {
     let mut items: Vec<Item> = Vec::new();
     for (g, rs) in rows() {
-        items.push((Some(g), String::new(), ""));
+        items.push((Some(g.to_string()), String::new(), ""));
         items.extend(rs.into_iter().map(|(k, h)| (None, k, h)));
     }
     for (g, rs) in [("mouse", &MOUSE[..]), ("glyphs", &GLYPHS[..])] {
-        items.push((Some(g), String::new(), ""));
+        items.push((Some(g.to_string()), String::new(), ""));
         items.extend(rs.iter().map(|(k, h)| (None, k.to_string(), *h)));
     }
     items
@@ -114,23 +114,28 @@ fn popup(area: Rect) -> Rect {
 /// One row of the help: a group's header, or a key's label (padded to its column's widest)
 /// and a piece of its help.
 enum Row {
-    Header(&'static str),
+    Header(String),
     Entry { key: String, text: String },
 }
 
 impl Row {
     fn line(&self, th: &Theme) -> Line<'_> {
         match self {
-            Row::Header(g) => Line::from(Span::styled(
-                *g,
-                Style::default().fg(th.accent).add_modifier(Modifier::BOLD),
-            )),
+            Row::Header(g) => heading(g.as_str(), th),
             Row::Entry { key, text } => Line::from(vec![
                 Span::styled(key.as_str(), Style::default().fg(th.notice)),
                 Span::styled(text.as_str(), Style::default().fg(th.foreground)),
             ]),
         }
     }
+}
+
+/// A group's heading.
+fn heading<'a>(g: impl Into<std::borrow::Cow<'a, str>>, th: &Theme) -> Line<'a> {
+    Line::from(Span::styled(
+        g,
+        Style::default().fg(th.accent).add_modifier(Modifier::BOLD),
+    ))
 }
 
 /// The help's columns at one inside width, each its rows.
@@ -164,13 +169,27 @@ fn columns(width: u16) -> Laid {
         return vec![column(&items, usize::from(width))];
     }
     // Two columns, split where the taller is shortest (wrapped rows counted), never leaving
-    // a header alone at the foot of the first.
+    // a header alone at the foot of the first; a group split between them is headed again at
+    // the top of the second (`view (cont.)`).
     let colw = usize::from((width - 1) / 2);
     (1..items.len())
         .filter(|&k| items[k - 1].0.is_none())
-        .map(|k| vec![column(&items[..k], colw), column(&items[k..], colw)])
+        .map(|k| vec![column(&items[..k], colw), column(&rest(&items, k), colw)])
         .min_by_key(|cols| cols.iter().map(Vec::len).max())
         .unwrap_or_default()
+}
+
+/// The items from `k` on, headed by their group's name and `(cont.)` when `k` is inside a group.
+fn rest(items: &[Item], k: usize) -> Vec<Item> {
+    let mut out = Vec::with_capacity(items.len() - k + 1);
+    if items[k].0.is_none() {
+        let group = items[..k].iter().rev().find_map(|(g, _, _)| g.as_deref());
+        if let Some(g) = group {
+            out.push((Some(format!("{g} (cont.)")), String::new(), ""));
+        }
+    }
+    out.extend_from_slice(&items[k..]);
+    out
 }
 
 /// One column: labels take its widest label's width and two blanks, so no help text is glued
@@ -181,7 +200,7 @@ fn column(items: &[Item], width: usize) -> Vec<Row> {
     let mut out = Vec::new();
     for (g, k, help) in items {
         if let Some(g) = g {
-            out.push(Row::Header(g));
+            out.push(Row::Header(g.clone()));
             continue;
         }
         let mut chunks = vec![String::new()];
@@ -207,7 +226,8 @@ fn column(items: &[Item], width: usize) -> Vec<Row> {
     out
 }
 
-/// How far the help scrolls at a `width` × `height` terminal: its rows less those shown.
+/// How far the help scrolls at a `width` × `height` terminal: its rows less those shown, and
+/// one more for the heading a scrolled column repeats at its top.
 pub fn max_scroll(width: u16, height: u16) -> u16 {
     let Some(r) = super::layout::regions(width, height) else {
         return 0;
@@ -218,9 +238,12 @@ pub fn max_scroll(width: u16, height: u16) -> u16 {
         .map(Vec::len)
         .max()
         .unwrap_or(0);
-    u16::try_from(rows)
-        .unwrap_or(u16::MAX)
-        .saturating_sub(p.height.saturating_sub(2))
+    u16::try_from(last_top(rows, usize::from(p.height.saturating_sub(2)))).unwrap_or(u16::MAX)
+}
+
+/// The last row the help can scroll to the top with `rows` rows, `shown` of them in view.
+fn last_top(rows: usize, shown: usize) -> usize {
+    if rows > shown { rows - shown + 1 } else { 0 }
 }
 
 /// Rows one PgUp/PgDn scrolls at this size: the help's visible rows.
@@ -279,7 +302,10 @@ fn draw_box(buf: &mut Buffer, popup: Rect, scroll: u16, th: &Theme) {
     let cols = laid(popup.width.saturating_sub(2));
     let rows = cols.iter().map(Vec::len).max().unwrap_or(0);
     let shown = usize::from(popup.height.saturating_sub(2));
-    let top = usize::from(scroll).min(rows.saturating_sub(shown));
+    let top = usize::from(scroll).min(last_top(rows, shown));
+    let views: Vec<View> = cols.iter().map(|c| View::of(c, top, shown)).collect();
+    let end = views.iter().map(|v| v.end).max().unwrap_or(0);
+    let more = views.iter().zip(cols.iter()).any(|(v, c)| v.end < c.len());
     let title = fit(
         " help: ? or Esc closes, ↑ ↓ PgUp PgDn wheel scroll ",
         ", ",
@@ -290,9 +316,9 @@ fn draw_box(buf: &mut Buffer, popup: Rect, scroll: u16, th: &Theme) {
         format!(
             " rows {}–{} of {}{} ",
             top + 1,
-            (top + shown).min(rows),
+            end,
             rows,
-            if top + shown < rows { ", ↓ more" } else { "" }
+            if more { ", ↓ more" } else { "" }
         )
     } else {
         String::new()
@@ -308,9 +334,9 @@ fn draw_box(buf: &mut Buffer, popup: Rect, scroll: u16, th: &Theme) {
     let inner = block.inner(popup);
     block.render(popup, buf);
     // The rows in view only (a paragraph scrolled past the others lays them out too).
-    let shown_of = |col| in_view(col, top, shown, th);
+    let shown_of = |i: usize| views[i].lines(&cols[i], th);
     if cols.len() == 1 {
-        Paragraph::new(shown_of(&cols[0])).render(inner, buf);
+        Paragraph::new(shown_of(0)).render(inner, buf);
         return;
     }
     // The widths `columns` wrapped to, a blank between.
@@ -323,18 +349,42 @@ fn draw_box(buf: &mut Buffer, popup: Rect, scroll: u16, th: &Theme) {
             ..inner
         },
     ];
-    for (col, area) in cols.iter().zip(halves) {
-        Paragraph::new(shown_of(col)).render(area, buf);
+    for (i, area) in halves.into_iter().enumerate().take(cols.len()) {
+        Paragraph::new(shown_of(i)).render(area, buf);
     }
 }
 
-/// The rows of `col` from `top`, as many as are `shown`.
-fn in_view<'a>(col: &'a [Row], top: usize, shown: usize, th: &Theme) -> Vec<Line<'a>> {
-    col.iter()
-        .skip(top)
-        .take(shown)
-        .map(|r| r.line(th))
-        .collect()
+/// What a column shows scrolled to `top`: its rows from there, under its group's heading
+/// again (`view (cont.)`) when the first of them is inside a group.
+struct View {
+    heading: Option<String>,
+    from: usize,
+    end: usize,
+}
+
+impl View {
+    fn of(col: &[Row], top: usize, shown: usize) -> View {
+        let from = top.min(col.len());
+        let heading = match col.get(from) {
+            Some(Row::Entry { .. }) => col[..from].iter().rev().find_map(|r| match r {
+                Row::Header(g) => Some(format!("{} (cont.)", g.trim_end_matches(" (cont.)"))),
+                Row::Entry { .. } => None,
+            }),
+            _ => None,
+        };
+        let room = shown.saturating_sub(usize::from(heading.is_some()));
+        View {
+            heading,
+            from,
+            end: (from + room).min(col.len()),
+        }
+    }
+
+    fn lines<'a>(&self, col: &'a [Row], th: &Theme) -> Vec<Line<'a>> {
+        let head = self.heading.iter().map(|g| heading(g.clone(), th));
+        head.chain(col[self.from..self.end].iter().map(|r| r.line(th)))
+            .collect()
+    }
 }
 
 #[cfg(test)]
@@ -359,5 +409,31 @@ mod tests {
         let other = drawn(Drawn { scroll: 3, ..key }, &th);
         assert!(!Arc::ptr_eq(&a, &other));
         assert_ne!(*a, *other);
+    }
+
+    /// Issue 46 item 6: at every width (one column below 60, two from it) and every scroll,
+    /// each column's top row is a group's heading (its own, or `… (cont.)`), and the last
+    /// scroll shows every column to its end.
+    #[test]
+    fn every_column_opens_on_a_heading_at_every_scroll() {
+        for width in 58..=98 {
+            let cols = columns(width);
+            let rows = cols.iter().map(Vec::len).max().unwrap_or(0);
+            for shown in [6, 12, 21, 40] {
+                let last = last_top(rows, shown);
+                for top in 0..=last {
+                    for (i, col) in cols.iter().enumerate() {
+                        let v = View::of(col, top, shown);
+                        let opens = v.heading.is_some()
+                            || matches!(col.get(v.from), Some(Row::Header(_)) | None);
+                        assert!(opens, "width {width}, column {i}, top {top}");
+                        assert!(v.end - v.from + usize::from(v.heading.is_some()) <= shown);
+                        if top == last {
+                            assert_eq!(v.end, col.len(), "width {width} column {i}: cut");
+                        }
+                    }
+                }
+            }
+        }
     }
 }

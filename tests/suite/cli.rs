@@ -427,13 +427,62 @@ fn the_body_comes_first_and_the_map_has_a_default_radius() {
     assert!(out.contains("v_escape"), "{out}");
 }
 
+/// Issue 46 item 4: `--scene` completes to the presets and `--theme` to the built-in themes,
+/// beside file names (bash, zsh, fish; clap's PowerShell script completes flags, not their
+/// values), and a path is still taken: the names are offered, not
+/// enforced, and the help does not list them twice.
+#[test]
+fn scene_and_theme_complete_to_their_names_and_files() {
+    let presets = turntable::scene::PRESETS.join(" ");
+    let themes = turntable::theme::BUILTIN.join(" ");
+    let (_, bash, _) = turntable(&["completions", "bash"]);
+    for words in [&presets, &themes] {
+        let both = format!(
+            "COMPREPLY=($(compgen -W \"{words}\" -- \"${{cur}}\") $(compgen -f -- \"${{cur}}\"))"
+        );
+        assert!(bash.contains(&both), "bash: no {both}");
+    }
+    // `plot` plays every preset but the spun-up table, which it refuses.
+    assert!(
+        bash.contains("compgen -W \"A B C D fig1 fig2\" --"),
+        "plot's scenes"
+    );
+    let (_, zsh, _) = turntable(&["completions", "zsh"]);
+    let zsh_scene = format!(
+        ":NAME|PATH: _alternative \"names\\:name\\:({presets})\" \"files\\:file\\:_files\"'"
+    );
+    assert!(zsh.contains(&zsh_scene), "zsh: no {zsh_scene}");
+    let (_, fish, _) = turntable(&["completions", "fish"]);
+    assert!(fish.contains("-l scene -d 'Scene to open"), "fish");
+    assert!(
+        fish.contains("-r -F -a \"A\\t''\nB\\t''"),
+        "fish: scenes with files"
+    );
+    assert!(
+        fish.contains("-r -F -a \"dark\\t''\nlight\\t''"),
+        "fish: themes with files"
+    );
+    // Any other value is a path, read where it is opened.
+    let (code, _, err) = turntable(&["spinup", "--scene", "/nonexistent/s.toml"]);
+    assert_eq!(code, 2, "{err}");
+    let (code, _, err) = turntable(&["replay", "/nonexistent/x.keys", "--scene", "mine.toml"]);
+    assert_eq!(code, 2);
+    assert!(
+        !err.contains("possible values") && !err.contains("invalid value"),
+        "{err}"
+    );
+    let (_, help, _) = turntable(&["--help"]);
+    assert!(!help.contains("[possible values: A"), "{help}");
+}
+
 /// Shell completions and the manual page come from the clap definitions, every subcommand in.
 #[test]
 fn completions_and_man_page() {
-    for shell in ["bash", "zsh", "fish"] {
+    for shell in ["bash", "zsh", "fish", "powershell", "elvish"] {
         let (code, out, err) = turntable(&["completions", shell]);
         assert_eq!(code, 0, "{err}");
-        for word in ["escape", "critical", "vtol", "no-check"] {
+        assert!(out.len() > 1000, "{shell}: {} bytes", out.len());
+        for word in ["turntable", "escape", "critical", "vtol", "no-check"] {
             assert!(out.contains(word), "{shell}: no {word}");
         }
     }

@@ -36,6 +36,7 @@ mod plain;
 mod plot;
 mod properties;
 mod proptests;
+mod prose;
 mod readme;
 mod reference;
 mod replay;

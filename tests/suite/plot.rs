@@ -397,13 +397,38 @@ fn a_trajectory_draws_several_runs_with_their_arrows() {
     assert_eq!(code, 0, "{err}");
     let tags = parse(&std::fs::read_to_string(&f).unwrap());
     assert_eq!(legend(&tags), ["C (dp54)", "C (rk2-raw)", "ξ = 1 (R_max)"]);
+    // Issue 46 item 6: the title names the runs; the release and its arrow, shared by both,
+    // are marked once; no two labels on one spot, and each point's label inside the plot.
+    assert_eq!(text_of(&tags, "title"), ["C (dp54) and C (rk2-raw)"]);
     let marks = text_of(&tags, "mark-label");
-    assert_eq!(marks[0], "C (dp54): release");
+    assert_eq!(marks[0], "release");
     assert!(
         marks[1].starts_with("C (dp54): stuck at ξ = 0.997"),
         "{marks:?}"
     );
-    assert!(marks[3].starts_with("C (rk2-raw): escaped"), "{marks:?}");
+    assert!(marks[2].starts_with("C (rk2-raw): escaped"), "{marks:?}");
+    assert_eq!(marks[3], "v0");
+    let labels: Vec<&Tag> = tags
+        .iter()
+        .filter(|t| t.attr("class") == Some("mark-label"))
+        .collect();
+    let frame = tags
+        .iter()
+        .find(|t| t.attr("class") == Some("frame"))
+        .unwrap();
+    let (left, right) = (frame.num("x"), frame.num("x") + frame.num("width"));
+    for (i, a) in labels.iter().enumerate() {
+        for b in &labels[i + 1..] {
+            let apart = (a.num("x") - b.num("x")).abs() + (a.num("y") - b.num("y")).abs();
+            assert!(apart > 11.0, "{} on {}", a.text, b.text);
+        }
+        let w = turntable::plot::label_width(&a.text);
+        let (from, to) = match a.attr("text-anchor") {
+            Some("end") => (a.num("x") - w, a.num("x")),
+            _ => (a.num("x"), a.num("x") + w),
+        };
+        assert!(from >= left && to <= right, "{} cut: {from}..{to}", a.text);
+    }
     // C's release: ξ0 = 0.5 thrown radially at 0.6078 relative to the table, so in the lab
     // v0 = (0.6078, 0.5) (the table's Ω×r added): the arrow points along it.
     let (x, y) = (axis(&tags, "x-tick"), axis(&tags, "y-tick"));
@@ -412,7 +437,7 @@ fn a_trajectory_draws_several_runs_with_their_arrows() {
         .filter(|t| t.name == "line")
         .filter(|t| t.attr("x1").is_some() && t.attr("stroke").is_none())
         .collect();
-    assert_eq!(arrows.len(), 2, "one arrow per run");
+    assert_eq!(arrows.len(), 1, "one arrow for the release both runs share");
     for a in arrows {
         let (x0, y0) = (x(a.num("x1")), y(a.num("y1")));
         let (dx, dy) = (x(a.num("x2")) - x0, y(a.num("y2")) - y0);

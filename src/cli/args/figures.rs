@@ -200,7 +200,8 @@ pub enum PlotFigure {
 pub struct PlotRun {
     /// A preset (A, B, C, D, fig1, fig2) or a .toml scene file: its release and integrator.
     /// Repeated, a trajectory draws each (the time plots take one).
-    #[arg(long, default_values_t = ["C".to_string()], value_name = "NAME|PATH")]
+    #[arg(long, default_values_t = ["C".to_string()], value_name = "NAME|PATH",
+        value_parser = NameOrPath::plot_scenes(), hide_possible_values = true)]
     pub scene: Vec<String>,
     /// The integrator, instead of the scene's, at its default step or tolerance (rk2-raw: the
     /// paper's scheme). Repeated, a trajectory draws each scene with each.

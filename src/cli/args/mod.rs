@@ -11,9 +11,11 @@ use std::path::PathBuf;
 
 mod figures;
 mod model;
+mod names;
 
 pub use figures::*;
 pub use model::*;
+pub use names::{NameOrPath, with_files};
 
 #[derive(Parser, Debug)]
 #[command(
@@ -117,14 +119,16 @@ impl MarkerArg {
 #[derive(Args, Debug, Default, Clone)]
 pub struct Look {
     // Its help names every preset (`scene::PRESETS`).
-    #[arg(long, value_name = "NAME|PATH", help = scene_help(false), long_help = scene_help(true))]
+    #[arg(long, value_name = "NAME|PATH", value_parser = NameOrPath::scenes(), hide_possible_values = true,
+        help = scene_help(false), long_help = scene_help(true))]
     pub scene: Option<String>,
     /// Colour theme: dark, light, high-contrast, mono, yours, or a .toml file; alone, lists them.
     ///
     /// One of yours by name in the explorer (see the configuration below). The explorer
     /// respects NO_COLOR; replay ignores it (its output depends on its arguments alone) and
     /// only --ansi shows colour.
-    #[arg(long, value_name = "NAME|PATH", num_args = 0..=1, default_missing_value = "")]
+    #[arg(long, value_name = "NAME|PATH", num_args = 0..=1, default_missing_value = "",
+        value_parser = NameOrPath::themes(), hide_possible_values = true)]
     pub theme: Option<String>,
 }
 
@@ -220,10 +224,20 @@ pub enum Command {
     /// Narrated lessons through the paper: --list, NAME (in the explorer), NAME --headless.
     #[command(long_about = LESSON_ABOUT)]
     Lesson(super::lesson::LessonArgs),
-    /// Print a shell completion script: `turntable completions bash > ~/.local/share/bash-completion/completions/turntable`.
+    /// Print a shell completion script (bash, zsh, fish, powershell, elvish): where each goes
+    /// is in docs/command-line.md, *Installing the extras*.
+    ///
+    /// For bash: `mkdir -p ~/.local/share/bash-completion/completions && turntable completions
+    /// bash > ~/.local/share/bash-completion/completions/turntable`; zsh: `mkdir -p ~/.zfunc && turntable
+    /// completions zsh > ~/.zfunc/_turntable` with `fpath=(~/.zfunc $fpath)` before compinit; fish:
+    /// `turntable completions fish > ~/.config/fish/completions/turntable.fish`; PowerShell:
+    /// `turntable completions powershell | Out-String | Invoke-Expression` in $PROFILE.
     Completions(CompletionsArgs),
     /// Print the manual page (roff): `mkdir -p ~/.local/share/man/man1 && turntable man >
     /// ~/.local/share/man/man1/turntable.1`.
+    ///
+    /// `man turntable` finds it there when ~/.local/bin is on PATH; else add
+    /// `export MANPATH="$HOME/.local/share/man:$MANPATH"` to ~/.profile.
     Man,
     /// Print where the explorer's configuration is kept, and a commented template (--init
     /// writes it there).
