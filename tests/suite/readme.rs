@@ -106,8 +106,9 @@ fn written_by(args: &[&str], out: &Path) -> Vec<u8> {
 fn the_docs_pictures_are_what_the_tool_makes() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let tmp = tempfile::tempdir().unwrap();
-    let pictures: [(&str, Vec<&str>); 2] = [
+    let pictures: [(&str, Vec<&str>); 3] = [
         ("demo.cast", vec!["replay", "docs/demo.keys", "--asciicast"]),
+        ("demo.svg", vec!["replay", "docs/demo.keys", "--svg"]),
         ("fig5.svg", vec!["plot", "fig5", "--out"]),
     ];
     for (name, args) in pictures {
@@ -122,7 +123,7 @@ fn the_docs_pictures_are_what_the_tool_makes() {
         );
     }
     let readme = read("README.md");
-    for name in ["docs/demo.cast", "docs/fig5.svg"] {
+    for name in ["docs/demo.cast", "docs/demo.svg", "docs/fig5.svg"] {
         assert!(readme.contains(name), "README does not show {name}");
     }
 }
