@@ -9,7 +9,8 @@
 //! that), and how long a login from an address of its own takes to its first screen, halfway
 //! through.
 
-use super::serve::{cpu_s, key, pct, press, rss_mb};
+use super::cpu_s;
+use super::serve::{key, pct, press, rss_mb};
 use crate::serve::Limits;
 use crate::serve::client::{Login, Term, Trust, login};
 use std::net::SocketAddr;

@@ -269,6 +269,19 @@ fn timed<T>(reps: usize, mut f: impl FnMut() -> T) -> (T, f64) {
     (out, best * 1e3)
 }
 
+/// CPU time used by the process (user and system), in seconds (USER_HZ is 100 on Linux): what a
+/// single-threaded measurement costs on a machine shared with other work, whose wall time is not.
+pub(super) fn cpu_s() -> f64 {
+    let stat = std::fs::read_to_string("/proc/self/stat").unwrap_or_default();
+    let after = stat.rsplit(')').next().unwrap_or("");
+    let f: Vec<f64> = after
+        .split_whitespace()
+        .filter_map(|x| x.parse().ok())
+        .collect();
+    // Fields 14 and 15 of the file, 12 and 13 after the name's `)` and the state.
+    (f.get(10).copied().unwrap_or(0.0) + f.get(11).copied().unwrap_or(0.0)) / 100.0
+}
+
 /// The reference: dp54 at tol 1e-13 (`sim::ending::reference`, the page's too).
 pub fn reference() -> Settings {
     crate::sim::ending::reference(Settings::default())

@@ -7,6 +7,7 @@
 //! throughout, as a class's is): what the first left behind is not held per session if the
 //! rounds after it add nothing.
 
+use super::cpu_s;
 use crate::serve::client::{Login, Term, login};
 use crate::serve::{Limits, Options};
 use russh::keys::PrivateKey;
@@ -58,18 +59,6 @@ pub(super) fn rss_mb() -> f64 {
         .and_then(|s| s.split_whitespace().nth(1)?.parse().ok())
         .unwrap_or(0.0);
     pages * 4096.0 / 1e6
-}
-
-/// CPU time used by the process (user and system), in seconds (USER_HZ is 100 on Linux).
-pub(super) fn cpu_s() -> f64 {
-    let stat = std::fs::read_to_string("/proc/self/stat").unwrap_or_default();
-    let after = stat.rsplit(')').next().unwrap_or("");
-    let f: Vec<f64> = after
-        .split_whitespace()
-        .filter_map(|x| x.parse().ok())
-        .collect();
-    // Fields 14 and 15 of the file, 12 and 13 after the name's `)` and the state.
-    (f.get(10).copied().unwrap_or(0.0) + f.get(11).copied().unwrap_or(0.0)) / 100.0
 }
 
 pub(super) fn key(seed: u8) -> PrivateKey {
