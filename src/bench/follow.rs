@@ -4,7 +4,8 @@
 //! showing it (and to the presenter's own); the process's CPU, the frames the server sent a
 //! second and the CPU a frame (clients included), and the bytes a follower receives a second.
 
-use super::serve::{cpu_s, key, pct, server};
+use super::cpu_s;
+use super::serve::{key, pct, server};
 use crate::serve::Limits;
 use crate::serve::client::{Login, Term, login};
 use std::net::SocketAddr;
