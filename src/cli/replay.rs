@@ -27,8 +27,8 @@ pub struct ReplayArgs {
     /// --force, and the script, scene and theme never.
     #[arg(long, value_name = "OUT.cast")]
     pub asciicast: Option<std::path::PathBuf>,
-    /// Also record the replay as an animated SVG, which a browser (or a README on a forge)
-    /// plays with nothing installed: the same screens, at most ten a second, written
+    /// Also record the replay as an animated SVG, which a browser (or a project's page on a
+    /// forge) plays with nothing installed: the same screens, at most ten a second, written
     /// atomically as --asciicast is.
     #[arg(long, value_name = "OUT.svg")]
     pub svg: Option<std::path::PathBuf>,

@@ -305,7 +305,8 @@ const LAYERS: &[&[&str]] = &[
         "lesson",
         "asciicast",
     ],
-    &["ui"],
+    // A replay's screens as an animated SVG (for the asciicast's recorder).
+    &["ui", "film"],
     &["plot", "theme"],
     &["app"],
     // A scene: what a file or preset holds, read and written (the page it opens on, its pace).
