@@ -23,7 +23,7 @@ pub struct Stated {
     pub tau_unresolved: usize,
     pub q_unresolved: usize,
     /// The largest actual ÷ stated among the cases the reference resolves (0 if none), the actual
-    /// less the reference's resolution ([`judge`]).
+    /// less the reference's resolution (`judge`).
     pub tau_worst: f64,
     pub q_worst: f64,
 }

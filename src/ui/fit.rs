@@ -84,7 +84,7 @@ fn units(para: &str, width: usize) -> Vec<String> {
 }
 
 /// `text` wrapped to `width` columns in at most `rows` lines: paragraphs at `\n`, lines
-/// broken between words, never inside a formula that fits a line (see [`relation`]); a word
+/// broken between words, never inside a formula that fits a line (see `relation`); a word
 /// wider than the line is broken where it must be. When the lines are more than `rows`, the
 /// last kept ends in `…`, whole words dropped to make room.
 pub fn wrap(text: &str, width: usize, rows: usize) -> Vec<String> {
