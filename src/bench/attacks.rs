@@ -248,10 +248,7 @@ pub fn run(students: usize, seconds: f64) -> std::io::Result<Vec<AttackRow>> {
             ..Limits::default()
         },
     )?;
-    let rt = tokio::runtime::Builder::new_multi_thread()
-        .worker_threads(2)
-        .enable_all()
-        .build()?;
+    let rt = super::serve::runtime()?;
     let addr = server.addr;
     let phase = Duration::from_secs_f64(seconds);
     let settle = Duration::from_secs(2);

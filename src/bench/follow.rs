@@ -112,10 +112,7 @@ pub fn run(students: usize, seconds: f64) -> std::io::Result<FollowRow> {
             ..Limits::default()
         },
     )?;
-    let rt = tokio::runtime::Builder::new_multi_thread()
-        .worker_threads(2)
-        .enable_all()
-        .build()?;
+    let rt = super::serve::runtime()?;
     let addr = server.addr;
     let (tx, rx) = watch::channel(Vec::new());
     let ready = Arc::new(AtomicUsize::new(0));

@@ -150,6 +150,14 @@ pub(super) fn pct(sorted: &[Duration], p: f64) -> f64 {
     sorted[i].as_secs_f64() * 1e3
 }
 
+/// The clients' runtime: two threads, as many as the machine the goals are set on.
+pub(super) fn runtime() -> std::io::Result<tokio::runtime::Runtime> {
+    tokio::runtime::Builder::new_multi_thread()
+        .worker_threads(2)
+        .enable_all()
+        .build()
+}
+
 /// Runs the measurement with `clients` clients for `seconds`.
 pub fn run(clients: usize, seconds: f64) -> std::io::Result<Row> {
     let rss_before = rss_mb();
@@ -161,10 +169,7 @@ pub fn run(clients: usize, seconds: f64) -> std::io::Result<Row> {
             ..Limits::default()
         },
     )?;
-    let rt = tokio::runtime::Builder::new_multi_thread()
-        .worker_threads(2)
-        .enable_all()
-        .build()?;
+    let rt = runtime()?;
     let addr = server.addr;
     let start = Instant::now();
     let until = start + Duration::from_secs_f64(seconds);

@@ -3,23 +3,7 @@
 //! fenced code, indented code and tables are not prose and are skipped; each list item counts
 //! on its own.
 
-use std::path::{Path, PathBuf};
-
 const MOST_WORDS: usize = 200;
-
-/// The pages the rule covers.
-fn pages() -> Vec<PathBuf> {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let mut pages = vec![root.join("README.md"), root.join("ARCHITECTURE.md")];
-    for e in std::fs::read_dir(root.join("docs")).unwrap() {
-        let p = e.unwrap().path();
-        if p.extension().is_some_and(|x| x == "md") {
-            pages.push(p);
-        }
-    }
-    pages.sort();
-    pages
-}
 
 /// A line that starts a list item: `- `, `* `, `+ ` or `12. ` after any indent.
 fn starts_item(line: &str) -> bool {
@@ -75,7 +59,7 @@ fn blocks(text: &str) -> Vec<(usize, usize)> {
 fn no_paragraph_of_the_docs_runs_over_200_words() {
     let mut walls = Vec::new();
     let mut counted = 0;
-    for page in pages() {
+    for page in crate::common::doc_pages() {
         let text = std::fs::read_to_string(&page).unwrap();
         let name = page.file_name().unwrap().to_string_lossy().into_owned();
         for (line, words) in blocks(&text) {

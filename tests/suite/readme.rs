@@ -218,14 +218,7 @@ fn anchors(text: &str) -> Vec<String> {
 /// bullet).
 #[test]
 fn every_link_in_the_docs_leads_somewhere() {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let mut pages = vec![root.join("README.md"), root.join("ARCHITECTURE.md")];
-    for e in std::fs::read_dir(root.join("docs")).unwrap() {
-        let p = e.unwrap().path();
-        if p.extension().is_some_and(|x| x == "md") {
-            pages.push(p);
-        }
-    }
+    let pages = crate::common::doc_pages();
     let mut seen = 0;
     for page in &pages {
         let text = std::fs::read_to_string(page).unwrap();

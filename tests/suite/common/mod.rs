@@ -278,3 +278,17 @@ fn search_easiest_angle(
     )?;
     Ok((turntable::engine::model::turn_angle(phi), ve(phi)?))
 }
+
+/// The docs' pages: README, ARCHITECTURE and every page under docs/, in order.
+pub fn doc_pages() -> Vec<std::path::PathBuf> {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut pages = vec![root.join("README.md"), root.join("ARCHITECTURE.md")];
+    for e in std::fs::read_dir(root.join("docs")).unwrap() {
+        let p = e.unwrap().path();
+        if p.extension().is_some_and(|x| x == "md") {
+            pages.push(p);
+        }
+    }
+    pages.sort();
+    pages
+}
