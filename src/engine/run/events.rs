@@ -105,10 +105,13 @@ impl Run {
         // the explicit method's step (Hairer's start, shorter at dop853's tol 1e-3 than at
         // 1e-4) made the end game's first step and its error depend on the method, and a loose
         // tolerance luckier than a tight one.
+        // (With no stop ahead to cap it, the method's step: τ-max may be unbounded.)
         let h = if self.implicit_h > 0.0 {
             self.implicit_h
-        } else {
+        } else if cap.is_finite() {
             cap
+        } else {
+            self.natural_step()
         }
         .min(cap);
         let y0 = self.table_y();
