@@ -140,7 +140,7 @@ impl Run {
             next.max(self.implicit_h)
         };
         let (y1, c1) = kahan(y0, self.table_c(), step.dy);
-        self.jump(step.h, y1.p, y1.w, Limit::Implicit);
+        self.jump_through(step.h, Some(step.mid), y1.p, y1.w, Limit::Implicit);
         if let Some(info) = &mut self.last_step {
             info.err_ratio = Some(step.err);
         }
@@ -238,25 +238,35 @@ impl Run {
     /// stop (u = 0) sticks if static friction can hold it, ξ ≤ μ_s/μ_k (the paper's 1), else
     /// it slips on at μ_k (Filippov).
     pub(super) fn jump(&mut self, t: f64, q: DVec2, u: DVec2, limit: Limit) {
+        self.jump_through(t, None, q, u, limit);
+    }
+
+    /// [`Run::jump`] whose segment also passes through the table-frame point `mid` at `t/2`.
+    fn jump_through(&mut self, t: f64, mid: Option<Y>, q: DVec2, u: DVec2, limit: Limit) {
         let frame = self.settings.frame;
         // A stop's last stretch is read off its closed form ([`Run::state_at`]).
         let from = self.table_y();
         self.stop_from = (u == DVec2::ZERO && from.w != DVec2::ZERO && from.p.length() < 1.0)
             .then_some((self.stepper.t, from));
-        let tau = self.stepper.t + t;
-        let r = rotate(q, tau);
-        let to = State {
-            tau,
-            r,
-            v: rotate(u, tau) + zcross(r),
+        let at = |tau: f64, q: DVec2, u: DVec2| {
+            let r = rotate(q, tau);
+            State {
+                tau,
+                r,
+                v: rotate(u, tau) + zcross(r),
+            }
         };
-        let seg = self.stepper.advance(
-            |y| frame.rhs(y),
-            t,
-            frame.from_state(&to),
-            None,
-            &mut self.cost,
-        );
+        let tau = self.stepper.t + t;
+        let to = at(tau, q, u);
+        let rhs = |y| frame.rhs(y);
+        let y1 = frame.from_state(&to);
+        let seg = match mid {
+            Some(m) => {
+                let ym = frame.from_state(&at(self.stepper.t + 0.5 * t, m.p, m.w));
+                (self.stepper).advance_through(rhs, t, ym, y1, &mut self.cost)
+            }
+            None => self.stepper.advance(rhs, t, y1, None, &mut self.cost),
+        };
         self.last = Some(seg);
         match limit {
             Limit::Implicit => {
