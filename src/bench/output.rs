@@ -312,7 +312,7 @@ fn comparisons(o: &mut String, r: &Report) {
     if !r.ratios.is_empty() {
         let _ = writeln!(
             o,
-            "  dp54 against rk2 dt=1e-3 task by task (loosest dp54 on the grid at least as accurate; median RHS per case):"
+            "  dp54 against rk2 dt=1e-3 task by task (loosest dp54 on the grid at least as accurate; median RHS per case; rows the end game took from the release left out):"
         );
         for t in &r.ratios {
             let _ = writeln!(

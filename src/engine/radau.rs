@@ -198,6 +198,9 @@ fn scaled(y0: V, dz: V, e: V, h: f64, tol: f64) -> f64 {
 pub struct Step {
     pub h: f64,
     pub dy: Y,
+    /// The point at `h/2`, where the pair's two half steps meet: the step's dense output
+    /// passes through it.
+    pub mid: Y,
     pub err: f64,
 }
 
@@ -210,15 +213,23 @@ pub fn step(y0: Y, mut h: f64, tol: f64, h_min: f64, evals: &mut u64) -> Option<
     while h >= h_min {
         let full = one(x0, h, tol);
         let half = one(x0, 0.5 * h, tol)
-            .and_then(|(m, e1)| one(m, 0.5 * h, tol).map(|(x, e2)| (x, e1 + e2)));
-        if let (Some((a, ea)), Some((b, eb))) = (full, half) {
+            .and_then(|(m, e1)| one(m, 0.5 * h, tol).map(|(x, e2)| (x, m, e1 + e2)));
+        if let (Some((a, ea)), Some((b, m, eb))) = (full, half) {
             *evals += ea + eb;
             let diff: V = std::array::from_fn(|k| (b[k] - a[k]) / 31.0);
             let dz = std::array::from_fn(|k| b[k] - x0[k]);
             let err = scaled(x0, dz, diff, h, tol);
             if err <= 1.0 {
                 let next = h * (0.9 * err.max(1e-10).powf(-1.0 / 6.0)).min(4.0);
-                return Some((Step { h, dy: y(dz), err }, next));
+                return Some((
+                    Step {
+                        h,
+                        dy: y(dz),
+                        mid: y(m),
+                        err,
+                    },
+                    next,
+                ));
             }
             h *= (0.9 * err.powf(-1.0 / 6.0)).clamp(0.1, 0.5);
         } else {

@@ -138,7 +138,7 @@ fn energy_identity_holds_on_every_adaptive_run() {
                 work += match seg.dense {
                     // A stop taken in closed form: a straight stretch in the table frame.
                     Dense::Hermite { .. } => (state(seg.t1()).q() - state(seg.t0).q()).length(),
-                    Dense::Dp5(_) | Dense::Dop853(_) => {
+                    Dense::Dp5(_) | Dense::Dop853(_) | Dense::Hermite5 { .. } => {
                         let h = 0.25 * seg.h;
                         0.5 * h
                             * (0..20)
