@@ -33,6 +33,7 @@ fn curve(rows: &[Row], task: Task, m: Method) -> Vec<(f64, f64, f64)> {
     let mut c: Vec<(f64, f64, f64)> = rows
         .iter()
         .filter(|r| r.task == task && r.method == m && r.err_median > 0.0)
+        .filter(|r| r.measures_its_method())
         .map(|r| (r.err_median.log10(), r.evals_median.log10(), r.knob))
         .filter(|p| p.0.is_finite() && p.1.is_finite())
         .collect();

@@ -382,9 +382,7 @@ fn frame_time(reps: usize) -> Result<(f64, usize), Error> {
 /// least as accurate (median error), and how many times fewer RHS evaluations it takes (median
 /// per case).
 pub(super) fn task_ratios(rows: &[Row]) -> Vec<TaskRatio> {
-    // A row the end game took from the release measures the end game, not its method: near the
-    // rim rk2 and dp54 are then the same implicit steps (0.998× at the rim stops).
-    let own = |r: &&Row| !r.end_game.as_ref().is_some_and(|e| e.took_the_row());
+    let own = |r: &&Row| r.measures_its_method();
     let mut out = Vec::new();
     for rk2 in rows
         .iter()

@@ -331,7 +331,7 @@ fn comparisons(o: &mut String, r: &Report) {
     if !r.crossovers.is_empty() {
         let _ = writeln!(
             o,
-            "  dop853 against dp54 at equal median error (dp54's RHS per case interpolated log–log; ratio = dp54 / dop853):"
+            "  dop853 against dp54 at equal median error (dp54's RHS per case interpolated log–log; ratio = dp54 / dop853; rows the end game took from the release left out):"
         );
         for c in &r.crossovers {
             let from = c
