@@ -56,7 +56,9 @@ impl Film {
         let drawn = self.draw(buf);
         match self.screens.last_mut() {
             Some(last) if last.1 == drawn => return Ok(()),
-            Some(last) if t - last.0 < STEP => {
+            // (Less a hair: three ticks of a thirtieth add up to a tenth or a hair less, and
+            // the screens would step unevenly, now three ticks apart, now four.)
+            Some(last) if t - last.0 < STEP - 1e-9 => {
                 last.1 = drawn;
                 return Ok(());
             }
@@ -235,6 +237,34 @@ mod tests {
     use super::*;
     use ratatui::layout::Rect;
     use ratatui::style::Style;
+
+    /// A screen a tick (a thirtieth of a second, after a caption's hold) keeps one every
+    /// three ticks: ten a second, evenly, each with the last of its ticks' screens.
+    #[test]
+    fn screens_step_evenly_at_ten_a_second() {
+        let mut buf = Buffer::empty(Rect::new(0, 0, 3, 1));
+        let mut film = Film::new(3, 1, Color::Black);
+        for tick in 0..30_u32 {
+            buf.set_string(0, 0, format!("{tick:3}"), Style::default());
+            film.frame(f64::from(tick) / 30.0 + 5.1, &buf).unwrap();
+        }
+        let times: Vec<String> = film.screens.iter().map(|s| format!("{:.4}", s.0)).collect();
+        let every_third: Vec<String> = (0..10)
+            .map(|i| format!("{:.4}", 5.1 + f64::from(i) / 10.0))
+            .collect();
+        assert_eq!(times, every_third);
+        // The screen from 5.1 s is the last of ticks 0, 1 and 2.
+        assert!(
+            film.screens[0].1[0].contains(r#"x="18">2<"#),
+            "{:?}",
+            film.screens[0]
+        );
+        assert!(
+            film.screens[9].1[0].contains(r#"x="9 18">29<"#),
+            "{:?}",
+            film.screens[9]
+        );
+    }
 
     #[test]
     fn lengths_read_short() {
