@@ -3,15 +3,21 @@
 //! and so does a README on a forge, with nothing installed (an asciicast needs a player).
 
 use ratatui::buffer::{Buffer, Cell};
-use ratatui::style::{Color, Modifier};
+use ratatui::style::Color;
 use std::fmt::Write as _;
 use std::io::{self, Write};
 
-/// A cell's size in the picture, in pixels, and the font's (a monospace font's advance is
-/// 0.6 of its size; each run of text is also stretched to its cells, so none drifts).
-const CELL_W: f64 = 8.4;
-const CELL_H: f64 = 17.0;
-const FONT: f64 = 14.0;
+mod row;
+
+/// A cell's size in the picture, in pixels (whole, so that places are short), and the font's
+/// (a monospace font's advance is 0.6 of its size: `row` places each glyph at its cell, as
+/// no font is trusted to have it).
+const CELL_W: f64 = 9.0;
+const CELL_H: f64 = 18.0;
+const FONT: f64 = 15.0;
+
+/// The colour of text in the terminal's own colour.
+const TEXT: &str = "#d0d0d0";
 
 /// The least time between two screens kept: a screen that follows sooner replaces the last.
 const STEP: f64 = 0.1;
@@ -29,6 +35,8 @@ pub struct Film {
     height: u16,
     background: Color,
     screens: Vec<(f64, Vec<String>)>,
+    /// The colours its rows name.
+    colours: row::Palette,
 }
 
 impl Film {
@@ -39,6 +47,7 @@ impl Film {
             height,
             background,
             screens: Vec::new(),
+            colours: row::Palette::default(),
         }
     }
 
@@ -47,7 +56,9 @@ impl Film {
         let drawn = self.draw(buf);
         match self.screens.last_mut() {
             Some(last) if last.1 == drawn => return Ok(()),
-            Some(last) if t - last.0 < STEP => {
+            // (Less a hair: three ticks of a thirtieth add up to a tenth or a hair less, and
+            // the screens would step unevenly, now three ticks apart, now four.)
+            Some(last) if t - last.0 < STEP - 1e-9 => {
                 last.1 = drawn;
                 return Ok(());
             }
@@ -76,23 +87,28 @@ impl Film {
         for (i, (t, _)) in self.screens.iter().enumerate() {
             let _ = write!(
                 frames,
-                "{:.4}%{{transform:translateY({:.1}px)}}",
+                "{:.4}%{{transform:translateY({}px)}}",
                 100.0 * t / total,
-                -(i as f64) * h
+                num(-(i as f64) * h)
             );
         }
+        let mut colours = String::new();
+        for (i, c) in self.colours.0.iter().enumerate() {
+            let _ = write!(colours, ".c{i}{{color:{c}}}");
+        }
+        let (w, h) = (num(w), num(h));
         writeln!(
             out,
-            r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w:.1}" height="{h:.1}" viewBox="0 0 {w:.1} {h:.1}" xml:space="preserve">"#
+            r#"<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" viewBox="0 0 {w} {h}">"#
         )?;
         writeln!(out, "<title>{}</title>", escape(title))?;
         writeln!(
             out,
-            "<style>text{{font-family:'DejaVu Sans Mono',Menlo,Consolas,monospace;font-size:{FONT}px;white-space:pre}}.b{{font-weight:bold}}@keyframes play{{{frames}}}#screens{{animation:play {total:.3}s steps(1,end) infinite}}</style>"
+            "<style>text{{font-family:'DejaVu Sans Mono',Menlo,Consolas,'Liberation Mono',monospace;font-size:{FONT}px}}tspan,rect{{fill:currentColor}}path{{fill:none;stroke:currentColor;stroke-width:1.2px;stroke-linecap:square}}.h{{stroke-width:2.6px}}.b{{font-weight:bold}}{colours}@keyframes play{{{frames}}}#screens{{animation:play {total:.3}s steps(1,end) infinite}}</style>"
         )?;
         writeln!(
             out,
-            r#"<rect width="100%" height="100%" fill="{}"/>"#,
+            r#"<rect width="100%" height="100%" style="fill:{}"/>"#,
             hex(self.background, "#000000")
         )?;
         // Each row once, by its first place in the order shown.
@@ -107,69 +123,49 @@ impl Film {
         writeln!(out, "</defs>")?;
         writeln!(out, r#"<g id="screens">"#)?;
         for (i, (_, rows)) in self.screens.iter().enumerate() {
-            write!(out, r#"<g transform="translate(0 {:.1})">"#, i as f64 * h)?;
+            write!(
+                out,
+                r#"<g transform="translate(0 {})">"#,
+                num(i as f64 * CELL_H * f64::from(self.height))
+            )?;
             for (y, row) in rows.iter().enumerate() {
                 let r = known[row.as_str()];
-                write!(out, r##"<use href="#r{r}" y="{:.1}"/>"##, y as f64 * CELL_H)?;
+                write!(
+                    out,
+                    r##"<use href="#r{r}" y="{}"/>"##,
+                    num(y as f64 * CELL_H)
+                )?;
             }
             writeln!(out, "</g>")?;
         }
         writeln!(out, "</g></svg>")
     }
 
-    /// One screen's rows, each at the top: the cells whose background is not the theme's as
-    /// rectangles, then the text in runs of one colour and weight, each stretched to its cells.
-    fn draw(&self, buf: &Buffer) -> Vec<String> {
-        let mut rows = Vec::new();
+    /// One screen's rows, each drawn at the top (see `row`).
+    fn draw(&mut self, buf: &Buffer) -> Vec<String> {
         let (w, h) = (
             self.width.min(buf.area.width),
             self.height.min(buf.area.height),
         );
-        for y in 0..h {
-            let row: Vec<&Cell> = (0..w)
-                .map(|x| &buf[(buf.area.x + x, buf.area.y + y)])
-                .collect();
-            let mut out = String::new();
-            let top = 0.0;
-            let mut x = 0;
-            while x < row.len() {
-                let bg = row[x].bg;
-                let run = row[x..].iter().take_while(|c| c.bg == bg).count();
-                if bg != self.background && bg != Color::Reset {
-                    let _ = write!(
-                        out,
-                        r#"<rect x="{:.1}" y="{top:.1}" width="{:.1}" height="{CELL_H}" fill="{}"/>"#,
-                        x as f64 * CELL_W,
-                        run as f64 * CELL_W,
-                        hex(bg, "#000000")
-                    );
-                }
-                x += run;
-            }
-            let _ = write!(out, r#"<text y="{:.1}">"#, top + CELL_H * 0.78);
-            let mut x = 0;
-            while x < row.len() {
-                let key = |c: &Cell| (c.fg, c.modifier.contains(Modifier::BOLD));
-                let here = key(row[x]);
-                let run = row[x..].iter().take_while(|c| key(c) == here).count();
-                let text: String = row[x..x + run].iter().map(|c| c.symbol()).collect();
-                if !text.trim().is_empty() {
-                    let bold = if here.1 { r#" class="b""# } else { "" };
-                    let _ = write!(
-                        out,
-                        r#"<tspan x="{:.1}" textLength="{:.1}" lengthAdjust="spacingAndGlyphs" fill="{}"{bold}>{}</tspan>"#,
-                        x as f64 * CELL_W,
-                        run as f64 * CELL_W,
-                        hex(here.0, "#d0d0d0"),
-                        escape(&text)
-                    );
-                }
-                x += run;
-            }
-            out.push_str("</text>");
-            rows.push(out);
-        }
-        rows
+        (0..h)
+            .map(|y| {
+                let row: Vec<&Cell> = (0..w)
+                    .map(|x| &buf[(buf.area.x + x, buf.area.y + y)])
+                    .collect();
+                row::draw(&row, self.background, &mut self.colours)
+            })
+            .collect()
+    }
+}
+
+/// A length in the picture, as short as it reads: `9`, `4.5`, `-36`.
+fn num(v: f64) -> String {
+    let tenths = (v * 10.0).round();
+    if tenths % 10.0 == 0.0 {
+        // (plus zero: -0 reads 0)
+        format!("{}", tenths / 10.0 + 0.0)
+    } else {
+        format!("{:.1}", tenths / 10.0)
     }
 }
 
@@ -242,6 +238,43 @@ mod tests {
     use ratatui::layout::Rect;
     use ratatui::style::Style;
 
+    /// A screen a tick (a thirtieth of a second, after a caption's hold) keeps one every
+    /// three ticks: ten a second, evenly, each with the last of its ticks' screens.
+    #[test]
+    fn screens_step_evenly_at_ten_a_second() {
+        let mut buf = Buffer::empty(Rect::new(0, 0, 3, 1));
+        let mut film = Film::new(3, 1, Color::Black);
+        for tick in 0..30_u32 {
+            buf.set_string(0, 0, format!("{tick:3}"), Style::default());
+            film.frame(f64::from(tick) / 30.0 + 5.1, &buf).unwrap();
+        }
+        let times: Vec<String> = film.screens.iter().map(|s| format!("{:.4}", s.0)).collect();
+        let every_third: Vec<String> = (0..10)
+            .map(|i| format!("{:.4}", 5.1 + f64::from(i) / 10.0))
+            .collect();
+        assert_eq!(times, every_third);
+        // The screen from 5.1 s is the last of ticks 0, 1 and 2.
+        assert!(
+            film.screens[0].1[0].contains(r#"x="18">2<"#),
+            "{:?}",
+            film.screens[0]
+        );
+        assert!(
+            film.screens[9].1[0].contains(r#"x="9 18">29<"#),
+            "{:?}",
+            film.screens[9]
+        );
+    }
+
+    #[test]
+    fn lengths_read_short() {
+        assert_eq!(num(-0.0), "0");
+        assert_eq!(num(-36.0), "-36");
+        assert_eq!(num(4.5), "4.5");
+        assert_eq!(num(14.04), "14");
+        assert_eq!(num(711.0), "711");
+    }
+
     #[test]
     fn colours_are_xterms() {
         assert_eq!(hex(Color::Rgb(1, 2, 255), ""), "#0102ff");
@@ -266,20 +299,24 @@ mod tests {
         film.frame(0.5, &buf).unwrap();
         assert_eq!(film.screens.len(), 2);
         assert_eq!(film.screens[0].0, 0.0);
-        assert!(film.screens[0].1[1].contains(">b   </tspan>"));
+        assert!(film.screens[0].1[1].contains(r#"x="0">b</tspan>"#));
         let mut out = Vec::new();
         film.write("t<", &mut out).unwrap();
         let svg = String::from_utf8(out).unwrap();
         assert!(svg.contains("<title>t&lt;</title>"));
+        // Red is the first colour drawn; each character at its cell, nine pixels apart.
+        assert!(svg.contains(".c0{color:#cd0000}"), "{svg}");
         assert!(
-            svg.contains(r##"fill="#cd0000">a&lt;&amp;</tspan>"##),
+            svg.contains(r#"<tspan class="c0" x="0 9 18">a&lt;&amp;</tspan>"#),
             "{svg}"
         );
-        // 3.5 s in all: the second screen from 0.5 s, one screen's height up.
+        // 3.5 s in all: the second screen from 0.5 s, one screen's height (2 × 18 px) up.
+        assert!(svg.contains("0.0000%{transform:translateY(0px)}"), "{svg}");
         assert!(
-            svg.contains("14.2857%{transform:translateY(-34.0px)}"),
+            svg.contains("14.2857%{transform:translateY(-36px)}"),
             "{svg}"
         );
+        assert!(svg.contains(r#"width="36" height="36" viewBox="0 0 36 36""#));
         assert!(svg.contains("animation:play 3.500s"));
         // The first row is drawn once for both screens: three rows in all.
         assert_eq!(svg.matches(r#"<g id="r"#).count(), 3);
