@@ -70,6 +70,26 @@ pub enum Prompt {
     GoOn,
 }
 
+/// What the lesson asks of the user ([`App::asked`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Ask {
+    /// A follower who answered: the presenter goes on.
+    Answered,
+    /// A follower to answer y or n.
+    AnswerApart,
+    Answer,
+    /// A follower at a wait: the presenter goes on.
+    GoOnApart,
+    /// Enter goes on.
+    GoOn,
+    /// A follower at the lesson's end: the presenter closes it.
+    EndApart,
+    /// The lesson's end: Esc closes it.
+    End,
+    /// Nothing held: Space plays or pauses.
+    Play,
+}
+
 /// The caption box's contents.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Caption {
@@ -196,6 +216,27 @@ impl App {
         self.dirty = true;
     }
 
+    /// What the lesson asks of the user now, worded by the caption's title and by plain mode
+    /// for their places. A user following a served class is asked only what is theirs to do:
+    /// their own answer; Enter and Esc are the presenter's.
+    pub fn asked(&self) -> Option<Ask> {
+        let l = &self.lesson;
+        let apart = self.apart();
+        Some(match l.prompt() {
+            Prompt::Answer if apart && l.question.as_ref().is_some_and(|q| q.own.is_some()) => {
+                Ask::Answered
+            }
+            Prompt::Answer if apart => Ask::AnswerApart,
+            Prompt::Answer => Ask::Answer,
+            Prompt::GoOn if apart => Ask::GoOnApart,
+            Prompt::GoOn => Ask::GoOn,
+            Prompt::None if l.done && apart => Ask::EndApart,
+            Prompt::None if l.done => Ask::End,
+            Prompt::None if apart => return None,
+            Prompt::None => Ask::Play,
+        })
+    }
+
     /// The caption box, when there is something to say.
     pub fn caption(&self) -> Option<Caption> {
         let l = &self.lesson;
@@ -215,27 +256,22 @@ impl App {
             (None, None) if l.waiting => String::new(),
             (None, None) => return None,
         };
-        // Which key pauses is said wherever the lesson is (it never moves the lesson on); to a
-        // user answering apart, only what is theirs to do. What y and n mean is said with
-        // them, however the question is worded ("will it stay?" reads the other way).
-        let own = l.question.as_ref().and_then(|q| q.own);
-        let apart = self.apart();
-        let prompt = match (l.prompt(), self.playing) {
-            (Prompt::Answer, _) if apart && own.is_some() => {
-                Some("answered · the presenter goes on")
-            }
-            (Prompt::Answer, _) if apart => Some("y escapes · n stays"),
-            (Prompt::GoOn, _) if apart => Some("the presenter goes on"),
-            (Prompt::None, _) if apart && !l.done => None,
-            (Prompt::None, _) if apart => Some("end · presenter closes it"),
-            (Prompt::Answer, true) => Some("y escapes · n stays · Space pauses"),
-            (Prompt::Answer, false) => Some("y escapes · n stays · Space plays"),
-            (Prompt::GoOn, true) => Some("Enter: go on · Space pauses"),
-            (Prompt::GoOn, false) => Some("Enter: go on · Space plays"),
-            (Prompt::None, _) if l.done => Some("end · Esc closes · q quits"),
-            (Prompt::None, true) => Some("Space pauses"),
-            (Prompt::None, false) => Some("Space plays"),
-        };
+        // Which key pauses is said wherever the lesson is (it never moves the lesson on). What
+        // y and n mean is said with them, however the question is worded ("will it stay?"
+        // reads the other way).
+        let prompt = self.asked().map(|ask| match (ask, self.playing) {
+            (Ask::Answered, _) => "answered · the presenter goes on",
+            (Ask::AnswerApart, _) => "y escapes · n stays",
+            (Ask::GoOnApart, _) => "the presenter goes on",
+            (Ask::EndApart, _) => "end · presenter closes it",
+            (Ask::Answer, true) => "y escapes · n stays · Space pauses",
+            (Ask::Answer, false) => "y escapes · n stays · Space plays",
+            (Ask::GoOn, true) => "Enter: go on · Space pauses",
+            (Ask::GoOn, false) => "Enter: go on · Space plays",
+            (Ask::End, _) => "end · Esc closes · q quits",
+            (Ask::Play, true) => "Space pauses",
+            (Ask::Play, false) => "Space plays",
+        });
         let title = l
             .name
             .as_ref()

@@ -5,7 +5,7 @@
 //! readouts when asked (`I`). Pure: the same keys and ticks give the same lines.
 
 use crate::app::App;
-use crate::app::lesson::Prompt;
+use crate::app::lesson::Ask;
 use crate::app::pages::Page;
 use crate::engine::{Frame, Outcome, Release, Status};
 use crate::present::{num, speed};
@@ -64,31 +64,18 @@ impl Seen {
             notice: app.notice().clone(),
             typing: app.prompt().clone(),
             caption: caption.as_ref().map(|c| c.text.clone()),
-            // A served class's follower answers for itself, and the presenter goes on.
-            prompt: match app.lesson().prompt() {
-                Prompt::Answer
-                    if app.apart()
-                        && app
-                            .lesson()
-                            .question
-                            .as_ref()
-                            .is_some_and(|q| q.own.is_some()) =>
-                {
-                    Some("answered; the presenter goes on")
-                }
-                Prompt::Answer if app.apart() => Some("answer y if it escapes, n if it stays"),
-                Prompt::Answer => Some("answer y or n"),
-                Prompt::GoOn if app.apart() => Some("the presenter goes on"),
-                Prompt::GoOn => Some("Enter goes on (Space plays and pauses)"),
-                // A follower's Esc is the presenter's to press.
-                Prompt::None if app.lesson().done && app.lesson().name.is_some() && app.apart() => {
-                    Some("end of the lesson")
-                }
-                Prompt::None if app.lesson().done && app.lesson().name.is_some() => {
-                    Some("end of the lesson; Esc closes it, q quits")
-                }
-                Prompt::None => None,
-            },
+            // Said only where a lesson runs (a scene's caption alone asks nothing).
+            prompt: app.asked().and_then(|ask| match ask {
+                Ask::Answered => Some("answered; the presenter goes on"),
+                Ask::AnswerApart => Some("answer y if it escapes, n if it stays"),
+                Ask::Answer => Some("answer y or n"),
+                Ask::GoOnApart => Some("the presenter goes on"),
+                Ask::GoOn => Some("Enter goes on (Space plays and pauses)"),
+                _ if app.lesson().name.is_none() => None,
+                Ask::EndApart => Some("end of the lesson"),
+                Ask::End => Some("end of the lesson; Esc closes it, q quits"),
+                Ask::Play => None,
+            }),
             readouts_asked: app.readouts_asked(),
             readouts: readouts(app),
         }
