@@ -4,13 +4,14 @@
 //! constant Ω, or a table spun up where the scene asks ([`Motion`]).
 
 pub mod accuracy;
+pub mod doubts;
 pub mod ending;
 mod motion;
 pub mod testing;
 
 pub use motion::Motion;
 
-use crate::engine::doubt::{Doubt, doubt};
+use crate::engine::doubt::Doubt;
 use crate::engine::method::TOL_RANGE;
 use crate::engine::run::{Escape, Outcome, Run, RunError, Status, StepInfo};
 use crate::engine::spinup::{Ramp, SpinRun};
@@ -332,7 +333,8 @@ impl Sim {
             && self.doubt.is_none()
             && run.outcome() != Outcome::Running
         {
-            self.doubt = Some(doubt(run, f64::INFINITY));
+            // Every session holding this run asks: one computes it (see `doubts`).
+            self.doubt = Some(doubts::DOUBTS.of(run, f64::INFINITY));
         }
     }
 

@@ -62,44 +62,105 @@ async fn seated(addr: SocketAddr, k: u8) -> Option<Term> {
 
 /// A follower: for each press of the presenter's, how long after it its screen showed it (2 s
 /// when it never did), the bytes it received, and the presses it never saw; until the
-/// presenter stops pressing.
+/// presenter stops pressing. Each press is timed on its own, from the bytes that came after it
+/// was sent to the message that completed its needle: one late screen does not make the next
+/// look late (searching only what came after this task got round to a press, a screen that
+/// came while it still waited for the last one was missed, and every press after read ~400 ms).
 async fn follower(
     addr: SocketAddr,
     ready: Arc<AtomicUsize>,
     mut presses: Presses,
 ) -> (Vec<Duration>, usize, usize) {
-    let Some(mut t) = seated(addr, 2).await else {
+    let Some(t) = seated(addr, 2).await else {
         return (vec![], 0, 1);
     };
     ready.fetch_add(1, Ordering::Relaxed);
-    let (mut lat, mut bytes, mut lost) = (vec![], 0, 0);
+    let mut screen = Screen::new(t);
+    let (mut lat, mut lost) = (vec![], 0);
     for k in 0.. {
-        // The screen is read while the press is awaited (a client that stops reading holds
-        // its frames up); what was read before the press was sent is not searched.
-        let mut from = t.seen.len();
         let sent = loop {
             if let Some(&sent) = presses.borrow_and_update().get(k) {
                 break Some(sent);
             }
-            from = t.seen.len();
+            // The screen is read while the press is awaited (a client that stops reading
+            // holds its frames up).
             tokio::select! {
                 changed = presses.changed() => if changed.is_err() { break None },
-                _ = t.until(from, b"\x00never", ANSWER_WAIT) => {}
+                open = screen.read(Instant::now() + ANSWER_WAIT) => {
+                    if !open && screen.term.closed {
+                        break None;
+                    }
+                }
             }
         };
         let Some(sent) = sent else { break };
         let needle: &[u8] = if k % 2 == 0 { b"help:" } else { b"lab frame" };
-        if t.until(from, needle, ANSWER_WAIT).await {
-            lat.push(sent.elapsed());
-        } else {
-            lat.push(ANSWER_WAIT);
-            lost += 1;
+        match screen.shown(sent, needle).await {
+            Some(when) => lat.push(when.saturating_duration_since(sent)),
+            None => {
+                lat.push(ANSWER_WAIT);
+                lost += 1;
+            }
         }
-        bytes += t.seen.len();
-        t.seen.clear();
     }
-    bytes += t.seen.len();
-    (lat, bytes, lost)
+    (lat, screen.dropped + screen.term.seen.len(), lost)
+}
+
+/// A follower's screen as it came: its bytes and when each message of them arrived.
+struct Screen {
+    term: Term,
+    /// Each message's end in `term.seen`, and when it came.
+    came: std::collections::VecDeque<(usize, Instant)>,
+    /// Bytes read and let go (those before the last press).
+    dropped: usize,
+}
+
+impl Screen {
+    fn new(term: Term) -> Screen {
+        Screen {
+            term,
+            came: std::collections::VecDeque::new(),
+            dropped: 0,
+        }
+    }
+
+    /// One message, by `end`, noted with when it came; false when none came.
+    async fn read(&mut self, end: Instant) -> bool {
+        let got = self.term.next(end.into()).await;
+        if got {
+            self.came.push_back((self.term.seen.len(), Instant::now()));
+        }
+        got && !self.term.closed
+    }
+
+    /// When the message came that completed `needle` among the bytes that came after `sent`
+    /// (None if none did within [`ANSWER_WAIT`] of it); what came before `sent` is let go.
+    async fn shown(&mut self, sent: Instant, needle: &[u8]) -> Option<Instant> {
+        let before = self.came.iter().take_while(|(_, at)| *at < sent).count();
+        if let Some(&(from, _)) = before.checked_sub(1).and_then(|i| self.came.get(i)) {
+            self.term.seen.drain(..from);
+            self.dropped += from;
+            self.came.drain(..before);
+            for (end, _) in &mut self.came {
+                *end -= from;
+            }
+        }
+        let mut searched = 0;
+        loop {
+            let seen = &self.term.seen;
+            if let Some(i) = seen[searched..]
+                .windows(needle.len())
+                .position(|w| w == needle)
+            {
+                let end = searched + i + needle.len();
+                return self.came.iter().find(|(e, _)| *e >= end).map(|&(_, at)| at);
+            }
+            searched = seen.len().saturating_sub(needle.len() - 1);
+            if !self.read(sent + ANSWER_WAIT).await {
+                return None;
+            }
+        }
+    }
 }
 
 /// Runs the measurement with `students` followers for `seconds`.

@@ -232,7 +232,7 @@ impl Term {
     }
 
     /// One message, by `end`; false when none came.
-    async fn next(&mut self, end: Instant) -> bool {
+    pub async fn next(&mut self, end: Instant) -> bool {
         let msg = match tokio::time::timeout_at(end, self.channel.wait()).await {
             Ok(Some(msg)) => msg,
             Ok(None) => {

@@ -1,0 +1,168 @@
+//! Second opinions computed once a process: a run's [`doubt`] hangs on nothing but what it
+//! reads of the run (its initial conditions, settings, outcome, deciding state and snap
+//! bound), so every session holding the same run (a served class's followers, each applying
+//! the presenter's ticks; students exploring the same scene; a run restarted as it was) takes
+//! the one opinion the first of them computed. Each computing its own cost a class 6–7 ms of
+//! CPU a follower at the one tick where the run stopped: 100 followers took both cores for a
+//! third of a second, and the presenter's keys waited behind.
+
+use crate::engine::doubt::{Doubt, decided_state, doubt};
+use crate::engine::run::{Outcome, Run};
+use crate::engine::{Initial, Settings, State};
+use std::collections::VecDeque;
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::{Arc, Mutex, MutexGuard, OnceLock};
+
+/// Opinions kept at most, the oldest going first.
+const KEPT: usize = 64;
+
+/// All that [`doubt`] reads of a run (the run itself is a function of its initial conditions
+/// and settings, and where it was decided of the steps it took): runs equal in these have
+/// the same second opinion, bit for bit.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Asked {
+    initial: Initial,
+    settings: Settings,
+    outcome: Outcome,
+    decided: State,
+    snap_bound: f64,
+    tau_max: f64,
+}
+
+impl Asked {
+    fn of(run: &Run, tau_max: f64) -> Asked {
+        Asked {
+            initial: run.initial(),
+            settings: run.settings(),
+            outcome: run.outcome(),
+            decided: decided_state(run),
+            snap_bound: run.snap_bound(),
+            tau_max,
+        }
+    }
+}
+
+/// The opinions asked for lately, each computed once: a session asking for one another is
+/// computing waits for it rather than computing it again.
+pub struct Doubts {
+    kept: Mutex<VecDeque<(Asked, Arc<OnceLock<Doubt>>)>>,
+    computed: AtomicU64,
+}
+
+/// The process's: the sessions' runs ask here (see [`super::Sim`]).
+pub static DOUBTS: Doubts = Doubts::new();
+
+impl Doubts {
+    pub const fn new() -> Doubts {
+        Doubts {
+            kept: Mutex::new(VecDeque::new()),
+            computed: AtomicU64::new(0),
+        }
+    }
+
+    /// `doubt(run, tau_max)`, computed here once for every run equal in what it reads.
+    pub fn of(&self, run: &Run, tau_max: f64) -> Doubt {
+        let asked = Asked::of(run, tau_max);
+        let slot = {
+            let mut kept = self.lock();
+            match kept.iter().find(|(a, _)| *a == asked) {
+                Some((_, slot)) => Arc::clone(slot),
+                None => {
+                    let slot = Arc::new(OnceLock::new());
+                    kept.push_back((asked, Arc::clone(&slot)));
+                    if kept.len() > KEPT {
+                        kept.pop_front();
+                    }
+                    slot
+                }
+            }
+        };
+        *slot.get_or_init(|| {
+            self.computed.fetch_add(1, Ordering::Relaxed);
+            doubt(run, tau_max)
+        })
+    }
+
+    /// Opinions computed so far.
+    pub fn computed(&self) -> u64 {
+        self.computed.load(Ordering::Relaxed)
+    }
+
+    /// Opinions kept now.
+    pub fn kept(&self) -> usize {
+        self.lock().len()
+    }
+
+    fn lock(&self) -> MutexGuard<'_, VecDeque<(Asked, Arc<OnceLock<Doubt>>)>> {
+        self.kept
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner)
+    }
+}
+
+impl Default for Doubts {
+    fn default() -> Doubts {
+        Doubts::new()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The default scene's run (Fig. 3 C: it stops just inside ξ = 1) at ξ0 + `dxi`, run to
+    /// its end.
+    fn ended(dxi: f64) -> Run {
+        let initial = Initial::velocity(0.5 + dxi, 0.0, 0.6078);
+        let mut run = Run::new(initial, Settings::default()).unwrap();
+        run.run(100.0, true).unwrap();
+        assert_ne!(run.outcome(), Outcome::Running);
+        run
+    }
+
+    /// A run asked for again, or by another session holding the same run, is not computed
+    /// again, and is what `doubt` says; another run is computed.
+    #[test]
+    fn an_opinion_is_computed_once_for_equal_runs() {
+        let doubts = Doubts::new();
+        let (a, b) = (ended(0.0), ended(0.0));
+        let first = doubts.of(&a, 100.0);
+        assert_eq!(first, doubt(&a, 100.0));
+        assert_eq!(doubts.of(&b, 100.0), first);
+        assert_eq!(doubts.of(&a, 100.0), first);
+        assert_eq!(doubts.computed(), 1);
+        let other = ended(0.01);
+        assert_eq!(doubts.of(&other, 100.0), doubt(&other, 100.0));
+        assert_eq!(doubts.of(&a, 50.0), doubt(&a, 50.0));
+        assert_eq!(doubts.computed(), 3);
+    }
+
+    /// A class whose runs stop at the same tick asks all at once: one of them computes the
+    /// opinion, the others wait for it (however the threads interleave).
+    #[test]
+    fn a_class_asking_at_once_computes_it_once() {
+        let doubts = Doubts::new();
+        let runs: Vec<Run> = (0..8).map(|_| ended(0.0)).collect();
+        let got: Vec<Doubt> = std::thread::scope(|s| {
+            let asks: Vec<_> = runs
+                .iter()
+                .map(|r| s.spawn(|| doubts.of(r, 100.0)))
+                .collect();
+            asks.into_iter().map(|a| a.join().unwrap()).collect()
+        });
+        assert!(got.iter().all(|d| *d == got[0]));
+        assert_eq!(doubts.computed(), 1);
+    }
+
+    /// However many runs ask, at most [`KEPT`] opinions are kept.
+    #[test]
+    fn the_opinions_kept_are_bounded() {
+        let doubts = Doubts::new();
+        let run = ended(0.0);
+        for i in 0..KEPT + 5 {
+            doubts.of(&run, 20.0 + i as f64);
+        }
+        assert_eq!(doubts.kept(), KEPT);
+        assert_eq!(doubts.computed(), (KEPT + 5) as u64);
+    }
+}
