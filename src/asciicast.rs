@@ -149,4 +149,35 @@ mod tests {
         assert_eq!(time(1, 0.0), "0.033333");
         assert_eq!(time(2, 0.5), "0.566667");
     }
+
+    /// The script (`resize 1000x1000`, `tick 10000000`) wrote 783 MB in 60 s. A
+    /// 1000×1000 screen is a million cells a frame, so the bound, an hour of an 80×24 screen,
+    /// is met at the 208th frame looked at, changed or not, with an error that names it and
+    /// nothing written for that frame. The count starts where 205 frames would have left it:
+    /// drawing them is ~30 s of CPU and adds nothing to what is checked.
+    #[test]
+    fn a_huge_screen_meets_the_cells_bound_after_about_200_frames() {
+        use ratatui::layout::Rect;
+        assert_eq!(MAX_CELLS, 207_360_000);
+        let mut out = Vec::new();
+        let mut cast = Cast::new(&mut out, 1000, 1000, "t").unwrap();
+        let mut buf = Buffer::empty(Rect::new(0, 0, 1000, 1000));
+        cast.cells = 205_000_000;
+        // The 206th frame (the first written), then the 207th, unchanged: counted, not written.
+        cast.frame(1, &buf).unwrap();
+        cast.frame(2, &buf).unwrap();
+        assert_eq!((cast.cells, cast.frames), (207_000_000, 1));
+        buf[(5, 5)].set_symbol("x");
+        let err = cast.frame(3, &buf).unwrap_err();
+        assert_eq!(
+            crate::files::bound_reached(&err).as_deref(),
+            Some(
+                "--asciicast reached its bound of 207360000 cells looked at (an hour of an 80x24 screen at 30 a second)"
+            )
+        );
+        assert_eq!(cast.frames, 1);
+        drop(cast);
+        // The header and the one frame written.
+        assert_eq!(out.iter().filter(|&&b| b == b'\n').count(), 2);
+    }
 }
