@@ -263,7 +263,7 @@ impl Run {
         let seg = match mid {
             Some(m) => {
                 let ym = frame.from_state(&at(self.stepper.t + 0.5 * t, m.p, m.w));
-                (self.stepper).advance_through(rhs, t, ym, y1, &mut self.cost)
+                self.stepper.advance_through(rhs, t, ym, y1, &mut self.cost)
             }
             None => self.stepper.advance(rhs, t, y1, None, &mut self.cost),
         };
