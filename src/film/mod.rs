@@ -2,6 +2,7 @@
 //! a second, stacked in one picture that a CSS animation steps through. A browser plays it,
 //! and so does a README on a forge, with nothing installed (an asciicast needs a player).
 
+use crate::theme::ansi16;
 use ratatui::buffer::{Buffer, Cell};
 use ratatui::style::Color;
 use std::fmt::Write as _;
@@ -178,26 +179,8 @@ fn escape(s: &str) -> String {
 
 /// A terminal colour as the xterm palette shows it; `default` for the terminal's own.
 fn hex(c: Color, default: &str) -> String {
-    const BASIC: [(u8, u8, u8); 16] = [
-        (0, 0, 0),
-        (205, 0, 0),
-        (0, 205, 0),
-        (205, 205, 0),
-        (0, 0, 238),
-        (205, 0, 205),
-        (0, 205, 205),
-        (229, 229, 229),
-        (127, 127, 127),
-        (255, 0, 0),
-        (0, 255, 0),
-        (255, 255, 0),
-        (92, 92, 255),
-        (255, 0, 255),
-        (0, 255, 255),
-        (255, 255, 255),
-    ];
     let indexed = |i: u8| match i {
-        0..=15 => BASIC[usize::from(i)],
+        0..=15 => ansi16::indexed(i),
         16..=231 => {
             let level = |v: u8| if v == 0 { 0 } else { 55 + 40 * v };
             let i = i - 16;
@@ -209,25 +192,12 @@ fn hex(c: Color, default: &str) -> String {
         }
     };
     let (r, g, b) = match c {
-        Color::Reset => return default.into(),
-        Color::Rgb(r, g, b) => (r, g, b),
         Color::Indexed(i) => indexed(i),
-        Color::Black => indexed(0),
-        Color::Red => indexed(1),
-        Color::Green => indexed(2),
-        Color::Yellow => indexed(3),
-        Color::Blue => indexed(4),
-        Color::Magenta => indexed(5),
-        Color::Cyan => indexed(6),
-        Color::Gray => indexed(7),
-        Color::DarkGray => indexed(8),
-        Color::LightRed => indexed(9),
-        Color::LightGreen => indexed(10),
-        Color::LightYellow => indexed(11),
-        Color::LightBlue => indexed(12),
-        Color::LightMagenta => indexed(13),
-        Color::LightCyan => indexed(14),
-        Color::White => indexed(15),
+        // Its own, or one of the 16 named.
+        c => match ansi16::rgb(c) {
+            Some(rgb) => rgb,
+            None => return default.into(),
+        },
     };
     format!("#{r:02x}{g:02x}{b:02x}")
 }

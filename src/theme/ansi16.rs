@@ -25,6 +25,12 @@ const PALETTE: [(Color, (u8, u8, u8)); 16] = [
     (Color::White, (255, 255, 255)),
 ];
 
+/// The RGB of the 16's `i`th (0–15, their index in the 256-colour palette) in xterm's default
+/// palette.
+pub fn indexed(i: u8) -> (u8, u8, u8) {
+    PALETTE[usize::from(i & 15)].1
+}
+
 /// A colour's RGB: its own, or for one of the 16 its xterm default.
 pub fn rgb(c: Color) -> Option<(u8, u8, u8)> {
     match c {
