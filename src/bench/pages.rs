@@ -6,7 +6,7 @@
 //! split, so each piece's own CPU time is counted too: the work over the larger of its share
 //! per core and its longest piece is the most the split can give idle cores.
 
-use super::timed;
+use super::{thread_cpu, timed};
 use crate::analysis::{Job, Piece, Speeds, map_cell, map_cell_answer, piece, pieces};
 use crate::app::pages::{Charts, Curve, Page};
 use crate::app::{App, Chord};
@@ -76,12 +76,6 @@ pub struct PageTimes {
     pub held_last_ms: f64,
     pub key_curve_ms: (f64, f64),
     pub key_escape_ms: (f64, f64),
-}
-
-/// This thread's CPU time (s).
-fn thread_cpu() -> f64 {
-    let t = rustix::time::clock_gettime(rustix::time::ClockId::ThreadCPUTime);
-    t.tv_sec as f64 + 1e-9 * t.tv_nsec as f64
 }
 
 /// `f` over `items` on one thread and on all cores (`par_map`), then each piece's CPU time
