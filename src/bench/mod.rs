@@ -47,8 +47,9 @@ pub struct Config {
     /// The Python interpreter whose SciPy the certified escape is measured against (None: not
     /// tried).
     pub python: Option<std::path::PathBuf>,
-    /// Whether to measure the speed goals and time the second opinion steadily (false: a test of
-    /// the rows, which asserts neither, is spared them). The command always does.
+    /// Whether to measure the speed goals, and to time the second opinion and a key's wait on
+    /// the pages steadily (false: a test of the rows, which asserts none of it, is spared them;
+    /// one pass each, a press or two). The command always does.
     #[serde(skip)]
     pub goals: bool,
 }
@@ -379,7 +380,13 @@ pub fn run(cfg: &Config, mut progress: impl FnMut(&str)) -> Result<Report, Error
         cfg.goals.then_some(cfg.reps),
     )?;
     progress("the pages on all cores");
-    let pages = pages::page_times(cfg.reps, if cfg.quick { 4 } else { 8 })?;
+    // A key's wait over a few presses, and a key held for a second (30 presses).
+    let (presses, held) = match (cfg.goals, cfg.quick) {
+        (false, _) => (1, 2),
+        (true, true) => (4, 30),
+        (true, false) => (8, 30),
+    };
+    let pages = pages::page_times(cfg.reps, presses, held)?;
     progress("SciPy's DOP853 on the same escape speeds");
     let scipy = scipy::compare(
         cfg.python.as_deref(),

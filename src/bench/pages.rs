@@ -109,8 +109,8 @@ fn split<T: Sync, R: Send>(
     (out, s)
 }
 
-/// Measures the pages' work and a key's wait.
-pub fn page_times(reps: usize, presses: usize) -> Result<PageTimes, Error> {
+/// Measures the pages' work and a key's wait (over `presses`, and `held` presses of a held key).
+pub fn page_times(reps: usize, presses: usize, held: usize) -> Result<PageTimes, Error> {
     let s = crate::analysis::settings_for(Settings::default());
     let job = Job::Curve { xi0: 0.5 };
     let ks: Vec<usize> = (0..pieces(&job)).collect();
@@ -146,7 +146,6 @@ pub fn page_times(reps: usize, presses: usize) -> Result<PageTimes, Error> {
     });
     let [_, key_curve_ms, key_escape_ms] = key_to_page(Page::EscapeSpeed, presses)?;
     let [key_frame_ms, _, key_map_ms] = key_to_page(Page::OutcomeMap, presses)?;
-    let held = 30;
     let (held_complete, held_last_ms) = held_key(held)?;
     Ok(PageTimes {
         cores: cores(),
