@@ -114,17 +114,7 @@ fn run(
                     c.frame(ticks, s.screen())?;
                 }
             }
-            (Step::Tick(n), Some(c)) => {
-                // Tick by tick, a frame each, as the explorer draws them.
-                for _ in 0..*n {
-                    if !s.is_playing() {
-                        break;
-                    }
-                    s.apply(&Step::Tick(1));
-                    ticks += 1;
-                    c.frame(ticks, s.screen())?;
-                }
-            }
+            (Step::Tick(n), Some(c)) => tick_frames(&mut s, *n, &mut ticks, c)?,
             (step, c) => {
                 s.apply(step);
                 if let Some(c) = c {
@@ -144,6 +134,25 @@ fn run(
         c.frame(ticks, s.screen())?;
     }
     out.flush()
+}
+
+/// `n` ticks recorded tick by tick, a frame each, as the explorer draws them (while it plays);
+/// `ticks` counts them, the recording's clock.
+pub(crate) fn tick_frames(
+    s: &mut Explorer<TestBackend>,
+    n: u64,
+    ticks: &mut u64,
+    c: &mut Cast,
+) -> std::io::Result<()> {
+    for _ in 0..n {
+        if !s.is_playing() {
+            break;
+        }
+        s.apply(&Step::Tick(1));
+        *ticks += 1;
+        c.frame(*ticks, s.screen())?;
+    }
+    Ok(())
 }
 
 /// Seconds a recording holds the screen after `step`, so that a class sees what a key did

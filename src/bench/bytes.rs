@@ -144,7 +144,9 @@ impl Write for Lines {
     }
 }
 
-/// The default scene played for `ticks` at `size` and recorded as `replay --asciicast` does,
+/// The default scene played for `ticks` at `size` and recorded as `replay --asciicast` does
+/// (its first screen, then a frame a tick; not the text snapshot a replay ends with, nor its
+/// last frame, the same screen again: two draws of four, and a whole screen as text, saved),
 /// for every built-in theme (24-bit colour, as a replay's `--ansi` writes): the worst.
 pub fn cast_worst(size: (u16, u16), ticks: usize) -> Result<CastBytes, Error> {
     let mut worst = (0, String::new());
@@ -152,25 +154,15 @@ pub fn cast_worst(size: (u16, u16), ticks: usize) -> Result<CastBytes, Error> {
         let th =
             Theme::builtin(theme).ok_or_else(|| Error::invalid(format!("no theme {theme}")))?;
         let app = App::new(Scene::default_scene());
-        let opts = crate::replay::Options {
-            size,
-            theme: th,
-            ..Default::default()
-        };
-        let steps = [crate::script::Step::Tick(ticks as u64)];
+        let mut s = crate::session::Explorer::headless(app, th, size.0, size.1, false);
         let mut lines = Lines {
             line: 0,
             longest: 0,
         };
-        crate::replay::replay_cast(
-            app,
-            &steps,
-            &opts,
-            &mut io::sink(),
-            &mut lines,
-            "bench",
-            None,
-        )?;
+        let mut cast = crate::asciicast::Cast::new(&mut lines, size.0, size.1, "bench")?;
+        cast.frame(0, s.screen())?;
+        crate::replay::tick_frames(&mut s, ticks as u64, &mut 0, &mut cast)?;
+        drop(cast);
         if lines.longest > worst.0 {
             worst = (lines.longest, theme.to_string());
         }

@@ -41,8 +41,13 @@ impl CheckCost {
 }
 
 /// The check's price on the escape speed's bracket ends (the four ξ0 of Fig. 5 × `angles`,
-/// vtol 1e-8), on `rest` (the rest task's cases) and on stops at the rim.
-pub fn check_costs(rest: &[Initial], angles: usize, reps: usize) -> Result<Vec<CheckCost>, Error> {
+/// vtol 1e-8), on `rest` (the rest task's cases) and on stops at the rim; timed over `reps`
+/// passes or more (None: one pass each, the CPU time as it comes).
+pub fn check_costs(
+    rest: &[Initial],
+    angles: usize,
+    reps: Option<usize>,
+) -> Result<Vec<CheckCost>, Error> {
     let mut ends = Vec::new();
     for xi0 in [0.8, 0.5, 0.2, 0.001] {
         for k in 0..angles {
@@ -73,23 +78,25 @@ fn rim() -> Vec<Initial> {
         .collect()
 }
 
-/// CPU milliseconds a call of `f` takes: at least `reps` calls and 0.3 s of CPU between them
-/// (the process clock ticks every 10 ms), at most 1000 calls; and the first call's result.
-fn cpu_timed<T>(reps: usize, mut f: impl FnMut() -> T) -> (T, f64) {
-    let c0 = super::cpu_s();
+/// CPU milliseconds (this thread's) a call of `f` takes: with `reps`, at least that many calls
+/// and 0.3 s of CPU between them, at most 1000 calls; without, one; and the first call's result.
+fn cpu_timed<T>(reps: Option<usize>, mut f: impl FnMut() -> T) -> (T, f64) {
+    let c0 = super::thread_cpu();
     let out = f();
     let mut calls = 1;
-    while calls < 1000 && (calls < reps || super::cpu_s() - c0 < 0.3) {
-        let _ = f();
-        calls += 1;
+    if let Some(reps) = reps {
+        while calls < 1000 && (calls < reps || super::thread_cpu() - c0 < 0.3) {
+            let _ = f();
+            calls += 1;
+        }
     }
-    (out, (super::cpu_s() - c0) * 1e3 / calls as f64)
+    (out, (super::thread_cpu() - c0) * 1e3 / calls as f64)
 }
 
 /// The runs of `releases` at the default settings, then their second opinions, each in CPU
 /// time (the machine may be shared: wall time is not the runs').
-fn cost(what: &str, releases: &[Initial], reps: usize) -> Result<CheckCost, Error> {
-    let reps = reps.max(5);
+fn cost(what: &str, releases: &[Initial], reps: Option<usize>) -> Result<CheckCost, Error> {
+    let reps = reps.map(|r| r.max(5));
     let run = || {
         releases
             .iter()

@@ -47,6 +47,11 @@ pub struct Config {
     /// The Python interpreter whose SciPy the certified escape is measured against (None: not
     /// tried).
     pub python: Option<std::path::PathBuf>,
+    /// Whether to measure the speed goals, and to time the second opinion and a key's wait on
+    /// the pages steadily (false: a test of the rows, which asserts none of it, is spared them;
+    /// one pass each, a press or two). The command always does.
+    #[serde(skip)]
+    pub goals: bool,
 }
 
 impl Config {
@@ -57,6 +62,7 @@ impl Config {
             seed: 5,
             reps: 3,
             python: None,
+            goals: true,
         }
     }
     pub fn quick() -> Self {
@@ -66,6 +72,7 @@ impl Config {
             seed: 5,
             reps: 1,
             python: None,
+            goals: true,
         }
     }
     fn dts(&self) -> Vec<f64> {
@@ -205,7 +212,8 @@ pub struct Report {
     pub reference: Vec<RefCheck>,
     pub rows: Vec<Row>,
     pub savings: Vec<Saving>,
-    pub speed: Speed,
+    /// None when the config leaves the goals out.
+    pub speed: Option<Speed>,
     pub ratios: Vec<TaskRatio>,
     /// dop853 against dp54 at equal error, task by task.
     pub crossovers: Vec<Crossover>,
@@ -278,8 +286,15 @@ fn timed<T>(reps: usize, mut f: impl FnMut() -> T) -> (T, f64) {
     (out, best * 1e3)
 }
 
+/// This thread's CPU time (s).
+pub(super) fn thread_cpu() -> f64 {
+    let t = rustix::time::clock_gettime(rustix::time::ClockId::ThreadCPUTime);
+    t.tv_sec as f64 + 1e-9 * t.tv_nsec as f64
+}
+
 /// CPU time used by the process (user and system), in seconds (USER_HZ is 100 on Linux): what a
 /// single-threaded measurement costs on a machine shared with other work, whose wall time is not.
+#[cfg(feature = "serve")]
 pub(super) fn cpu_s() -> f64 {
     let stat = std::fs::read_to_string("/proc/self/stat").unwrap_or_default();
     let after = stat.rsplit(')').next().unwrap_or("");
@@ -352,12 +367,26 @@ pub fn run(cfg: &Config, mut progress: impl FnMut(&str)) -> Result<Report, Error
     let savings = savings(&all)?;
     progress("the price of each model");
     let models = models::model_costs(&all, cfg.reps)?;
-    progress("speed goals");
-    let speed = speed(cfg, &all, &rest)?;
+    let speed = if cfg.goals {
+        progress("speed goals");
+        Some(speed(cfg, &all, &rest)?)
+    } else {
+        None
+    };
     progress("the second opinion's price");
-    let checks = check::check_costs(&all, if cfg.quick { 3 } else { 12 }, cfg.reps)?;
+    let checks = check::check_costs(
+        &all,
+        if cfg.quick { 3 } else { 12 },
+        cfg.goals.then_some(cfg.reps),
+    )?;
     progress("the pages on all cores");
-    let pages = pages::page_times(cfg.reps, if cfg.quick { 4 } else { 8 })?;
+    // A key's wait over a few presses, and a key held for a second (30 presses).
+    let (presses, held) = match (cfg.goals, cfg.quick) {
+        (false, _) => (1, 2),
+        (true, true) => (4, 30),
+        (true, false) => (8, 30),
+    };
+    let pages = pages::page_times(cfg.reps, presses, held)?;
     progress("SciPy's DOP853 on the same escape speeds");
     let scipy = scipy::compare(
         cfg.python.as_deref(),

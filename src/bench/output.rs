@@ -30,11 +30,16 @@ pub fn table(r: &Report) -> String {
     savings(&mut o, r);
     models(&mut o, r);
     let _ = writeln!(o, "\nspeed goals (release build, this machine):");
-    speed_goals(&mut o, &r.speed);
-    super::check::lines(&mut o, &r.checks, r.speed.escape_checked_ms, &r.scipy);
+    if let Some(sp) = &r.speed {
+        speed_goals(&mut o, sp);
+    }
+    let checked_ms = r.speed.as_ref().and_then(|sp| sp.escape_checked_ms);
+    super::check::lines(&mut o, &r.checks, checked_ms, &r.scipy);
     page_goals(&mut o, &r.pages);
     comparisons(&mut o, r);
-    output_goals(&mut o, &r.speed);
+    if let Some(sp) = &r.speed {
+        output_goals(&mut o, sp);
+    }
     o
 }
 

@@ -6,7 +6,7 @@
 //! split, so each piece's own CPU time is counted too: the work over the larger of its share
 //! per core and its longest piece is the most the split can give idle cores.
 
-use super::timed;
+use super::{thread_cpu, timed};
 use crate::analysis::{Job, Piece, Speeds, map_cell, map_cell_answer, piece, pieces};
 use crate::app::pages::{Charts, Curve, Page};
 use crate::app::{App, Chord};
@@ -78,12 +78,6 @@ pub struct PageTimes {
     pub key_escape_ms: (f64, f64),
 }
 
-/// This thread's CPU time (s).
-fn thread_cpu() -> f64 {
-    let t = rustix::time::clock_gettime(rustix::time::ClockId::ThreadCPUTime);
-    t.tv_sec as f64 + 1e-9 * t.tv_nsec as f64
-}
-
 /// `f` over `items` on one thread and on all cores (`par_map`), then each piece's CPU time
 /// counted in a run of its own: two clock readings a piece would be a third of a map cell's
 /// seven microseconds, and its wall time with them a third of the speedup.
@@ -115,8 +109,8 @@ fn split<T: Sync, R: Send>(
     (out, s)
 }
 
-/// Measures the pages' work and a key's wait.
-pub fn page_times(reps: usize, presses: usize) -> Result<PageTimes, Error> {
+/// Measures the pages' work and a key's wait (over `presses`, and `held` presses of a held key).
+pub fn page_times(reps: usize, presses: usize, held: usize) -> Result<PageTimes, Error> {
     let s = crate::analysis::settings_for(Settings::default());
     let job = Job::Curve { xi0: 0.5 };
     let ks: Vec<usize> = (0..pieces(&job)).collect();
@@ -152,7 +146,6 @@ pub fn page_times(reps: usize, presses: usize) -> Result<PageTimes, Error> {
     });
     let [_, key_curve_ms, key_escape_ms] = key_to_page(Page::EscapeSpeed, presses)?;
     let [key_frame_ms, _, key_map_ms] = key_to_page(Page::OutcomeMap, presses)?;
-    let held = 30;
     let (held_complete, held_last_ms) = held_key(held)?;
     Ok(PageTimes {
         cores: cores(),

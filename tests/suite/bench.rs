@@ -15,6 +15,7 @@ fn tiny() -> Config {
         seed: 7,
         reps: 0,
         python: None,
+        goals: false,
     }
 }
 

@@ -651,31 +651,32 @@ fn the_time_plots_share_one_tau_axis_and_a_fixed_window() {
 }
 
 /// A theme that sets a background sets it on every cell of every page, help open or not
-/// (issue 18): chart interiors kept the terminal's own.
+/// (issue 18): chart interiors kept the terminal's own. The pages do not depend on the theme:
+/// computed once, each is drawn in every theme.
 #[test]
 fn a_theme_s_background_covers_every_cell() {
-    for theme in ["dark", "light", "high-contrast"] {
-        let th = Theme::builtin(theme).unwrap();
-        let mut a = App::new(Scene::preset("C").unwrap());
-        for help in [false, true] {
-            if a.view().help != help {
-                turntable::app::update(&mut a, turntable::app::Action::ToggleHelp);
-            }
-            for page in [
-                Page::Turntable,
-                Page::TimePlots,
-                Page::EscapeSpeed,
-                Page::OutcomeMap,
-                Page::RestRadius,
-                Page::WorkPrecision,
-            ] {
-                crate::common::turn_to(&mut a, page);
-                common::sync(&mut a);
+    let themes = ["dark", "light", "high-contrast"].map(|t| (t, Theme::builtin(t).unwrap()));
+    let mut a = App::new(Scene::preset("C").unwrap());
+    for help in [false, true] {
+        if a.view().help != help {
+            turntable::app::update(&mut a, turntable::app::Action::ToggleHelp);
+        }
+        for page in [
+            Page::Turntable,
+            Page::TimePlots,
+            Page::EscapeSpeed,
+            Page::OutcomeMap,
+            Page::RestRadius,
+            Page::WorkPrecision,
+        ] {
+            crate::common::turn_to(&mut a, page);
+            common::sync(&mut a);
+            a.resize(80, 24);
+            for (theme, th) in &themes {
                 let mut t =
                     ratatui::Terminal::new(ratatui::backend::TestBackend::new(80, 24)).unwrap();
-                a.resize(80, 24);
                 t.draw(|f| {
-                    turntable::ui::draw(f, &a, &th);
+                    turntable::ui::draw(f, &a, th);
                 })
                 .unwrap();
                 let bad = t

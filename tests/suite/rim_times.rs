@@ -7,7 +7,8 @@
 //! "with an error of 0" where the truth is 4.9518; before the second opinion had its own form,
 //! 15–35 % of certified stops were further off than stated (issue 42's audit; the old test, at
 //! twice the stated error, failed at seeds 7, 8 and 13, and this one, with the Cartesian check
-//! as the only second opinion, fails at seed 7).
+//! as the only second opinion, failed at seed 7 against the reference's RK4 form, before its
+//! Kutta–Merson one).
 
 use crate::common;
 use common::sundman::{self, Fate};
