@@ -16,6 +16,15 @@ fn key(n: u8) -> PrivateKey {
     PrivateKey::from(Ed25519Keypair::from_seed(&[n; 32]))
 }
 
+/// The default limits but a refused login answered at once: the tests that are refused
+/// again and again test who gets in, not how slowly a guesser is answered.
+fn quick_refusals() -> Limits {
+    Limits {
+        refusal: Duration::ZERO,
+        ..Limits::default()
+    }
+}
+
 fn server(limits: Limits) -> Running {
     start(Options {
         listen: "127.0.0.1:0".parse().unwrap(),
@@ -86,7 +95,7 @@ fn a_student_gets_an_explorer_of_their_own() {
 
 #[test]
 fn the_passphrase_gets_in_and_nothing_else_does() {
-    let s = server(Limits::default());
+    let s = server(quick_refusals());
     rt().block_on(async {
         let ok = login(s.addr, "anyone", Login::Password("ba-ke-di-lo")).await;
         assert!(ok.unwrap().is_some());
@@ -771,7 +780,7 @@ fn a_zero_size_bound_panics_no_session() {
 /// A passphrase typo is answered with another try, three in all, as OpenSSH's client asks.
 #[test]
 fn a_passphrase_typo_gets_another_try() {
-    let s = server(Limits::default());
+    let s = server(quick_refusals());
     rt().block_on(async {
         let config = std::sync::Arc::new(russh::client::Config::default());
         let mut h = russh::client::connect(config, s.addr, Trust).await.unwrap();
@@ -839,7 +848,7 @@ fn a_keys_from_and_expiry_time_are_honoured() {
         passphrase: None,
         presenter_keys: vec![key(3).public_key().clone().into()],
         presenter_passphrase: None,
-        limits: Limits::default(),
+        limits: quick_refusals(),
         lesson: None,
         exports: None,
     })
