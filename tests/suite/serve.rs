@@ -287,8 +287,8 @@ fn a_follower_who_only_watches_is_not_idle() {
             .unwrap();
         let mut tf = Term::open(&f, 80, 24).await.unwrap();
         assert!(tf.until(0, b"following", SECS).await);
-        // Three idle times of the presenter's keys; the follower types nothing.
-        for _ in 0..10 {
+        // Two idle times of the presenter's keys; the follower types nothing.
+        for _ in 0..7 {
             tp.send(b"f").await.unwrap();
             tokio::time::sleep(Duration::from_millis(300)).await;
         }
