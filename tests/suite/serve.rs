@@ -405,7 +405,7 @@ fn openssh_ssh_tt_gets_the_explorer() {
 fn a_client_that_never_reads_is_closed_and_the_others_go_on() {
     use std::sync::atomic::Ordering;
     let s = server(Limits {
-        stall: Duration::from_secs(2),
+        stall: Duration::from_secs(1),
         ..Limits::default()
     });
     rt().block_on(async {
