@@ -622,7 +622,8 @@ async fn logged_in_from(
     let socket = tokio::net::TcpSocket::new_v4().unwrap();
     socket.bind((ip, 0).into()).unwrap();
     let tcp = socket.connect(addr).await.unwrap();
-    let config = std::sync::Arc::new(russh::client::Config::default());
+    tcp.set_nodelay(true).unwrap();
+    let config = std::sync::Arc::new(turntable::serve::client::config());
     let mut h = russh::client::connect_stream(config, tcp, Trust)
         .await
         .unwrap();
@@ -787,7 +788,7 @@ fn a_zero_size_bound_panics_no_session() {
 fn a_passphrase_typo_gets_another_try() {
     let s = server(quick_refusals());
     rt().block_on(async {
-        let config = std::sync::Arc::new(russh::client::Config::default());
+        let config = std::sync::Arc::new(turntable::serve::client::config());
         let mut h = russh::client::connect(config, s.addr, Trust).await.unwrap();
         let typo = h
             .authenticate_password("class", "ba-ke-di-l")
@@ -800,7 +801,7 @@ fn a_passphrase_typo_gets_another_try() {
             .unwrap();
         assert!(ok.success(), "the second try was not taken");
         // Three wrong ones: no fourth.
-        let config = std::sync::Arc::new(russh::client::Config::default());
+        let config = std::sync::Arc::new(turntable::serve::client::config());
         let mut h = russh::client::connect(config, s.addr, Trust).await.unwrap();
         for _ in 0..3 {
             let no = h.authenticate_password("class", "x").await.unwrap();
@@ -817,7 +818,8 @@ async fn gets_in_from(ip: [u8; 4], addr: std::net::SocketAddr, key: &PrivateKey)
     let socket = tokio::net::TcpSocket::new_v4().unwrap();
     socket.bind((ip, 0).into()).unwrap();
     let tcp = socket.connect(addr).await.unwrap();
-    let config = std::sync::Arc::new(russh::client::Config::default());
+    tcp.set_nodelay(true).unwrap();
+    let config = std::sync::Arc::new(turntable::serve::client::config());
     let mut h = russh::client::connect_stream(config, tcp, Trust)
         .await
         .unwrap();
