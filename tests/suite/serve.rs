@@ -267,7 +267,8 @@ fn followers_get_the_presenters_keys_and_can_step_out() {
 }
 
 /// A student who follows the class and types nothing is attending, not idle; one who types
-/// nothing on their own is closed at the idle time.
+/// nothing on their own is closed at the idle time. (Two students, so that the one closed
+/// is closed while the other watches: one wait, not two.)
 #[test]
 fn a_follower_who_only_watches_is_not_idle() {
     let s = server(Limits {
@@ -281,25 +282,36 @@ fn a_follower_who_only_watches_is_not_idle() {
             .unwrap();
         let mut tp = Term::open(&p, 80, 24).await.unwrap();
         assert!(tp.until(0, b"lab frame", SECS).await);
-        let f = login(s.addr, "class", Login::Password("ba-ke-di-lo"))
-            .await
-            .unwrap()
-            .unwrap();
-        let mut tf = Term::open(&f, 80, 24).await.unwrap();
-        assert!(tf.until(0, b"following", SECS).await);
-        // Two idle times of the presenter's keys; the follower types nothing.
+        let mut students = vec![];
+        for _ in 0..2 {
+            let h = login(s.addr, "class", Login::Password("ba-ke-di-lo"))
+                .await
+                .unwrap()
+                .unwrap();
+            let mut t = Term::open(&h, 80, 24).await.unwrap();
+            assert!(t.until(0, b"following", SECS).await);
+            students.push((h, t));
+        }
+        let (_g, mut tg) = students.pop().unwrap();
+        let (_f, mut tf) = students.pop().unwrap();
+        // One steps out and is silent from then on: closed at the idle time.
+        let stepped = std::time::Instant::now();
+        let at = tg.seen.len();
+        tg.send(b"\x1bOQ").await.unwrap();
+        // Two idle times of the presenter's keys; the other follower types nothing (and is
+        // read all along: never told it idles).
         for _ in 0..7 {
             tp.send(b"f").await.unwrap();
-            tokio::time::sleep(Duration::from_millis(300)).await;
+            assert!(!tf.until(0, b"idle for", Duration::from_millis(300)).await);
         }
-        assert_eq!(s.shared.sessions(), 2, "the follower is still in the class");
-        assert!(!String::from_utf8_lossy(&tf.seen).contains("idle for"));
-        // Stepped out and silent: closed at the idle time.
-        let at = tf.seen.len();
-        tf.send(b"\x1bOQ").await.unwrap();
-        assert!(tf.until(at, b"idle for", Duration::from_secs(5)).await);
-        // (The presenter, silent too by then, may be closed as well.)
-        assert!(eventually(SECS, || s.shared.sessions() < 2).await);
+        let within = Duration::from_secs(5).saturating_sub(stepped.elapsed());
+        assert!(tg.until(at, b"idle for", within).await);
+        assert!(
+            eventually(SECS, || s.shared.sessions() == 2).await,
+            "the follower is still in the class: {} sessions",
+            s.shared.sessions()
+        );
+        assert!(!tf.closed);
     });
     s.stop("done");
 }
