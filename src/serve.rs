@@ -34,7 +34,8 @@ use std::sync::mpsc::Sender;
 use std::sync::{Arc, Condvar, Mutex, MutexGuard};
 use std::time::{Duration, Instant};
 
-/// What bounds a client's cost (each has a flag; see `turntable serve --help`).
+/// What bounds a client's cost (each but `stall` and `refusal` has a flag; see
+/// `turntable serve --help`).
 #[derive(Clone, Copy, Debug)]
 pub struct Limits {
     /// Explorers open at once.
@@ -59,6 +60,9 @@ pub struct Limits {
     pub waiting_per_address: Option<usize>,
     /// A client that takes no bytes this long (its window and the socket full) is closed.
     pub stall: Duration,
+    /// A refused login (a wrong passphrase or key) is answered this late: what slows a
+    /// guesser down, beside `per_minute`.
+    pub refusal: Duration,
 }
 
 impl Default for Limits {
@@ -74,6 +78,7 @@ impl Default for Limits {
             waiting: None,
             waiting_per_address: None,
             stall: Duration::from_secs(60),
+            refusal: Duration::from_secs(1),
         }
     }
 }

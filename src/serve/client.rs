@@ -34,13 +34,23 @@ pub enum Login<'a> {
     Password(&'a str),
 }
 
+/// A client's SSH configuration: russh's, but with Nagle's algorithm off, as OpenSSH's `ssh`
+/// sets for an interactive session (with it on, each small write after the first waited for
+/// the server's delayed ACK: 40 ms a login step and a key).
+pub fn config() -> russh::client::Config {
+    russh::client::Config {
+        nodelay: true,
+        ..Default::default()
+    }
+}
+
 /// Connects to `addr` and logs in as `user`; `Ok(None)` when refused.
 pub async fn login(
     addr: SocketAddr,
     user: &str,
     how: Login<'_>,
 ) -> Result<Option<Handle<Trust>>, russh::Error> {
-    let config = Arc::new(russh::client::Config::default());
+    let config = Arc::new(config());
     let mut handle = russh::client::connect(config, addr, Trust).await?;
     let ok = match how {
         Login::Key(key) => {
@@ -64,7 +74,7 @@ pub async fn frozen_login(
     let frozen = Arc::clone(&link.frozen);
     let config = russh::client::Config {
         window_size: window,
-        ..Default::default()
+        ..config()
     };
     let handle = login_over(link, config, user, key).await?;
     Ok(handle.map(|h| (h, frozen)))
@@ -81,7 +91,7 @@ pub async fn slow_login(
     let socket = tokio::net::TcpSocket::new_v4()?;
     socket.set_recv_buffer_size(4096)?;
     let link = Link::new(socket.connect(addr).await?, Some(rate));
-    login_over(link, russh::client::Config::default(), user, key).await
+    login_over(link, config(), user, key).await
 }
 
 async fn login_over(
@@ -108,6 +118,8 @@ struct Link {
 
 impl Link {
     fn new(tcp: TcpStream, rate: Option<usize>) -> Link {
+        // As `config` asks of a connection russh makes itself.
+        let _ = tcp.set_nodelay(true);
         Link {
             tcp,
             frozen: Arc::new(AtomicBool::new(false)),

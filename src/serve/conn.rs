@@ -16,8 +16,8 @@ use std::sync::Arc;
 use std::sync::atomic::Ordering;
 use std::time::{Duration, Instant};
 
-/// The server's SSH configuration: the host key, public key and password methods only, a
-/// second's wait on a refusal, keepalives that find a half-open connection in a minute.
+/// The server's SSH configuration: the host key, public key and password methods only, the
+/// limits' wait on a refusal, keepalives that find a half-open connection in a minute.
 pub fn config(options: &super::Options) -> russh::server::Config {
     let mut methods = MethodSet::empty();
     methods.push(MethodKind::PublicKey);
@@ -25,7 +25,7 @@ pub fn config(options: &super::Options) -> russh::server::Config {
     russh::server::Config {
         keys: vec![options.host_key.clone()],
         methods,
-        auth_rejection_time: Duration::from_secs(1),
+        auth_rejection_time: options.limits.refusal,
         auth_rejection_time_initial: Some(Duration::ZERO),
         max_auth_attempts: 6,
         inactivity_timeout: None,

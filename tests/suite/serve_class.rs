@@ -67,7 +67,7 @@ pub(super) fn rt() -> tokio::runtime::Runtime {
 
 /// What a terminal of `w` × `h` shows after `bytes`, as rows: the cursor moves, clears and
 /// text that ratatui's crossterm backend writes (styles and modes are passed over).
-fn screen(bytes: &[u8], w: usize, h: usize) -> Vec<String> {
+pub(super) fn screen(bytes: &[u8], w: usize, h: usize) -> Vec<String> {
     let text = String::from_utf8_lossy(bytes);
     let mut grid = vec![vec![' '; w]; h];
     let (mut r, mut c) = (0usize, 0usize);
@@ -140,23 +140,33 @@ impl Tty {
 }
 
 /// Reads every terminal until `done` holds of their screens (or `WAIT` passes); whether it
-/// did. On failure the screens are printed.
+/// did. The screens are read again as soon as bytes come (not after a fixed wait on each
+/// terminal in turn). On failure the screens are printed.
 async fn until(ttys: &mut [&mut Tty], done: impl Fn(&[Vec<String>]) -> bool) -> bool {
     let end = std::time::Instant::now() + WAIT;
+    let mut screens = vec![];
     loop {
+        let mut came = screens.is_empty();
         for tty in ttys.iter_mut() {
-            let at = tty.t.seen.len();
-            tty.t.until(at, b"\0never", Duration::from_millis(30)).await;
+            // What has arrived, without waiting (a timeout polls its future first).
+            while !tty.t.closed && tty.t.next(tokio::time::Instant::now()).await {
+                came = true;
+            }
         }
-        let screens: Vec<Vec<String>> = ttys.iter().map(|t| t.rows()).collect();
-        if done(&screens) {
-            return true;
+        if came {
+            screens = ttys.iter().map(|t| t.rows()).collect();
+            if done(&screens) {
+                return true;
+            }
         }
         if std::time::Instant::now() > end {
             for s in &screens {
                 eprintln!("{}\n----", s.join("\n"));
             }
             return false;
+        }
+        if !came {
+            tokio::time::sleep(Duration::from_millis(5)).await;
         }
     }
 }

@@ -1,6 +1,7 @@
 //! `serve --exports DIR` (issue 44 item 7): the presenter's `E` writes the page there as SVG,
 //! under the files' policy (never over a file) and within `serve::EXPORTS`; a student's `E`
-//! never writes, alone or following. Driven by the in-process SSH client.
+//! never writes, alone or following. Driven by the in-process SSH client; screens read
+//! through the class tests' terminal model (`serve_class::screen`).
 
 use russh::keys::PrivateKey;
 use russh::keys::ssh_key::private::Ed25519Keypair;
@@ -40,6 +41,22 @@ fn pages(dir: &Path) -> Vec<String> {
     v
 }
 
+/// Whether the 160 × 30 screen shows `words` (on one row) within `SECS`.
+async fn shows(t: &mut Term, words: &str) -> bool {
+    let end = tokio::time::Instant::now() + SECS;
+    loop {
+        if super::serve_class::screen(&t.seen, 160, 30)
+            .iter()
+            .any(|row| row.contains(words))
+        {
+            return true;
+        }
+        if t.closed || !t.next(end).await {
+            return false;
+        }
+    }
+}
+
 #[test]
 fn the_presenters_e_writes_to_the_exports_and_a_students_never() {
     let dir = tempfile::tempdir().unwrap();
@@ -61,43 +78,41 @@ fn the_presenters_e_writes_to_the_exports_and_a_students_never() {
             .unwrap();
         let mut ts = Term::open(&st, 160, 30).await.unwrap();
         assert!(ts.until(0, b"following", SECS).await);
-        // A key, then a resize: the next frame redraws every cell, so the notice's words
-        // arrive whole.
-        async fn said(t: &mut Term, key: &[u8], words: &[u8], w: u32) -> bool {
-            let at = t.seen.len();
+        // A key, then its notice on the screen (read whole: a notice that differs from the
+        // last by a digit arrives as that digit alone).
+        async fn said(t: &mut Term, key: &[u8], words: &str) -> bool {
             t.send(key).await.unwrap();
-            // The key's frame first (a notice that differs from the last by a digit
-            // arrives as that digit alone).
-            tokio::time::sleep(Duration::from_millis(300)).await;
-            t.channel.window_change(w, 30, 0, 0).await.unwrap();
-            t.until(at, words, SECS).await
+            shows(t, words).await
         }
         // The presenter's E writes the page there, whole.
-        assert!(said(&mut tp, b"E", b"wrote this page to", 150).await);
+        assert!(said(&mut tp, b"E", "wrote this page to").await);
         assert_eq!(pages(dir.path()), ["turntable-table-1.svg"]);
         let svg = std::fs::read_to_string(dir.path().join("turntable-table-1.svg")).unwrap();
         assert!(svg.trim_end().ends_with("</svg>"), "{}", &svg[..200]);
         // Never over a file: one in the way is passed by.
         std::fs::write(dir.path().join("turntable-table-2.svg"), "mine").unwrap();
-        assert!(said(&mut tp, b"E", b"turntable-table-3.svg", 160).await);
+        assert!(said(&mut tp, b"E", "turntable-table-3.svg").await);
         let mine = std::fs::read_to_string(dir.path().join("turntable-table-2.svg")).unwrap();
         assert_eq!(mine, "mine");
         // The follower, given the presenter's E, wrote nothing of its own: three files; and
         // it is told nothing (it was told `not exported`, of an E it never pressed).
         assert_eq!(pages(dir.path()).len(), 3);
-        ts.channel.window_change(150, 30, 0, 0).await.unwrap();
-        assert!(ts.until(0, b"following", SECS).await);
-        assert!(!ts.until(0, b"not exported", Duration::from_secs(2)).await);
+        // The presenter's next key (the rotating frame) reaches the follower after its Es:
+        // once it shows, the Es were taken, and no frame of the follower's said a word.
+        let at = ts.seen.len();
+        tp.send(b"f").await.unwrap();
+        assert!(ts.until(at, b"rotating", SECS).await);
+        assert!(!String::from_utf8_lossy(&ts.seen).contains("not exported"));
         // Stepped out, the student's own E writes nothing.
-        assert!(said(&mut ts, b"\x1bOQ", b"stepped", 150).await);
-        assert!(said(&mut ts, b"E", b"not exported", 160).await);
+        assert!(said(&mut ts, b"\x1bOQ", "stepped").await);
+        assert!(said(&mut ts, b"E", "not exported").await);
         assert_eq!(pages(dir.path()).len(), 3);
         // Bounded: at the most pages allowed, E says so and writes nothing.
         for k in 3..EXPORTS.files {
             std::fs::write(dir.path().join(format!("turntable-x-{k}.svg")), "").unwrap();
         }
         assert_eq!(pages(dir.path()).len(), EXPORTS.files);
-        assert!(said(&mut tp, b"E", b"the most allowed", 150).await);
+        assert!(said(&mut tp, b"E", "the most allowed").await);
         assert_eq!(pages(dir.path()).len(), EXPORTS.files);
     });
     s.stop("done");
