@@ -252,7 +252,8 @@ pub enum Page {
 }
 
 impl Page {
-    const ORDER: [Page; 6] = [
+    /// Every page, in Tab's order.
+    pub const ORDER: [Page; 6] = [
         Page::Turntable,
         Page::TimePlots,
         Page::EscapeSpeed,

@@ -2,9 +2,9 @@
 //! every file the program writes (`--out`, `--trajectory`, `--asciicast`, `--record`, the
 //! explorer's `s` and `E`):
 //! - never a file this command read (a scene, theme, key script or configuration, also a
-//!   script redirected into stdin): compared by identity (device and inode), not by
-//!   spelling, so `../d/s.keys`, a hard link or a link to it are the same file; refused even
-//!   with `--force`;
+//!   script redirected into stdin): compared by identity (device and inode, while the path
+//!   read still names that file), not by spelling, so `../d/s.keys`, a hard link or a link to
+//!   it are the same file; refused even with `--force`;
 //! - never an existing file without `--force`, and never a file that appeared while the
 //!   command ran (the explorer's save and export take the next free name instead);
 //! - atomically: the bytes go to an unnamed temporary file (`O_TMPFILE`) in the destination's
@@ -41,18 +41,33 @@ pub use output::{
 /// Largest scene, theme or key script read.
 pub const READ_CAP: u64 = 1 << 20;
 
-/// A file this process read: its identity, and how it was named.
+/// A file this process read: its identity, how it was named, and where (None: stdin, whose
+/// open descriptor keeps its file, so its identity is never another's).
 struct Input {
     dev: u64,
     ino: u64,
     shown: String,
+    path: Option<PathBuf>,
+}
+
+impl Input {
+    /// Whether it is the file with this identity. A file removed after it was read frees its
+    /// inode for the next file made: that one is not the input (the suite, one long process,
+    /// once refused a new output as another test's deleted scene).
+    fn is(&self, dev: u64, ino: u64) -> bool {
+        (self.dev, self.ino) == (dev, ino)
+            && self.path.as_ref().is_none_or(|p| {
+                std::fs::metadata(p).is_ok_and(|m| (m.dev(), m.ino()) == (dev, ino))
+            })
+    }
 }
 
 /// Every regular file read so far: an output may not be one of them.
 static INPUTS: Mutex<Vec<Input>> = Mutex::new(Vec::new());
 
-/// Notes `file`, opened as `shown`, as an input of this command (if it is a regular file).
-fn note_input(file: &impl std::os::fd::AsFd, shown: &str) {
+/// Notes `file`, opened at `path` (None: stdin) and named `shown`, as an input of this command
+/// (if it is a regular file).
+fn note_input(file: &impl std::os::fd::AsFd, path: Option<&Path>, shown: &str) {
     let Ok(st) = rustix::fs::fstat(file) else {
         return;
     };
@@ -61,11 +76,14 @@ fn note_input(file: &impl std::os::fd::AsFd, shown: &str) {
     }
     let (dev, ino) = (st.st_dev, st.st_ino);
     let mut inputs = INPUTS.lock().unwrap_or_else(|e| e.into_inner());
-    if !inputs.iter().any(|i| (i.dev, i.ino) == (dev, ino)) {
+    // Kept while it is that file; a removed input's identity is another's to take.
+    inputs.retain(|i| i.is(i.dev, i.ino));
+    if !inputs.iter().any(|i| i.is(dev, ino)) {
         inputs.push(Input {
             dev,
             ino,
             shown: shown.to_string(),
+            path: path.map(Path::to_path_buf),
         });
     }
 }
@@ -75,7 +93,7 @@ fn input_named(m: &std::fs::Metadata) -> Option<String> {
     let inputs = INPUTS.lock().unwrap_or_else(|e| e.into_inner());
     inputs
         .iter()
-        .find(|i| (i.dev, i.ino) == (m.dev(), m.ino()))
+        .find(|i| i.is(m.dev(), m.ino()))
         .map(|i| i.shown.clone())
 }
 
@@ -113,7 +131,7 @@ pub fn read_bounded(path: &Path, cap: u64) -> Result<String, Error> {
     if !m.is_file() {
         return Err(refuse("not a regular file".into()));
     }
-    note_input(&f, &path.display().to_string());
+    note_input(&f, Some(path), &path.display().to_string());
     read_capped(f, cap).map_err(|e| e.context(&name))
 }
 
@@ -121,7 +139,7 @@ pub fn read_bounded(path: &Path, cap: u64) -> Result<String, Error> {
 /// noted as an input of this command.
 pub fn read_stdin(cap: u64) -> Result<String, Error> {
     let stdin = io::stdin();
-    note_input(&stdin, "stdin");
+    note_input(&stdin, None, "stdin");
     read_capped(stdin.lock(), cap)
 }
 /// Reads at most `cap` bytes of UTF-8 from `r`; more is an error.
@@ -176,6 +194,19 @@ fn open_flags(flags: rustix::fs::OFlags) -> i32 {
 mod tests {
     use super::output::at;
     use super::*;
+
+    /// Read, it is an input; removed, its inode is free for the next file made, which is not.
+    #[test]
+    fn a_removed_input_is_no_longer_one() {
+        let d = tempfile::tempdir().unwrap();
+        let p = d.path().join("scene.toml");
+        std::fs::write(&p, "x").unwrap();
+        read_bounded(&p, 10).unwrap();
+        let m = std::fs::metadata(&p).unwrap();
+        assert_eq!(input_named(&m), Some(p.display().to_string()));
+        std::fs::remove_file(&p).unwrap();
+        assert_eq!(input_named(&m), None);
+    }
 
     #[test]
     fn controls_are_escaped() {

@@ -661,14 +661,7 @@ fn a_theme_s_background_covers_every_cell() {
         if a.view().help != help {
             turntable::app::update(&mut a, turntable::app::Action::ToggleHelp);
         }
-        for page in [
-            Page::Turntable,
-            Page::TimePlots,
-            Page::EscapeSpeed,
-            Page::OutcomeMap,
-            Page::RestRadius,
-            Page::WorkPrecision,
-        ] {
+        for page in Page::ORDER {
             crate::common::turn_to(&mut a, page);
             common::sync(&mut a);
             a.resize(80, 24);
