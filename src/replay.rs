@@ -176,16 +176,14 @@ fn plain(
     opts: &Options,
     out: &mut dyn std::io::Write,
 ) -> std::io::Result<()> {
-    use crate::ui::plain::{Seen, describe, opening};
+    use crate::ui::plain::{Seen, opening};
     let mut s = Explorer::headless(app, opts.theme.clone(), opts.size.0, opts.size.1, false);
     s.carry_with(Answer);
     let mut seen = Seen::of(&s.app);
     let say = |s: &Explorer<TestBackend>, seen: &mut Seen, out: &mut dyn std::io::Write| {
-        let now = Seen::of(&s.app);
-        for line in describe(seen, &now) {
+        for line in seen.news(&s.app) {
             writeln!(out, "{line}")?;
         }
-        *seen = now;
         std::io::Result::Ok(())
     };
     for line in opening(&s.app) {

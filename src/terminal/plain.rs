@@ -8,7 +8,7 @@ use super::drive::{Link, Turn, Waited};
 use super::{Flags, SaveRecording};
 use crate::app::App;
 use crate::session::{Explorer, Pumped};
-use crate::ui::plain::{Seen, describe, opening};
+use crate::ui::plain::{Seen, opening};
 use crossterm::event::Event;
 use crossterm::terminal::{disable_raw_mode, enable_raw_mode};
 use ratatui::backend::TestBackend;
@@ -67,11 +67,9 @@ pub fn run(
 
 /// Writes what changed since `seen`, and remembers the new state.
 fn say(app: &App, seen: &mut Seen, out: &mut impl Write) -> io::Result<()> {
-    let now = Seen::of(app);
-    for line in describe(seen, &now) {
+    for line in seen.news(app) {
         writeln!(out, "{line}")?;
     }
-    *seen = now;
     Ok(())
 }
 

@@ -1,8 +1,8 @@
 //! Plain mode (`--plain`): the explorer's state described in lines of text for a screen
 //! reader, not drawn. Another renderer of the same [`App`]: [`Seen::of`] reads what a listener
-//! needs from the state, and [`describe`] says in words what changed between two of them — the
-//! release, each change of state as the run on screen reaches it, notices, the help, and the
-//! readouts when asked (`I`). Pure: the same keys and ticks give the same lines.
+//! needs from the state, and [`Seen::news`] says in words what changed since it last looked —
+//! the release, each change of state as the run on screen reaches it, notices, the help, and
+//! the readouts when asked (`I`). Pure: the same keys and ticks give the same lines.
 
 use crate::app::App;
 use crate::app::lesson::Ask;
@@ -82,6 +82,17 @@ impl Seen {
     }
 }
 
+impl Seen {
+    /// What changed since this was seen, and the app as it is now seen: the terminal's, a
+    /// served student's and a replay's plain mode each say it as it comes.
+    pub fn news(&mut self, app: &App) -> Vec<String> {
+        let now = Seen::of(app);
+        let lines = describe(self, &now);
+        *self = now;
+        lines
+    }
+}
+
 /// The first lines: how to use plain mode, the scene, its release and how the run stands.
 pub fn opening(app: &App) -> Vec<String> {
     let now = Seen::of(app);
@@ -100,7 +111,7 @@ pub fn opening(app: &App) -> Vec<String> {
 
 /// What changed from `was` to `now`, in lines (none when nothing a listener needs changed:
 /// time playing on says nothing until the run's state changes).
-pub fn describe(was: &Seen, now: &Seen) -> Vec<String> {
+fn describe(was: &Seen, now: &Seen) -> Vec<String> {
     let mut out = Vec::new();
     run_changes(was, now, &mut out);
     view_changes(was, now, &mut out);

@@ -11,7 +11,7 @@ use turntable::app::{App, Chord};
 use turntable::engine::{Outcome, Run, Settings, Status};
 use turntable::present::num;
 use turntable::scene::Scene;
-use turntable::ui::plain::{Seen, describe, opening};
+use turntable::ui::plain::{Seen, opening};
 
 /// The app and what plain mode has printed of it so far.
 struct Plain {
@@ -31,9 +31,7 @@ impl Plain {
     }
 
     fn say(&mut self) -> Vec<String> {
-        let now = Seen::of(&self.app);
-        let new = describe(&self.seen, &now);
-        self.seen = now;
+        let new = self.seen.news(&self.app);
         self.lines.extend(new.iter().cloned());
         new
     }

@@ -4,7 +4,7 @@
 
 use super::{Remote, Screen};
 use crate::session::Explorer;
-use crate::ui::plain::{Seen, describe, opening};
+use crate::ui::plain::{Seen, opening};
 use std::io::{self, Write};
 
 /// Writes `lines`, each ended by CR LF: the client's terminal is raw while ssh holds it, so a
@@ -37,9 +37,7 @@ impl Remote<'_> {
         let Some(seen) = self.plain.as_mut() else {
             return Ok(false);
         };
-        let now = Seen::of(&s.app);
-        let lines = describe(seen, &now);
-        *seen = now;
+        let lines = seen.news(&s.app);
         let any = !lines.is_empty();
         write_lines(s, lines)?;
         Ok(any)
