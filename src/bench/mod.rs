@@ -293,7 +293,7 @@ pub(super) fn thread_cpu() -> f64 {
 }
 
 /// CPU time used by the process (user and system), in seconds (USER_HZ is 100 on Linux): what a
-/// single-threaded measurement costs on a machine shared with other work, whose wall time is not.
+/// served class costs, all its threads together, on a machine shared with other work.
 #[cfg(feature = "serve")]
 pub(super) fn cpu_s() -> f64 {
     let stat = std::fs::read_to_string("/proc/self/stat").unwrap_or_default();

@@ -41,16 +41,22 @@ pub use output::{
 /// Largest scene, theme or key script read.
 pub const READ_CAP: u64 = 1 << 20;
 
-/// A file this process read: its identity, how it was named, and where (None: stdin, whose
+/// A file this process read: its identity, and the path it was read at (None: stdin, whose
 /// open descriptor keeps its file, so its identity is never another's).
 struct Input {
     dev: u64,
     ino: u64,
-    shown: String,
     path: Option<PathBuf>,
 }
 
 impl Input {
+    /// How a message names it.
+    fn shown(&self) -> String {
+        self.path
+            .as_ref()
+            .map_or_else(|| "stdin".into(), |p| p.display().to_string())
+    }
+
     /// Whether it is the file with this identity. A file removed after it was read frees its
     /// inode for the next file made: that one is not the input (the suite, one long process,
     /// once refused a new output as another test's deleted scene).
@@ -65,9 +71,9 @@ impl Input {
 /// Every regular file read so far: an output may not be one of them.
 static INPUTS: Mutex<Vec<Input>> = Mutex::new(Vec::new());
 
-/// Notes `file`, opened at `path` (None: stdin) and named `shown`, as an input of this command
-/// (if it is a regular file).
-fn note_input(file: &impl std::os::fd::AsFd, path: Option<&Path>, shown: &str) {
+/// Notes `file`, opened at `path` (None: stdin), as an input of this command (if it is a
+/// regular file).
+fn note_input(file: &impl std::os::fd::AsFd, path: Option<&Path>) {
     let Ok(st) = rustix::fs::fstat(file) else {
         return;
     };
@@ -82,7 +88,6 @@ fn note_input(file: &impl std::os::fd::AsFd, path: Option<&Path>, shown: &str) {
         inputs.push(Input {
             dev,
             ino,
-            shown: shown.to_string(),
             path: path.map(Path::to_path_buf),
         });
     }
@@ -94,7 +99,7 @@ fn input_named(m: &std::fs::Metadata) -> Option<String> {
     inputs
         .iter()
         .find(|i| i.is(m.dev(), m.ino()))
-        .map(|i| i.shown.clone())
+        .map(Input::shown)
 }
 
 /// A path as a message shows it.
@@ -131,7 +136,7 @@ pub fn read_bounded(path: &Path, cap: u64) -> Result<String, Error> {
     if !m.is_file() {
         return Err(refuse("not a regular file".into()));
     }
-    note_input(&f, Some(path), &path.display().to_string());
+    note_input(&f, Some(path));
     read_capped(f, cap).map_err(|e| e.context(&name))
 }
 
@@ -139,7 +144,7 @@ pub fn read_bounded(path: &Path, cap: u64) -> Result<String, Error> {
 /// noted as an input of this command.
 pub fn read_stdin(cap: u64) -> Result<String, Error> {
     let stdin = io::stdin();
-    note_input(&stdin, None, "stdin");
+    note_input(&stdin, None);
     read_capped(stdin.lock(), cap)
 }
 /// Reads at most `cap` bytes of UTF-8 from `r`; more is an error.
