@@ -17,6 +17,7 @@ use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::mpsc::{Receiver, Sender, channel};
 
 mod cells;
+pub mod shared;
 pub mod trade;
 pub mod verdict;
 mod worker;

@@ -138,11 +138,12 @@ impl Analysis {
     /// Inline, computes the pending request now; with a worker, nothing (it computes as it goes).
     pub fn compute(&mut self) {
         if let Some(r) = self.pending.take() {
-            let curve = r.curve.as_deref();
+            // Every session of the process asking for these shares them (see `shared`).
+            let job = shared::PIECES.job(&r.job, r.settings, r.curve.as_deref());
             self.inbox = r
                 .todo
                 .iter()
-                .filter_map(|&k| piece_with(&r.job, k, r.settings, curve, &always))
+                .filter_map(|&k| job.piece(k, &always))
                 .collect();
             self.computed += r.todo.len() as u64;
             if let Some(p) = self.progress.as_mut() {

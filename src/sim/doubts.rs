@@ -6,12 +6,12 @@
 //! CPU a follower at the one tick where the run stopped: 100 followers took both cores for a
 //! third of a second, and the presenter's keys waited behind.
 
+use super::kept::Kept;
 use crate::engine::doubt::{Doubt, decided_state, doubt};
 use crate::engine::run::{Outcome, Run};
 use crate::engine::{Initial, Settings, State};
-use std::collections::VecDeque;
+use std::sync::OnceLock;
 use std::sync::atomic::{AtomicU64, Ordering};
-use std::sync::{Arc, Mutex, MutexGuard, OnceLock};
 
 /// Opinions kept at most, the oldest going first.
 const KEPT: usize = 64;
@@ -45,7 +45,7 @@ impl Asked {
 /// The opinions asked for lately, each computed once: a session asking for one another is
 /// computing waits for it rather than computing it again.
 pub struct Doubts {
-    kept: Mutex<VecDeque<(Asked, Arc<OnceLock<Doubt>>)>>,
+    kept: Kept<Asked, OnceLock<Doubt>>,
     computed: AtomicU64,
 }
 
@@ -55,28 +55,14 @@ pub static DOUBTS: Doubts = Doubts::new();
 impl Doubts {
     pub const fn new() -> Doubts {
         Doubts {
-            kept: Mutex::new(VecDeque::new()),
+            kept: Kept::new(KEPT),
             computed: AtomicU64::new(0),
         }
     }
 
     /// `doubt(run, tau_max)`, computed here once for every run equal in what it reads.
     pub fn of(&self, run: &Run, tau_max: f64) -> Doubt {
-        let asked = Asked::of(run, tau_max);
-        let slot = {
-            let mut kept = self.lock();
-            match kept.iter().find(|(a, _)| *a == asked) {
-                Some((_, slot)) => Arc::clone(slot),
-                None => {
-                    let slot = Arc::new(OnceLock::new());
-                    kept.push_back((asked, Arc::clone(&slot)));
-                    if kept.len() > KEPT {
-                        kept.pop_front();
-                    }
-                    slot
-                }
-            }
-        };
+        let slot = self.kept.slot(Asked::of(run, tau_max), |_| OnceLock::new());
         *slot.get_or_init(|| {
             self.computed.fetch_add(1, Ordering::Relaxed);
             doubt(run, tau_max)
@@ -90,13 +76,7 @@ impl Doubts {
 
     /// Opinions kept now.
     pub fn kept(&self) -> usize {
-        self.lock().len()
-    }
-
-    fn lock(&self) -> MutexGuard<'_, VecDeque<(Asked, Arc<OnceLock<Doubt>>)>> {
-        self.kept
-            .lock()
-            .unwrap_or_else(std::sync::PoisonError::into_inner)
+        self.kept.kept()
     }
 }
 
