@@ -12,6 +12,7 @@ pub use turntable_engine as engine;
 pub mod error;
 pub mod files;
 pub mod film;
+pub mod kept;
 pub mod lesson;
 pub mod pin;
 pub mod plot;

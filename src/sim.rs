@@ -6,7 +6,6 @@
 pub mod accuracy;
 pub mod doubts;
 pub mod ending;
-pub mod kept;
 mod motion;
 pub mod testing;
 

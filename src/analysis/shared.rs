@@ -7,7 +7,7 @@
 //! the presenter's keys waited behind them at the gate.
 
 use super::{GoOn, Job, Piece, Settings, Speeds, piece_with, pieces};
-use crate::sim::kept::Kept;
+use crate::kept::Kept;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Mutex, PoisonError};
 
@@ -64,7 +64,7 @@ impl Shared {
             settings,
             curve: curve.map(<[_]>::to_vec),
         };
-        let slot = self.kept.slot(asked.clone(), |a| {
+        let slot = self.kept.slot(&asked, |a| {
             (0..pieces(&a.job)).map(|_| Mutex::new(None)).collect()
         });
         Pieces {

@@ -5,13 +5,12 @@
 //! and draw their own line over them ([`crate::session::Explorer::draw_sharing`]).
 
 use super::class::Place;
-use super::lock;
 use crate::app::App;
 use crate::app::pages::Page;
+use crate::kept::Kept;
 use crate::session::Common;
 use crate::theme::Theme;
-use std::collections::VecDeque;
-use std::sync::{Arc, Mutex, OnceLock};
+use std::sync::{Arc, OnceLock};
 
 /// What a frame but its status line is a function of, for a follower.
 #[derive(Clone, Debug, PartialEq)]
@@ -47,37 +46,39 @@ const KEPT: usize = 32;
 const CELLS: usize = 4 * 400 * 150;
 
 /// The frames the class's followers share, newest last.
-#[derive(Default)]
 pub struct Frames {
-    kept: Mutex<VecDeque<(Key, Arc<OnceLock<Common>>)>>,
+    kept: Kept<Key, OnceLock<Common>>,
+}
+
+fn cells(k: &Key) -> usize {
+    usize::from(k.size.0) * usize::from(k.size.1)
+}
+
+impl Default for Frames {
+    fn default() -> Frames {
+        Frames {
+            kept: Kept::weighed(KEPT, cells, CELLS),
+        }
+    }
 }
 
 impl Frames {
     /// The frame for `key`: drawn, being drawn by another follower, or to be drawn by the
     /// caller (see `Explorer::draw_sharing`). The oldest go past [`KEPT`] or [`CELLS`].
     pub fn at(&self, key: &Key) -> Arc<OnceLock<Common>> {
-        let mut kept = lock(&self.kept);
-        if let Some((_, frame)) = kept.iter().find(|(k, _)| k == key) {
-            return Arc::clone(frame);
-        }
-        let frame = Arc::new(OnceLock::new());
-        kept.push_back((key.clone(), Arc::clone(&frame)));
-        let cells = |k: &Key| usize::from(k.size.0) * usize::from(k.size.1);
-        while kept.len() > KEPT || kept.iter().map(|(k, _)| cells(k)).sum::<usize>() > CELLS {
-            kept.pop_front();
-        }
-        frame
+        self.kept.slot(key, |_| OnceLock::new())
     }
 
     /// `presenter` left (None: everyone did): its class's frames go, none being drawn at
     /// its places again.
     pub fn forget(&self, presenter: Option<u64>) {
-        lock(&self.kept).retain(|(k, _)| presenter.is_some_and(|p| k.at.presenter != p));
+        self.kept
+            .retain(|k| presenter.is_some_and(|p| k.at.presenter != p));
     }
 
     /// Frames kept now.
     pub fn kept(&self) -> usize {
-        lock(&self.kept).len()
+        self.kept.kept()
     }
 }
 

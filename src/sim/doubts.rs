@@ -6,10 +6,10 @@
 //! CPU a follower at the one tick where the run stopped: 100 followers took both cores for a
 //! third of a second, and the presenter's keys waited behind.
 
-use super::kept::Kept;
 use crate::engine::doubt::{Doubt, decided_state, doubt};
 use crate::engine::run::{Outcome, Run};
 use crate::engine::{Initial, Settings, State};
+use crate::kept::Kept;
 use std::sync::OnceLock;
 use std::sync::atomic::{AtomicU64, Ordering};
 
@@ -62,7 +62,9 @@ impl Doubts {
 
     /// `doubt(run, tau_max)`, computed here once for every run equal in what it reads.
     pub fn of(&self, run: &Run, tau_max: f64) -> Doubt {
-        let slot = self.kept.slot(Asked::of(run, tau_max), |_| OnceLock::new());
+        let slot = self
+            .kept
+            .slot(&Asked::of(run, tau_max), |_| OnceLock::new());
         *slot.get_or_init(|| {
             self.computed.fetch_add(1, Ordering::Relaxed);
             doubt(run, tau_max)

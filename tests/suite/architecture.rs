@@ -315,7 +315,7 @@ const LAYERS: &[&[&str]] = &[
     &["sim", "pin"],
     // Numbers for people (`present`) need only the engine's types they say (a table's units, a
     // method's accuracy): the model's notices, the figures, the view and the CLI share them.
-    &["check", "error", "files", "text", "rng", "present"],
+    &["check", "error", "files", "kept", "text", "rng", "present"],
     &["engine"],
 ];
 
