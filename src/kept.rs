@@ -42,8 +42,22 @@ impl<K: PartialEq, V> Kept<K, V> {
     where
         K: Clone,
     {
+        self.slot_fitting(key, |k, _| k == key, make)
+    }
+
+    /// The first slot kept whose key and answer `fit` (an answer that holds for more than its
+    /// own key), or a new one for `key` that `make` gives.
+    pub fn slot_fitting(
+        &self,
+        key: &K,
+        fit: impl Fn(&K, &V) -> bool,
+        make: impl FnOnce(&K) -> V,
+    ) -> Arc<V>
+    where
+        K: Clone,
+    {
         let mut slots = self.lock();
-        if let Some((_, slot)) = slots.iter().find(|(k, _)| k == key) {
+        if let Some((_, slot)) = slots.iter().find(|(k, v)| fit(k, v)) {
             return Arc::clone(slot);
         }
         let slot = Arc::new(make(key));

@@ -310,7 +310,9 @@ pub fn tell_size(app: &mut App, width: u16, height: u16) {
 /// Brings `app`'s analysis pages up to date through `analysis`: takes the pieces that arrived
 /// and asks for what the page on screen still lacks, the outcome map at the grid its plot
 /// holds at the terminal's size (`ui::pages::map_grid`), computing it now when `compute` and
-/// inline. Returns whether anything arrived or was asked (the app then redraws).
+/// inline. Below the least size (`ui::layout::regions`) no page is on screen, only the notice
+/// that says so: nothing is asked until the terminal is large enough. Returns whether anything
+/// arrived or was asked (the app then redraws).
 pub fn sync(app: &mut App, analysis: &mut Analysis, compute: bool) -> bool {
     let mut moved = false;
     // Inline, each request completes when computed: a page needs at most five jobs.
@@ -324,7 +326,9 @@ pub fn sync(app: &mut App, analysis: &mut Analysis, compute: bool) -> bool {
                 moved = true;
             }
         }
-        let wanted = app.wanted_job(|v0_max| crate::ui::pages::map_grid(app, v0_max));
+        let (width, height) = app.screen();
+        let wanted = crate::ui::layout::regions(width, height)
+            .and_then(|_| app.wanted_job(|v0_max| crate::ui::pages::map_grid(app, v0_max)));
         let Some((job, settings)) = wanted else {
             // Nothing is computed for a page that is not on screen.
             analysis.cancel();

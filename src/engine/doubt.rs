@@ -19,7 +19,7 @@
 
 use super::State;
 use super::method::{Scheme, Settings, TOL_RANGE};
-use super::model::Frame;
+use super::model::{Frame, Initial};
 use super::run::{Outcome, Run};
 use super::saddle::saddle_h;
 use super::sundman;
@@ -95,16 +95,22 @@ pub fn sundman_tol(run: &Run) -> f64 {
     }
 }
 
-/// The second opinion in Sundman time ([`sundman::fate`]) at [`sundman_tol`] and 10× looser,
-/// when the form holds for both and they end alike; `None` otherwise (the Cartesian check runs).
-fn sundman_pair(run: &Run, limit: f64) -> Option<(sundman::Ending, sundman::Ending)> {
+/// How the Sundman-time form is run: [`sundman::fate`]'s arguments and answer, computed by it or
+/// taken from a store of its answers kept above the engine (the runs of one release at many
+/// settings ask for the same few).
+pub type Fate<'a> = &'a dyn Fn(&Initial, f64, f64, f64, u64) -> Option<sundman::Ending>;
+
+/// The second opinion in Sundman time ([`sundman::fate`], through `fate`) at [`sundman_tol`]
+/// and 10× looser, when the form holds for both and they end alike; `None` otherwise (the
+/// Cartesian check runs).
+fn sundman_pair(run: &Run, limit: f64, fate: Fate) -> Option<(sundman::Ending, sundman::Ending)> {
     if run.settings().stokes().is_some() || !run.settings().method().stick_events() {
         return None;
     }
     let tol = sundman_tol(run);
     let hold = run.settings().hold();
-    let a = sundman::fate(&run.initial(), hold, tol, limit, SHADOW_BUDGET)?;
-    let b = sundman::fate(&run.initial(), hold, 10.0 * tol, limit, SHADOW_BUDGET)?;
+    let a = fate(&run.initial(), hold, tol, limit, SHADOW_BUDGET)?;
+    let b = fate(&run.initial(), hold, 10.0 * tol, limit, SHADOW_BUDGET)?;
     (a.outcome == b.outcome).then_some((a, b))
 }
 
@@ -132,6 +138,11 @@ fn measure(s: &State, stuck_outside: bool, hold: f64) -> f64 {
 /// Checks a finished run (stuck, escaped, or run to `tau_max`) against its
 /// [`second_opinion`].
 pub fn doubt(run: &Run, tau_max: f64) -> Doubt {
+    doubt_with(run, tau_max, &sundman::fate)
+}
+
+/// [`doubt`], the Sundman-time form run through `fate`.
+pub fn doubt_with(run: &Run, tau_max: f64, fate: Fate) -> Doubt {
     let own = run.outcome();
     let end = decided_state(run);
     let hold = run.settings().hold();
@@ -158,7 +169,7 @@ pub fn doubt(run: &Run, tau_max: f64) -> Doubt {
         _ => (2.0 * end.tau + 10.0).min(tau_max.max(end.tau)),
     };
     let judge = |shadow: &State| measure(shadow, outside, hold) - measure(&end, outside, hold);
-    if let Some((a, b)) = sundman_pair(run, limit) {
+    if let Some((a, b)) = sundman_pair(run, limit, fate) {
         // Its own error: the same formulation 10× looser differs from it by more than it errs.
         let own_tau = (a.state.tau - b.state.tau).abs() + a.tail.max(b.tail);
         let error = judge(&a.state).abs() + (judge(&a.state) - judge(&b.state)).abs();

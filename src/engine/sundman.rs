@@ -253,6 +253,9 @@ pub struct Ending {
     /// At a stop: a bound on the error of the closed-form tail after the last step.
     pub tail: f64,
     pub evals: u64,
+    /// The latest τ a step reached short of `tau_limit` before a stop or an escape (0 if none):
+    /// under any limit above it the run takes the same steps to the same end.
+    pub reach: f64,
 }
 
 /// The time still to go from `p`, inside ξ = 1, and a bound on its error, where |u| is small
@@ -292,17 +295,18 @@ pub fn fate(
         tau: 0.0,
         tau_c: 0.0,
     };
-    let mut evals = 0;
-    let ending = |outcome, state, tail, evals| {
+    let (mut evals, mut reach) = (0, 0.0);
+    let ending = |outcome, state, tail, evals, reach| {
         Some(Ending {
             outcome,
             state,
             tail,
             evals,
+            reach,
         })
     };
     if p.escape_margin(hold) > 0.0 {
-        return ending(Outcome::Escaped, p.state(), 0.0, evals);
+        return ending(Outcome::Escaped, p.state(), 0.0, evals, reach);
     }
     let mut h: f64 = 1e-3;
     for _ in 0..max_steps {
@@ -313,7 +317,7 @@ pub fn fate(
             at.tau += t;
             let mut s = at.state();
             s.v = zcross(s.r);
-            return ending(Outcome::Stuck, s, bound, evals);
+            return ending(Outcome::Stuck, s, bound, evals, reach);
         }
         let [g, _, _] = p.x;
         if 1.0 - g < RHO_MIN || (g < 0.0 && p.speed() < 1e-6 * -g) {
@@ -355,8 +359,9 @@ pub fn fate(
                 at.tau = tau_limit;
                 Outcome::Running
             };
-            return ending(outcome, at.state(), 0.0, evals);
+            return ending(outcome, at.state(), 0.0, evals, reach);
         }
+        reach = next.tau;
         p = next;
         h *= (0.9 * err.max(1e-10).powf(-1.0 / 6.0)).min(4.0);
     }

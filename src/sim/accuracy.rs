@@ -6,7 +6,7 @@
 //! It can be no better than the statement it trusts: how far that statement is a bound, the
 //! bench's stated-against-actual lines measure.
 
-use crate::engine::doubt::doubt;
+use super::doubts::second_opinion;
 use crate::engine::{Initial, error::Error};
 use crate::engine::{Method, Run, Settings};
 
@@ -133,7 +133,7 @@ pub fn cheapest(
         let mut run = Run::new(initial, settings)?;
         let (stated, check_rhs) = match run.run(tau_max, stop_on_escape) {
             Ok(_) => {
-                let d = doubt(&run, tau_max);
+                let d = second_opinion(&run, tau_max);
                 let stated = if d.certain {
                     d.tau_error.max(d.q_error)
                 } else {

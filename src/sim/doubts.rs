@@ -5,10 +5,17 @@
 //! the one opinion the first of them computed. Each computing its own cost a class 6–7 ms of
 //! CPU a follower at the one tick where the run stopped: 100 followers took both cores for a
 //! third of a second, and the presenter's keys waited behind.
+//!
+//! Beneath them, the runs of the Sundman-time form ([`FATES`]): a run's form is run at a
+//! tolerance set by its settings' ([`crate::engine::doubt::sundman_tol`]: 1e-10 for every
+//! adaptive tolerance from 1e-7 up, 1e-13 for every fixed step), so one release at many
+//! settings (the work–precision page, the bench's rows, `run --error`'s ladder) asks for the
+//! same few, each computed once here.
 
-use crate::engine::doubt::{Doubt, decided_state, doubt};
+use crate::engine::doubt::{Doubt, decided_state, doubt_with};
 use crate::engine::run::{Outcome, Run};
-use crate::engine::{Initial, Settings, State};
+use crate::engine::sundman::{Ending, fate};
+use crate::engine::{Initial, Release, Settings, State};
 use crate::kept::Kept;
 use std::sync::OnceLock;
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -67,7 +74,7 @@ impl Doubts {
             .slot(&Asked::of(run, tau_max), |_| OnceLock::new());
         *slot.get_or_init(|| {
             self.computed.fetch_add(1, Ordering::Relaxed);
-            doubt(run, tau_max)
+            second_opinion(run, tau_max)
         })
     }
 
@@ -88,9 +95,99 @@ impl Default for Doubts {
     }
 }
 
+/// `doubt(run, tau_max)`, its Sundman-time runs taken from [`FATES`]: the same opinion, bit
+/// for bit.
+pub fn second_opinion(run: &Run, tau_max: f64) -> Doubt {
+    doubt_with(run, tau_max, &|i, hold, tol, limit, steps| {
+        FATES.of(i, hold, tol, limit, steps)
+    })
+}
+
+/// Runs of the Sundman-time form kept at most, the oldest going first: the bench's rim rows
+/// ask for 9 releases × 6 tolerances over and over.
+const FATES_KEPT: usize = 256;
+
+/// All that [`fate`] reads, bit for bit.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct FateAsked {
+    release: Release,
+    frictionless: bool,
+    /// ξ0, φ, v0, hold, tol.
+    bits: [u64; 5],
+    limit: u64,
+    steps: u64,
+}
+
+impl FateAsked {
+    fn of(i: &Initial, hold: f64, tol: f64, limit: f64, steps: u64) -> FateAsked {
+        FateAsked {
+            release: i.release,
+            frictionless: i.frictionless,
+            bits: [i.xi0, i.phi, i.v0, hold, tol].map(f64::to_bits),
+            limit: limit.to_bits(),
+            steps,
+        }
+    }
+}
+
+/// The runs of the Sundman-time form asked for lately, each computed once. One asked under
+/// another time limit is that of a run that stopped or escaped before both limits: it took
+/// the same steps to the same end ([`Ending::reach`]).
+pub struct Fates {
+    kept: Kept<FateAsked, OnceLock<Option<Ending>>>,
+    computed: AtomicU64,
+}
+
+/// The process's: [`second_opinion`] asks here.
+pub static FATES: Fates = Fates::new();
+
+impl Fates {
+    pub const fn new() -> Fates {
+        Fates {
+            kept: Kept::new(FATES_KEPT),
+            computed: AtomicU64::new(0),
+        }
+    }
+
+    /// `fate(i, hold, tol, limit, steps)`, computed here once.
+    pub fn of(&self, i: &Initial, hold: f64, tol: f64, limit: f64, steps: u64) -> Option<Ending> {
+        let asked = FateAsked::of(i, hold, tol, limit, steps);
+        let fits = |a: &FateAsked, slot: &OnceLock<Option<Ending>>| {
+            *a == asked
+                || *a
+                    == (FateAsked {
+                        limit: a.limit,
+                        ..asked
+                    })
+                    && slot
+                        .get()
+                        .copied()
+                        .flatten()
+                        .is_some_and(|e| e.outcome != Outcome::Running && e.reach < limit)
+        };
+        let slot = self.kept.slot_fitting(&asked, fits, |_| OnceLock::new());
+        *slot.get_or_init(|| {
+            self.computed.fetch_add(1, Ordering::Relaxed);
+            fate(i, hold, tol, limit, steps)
+        })
+    }
+
+    /// Runs computed so far.
+    pub fn computed(&self) -> u64 {
+        self.computed.load(Ordering::Relaxed)
+    }
+}
+
+impl Default for Fates {
+    fn default() -> Fates {
+        Fates::new()
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::engine::doubt::doubt;
 
     /// The default scene's run (Fig. 3 C: it stops just inside ξ = 1) at ξ0 + `dxi`, run to
     /// its end.
@@ -134,6 +231,42 @@ mod tests {
         });
         assert!(got.iter().all(|d| *d == got[0]));
         assert_eq!(doubts.computed(), 1);
+    }
+
+    /// One release at many settings: the Sundman-time runs are computed once a tolerance and
+    /// time limit (or once for limits beyond a run that ended before them), and every opinion
+    /// is `doubt`'s, bit for bit: stuck, escaping and run out to the limit.
+    #[test]
+    fn the_sundman_runs_are_computed_once_and_answer_as_doubt() {
+        use crate::engine::Method;
+        let fates = Fates::new();
+        let via = |run: &Run, tau_max: f64| {
+            doubt_with(run, tau_max, &|i, hold, tol, limit, steps| {
+                fates.of(i, hold, tol, limit, steps)
+            })
+        };
+        let mut asked = 0;
+        for (xi0, v0, tau_max) in [(0.5, 0.6078, 100.0), (0.5, 0.7, 100.0), (0.5, 0.6078, 1.0)] {
+            for s in [
+                Settings::dp54(1e-4),
+                Settings::dp54(1e-6),
+                Settings::fixed(Method::Rk4, 1e-3),
+                Settings::fixed(Method::Rk2, 1e-3),
+                Settings::dp54(1e-10),
+            ] {
+                let mut run = Run::new(Initial::velocity(xi0, 0.0, v0), s).unwrap();
+                run.run(tau_max, true).unwrap();
+                let d = doubt(&run, tau_max);
+                assert_eq!(via(&run, tau_max), d, "{xi0} {v0} {s:?}");
+                asked += 2 * usize::from(d.sundman.is_some());
+            }
+        }
+        assert!(asked >= 24, "{asked}");
+        assert!(
+            fates.computed() * 2 <= asked as u64,
+            "{} of {asked}",
+            fates.computed()
+        );
     }
 
     /// However many runs ask, at most [`KEPT`] opinions are kept.

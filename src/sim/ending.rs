@@ -119,7 +119,7 @@ pub fn audit(initial: Initial, settings: Settings, tau_max: f64) -> Result<Audit
             handover.get_or_insert(at);
         }
     }
-    let d = crate::engine::doubt::doubt(&run, tau_max);
+    let d = super::doubts::second_opinion(&run, tau_max);
     let end = crate::engine::doubt::decided_state(&run);
     Ok(Audit {
         outcome: run.outcome(),

@@ -819,10 +819,11 @@ proptest! {
         let mut run = Run::new(i, s).unwrap();
         prop_assume!(run.run(1e4, true).is_ok());
         let d = doubt(&run, 1e4);
-        let reference = Settings { frame: Frame::Table, ..Settings::dp54(1e-12) };
-        let mut reference = Run::new(i, reference).unwrap();
-        let want = reference.run(1e4, true).unwrap();
+        // Only a certain run claims its outcome: the reference is run for those alone.
         if d.certain {
+            let reference = Settings { frame: Frame::Table, ..Settings::dp54(1e-12) };
+            let mut reference = Run::new(i, reference).unwrap();
+            let want = reference.run(1e4, true).unwrap();
             prop_assert_eq!(run.outcome() == Outcome::Stuck, want == Outcome::Stuck,
                 "certain and wrong at v_e {:+e}, R {}", dv, r);
         }

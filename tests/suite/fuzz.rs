@@ -136,7 +136,7 @@ fn fuzz(seed: u64, steps: usize) {
 }
 
 /// Seeds × steps of the key fuzzer: `TURNTABLE_FUZZ=SEEDS` (each 1500 steps) runs more, or
-/// fewer; the default, 4, is what CI runs (~7 s of CPU; a seed costs ~1.8 s, and the suite's
+/// fewer; the default, 4, is what CI runs (~3 s of CPU; a seed costs ~0.7 s, and the suite's
 /// time is its tests' CPU time over two cores).
 #[test]
 fn random_keys_and_resizes_keep_the_app_valid() {

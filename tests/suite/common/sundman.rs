@@ -82,9 +82,18 @@ fn step(x: &V, h: f64, tol: f64) -> (V, f64) {
     (dx, err)
 }
 
-/// The next step's length after one of `h` with error `err`.
+/// The next step's length after one of `h` with error `err`: 0.9·err^(−1/5), within [0.2, 4].
+/// Below an error of 5e-4 that factor is over 4.1, and above 2e3 under 0.197: the bounds, taken
+/// without `powf` (a quarter of the CPU of the runs, held by stability, not by the error).
 fn next(h: f64, err: f64) -> f64 {
-    (h * (0.9 * err.max(1e-12).powf(-0.2)).clamp(0.2, 4.0)).min(H_MAX)
+    let factor = if err < 5e-4 {
+        4.0
+    } else if err > 2e3 {
+        0.2
+    } else {
+        (0.9 * err.max(1e-12).powf(-0.2)).clamp(0.2, 4.0)
+    };
+    (h * factor).min(H_MAX)
 }
 
 /// `x + dx` with the rounding of the sum carried in `c` (Kahan): near the saddle a stop time
