@@ -63,6 +63,9 @@ pub struct Limits {
     /// A refused login (a wrong passphrase or key) is answered this late: what slows a
     /// guesser down, beside `per_minute`.
     pub refusal: Duration,
+    /// At [`Running::stop`], once the sessions have ended, their last bytes (the message
+    /// saying why) are given this long to leave before the connections are dropped.
+    pub linger: Duration,
 }
 
 impl Default for Limits {
@@ -79,6 +82,7 @@ impl Default for Limits {
             waiting_per_address: None,
             stall: Duration::from_secs(60),
             refusal: Duration::from_secs(1),
+            linger: Duration::from_millis(200),
         }
     }
 }
@@ -395,10 +399,10 @@ impl Running {
         }
         let until = Instant::now() + Duration::from_secs(3);
         while self.shared.sessions() > 0 && Instant::now() < until {
-            std::thread::sleep(Duration::from_millis(20));
+            std::thread::sleep(Duration::from_millis(5));
         }
         // The last bytes a moment to leave.
-        std::thread::sleep(Duration::from_millis(200));
+        std::thread::sleep(self.shared.limits.linger);
         if let Some(rt) = self.runtime.take() {
             rt.shutdown_timeout(Duration::from_secs(1));
         }

@@ -27,7 +27,7 @@ say Second: at rest at xi0 = 1.1, outside R_max.
 wait
 ask Will it escape? (y/n)
 play
-tick 30
+tick 10
 wait
 say The end.
 ";
@@ -51,7 +51,11 @@ fn serving(lesson: Option<turntable::serve::Lesson>) -> Running {
         passphrase: Some("ba-ke-di-lo".into()),
         presenter_keys: vec![key(3).public_key().clone().into()],
         presenter_passphrase: None,
-        limits: Limits::default(),
+        // Nothing is read after the stop: no linger for the last bytes.
+        limits: Limits {
+            linger: Duration::ZERO,
+            ..Limits::default()
+        },
         lesson,
         exports: None,
     })
@@ -317,9 +321,10 @@ fn the_followers_answers_are_tallied_on_the_presenters_screen() {
         assert!(until(&mut [&mut f1], |s| all_show(s, &["answered"])).await);
         f2.send(b"n").await;
         assert!(until(&mut [&mut tp], |s| all_show(s, &["y 1 · n 1 · 0 not yet"])).await);
-        // A second answer changes nothing: the first stands.
+        // A second answer changes nothing: the first stands (a change would be on the
+        // presenter's screen a frame or two after it).
         f1.send(b"n").await;
-        tokio::time::sleep(Duration::from_millis(500)).await;
+        tokio::time::sleep(Duration::from_millis(250)).await;
         assert!(until(&mut [&mut tp], |s| all_show(s, &["y 1 · n 1 · 0 not yet"])).await);
         // The presenter answers: the question closes, its tally stays while it is on screen.
         tp.send(b"n").await;
@@ -373,8 +378,8 @@ fn a_followers_answer_moves_neither_the_presenter_nor_the_others() {
             !f1.shows("Right"),
             "the outcome given away before the class answered"
         );
-        // Everything a while longer: nothing else moves.
-        tokio::time::sleep(Duration::from_millis(800)).await;
+        // Everything a while longer (ten frames): nothing else moves.
+        tokio::time::sleep(Duration::from_millis(300)).await;
         until(&mut [&mut tp, &mut f2], |_| true).await;
         assert_eq!(f2.rows(), f2_before, "the other follower's screen moved");
         let rows = tp.rows();
@@ -426,9 +431,10 @@ fn a_presenter_who_takes_over_takes_the_class_where_it_was() {
         );
         assert!(!tp2.shows("First: at rest") && !f1.shows("First: at rest"));
         assert!(until(&mut [&mut tp2, &mut f1], |s| body(&s[0]) == body(&s[1])).await);
-        // The first presenter leads no more; the second's Enter moves the class one step.
+        // The first presenter leads no more (a lead is on a follower's screen a frame or two
+        // after the key); the second's Enter moves the class one step.
         tp.send(b"\r").await;
-        tokio::time::sleep(Duration::from_millis(500)).await;
+        tokio::time::sleep(Duration::from_millis(250)).await;
         until(&mut [&mut f1], |_| true).await;
         assert!(
             !f1.shows("Will it escape?"),
@@ -748,7 +754,7 @@ fn followers_of_one_size_share_a_frame_and_each_sees_its_own() {
         let mut f3 = Tty::open(&f, 80, 24).await;
         handles.push(f);
         assert!(until(&mut [&mut f3], |s| all_show(s, &["First: at rest"])).await);
-        tokio::time::sleep(Duration::from_millis(500)).await;
+        tokio::time::sleep(Duration::from_millis(250)).await;
         tp.send(b" ").await;
         let same = |s: &[Vec<String>]| body(&s[0]) == body(&s[1]);
         assert!(until(&mut [&mut f1, &mut f3], same).await);
@@ -763,7 +769,7 @@ fn followers_of_one_size_share_a_frame_and_each_sees_its_own() {
         assert!(until(&mut [&mut f1], |s| all_show(s, &["You said it escapes."])).await);
         // The presenter plays on (the question stays open): the followers draw on.
         tp.send(b" ").await;
-        tokio::time::sleep(Duration::from_millis(500)).await;
+        tokio::time::sleep(Duration::from_millis(250)).await;
         until(&mut [&mut f2, &mut f3], |_| true).await;
         for f in [&f2, &f3] {
             assert!(

@@ -24,7 +24,11 @@ fn server(exports: &Path) -> Running {
         passphrase: None,
         presenter_keys: vec![key(3).public_key().clone().into()],
         presenter_passphrase: None,
-        limits: Limits::default(),
+        // Nothing is read after the stop: no linger for the last bytes.
+        limits: Limits {
+            linger: Duration::ZERO,
+            ..Limits::default()
+        },
         lesson: None,
         exports: Some(exports.to_path_buf()),
     })

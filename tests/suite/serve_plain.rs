@@ -92,7 +92,7 @@ fn a_plain_student_follows_the_lesson_and_answers_in_words() {
         )
         .await;
         tp.send(b"y").await.unwrap();
-        // Enter once the lesson holds again (its `tick 30` over): before, it is the page's.
+        // Enter once the lesson holds again (its `tick 10` over): before, it is the page's.
         says(
             &mut tf,
             &mut at,
