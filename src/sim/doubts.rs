@@ -1,10 +1,10 @@
-//! Second opinions computed once a process: a run's [`doubt`] hangs on nothing but what it
-//! reads of the run (its initial conditions, settings, outcome, deciding state and snap
-//! bound), so every session holding the same run (a served class's followers, each applying
-//! the presenter's ticks; students exploring the same scene; a run restarted as it was) takes
-//! the one opinion the first of them computed. Each computing its own cost a class 6–7 ms of
-//! CPU a follower at the one tick where the run stopped: 100 followers took both cores for a
-//! third of a second, and the presenter's keys waited behind.
+//! Second opinions computed once a process: a run's [`doubt`](crate::engine::doubt::doubt)
+//! hangs on nothing but what it reads of the run (its initial conditions, settings, outcome,
+//! deciding state and snap bound), so every session holding the same run (a served class's
+//! followers, each applying the presenter's ticks; students exploring the same scene; a run
+//! restarted as it was) takes the one opinion the first of them computed. Each computing its
+//! own cost a class 6–7 ms of CPU a follower at the one tick where the run stopped: 100
+//! followers took both cores for a third of a second, and the presenter's keys waited behind.
 //!
 //! Beneath them, the runs of the Sundman-time form ([`FATES`]): a run's form is run at a
 //! tolerance set by its settings' ([`crate::engine::doubt::sundman_tol`]: 1e-10 for every
