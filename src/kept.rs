@@ -78,6 +78,7 @@ impl<K: PartialEq, V> Kept<K, V> {
     }
 
     /// Slots kept now.
+    #[cfg(test)]
     pub fn kept(&self) -> usize {
         self.lock().len()
     }

@@ -75,12 +75,14 @@ impl Shared {
     }
 
     /// Pieces computed so far.
-    pub fn computed(&self) -> u64 {
+    #[cfg(test)]
+    fn computed(&self) -> u64 {
         self.computed.load(Ordering::Relaxed)
     }
 
     /// Jobs kept now.
-    pub fn kept(&self) -> usize {
+    #[cfg(test)]
+    fn kept(&self) -> usize {
         self.kept.kept()
     }
 }

@@ -77,7 +77,8 @@ impl Frames {
     }
 
     /// Frames kept now.
-    pub fn kept(&self) -> usize {
+    #[cfg(test)]
+    fn kept(&self) -> usize {
         self.kept.kept()
     }
 }

@@ -79,12 +79,14 @@ impl Doubts {
     }
 
     /// Opinions computed so far.
-    pub fn computed(&self) -> u64 {
+    #[cfg(test)]
+    fn computed(&self) -> u64 {
         self.computed.load(Ordering::Relaxed)
     }
 
     /// Opinions kept now.
-    pub fn kept(&self) -> usize {
+    #[cfg(test)]
+    fn kept(&self) -> usize {
         self.kept.kept()
     }
 }
@@ -173,7 +175,8 @@ impl Fates {
     }
 
     /// Runs computed so far.
-    pub fn computed(&self) -> u64 {
+    #[cfg(test)]
+    fn computed(&self) -> u64 {
         self.computed.load(Ordering::Relaxed)
     }
 }
